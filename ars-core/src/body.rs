@@ -1,0 +1,577 @@
+//! Rigid bodies: creation, mass, pose, velocities, forces.
+
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use ode_sys as ffi;
+
+use crate::convert;
+use crate::error::{Error, Result};
+use crate::handle::BodyHandle;
+use crate::init::ensure_ode_ready;
+use crate::validate;
+use crate::world::World;
+
+pub(crate) struct BodyData {
+    pub(crate) raw: ffi::dBodyID,
+}
+
+/// How the mass of a shape is given: the total mass in kg, or a density in kg/m³.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MassAmount {
+    /// Total mass, kg.
+    Total(f64),
+    /// Density, kg/m³.
+    Density(f64),
+}
+
+/// The mass distribution of a body, computed with ODE's mass functions (so the numbers
+/// are ODE's own). Capsules and cylinders lie along the body's local Z axis; box sizes
+/// are full edge lengths; a capsule's length excludes its two hemispherical caps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum MassSpec {
+    /// Solid sphere.
+    Sphere {
+        /// Radius, m.
+        radius: f64,
+        /// Mass or density.
+        amount: MassAmount,
+    },
+    /// Solid box.
+    Box {
+        /// Full edge lengths along X, Y, Z, m.
+        size: Vector3<f64>,
+        /// Mass or density.
+        amount: MassAmount,
+    },
+    /// Solid capsule along local Z.
+    Capsule {
+        /// Radius, m.
+        radius: f64,
+        /// Length of the cylindrical part (without the caps), m.
+        length: f64,
+        /// Mass or density.
+        amount: MassAmount,
+    },
+    /// Solid cylinder along local Z.
+    Cylinder {
+        /// Radius, m.
+        radius: f64,
+        /// Length, m.
+        length: f64,
+        /// Mass or density.
+        amount: MassAmount,
+    },
+    /// A mass with its inertia tensor about the body origin (the centre of mass).
+    Custom {
+        /// Mass, kg.
+        mass: f64,
+        /// Symmetric, positive definite inertia tensor in the body frame, kg·m².
+        inertia: Matrix3<f64>,
+    },
+}
+
+impl MassSpec {
+    /// Sphere of total mass `mass` (kg) and radius `radius` (m).
+    pub fn sphere_total(mass: f64, radius: f64) -> Self {
+        MassSpec::Sphere { radius, amount: MassAmount::Total(mass) }
+    }
+    /// Box of total mass `mass` and full edge lengths `size`.
+    pub fn box_total(mass: f64, size: Vector3<f64>) -> Self {
+        MassSpec::Box { size, amount: MassAmount::Total(mass) }
+    }
+    /// Capsule along Z of total mass `mass`.
+    pub fn capsule_total(mass: f64, radius: f64, length: f64) -> Self {
+        MassSpec::Capsule { radius, length, amount: MassAmount::Total(mass) }
+    }
+    /// Cylinder along Z of total mass `mass`.
+    pub fn cylinder_total(mass: f64, radius: f64, length: f64) -> Self {
+        MassSpec::Cylinder { radius, length, amount: MassAmount::Total(mass) }
+    }
+
+    /// The ODE mass structure, after checking every number.
+    pub(crate) fn to_ode(self) -> Result<ffi::dMass> {
+        let amount = |a: MassAmount| -> Result<MassAmount> {
+            match a {
+                MassAmount::Total(m) => validate::positive("mass", m).map(MassAmount::Total),
+                MassAmount::Density(d) => validate::positive("density", d).map(MassAmount::Density),
+            }
+        };
+        // Check every number first; the ODE calls below then cannot fail.
+        let checked = match self {
+            MassSpec::Sphere { radius, amount: a } => {
+                MassSpec::Sphere { radius: validate::positive("sphere radius", radius)?, amount: amount(a)? }
+            }
+            MassSpec::Box { size, amount: a } => {
+                MassSpec::Box { size: validate::positive_vector("box size", &size)?, amount: amount(a)? }
+            }
+            MassSpec::Capsule { radius, length, amount: a } => MassSpec::Capsule {
+                radius: validate::positive("capsule radius", radius)?,
+                length: validate::positive("capsule length", length)?,
+                amount: amount(a)?,
+            },
+            MassSpec::Cylinder { radius, length, amount: a } => MassSpec::Cylinder {
+                radius: validate::positive("cylinder radius", radius)?,
+                length: validate::positive("cylinder length", length)?,
+                amount: amount(a)?,
+            },
+            MassSpec::Custom { mass, inertia: i } => {
+                validate::positive("mass", mass)?;
+                if !i.iter().all(|x| x.is_finite()) {
+                    return Err(Error::NotFinite { what: "inertia tensor", value: format!("{i:?}") });
+                }
+                if (i - i.transpose()).norm() > 1e-12 * i.norm().max(1.0) || i.cholesky().is_none() {
+                    return Err(Error::OutOfRange {
+                        what: "inertia tensor",
+                        detail: "must be symmetric and positive definite".into(),
+                    });
+                }
+                self
+            }
+        };
+        use MassAmount::{Density, Total};
+        let mut m = ffi::dMass::default();
+        // SAFETY: `m` is a valid dMass to fill; every size and amount was checked
+        // positive and finite above, which is all ODE's mass functions need.
+        unsafe {
+            match checked {
+                MassSpec::Sphere { radius: r, amount: Total(t) } => ffi::dMassSetSphereTotal(&mut m, t, r),
+                MassSpec::Sphere { radius: r, amount: Density(d) } => ffi::dMassSetSphere(&mut m, d, r),
+                MassSpec::Box { size: s, amount: Total(t) } => ffi::dMassSetBoxTotal(&mut m, t, s.x, s.y, s.z),
+                MassSpec::Box { size: s, amount: Density(d) } => ffi::dMassSetBox(&mut m, d, s.x, s.y, s.z),
+                MassSpec::Capsule { radius: r, length: l, amount: Total(t) } => {
+                    ffi::dMassSetCapsuleTotal(&mut m, t, 3, r, l)
+                }
+                MassSpec::Capsule { radius: r, length: l, amount: Density(d) } => {
+                    ffi::dMassSetCapsule(&mut m, d, 3, r, l)
+                }
+                MassSpec::Cylinder { radius: r, length: l, amount: Total(t) } => {
+                    ffi::dMassSetCylinderTotal(&mut m, t, 3, r, l)
+                }
+                MassSpec::Cylinder { radius: r, length: l, amount: Density(d) } => {
+                    ffi::dMassSetCylinder(&mut m, d, 3, r, l)
+                }
+                MassSpec::Custom { mass, inertia: i } => ffi::dMassSetParameters(
+                    &mut m,
+                    mass,
+                    0.0,
+                    0.0,
+                    0.0,
+                    i[(0, 0)],
+                    i[(1, 1)],
+                    i[(2, 2)],
+                    i[(0, 1)],
+                    i[(0, 2)],
+                    i[(1, 2)],
+                ),
+            }
+        }
+        // SAFETY: `m` is a valid dMass; dMassCheck only reads it.
+        if unsafe { ffi::dMassCheck(&m) } == 0 {
+            return Err(Error::OutOfRange { what: "mass", detail: "ODE rejects these mass parameters".into() });
+        }
+        Ok(m)
+    }
+}
+
+/// How a body moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum BodyKind {
+    /// Moved by forces, gravity, joints and contacts.
+    #[default]
+    Dynamic,
+    /// Moved only by its velocity; pushes dynamic bodies, is not pushed (infinite mass).
+    Kinematic,
+}
+
+/// Description of a body to insert with [`World::insert_body`].
+///
+/// ODE calls happen in this order: create, set mass, position, rotation, velocities,
+/// kinematic flag. With no mass given the body keeps ODE's default (1 kg, identity
+/// inertia), as in the original ARS.
+#[derive(Clone, Debug, Default)]
+#[must_use]
+pub struct BodyBuilder {
+    kind: BodyKind,
+    mass: Option<MassSpec>,
+    position: Option<Point3<f64>>,
+    rotation: Option<Rotation3<f64>>,
+    linear_velocity: Option<Vector3<f64>>,
+    angular_velocity: Option<Vector3<f64>>,
+}
+
+impl BodyBuilder {
+    /// A dynamic body at the origin.
+    pub fn new() -> Self {
+        BodyBuilder::default()
+    }
+    /// A kinematic body at the origin.
+    pub fn kinematic() -> Self {
+        BodyBuilder { kind: BodyKind::Kinematic, ..Default::default() }
+    }
+    /// Its mass distribution.
+    pub fn mass(mut self, mass: MassSpec) -> Self {
+        self.mass = Some(mass);
+        self
+    }
+    /// Its position (of the centre of mass), m.
+    pub fn position(mut self, position: Point3<f64>) -> Self {
+        self.position = Some(position);
+        self
+    }
+    /// Its orientation.
+    pub fn rotation(mut self, rotation: Rotation3<f64>) -> Self {
+        self.rotation = Some(rotation);
+        self
+    }
+    /// Its initial linear velocity, m/s.
+    pub fn linear_velocity(mut self, v: Vector3<f64>) -> Self {
+        self.linear_velocity = Some(v);
+        self
+    }
+    /// Its initial angular velocity (world frame), rad/s.
+    pub fn angular_velocity(mut self, w: Vector3<f64>) -> Self {
+        self.angular_velocity = Some(w);
+        self
+    }
+}
+
+/// Read access to one body, from [`World::body`].
+#[derive(Clone, Copy)]
+pub struct BodyRef<'w> {
+    raw: ffi::dBodyID,
+    handle: BodyHandle,
+    _world: &'w World,
+}
+
+/// Write access to one body, from [`World::body_mut`].
+pub struct BodyMut<'w> {
+    raw: ffi::dBodyID,
+    handle: BodyHandle,
+    _world: &'w mut World,
+}
+
+impl World {
+    /// Creates a body as described by `builder`.
+    pub fn insert_body(&mut self, builder: BodyBuilder) -> Result<BodyHandle> {
+        ensure_ode_ready();
+        // Check everything first, so that a bad argument leaves the world untouched.
+        let mass = builder.mass.map(MassSpec::to_ode).transpose()?;
+        let position = builder.position.map(|p| validate::point("body position", &p)).transpose()?;
+        let rotation = builder.rotation.map(|r| validate::rotation("body rotation", &r)).transpose()?;
+        let lin = builder.linear_velocity.map(|v| validate::vector("linear velocity", &v)).transpose()?;
+        let ang = builder.angular_velocity.map(|v| validate::vector("angular velocity", &v)).transpose()?;
+        // SAFETY: the world is live; the new body is owned by the arena entry below and
+        // destroyed by `remove_body` or the world's Drop.
+        let raw = unsafe { ffi::dBodyCreate(self.raw) };
+        let handle = BodyHandle(self.bodies.insert(BodyData { raw }));
+        // SAFETY: the body id was just created by this world.
+        unsafe {
+            ffi::dBodySetData(raw, handle.0.index as usize as *mut _);
+        }
+        let mut body = self.body_mut(handle)?;
+        if let Some(m) = mass {
+            body.set_ode_mass(&m);
+        }
+        if let Some(p) = position {
+            body.set_position(p)?;
+        }
+        if let Some(r) = rotation {
+            body.set_rotation(r)?;
+        }
+        if let Some(v) = lin {
+            body.set_linear_velocity(v)?;
+        }
+        if let Some(w) = ang {
+            body.set_angular_velocity(w)?;
+        }
+        if builder.kind == BodyKind::Kinematic {
+            body.set_kinematic(true);
+        }
+        Ok(handle)
+    }
+
+    /// Removes a body together with the geoms attached to it and the joints that use it.
+    pub fn remove_body(&mut self, body: BodyHandle) -> Result<()> {
+        self.body(body)?;
+        let geoms: Vec<_> = self.geoms_of_body(body);
+        for g in geoms {
+            self.remove_geom(g)?;
+        }
+        let joints: Vec<_> = self.joints_of_body(body);
+        for j in joints {
+            self.remove_joint(j)?;
+        }
+        let data = self.bodies.remove(body.0, BodyHandle::KIND, &body)?;
+        // SAFETY: the body was created by this world; its geoms and joints are gone and
+        // contact joints only live within a step.
+        unsafe { ffi::dBodyDestroy(data.raw) };
+        Ok(())
+    }
+
+    /// Read access to a body.
+    pub fn body(&self, body: BodyHandle) -> Result<BodyRef<'_>> {
+        let raw = self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw;
+        Ok(BodyRef { raw, handle: body, _world: self })
+    }
+
+    /// Write access to a body.
+    pub fn body_mut(&mut self, body: BodyHandle) -> Result<BodyMut<'_>> {
+        let raw = self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw;
+        Ok(BodyMut { raw, handle: body, _world: self })
+    }
+
+    /// Every body of the world, in slot order.
+    pub fn bodies(&self) -> impl Iterator<Item = BodyHandle> + '_ {
+        self.bodies.iter().map(|(h, _)| BodyHandle(h))
+    }
+
+    pub(crate) fn body_raw(&self, body: BodyHandle) -> Result<ffi::dBodyID> {
+        Ok(self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw)
+    }
+}
+
+macro_rules! body_getters {
+    () => {
+        /// The handle of this body.
+        pub fn handle(&self) -> BodyHandle {
+            self.handle
+        }
+
+        /// Position of the body origin (its centre of mass), m.
+        pub fn position(&self) -> Point3<f64> {
+            // SAFETY: the body is live (its handle was checked when this view was
+            // made, and the view borrows the world); ODE returns a pointer to 3 reals.
+            convert::point_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetPosition(self.raw), 3) })
+        }
+
+        /// Orientation as a rotation matrix (body to world).
+        pub fn rotation(&self) -> Rotation3<f64> {
+            // SAFETY: as for `position`; ODE returns a dMatrix3 (12 reals).
+            convert::rotation_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetRotation(self.raw), 12) })
+        }
+
+        /// Orientation as a unit quaternion.
+        pub fn quaternion(&self) -> UnitQuaternion<f64> {
+            // SAFETY: as for `position`; ODE returns a dQuaternion (4 reals).
+            convert::quaternion_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetQuaternion(self.raw), 4) })
+        }
+
+        /// Pose (body to world).
+        pub fn pose(&self) -> Isometry3<f64> {
+            Isometry3::from_parts(Translation3::from(self.position().coords), self.quaternion())
+        }
+
+        /// Linear velocity of the centre of mass, world frame, m/s.
+        pub fn linear_velocity(&self) -> Vector3<f64> {
+            // SAFETY: as for `position`.
+            convert::vector_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetLinearVel(self.raw), 3) })
+        }
+
+        /// Angular velocity, world frame, rad/s.
+        pub fn angular_velocity(&self) -> Vector3<f64> {
+            // SAFETY: as for `position`.
+            convert::vector_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetAngularVel(self.raw), 3) })
+        }
+
+        /// Mass, kg.
+        pub fn mass(&self) -> f64 {
+            self.ode_mass().mass
+        }
+
+        /// Inertia tensor about the centre of mass, in the body frame, kg·m².
+        pub fn inertia(&self) -> Matrix3<f64> {
+            convert::matrix_from_ode(&self.ode_mass().I)
+        }
+
+        /// Inertia tensor about the centre of mass, in the world frame: R I Rᵀ.
+        pub fn inertia_world(&self) -> Matrix3<f64> {
+            let r = self.rotation();
+            r.matrix() * self.inertia() * r.matrix().transpose()
+        }
+
+        /// Force accumulated for the next step, world frame, N.
+        pub fn force(&self) -> Vector3<f64> {
+            // SAFETY: as for `position`.
+            convert::vector_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetForce(self.raw), 3) })
+        }
+
+        /// Torque accumulated for the next step, world frame, N·m.
+        pub fn torque(&self) -> Vector3<f64> {
+            // SAFETY: as for `position`.
+            convert::vector_from_ode(unsafe { std::slice::from_raw_parts(ffi::dBodyGetTorque(self.raw), 3) })
+        }
+
+        /// Whether the body takes part in the simulation.
+        pub fn is_enabled(&self) -> bool {
+            // SAFETY: the body is live.
+            unsafe { ffi::dBodyIsEnabled(self.raw) != 0 }
+        }
+
+        /// Whether the body is kinematic.
+        pub fn is_kinematic(&self) -> bool {
+            // SAFETY: the body is live.
+            unsafe { ffi::dBodyIsKinematic(self.raw) != 0 }
+        }
+
+        /// World coordinates of a point given in the body frame.
+        pub fn point_to_world(&self, local: Point3<f64>) -> Point3<f64> {
+            self.pose() * local
+        }
+
+        /// Velocity of a point fixed to the body, given in world coordinates, m/s.
+        pub fn point_velocity(&self, world_point: Point3<f64>) -> Vector3<f64> {
+            self.linear_velocity() + self.angular_velocity().cross(&(world_point - self.position()))
+        }
+
+        fn ode_mass(&self) -> ffi::dMass {
+            let mut m = ffi::dMass::default();
+            // SAFETY: the body is live; `m` is a valid out-parameter.
+            unsafe { ffi::dBodyGetMass(self.raw, &mut m) };
+            m
+        }
+    };
+}
+
+impl BodyRef<'_> {
+    body_getters!();
+}
+
+impl std::fmt::Debug for BodyRef<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Body").field("handle", &self.handle).field("position", &self.position()).finish()
+    }
+}
+
+impl BodyMut<'_> {
+    body_getters!();
+
+    /// Sets the position of the body origin, m.
+    pub fn set_position(&mut self, p: Point3<f64>) -> Result<()> {
+        let p = validate::point("body position", &p)?;
+        // SAFETY: the body is live (checked handle, exclusive borrow of the world).
+        unsafe { ffi::dBodySetPosition(self.raw, p.x, p.y, p.z) };
+        Ok(())
+    }
+
+    /// Sets the orientation from a rotation matrix (ODE's `dBodySetRotation`).
+    pub fn set_rotation(&mut self, r: Rotation3<f64>) -> Result<()> {
+        let r = validate::rotation("body rotation", &r)?;
+        let m = convert::rotation_to_ode(&r);
+        // SAFETY: the body is live; `m` is a dMatrix3.
+        unsafe { ffi::dBodySetRotation(self.raw, m.as_ptr()) };
+        Ok(())
+    }
+
+    /// Sets the orientation from a unit quaternion (ODE's `dBodySetQuaternion`).
+    pub fn set_quaternion(&mut self, q: UnitQuaternion<f64>) -> Result<()> {
+        let q = validate::quaternion("body orientation", &q)?;
+        let q = convert::quaternion_to_ode(&q);
+        // SAFETY: the body is live; `q` is a dQuaternion.
+        unsafe { ffi::dBodySetQuaternion(self.raw, q.as_ptr()) };
+        Ok(())
+    }
+
+    /// Sets position and orientation.
+    pub fn set_pose(&mut self, pose: Isometry3<f64>) -> Result<()> {
+        validate::quaternion("body orientation", &pose.rotation)?;
+        self.set_position(Point3::from(pose.translation.vector))?;
+        self.set_quaternion(pose.rotation)
+    }
+
+    /// Sets the linear velocity, m/s.
+    pub fn set_linear_velocity(&mut self, v: Vector3<f64>) -> Result<()> {
+        let v = validate::vector("linear velocity", &v)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodySetLinearVel(self.raw, v.x, v.y, v.z) };
+        Ok(())
+    }
+
+    /// Sets the angular velocity (world frame), rad/s.
+    pub fn set_angular_velocity(&mut self, w: Vector3<f64>) -> Result<()> {
+        let w = validate::vector("angular velocity", &w)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodySetAngularVel(self.raw, w.x, w.y, w.z) };
+        Ok(())
+    }
+
+    /// Replaces the mass distribution.
+    pub fn set_mass(&mut self, mass: MassSpec) -> Result<()> {
+        let m = mass.to_ode()?;
+        self.set_ode_mass(&m);
+        Ok(())
+    }
+
+    fn set_ode_mass(&mut self, m: &ffi::dMass) {
+        // SAFETY: the body is live and `m` passed dMassCheck with its centre at the origin.
+        unsafe { ffi::dBodySetMass(self.raw, m) };
+    }
+
+    /// Adds a force (world frame, N) at the centre of mass, for the next step.
+    pub fn add_force(&mut self, f: Vector3<f64>) -> Result<()> {
+        let f = validate::vector("force", &f)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodyAddForce(self.raw, f.x, f.y, f.z) };
+        Ok(())
+    }
+
+    /// Adds a force given in the body frame, at the centre of mass.
+    pub fn add_relative_force(&mut self, f: Vector3<f64>) -> Result<()> {
+        let f = validate::vector("force", &f)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodyAddRelForce(self.raw, f.x, f.y, f.z) };
+        Ok(())
+    }
+
+    /// Adds a torque (world frame, N·m), for the next step.
+    pub fn add_torque(&mut self, t: Vector3<f64>) -> Result<()> {
+        let t = validate::vector("torque", &t)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodyAddTorque(self.raw, t.x, t.y, t.z) };
+        Ok(())
+    }
+
+    /// Adds a torque given in the body frame.
+    pub fn add_relative_torque(&mut self, t: Vector3<f64>) -> Result<()> {
+        let t = validate::vector("torque", &t)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodyAddRelTorque(self.raw, t.x, t.y, t.z) };
+        Ok(())
+    }
+
+    /// Adds a world-frame force at a point given in world coordinates.
+    pub fn add_force_at_point(&mut self, f: Vector3<f64>, point: Point3<f64>) -> Result<()> {
+        let f = validate::vector("force", &f)?;
+        let p = validate::point("force application point", &point)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodyAddForceAtPos(self.raw, f.x, f.y, f.z, p.x, p.y, p.z) };
+        Ok(())
+    }
+
+    /// Adds a body-frame force at a point given in body coordinates.
+    pub fn add_relative_force_at_relative_point(&mut self, f: Vector3<f64>, point: Point3<f64>) -> Result<()> {
+        let f = validate::vector("force", &f)?;
+        let p = validate::point("force application point", &point)?;
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodyAddRelForceAtRelPos(self.raw, f.x, f.y, f.z, p.x, p.y, p.z) };
+        Ok(())
+    }
+
+    /// Enables or disables the body (a disabled body does not move).
+    pub fn set_enabled(&mut self, enabled: bool) {
+        // SAFETY: the body is live.
+        unsafe { if enabled { ffi::dBodyEnable(self.raw) } else { ffi::dBodyDisable(self.raw) } }
+    }
+
+    /// Makes the body kinematic (moved only by its velocity) or dynamic again (with the
+    /// mass it had).
+    pub fn set_kinematic(&mut self, kinematic: bool) {
+        // SAFETY: the body is live.
+        unsafe { if kinematic { ffi::dBodySetKinematic(self.raw) } else { ffi::dBodySetDynamic(self.raw) } }
+    }
+
+    /// Whether gravity acts on the body.
+    pub fn set_gravity_enabled(&mut self, on: bool) {
+        // SAFETY: the body is live.
+        unsafe { ffi::dBodySetGravityMode(self.raw, on.into()) };
+    }
+}

@@ -1,0 +1,380 @@
+//! Collision detection and contact joints: `dSpaceCollide` with a Rust near callback.
+//!
+//! For every candidate pair of geoms ODE reports, the callback (1) skips pairs whose
+//! bodies are joined by a (non-contact) joint, (2) records ray hits without creating
+//! contact joints, (3) asks [`CollisionHooks::contact_surface`] for the surface of the
+//! pair (the world's default surface unless the hooks say otherwise, or `None` to skip
+//! it) and (4) creates one contact joint per contact point in the world's contact
+//! group. [`World::clear_contacts`] empties the group; the original ARS did it after
+//! every step.
+//!
+//! A panic in user hooks never unwinds into ODE: the callback catches it, ignores the
+//! remaining pairs, and re-raises it once `dSpaceCollide` has returned.
+
+use std::any::Any;
+use std::ffi::c_void;
+use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
+
+use nalgebra::{Point3, Vector3};
+use ode_sys as ffi;
+
+use crate::convert;
+use crate::error::{Error, Result};
+use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
+use crate::init::{ensure_ode_ready, global_lock};
+use crate::validate;
+use crate::world::World;
+
+/// Most contact points ODE generates for one pair of geoms (PyODE's fixed limit,
+/// which the original ARS inherited).
+pub const MAX_CONTACTS_LIMIT: usize = 150;
+
+/// Surface parameters of the contacts between two geoms (ODE's `dSurfaceParameters`).
+///
+/// The default is the ARS surface: restitution only (bounce 0.2 above 0 m/s), friction
+/// force limit 500 N per contact point and direction (ODE's box friction, not Coulomb),
+/// no soft ERP/CFM, up to 150 contact points per pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactSurface {
+    /// Friction limit: the largest friction force per contact point and tangent
+    /// direction, N (with `approx1` set it is a Coulomb coefficient instead).
+    /// `f64::INFINITY` never slips.
+    pub mu: f64,
+    /// A different limit for the second tangent direction.
+    pub mu2: Option<f64>,
+    /// Restitution `(bounce, bounce_vel)`: coefficient in [0, 1] and the smallest
+    /// approaching speed (m/s) that bounces.
+    pub bounce: Option<(f64, f64)>,
+    /// Contact-normal ERP (else the world's).
+    pub soft_erp: Option<f64>,
+    /// Contact-normal CFM (else the world's).
+    pub soft_cfm: Option<f64>,
+    /// Friction pyramid approximation: friction limits proportional to the normal force
+    /// (Coulomb-like, `mu` is then a coefficient).
+    pub approx1: bool,
+    /// Most contact points generated per pair (1 to [`MAX_CONTACTS_LIMIT`]).
+    pub max_contacts: usize,
+}
+
+impl Default for ContactSurface {
+    fn default() -> Self {
+        ContactSurface {
+            mu: 500.0,
+            mu2: None,
+            bounce: Some((0.2, 0.0)),
+            soft_erp: None,
+            soft_cfm: None,
+            approx1: false,
+            max_contacts: MAX_CONTACTS_LIMIT,
+        }
+    }
+}
+
+impl ContactSurface {
+    /// Checks every field.
+    pub fn validate(&self) -> Result<()> {
+        if self.mu.is_nan() || self.mu < 0.0 {
+            return Err(Error::OutOfRange { what: "contact mu", detail: format!("must be ≥ 0, got {}", self.mu) });
+        }
+        if let Some(mu2) = self.mu2
+            && (mu2.is_nan() || mu2 < 0.0)
+        {
+            return Err(Error::OutOfRange { what: "contact mu2", detail: format!("must be ≥ 0, got {mu2}") });
+        }
+        if let Some((b, v)) = self.bounce {
+            if !(0.0..=1.0).contains(&b) {
+                return Err(Error::OutOfRange {
+                    what: "contact bounce",
+                    detail: format!("must be in [0, 1], got {b}"),
+                });
+            }
+            validate::non_negative("contact bounce velocity", v)?;
+        }
+        if let Some(e) = self.soft_erp
+            && !(0.0..=1.0).contains(&e)
+        {
+            return Err(Error::OutOfRange { what: "contact soft ERP", detail: format!("must be in [0, 1], got {e}") });
+        }
+        if let Some(c) = self.soft_cfm {
+            validate::non_negative("contact soft CFM", c)?;
+        }
+        if self.max_contacts == 0 || self.max_contacts > MAX_CONTACTS_LIMIT {
+            return Err(Error::OutOfRange {
+                what: "max contacts",
+                detail: format!("must be in 1..={MAX_CONTACTS_LIMIT}, got {}", self.max_contacts),
+            });
+        }
+        Ok(())
+    }
+
+    fn to_ode(self) -> ffi::dSurfaceParameters {
+        let mut s = ffi::dSurfaceParameters { mu: self.mu, ..Default::default() };
+        let mut mode = 0;
+        if let Some(mu2) = self.mu2 {
+            mode |= ffi::dContactMu2;
+            s.mu2 = mu2;
+        }
+        if let Some((b, v)) = self.bounce {
+            mode |= ffi::dContactBounce;
+            s.bounce = b;
+            s.bounce_vel = v;
+        }
+        if let Some(e) = self.soft_erp {
+            mode |= ffi::dContactSoftERP;
+            s.soft_erp = e;
+        }
+        if let Some(c) = self.soft_cfm {
+            mode |= ffi::dContactSoftCFM;
+            s.soft_cfm = c;
+        }
+        if self.approx1 {
+            mode |= ffi::dContactApprox1;
+        }
+        s.mode = mode as i32;
+        s
+    }
+}
+
+/// A pair of geoms that may touch, as passed to [`CollisionHooks::contact_surface`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GeomPair {
+    /// First geom (as ODE reports the pair).
+    pub geom1: GeomHandle,
+    /// Second geom.
+    pub geom2: GeomHandle,
+    /// Body of the first geom (`None`: static).
+    pub body1: Option<BodyHandle>,
+    /// Body of the second geom.
+    pub body2: Option<BodyHandle>,
+}
+
+/// User decisions during collision. The default methods give the world's default
+/// surface to every pair.
+pub trait CollisionHooks {
+    /// Surface of the contacts of `pair`, or `None` for no contact at all.
+    fn contact_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
+        let _ = pair;
+        Some(*default)
+    }
+}
+
+/// The default hooks: every pair touches with the world's default surface.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DefaultHooks;
+
+impl CollisionHooks for DefaultHooks {}
+
+/// A contact point created by the last [`World::collide`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPoint {
+    /// The pair.
+    pub pair: GeomPair,
+    /// Position, world frame, m.
+    pub position: Point3<f64>,
+    /// Normal, pointing into geom 1.
+    pub normal: Vector3<f64>,
+    /// Penetration depth, m.
+    pub depth: f64,
+}
+
+/// A ray hit found by the last [`World::collide`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayHit {
+    /// The ray.
+    pub ray: GeomHandle,
+    /// The geom it hit.
+    pub other: GeomHandle,
+    /// Hit point, world frame, m.
+    pub position: Point3<f64>,
+    /// Surface normal at the hit point.
+    pub normal: Vector3<f64>,
+    /// Distance from the ray origin to the hit point, m.
+    pub distance: f64,
+}
+
+/// Scratch buffers and the results of the last collision pass.
+#[derive(Default)]
+pub(crate) struct CollisionState {
+    pub(crate) default_surface: ContactSurface,
+    contacts: Vec<ContactPoint>,
+    ray_hits: Vec<RayHit>,
+    scratch: Vec<ffi::dContactGeom>,
+}
+
+/// What the near callback sees through its `void*`.
+struct NearContext<'a> {
+    world: &'a mut World,
+    hooks: &'a mut dyn CollisionHooks,
+    panic: Option<Box<dyn Any + Send>>,
+}
+
+impl World {
+    /// The surface given to every pair unless hooks decide otherwise.
+    pub fn default_surface(&self) -> ContactSurface {
+        self.collision.default_surface
+    }
+
+    /// Sets the default contact surface.
+    pub fn set_default_surface(&mut self, surface: ContactSurface) -> Result<()> {
+        surface.validate()?;
+        self.collision.default_surface = surface;
+        Ok(())
+    }
+
+    /// Finds the contacts in `space` (on the current poses) and creates their contact
+    /// joints, with the default surface for every pair.
+    pub fn collide(&mut self, space: SpaceHandle) -> Result<()> {
+        self.collide_with(space, &mut DefaultHooks)
+    }
+
+    /// As [`World::collide`], with `hooks` choosing the surface of each pair.
+    pub fn collide_with(&mut self, space: SpaceHandle, hooks: &mut dyn CollisionHooks) -> Result<()> {
+        ensure_ode_ready();
+        let raw_space = self.space_data(space)?.raw;
+        self.collision.contacts.clear();
+        self.collision.ray_hits.clear();
+        if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
+            self.collision.scratch.resize(MAX_CONTACTS_LIMIT, ffi::dContactGeom::default());
+        }
+        let mut ctx = NearContext { world: self, hooks, panic: None };
+        {
+            let _guard = global_lock();
+            // SAFETY: the space is live; `ctx` outlives the call and is only accessed
+            // by `near_callback`, which ODE calls synchronously on this thread.
+            unsafe {
+                ffi::dSpaceCollide(raw_space, (&raw mut ctx).cast::<c_void>(), Some(near_callback));
+            }
+        }
+        if let Some(payload) = ctx.panic {
+            resume_unwind(payload);
+        }
+        Ok(())
+    }
+
+    /// Destroys the contact joints created by the last collisions.
+    pub fn clear_contacts(&mut self) {
+        // SAFETY: the group is live; its joints are contact joints owned by it alone.
+        unsafe { ffi::dJointGroupEmpty(self.contact_group) };
+    }
+
+    /// The contact points created by the last collision pass.
+    pub fn contacts(&self) -> &[ContactPoint] {
+        &self.collision.contacts
+    }
+
+    /// The ray hits found by the last collision pass, in the order ODE reported them.
+    pub fn ray_hits(&self) -> &[RayHit] {
+        &self.collision.ray_hits
+    }
+
+    /// The closest hit of `ray` in the last collision pass, if any.
+    pub fn closest_ray_hit(&self, ray: GeomHandle) -> Option<RayHit> {
+        self.collision
+            .ray_hits
+            .iter()
+            .filter(|h| h.ray == ray)
+            .min_by(|a, b| a.distance.total_cmp(&b.distance))
+            .copied()
+    }
+
+    fn geom_info(&self, raw: ffi::dGeomID) -> Option<(GeomHandle, bool, Option<BodyHandle>, ffi::dBodyID)> {
+        // SAFETY: ODE hands the callback live geoms of the collided space; their user
+        // data is the arena index set at creation.
+        let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
+        let (h, data) = self.geoms.get_by_index(index)?;
+        if data.raw != raw {
+            return None;
+        }
+        let body_raw = match data.body {
+            Some(b) => self.bodies.get(b.0, BodyHandle::KIND, &b).ok()?.raw,
+            None => std::ptr::null_mut(),
+        };
+        Some((GeomHandle(h), matches!(data.shape, crate::geom::Shape::Ray { .. }), data.body, body_raw))
+    }
+
+    /// One candidate pair: everything the near callback does, in Rust.
+    fn near(&mut self, hooks: &mut dyn CollisionHooks, o1: ffi::dGeomID, o2: ffi::dGeomID) {
+        let (Some((g1, ray1, body1, b1)), Some((g2, ray2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
+        else {
+            log::error!("collision reported a geom that this world does not own; pair skipped");
+            return;
+        };
+        if !b1.is_null() && !b2.is_null() {
+            // SAFETY: both bodies are live and non-null (ODE asserts on null).
+            let connected = unsafe { ffi::dAreConnectedExcluding(b1, b2, ffi::dJointType_dJointTypeContact as i32) };
+            if connected != 0 {
+                return;
+            }
+        }
+        if ray1 && ray2 {
+            return;
+        }
+        let pair = GeomPair { geom1: g1, geom2: g2, body1, body2 };
+        let surface = if ray1 || ray2 {
+            None
+        } else {
+            match hooks.contact_surface(&pair, &self.collision.default_surface) {
+                Some(s) if s.validate().is_ok() => Some(s),
+                Some(s) => {
+                    log::error!("contact hooks returned an invalid surface {s:?}; pair skipped");
+                    return;
+                }
+                None => return,
+            }
+        };
+        let max = surface.map_or(MAX_CONTACTS_LIMIT, |s| s.max_contacts);
+        let scratch = &mut self.collision.scratch;
+        // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `max`
+        // entries with the stride given.
+        let n =
+            unsafe { ffi::dCollide(o1, o2, max as i32, scratch.as_mut_ptr(), size_of::<ffi::dContactGeom>() as i32) };
+        let n = n.max(0) as usize;
+        match surface {
+            None => {
+                let (ray, other, flip) = if ray1 { (g1, g2, false) } else { (g2, g1, true) };
+                for c in &self.collision.scratch[..n] {
+                    let normal = convert::vector_from_ode(&c.normal);
+                    self.collision.ray_hits.push(RayHit {
+                        ray,
+                        other,
+                        position: convert::point_from_ode(&c.pos),
+                        normal: if flip { -normal } else { normal },
+                        distance: c.depth,
+                    });
+                }
+            }
+            Some(surface) => {
+                let surface = surface.to_ode();
+                for c in &self.collision.scratch[..n] {
+                    let contact = ffi::dContact { surface, geom: *c, fdir1: [0.0; 4] };
+                    // SAFETY: world and contact group are live; `contact` is fully
+                    // initialised; the bodies are live or null (static environment).
+                    unsafe {
+                        let j = ffi::dJointCreateContact(self.raw, self.contact_group, &contact);
+                        ffi::dJointAttach(j, b1, b2);
+                    }
+                    self.collision.contacts.push(ContactPoint {
+                        pair,
+                        position: convert::point_from_ode(&c.pos),
+                        normal: convert::vector_from_ode(&c.normal),
+                        depth: c.depth,
+                    });
+                }
+            }
+        }
+    }
+}
+
+unsafe extern "C" fn near_callback(data: *mut c_void, o1: ffi::dGeomID, o2: ffi::dGeomID) {
+    // SAFETY: `data` is the `NearContext` that `collide_with` passed to dSpaceCollide,
+    // alive and not otherwise borrowed for the duration of the call.
+    let ctx = unsafe { &mut *data.cast::<NearContext<'_>>() };
+    if ctx.panic.is_some() {
+        return;
+    }
+    let world = &mut *ctx.world;
+    let hooks = &mut *ctx.hooks;
+    if let Err(payload) = catch_unwind(AssertUnwindSafe(|| world.near(hooks, o1, o2))) {
+        ctx.panic = Some(payload);
+    }
+}

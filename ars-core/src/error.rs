@@ -1,0 +1,112 @@
+//! The one error type of `ars-core`.
+
+/// What went wrong in a call to `ars-core`. Every variant names the offending input,
+/// object or handle, so that a message alone is enough to find the mistake.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A number that must be finite (a pose, a force, a velocity...) was NaN or infinite.
+    #[error("{what} must be finite, got {value}")]
+    NotFinite {
+        /// The argument, e.g. "body position".
+        what: &'static str,
+        /// The offending value, formatted.
+        value: String,
+    },
+    /// A size, mass, density or time step that must be strictly positive was not.
+    #[error("{what} must be finite and greater than zero, got {value}")]
+    NotPositive {
+        /// The argument, e.g. "sphere radius".
+        what: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// A direction (joint axis, plane normal, ray direction) was the zero vector.
+    #[error("{what} must not be the zero vector")]
+    ZeroVector {
+        /// The argument, e.g. "hinge axis".
+        what: &'static str,
+    },
+    /// A value was outside the range the call accepts.
+    #[error("{what} is out of range: {detail}")]
+    OutOfRange {
+        /// The argument, e.g. "joint limits".
+        what: &'static str,
+        /// What was wrong with it.
+        detail: String,
+    },
+    /// A handle that was never valid in this world, or whose object has been removed.
+    #[error("{kind} handle {handle} is stale: its object was removed from this world")]
+    StaleHandle {
+        /// "body", "geom", "joint" or "space".
+        kind: &'static str,
+        /// The handle, formatted.
+        handle: String,
+    },
+    /// A handle created by another world.
+    #[error("{kind} handle {handle} belongs to another world")]
+    ForeignHandle {
+        /// "body", "geom", "joint" or "space".
+        kind: &'static str,
+        /// The handle, formatted.
+        handle: String,
+    },
+    /// A joint whose two ends are the same body.
+    #[error("a {joint} joint cannot connect body {body} to itself")]
+    SelfJoint {
+        /// The joint kind.
+        joint: &'static str,
+        /// The body, formatted.
+        body: String,
+    },
+    /// An operation that the joint kind does not have (e.g. the angle of a slider).
+    #[error("{operation} is not available on a {kind} joint")]
+    WrongJointKind {
+        /// What was asked.
+        operation: &'static str,
+        /// The joint's kind.
+        kind: &'static str,
+    },
+    /// An operation that the geom kind does not have (e.g. attaching a plane to a body).
+    #[error("{operation} is not available on a {kind} geom")]
+    WrongGeomKind {
+        /// What was asked.
+        operation: &'static str,
+        /// The geom's kind.
+        kind: &'static str,
+    },
+    /// A triangle mesh that ODE cannot take.
+    #[error("invalid triangle mesh: {0}")]
+    InvalidMesh(String),
+    /// A name that is not registered in a simulation.
+    #[error("no {kind} named {name:?}{}", suggestion(.close_matches))]
+    UnknownName {
+        /// "object" or "joint".
+        kind: &'static str,
+        /// The name asked for.
+        name: String,
+        /// Registered names that are spelled almost the same.
+        close_matches: Vec<String>,
+    },
+    /// A name that is already taken.
+    #[error("the {kind} name {name:?} is already taken")]
+    DuplicateName {
+        /// "object" or "joint".
+        kind: &'static str,
+        /// The name.
+        name: String,
+    },
+    /// ODE refused an operation (it returned a failure code).
+    #[error("ODE failed to {0}")]
+    Ode(&'static str),
+    /// An error raised by user code inside a program or hook.
+    #[error("{0}")]
+    User(String),
+}
+
+fn suggestion(close: &[String]) -> String {
+    if close.is_empty() { String::new() } else { format!(" (did you mean {}?)", close.join(", ")) }
+}
+
+/// `Result` with [`Error`] as its error.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,515 @@
+//! Collision geometry: shapes, attachment to bodies, poses, collision bits.
+
+use nalgebra::{Isometry3, Point3, Rotation3, UnitQuaternion, Vector3};
+use ode_sys as ffi;
+
+use crate::convert;
+use crate::error::{Error, Result};
+use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
+use crate::init::ensure_ode_ready;
+use crate::validate;
+use crate::world::World;
+
+/// The shape of a geom.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Shape {
+    /// Sphere of this radius, m.
+    Sphere {
+        /// Radius, m.
+        radius: f64,
+    },
+    /// Box with these full edge lengths, m.
+    Box {
+        /// Edge lengths along local X, Y, Z.
+        size: Vector3<f64>,
+    },
+    /// Capsule along local Z; `length` excludes the caps.
+    Capsule {
+        /// Radius, m.
+        radius: f64,
+        /// Length of the cylindrical part, m.
+        length: f64,
+    },
+    /// Cylinder along local Z.
+    Cylinder {
+        /// Radius, m.
+        radius: f64,
+        /// Length, m.
+        length: f64,
+    },
+    /// Infinite plane `normal · x = distance` (not placeable: cannot be attached or moved).
+    Plane {
+        /// Plane normal (normalised by ODE).
+        normal: Vector3<f64>,
+        /// Offset along the normal, m.
+        distance: f64,
+    },
+    /// Ray of this length from the geom's origin along its local +Z axis.
+    Ray {
+        /// Length, m.
+        length: f64,
+    },
+    /// Triangle mesh (vertices in the geom's frame; faces wound counter-clockwise seen
+    /// from outside).
+    TriMesh {
+        /// Vertex positions, m.
+        vertices: Vec<Point3<f64>>,
+        /// Vertex indices, three per triangle.
+        triangles: Vec<[u32; 3]>,
+    },
+}
+
+impl Shape {
+    /// Short name of the shape kind, as used in error messages.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Shape::Sphere { .. } => "sphere",
+            Shape::Box { .. } => "box",
+            Shape::Capsule { .. } => "capsule",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Plane { .. } => "plane",
+            Shape::Ray { .. } => "ray",
+            Shape::TriMesh { .. } => "trimesh",
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        match self {
+            Shape::Sphere { radius } => validate::positive("sphere radius", *radius).map(drop),
+            Shape::Box { size } => validate::positive_vector("box size", size).map(drop),
+            Shape::Capsule { radius, length } => {
+                validate::positive("capsule radius", *radius)?;
+                validate::positive("capsule length", *length).map(drop)
+            }
+            Shape::Cylinder { radius, length } => {
+                validate::positive("cylinder radius", *radius)?;
+                validate::positive("cylinder length", *length).map(drop)
+            }
+            Shape::Plane { normal, distance } => {
+                validate::direction("plane normal", normal)?;
+                validate::finite("plane distance", *distance).map(drop)
+            }
+            Shape::Ray { length } => validate::positive("ray length", *length).map(drop),
+            Shape::TriMesh { vertices, triangles } => {
+                if triangles.is_empty() {
+                    return Err(Error::InvalidMesh("it has no triangles".into()));
+                }
+                for (i, v) in vertices.iter().enumerate() {
+                    if !v.coords.iter().all(|c| c.is_finite()) {
+                        return Err(Error::InvalidMesh(format!("vertex {i} is not finite: {v}")));
+                    }
+                }
+                for (i, t) in triangles.iter().enumerate() {
+                    if let Some(bad) = t.iter().find(|&&k| k as usize >= vertices.len()) {
+                        return Err(Error::InvalidMesh(format!(
+                            "triangle {i} uses vertex {bad}, but there are only {} vertices",
+                            vertices.len()
+                        )));
+                    }
+                }
+                let limit = i32::MAX as usize / 3;
+                if vertices.len() > limit || triangles.len() > limit {
+                    return Err(Error::InvalidMesh("too many vertices or triangles".into()));
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// The buffers ODE's trimesh data points into, freed after the geom.
+struct TriMeshStorage {
+    data: ffi::dTriMeshDataID,
+    _vertices: Vec<f64>,
+    _indices: Vec<ffi::dTriIndex>,
+}
+
+impl Drop for TriMeshStorage {
+    fn drop(&mut self) {
+        // SAFETY: the data was created by `dGeomTriMeshDataCreate`; its geom is
+        // destroyed before this storage is dropped (see `remove_geom` and World's Drop).
+        unsafe { ffi::dGeomTriMeshDataDestroy(self.data) };
+    }
+}
+
+pub(crate) struct GeomData {
+    pub(crate) raw: ffi::dGeomID,
+    pub(crate) shape: Shape,
+    pub(crate) body: Option<BodyHandle>,
+    pub(crate) space: SpaceHandle,
+    _mesh: Option<TriMeshStorage>,
+}
+
+/// Description of a geom to insert with [`World::insert_geom`].
+///
+/// ODE calls happen in this order: create in the space, attach to the body, set the
+/// offset from the body (or the pose of a bodyless geom), set the collision bits.
+#[derive(Clone, Debug)]
+#[must_use]
+pub struct GeomBuilder {
+    shape: Shape,
+    body: Option<BodyHandle>,
+    offset: Option<Isometry3<f64>>,
+    pose: Option<Isometry3<f64>>,
+    category_bits: Option<u64>,
+    collide_bits: Option<u64>,
+}
+
+impl GeomBuilder {
+    /// A geom of this shape, not attached to a body, at the origin.
+    pub fn new(shape: Shape) -> Self {
+        GeomBuilder { shape, body: None, offset: None, pose: None, category_bits: None, collide_bits: None }
+    }
+    /// A sphere.
+    pub fn sphere(radius: f64) -> Self {
+        Self::new(Shape::Sphere { radius })
+    }
+    /// A box with full edge lengths `size`.
+    pub fn cuboid(size: Vector3<f64>) -> Self {
+        Self::new(Shape::Box { size })
+    }
+    /// A capsule along local Z.
+    pub fn capsule(radius: f64, length: f64) -> Self {
+        Self::new(Shape::Capsule { radius, length })
+    }
+    /// A cylinder along local Z.
+    pub fn cylinder(radius: f64, length: f64) -> Self {
+        Self::new(Shape::Cylinder { radius, length })
+    }
+    /// The infinite plane `normal · x = distance`.
+    pub fn plane(normal: Vector3<f64>, distance: f64) -> Self {
+        Self::new(Shape::Plane { normal, distance })
+    }
+    /// A ray along local +Z.
+    pub fn ray(length: f64) -> Self {
+        Self::new(Shape::Ray { length })
+    }
+    /// A triangle mesh.
+    pub fn trimesh(vertices: Vec<Point3<f64>>, triangles: Vec<[u32; 3]>) -> Self {
+        Self::new(Shape::TriMesh { vertices, triangles })
+    }
+    /// Attaches the geom to a body (it then moves with the body).
+    pub fn attached_to(mut self, body: BodyHandle) -> Self {
+        self.body = Some(body);
+        self
+    }
+    /// Pose of the geom relative to its body (default: the body frame).
+    pub fn offset(mut self, offset: Isometry3<f64>) -> Self {
+        self.offset = Some(offset);
+        self
+    }
+    /// World pose of a geom without a body.
+    pub fn pose(mut self, pose: Isometry3<f64>) -> Self {
+        self.pose = Some(pose);
+        self
+    }
+    /// Category bits (which groups this geom belongs to; default all).
+    pub fn category_bits(mut self, bits: u64) -> Self {
+        self.category_bits = Some(bits);
+        self
+    }
+    /// Collide bits (which groups this geom collides with; default all).
+    pub fn collide_bits(mut self, bits: u64) -> Self {
+        self.collide_bits = Some(bits);
+        self
+    }
+}
+
+/// Read access to a geom, from [`World::geom`].
+#[derive(Clone, Copy)]
+pub struct GeomRef<'w> {
+    handle: GeomHandle,
+    data: &'w GeomData,
+}
+
+/// Write access to a geom, from [`World::geom_mut`].
+pub struct GeomMut<'w> {
+    handle: GeomHandle,
+    raw: ffi::dGeomID,
+    placeable: bool,
+    kind: &'static str,
+    is_ray: bool,
+    has_body: bool,
+    _world: &'w mut World,
+}
+
+impl World {
+    /// Creates a geom in `space`.
+    pub fn insert_geom(&mut self, space: SpaceHandle, builder: GeomBuilder) -> Result<GeomHandle> {
+        ensure_ode_ready();
+        let space_raw = self.space_data(space)?.raw;
+        let shape = builder.shape;
+        shape.validate()?;
+        let placeable = !matches!(shape, Shape::Plane { .. });
+        let body_raw = match builder.body {
+            Some(b) => {
+                if !placeable {
+                    return Err(Error::WrongGeomKind { operation: "attaching to a body", kind: "plane" });
+                }
+                Some(self.body_raw(b)?)
+            }
+            None => None,
+        };
+        if builder.offset.is_some() && builder.body.is_none() {
+            return Err(Error::OutOfRange {
+                what: "geom offset",
+                detail: "an offset needs a body; use `pose` for a geom without one".into(),
+            });
+        }
+        if builder.pose.is_some() && builder.body.is_some() {
+            return Err(Error::OutOfRange {
+                what: "geom pose",
+                detail: "an attached geom follows its body; use `offset` instead".into(),
+            });
+        }
+        if builder.pose.is_some() && !placeable {
+            return Err(Error::WrongGeomKind { operation: "setting a pose", kind: "plane" });
+        }
+        let offset = builder.offset.map(|o| check_isometry("geom offset", &o)).transpose()?;
+        let pose = builder.pose.map(|p| check_isometry("geom pose", &p)).transpose()?;
+
+        let mut mesh = None;
+        if let Shape::TriMesh { vertices, triangles } = &shape {
+            let flat_v: Vec<f64> = vertices.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+            let flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
+            // SAFETY: the buffers are kept alive in `TriMeshStorage` for as long as the
+            // data exists; counts and strides describe them exactly (checked above:
+            // every index is in range, counts fit in an int).
+            let data = unsafe {
+                let data = ffi::dGeomTriMeshDataCreate();
+                ffi::dGeomTriMeshDataBuildDouble(
+                    data,
+                    flat_v.as_ptr().cast(),
+                    (3 * size_of::<f64>()) as i32,
+                    vertices.len() as i32,
+                    flat_i.as_ptr().cast(),
+                    flat_i.len() as i32,
+                    (3 * size_of::<ffi::dTriIndex>()) as i32,
+                );
+                data
+            };
+            mesh = Some(TriMeshStorage { data, _vertices: flat_v, _indices: flat_i });
+        }
+        // SAFETY: the space is live and every size was checked positive and finite; a
+        // trimesh's data was built above.
+        let raw = unsafe {
+            match &shape {
+                Shape::Sphere { radius } => ffi::dCreateSphere(space_raw, *radius),
+                Shape::Box { size } => ffi::dCreateBox(space_raw, size.x, size.y, size.z),
+                Shape::Capsule { radius, length } => ffi::dCreateCapsule(space_raw, *radius, *length),
+                Shape::Cylinder { radius, length } => ffi::dCreateCylinder(space_raw, *radius, *length),
+                Shape::Plane { normal, distance } => {
+                    ffi::dCreatePlane(space_raw, normal.x, normal.y, normal.z, *distance)
+                }
+                Shape::Ray { length } => ffi::dCreateRay(space_raw, *length),
+                Shape::TriMesh { .. } => {
+                    let data = mesh.as_ref().map_or(std::ptr::null_mut(), |m| m.data);
+                    ffi::dCreateTriMesh(space_raw, data, None, None, None)
+                }
+            }
+        };
+        let handle = GeomHandle(self.geoms.insert(GeomData { raw, shape, body: builder.body, space, _mesh: mesh }));
+        // SAFETY: the geom was just created; the data is the slot index, never dereferenced.
+        unsafe { ffi::dGeomSetData(raw, handle.0.index as usize as *mut _) };
+        let mut g = self.geom_mut(handle)?;
+        if let Some(b) = body_raw {
+            // SAFETY: geom and body are live and belong to this world; the geom is placeable.
+            unsafe { ffi::dGeomSetBody(g.raw, b) };
+        }
+        if let Some(o) = offset {
+            let p = o.translation.vector;
+            let q = convert::quaternion_to_ode(&o.rotation);
+            // SAFETY: the geom is live and attached to a body (checked above).
+            unsafe {
+                ffi::dGeomSetOffsetPosition(g.raw, p.x, p.y, p.z);
+                ffi::dGeomSetOffsetQuaternion(g.raw, q.as_ptr());
+            }
+        }
+        if let Some(p) = pose {
+            g.set_pose(p)?;
+        }
+        if let Some(bits) = builder.category_bits {
+            g.set_category_bits(bits);
+        }
+        if let Some(bits) = builder.collide_bits {
+            g.set_collide_bits(bits);
+        }
+        Ok(handle)
+    }
+
+    /// Removes a geom.
+    pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
+        let data = self.geoms.remove(geom.0, GeomHandle::KIND, &geom)?;
+        // SAFETY: the geom was created by this world and is destroyed once; its
+        // trimesh storage (if any) is dropped after it.
+        unsafe { ffi::dGeomDestroy(data.raw) };
+        drop(data);
+        Ok(())
+    }
+
+    /// Read access to a geom.
+    pub fn geom(&self, geom: GeomHandle) -> Result<GeomRef<'_>> {
+        let data = self.geoms.get(geom.0, GeomHandle::KIND, &geom)?;
+        Ok(GeomRef { handle: geom, data })
+    }
+
+    /// Write access to a geom.
+    pub fn geom_mut(&mut self, geom: GeomHandle) -> Result<GeomMut<'_>> {
+        let data = self.geoms.get(geom.0, GeomHandle::KIND, &geom)?;
+        Ok(GeomMut {
+            handle: geom,
+            raw: data.raw,
+            placeable: !matches!(data.shape, Shape::Plane { .. }),
+            kind: data.shape.kind_name(),
+            is_ray: matches!(data.shape, Shape::Ray { .. }),
+            has_body: data.body.is_some(),
+            _world: self,
+        })
+    }
+
+    /// Every geom of the world, in slot order.
+    pub fn geoms(&self) -> impl Iterator<Item = GeomHandle> + '_ {
+        self.geoms.iter().map(|(h, _)| GeomHandle(h))
+    }
+
+    pub(crate) fn geoms_of_body(&self, body: BodyHandle) -> Vec<GeomHandle> {
+        self.geoms.iter().filter(|(_, g)| g.body == Some(body)).map(|(h, _)| GeomHandle(h)).collect()
+    }
+}
+
+fn check_isometry(what: &'static str, iso: &Isometry3<f64>) -> Result<Isometry3<f64>> {
+    validate::vector(what, &iso.translation.vector)?;
+    validate::quaternion(what, &iso.rotation)?;
+    Ok(*iso)
+}
+
+impl GeomRef<'_> {
+    /// The handle of this geom.
+    pub fn handle(&self) -> GeomHandle {
+        self.handle
+    }
+    /// Its shape.
+    pub fn shape(&self) -> &Shape {
+        &self.data.shape
+    }
+    /// The body it is attached to.
+    pub fn body(&self) -> Option<BodyHandle> {
+        self.data.body
+    }
+    /// The space it is in.
+    pub fn space(&self) -> SpaceHandle {
+        self.data.space
+    }
+    /// World pose (for a plane: the identity; planes are not placeable).
+    pub fn pose(&self) -> Isometry3<f64> {
+        if matches!(self.data.shape, Shape::Plane { .. }) {
+            return Isometry3::identity();
+        }
+        let mut q = [0.0; 4];
+        // SAFETY: the geom is live and placeable; ODE returns 3 reals and fills 4.
+        let (p, q) = unsafe {
+            let p = std::slice::from_raw_parts(ffi::dGeomGetPosition(self.data.raw), 3);
+            ffi::dGeomGetQuaternion(self.data.raw, q.as_mut_ptr());
+            (convert::point_from_ode(p), convert::quaternion_from_ode(&q))
+        };
+        Isometry3::from_parts(p.coords.into(), q)
+    }
+    /// For a ray: its world origin and unit direction.
+    pub fn ray(&self) -> Option<(Point3<f64>, Vector3<f64>)> {
+        if !matches!(self.data.shape, Shape::Ray { .. }) {
+            return None;
+        }
+        let (mut start, mut dir) = ([0.0; 4], [0.0; 4]);
+        // SAFETY: the geom is a live ray; both arrays hold a dVector3.
+        unsafe { ffi::dGeomRayGet(self.data.raw, start.as_mut_ptr(), dir.as_mut_ptr()) };
+        Some((convert::point_from_ode(&start), convert::vector_from_ode(&dir)))
+    }
+    /// Axis-aligned bounding box `(min, max)` in world coordinates.
+    pub fn aabb(&self) -> (Point3<f64>, Point3<f64>) {
+        let mut a = [0.0; 6];
+        // SAFETY: the geom is live; `a` holds 6 reals.
+        unsafe { ffi::dGeomGetAABB(self.data.raw, a.as_mut_ptr()) };
+        (Point3::new(a[0], a[2], a[4]), Point3::new(a[1], a[3], a[5]))
+    }
+}
+
+impl GeomMut<'_> {
+    /// The handle of this geom.
+    pub fn handle(&self) -> GeomHandle {
+        self.handle
+    }
+
+    fn check_movable(&self, operation: &'static str) -> Result<()> {
+        if !self.placeable {
+            return Err(Error::WrongGeomKind { operation, kind: self.kind });
+        }
+        if self.has_body {
+            return Err(Error::OutOfRange {
+                what: "geom pose",
+                detail: "the geom is attached to a body and follows it; move the body instead".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Sets the world position of a geom without a body.
+    pub fn set_position(&mut self, p: Point3<f64>) -> Result<()> {
+        self.check_movable("setting a position")?;
+        let p = validate::point("geom position", &p)?;
+        // SAFETY: the geom is live and placeable.
+        unsafe { ffi::dGeomSetPosition(self.raw, p.x, p.y, p.z) };
+        Ok(())
+    }
+
+    /// Sets the world orientation of a geom without a body.
+    pub fn set_rotation(&mut self, r: Rotation3<f64>) -> Result<()> {
+        self.check_movable("setting a rotation")?;
+        let r = validate::rotation("geom rotation", &r)?;
+        let m = convert::rotation_to_ode(&r);
+        // SAFETY: the geom is live and placeable; `m` is a dMatrix3.
+        unsafe { ffi::dGeomSetRotation(self.raw, m.as_ptr()) };
+        Ok(())
+    }
+
+    /// Sets the world pose of a geom without a body.
+    pub fn set_pose(&mut self, pose: Isometry3<f64>) -> Result<()> {
+        self.check_movable("setting a pose")?;
+        let pose = check_isometry("geom pose", &pose)?;
+        self.set_position(Point3::from(pose.translation.vector))?;
+        let q: UnitQuaternion<f64> = pose.rotation;
+        let q = convert::quaternion_to_ode(&q);
+        // SAFETY: the geom is live and placeable; `q` is a dQuaternion.
+        unsafe { ffi::dGeomSetQuaternion(self.raw, q.as_ptr()) };
+        Ok(())
+    }
+
+    /// For a ray: sets its length.
+    pub fn set_ray_length(&mut self, length: f64) -> Result<()> {
+        if !self.is_ray {
+            return Err(Error::WrongGeomKind { operation: "setting a ray length", kind: self.kind });
+        }
+        let l = validate::positive("ray length", length)?;
+        // SAFETY: the geom is a live ray.
+        unsafe { ffi::dGeomRaySetLength(self.raw, l) };
+        Ok(())
+    }
+
+    /// Sets the category bits.
+    pub fn set_category_bits(&mut self, bits: u64) {
+        // SAFETY: the geom is live.
+        unsafe { ffi::dGeomSetCategoryBits(self.raw, bits) };
+    }
+
+    /// Sets the collide bits.
+    pub fn set_collide_bits(&mut self, bits: u64) {
+        // SAFETY: the geom is live.
+        unsafe { ffi::dGeomSetCollideBits(self.raw, bits) };
+    }
+
+    /// Enables or disables collision for this geom.
+    pub fn set_enabled(&mut self, enabled: bool) {
+        // SAFETY: the geom is live.
+        unsafe { if enabled { ffi::dGeomEnable(self.raw) } else { ffi::dGeomDisable(self.raw) } }
+    }
+}

@@ -1,0 +1,209 @@
+//! Generational handles and the arena that issues them.
+//!
+//! A handle is small and `Copy`: the id of the world that issued it, a slot index and
+//! the slot's generation. Removing an object bumps the slot's generation, so an old
+//! handle is recognised as stale instead of reaching a freed ODE object, and a handle
+//! from another world is recognised by its world id.
+
+use std::fmt;
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use crate::error::{Error, Result};
+
+/// Identifies one world (and its handles) within the process.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct WorldId(u32);
+
+impl WorldId {
+    pub(crate) fn next() -> Self {
+        static NEXT: AtomicU32 = AtomicU32::new(1);
+        WorldId(NEXT.fetch_add(1, Ordering::Relaxed))
+    }
+}
+
+/// The common part of every handle.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub(crate) struct RawHandle {
+    pub(crate) world: WorldId,
+    pub(crate) index: u32,
+    pub(crate) generation: u32,
+}
+
+macro_rules! handle_type {
+    ($(#[$doc:meta])* $name:ident, $kind:literal) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, PartialEq, Eq, Hash)]
+        pub struct $name(pub(crate) RawHandle);
+
+        impl $name {
+            /// Name of the kind of object this handle refers to.
+            pub const KIND: &'static str = $kind;
+        }
+
+        impl fmt::Debug for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "{}", self)
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "{}#{}v{}@w{}", $kind, self.0.index, self.0.generation, self.0.world.0)
+            }
+        }
+    };
+}
+
+handle_type!(
+    /// A rigid body of a [`World`](crate::World).
+    BodyHandle,
+    "body"
+);
+handle_type!(
+    /// A collision geometry of a [`World`](crate::World).
+    GeomHandle,
+    "geom"
+);
+handle_type!(
+    /// A joint of a [`World`](crate::World).
+    JointHandle,
+    "joint"
+);
+handle_type!(
+    /// A collision space of a [`World`](crate::World).
+    SpaceHandle,
+    "space"
+);
+
+enum Slot<T> {
+    Occupied { generation: u32, value: T },
+    Vacant { generation: u32 },
+}
+
+/// Slots of `T`, reused after removal with a new generation.
+pub(crate) struct Arena<T> {
+    world: WorldId,
+    slots: Vec<Slot<T>>,
+    free: Vec<u32>,
+}
+
+impl<T> Arena<T> {
+    pub(crate) fn new(world: WorldId) -> Self {
+        Arena { world, slots: Vec::new(), free: Vec::new() }
+    }
+
+    pub(crate) fn insert(&mut self, value: T) -> RawHandle {
+        if let Some(index) = self.free.pop() {
+            let slot = &mut self.slots[index as usize];
+            let generation = match slot {
+                Slot::Vacant { generation } => *generation,
+                Slot::Occupied { .. } => unreachable!("free list points at an occupied slot"),
+            };
+            *slot = Slot::Occupied { generation, value };
+            RawHandle { world: self.world, index, generation }
+        } else {
+            let index = u32::try_from(self.slots.len()).expect("fewer than 2^32 objects");
+            self.slots.push(Slot::Occupied { generation: 0, value });
+            RawHandle { world: self.world, index, generation: 0 }
+        }
+    }
+
+    fn check(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<usize> {
+        if h.world != self.world {
+            return Err(Error::ForeignHandle { kind, handle: shown.to_string() });
+        }
+        match self.slots.get(h.index as usize) {
+            Some(Slot::Occupied { generation, .. }) if *generation == h.generation => Ok(h.index as usize),
+            _ => Err(Error::StaleHandle { kind, handle: shown.to_string() }),
+        }
+    }
+
+    pub(crate) fn get(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&T> {
+        let i = self.check(h, kind, shown)?;
+        match &self.slots[i] {
+            Slot::Occupied { value, .. } => Ok(value),
+            Slot::Vacant { .. } => unreachable!("checked above"),
+        }
+    }
+
+    pub(crate) fn get_mut(&mut self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&mut T> {
+        let i = self.check(h, kind, shown)?;
+        match &mut self.slots[i] {
+            Slot::Occupied { value, .. } => Ok(value),
+            Slot::Vacant { .. } => unreachable!("checked above"),
+        }
+    }
+
+    pub(crate) fn remove(&mut self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<T> {
+        let i = self.check(h, kind, shown)?;
+        let next = h.generation.wrapping_add(1);
+        let old = std::mem::replace(&mut self.slots[i], Slot::Vacant { generation: next });
+        self.free.push(h.index);
+        match old {
+            Slot::Occupied { value, .. } => Ok(value),
+            Slot::Vacant { .. } => unreachable!("checked above"),
+        }
+    }
+
+    /// Value in slot `index`, whatever its generation (used for ids that ODE hands back
+    /// during collision, which are live by construction).
+    pub(crate) fn get_by_index(&self, index: u32) -> Option<(RawHandle, &T)> {
+        match self.slots.get(index as usize) {
+            Some(Slot::Occupied { generation, value }) => {
+                Some((RawHandle { world: self.world, index, generation: *generation }, value))
+            }
+            _ => None,
+        }
+    }
+
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (RawHandle, &T)> + '_ {
+        self.slots.iter().enumerate().filter_map(move |(i, s)| match s {
+            Slot::Occupied { generation, value } => {
+                Some((RawHandle { world: self.world, index: i as u32, generation: *generation }, value))
+            }
+            Slot::Vacant { .. } => None,
+        })
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.slots.len() - self.free.len()
+    }
+
+    /// Removes every value, in slot order.
+    pub(crate) fn drain(&mut self) -> Vec<T> {
+        self.free.clear();
+        let slots = std::mem::take(&mut self.slots);
+        slots
+            .into_iter()
+            .filter_map(|s| match s {
+                Slot::Occupied { value, .. } => Some(value),
+                Slot::Vacant { .. } => None,
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn removed_slot_is_reused_with_a_new_generation() {
+        let mut arena = Arena::new(WorldId::next());
+        let a = arena.insert(1);
+        arena.remove(a, "body", &"a").unwrap();
+        let b = arena.insert(2);
+        assert_eq!(a.index, b.index);
+        assert_ne!(a.generation, b.generation);
+        assert!(matches!(arena.get(a, "body", &"a"), Err(Error::StaleHandle { .. })));
+        assert_eq!(*arena.get(b, "body", &"b").unwrap(), 2);
+    }
+
+    #[test]
+    fn handle_of_another_arena_is_foreign() {
+        let mut one = Arena::new(WorldId::next());
+        let two: Arena<i32> = Arena::new(WorldId::next());
+        let h = one.insert(5);
+        assert!(matches!(two.get(h, "body", &"h"), Err(Error::ForeignHandle { .. })));
+    }
+}

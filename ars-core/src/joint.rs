@@ -1,0 +1,777 @@
+//! Joints: creation, anchors and axes, limits and motors, readouts, feedback forces.
+
+use nalgebra::{Point3, Vector3};
+use ode_sys as ffi;
+
+use crate::convert;
+use crate::error::{Error, Result};
+use crate::handle::{BodyHandle, JointHandle};
+use crate::init::ensure_ode_ready;
+use crate::validate;
+use crate::world::World;
+
+/// The frame an angular- or linear-motor axis is expressed in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisFrame {
+    /// Fixed in the world.
+    World = 0,
+    /// Fixed to the first body.
+    Body1 = 1,
+    /// Fixed to the second body.
+    Body2 = 2,
+}
+
+/// The kind of a joint, with its geometry (world coordinates, at creation time).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum JointKind {
+    /// Locks the relative pose the bodies have when the joint is created.
+    Fixed,
+    /// One rotation about `axis` through `anchor` (ODE hinge).
+    Hinge {
+        /// Point on the axis, m.
+        anchor: Point3<f64>,
+        /// Rotation axis.
+        axis: Vector3<f64>,
+    },
+    /// One translation along `axis`.
+    Slider {
+        /// Sliding axis.
+        axis: Vector3<f64>,
+    },
+    /// Two rotations about perpendicular axes through `anchor`.
+    Universal {
+        /// Centre, m.
+        anchor: Point3<f64>,
+        /// First axis (fixed to body 1).
+        axis1: Vector3<f64>,
+        /// Second axis (fixed to body 2), perpendicular to the first.
+        axis2: Vector3<f64>,
+    },
+    /// Ball and socket at `anchor`.
+    Ball {
+        /// Centre, m.
+        anchor: Point3<f64>,
+    },
+    /// Steering axis and wheel axis (a car wheel).
+    Hinge2 {
+        /// Wheel centre, m.
+        anchor: Point3<f64>,
+        /// Steering axis (fixed to body 1).
+        axis1: Vector3<f64>,
+        /// Wheel axis (fixed to body 2).
+        axis2: Vector3<f64>,
+    },
+    /// Translation along and rotation about `axis` through `anchor`.
+    Piston {
+        /// Point on the axis, m.
+        anchor: Point3<f64>,
+        /// Axis.
+        axis: Vector3<f64>,
+    },
+    /// Angular motor (ODE AMotor, user mode) on up to three axes.
+    AngularMotor {
+        /// One to three axes, each in its frame.
+        axes: Vec<(AxisFrame, Vector3<f64>)>,
+    },
+    /// Linear motor (ODE LMotor) on up to three axes.
+    LinearMotor {
+        /// One to three axes, each in its frame.
+        axes: Vec<(AxisFrame, Vector3<f64>)>,
+    },
+}
+
+impl JointKind {
+    /// Short name of the kind, as used in error messages.
+    pub fn name(&self) -> &'static str {
+        match self {
+            JointKind::Fixed => "fixed",
+            JointKind::Hinge { .. } => "hinge",
+            JointKind::Slider { .. } => "slider",
+            JointKind::Universal { .. } => "universal",
+            JointKind::Ball { .. } => "ball",
+            JointKind::Hinge2 { .. } => "hinge-2",
+            JointKind::Piston { .. } => "piston",
+            JointKind::AngularMotor { .. } => "angular motor",
+            JointKind::LinearMotor { .. } => "linear motor",
+        }
+    }
+
+    /// Number of axes that take parameters (limits, motors).
+    fn param_axes(&self) -> usize {
+        match self {
+            JointKind::Fixed | JointKind::Ball { .. } => 0,
+            JointKind::Hinge { .. } | JointKind::Slider { .. } => 1,
+            JointKind::Universal { .. } | JointKind::Hinge2 { .. } | JointKind::Piston { .. } => 2,
+            JointKind::AngularMotor { axes } | JointKind::LinearMotor { axes } => axes.len(),
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        let anchor = |p: &Point3<f64>| validate::point("joint anchor", p).map(drop);
+        let axis = |v: &Vector3<f64>| validate::direction("joint axis", v).map(drop);
+        match self {
+            JointKind::Fixed => Ok(()),
+            JointKind::Hinge { anchor: a, axis: x } | JointKind::Piston { anchor: a, axis: x } => {
+                anchor(a)?;
+                axis(x)
+            }
+            JointKind::Slider { axis: x } => axis(x),
+            JointKind::Ball { anchor: a } => anchor(a),
+            JointKind::Universal { anchor: a, axis1, axis2 } | JointKind::Hinge2 { anchor: a, axis1, axis2 } => {
+                anchor(a)?;
+                axis(axis1)?;
+                axis(axis2)?;
+                if axis1.cross(axis2).norm() <= 1e-9 * axis1.norm() * axis2.norm() {
+                    return Err(Error::OutOfRange {
+                        what: "joint axes",
+                        detail: format!("{} axes must not be parallel", self.name()),
+                    });
+                }
+                Ok(())
+            }
+            JointKind::AngularMotor { axes } | JointKind::LinearMotor { axes } => {
+                if axes.is_empty() || axes.len() > 3 {
+                    return Err(Error::OutOfRange {
+                        what: "motor axes",
+                        detail: format!("a motor has 1 to 3 axes, got {}", axes.len()),
+                    });
+                }
+                axes.iter().try_for_each(|(_, v)| axis(v))
+            }
+        }
+    }
+}
+
+/// A joint parameter of ODE (`dParam*`), set per axis with [`JointMut::set_param`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum JointParam {
+    /// Low stop (angle in rad or position in m); must not exceed the high stop.
+    LoStop,
+    /// High stop.
+    HiStop,
+    /// Motor target velocity (rad/s or m/s).
+    Velocity,
+    /// Maximum motor force or torque (0 turns the motor off).
+    MaxForce,
+    /// Motor fudge factor.
+    FudgeFactor,
+    /// Bounciness of the stops.
+    Bounce,
+    /// Constraint force mixing along the axis when not at a stop.
+    Cfm,
+    /// ERP of the stops.
+    StopErp,
+    /// CFM of the stops.
+    StopCfm,
+}
+
+impl JointParam {
+    fn code(self) -> i32 {
+        (match self {
+            JointParam::LoStop => ffi::dParamLoStop,
+            JointParam::HiStop => ffi::dParamHiStop,
+            JointParam::Velocity => ffi::dParamVel,
+            JointParam::MaxForce => ffi::dParamFMax,
+            JointParam::FudgeFactor => ffi::dParamFudgeFactor,
+            JointParam::Bounce => ffi::dParamBounce,
+            JointParam::Cfm => ffi::dParamCFM,
+            JointParam::StopErp => ffi::dParamStopERP,
+            JointParam::StopCfm => ffi::dParamStopCFM,
+        }) as i32
+    }
+}
+
+/// Description of a joint to insert with [`World::insert_joint`].
+///
+/// ODE calls happen in this order: create, attach, set anchor and axes (or lock the
+/// pose, for a fixed joint), set the parameters in the order given, enable feedback.
+#[derive(Clone, Debug)]
+#[must_use]
+pub struct JointBuilder {
+    kind: JointKind,
+    body1: Option<BodyHandle>,
+    body2: Option<BodyHandle>,
+    params: Vec<(JointParam, usize, f64)>,
+    feedback: bool,
+}
+
+impl JointBuilder {
+    /// A joint of this kind; give its bodies with [`JointBuilder::between`] or
+    /// [`JointBuilder::to_world`].
+    pub fn new(kind: JointKind) -> Self {
+        JointBuilder { kind, body1: None, body2: None, params: Vec::new(), feedback: false }
+    }
+    /// A fixed joint.
+    pub fn fixed() -> Self {
+        Self::new(JointKind::Fixed)
+    }
+    /// A hinge.
+    pub fn hinge(anchor: Point3<f64>, axis: Vector3<f64>) -> Self {
+        Self::new(JointKind::Hinge { anchor, axis })
+    }
+    /// A slider.
+    pub fn slider(axis: Vector3<f64>) -> Self {
+        Self::new(JointKind::Slider { axis })
+    }
+    /// A universal joint.
+    pub fn universal(anchor: Point3<f64>, axis1: Vector3<f64>, axis2: Vector3<f64>) -> Self {
+        Self::new(JointKind::Universal { anchor, axis1, axis2 })
+    }
+    /// A ball-and-socket joint.
+    pub fn ball(anchor: Point3<f64>) -> Self {
+        Self::new(JointKind::Ball { anchor })
+    }
+    /// A hinge-2 joint.
+    pub fn hinge2(anchor: Point3<f64>, axis1: Vector3<f64>, axis2: Vector3<f64>) -> Self {
+        Self::new(JointKind::Hinge2 { anchor, axis1, axis2 })
+    }
+    /// A piston joint.
+    pub fn piston(anchor: Point3<f64>, axis: Vector3<f64>) -> Self {
+        Self::new(JointKind::Piston { anchor, axis })
+    }
+    /// Connects `body1` and `body2`.
+    pub fn between(mut self, body1: BodyHandle, body2: BodyHandle) -> Self {
+        self.body1 = Some(body1);
+        self.body2 = Some(body2);
+        self
+    }
+    /// Connects `body` to the static world.
+    pub fn to_world(mut self, body: BodyHandle) -> Self {
+        self.body1 = Some(body);
+        self.body2 = None;
+        self
+    }
+    /// Sets a parameter on axis `axis` (0-based) after creation.
+    pub fn param(mut self, param: JointParam, axis: usize, value: f64) -> Self {
+        self.params.push((param, axis, value));
+        self
+    }
+    /// Limits of the first axis (`low ≤ high`).
+    pub fn limits(self, low: f64, high: f64) -> Self {
+        self.param(JointParam::LoStop, 0, low).param(JointParam::HiStop, 0, high)
+    }
+    /// Velocity motor on the first axis.
+    pub fn motor(self, velocity: f64, max_force: f64) -> Self {
+        self.param(JointParam::Velocity, 0, velocity).param(JointParam::MaxForce, 0, max_force)
+    }
+    /// Records the constraint forces of every step (read with [`JointRef::feedback`]).
+    pub fn feedback(mut self) -> Self {
+        self.feedback = true;
+        self
+    }
+}
+
+pub(crate) struct JointData {
+    pub(crate) raw: ffi::dJointID,
+    pub(crate) kind: JointKind,
+    pub(crate) body1: Option<BodyHandle>,
+    pub(crate) body2: Option<BodyHandle>,
+    feedback: Option<Box<ffi::dJointFeedback>>,
+}
+
+/// Forces and torques a joint applied on its bodies during the last step (world
+/// frame, at each body's centre of mass).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointFeedback {
+    /// Force on body 1, N.
+    pub force1: Vector3<f64>,
+    /// Torque on body 1, N·m.
+    pub torque1: Vector3<f64>,
+    /// Force on body 2 (zero when the joint is attached to the world), N.
+    pub force2: Vector3<f64>,
+    /// Torque on body 2, N·m.
+    pub torque2: Vector3<f64>,
+}
+
+/// Read access to a joint, from [`World::joint`].
+#[derive(Clone, Copy)]
+pub struct JointRef<'w> {
+    handle: JointHandle,
+    data: &'w JointData,
+}
+
+/// Write access to a joint, from [`World::joint_mut`].
+pub struct JointMut<'w> {
+    handle: JointHandle,
+    data: &'w mut JointData,
+}
+
+impl World {
+    /// Creates a joint.
+    pub fn insert_joint(&mut self, builder: JointBuilder) -> Result<JointHandle> {
+        ensure_ode_ready();
+        let kind_name = builder.kind.name();
+        let body1 = builder.body1.ok_or(Error::OutOfRange {
+            what: "joint bodies",
+            detail: format!("the {kind_name} joint has no body: use `between` or `to_world`"),
+        })?;
+        let b1 = self.body_raw(body1)?;
+        let b2 = match builder.body2 {
+            Some(b) if b == body1 => {
+                return Err(Error::SelfJoint { joint: kind_name, body: body1.to_string() });
+            }
+            Some(b) => self.body_raw(b)?,
+            None => std::ptr::null_mut(),
+        };
+        builder.kind.validate()?;
+        for &(param, axis, value) in &builder.params {
+            check_param(&builder.kind, param, axis, value)?;
+        }
+        check_stop_order(&builder.kind, &builder.params)?;
+
+        let w = self.raw;
+        let g = std::ptr::null_mut();
+        // SAFETY: (creation) the world is live; group 0 means "no group": the joint is
+        // owned by the arena entry below and destroyed by `remove_joint` or Drop.
+        let raw = unsafe {
+            match &builder.kind {
+                JointKind::Fixed => ffi::dJointCreateFixed(w, g),
+                JointKind::Hinge { .. } => ffi::dJointCreateHinge(w, g),
+                JointKind::Slider { .. } => ffi::dJointCreateSlider(w, g),
+                JointKind::Universal { .. } => ffi::dJointCreateUniversal(w, g),
+                JointKind::Ball { .. } => ffi::dJointCreateBall(w, g),
+                JointKind::Hinge2 { .. } => ffi::dJointCreateHinge2(w, g),
+                JointKind::Piston { .. } => ffi::dJointCreatePiston(w, g),
+                JointKind::AngularMotor { .. } => ffi::dJointCreateAMotor(w, g),
+                JointKind::LinearMotor { .. } => ffi::dJointCreateLMotor(w, g),
+            }
+        };
+        // SAFETY: (geometry) the joint was just created with the kind matched below;
+        // the bodies are live, distinct, of this world; axes are non-zero and finite.
+        unsafe {
+            ffi::dJointAttach(raw, b1, b2);
+            match &builder.kind {
+                JointKind::Fixed => ffi::dJointSetFixed(raw),
+                JointKind::Hinge { anchor: a, axis: x } => {
+                    ffi::dJointSetHingeAnchor(raw, a.x, a.y, a.z);
+                    ffi::dJointSetHingeAxis(raw, x.x, x.y, x.z);
+                }
+                JointKind::Slider { axis: x } => ffi::dJointSetSliderAxis(raw, x.x, x.y, x.z),
+                JointKind::Universal { anchor: a, axis1: x, axis2: y } => {
+                    ffi::dJointSetUniversalAnchor(raw, a.x, a.y, a.z);
+                    ffi::dJointSetUniversalAxis1(raw, x.x, x.y, x.z);
+                    ffi::dJointSetUniversalAxis2(raw, y.x, y.y, y.z);
+                }
+                JointKind::Ball { anchor: a } => ffi::dJointSetBallAnchor(raw, a.x, a.y, a.z),
+                JointKind::Hinge2 { anchor: a, axis1: x, axis2: y } => {
+                    ffi::dJointSetHinge2Anchor(raw, a.x, a.y, a.z);
+                    ffi::dJointSetHinge2Axes(raw, x.as_ptr(), y.as_ptr());
+                }
+                JointKind::Piston { anchor: a, axis: x } => {
+                    ffi::dJointSetPistonAnchor(raw, a.x, a.y, a.z);
+                    ffi::dJointSetPistonAxis(raw, x.x, x.y, x.z);
+                }
+                JointKind::AngularMotor { axes } => {
+                    ffi::dJointSetAMotorMode(raw, ffi::dAMotorUser as i32);
+                    ffi::dJointSetAMotorNumAxes(raw, axes.len() as i32);
+                    for (i, (frame, x)) in axes.iter().enumerate() {
+                        ffi::dJointSetAMotorAxis(raw, i as i32, *frame as i32, x.x, x.y, x.z);
+                    }
+                }
+                JointKind::LinearMotor { axes } => {
+                    ffi::dJointSetLMotorNumAxes(raw, axes.len() as i32);
+                    for (i, (frame, x)) in axes.iter().enumerate() {
+                        ffi::dJointSetLMotorAxis(raw, i as i32, *frame as i32, x.x, x.y, x.z);
+                    }
+                }
+            }
+        }
+        let data = JointData { raw, kind: builder.kind, body1: Some(body1), body2: builder.body2, feedback: None };
+        let handle = JointHandle(self.joints.insert(data));
+        let mut joint = self.joint_mut(handle)?;
+        for (param, axis, value) in builder.params {
+            joint.set_param(param, axis, value)?;
+        }
+        if builder.feedback {
+            joint.enable_feedback();
+        }
+        Ok(handle)
+    }
+
+    /// Removes a joint.
+    pub fn remove_joint(&mut self, joint: JointHandle) -> Result<()> {
+        let data = self.joints.remove(joint.0, JointHandle::KIND, &joint)?;
+        // SAFETY: the joint was created by this world and is destroyed once; its
+        // feedback buffer is freed after it.
+        unsafe { ffi::dJointDestroy(data.raw) };
+        drop(data);
+        Ok(())
+    }
+
+    /// Read access to a joint.
+    pub fn joint(&self, joint: JointHandle) -> Result<JointRef<'_>> {
+        Ok(JointRef { handle: joint, data: self.joints.get(joint.0, JointHandle::KIND, &joint)? })
+    }
+
+    /// Write access to a joint.
+    pub fn joint_mut(&mut self, joint: JointHandle) -> Result<JointMut<'_>> {
+        Ok(JointMut { handle: joint, data: self.joints.get_mut(joint.0, JointHandle::KIND, &joint)? })
+    }
+
+    /// Every joint of the world, in slot order.
+    pub fn joints(&self) -> impl Iterator<Item = JointHandle> + '_ {
+        self.joints.iter().map(|(h, _)| JointHandle(h))
+    }
+
+    pub(crate) fn joints_of_body(&self, body: BodyHandle) -> Vec<JointHandle> {
+        self.joints
+            .iter()
+            .filter(|(_, j)| j.body1 == Some(body) || j.body2 == Some(body))
+            .map(|(h, _)| JointHandle(h))
+            .collect()
+    }
+}
+
+fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> Result<()> {
+    let axes = kind.param_axes();
+    if axis >= axes {
+        return Err(Error::OutOfRange {
+            what: "joint axis index",
+            detail: format!("a {} joint has {axes} parameter axes, got index {axis}", kind.name()),
+        });
+    }
+    match param {
+        JointParam::LoStop | JointParam::HiStop => {
+            if value.is_nan() {
+                return Err(Error::NotFinite { what: "joint stop", value: value.to_string() });
+            }
+        }
+        JointParam::MaxForce => {
+            validate::non_negative("joint motor max force", value)?;
+        }
+        JointParam::Cfm | JointParam::StopCfm => {
+            validate::non_negative("joint CFM", value)?;
+        }
+        JointParam::StopErp | JointParam::FudgeFactor | JointParam::Bounce => {
+            if !(0.0..=1.0).contains(&value) {
+                return Err(Error::OutOfRange {
+                    what: "joint parameter",
+                    detail: format!("{param:?} must be in [0, 1], got {value}"),
+                });
+            }
+        }
+        JointParam::Velocity => {
+            validate::finite("joint motor velocity", value)?;
+        }
+    }
+    Ok(())
+}
+
+fn check_stop_order(kind: &JointKind, params: &[(JointParam, usize, f64)]) -> Result<()> {
+    for axis in 0..kind.param_axes() {
+        let last = |p| params.iter().rev().find(|(q, a, _)| *q == p && *a == axis).map(|(_, _, v)| *v);
+        if let (Some(lo), Some(hi)) = (last(JointParam::LoStop), last(JointParam::HiStop))
+            && lo > hi
+        {
+            return Err(Error::OutOfRange {
+                what: "joint limits",
+                detail: format!("low stop {lo} is above high stop {hi}"),
+            });
+        }
+    }
+    Ok(())
+}
+
+macro_rules! joint_getters {
+    () => {
+        /// The handle of this joint.
+        pub fn handle(&self) -> JointHandle {
+            self.handle
+        }
+
+        /// Its kind and creation geometry.
+        pub fn kind(&self) -> &JointKind {
+            &self.data.kind
+        }
+
+        /// The bodies it connects (`None` is the static world).
+        pub fn bodies(&self) -> (Option<BodyHandle>, Option<BodyHandle>) {
+            (self.data.body1, self.data.body2)
+        }
+
+        fn wrong(&self, operation: &'static str) -> Error {
+            Error::WrongJointKind { operation, kind: self.data.kind.name() }
+        }
+
+        /// Angle of a hinge (first axis of a universal or hinge-2, rotation of a
+        /// piston), rad, zero at creation, positive when body 1 turns positively about
+        /// the axis relative to body 2.
+        pub fn angle(&self) -> Result<f64> {
+            let j = self.data.raw;
+            // SAFETY: the joint is live and of the kind matched.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Hinge { .. } => ffi::dJointGetHingeAngle(j),
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalAngle1(j),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Angle1(j),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonAngle(j),
+                    _ => return Err(self.wrong("angle")),
+                }
+            })
+        }
+
+        /// Rate of [`angle`](Self::angle), rad/s.
+        pub fn angle_rate(&self) -> Result<f64> {
+            let j = self.data.raw;
+            // SAFETY: the joint is live and of the kind matched.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Hinge { .. } => ffi::dJointGetHingeAngleRate(j),
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalAngle1Rate(j),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Angle1Rate(j),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonAngleRate(j),
+                    _ => return Err(self.wrong("angle rate")),
+                }
+            })
+        }
+
+        /// Second angle of a universal or hinge-2 joint, rad.
+        pub fn angle2(&self) -> Result<f64> {
+            let j = self.data.raw;
+            // SAFETY: the joint is live and of the kind matched.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalAngle2(j),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Angle2(j),
+                    _ => return Err(self.wrong("second angle")),
+                }
+            })
+        }
+
+        /// Rate of the second angle of a universal or hinge-2 joint, rad/s.
+        pub fn angle2_rate(&self) -> Result<f64> {
+            let j = self.data.raw;
+            // SAFETY: the joint is live and of the kind matched.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalAngle2Rate(j),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Angle2Rate(j),
+                    _ => return Err(self.wrong("second angle rate")),
+                }
+            })
+        }
+
+        /// Position of a slider or piston along its axis, m, zero at creation.
+        pub fn position(&self) -> Result<f64> {
+            let j = self.data.raw;
+            // SAFETY: the joint is live and of the kind matched.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Slider { .. } => ffi::dJointGetSliderPosition(j),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonPosition(j),
+                    _ => return Err(self.wrong("position")),
+                }
+            })
+        }
+
+        /// Rate of [`position`](Self::position), m/s.
+        pub fn position_rate(&self) -> Result<f64> {
+            let j = self.data.raw;
+            // SAFETY: the joint is live and of the kind matched.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Slider { .. } => ffi::dJointGetSliderPositionRate(j),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonPositionRate(j),
+                    _ => return Err(self.wrong("position rate")),
+                }
+            })
+        }
+
+        /// Current world anchor (on body 1) of a hinge, universal, ball, hinge-2 or piston.
+        pub fn anchor(&self) -> Result<Point3<f64>> {
+            let j = self.data.raw;
+            let mut a = [0.0; 4];
+            // SAFETY: the joint is live and of the kind matched; `a` holds a dVector3.
+            unsafe {
+                match self.data.kind {
+                    JointKind::Hinge { .. } => ffi::dJointGetHingeAnchor(j, a.as_mut_ptr()),
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalAnchor(j, a.as_mut_ptr()),
+                    JointKind::Ball { .. } => ffi::dJointGetBallAnchor(j, a.as_mut_ptr()),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Anchor(j, a.as_mut_ptr()),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonAnchor(j, a.as_mut_ptr()),
+                    _ => return Err(self.wrong("anchor")),
+                }
+            }
+            Ok(convert::point_from_ode(&a))
+        }
+
+        /// Current world direction of the (first) axis of a hinge, slider, universal,
+        /// hinge-2 or piston.
+        pub fn axis(&self) -> Result<Vector3<f64>> {
+            let j = self.data.raw;
+            let mut a = [0.0; 4];
+            // SAFETY: the joint is live and of the kind matched; `a` holds a dVector3.
+            unsafe {
+                match self.data.kind {
+                    JointKind::Hinge { .. } => ffi::dJointGetHingeAxis(j, a.as_mut_ptr()),
+                    JointKind::Slider { .. } => ffi::dJointGetSliderAxis(j, a.as_mut_ptr()),
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalAxis1(j, a.as_mut_ptr()),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Axis1(j, a.as_mut_ptr()),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonAxis(j, a.as_mut_ptr()),
+                    _ => return Err(self.wrong("axis")),
+                }
+            }
+            Ok(convert::vector_from_ode(&a))
+        }
+
+        /// A parameter of axis `axis` (0-based).
+        pub fn param(&self, param: JointParam, axis: usize) -> Result<f64> {
+            check_param(&self.data.kind, param, axis, 0.0).or_else(|e| match e {
+                Error::OutOfRange { what: "joint axis index", .. } => Err(e),
+                _ => Ok(()),
+            })?;
+            let j = self.data.raw;
+            let p = param.code() + (ffi::dParamGroup as i32) * axis as i32;
+            // SAFETY: the joint is live and of the kind matched; the axis index is in range.
+            Ok(unsafe {
+                match self.data.kind {
+                    JointKind::Hinge { .. } => ffi::dJointGetHingeParam(j, p),
+                    JointKind::Slider { .. } => ffi::dJointGetSliderParam(j, p),
+                    JointKind::Universal { .. } => ffi::dJointGetUniversalParam(j, p),
+                    JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Param(j, p),
+                    JointKind::Piston { .. } => ffi::dJointGetPistonParam(j, p),
+                    JointKind::AngularMotor { .. } => ffi::dJointGetAMotorParam(j, p),
+                    JointKind::LinearMotor { .. } => ffi::dJointGetLMotorParam(j, p),
+                    JointKind::Fixed | JointKind::Ball { .. } => return Err(self.wrong("parameters")),
+                }
+            })
+        }
+
+        /// Constraint forces of the last step, when feedback was enabled.
+        pub fn feedback(&self) -> Option<JointFeedback> {
+            self.data.feedback.as_ref().map(|f| JointFeedback {
+                force1: convert::vector_from_ode(&f.f1),
+                torque1: convert::vector_from_ode(&f.t1),
+                force2: convert::vector_from_ode(&f.f2),
+                torque2: convert::vector_from_ode(&f.t2),
+            })
+        }
+    };
+}
+
+impl JointRef<'_> {
+    joint_getters!();
+}
+
+impl JointMut<'_> {
+    joint_getters!();
+
+    /// Sets a parameter of axis `axis` (0-based).
+    pub fn set_param(&mut self, param: JointParam, axis: usize, value: f64) -> Result<()> {
+        check_param(&self.data.kind, param, axis, value)?;
+        let lo_hi_conflict = match param {
+            JointParam::LoStop => self.param(JointParam::HiStop, axis)? < value,
+            JointParam::HiStop => self.param(JointParam::LoStop, axis)? > value,
+            _ => false,
+        };
+        if lo_hi_conflict {
+            return Err(Error::OutOfRange {
+                what: "joint limits",
+                detail: format!("{param:?} {value} would cross the other stop; use set_limits to move both"),
+            });
+        }
+        let j = self.data.raw;
+        let p = param.code() + (ffi::dParamGroup as i32) * axis as i32;
+        // SAFETY: the joint is live and of the kind matched; axis and value checked.
+        unsafe {
+            match self.data.kind {
+                JointKind::Hinge { .. } => ffi::dJointSetHingeParam(j, p, value),
+                JointKind::Slider { .. } => ffi::dJointSetSliderParam(j, p, value),
+                JointKind::Universal { .. } => ffi::dJointSetUniversalParam(j, p, value),
+                JointKind::Hinge2 { .. } => ffi::dJointSetHinge2Param(j, p, value),
+                JointKind::Piston { .. } => ffi::dJointSetPistonParam(j, p, value),
+                JointKind::AngularMotor { .. } => ffi::dJointSetAMotorParam(j, p, value),
+                JointKind::LinearMotor { .. } => ffi::dJointSetLMotorParam(j, p, value),
+                JointKind::Fixed | JointKind::Ball { .. } => return Err(self.wrong("parameters")),
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets both stops of axis `axis` (`low ≤ high`; ±∞ for none).
+    pub fn set_limits(&mut self, axis: usize, low: f64, high: f64) -> Result<()> {
+        if low.is_nan() || high.is_nan() || low > high {
+            return Err(Error::OutOfRange {
+                what: "joint limits",
+                detail: format!("need low ≤ high, got [{low}, {high}]"),
+            });
+        }
+        // Widen first so that neither intermediate state crosses.
+        self.set_param(JointParam::LoStop, axis, f64::NEG_INFINITY)?;
+        self.set_param(JointParam::HiStop, axis, f64::INFINITY)?;
+        self.set_param(JointParam::LoStop, axis, low)?;
+        self.set_param(JointParam::HiStop, axis, high)
+    }
+
+    /// Drives axis `axis` towards `velocity` with at most `max_force` (N or N·m);
+    /// `max_force = 0` turns the motor off.
+    pub fn set_motor(&mut self, axis: usize, velocity: f64, max_force: f64) -> Result<()> {
+        self.set_param(JointParam::MaxForce, axis, max_force)?;
+        self.set_param(JointParam::Velocity, axis, velocity)
+    }
+
+    /// Adds a torque about the axis of a hinge (about the first axis of a universal or
+    /// hinge-2, about a piston's axis), for the next step: `+torque·axis` on body 1,
+    /// `−torque·axis` on body 2.
+    pub fn add_torque(&mut self, torque: f64) -> Result<()> {
+        validate::finite("joint torque", torque)?;
+        let j = self.data.raw;
+        // SAFETY: the joint is live and of the kind matched.
+        unsafe {
+            match self.data.kind {
+                JointKind::Hinge { .. } => ffi::dJointAddHingeTorque(j, torque),
+                JointKind::Universal { .. } => ffi::dJointAddUniversalTorques(j, torque, 0.0),
+                JointKind::Hinge2 { .. } => ffi::dJointAddHinge2Torques(j, torque, 0.0),
+                JointKind::AngularMotor { .. } => ffi::dJointAddAMotorTorques(j, torque, 0.0, 0.0),
+                _ => return Err(self.wrong("adding a torque")),
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds torques about both axes of a universal or hinge-2 joint.
+    pub fn add_torques(&mut self, torque1: f64, torque2: f64) -> Result<()> {
+        validate::finite("joint torque", torque1)?;
+        validate::finite("joint torque", torque2)?;
+        let j = self.data.raw;
+        // SAFETY: the joint is live and of the kind matched.
+        unsafe {
+            match self.data.kind {
+                JointKind::Universal { .. } => ffi::dJointAddUniversalTorques(j, torque1, torque2),
+                JointKind::Hinge2 { .. } => ffi::dJointAddHinge2Torques(j, torque1, torque2),
+                _ => return Err(self.wrong("adding two torques")),
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds a force along the axis of a slider or piston, for the next step:
+    /// `+force·axis` on body 1, `−force·axis` on body 2.
+    pub fn add_force(&mut self, force: f64) -> Result<()> {
+        validate::finite("joint force", force)?;
+        let j = self.data.raw;
+        // SAFETY: the joint is live and of the kind matched.
+        unsafe {
+            match self.data.kind {
+                JointKind::Slider { .. } => ffi::dJointAddSliderForce(j, force),
+                JointKind::Piston { .. } => ffi::dJointAddPistonForce(j, force),
+                JointKind::LinearMotor { .. } => return Err(self.wrong("adding a force (use a motor velocity)")),
+                _ => return Err(self.wrong("adding a force")),
+            }
+        }
+        Ok(())
+    }
+
+    /// Starts recording the constraint forces (see [`JointRef::feedback`]).
+    pub fn enable_feedback(&mut self) {
+        if self.data.feedback.is_none() {
+            let mut buf = Box::new(ffi::dJointFeedback::default());
+            // SAFETY: the joint is live; the buffer is boxed (stable address) and kept
+            // in the joint's data, which outlives the ODE joint (dropped after it).
+            unsafe { ffi::dJointSetFeedback(self.data.raw, &mut *buf) };
+            self.data.feedback = Some(buf);
+        }
+    }
+}

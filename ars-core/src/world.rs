@@ -1,0 +1,332 @@
+//! The [`World`]: the one owner of every ODE object of a simulation.
+
+use std::fmt;
+
+use nalgebra::Vector3;
+use ode_sys as ffi;
+
+use crate::body::BodyData;
+use crate::contact::CollisionState;
+use crate::convert;
+use crate::error::{Error, Result};
+use crate::geom::GeomData;
+use crate::handle::{Arena, SpaceHandle, WorldId};
+use crate::init::{ensure_ode_ready, global_lock};
+use crate::joint::JointData;
+use crate::validate;
+
+/// The ARS default gravity: 9.81 m/s² down the Y axis (Y is up).
+pub const DEFAULT_GRAVITY: Vector3<f64> = Vector3::new(0.0, -9.81, 0.0);
+/// The ARS (and ODE double-precision) default global error reduction parameter.
+pub const DEFAULT_ERP: f64 = 0.2;
+/// The ARS (and ODE double-precision) default global constraint force mixing.
+pub const DEFAULT_CFM: f64 = 1e-10;
+
+/// A broad-phase collision space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SpaceKind {
+    /// Tests every pair of geoms (O(n²)); what the original ARS used.
+    Simple,
+    /// A multi-resolution hash table; the cell sizes are powers of two between
+    /// `2^min_level` and `2^max_level` metres.
+    Hash {
+        /// Smallest cell size exponent (ODE's default is -3).
+        min_level: i32,
+        /// Largest cell size exponent (ODE's default is 10).
+        max_level: i32,
+    },
+}
+
+impl SpaceKind {
+    /// A hash space with ODE's default levels (cells from 1/8 m to 1024 m).
+    pub const HASH: SpaceKind = SpaceKind::Hash { min_level: -3, max_level: 10 };
+}
+
+pub(crate) struct SpaceData {
+    pub(crate) raw: ffi::dSpaceID,
+    pub(crate) kind: SpaceKind,
+}
+
+/// The ODE stepper that advances the world.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Stepper {
+    /// `dWorldStep`: the exact ("big matrix", Dantzig LCP) stepper; the ARS default.
+    #[default]
+    Exact,
+    /// `dWorldQuickStep` with this many iterations (SOR/PGS): faster for large scenes,
+    /// approximate.
+    Quick {
+        /// Iterations per step (ODE's default is 20).
+        iterations: u32,
+    },
+}
+
+/// An ODE world with its bodies, geoms, joints, spaces and the group of contact joints.
+///
+/// The world owns every ODE object and frees them all when dropped; users hold small
+/// `Copy` handles ([`BodyHandle`](crate::BodyHandle), [`GeomHandle`](crate::GeomHandle),
+/// [`JointHandle`](crate::JointHandle), [`SpaceHandle`]). A handle of a removed object
+/// or of another world is an `Err`, never a dangling pointer.
+///
+/// A world can be moved to another thread ([`Send`]); ODE's process-wide state used
+/// by collision and QuickStep is locked around those calls, so worlds on different
+/// threads do not race.
+///
+/// ```
+/// use ars_core::{World, SpaceKind, BodyBuilder, GeomBuilder, MassSpec};
+/// use nalgebra::{Point3, Vector3};
+///
+/// let mut world = World::new();
+/// let space = world.create_space(SpaceKind::Simple);
+/// world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0))?;
+/// let ball = world.insert_body(
+///     BodyBuilder::new().position(Point3::new(1.0, 1.0, 1.0)).mass(MassSpec::sphere_total(1.0, 0.5)),
+/// )?;
+/// world.insert_geom(space, GeomBuilder::sphere(0.5).attached_to(ball))?;
+/// for _ in 0..2500 {
+///     world.collide(space)?;
+///     world.step(0.0004)?;
+///     world.clear_contacts();
+/// }
+/// assert!((world.body(ball)?.position().y - 0.5).abs() < 1e-3);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+pub struct World {
+    pub(crate) id: WorldId,
+    pub(crate) raw: ffi::dWorldID,
+    pub(crate) contact_group: ffi::dJointGroupID,
+    pub(crate) bodies: Arena<BodyData>,
+    pub(crate) geoms: Arena<GeomData>,
+    pub(crate) joints: Arena<JointData>,
+    pub(crate) spaces: Arena<SpaceData>,
+    pub(crate) collision: CollisionState,
+    stepper: Stepper,
+}
+
+// SAFETY: the ODE objects of a world are reachable only through the `World` (shared
+// access for reads, exclusive access for changes), so moving the world moves all of
+// them. ODE's process-wide state (collision caches, the RNG) is guarded by
+// `init::global_lock`, and every entry point prepares ODE's per-thread data
+// (`ensure_ode_ready`) on the calling thread.
+unsafe impl Send for World {}
+
+impl Default for World {
+    fn default() -> Self {
+        World::new()
+    }
+}
+
+impl fmt::Debug for World {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("World")
+            .field("id", &self.id)
+            .field("bodies", &self.bodies.len())
+            .field("geoms", &self.geoms.len())
+            .field("joints", &self.joints.len())
+            .field("spaces", &self.spaces.len())
+            .finish()
+    }
+}
+
+impl World {
+    /// A new world with the ARS defaults: gravity (0, −9.81, 0), ERP 0.2, CFM 1e-10,
+    /// the exact stepper (`dWorldStep`), no damping, no auto-disable.
+    pub fn new() -> Self {
+        ensure_ode_ready();
+        // SAFETY: ODE is initialised; the world and the joint group are freed in Drop.
+        let (raw, contact_group) = unsafe {
+            let w = ffi::dWorldCreate();
+            ffi::dWorldSetGravity(w, DEFAULT_GRAVITY.x, DEFAULT_GRAVITY.y, DEFAULT_GRAVITY.z);
+            ffi::dWorldSetERP(w, DEFAULT_ERP);
+            ffi::dWorldSetCFM(w, DEFAULT_CFM);
+            (w, ffi::dJointGroupCreate(0))
+        };
+        let id = WorldId::next();
+        World {
+            id,
+            raw,
+            contact_group,
+            bodies: Arena::new(id),
+            geoms: Arena::new(id),
+            joints: Arena::new(id),
+            spaces: Arena::new(id),
+            collision: CollisionState::default(),
+            stepper: Stepper::Exact,
+        }
+    }
+
+    /// This world's id; every handle it issues carries it.
+    pub fn id(&self) -> WorldId {
+        self.id
+    }
+
+    /// Gravity, in m/s².
+    pub fn gravity(&self) -> Vector3<f64> {
+        let mut g = [0.0; 4];
+        // SAFETY: the world is live; `g` has room for a dVector3.
+        unsafe { ffi::dWorldGetGravity(self.raw, g.as_mut_ptr()) };
+        convert::vector_from_ode(&g)
+    }
+
+    /// Sets gravity, in m/s².
+    pub fn set_gravity(&mut self, gravity: Vector3<f64>) -> Result<()> {
+        let g = validate::vector("gravity", &gravity)?;
+        // SAFETY: the world is live.
+        unsafe { ffi::dWorldSetGravity(self.raw, g.x, g.y, g.z) };
+        Ok(())
+    }
+
+    /// The global error reduction parameter (ERP).
+    pub fn erp(&self) -> f64 {
+        // SAFETY: the world is live.
+        unsafe { ffi::dWorldGetERP(self.raw) }
+    }
+
+    /// Sets the global ERP, in [0, 1].
+    pub fn set_erp(&mut self, erp: f64) -> Result<()> {
+        if !(0.0..=1.0).contains(&erp) {
+            return Err(Error::OutOfRange { what: "ERP", detail: format!("must be in [0, 1], got {erp}") });
+        }
+        // SAFETY: the world is live.
+        unsafe { ffi::dWorldSetERP(self.raw, erp) };
+        Ok(())
+    }
+
+    /// The global constraint force mixing (CFM).
+    pub fn cfm(&self) -> f64 {
+        // SAFETY: the world is live.
+        unsafe { ffi::dWorldGetCFM(self.raw) }
+    }
+
+    /// Sets the global CFM (finite, ≥ 0).
+    pub fn set_cfm(&mut self, cfm: f64) -> Result<()> {
+        validate::non_negative("CFM", cfm)?;
+        // SAFETY: the world is live.
+        unsafe { ffi::dWorldSetCFM(self.raw, cfm) };
+        Ok(())
+    }
+
+    /// The stepper used by [`World::step`].
+    pub fn stepper(&self) -> Stepper {
+        self.stepper
+    }
+
+    /// Chooses the stepper used by [`World::step`].
+    pub fn set_stepper(&mut self, stepper: Stepper) -> Result<()> {
+        if let Stepper::Quick { iterations } = stepper {
+            if iterations == 0 {
+                return Err(Error::OutOfRange { what: "QuickStep iterations", detail: "must be at least 1".into() });
+            }
+            let n = i32::try_from(iterations).map_err(|_| Error::OutOfRange {
+                what: "QuickStep iterations",
+                detail: format!("{iterations} is too large"),
+            })?;
+            // SAFETY: the world is live.
+            unsafe { ffi::dWorldSetQuickStepNumIterations(self.raw, n) };
+        }
+        self.stepper = stepper;
+        Ok(())
+    }
+
+    /// Advances the world by `dt` seconds with the chosen stepper (`dWorldStep` by
+    /// default). Contact joints created by [`World::collide`] take part; forces and
+    /// torques added since the last step act during this one and are then cleared.
+    pub fn step(&mut self, dt: f64) -> Result<()> {
+        validate::positive("time step", dt)?;
+        ensure_ode_ready();
+        let ok = match self.stepper {
+            // SAFETY: the world is live and every object in it is owned by `self`.
+            Stepper::Exact => unsafe { ffi::dWorldStep(self.raw, dt) },
+            Stepper::Quick { .. } => {
+                // QuickStep shuffles constraints with ODE's process-wide RNG.
+                let _guard = global_lock();
+                // SAFETY: as above.
+                unsafe { ffi::dWorldQuickStep(self.raw, dt) }
+            }
+        };
+        if ok == 0 { Err(Error::Ode("step the world (out of memory)")) } else { Ok(()) }
+    }
+
+    /// Seeds ODE's random number generator (used by QuickStep to order constraints).
+    /// ODE has one generator per process: the seed affects every world.
+    pub fn seed_random(seed: u32) {
+        ensure_ode_ready();
+        let _guard = global_lock();
+        // SAFETY: ODE is initialised; the generator is guarded by the global lock.
+        unsafe { ffi::dRandSetSeed(seed.into()) };
+    }
+
+    /// Creates a collision space.
+    pub fn create_space(&mut self, kind: SpaceKind) -> SpaceHandle {
+        ensure_ode_ready();
+        // SAFETY: a top-level space (no parent); cleanup is turned off because the
+        // world destroys the geoms itself; the space is freed in Drop.
+        let raw = unsafe {
+            let s = match kind {
+                SpaceKind::Simple => ffi::dSimpleSpaceCreate(std::ptr::null_mut()),
+                SpaceKind::Hash { min_level, max_level } => {
+                    let s = ffi::dHashSpaceCreate(std::ptr::null_mut());
+                    ffi::dHashSpaceSetLevels(s, min_level, max_level);
+                    s
+                }
+            };
+            ffi::dSpaceSetCleanup(s, 0);
+            s
+        };
+        SpaceHandle(self.spaces.insert(SpaceData { raw, kind }))
+    }
+
+    /// The kind of a space.
+    pub fn space_kind(&self, space: SpaceHandle) -> Result<SpaceKind> {
+        Ok(self.space_data(space)?.kind)
+    }
+
+    pub(crate) fn space_data(&self, space: SpaceHandle) -> Result<&SpaceData> {
+        self.spaces.get(space.0, SpaceHandle::KIND, &space)
+    }
+
+    /// Number of bodies in the world.
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Number of geoms in the world.
+    pub fn geom_count(&self) -> usize {
+        self.geoms.len()
+    }
+
+    /// Number of joints in the world (contact joints are not counted).
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
+    }
+}
+
+impl Drop for World {
+    fn drop(&mut self) {
+        ensure_ode_ready();
+        // Joints first (their feedback buffers are freed after them), then geoms
+        // (before their trimesh data and their spaces), then spaces, then the world,
+        // which destroys the bodies.
+        // SAFETY: every id below was created by this world and is destroyed once.
+        unsafe {
+            ffi::dJointGroupEmpty(self.contact_group);
+            ffi::dJointGroupDestroy(self.contact_group);
+            for joint in self.joints.drain() {
+                ffi::dJointDestroy(joint.raw);
+            }
+            for geom in self.geoms.drain() {
+                ffi::dGeomDestroy(geom.raw);
+                drop(geom);
+            }
+            for space in self.spaces.drain() {
+                ffi::dSpaceDestroy(space.raw);
+            }
+            for body in self.bodies.drain() {
+                ffi::dBodyDestroy(body.raw);
+            }
+            ffi::dWorldDestroy(self.raw);
+        }
+    }
+}
