@@ -21,7 +21,7 @@ use ode_sys as ffi;
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
-use crate::init::{ensure_ode_ready, global_lock};
+use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::validate;
 use crate::world::World;
 
@@ -238,7 +238,7 @@ impl World {
         }
         let mut ctx = NearContext { world: self, hooks, panic: None };
         {
-            let _guard = global_lock();
+            let _guard = lock_ode_global_state();
             // SAFETY: the space is live; `ctx` outlives the call and is only accessed
             // by `near_callback`, which ODE calls synchronously on this thread.
             unsafe {

@@ -8,7 +8,7 @@
 //! validates its inputs so that no call can reach them.
 //!
 //! The Debian build of ODE 0.16 is not built with `ODE_EXT_mt_collisions`, so its
-//! collision caches and its random number generator are process-wide: [`global_lock`]
+//! collision caches and its random number generator are process-wide: [`lock_ode_global_state`]
 //! serialises the calls that use them (collision and QuickStep) across threads.
 
 use std::cell::Cell;
@@ -55,9 +55,13 @@ pub fn ensure_ode_ready() {
 }
 
 /// Serialises the ODE calls that touch process-wide state (collision caches, the
-/// random number generator). Held for the duration of one `dSpaceCollide` or one
-/// QuickStep; uncontended in a single-threaded program.
-pub(crate) fn global_lock() -> MutexGuard<'static, ()> {
+/// random number generator). `ars-core` holds it for the duration of one
+/// `dSpaceCollide` or one QuickStep; uncontended in a single-threaded program.
+///
+/// Code that calls ODE's collision or QuickStep functions directly (through `ode-sys`)
+/// while worlds run on other threads must hold it too. It is not reentrant: do not
+/// call `ars-core` while holding it.
+pub fn lock_ode_global_state() -> MutexGuard<'static, ()> {
     // A panic while the lock is held happens in Rust code only (the near callback
     // catches panics), never halfway through an ODE call, so the state is consistent.
     GLOBAL_STATE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())

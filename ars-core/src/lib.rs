@@ -51,8 +51,9 @@
 //! ## Threads
 //! A [`World`] is `Send`: several worlds may run on different threads. The Debian build
 //! of ODE keeps some state per process (collision caches, the random generator), so
-//! collision and QuickStep of different worlds are serialised by a process-wide lock;
-//! `dWorldStep` runs in parallel.
+//! collision and QuickStep of different worlds are serialised by a process-wide lock
+//! ([`lock_ode_global_state`]); `dWorldStep` runs in parallel, each world with its own
+//! step job queue.
 
 pub mod body;
 pub mod contact;
@@ -70,7 +71,7 @@ pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, Ge
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, SpaceHandle, WorldId};
-pub use init::ensure_ode_ready;
+pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 

@@ -11,7 +11,7 @@ use crate::convert;
 use crate::error::{Error, Result};
 use crate::geom::GeomData;
 use crate::handle::{Arena, SpaceHandle, WorldId};
-use crate::init::{ensure_ode_ready, global_lock};
+use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::joint::JointData;
 use crate::validate;
 
@@ -97,6 +97,7 @@ pub struct World {
     pub(crate) id: WorldId,
     pub(crate) raw: ffi::dWorldID,
     pub(crate) contact_group: ffi::dJointGroupID,
+    threading: ffi::dThreadingImplementationID,
     pub(crate) bodies: Arena<BodyData>,
     pub(crate) geoms: Arena<GeomData>,
     pub(crate) joints: Arena<JointData>,
@@ -108,7 +109,7 @@ pub struct World {
 // SAFETY: the ODE objects of a world are reachable only through the `World` (shared
 // access for reads, exclusive access for changes), so moving the world moves all of
 // them. ODE's process-wide state (collision caches, the RNG) is guarded by
-// `init::global_lock`, and every entry point prepares ODE's per-thread data
+// `init::lock_ode_global_state`, and every entry point prepares ODE's per-thread data
 // (`ensure_ode_ready`) on the calling thread.
 unsafe impl Send for World {}
 
@@ -135,19 +136,29 @@ impl World {
     /// the exact stepper (`dWorldStep`), no damping, no auto-disable.
     pub fn new() -> Self {
         ensure_ode_ready();
-        // SAFETY: ODE is initialised; the world and the joint group are freed in Drop.
-        let (raw, contact_group) = unsafe {
+        // SAFETY: ODE is initialised; the world, its threading implementation and the
+        // joint group are freed in Drop. Each world gets its own self-threaded step job
+        // queue: ODE's default queue is process-wide and not safe across threads.
+        let (raw, contact_group, threading) = unsafe {
             let w = ffi::dWorldCreate();
             ffi::dWorldSetGravity(w, DEFAULT_GRAVITY.x, DEFAULT_GRAVITY.y, DEFAULT_GRAVITY.z);
             ffi::dWorldSetERP(w, DEFAULT_ERP);
             ffi::dWorldSetCFM(w, DEFAULT_CFM);
-            (w, ffi::dJointGroupCreate(0))
+            let threading = ffi::dThreadingAllocateSelfThreadedImplementation();
+            assert!(!threading.is_null(), "ODE could not allocate a threading implementation");
+            ffi::dWorldSetStepThreadingImplementation(
+                w,
+                ffi::dThreadingImplementationGetFunctions(threading),
+                threading,
+            );
+            (w, ffi::dJointGroupCreate(0), threading)
         };
         let id = WorldId::next();
         World {
             id,
             raw,
             contact_group,
+            threading,
             bodies: Arena::new(id),
             geoms: Arena::new(id),
             joints: Arena::new(id),
@@ -241,7 +252,7 @@ impl World {
             Stepper::Exact => unsafe { ffi::dWorldStep(self.raw, dt) },
             Stepper::Quick { .. } => {
                 // QuickStep shuffles constraints with ODE's process-wide RNG.
-                let _guard = global_lock();
+                let _guard = lock_ode_global_state();
                 // SAFETY: as above.
                 unsafe { ffi::dWorldQuickStep(self.raw, dt) }
             }
@@ -253,7 +264,7 @@ impl World {
     /// ODE has one generator per process: the seed affects every world.
     pub fn seed_random(seed: u32) {
         ensure_ode_ready();
-        let _guard = global_lock();
+        let _guard = lock_ode_global_state();
         // SAFETY: ODE is initialised; the generator is guarded by the global lock.
         unsafe { ffi::dRandSetSeed(seed.into()) };
     }
@@ -326,6 +337,8 @@ impl Drop for World {
             for body in self.bodies.drain() {
                 ffi::dBodyDestroy(body.raw);
             }
+            ffi::dWorldSetStepThreadingImplementation(self.raw, std::ptr::null(), std::ptr::null_mut());
+            ffi::dThreadingFreeImplementation(self.threading);
             ffi::dWorldDestroy(self.raw);
         }
     }

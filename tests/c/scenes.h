@@ -1,0 +1,45 @@
+/* Reference scenes written in plain C against the system libode, with the same ODE
+ * calls in the same order as the Rust port, so that tests and benchmarks can hold the
+ * Rust code against native ODE. Compiled by the root build.rs. */
+#ifndef ARS_C_SCENES_H
+#define ARS_C_SCENES_H
+
+#include <ode/ode.h>
+
+#define ARS_C_MAX_BODIES 256
+#define ARS_C_MAX_CONTACTS 150
+
+typedef struct ArsCScene ArsCScene;
+
+struct ArsCScene {
+    dWorldID world;
+    dThreadingImplementationID threading;
+    dSpaceID space;
+    dJointGroupID contacts;
+    dReal dt;
+    int body_count;
+    dBodyID bodies[ARS_C_MAX_BODIES];
+    dJointID joints[8];
+    int joint_count;
+    dReal torque;                      /* hinge chain: torque on joint 0 every step */
+    void (*pre_step)(ArsCScene *scene);
+    dContactGeom scratch[ARS_C_MAX_CONTACTS];
+};
+
+/* Common pieces (common.c). */
+ArsCScene *ars_c_scene_alloc(int hash_space);
+void ars_c_rotation_about_axis(dReal x, dReal y, dReal z, dReal angle, dMatrix3 r);
+
+/* The scenes. */
+ArsCScene *ars_c_falling_sphere_new(void);
+ArsCScene *ars_c_hinge_chain_new(void);
+ArsCScene *ars_c_drop_pile_new(int count);
+
+/* Run `steps` steps: pre-step hook, collide, dWorldStep, empty the contact group. */
+void ars_c_scene_step(ArsCScene *scene, int steps);
+int ars_c_scene_body_count(const ArsCScene *scene);
+/* position (3), quaternion w x y z (4), linear velocity (3), angular velocity (3). */
+void ars_c_scene_body_state(const ArsCScene *scene, int index, dReal out[13]);
+void ars_c_scene_free(ArsCScene *scene);
+
+#endif
