@@ -691,6 +691,12 @@ impl JointMut<'_> {
     }
 
     /// Sets both stops of axis `axis` (`low ≤ high`; ±∞ for none).
+    ///
+    /// ODE quirk, kept as is: on a rotational axis ODE tests the stops only while one
+    /// of them lies within ±π. An axis that rests at a stop and then gets stops beyond
+    /// ±π (or ±∞) stays "at the stop" (a motor on it then pushes without its speed
+    /// limit). To free such an axis, widen its stops to just inside ±π (for example
+    /// ±3.1) rather than removing them.
     pub fn set_limits(&mut self, axis: usize, low: f64, high: f64) -> Result<()> {
         if low.is_nan() || high.is_nan() || low > high {
             return Err(Error::OutOfRange {
