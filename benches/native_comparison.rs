@@ -25,7 +25,12 @@ struct Case {
 }
 
 const CASES: [Case; 3] = [
-    Case { name: "falling sphere, 2500 steps", steps: 2500, native: CScene::falling_sphere, rust: RustScene::falling_sphere },
+    Case {
+        name: "falling sphere, 2500 steps",
+        steps: 2500,
+        native: CScene::falling_sphere,
+        rust: RustScene::falling_sphere,
+    },
     Case {
         name: "100 spheres and boxes in a hash space, 500 steps",
         steps: 500,

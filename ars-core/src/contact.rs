@@ -8,6 +8,9 @@
 //! group. [`World::clear_contacts`] empties the group; the original ARS did it after
 //! every step.
 //!
+//! Collision takes the process-wide ODE lock ([`lock_ode_global_state`](crate::lock_ode_global_state))
+//! only while the world holds triangle meshes, whose colliders share a cache.
+//!
 //! A panic in user hooks never unwinds into ODE: the callback catches it, ignores the
 //! remaining pairs, and re-raises it once `dSpaceCollide` has returned.
 
@@ -151,6 +154,13 @@ pub struct GeomPair {
 /// User decisions during collision. The default methods give the world's default
 /// surface to every pair.
 pub trait CollisionHooks {
+    /// `true` when every pair gets the default surface, so that
+    /// [`contact_surface`](Self::contact_surface) need not be asked (a fast path for
+    /// [`DefaultHooks`]). Leave it `false` in your own hooks.
+    fn always_default(&self) -> bool {
+        false
+    }
+
     /// Surface of the contacts of `pair`, or `None` for no contact at all.
     fn contact_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
         let _ = pair;
@@ -162,7 +172,11 @@ pub trait CollisionHooks {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct DefaultHooks;
 
-impl CollisionHooks for DefaultHooks {}
+impl CollisionHooks for DefaultHooks {
+    fn always_default(&self) -> bool {
+        true
+    }
+}
 
 /// A contact point created by the last [`World::collide`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -196,15 +210,25 @@ pub struct RayHit {
 #[derive(Default)]
 pub(crate) struct CollisionState {
     pub(crate) default_surface: ContactSurface,
+    /// `default_surface` as ODE takes it, computed once.
+    default_ode: DefaultOdeSurface,
     contacts: Vec<ContactPoint>,
     ray_hits: Vec<RayHit>,
     scratch: Vec<ffi::dContactGeom>,
 }
 
+struct DefaultOdeSurface(ffi::dSurfaceParameters);
+
+impl Default for DefaultOdeSurface {
+    fn default() -> Self {
+        DefaultOdeSurface(ContactSurface::default().to_ode())
+    }
+}
+
 /// What the near callback sees through its `void*`.
-struct NearContext<'a> {
+struct NearContext<'a, H: CollisionHooks + ?Sized> {
     world: &'a mut World,
-    hooks: &'a mut dyn CollisionHooks,
+    hooks: &'a mut H,
     panic: Option<Box<dyn Any + Send>>,
 }
 
@@ -218,6 +242,7 @@ impl World {
     pub fn set_default_surface(&mut self, surface: ContactSurface) -> Result<()> {
         surface.validate()?;
         self.collision.default_surface = surface;
+        self.collision.default_ode = DefaultOdeSurface(surface.to_ode());
         Ok(())
     }
 
@@ -228,7 +253,7 @@ impl World {
     }
 
     /// As [`World::collide`], with `hooks` choosing the surface of each pair.
-    pub fn collide_with(&mut self, space: SpaceHandle, hooks: &mut dyn CollisionHooks) -> Result<()> {
+    pub fn collide_with<H: CollisionHooks + ?Sized>(&mut self, space: SpaceHandle, hooks: &mut H) -> Result<()> {
         ensure_ode_ready();
         let raw_space = self.space_data(space)?.raw;
         self.collision.contacts.clear();
@@ -236,13 +261,16 @@ impl World {
         if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
             self.collision.scratch.resize(MAX_CONTACTS_LIMIT, ffi::dContactGeom::default());
         }
+        // ODE's trimesh colliders share one process-wide cache in this build of ODE;
+        // every other collider only touches the geoms it is given.
+        let needs_lock = self.trimesh_count > 0;
         let mut ctx = NearContext { world: self, hooks, panic: None };
         {
-            let _guard = lock_ode_global_state();
+            let _guard = needs_lock.then(lock_ode_global_state);
             // SAFETY: the space is live; `ctx` outlives the call and is only accessed
             // by `near_callback`, which ODE calls synchronously on this thread.
             unsafe {
-                ffi::dSpaceCollide(raw_space, (&raw mut ctx).cast::<c_void>(), Some(near_callback));
+                ffi::dSpaceCollide(raw_space, (&raw mut ctx).cast::<c_void>(), Some(near_callback::<H>));
             }
         }
         if let Some(payload) = ctx.panic {
@@ -252,6 +280,7 @@ impl World {
     }
 
     /// Destroys the contact joints created by the last collisions.
+    #[inline]
     pub fn clear_contacts(&mut self) {
         // SAFETY: the group is live; its joints are contact joints owned by it alone.
         unsafe { ffi::dJointGroupEmpty(self.contact_group) };
@@ -285,15 +314,11 @@ impl World {
         if data.raw != raw {
             return None;
         }
-        let body_raw = match data.body {
-            Some(b) => self.bodies.get(b.0, BodyHandle::KIND, &b).ok()?.raw,
-            None => std::ptr::null_mut(),
-        };
-        Some((GeomHandle(h), matches!(data.shape, crate::geom::Shape::Ray { .. }), data.body, body_raw))
+        Some((GeomHandle(h), matches!(data.shape, crate::geom::Shape::Ray { .. }), data.body, data.body_raw))
     }
 
     /// One candidate pair: everything the near callback does, in Rust.
-    fn near(&mut self, hooks: &mut dyn CollisionHooks, o1: ffi::dGeomID, o2: ffi::dGeomID) {
+    fn near<H: CollisionHooks + ?Sized>(&mut self, hooks: &mut H, o1: ffi::dGeomID, o2: ffi::dGeomID) {
         let (Some((g1, ray1, body1, b1)), Some((g2, ray2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
         else {
             log::error!("collision reported a geom that this world does not own; pair skipped");
@@ -310,11 +335,14 @@ impl World {
             return;
         }
         let pair = GeomPair { geom1: g1, geom2: g2, body1, body2 };
+        // (max contacts, ODE surface); `None` for a ray pair.
         let surface = if ray1 || ray2 {
             None
+        } else if hooks.always_default() {
+            Some((self.collision.default_surface.max_contacts, self.collision.default_ode.0))
         } else {
             match hooks.contact_surface(&pair, &self.collision.default_surface) {
-                Some(s) if s.validate().is_ok() => Some(s),
+                Some(s) if s.validate().is_ok() => Some((s.max_contacts, s.to_ode())),
                 Some(s) => {
                     log::error!("contact hooks returned an invalid surface {s:?}; pair skipped");
                     return;
@@ -322,7 +350,7 @@ impl World {
                 None => return,
             }
         };
-        let max = surface.map_or(MAX_CONTACTS_LIMIT, |s| s.max_contacts);
+        let max = surface.map_or(MAX_CONTACTS_LIMIT, |(max, _)| max);
         let scratch = &mut self.collision.scratch;
         // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `max`
         // entries with the stride given.
@@ -343,8 +371,7 @@ impl World {
                     });
                 }
             }
-            Some(surface) => {
-                let surface = surface.to_ode();
+            Some((_, surface)) => {
                 for c in &self.collision.scratch[..n] {
                     let contact = ffi::dContact { surface, geom: *c, fdir1: [0.0; 4] };
                     // SAFETY: world and contact group are live; `contact` is fully
@@ -365,10 +392,10 @@ impl World {
     }
 }
 
-unsafe extern "C" fn near_callback(data: *mut c_void, o1: ffi::dGeomID, o2: ffi::dGeomID) {
-    // SAFETY: `data` is the `NearContext` that `collide_with` passed to dSpaceCollide,
-    // alive and not otherwise borrowed for the duration of the call.
-    let ctx = unsafe { &mut *data.cast::<NearContext<'_>>() };
+unsafe extern "C" fn near_callback<H: CollisionHooks + ?Sized>(data: *mut c_void, o1: ffi::dGeomID, o2: ffi::dGeomID) {
+    // SAFETY: `data` is the `NearContext<H>` that `collide_with::<H>` passed to
+    // dSpaceCollide, alive and not otherwise borrowed for the duration of the call.
+    let ctx = unsafe { &mut *data.cast::<NearContext<'_, H>>() };
     if ctx.panic.is_some() {
         return;
     }

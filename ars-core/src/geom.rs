@@ -137,6 +137,9 @@ pub(crate) struct GeomData {
     pub(crate) raw: ffi::dGeomID,
     pub(crate) shape: Shape,
     pub(crate) body: Option<BodyHandle>,
+    /// The ODE id of `body` (null when static), cached for the near callback; a body's
+    /// geoms are removed before the body.
+    pub(crate) body_raw: ffi::dBodyID,
     pub(crate) space: SpaceHandle,
     _mesh: Option<TriMeshStorage>,
 }
@@ -309,7 +312,17 @@ impl World {
                 }
             }
         };
-        let handle = GeomHandle(self.geoms.insert(GeomData { raw, shape, body: builder.body, space, _mesh: mesh }));
+        if mesh.is_some() {
+            self.trimesh_count += 1;
+        }
+        let handle = GeomHandle(self.geoms.insert(GeomData {
+            raw,
+            shape,
+            body: builder.body,
+            body_raw: body_raw.unwrap_or(std::ptr::null_mut()),
+            space,
+            _mesh: mesh,
+        }));
         // SAFETY: the geom was just created; the data is the slot index, never dereferenced.
         unsafe { ffi::dGeomSetData(raw, handle.0.index as usize as *mut _) };
         let mut g = self.geom_mut(handle)?;
@@ -341,6 +354,9 @@ impl World {
     /// Removes a geom.
     pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
         let data = self.geoms.remove(geom.0, GeomHandle::KIND, &geom)?;
+        if matches!(data.shape, Shape::TriMesh { .. }) {
+            self.trimesh_count -= 1;
+        }
         // SAFETY: the geom was created by this world and is destroyed once; its
         // trimesh storage (if any) is dropped after it.
         unsafe { ffi::dGeomDestroy(data.raw) };

@@ -108,6 +108,7 @@ impl<T> Arena<T> {
         }
     }
 
+    #[inline]
     fn check(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<usize> {
         if h.world != self.world {
             return Err(Error::ForeignHandle { kind, handle: shown.to_string() });
@@ -118,6 +119,7 @@ impl<T> Arena<T> {
         }
     }
 
+    #[inline]
     pub(crate) fn get(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&T> {
         let i = self.check(h, kind, shown)?;
         match &self.slots[i] {
@@ -126,6 +128,7 @@ impl<T> Arena<T> {
         }
     }
 
+    #[inline]
     pub(crate) fn get_mut(&mut self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&mut T> {
         let i = self.check(h, kind, shown)?;
         match &mut self.slots[i] {
@@ -147,6 +150,7 @@ impl<T> Arena<T> {
 
     /// Value in slot `index`, whatever its generation (used for ids that ODE hands back
     /// during collision, which are live by construction).
+    #[inline]
     pub(crate) fn get_by_index(&self, index: u32) -> Option<(RawHandle, &T)> {
         match self.slots.get(index as usize) {
             Some(Slot::Occupied { generation, value }) => {

@@ -8,8 +8,9 @@
 //! validates its inputs so that no call can reach them.
 //!
 //! The Debian build of ODE 0.16 is not built with `ODE_EXT_mt_collisions`, so its
-//! collision caches and its random number generator are process-wide: [`lock_ode_global_state`]
-//! serialises the calls that use them (collision and QuickStep) across threads.
+//! trimesh collider cache and its random number generator are process-wide:
+//! [`lock_ode_global_state`] serialises the calls that use them (collision of worlds
+//! holding triangle meshes, and QuickStep) across threads.
 
 use std::cell::Cell;
 use std::ffi::{CStr, c_char, c_int};
@@ -54,9 +55,9 @@ pub fn ensure_ode_ready() {
     });
 }
 
-/// Serialises the ODE calls that touch process-wide state (collision caches, the
-/// random number generator). `ars-core` holds it for the duration of one
-/// `dSpaceCollide` or one QuickStep; uncontended in a single-threaded program.
+/// Serialises the ODE calls that touch process-wide state (the trimesh collider cache,
+/// the random number generator). `ars-core` holds it for the duration of one
+/// `dSpaceCollide` of a world with triangle meshes, or of one QuickStep.
 ///
 /// Code that calls ODE's collision or QuickStep functions directly (through `ode-sys`)
 /// while worlds run on other threads must hold it too. It is not reentrant: do not

@@ -406,6 +406,7 @@ impl World {
     }
 
     /// Write access to a joint.
+    #[inline]
     pub fn joint_mut(&mut self, joint: JointHandle) -> Result<JointMut<'_>> {
         Ok(JointMut { handle: joint, data: self.joints.get_mut(joint.0, JointHandle::KIND, &joint)? })
     }

@@ -50,8 +50,8 @@
 //!
 //! ## Threads
 //! A [`World`] is `Send`: several worlds may run on different threads. The Debian build
-//! of ODE keeps some state per process (collision caches, the random generator), so
-//! collision and QuickStep of different worlds are serialised by a process-wide lock
+//! of ODE keeps some state per process (the trimesh collider cache, the random
+//! generator), so trimesh collision and QuickStep are serialised by a process-wide lock
 //! ([`lock_ode_global_state`]); `dWorldStep` runs in parallel, each world with its own
 //! step job queue.
 

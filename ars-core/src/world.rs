@@ -71,8 +71,8 @@ pub enum Stepper {
 /// or of another world is an `Err`, never a dangling pointer.
 ///
 /// A world can be moved to another thread ([`Send`]); ODE's process-wide state used
-/// by collision and QuickStep is locked around those calls, so worlds on different
-/// threads do not race.
+/// by triangle-mesh collision and by QuickStep is locked around those calls, so worlds
+/// on different threads do not race.
 ///
 /// ```
 /// use ars_core::{World, SpaceKind, BodyBuilder, GeomBuilder, MassSpec};
@@ -103,13 +103,17 @@ pub struct World {
     pub(crate) joints: Arena<JointData>,
     pub(crate) spaces: Arena<SpaceData>,
     pub(crate) collision: CollisionState,
+    /// Triangle-mesh geoms in the world: ODE's trimesh colliders share a process-wide
+    /// cache, so collision takes the global lock while there are any.
+    pub(crate) trimesh_count: usize,
     stepper: Stepper,
 }
 
 // SAFETY: the ODE objects of a world are reachable only through the `World` (shared
 // access for reads, exclusive access for changes), so moving the world moves all of
-// them. ODE's process-wide state (collision caches, the RNG) is guarded by
-// `init::lock_ode_global_state`, and every entry point prepares ODE's per-thread data
+// them. Each world has its own step job queue. ODE's process-wide state (the trimesh
+// collider cache, the RNG) is guarded by `init::lock_ode_global_state`, and every entry
+// point that creates objects or collides prepares ODE's per-thread data
 // (`ensure_ode_ready`) on the calling thread.
 unsafe impl Send for World {}
 
@@ -164,6 +168,7 @@ impl World {
             joints: Arena::new(id),
             spaces: Arena::new(id),
             collision: CollisionState::default(),
+            trimesh_count: 0,
             stepper: Stepper::Exact,
         }
     }
@@ -246,7 +251,8 @@ impl World {
     /// torques added since the last step act during this one and are then cleared.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         validate::positive("time step", dt)?;
-        ensure_ode_ready();
+        // No `ensure_ode_ready` here: ODE's per-thread data is collision data only
+        // (`dAllocateFlagCollisionData`), prepared by `collide` on the calling thread.
         let ok = match self.stepper {
             // SAFETY: the world is live and every object in it is owned by `self`.
             Stepper::Exact => unsafe { ffi::dWorldStep(self.raw, dt) },
@@ -294,6 +300,7 @@ impl World {
         Ok(self.space_data(space)?.kind)
     }
 
+    #[inline]
     pub(crate) fn space_data(&self, space: SpaceHandle) -> Result<&SpaceData> {
         self.spaces.get(space.0, SpaceHandle::KIND, &space)
     }

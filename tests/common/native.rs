@@ -55,9 +55,6 @@ impl CScene {
     }
     /// Runs `n` steps.
     pub fn step(&mut self, n: usize) {
-        // Collision in this build of ODE shares process-wide state: take the lock the
-        // Rust worlds take, so that tests running in parallel do not race.
-        let _guard = ars_core::lock_ode_global_state();
         // SAFETY: the scene is live.
         unsafe { ars_c_scene_step(self.0, n as c_int) }
     }
