@@ -16,7 +16,7 @@ pub(crate) struct BodyData {
 
 /// How the mass of a shape is given: the total mass in kg, or a density in kg/m³.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum MassAmount {
+pub enum Mass {
     /// Total mass, kg.
     Total(f64),
     /// Density, kg/m³.
@@ -34,14 +34,14 @@ pub enum MassSpec {
         /// Radius, m.
         radius: f64,
         /// Mass or density.
-        amount: MassAmount,
+        amount: Mass,
     },
     /// Solid box.
     Box {
         /// Full edge lengths along X, Y, Z, m.
         size: Vector3<f64>,
         /// Mass or density.
-        amount: MassAmount,
+        amount: Mass,
     },
     /// Solid capsule along local Z.
     Capsule {
@@ -50,7 +50,7 @@ pub enum MassSpec {
         /// Length of the cylindrical part (without the caps), m.
         length: f64,
         /// Mass or density.
-        amount: MassAmount,
+        amount: Mass,
     },
     /// Solid cylinder along local Z.
     Cylinder {
@@ -59,7 +59,7 @@ pub enum MassSpec {
         /// Length, m.
         length: f64,
         /// Mass or density.
-        amount: MassAmount,
+        amount: Mass,
     },
     /// A mass with its inertia tensor about the body origin (the centre of mass).
     Custom {
@@ -73,27 +73,27 @@ pub enum MassSpec {
 impl MassSpec {
     /// Sphere of total mass `mass` (kg) and radius `radius` (m).
     pub fn sphere_total(mass: f64, radius: f64) -> Self {
-        MassSpec::Sphere { radius, amount: MassAmount::Total(mass) }
+        MassSpec::Sphere { radius, amount: Mass::Total(mass) }
     }
     /// Box of total mass `mass` and full edge lengths `size`.
     pub fn box_total(mass: f64, size: Vector3<f64>) -> Self {
-        MassSpec::Box { size, amount: MassAmount::Total(mass) }
+        MassSpec::Box { size, amount: Mass::Total(mass) }
     }
     /// Capsule along Z of total mass `mass`.
     pub fn capsule_total(mass: f64, radius: f64, length: f64) -> Self {
-        MassSpec::Capsule { radius, length, amount: MassAmount::Total(mass) }
+        MassSpec::Capsule { radius, length, amount: Mass::Total(mass) }
     }
     /// Cylinder along Z of total mass `mass`.
     pub fn cylinder_total(mass: f64, radius: f64, length: f64) -> Self {
-        MassSpec::Cylinder { radius, length, amount: MassAmount::Total(mass) }
+        MassSpec::Cylinder { radius, length, amount: Mass::Total(mass) }
     }
 
     /// The ODE mass structure, after checking every number.
     pub(crate) fn to_ode(self) -> Result<ffi::dMass> {
-        let amount = |a: MassAmount| -> Result<MassAmount> {
+        let amount = |a: Mass| -> Result<Mass> {
             match a {
-                MassAmount::Total(m) => validate::positive("mass", m).map(MassAmount::Total),
-                MassAmount::Density(d) => validate::positive("density", d).map(MassAmount::Density),
+                Mass::Total(m) => validate::positive("mass", m).map(Mass::Total),
+                Mass::Density(d) => validate::positive("density", d).map(Mass::Density),
             }
         };
         // Check every number first; the ODE calls below then cannot fail.
@@ -128,7 +128,7 @@ impl MassSpec {
                 self
             }
         };
-        use MassAmount::{Density, Total};
+        use Mass::{Density, Total};
         let mut m = ffi::dMass::default();
         // SAFETY: `m` is a valid dMass to fill; every size and amount was checked
         // positive and finite above, which is all ODE's mass functions need.

@@ -8,7 +8,7 @@
 //! group. [`World::clear_contacts`] empties the group; the original ARS did it after
 //! every step.
 //!
-//! Collision takes the process-wide ODE lock ([`lock_ode_global_state`](crate::lock_ode_global_state))
+//! Collision takes the process-wide ODE lock ([`crate::lock_ode_global_state`])
 //! only while the world holds triangle meshes, whose colliders share a cache.
 //!
 //! A panic in user hooks never unwinds into ODE: the callback catches it, ignores the

@@ -66,7 +66,7 @@ pub mod joint;
 mod validate;
 pub mod world;
 
-pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, MassAmount, MassSpec};
+pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, Mass, MassSpec};
 pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit};
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};

@@ -42,7 +42,7 @@ fn bad_masses_are_refused() {
         MassSpec::sphere_total(0.0, 1.0),
         MassSpec::sphere_total(-2.0, 1.0),
         MassSpec::sphere_total(1.0, f64::NAN),
-        MassSpec::Box { size: Vector3::new(1.0, 1.0, 1.0), amount: MassAmount::Density(-5.0) },
+        MassSpec::Box { size: Vector3::new(1.0, 1.0, 1.0), amount: Mass::Density(-5.0) },
         MassSpec::cylinder_total(1.0, 0.1, 0.0),
         MassSpec::Custom { mass: 1.0, inertia: Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0) },
         MassSpec::Custom { mass: 1.0, inertia: Matrix3::new(1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0) },

@@ -307,7 +307,7 @@ fn mass_properties_are_odes() {
     let dense = world
         .insert_body(
             BodyBuilder::new()
-                .mass(MassSpec::Box { size: Vector3::new(10.0, 0.5, 10.0), amount: MassAmount::Density(100.0) }),
+                .mass(MassSpec::Box { size: Vector3::new(10.0, 0.5, 10.0), amount: Mass::Density(100.0) }),
         )
         .unwrap();
     assert!((world.body(dense).unwrap().mass() - 5000.0).abs() < 1e-9);

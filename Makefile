@@ -1,0 +1,36 @@
+# ARS: one entry point for newcomers, developers and CI.
+#   make demo   install what is missing (Debian packages), run the falling-ball demo headless
+#   make test   install what is missing, run the whole test suite
+#   make check  everything CI checks: fmt, clippy, tests, docs, benchmarks compile
+#   make bench  the Rust-against-native-ODE benchmark (prints Rust/C ratios)
+
+DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: deps demo test check bench
+
+deps:
+	@missing=""; \
+	for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+		echo "Installing Debian packages:$$missing"; \
+		$(SUDO) apt-get update -qq && \
+		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	fi
+	@command -v cargo >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs) first"; exit 1; }
+
+demo: deps
+	cargo run --release --example hello_world
+
+test: deps
+	cargo test --workspace --locked
+
+check: deps
+	cargo fmt --all -- --check
+	cargo clippy --workspace --all-targets --locked -- -D warnings
+	cargo test --workspace --locked
+	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
+	cargo bench --workspace --no-run --locked
+
+bench: deps
+	cargo bench --bench native_comparison
