@@ -74,6 +74,16 @@ handle_type!(
     SpaceHandle,
     "space"
 );
+handle_type!(
+    /// A named object (body, static shape or floor) of a [`Simulation`](crate::Simulation).
+    ObjectId,
+    "object"
+);
+handle_type!(
+    /// A named joint of a [`Simulation`](crate::Simulation).
+    JointId,
+    "joint"
+);
 
 enum Slot<T> {
     Occupied { generation: u32, value: T },

@@ -57,22 +57,33 @@
 
 pub mod body;
 pub mod contact;
+pub mod control;
 pub mod convert;
 pub mod error;
 pub mod geom;
 pub mod handle;
 mod init;
 pub mod joint;
+pub mod program;
+pub mod sensors;
+pub mod simulation;
 mod validate;
 pub mod world;
 
 pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, Mass, MassSpec};
 pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit};
+pub use control::{DcMotor, JointController, JointState, Pid, PositionServo, Profile, TorqueMotor, VelocityServo};
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};
-pub use handle::{BodyHandle, GeomHandle, JointHandle, SpaceHandle, WorldId};
+pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
+pub use program::{Action, ActionMap, Key, Program, ProgramRunner, Repeat};
+pub use sensors::{Record, Sample, Sensor, SensorId, SensorLog};
+pub use simulation::{
+    Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, Hook, JointEnd, JointType, NoHooks,
+    ObjectShape, SimJoint, Simulation, SimulationBuilder, StepHooks, heightfield_faces,
+};
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 
 pub use nalgebra;

@@ -1,0 +1,286 @@
+//! Actuators and controllers: set-point profiles, PD/PID, velocity and position
+//! servos, torque motors and a DC motor model. Use them from hooks, or attach them to
+//! a joint with [`SimJoint::set_controller`](crate::SimJoint::set_controller), which
+//! applies their output every step after the pre-step hooks.
+
+use crate::error::{Error, Result};
+
+/// Position (rad or m) and rate of a joint's first degree of freedom.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct JointState {
+    /// Angle (rad) or position (m).
+    pub position: f64,
+    /// Its rate, rad/s or m/s.
+    pub rate: f64,
+}
+
+/// Something that computes a joint torque (or force) every step.
+pub trait JointController: Send {
+    /// The torque or force for the step starting at `time`, given the joint's state.
+    fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64;
+}
+
+/// A set-point that varies with time: piecewise linear through `(time, value)`
+/// breakpoints, constant before the first and after the last.
+///
+/// ```
+/// use ars_core::Profile;
+/// // The thesis' speed profile: 0 until 1 s, up to 1 m/s at 5 s, hold to 9 s, down at 13 s.
+/// let p = Profile::trapezoid(1.0, 5.0, 9.0, 13.0, 0.0, 1.0)?;
+/// assert_eq!(p.value(0.5), 0.0);
+/// assert_eq!(p.value(3.0), 0.5);
+/// assert_eq!(p.value(7.0), 1.0);
+/// assert_eq!(p.value(20.0), 0.0);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    points: Vec<(f64, f64)>,
+}
+
+impl Profile {
+    /// Through `points`, whose times must be finite and non-decreasing.
+    pub fn new(points: Vec<(f64, f64)>) -> Result<Self> {
+        if points.is_empty() {
+            return Err(Error::OutOfRange { what: "profile", detail: "needs at least one point".into() });
+        }
+        if points.iter().any(|(t, v)| !t.is_finite() || !v.is_finite()) {
+            return Err(Error::NotFinite { what: "profile point", value: format!("{points:?}") });
+        }
+        if points.windows(2).any(|w| w[1].0 < w[0].0) {
+            return Err(Error::OutOfRange { what: "profile", detail: "times must not decrease".into() });
+        }
+        Ok(Profile { points })
+    }
+
+    /// A constant value.
+    pub fn constant(value: f64) -> Result<Self> {
+        Self::new(vec![(0.0, value)])
+    }
+
+    /// `from` until `t0`, a linear ramp to `to` at `t1`, then `to`.
+    pub fn ramp(t0: f64, t1: f64, from: f64, to: f64) -> Result<Self> {
+        Self::new(vec![(t0, from), (t1, to)])
+    }
+
+    /// `low` until `t0`, up to `high` at `t1`, held until `t2`, down to `low` at `t3`.
+    pub fn trapezoid(t0: f64, t1: f64, t2: f64, t3: f64, low: f64, high: f64) -> Result<Self> {
+        Self::new(vec![(t0, low), (t1, high), (t2, high), (t3, low)])
+    }
+
+    /// The value at `time`.
+    pub fn value(&self, time: f64) -> f64 {
+        let p = &self.points;
+        if time <= p[0].0 {
+            return p[0].1;
+        }
+        for w in p.windows(2) {
+            let ((t0, v0), (t1, v1)) = (w[0], w[1]);
+            if time <= t1 {
+                if t1 == t0 {
+                    return v1;
+                }
+                return v0 + (v1 - v0) * (time - t0) / (t1 - t0);
+            }
+        }
+        p[p.len() - 1].1
+    }
+}
+
+/// A PID controller on `error = setpoint − measured`; the derivative is the backward
+/// difference of the error over `dt` with the previous error starting at 0, as in the
+/// original ARS' PD controllers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pid {
+    /// Proportional gain.
+    pub kp: f64,
+    /// Integral gain.
+    pub ki: f64,
+    /// Derivative gain.
+    pub kd: f64,
+    previous_error: f64,
+    integral: f64,
+}
+
+impl Pid {
+    /// A PID controller.
+    pub fn new(kp: f64, ki: f64, kd: f64) -> Self {
+        Pid { kp, ki, kd, previous_error: 0.0, integral: 0.0 }
+    }
+
+    /// A PD controller.
+    pub fn pd(kp: f64, kd: f64) -> Self {
+        Self::new(kp, 0.0, kd)
+    }
+
+    /// The output for this error, advancing the controller's state by `dt`.
+    pub fn update(&mut self, error: f64, dt: f64) -> f64 {
+        self.integral += error * dt;
+        let derivative = if dt > 0.0 { (error - self.previous_error) / dt } else { 0.0 };
+        self.previous_error = error;
+        self.kp * error + self.ki * self.integral + self.kd * derivative
+    }
+
+    /// Forgets the previous error and the integral.
+    pub fn reset(&mut self) {
+        self.previous_error = 0.0;
+        self.integral = 0.0;
+    }
+}
+
+/// Holds a joint at a set-point position (rad or m) with a PID controller.
+#[derive(Clone, Debug)]
+pub struct PositionServo {
+    /// The set-point over time.
+    pub setpoint: Profile,
+    /// The controller.
+    pub pid: Pid,
+}
+
+impl PositionServo {
+    /// A PD position servo.
+    pub fn pd(setpoint: Profile, kp: f64, kd: f64) -> Self {
+        PositionServo { setpoint, pid: Pid::pd(kp, kd) }
+    }
+}
+
+impl JointController for PositionServo {
+    fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64 {
+        self.pid.update(self.setpoint.value(time) - state.position, dt)
+    }
+}
+
+/// Drives a joint's rate towards a set-point with a proportional gain (what the
+/// original's speed-profile example does on the wheels).
+#[derive(Clone, Debug)]
+pub struct VelocityServo {
+    /// The set-point over time (rad/s or m/s).
+    pub setpoint: Profile,
+    /// Proportional gain (N·m per rad/s, or N per m/s).
+    pub gain: f64,
+}
+
+impl JointController for VelocityServo {
+    fn output(&mut self, time: f64, state: JointState, _dt: f64) -> f64 {
+        self.gain * (self.setpoint.value(time) - state.rate)
+    }
+}
+
+/// Applies a torque (or force) that follows a profile, whatever the joint does.
+#[derive(Clone, Debug)]
+pub struct TorqueMotor {
+    /// The torque over time.
+    pub torque: Profile,
+}
+
+impl JointController for TorqueMotor {
+    fn output(&mut self, time: f64, _state: JointState, _dt: f64) -> f64 {
+        self.torque.value(time)
+    }
+}
+
+/// A permanent-magnet DC motor with a gearbox driving the joint, under a voltage
+/// profile: `τ = n · k_t · (V − k_e · n · ω) / R − n² · J_r · α`, where `ω` is the joint
+/// rate, `n` the gear ratio and `α` the joint acceleration estimated from the last two
+/// rates (the reflected rotor inertia resists acceleration). Inductance is neglected.
+#[derive(Clone, Debug)]
+pub struct DcMotor {
+    /// Supply voltage over time, V.
+    pub voltage: Profile,
+    /// Torque constant, N·m/A.
+    pub torque_constant: f64,
+    /// Back-EMF constant, V·s/rad.
+    pub back_emf_constant: f64,
+    /// Winding resistance, Ω.
+    pub resistance: f64,
+    /// Gear ratio (motor turns per joint turn).
+    pub gear_ratio: f64,
+    /// Rotor inertia, kg·m².
+    pub rotor_inertia: f64,
+    previous_rate: Option<f64>,
+}
+
+impl DcMotor {
+    /// A motor; every constant must be finite, resistance and gear ratio positive.
+    pub fn new(
+        voltage: Profile,
+        torque_constant: f64,
+        back_emf_constant: f64,
+        resistance: f64,
+        gear_ratio: f64,
+        rotor_inertia: f64,
+    ) -> Result<Self> {
+        crate::validate::non_negative("torque constant", torque_constant)?;
+        crate::validate::non_negative("back-EMF constant", back_emf_constant)?;
+        crate::validate::positive("winding resistance", resistance)?;
+        crate::validate::positive("gear ratio", gear_ratio)?;
+        crate::validate::non_negative("rotor inertia", rotor_inertia)?;
+        Ok(DcMotor {
+            voltage,
+            torque_constant,
+            back_emf_constant,
+            resistance,
+            gear_ratio,
+            rotor_inertia,
+            previous_rate: None,
+        })
+    }
+
+    /// Winding current at joint rate `rate` and voltage `voltage`, A.
+    pub fn current(&self, voltage: f64, rate: f64) -> f64 {
+        (voltage - self.back_emf_constant * self.gear_ratio * rate) / self.resistance
+    }
+}
+
+impl JointController for DcMotor {
+    fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64 {
+        let n = self.gear_ratio;
+        let electric = n * self.torque_constant * self.current(self.voltage.value(time), state.rate);
+        let accel = match self.previous_rate {
+            Some(prev) if dt > 0.0 => (state.rate - prev) / dt,
+            _ => 0.0,
+        };
+        self.previous_rate = Some(state.rate);
+        electric - n * n * self.rotor_inertia * accel
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn profiles_interpolate_and_refuse_bad_points() {
+        let r = Profile::ramp(1.0, 3.0, 0.0, 4.0).unwrap();
+        assert_eq!(r.value(0.0), 0.0);
+        assert_eq!(r.value(2.0), 2.0);
+        assert_eq!(r.value(9.0), 4.0);
+        assert!(Profile::new(vec![(1.0, 0.0), (0.5, 1.0)]).is_err());
+        assert!(Profile::new(vec![]).is_err());
+        assert!(Profile::new(vec![(f64::NAN, 0.0)]).is_err());
+    }
+
+    #[test]
+    fn pd_uses_the_backward_difference_from_zero() {
+        let mut pd = Pid::pd(1.0, 0.5);
+        // First call: e = 2, previous 0: 1·2 + 0.5·(2 − 0)/0.1 = 12.
+        assert!((pd.update(2.0, 0.1) - 12.0).abs() < 1e-12);
+        assert!((pd.update(2.0, 0.1) - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn dc_motor_stalls_and_runs_free() {
+        let mut m = DcMotor::new(Profile::constant(12.0).unwrap(), 0.1, 0.1, 2.0, 10.0, 0.0).unwrap();
+        // Stall: τ = n kt V / R = 10 · 0.1 · 12 / 2 = 6.
+        assert!((m.output(0.0, JointState::default(), 0.001) - 6.0).abs() < 1e-12);
+        assert!((m.current(12.0, 0.0) - 6.0).abs() < 1e-12);
+        // No-load speed: V = ke n ω → ω = 12 rad/s: no torque.
+        let free = JointState { position: 0.0, rate: 12.0 };
+        let mut m2 = DcMotor::new(Profile::constant(12.0).unwrap(), 0.1, 0.1, 2.0, 10.0, 0.0).unwrap();
+        assert!(m2.output(0.0, free, 0.001).abs() < 1e-12);
+        // A rotor inertia resists acceleration: 10² · 0.01 · (1 rad/s / 0.1 s) = 10 N·m less.
+        let mut m3 = DcMotor::new(Profile::constant(0.0).unwrap(), 0.0, 0.0, 1.0, 10.0, 0.01).unwrap();
+        m3.output(0.0, JointState { position: 0.0, rate: 0.0 }, 0.1);
+        assert!((m3.output(0.1, JointState { position: 0.0, rate: 1.0 }, 0.1) + 10.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,207 @@
+//! Joint sensors: angle and rate, the torque, force and power applied through the API,
+//! and the reaction the joint exerts.
+
+use nalgebra::Vector3;
+
+use super::{Record, Sensor};
+use crate::control::JointState;
+use crate::error::{Error, Result};
+use crate::handle::JointId;
+use crate::simulation::{JointType, Simulation};
+
+/// Angle and rate of a rotary joint (after the step).
+#[derive(Clone, Debug)]
+pub struct RotaryJointSensor {
+    joint: JointId,
+}
+
+impl RotaryJointSensor {
+    /// On `joint`.
+    pub fn new(joint: JointId) -> Self {
+        RotaryJointSensor { joint }
+    }
+}
+
+/// A [`RotaryJointSensor`] measurement.
+pub type RotaryReading = JointState;
+
+impl Record for JointState {
+    fn columns() -> Vec<&'static str> {
+        vec!["angle [rad]", "angle rate [rad/s]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        vec![Some(self.position), Some(self.rate)]
+    }
+}
+
+impl Sensor for RotaryJointSensor {
+    type Record = JointState;
+    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+        expect_type(sim, self.joint, &[JointType::Rotary], "a rotary joint sensor")
+    }
+    fn measure(&mut self, sim: &Simulation) -> Result<JointState> {
+        sim.joint_state(self.joint)
+    }
+    fn joints(&self) -> Vec<JointId> {
+        vec![self.joint]
+    }
+}
+
+fn expect_type(sim: &Simulation, joint: JointId, types: &[JointType], operation: &'static str) -> Result<()> {
+    let t = sim.joint_type(joint)?;
+    if types.contains(&t) { Ok(()) } else { Err(Error::WrongJointKind { operation, kind: t.default_name() }) }
+}
+
+/// Torque (rotary) or force (slider) added through the API during a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Effort {
+    /// N·m for a rotary joint, N for a slider.
+    pub value: f64,
+}
+
+/// The torque added to a rotary joint during each step through
+/// [`SimJoint::add_torque`](crate::SimJoint::add_torque), its friction and its
+/// controller, summed (the original recorded each call).
+#[derive(Clone, Debug)]
+pub struct JointTorque {
+    joint: JointId,
+}
+
+impl JointTorque {
+    /// On `joint`.
+    pub fn new(joint: JointId) -> Self {
+        JointTorque { joint }
+    }
+}
+
+impl Sensor for JointTorque {
+    type Record = Effort;
+    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+        expect_type(sim, self.joint, &[JointType::Rotary, JointType::Universal], "a joint torque sensor")
+    }
+    fn measure(&mut self, sim: &Simulation) -> Result<Effort> {
+        Ok(Effort { value: sim.applied_effort(self.joint)?.0 })
+    }
+    fn joints(&self) -> Vec<JointId> {
+        vec![self.joint]
+    }
+}
+
+/// The force added to a slider during each step through the API.
+#[derive(Clone, Debug)]
+pub struct JointForce {
+    joint: JointId,
+}
+
+impl JointForce {
+    /// On `joint`.
+    pub fn new(joint: JointId) -> Self {
+        JointForce { joint }
+    }
+}
+
+impl Record for Effort {
+    fn columns() -> Vec<&'static str> {
+        vec!["torque or force [N m or N]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        vec![Some(self.value)]
+    }
+}
+
+impl Sensor for JointForce {
+    type Record = Effort;
+    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+        expect_type(sim, self.joint, &[JointType::Slider, JointType::Piston], "a joint force sensor")
+    }
+    fn measure(&mut self, sim: &Simulation) -> Result<Effort> {
+        Ok(Effort { value: sim.applied_effort(self.joint)?.0 })
+    }
+    fn joints(&self) -> Vec<JointId> {
+        vec![self.joint]
+    }
+}
+
+/// Power of the torques (forces) added through the API during a step: each one times
+/// the joint rate when it was added (the rate before the step).
+#[derive(Clone, Debug)]
+pub struct JointPower {
+    joint: JointId,
+}
+
+impl JointPower {
+    /// On `joint`.
+    pub fn new(joint: JointId) -> Self {
+        JointPower { joint }
+    }
+}
+
+/// A [`JointPower`] measurement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Power {
+    /// Power, W.
+    pub power: f64,
+}
+
+impl Record for Power {
+    fn columns() -> Vec<&'static str> {
+        vec!["power [W]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        vec![Some(self.power)]
+    }
+}
+
+impl Sensor for JointPower {
+    type Record = Power;
+    fn measure(&mut self, sim: &Simulation) -> Result<Power> {
+        Ok(Power { power: sim.applied_effort(self.joint)?.1 })
+    }
+    fn joints(&self) -> Vec<JointId> {
+        vec![self.joint]
+    }
+}
+
+/// Force and torque a joint exerted on its first object during the last step (world
+/// frame, at the object's centre of mass): a force-torque sensor.
+#[derive(Clone, Debug)]
+pub struct JointReaction {
+    joint: JointId,
+}
+
+impl JointReaction {
+    /// On `joint`.
+    pub fn new(joint: JointId) -> Self {
+        JointReaction { joint }
+    }
+}
+
+/// A [`JointReaction`] measurement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reaction {
+    /// Force on the first object, N.
+    pub force: Vector3<f64>,
+    /// Torque on the first object, N·m.
+    pub torque: Vector3<f64>,
+}
+
+impl Record for Reaction {
+    fn columns() -> Vec<&'static str> {
+        vec!["fx [N]", "fy [N]", "fz [N]", "tx [N m]", "ty [N m]", "tz [N m]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        let (f, t) = (self.force, self.torque);
+        vec![Some(f.x), Some(f.y), Some(f.z), Some(t.x), Some(t.y), Some(t.z)]
+    }
+}
+
+impl Sensor for JointReaction {
+    type Record = Reaction;
+    fn measure(&mut self, sim: &Simulation) -> Result<Reaction> {
+        let fb = sim.joint_ref(self.joint)?.feedback().expect("simulation joints record feedback");
+        Ok(Reaction { force: fb.force1, torque: fb.torque1 })
+    }
+    fn joints(&self) -> Vec<JointId> {
+        vec![self.joint]
+    }
+}

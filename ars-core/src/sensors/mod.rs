@@ -1,0 +1,309 @@
+//! Sensors: declared on a simulation, sampled automatically after every step (or at a
+//! period), each sample stamped with the simulated time at the end of the step.
+//!
+//! ```
+//! use ars_core::{Mass, Simulation, sensors::{Gps, Velometer}};
+//!
+//! let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
+//! let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+//! let gps = sim.add_sensor(Gps::new(ball))?;
+//! let speed = sim.add_sensor(Velometer::new(ball))?;
+//! sim.run_for(0.1)?;
+//! let log = sim.records(gps)?;
+//! assert_eq!(log.len(), 250);
+//! assert!((log.last().unwrap().time - 0.1).abs() < 1e-12);
+//! assert!(sim.records(speed)?.last().unwrap().record.linear.y < 0.0);
+//! let mut csv = Vec::new();
+//! log.write_csv(&mut csv).unwrap();
+//! assert!(String::from_utf8(csv).unwrap().starts_with("time [s],step,x [m],y [m],z [m]\n"));
+//! # Ok::<(), ars_core::Error>(())
+//! ```
+
+mod body;
+mod energy;
+mod joint;
+mod laser;
+
+use std::any::Any;
+use std::io::{self, Write};
+use std::marker::PhantomData;
+
+pub use body::{
+    Acceleration, Accelerometer, ContactReading, ContactSensor, Gps, Imu, ImuReading, Inclination, Inclinometer,
+    Position, Velocity, Velometer,
+};
+pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};
+pub use joint::{
+    Effort, JointForce, JointPower, JointReaction, JointTorque, Power, Reaction, RotaryJointSensor, RotaryReading,
+};
+pub use laser::{Laser, LaserReading};
+
+use crate::error::{Error, Result};
+use crate::handle::{JointId, ObjectId, WorldId};
+use crate::simulation::Simulation;
+
+/// A sensor: measures something of a simulation after every step it samples.
+pub trait Sensor: Send + 'static {
+    /// What one measurement holds.
+    type Record: Record;
+
+    /// Called once when the sensor is added (a laser creates its ray here).
+    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+        let _ = sim;
+        Ok(())
+    }
+
+    /// Called before every step, after the pre-step hooks, on the state before the
+    /// step (an accelerometer remembers the velocity here).
+    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+        let _ = sim;
+        Ok(())
+    }
+
+    /// One measurement, after a step.
+    fn measure(&mut self, sim: &Simulation) -> Result<Self::Record>;
+
+    /// Objects the sensor reads; it stops sampling when one is removed.
+    fn objects(&self) -> Vec<ObjectId> {
+        Vec::new()
+    }
+
+    /// Joints the sensor reads; it stops sampling when one is removed.
+    fn joints(&self) -> Vec<JointId> {
+        Vec::new()
+    }
+}
+
+/// One measurement as CSV columns.
+pub trait Record: Clone + Send + 'static {
+    /// Column headers, each naming its quantity and unit, e.g. `"y [m]"`.
+    fn columns() -> Vec<&'static str>;
+    /// The values, in column order (`None`: no value, e.g. a laser that hit nothing).
+    fn values(&self) -> Vec<Option<f64>>;
+}
+
+/// A measurement and when it was taken.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample<R> {
+    /// Simulated time at the end of the step, s.
+    pub time: f64,
+    /// Number of the step (1 for the first).
+    pub step: u64,
+    /// The measurement.
+    pub record: R,
+}
+
+/// Every sample of one sensor, oldest first.
+#[derive(Clone, Debug)]
+pub struct SensorLog<R> {
+    samples: Vec<Sample<R>>,
+}
+
+impl<R: Record> SensorLog<R> {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.samples.len()
+    }
+    /// Whether there is no sample.
+    pub fn is_empty(&self) -> bool {
+        self.samples.is_empty()
+    }
+    /// The samples, oldest first.
+    pub fn samples(&self) -> &[Sample<R>] {
+        &self.samples
+    }
+    /// Iterates over the samples, oldest first.
+    pub fn iter(&self) -> std::slice::Iter<'_, Sample<R>> {
+        self.samples.iter()
+    }
+    /// The newest sample.
+    pub fn last(&self) -> Option<&Sample<R>> {
+        self.samples.last()
+    }
+    /// Writes the samples as CSV: a header `time [s],step,<columns>`, then one row per
+    /// sample; numbers in Rust's shortest exact form, empty cells for missing values.
+    pub fn write_csv(&self, mut w: impl Write) -> io::Result<()> {
+        writeln!(w, "time [s],step,{}", R::columns().join(","))?;
+        for s in &self.samples {
+            write!(w, "{},{}", s.time, s.step)?;
+            for v in s.record.values() {
+                match v {
+                    Some(x) => write!(w, ",{x}")?,
+                    None => write!(w, ",")?,
+                }
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    }
+}
+
+impl<'a, R> IntoIterator for &'a SensorLog<R> {
+    type Item = &'a Sample<R>;
+    type IntoIter = std::slice::Iter<'a, Sample<R>>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.samples.iter()
+    }
+}
+
+/// A typed handle to a sensor of a simulation.
+pub struct SensorId<S> {
+    world: WorldId,
+    index: usize,
+    _sensor: PhantomData<fn() -> S>,
+}
+
+impl<S> Clone for SensorId<S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<S> Copy for SensorId<S> {}
+impl<S> std::fmt::Debug for SensorId<S> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "sensor#{}@{:?}", self.index, self.world)
+    }
+}
+
+struct Slot<S: Sensor> {
+    sensor: S,
+    period: Option<f64>,
+    next_sample: f64,
+    detached: bool,
+    log: SensorLog<S::Record>,
+}
+
+trait ErasedSlot: Send {
+    fn before_step(&mut self, sim: &Simulation) -> Result<()>;
+    fn after_step(&mut self, sim: &Simulation) -> Result<()>;
+    fn forget_object(&mut self, id: ObjectId);
+    fn forget_joint(&mut self, id: JointId);
+    fn as_any(&self) -> &dyn Any;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+}
+
+impl<S: Sensor> ErasedSlot for Slot<S> {
+    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+        if self.detached { Ok(()) } else { self.sensor.before_step(sim) }
+    }
+    fn after_step(&mut self, sim: &Simulation) -> Result<()> {
+        if self.detached {
+            return Ok(());
+        }
+        let time = sim.time();
+        if let Some(period) = self.period {
+            // Half a step of slack absorbs the drift of the accumulated time.
+            if time + 0.5 * sim.time_step() < self.next_sample {
+                // Still measure, so that stateful sensors see every step.
+                self.sensor.measure(sim)?;
+                return Ok(());
+            }
+            self.next_sample += period;
+        }
+        let record = self.sensor.measure(sim)?;
+        self.log.samples.push(Sample { time, step: sim.step_count(), record });
+        Ok(())
+    }
+    fn forget_object(&mut self, id: ObjectId) {
+        if self.sensor.objects().contains(&id) {
+            self.detached = true;
+        }
+    }
+    fn forget_joint(&mut self, id: JointId) {
+        if self.sensor.joints().contains(&id) {
+            self.detached = true;
+        }
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+}
+
+/// The sensors of a simulation.
+#[derive(Default)]
+pub(crate) struct SensorSet {
+    slots: Vec<Box<dyn ErasedSlot>>,
+}
+
+impl SensorSet {
+    pub(crate) fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+        self.slots.iter_mut().try_for_each(|s| s.before_step(sim))
+    }
+    pub(crate) fn after_step(&mut self, sim: &Simulation) -> Result<()> {
+        self.slots.iter_mut().try_for_each(|s| s.after_step(sim))
+    }
+    pub(crate) fn forget_object(&mut self, id: ObjectId) {
+        self.slots.iter_mut().for_each(|s| s.forget_object(id));
+    }
+    pub(crate) fn forget_joint(&mut self, id: JointId) {
+        self.slots.iter_mut().for_each(|s| s.forget_joint(id));
+    }
+}
+
+impl Simulation {
+    /// Adds a sensor that samples after every step.
+    pub fn add_sensor<S: Sensor>(&mut self, sensor: S) -> Result<SensorId<S>> {
+        self.insert_sensor(sensor, None)
+    }
+
+    /// Adds a sensor that samples every `period` seconds of simulated time (at the
+    /// first step ending at or after each multiple of the period).
+    pub fn add_sensor_every<S: Sensor>(&mut self, sensor: S, period: f64) -> Result<SensorId<S>> {
+        crate::validate::positive("sensor period", period)?;
+        self.insert_sensor(sensor, Some(period))
+    }
+
+    fn insert_sensor<S: Sensor>(&mut self, mut sensor: S, period: Option<f64>) -> Result<SensorId<S>> {
+        sensor.attach(self)?;
+        let next_sample = self.time() + period.unwrap_or(0.0);
+        let slot = Slot { sensor, period, next_sample, detached: false, log: SensorLog { samples: Vec::new() } };
+        self.sensors.slots.push(Box::new(slot));
+        Ok(SensorId { world: self.world_id(), index: self.sensors.slots.len() - 1, _sensor: PhantomData })
+    }
+
+    fn slot<S: Sensor>(&self, id: SensorId<S>) -> Result<&Slot<S>> {
+        if id.world != self.world_id() {
+            return Err(Error::ForeignHandle { kind: "sensor", handle: format!("{id:?}") });
+        }
+        self.sensors
+            .slots
+            .get(id.index)
+            .and_then(|s| s.as_any().downcast_ref::<Slot<S>>())
+            .ok_or_else(|| Error::StaleHandle { kind: "sensor", handle: format!("{id:?}") })
+    }
+
+    fn slot_mut<S: Sensor>(&mut self, id: SensorId<S>) -> Result<&mut Slot<S>> {
+        if id.world != self.world_id() {
+            return Err(Error::ForeignHandle { kind: "sensor", handle: format!("{id:?}") });
+        }
+        self.sensors
+            .slots
+            .get_mut(id.index)
+            .and_then(|s| s.as_any_mut().downcast_mut::<Slot<S>>())
+            .ok_or_else(|| Error::StaleHandle { kind: "sensor", handle: format!("{id:?}") })
+    }
+
+    /// The samples of a sensor.
+    pub fn records<S: Sensor>(&self, id: SensorId<S>) -> Result<&SensorLog<S::Record>> {
+        Ok(&self.slot(id)?.log)
+    }
+
+    /// Forgets the samples of a sensor so far.
+    pub fn clear_records<S: Sensor>(&mut self, id: SensorId<S>) -> Result<()> {
+        self.slot_mut(id)?.log.samples.clear();
+        Ok(())
+    }
+
+    /// The sensor itself (its configuration).
+    pub fn sensor<S: Sensor>(&self, id: SensorId<S>) -> Result<&S> {
+        Ok(&self.slot(id)?.sensor)
+    }
+
+    /// Whether a sensor stopped sampling because an object or joint it reads was removed.
+    pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
+        Ok(self.slot(id)?.detached)
+    }
+}

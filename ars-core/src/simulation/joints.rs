@@ -1,0 +1,482 @@
+//! Joints of a simulation: named, between two objects or an object and the static
+//! world, with torque/force accounting for the joint sensors, viscous friction and
+//! attached controllers.
+
+use nalgebra::{Point3, Vector3};
+
+use super::Simulation;
+use crate::control::{JointController, JointState};
+use crate::error::{Error, Result};
+use crate::handle::{JointHandle, JointId, ObjectId};
+use crate::joint::{JointBuilder, JointFeedback, JointKind, JointParam, JointRef};
+use crate::validate;
+
+/// The kinds of joint a simulation offers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum JointType {
+    /// Locks the relative pose.
+    Fixed,
+    /// One rotation (ODE hinge).
+    Rotary,
+    /// One translation.
+    Slider,
+    /// Two rotations about perpendicular axes.
+    Universal,
+    /// Three rotations about a point.
+    BallSocket,
+    /// A translation along and a rotation about one axis.
+    Piston,
+}
+
+impl JointType {
+    /// Default name of joints of this type.
+    pub fn default_name(self) -> &'static str {
+        match self {
+            JointType::Fixed => "fixed",
+            JointType::Rotary => "rotary",
+            JointType::Slider => "slider",
+            JointType::Universal => "universal",
+            JointType::BallSocket => "ball_socket",
+            JointType::Piston => "piston",
+        }
+    }
+}
+
+/// The second end of a joint: another object, or the static world.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointEnd {
+    /// Another object (a static object counts as the world).
+    Object(ObjectId),
+    /// The static world.
+    World,
+}
+
+impl From<ObjectId> for JointEnd {
+    fn from(id: ObjectId) -> Self {
+        JointEnd::Object(id)
+    }
+}
+
+pub(crate) struct JointData {
+    pub(crate) name: String,
+    pub(crate) kind: JointType,
+    pub(crate) handle: JointHandle,
+    pub(crate) object1: ObjectId,
+    pub(crate) object2: Option<ObjectId>,
+    friction: f64,
+    controller: Option<Box<dyn JointController>>,
+    /// Torque (or force) added through the API during the current step.
+    pub(crate) applied: f64,
+    /// Power of those additions: Σ torque · rate at the moment each was added.
+    pub(crate) applied_power: f64,
+}
+
+impl Simulation {
+    fn insert_sim_joint(
+        &mut self,
+        name: &str,
+        kind: JointType,
+        object1: ObjectId,
+        object2: JointEnd,
+        builder: JointBuilder,
+    ) -> Result<JointId> {
+        let body1 = self.body_handle(object1)?.ok_or_else(|| Error::OutOfRange {
+            what: "joint object",
+            detail: format!(
+                "the first object of a joint must be dynamic; {:?} is static",
+                self.name(object1).unwrap_or("?")
+            ),
+        })?;
+        let (object2, body2) = match object2 {
+            JointEnd::World => (None, None),
+            JointEnd::Object(o) => {
+                if o == object1 {
+                    return Err(Error::SelfJoint { joint: kind.default_name(), body: self.name(o)?.to_string() });
+                }
+                (Some(o), self.body_handle(o)?)
+            }
+        };
+        if !name.is_empty() {
+            // Check before creating anything.
+            if self.joint_names.get(name).is_ok() {
+                return Err(Error::DuplicateName { kind: "joint", name: name.to_string() });
+            }
+        }
+        let builder = match body2 {
+            Some(b2) => builder.between(body1, b2),
+            None => builder.to_world(body1),
+        };
+        let handle = self.world.insert_joint(builder.feedback())?;
+        let name = if name.is_empty() { self.joint_names.unique(kind.default_name()) } else { name.to_string() };
+        let data = JointData {
+            name: name.clone(),
+            kind,
+            handle,
+            object1,
+            object2,
+            friction: 0.0,
+            controller: None,
+            applied: 0.0,
+            applied_power: 0.0,
+        };
+        let id = JointId(self.joints.insert(data));
+        self.joint_names.insert(name, id)?;
+        Ok(id)
+    }
+
+    fn default_anchor(&self, object1: ObjectId, object2: JointEnd) -> Result<Point3<f64>> {
+        match object2 {
+            JointEnd::Object(o) => self.position(o),
+            JointEnd::World => self.position(object1),
+        }
+    }
+
+    /// A fixed joint: locks the pose `object1` has relative to `object2` now.
+    pub fn add_fixed_joint(&mut self, name: &str, object1: ObjectId, object2: impl Into<JointEnd>) -> Result<JointId> {
+        self.insert_sim_joint(name, JointType::Fixed, object1, object2.into(), JointBuilder::fixed())
+    }
+
+    /// A rotary joint (hinge) about the world `axis` through `anchor` (default: the
+    /// position of `object2`, or of `object1` when attached to the world). An empty
+    /// `name` gets the default one.
+    pub fn add_rotary_joint(
+        &mut self,
+        name: &str,
+        object1: ObjectId,
+        object2: impl Into<JointEnd>,
+        anchor: Option<Point3<f64>>,
+        axis: impl Into<Vector3<f64>>,
+    ) -> Result<JointId> {
+        let object2 = object2.into();
+        let anchor = match anchor {
+            Some(a) => a,
+            None => self.default_anchor(object1, object2)?,
+        };
+        self.insert_sim_joint(name, JointType::Rotary, object1, object2, JointBuilder::hinge(anchor, axis.into()))
+    }
+
+    /// A slider along the world `axis`.
+    pub fn add_slider_joint(
+        &mut self,
+        name: &str,
+        object1: ObjectId,
+        object2: impl Into<JointEnd>,
+        axis: impl Into<Vector3<f64>>,
+    ) -> Result<JointId> {
+        self.insert_sim_joint(name, JointType::Slider, object1, object2.into(), JointBuilder::slider(axis.into()))
+    }
+
+    /// A universal joint at `anchor` with perpendicular axes `axis1` (on `object1`)
+    /// and `axis2` (on `object2`).
+    pub fn add_universal_joint(
+        &mut self,
+        name: &str,
+        object1: ObjectId,
+        object2: impl Into<JointEnd>,
+        anchor: Point3<f64>,
+        axis1: impl Into<Vector3<f64>>,
+        axis2: impl Into<Vector3<f64>>,
+    ) -> Result<JointId> {
+        let builder = JointBuilder::universal(anchor, axis1.into(), axis2.into());
+        self.insert_sim_joint(name, JointType::Universal, object1, object2.into(), builder)
+    }
+
+    /// A ball-and-socket joint at `anchor` (default: the position of `object2`).
+    pub fn add_ball_socket_joint(
+        &mut self,
+        name: &str,
+        object1: ObjectId,
+        object2: impl Into<JointEnd>,
+        anchor: Option<Point3<f64>>,
+    ) -> Result<JointId> {
+        let object2 = object2.into();
+        let anchor = match anchor {
+            Some(a) => a,
+            None => self.default_anchor(object1, object2)?,
+        };
+        self.insert_sim_joint(name, JointType::BallSocket, object1, object2, JointBuilder::ball(anchor))
+    }
+
+    /// A piston along and about the world `axis` through `anchor`.
+    pub fn add_piston_joint(
+        &mut self,
+        name: &str,
+        object1: ObjectId,
+        object2: impl Into<JointEnd>,
+        anchor: Point3<f64>,
+        axis: impl Into<Vector3<f64>>,
+    ) -> Result<JointId> {
+        self.insert_sim_joint(
+            name,
+            JointType::Piston,
+            object1,
+            object2.into(),
+            JointBuilder::piston(anchor, axis.into()),
+        )
+    }
+
+    pub(crate) fn joint_data(&self, id: JointId) -> Result<&JointData> {
+        self.joints.get(id.0, JointId::KIND, &id)
+    }
+
+    /// The joint named `name`; an unknown name is an error listing close matches.
+    pub fn joint(&self, name: &str) -> Result<JointId> {
+        self.joint_names.get(name)
+    }
+
+    /// Every joint, by name in alphabetical order.
+    pub fn joints(&self) -> impl Iterator<Item = (&str, JointId)> + '_ {
+        self.joint_names.iter()
+    }
+
+    /// The name of a joint.
+    pub fn joint_name(&self, id: JointId) -> Result<&str> {
+        Ok(&self.joint_data(id)?.name)
+    }
+
+    /// The type of a joint.
+    pub fn joint_type(&self, id: JointId) -> Result<JointType> {
+        Ok(self.joint_data(id)?.kind)
+    }
+
+    /// The objects a joint connects (`None`: the static world).
+    pub fn joint_objects(&self, id: JointId) -> Result<(ObjectId, Option<ObjectId>)> {
+        let d = self.joint_data(id)?;
+        Ok((d.object1, d.object2))
+    }
+
+    /// Read access to the underlying ODE joint (angle, rates, anchor, axis, feedback).
+    pub fn joint_ref(&self, id: JointId) -> Result<JointRef<'_>> {
+        let h = self.joint_data(id)?.handle;
+        self.world.joint(h)
+    }
+
+    /// Actions on a joint: torques, forces, motors, limits, friction, controllers.
+    pub fn joint_mut(&mut self, id: JointId) -> Result<SimJoint<'_>> {
+        self.joint_data(id)?;
+        Ok(SimJoint { sim: self, id })
+    }
+
+    /// Torque (rotary) or force (slider) added through the API during the step being
+    /// taken; sensors read it after the step.
+    pub(crate) fn applied_effort(&self, id: JointId) -> Result<(f64, f64)> {
+        let d = self.joint_data(id)?;
+        Ok((d.applied, d.applied_power))
+    }
+
+    pub(crate) fn joints_of_object(&self, object: ObjectId) -> Vec<JointId> {
+        self.joints
+            .iter()
+            .filter(|(_, j)| j.object1 == object || j.object2 == Some(object))
+            .map(|(h, _)| JointId(h))
+            .collect()
+    }
+
+    /// Removes a joint.
+    pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
+        let data = self.joints.remove(id.0, JointId::KIND, &id)?;
+        self.joint_names.remove(&data.name);
+        self.sensors.forget_joint(id);
+        self.world.remove_joint(data.handle)
+    }
+
+    /// Controllers and viscous friction, from the rates at the start of the step.
+    pub(crate) fn apply_joint_drives(&mut self) -> Result<()> {
+        let (time, dt) = (self.time, self.time_step);
+        let ids: Vec<JointId> = self
+            .joints
+            .iter()
+            .filter(|(_, j)| j.friction != 0.0 || j.controller.is_some())
+            .map(|(h, _)| JointId(h))
+            .collect();
+        for id in ids {
+            let state = self.joint_state(id)?;
+            let data = self.joints.get_mut(id.0, JointId::KIND, &id)?;
+            let mut effort = -data.friction * state.rate;
+            if let Some(c) = data.controller.as_mut() {
+                effort += c.output(time, state, dt);
+            }
+            self.joint_mut(id)?.add_effort(effort)?;
+        }
+        Ok(())
+    }
+
+    pub(crate) fn end_joint_step(&mut self) {
+        let ids: Vec<_> = self.joints.iter().map(|(h, _)| h).collect();
+        for h in ids {
+            if let Ok(d) = self.joints.get_mut(h, JointId::KIND, &"joint") {
+                d.applied = 0.0;
+                d.applied_power = 0.0;
+            }
+        }
+    }
+
+    /// Position (angle, rad, or slider position, m) and its rate of the joint's first
+    /// degree of freedom.
+    pub fn joint_state(&self, id: JointId) -> Result<JointState> {
+        let d = self.joint_data(id)?;
+        let j = self.world.joint(d.handle)?;
+        match d.kind {
+            JointType::Rotary | JointType::Universal => Ok(JointState { position: j.angle()?, rate: j.angle_rate()? }),
+            JointType::Slider | JointType::Piston => {
+                Ok(JointState { position: j.position()?, rate: j.position_rate()? })
+            }
+            JointType::Fixed | JointType::BallSocket => {
+                Err(Error::WrongJointKind { operation: "reading a joint state", kind: d.kind.default_name() })
+            }
+        }
+    }
+}
+
+/// Actions on one joint of a simulation, from [`Simulation::joint_mut`].
+pub struct SimJoint<'s> {
+    sim: &'s mut Simulation,
+    id: JointId,
+}
+
+impl SimJoint<'_> {
+    fn data(&self) -> &JointData {
+        self.sim.joint_data(self.id).expect("checked when the view was made")
+    }
+
+    fn data_mut(&mut self) -> &mut JointData {
+        let id = self.id;
+        self.sim.joints.get_mut(id.0, JointId::KIND, &id).expect("checked when the view was made")
+    }
+
+    fn wrong(&self, operation: &'static str) -> Error {
+        Error::WrongJointKind { operation, kind: self.data().kind.default_name() }
+    }
+
+    /// Angle of a rotary joint (first angle of a universal), rad; zero at creation.
+    pub fn angle(&self) -> Result<f64> {
+        self.sim.joint_ref(self.id)?.angle()
+    }
+
+    /// Rate of [`angle`](Self::angle), rad/s.
+    pub fn angle_rate(&self) -> Result<f64> {
+        self.sim.joint_ref(self.id)?.angle_rate()
+    }
+
+    /// Position of a slider or piston, m; zero at creation.
+    pub fn position(&self) -> Result<f64> {
+        self.sim.joint_ref(self.id)?.position()
+    }
+
+    /// Rate of [`position`](Self::position), m/s.
+    pub fn position_rate(&self) -> Result<f64> {
+        self.sim.joint_ref(self.id)?.position_rate()
+    }
+
+    /// Forces and torques the joint applied on its bodies in the last step.
+    pub fn reaction(&self) -> Result<JointFeedback> {
+        Ok(self.sim.joint_ref(self.id)?.feedback().expect("simulation joints record feedback"))
+    }
+
+    /// Adds a torque about a rotary joint's axis for the next step (`+torque` on the
+    /// first object, `−torque` on the second). Joint sensors see it.
+    pub fn add_torque(&mut self, torque: f64) -> Result<()> {
+        match self.data().kind {
+            JointType::Rotary | JointType::Universal => self.add_effort(torque),
+            _ => Err(self.wrong("adding a torque")),
+        }
+    }
+
+    /// Adds a force along a slider's or piston's axis for the next step.
+    pub fn add_force(&mut self, force: f64) -> Result<()> {
+        match self.data().kind {
+            JointType::Slider | JointType::Piston => self.add_effort(force),
+            _ => Err(self.wrong("adding a force")),
+        }
+    }
+
+    fn add_effort(&mut self, effort: f64) -> Result<()> {
+        validate::finite("joint torque or force", effort)?;
+        let (kind, handle) = (self.data().kind, self.data().handle);
+        let state = self.sim.joint_state(self.id)?;
+        let mut j = self.sim.world.joint_mut(handle)?;
+        match kind {
+            JointType::Rotary | JointType::Universal => j.add_torque(effort)?,
+            _ => j.add_force(effort)?,
+        }
+        let data = self.data_mut();
+        data.applied += effort;
+        data.applied_power += effort * state.rate;
+        Ok(())
+    }
+
+    /// Drives the joint at `speed` (rad/s or m/s) with at most `max_force` (N·m or N),
+    /// ODE's built-in velocity motor; it stays on until changed. `max_force = 0` turns
+    /// it off. (The original's `set_speed` without a force did nothing: ODE's default
+    /// limit is 0.)
+    pub fn set_speed(&mut self, speed: f64, max_force: f64) -> Result<()> {
+        let handle = self.data().handle;
+        match self.data().kind {
+            JointType::Rotary | JointType::Slider | JointType::Universal | JointType::Piston => {
+                self.sim.world.joint_mut(handle)?.set_motor(0, speed, max_force)
+            }
+            _ => Err(self.wrong("setting a speed")),
+        }
+    }
+
+    /// Limits of the first degree of freedom (rad or m; ±∞ for none). See
+    /// [`JointMut::set_limits`](crate::JointMut::set_limits) for ODE's behaviour when
+    /// stops are removed from an axis resting at one.
+    pub fn set_limits(&mut self, low: f64, high: f64) -> Result<()> {
+        let handle = self.data().handle;
+        match self.data().kind {
+            JointType::Fixed | JointType::BallSocket => Err(self.wrong("setting limits")),
+            _ => self.sim.world.joint_mut(handle)?.set_limits(0, low, high),
+        }
+    }
+
+    /// A joint parameter of the first axis (ODE's `dParam*`).
+    pub fn set_param(&mut self, param: JointParam, value: f64) -> Result<()> {
+        let handle = self.data().handle;
+        self.sim.world.joint_mut(handle)?.set_param(param, 0, value)
+    }
+
+    /// Viscous friction: a torque (or force) of `−coefficient · rate` is added in every
+    /// step, from the rate at the start of the step. `0` turns it off.
+    pub fn set_viscous_friction(&mut self, coefficient: f64) -> Result<()> {
+        validate::non_negative("viscous friction coefficient", coefficient)?;
+        match self.data().kind {
+            JointType::Fixed | JointType::BallSocket => return Err(self.wrong("viscous friction")),
+            _ => {}
+        }
+        self.data_mut().friction = coefficient;
+        Ok(())
+    }
+
+    /// Attaches a controller whose output (torque or force) is added in every step,
+    /// after the pre-step hooks. Replaces any previous controller.
+    pub fn set_controller(&mut self, controller: impl JointController + 'static) -> Result<()> {
+        match self.data().kind {
+            JointType::Fixed | JointType::BallSocket => return Err(self.wrong("a controller")),
+            _ => {}
+        }
+        self.data_mut().controller = Some(Box::new(controller));
+        Ok(())
+    }
+
+    /// Detaches the controller.
+    pub fn clear_controller(&mut self) {
+        self.data_mut().controller = None;
+    }
+}
+
+impl JointKind {
+    /// The simulation joint type of an ODE joint kind, if it has one.
+    pub fn joint_type(&self) -> Option<JointType> {
+        match self {
+            JointKind::Fixed => Some(JointType::Fixed),
+            JointKind::Hinge { .. } => Some(JointType::Rotary),
+            JointKind::Slider { .. } => Some(JointType::Slider),
+            JointKind::Universal { .. } => Some(JointType::Universal),
+            JointKind::Ball { .. } => Some(JointType::BallSocket),
+            JointKind::Piston { .. } => Some(JointType::Piston),
+            _ => None,
+        }
+    }
+}

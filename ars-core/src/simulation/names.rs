@@ -1,0 +1,119 @@
+//! Unique, deterministic names for objects and joints, and "did you mean" suggestions.
+
+use std::collections::BTreeMap;
+
+use crate::error::{Error, Result};
+
+/// Names of one kind of thing ("object" or "joint") mapped to their ids.
+#[derive(Debug)]
+pub(crate) struct Names<Id> {
+    kind: &'static str,
+    by_name: BTreeMap<String, Id>,
+}
+
+impl<Id: Copy + PartialEq> Names<Id> {
+    pub(crate) fn new(kind: &'static str) -> Self {
+        Names { kind, by_name: BTreeMap::new() }
+    }
+
+    /// `base` if free, else `base/1`, `base/2`... (the first free one): deterministic,
+    /// unlike the original's memory-address suffixes.
+    pub(crate) fn unique(&self, base: &str) -> String {
+        if !self.by_name.contains_key(base) {
+            return base.to_string();
+        }
+        (1..).map(|i| format!("{base}/{i}")).find(|n| !self.by_name.contains_key(n)).expect("a free suffix exists")
+    }
+
+    pub(crate) fn insert(&mut self, name: String, id: Id) -> Result<()> {
+        if name.is_empty() {
+            return Err(Error::OutOfRange { what: "name", detail: format!("an empty {} name", self.kind) });
+        }
+        if self.by_name.contains_key(&name) {
+            return Err(Error::DuplicateName { kind: self.kind, name });
+        }
+        self.by_name.insert(name, id);
+        Ok(())
+    }
+
+    pub(crate) fn remove(&mut self, name: &str) {
+        self.by_name.remove(name);
+    }
+
+    pub(crate) fn get(&self, name: &str) -> Result<Id> {
+        self.by_name.get(name).copied().ok_or_else(|| Error::UnknownName {
+            kind: self.kind,
+            name: name.to_string(),
+            close_matches: self.close_matches(name),
+        })
+    }
+
+    /// Names in alphabetical order.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (&str, Id)> + '_ {
+        self.by_name.iter().map(|(n, id)| (n.as_str(), *id))
+    }
+
+    /// Up to three registered names within a small edit distance, closest first.
+    fn close_matches(&self, name: &str) -> Vec<String> {
+        let limit = (name.chars().count() / 3).max(2);
+        let lower = name.to_lowercase();
+        let mut scored: Vec<(usize, &String)> = self
+            .by_name
+            .keys()
+            .map(|k| (edit_distance(&lower, &k.to_lowercase()), k))
+            .filter(|(d, k)| *d <= limit || k.to_lowercase().starts_with(&lower))
+            .collect();
+        scored.sort();
+        scored.into_iter().take(3).map(|(_, k)| k.clone()).collect()
+    }
+}
+
+/// Levenshtein distance between two strings (in chars).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let next = (row[j + 1] + 1).min(row[j] + 1).min(diagonal + usize::from(ca != *cb));
+            diagonal = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn duplicates_get_deterministic_suffixes() {
+        let mut names = Names::new("object");
+        for i in 0..3 {
+            let n = names.unique("sphere");
+            names.insert(n, i).unwrap();
+        }
+        let all: Vec<_> = names.iter().map(|(n, _)| n.to_string()).collect();
+        assert_eq!(all, ["sphere", "sphere/1", "sphere/2"]);
+    }
+
+    #[test]
+    fn unknown_names_suggest_close_ones() {
+        let mut names = Names::new("joint");
+        names.insert("shoulder".into(), 1).unwrap();
+        names.insert("waist".into(), 2).unwrap();
+        let err = names.get("sholder").unwrap_err();
+        assert_eq!(err.to_string(), r#"no joint named "sholder" (did you mean shoulder?)"#);
+        assert!(matches!(names.get("zzz"), Err(Error::UnknownName { close_matches, .. }) if close_matches.is_empty()));
+        assert!(matches!(names.insert("waist".into(), 3), Err(Error::DuplicateName { .. })));
+    }
+
+    #[test]
+    fn edit_distances() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("r1", "r1"), 0);
+    }
+}

@@ -1,0 +1,473 @@
+//! Objects of a simulation: bodies with their shape, static shapes and floors.
+
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Vector3};
+
+use super::Simulation;
+use crate::body::{BodyBuilder, BodyMut, BodyRef, Mass, MassSpec};
+use crate::convert::rotation_about_axis;
+use crate::error::{Error, Result};
+use crate::geom::GeomBuilder;
+use crate::handle::{BodyHandle, GeomHandle, ObjectId};
+use crate::validate;
+
+/// An RGB colour, each channel in [0, 1] (used by the viewer).
+pub type Color = [f32; 3];
+
+/// The shape of an object, in its own frame (capsules, cylinders and cones along
+/// local Z, as in ODE).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ObjectShape {
+    /// Sphere.
+    Sphere {
+        /// Radius, m.
+        radius: f64,
+    },
+    /// Box.
+    Box {
+        /// Full edge lengths, m.
+        size: Vector3<f64>,
+    },
+    /// Cylinder along local Z.
+    Cylinder {
+        /// Length, m.
+        length: f64,
+        /// Radius, m.
+        radius: f64,
+    },
+    /// Capsule along local Z (length without the caps).
+    Capsule {
+        /// Length of the cylindrical part, m.
+        length: f64,
+        /// Radius, m.
+        radius: f64,
+    },
+    /// Solid cone along local +Z, apex up; the object origin is its centre of mass,
+    /// a quarter of the height above the base. It collides as a triangle mesh of
+    /// [`CONE_SEGMENTS`] facets (ODE has no cone collider).
+    Cone {
+        /// Height, m.
+        height: f64,
+        /// Base radius, m.
+        radius: f64,
+    },
+    /// Infinite plane `normal · x = distance` (a floor).
+    Plane {
+        /// Normal.
+        normal: Vector3<f64>,
+        /// Offset along the normal, m.
+        distance: f64,
+    },
+    /// Triangle mesh (terrain), vertices in the object frame.
+    TriMesh {
+        /// Vertices, m.
+        vertices: Vec<Point3<f64>>,
+        /// Triangles (indices into `vertices`, counter-clockwise seen from outside).
+        faces: Vec<[u32; 3]>,
+    },
+}
+
+/// Facets of the triangle mesh a cone collides as.
+pub const CONE_SEGMENTS: u32 = 24;
+
+impl ObjectShape {
+    /// The default name of objects of this shape.
+    pub fn default_name(&self) -> &'static str {
+        match self {
+            ObjectShape::Sphere { .. } => "sphere",
+            ObjectShape::Box { .. } => "box",
+            ObjectShape::Cylinder { .. } => "cylinder",
+            ObjectShape::Capsule { .. } => "capsule",
+            ObjectShape::Cone { .. } => "cone",
+            ObjectShape::Plane { .. } => "floor",
+            ObjectShape::TriMesh { .. } => "trimesh",
+        }
+    }
+
+    fn geom(&self) -> GeomBuilder {
+        match self {
+            ObjectShape::Sphere { radius } => GeomBuilder::sphere(*radius),
+            ObjectShape::Box { size } => GeomBuilder::cuboid(*size),
+            ObjectShape::Cylinder { length, radius } => GeomBuilder::cylinder(*radius, *length),
+            ObjectShape::Capsule { length, radius } => GeomBuilder::capsule(*radius, *length),
+            ObjectShape::Cone { height, radius } => {
+                let (vertices, faces) = cone_mesh(*height, *radius);
+                GeomBuilder::trimesh(vertices, faces)
+            }
+            ObjectShape::Plane { normal, distance } => GeomBuilder::plane(*normal, *distance),
+            ObjectShape::TriMesh { vertices, faces } => GeomBuilder::trimesh(vertices.clone(), faces.clone()),
+        }
+    }
+
+    fn mass(&self, mass: Mass) -> Result<MassSpec> {
+        Ok(match self {
+            ObjectShape::Sphere { radius } => MassSpec::Sphere { radius: *radius, amount: mass },
+            ObjectShape::Box { size } => MassSpec::Box { size: *size, amount: mass },
+            ObjectShape::Cylinder { length, radius } => {
+                MassSpec::Cylinder { radius: *radius, length: *length, amount: mass }
+            }
+            ObjectShape::Capsule { length, radius } => {
+                MassSpec::Capsule { radius: *radius, length: *length, amount: mass }
+            }
+            ObjectShape::Cone { height, radius } => {
+                let h = validate::positive("cone height", *height)?;
+                let r = validate::positive("cone radius", *radius)?;
+                let volume = std::f64::consts::PI * r * r * h / 3.0;
+                let m = match mass {
+                    Mass::Total(m) => validate::positive("mass", m)?,
+                    Mass::Density(d) => validate::positive("density", d)? * volume,
+                };
+                // Solid cone about its centre of mass: 3/10 m r² about the axis,
+                // 3/20 m r² + 3/80 m h² across.
+                let axial = 0.3 * m * r * r;
+                let transverse = 0.15 * m * r * r + 0.0375 * m * h * h;
+                MassSpec::Custom {
+                    mass: m,
+                    inertia: Matrix3::from_diagonal(&Vector3::new(transverse, transverse, axial)),
+                }
+            }
+            ObjectShape::Plane { .. } | ObjectShape::TriMesh { .. } => {
+                return Err(Error::OutOfRange {
+                    what: "object shape",
+                    detail: "planes and meshes are static; use add_floor_plane or add_trimesh_floor".into(),
+                });
+            }
+        })
+    }
+}
+
+/// Vertices and faces of a cone along +Z with its centre of mass at the origin.
+fn cone_mesh(height: f64, radius: f64) -> (Vec<Point3<f64>>, Vec<[u32; 3]>) {
+    let base_z = -height / 4.0;
+    let n = CONE_SEGMENTS;
+    let mut vertices = vec![Point3::new(0.0, 0.0, base_z + height), Point3::new(0.0, 0.0, base_z)];
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        vertices.push(Point3::new(radius * a.cos(), radius * a.sin(), base_z));
+    }
+    let mut faces = Vec::new();
+    for i in 0..n {
+        let (a, b) = (2 + i, 2 + (i + 1) % n);
+        faces.push([0, a, b]); // side, outward
+        faces.push([1, b, a]); // base, facing -Z
+    }
+    (vertices, faces)
+}
+
+pub(crate) struct ObjectData {
+    pub(crate) name: String,
+    pub(crate) shape: ObjectShape,
+    pub(crate) body: Option<BodyHandle>,
+    pub(crate) geom: Option<GeomHandle>,
+    pub(crate) color: Option<Color>,
+}
+
+impl Simulation {
+    fn register(&mut self, shape: ObjectShape, body: Option<BodyHandle>, geom: Option<GeomHandle>) -> Result<ObjectId> {
+        let base = shape.default_name();
+        self.register_as(base, shape, body, geom)
+    }
+
+    fn register_as(
+        &mut self,
+        base: &str,
+        shape: ObjectShape,
+        body: Option<BodyHandle>,
+        geom: Option<GeomHandle>,
+    ) -> Result<ObjectId> {
+        let name = self.object_names.unique(base);
+        let id = ObjectId(self.objects.insert(ObjectData { name: name.clone(), shape, body, geom, color: None }));
+        self.object_names.insert(name, id)?;
+        Ok(id)
+    }
+
+    /// Adds a dynamic body of `shape` centred at `center` (its centre of mass), with
+    /// its mass given as a total or a density. ODE calls: create the body, set its mass
+    /// and position, create the geom and attach it.
+    pub fn add_body(&mut self, shape: ObjectShape, center: impl Into<Point3<f64>>, mass: Mass) -> Result<ObjectId> {
+        let spec = shape.mass(mass)?;
+        let geom = shape.geom();
+        let center = center.into();
+        // Check the geom before creating the body, so that bad input leaves nothing.
+        spec.to_ode()?;
+        validate::point("object center", &center)?;
+        let body = self.world.insert_body(BodyBuilder::new().mass(spec).position(center))?;
+        match self.world.insert_geom(self.space, geom.attached_to(body)) {
+            Ok(g) => self.register(shape, Some(body), Some(g)),
+            Err(e) => {
+                self.world.remove_body(body)?;
+                Err(e)
+            }
+        }
+    }
+
+    /// Adds a sphere of `radius` (m) centred at `center`.
+    pub fn add_sphere(&mut self, radius: f64, center: impl Into<Point3<f64>>, mass: Mass) -> Result<ObjectId> {
+        self.add_body(ObjectShape::Sphere { radius }, center, mass)
+    }
+
+    /// Adds a box with full edge lengths `size` (m) centred at `center`.
+    pub fn add_box(
+        &mut self,
+        size: impl Into<Vector3<f64>>,
+        center: impl Into<Point3<f64>>,
+        mass: Mass,
+    ) -> Result<ObjectId> {
+        self.add_body(ObjectShape::Box { size: size.into() }, center, mass)
+    }
+
+    /// Adds a cylinder along local Z of `length` and `radius` (m) centred at `center`.
+    pub fn add_cylinder(
+        &mut self,
+        length: f64,
+        radius: f64,
+        center: impl Into<Point3<f64>>,
+        mass: Mass,
+    ) -> Result<ObjectId> {
+        self.add_body(ObjectShape::Cylinder { length, radius }, center, mass)
+    }
+
+    /// Adds a capsule along local Z (`length` without the caps) centred at `center`.
+    pub fn add_capsule(
+        &mut self,
+        length: f64,
+        radius: f64,
+        center: impl Into<Point3<f64>>,
+        mass: Mass,
+    ) -> Result<ObjectId> {
+        self.add_body(ObjectShape::Capsule { length, radius }, center, mass)
+    }
+
+    /// Adds a solid cone along local +Z with its centre of mass at `center`. It
+    /// collides as a triangle mesh of [`CONE_SEGMENTS`] facets (ODE has no cone).
+    pub fn add_cone(
+        &mut self,
+        height: f64,
+        radius: f64,
+        center: impl Into<Point3<f64>>,
+        mass: Mass,
+    ) -> Result<ObjectId> {
+        self.add_body(ObjectShape::Cone { height, radius }, center, mass)
+    }
+
+    /// Adds a static (immovable, bodyless) shape at `pose`: it collides, but nothing moves it.
+    pub fn add_static(&mut self, shape: ObjectShape, pose: Isometry3<f64>) -> Result<ObjectId> {
+        let geom = match shape {
+            ObjectShape::Plane { .. } => shape.geom(),
+            _ => shape.geom().pose(pose),
+        };
+        let g = self.world.insert_geom(self.space, geom)?;
+        self.register(shape, None, Some(g))
+    }
+
+    /// Adds the infinite floor plane `normal · x = distance` (named "floor").
+    pub fn add_floor_plane(&mut self, normal: Vector3<f64>, distance: f64) -> Result<ObjectId> {
+        self.add_static(ObjectShape::Plane { normal, distance }, Isometry3::identity())
+    }
+
+    /// Adds a triangle-mesh floor (terrain) translated by `center` (named "floor").
+    pub fn add_trimesh_floor(
+        &mut self,
+        vertices: Vec<Point3<f64>>,
+        faces: Vec<[u32; 3]>,
+        center: impl Into<Point3<f64>>,
+    ) -> Result<ObjectId> {
+        let c = center.into();
+        let g = self.world.insert_geom(
+            self.space,
+            GeomBuilder::trimesh(vertices.clone(), faces.clone()).pose(Isometry3::translation(c.x, c.y, c.z)),
+        )?;
+        self.register_as("floor", ObjectShape::TriMesh { vertices, faces }, None, Some(g))
+    }
+
+    pub(crate) fn object_data(&self, id: ObjectId) -> Result<&ObjectData> {
+        self.objects.get(id.0, ObjectId::KIND, &id)
+    }
+
+    /// The object named `name`; an unknown name is an error listing close matches.
+    pub fn object(&self, name: &str) -> Result<ObjectId> {
+        self.object_names.get(name)
+    }
+
+    /// Every object, by name in alphabetical order.
+    pub fn objects(&self) -> impl Iterator<Item = (&str, ObjectId)> + '_ {
+        self.object_names.iter()
+    }
+
+    /// The name of an object.
+    pub fn name(&self, id: ObjectId) -> Result<&str> {
+        Ok(&self.object_data(id)?.name)
+    }
+
+    /// Renames an object; the new name must be free.
+    pub fn set_name(&mut self, id: ObjectId, name: &str) -> Result<()> {
+        let old = self.object_data(id)?.name.clone();
+        if old == name {
+            return Ok(());
+        }
+        self.object_names.insert(name.to_string(), id)?;
+        self.object_names.remove(&old);
+        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.name = name.to_string();
+        Ok(())
+    }
+
+    /// The shape of an object.
+    pub fn shape(&self, id: ObjectId) -> Result<&ObjectShape> {
+        Ok(&self.object_data(id)?.shape)
+    }
+
+    /// The colour the viewer draws an object with (`None`: the viewer's default).
+    pub fn color(&self, id: ObjectId) -> Result<Option<Color>> {
+        Ok(self.object_data(id)?.color)
+    }
+
+    /// Sets the colour the viewer draws an object with (channels in [0, 1]).
+    pub fn set_color(&mut self, id: ObjectId, color: Color) -> Result<()> {
+        if !color.iter().all(|c| (0.0..=1.0).contains(c)) {
+            return Err(Error::OutOfRange {
+                what: "colour",
+                detail: format!("channels must be in [0, 1], got {color:?}"),
+            });
+        }
+        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.color = Some(color);
+        Ok(())
+    }
+
+    /// The body handle of a dynamic object (`None` for static ones).
+    pub fn body_handle(&self, id: ObjectId) -> Result<Option<BodyHandle>> {
+        Ok(self.object_data(id)?.body)
+    }
+
+    /// The geom handle of an object.
+    pub fn geom_handle(&self, id: ObjectId) -> Result<Option<GeomHandle>> {
+        Ok(self.object_data(id)?.geom)
+    }
+
+    fn dynamic_body(&self, id: ObjectId) -> Result<BodyHandle> {
+        let data = self.object_data(id)?;
+        data.body.ok_or_else(|| Error::OutOfRange {
+            what: "object",
+            detail: format!("{:?} is static and has no body", data.name),
+        })
+    }
+
+    /// Read access to the body of a dynamic object (pose, velocities, mass, inertia...).
+    pub fn body(&self, id: ObjectId) -> Result<BodyRef<'_>> {
+        let b = self.dynamic_body(id)?;
+        self.world.body(b)
+    }
+
+    /// Write access to the body of a dynamic object (velocities, forces...).
+    pub fn body_mut(&mut self, id: ObjectId) -> Result<BodyMut<'_>> {
+        let b = self.dynamic_body(id)?;
+        self.world.body_mut(b)
+    }
+
+    /// Every dynamic object, in creation-slot order.
+    pub fn bodies(&self) -> impl Iterator<Item = (ObjectId, BodyHandle)> + '_ {
+        self.objects.iter().filter_map(|(h, o)| o.body.map(|b| (ObjectId(h), b)))
+    }
+
+    /// World pose of any object (static ones included; a plane's is the identity).
+    pub fn pose(&self, id: ObjectId) -> Result<Isometry3<f64>> {
+        let data = self.object_data(id)?;
+        match (data.body, data.geom) {
+            (Some(b), _) => Ok(self.world.body(b)?.pose()),
+            (None, Some(g)) => Ok(self.world.geom(g)?.pose()),
+            (None, None) => Ok(Isometry3::identity()),
+        }
+    }
+
+    /// World position of an object.
+    pub fn position(&self, id: ObjectId) -> Result<Point3<f64>> {
+        Ok(Point3::from(self.pose(id)?.translation.vector))
+    }
+
+    /// Rotation matrix of an object (body to world).
+    pub fn rotation(&self, id: ObjectId) -> Result<Rotation3<f64>> {
+        let data = self.object_data(id)?;
+        match data.body {
+            Some(b) => Ok(self.world.body(b)?.rotation()),
+            None => Ok(self.pose(id)?.rotation.to_rotation_matrix()),
+        }
+    }
+
+    /// Moves an object to `position`.
+    pub fn set_position(&mut self, id: ObjectId, position: impl Into<Point3<f64>>) -> Result<()> {
+        let p = position.into();
+        let data = self.object_data(id)?;
+        match (data.body, data.geom, &data.shape) {
+            (_, _, ObjectShape::Plane { .. }) => Err(Error::WrongGeomKind { operation: "moving", kind: "plane" }),
+            (Some(b), _, _) => self.world.body_mut(b)?.set_position(p),
+            (None, Some(g), _) => self.world.geom_mut(g)?.set_position(p),
+            (None, None, _) => Ok(()),
+        }
+    }
+
+    /// Sets the rotation matrix of an object.
+    pub fn set_rotation(&mut self, id: ObjectId, rotation: Rotation3<f64>) -> Result<()> {
+        let data = self.object_data(id)?;
+        match (data.body, data.geom, &data.shape) {
+            (_, _, ObjectShape::Plane { .. }) => Err(Error::WrongGeomKind { operation: "rotating", kind: "plane" }),
+            (Some(b), _, _) => self.world.body_mut(b)?.set_rotation(rotation),
+            (None, Some(g), _) => self.world.geom_mut(g)?.set_rotation(rotation),
+            (None, None, _) => Ok(()),
+        }
+    }
+
+    /// Sets position and orientation of an object.
+    pub fn set_pose(&mut self, id: ObjectId, pose: Isometry3<f64>) -> Result<()> {
+        validate::quaternion("object pose", &pose.rotation)?;
+        self.set_position(id, Point3::from(pose.translation.vector))?;
+        self.set_rotation(id, pose.rotation.to_rotation_matrix())
+    }
+
+    /// Rotates an object by `angle` (rad) about the world axis `axis` through its own
+    /// origin: `R ← R(axis, angle) · R` (the original's `rotate`). `axis` is normalised.
+    /// Rotate bodies before attaching joints to them: joints keep the relative pose
+    /// they were created with.
+    pub fn rotate(&mut self, id: ObjectId, axis: impl Into<Vector3<f64>>, angle: f64) -> Result<()> {
+        let axis = validate::direction("rotation axis", &axis.into())?;
+        let angle = validate::finite("rotation angle", angle)?;
+        let unit = if (axis.norm_squared() - 1.0).abs() < 1e-15 { axis } else { axis.normalize() };
+        let turn = rotation_about_axis(&unit, angle);
+        let current = self.rotation(id)?;
+        self.set_rotation(id, Rotation3::from_matrix_unchecked(multiply(turn.matrix(), current.matrix())))
+    }
+
+    /// Moves an object by `offset` (the original's `offset_by_position`).
+    pub fn offset_by_position(&mut self, id: ObjectId, offset: impl Into<Vector3<f64>>) -> Result<()> {
+        let offset = validate::vector("offset", &offset.into())?;
+        let p = self.position(id)?;
+        self.set_position(id, Point3::new(p.x + offset.x, p.y + offset.y, p.z + offset.z))
+    }
+
+    /// Moves an object by the position of another (the original's `offset_by_object`).
+    pub fn offset_by_object(&mut self, id: ObjectId, other: ObjectId) -> Result<()> {
+        let by = self.position(other)?.coords;
+        self.offset_by_position(id, by)
+    }
+
+    /// Removes an object with its body and geom; joints attached to it are removed too.
+    pub fn remove_object(&mut self, id: ObjectId) -> Result<()> {
+        self.object_data(id)?;
+        let attached: Vec<_> = self.joints_of_object(id);
+        for j in attached {
+            self.remove_joint(j)?;
+        }
+        let data = self.objects.remove(id.0, ObjectId::KIND, &id)?;
+        self.object_names.remove(&data.name);
+        self.sensors.forget_object(id);
+        match (data.body, data.geom) {
+            (Some(b), _) => self.world.remove_body(b),
+            (None, Some(g)) => self.world.remove_geom(g),
+            (None, None) => Ok(()),
+        }
+    }
+}
+
+/// `a · b` with each entry summed left to right (`a[i][0] b[0][j] + a[i][1] b[1][j] +
+/// a[i][2] b[2][j]`), the order the C reference scenes use, so results are bit-identical.
+pub(crate) fn multiply(a: &Matrix3<f64>, b: &Matrix3<f64>) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
+}
