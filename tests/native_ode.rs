@@ -57,3 +57,59 @@ fn the_comparison_notices_a_difference_of_one_part_in_a_trillion() {
     rust.step(1);
     assert_ne!(c.body_state(0)[1].to_bits(), rust.body_state(0)[1].to_bits());
 }
+
+fn body_state(sim: &ars::Simulation, object: ars::ObjectId) -> BodyState {
+    let b = sim.body(object).unwrap();
+    let (p, q, v, w) = (b.position(), b.quaternion(), b.linear_velocity(), b.angular_velocity());
+    [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z]
+}
+
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+#[test]
+fn two_ball_laser_program_is_bit_identical_to_native_ode_for_two_seconds() {
+    use ars::programs::TwoBallLaser;
+    let mut program = TwoBallLaser::default();
+    let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
+    let mut c = CScene::two_ball_laser();
+    let laser = runner.program().laser.unwrap();
+    let balls = [runner.program().ball1.unwrap(), runner.program().ball2.unwrap()];
+    let mut hits = 0;
+    for step in 1..=5000 {
+        runner.step().unwrap();
+        c.step(1);
+        let sim = runner.simulation();
+        for (i, ball) in balls.iter().enumerate() {
+            let (rs, cs) = (body_state(sim, *ball), c.body_state(i));
+            assert!(same_bits(&rs, &cs), "ball {i} differs after step {step}:\n C    {cs:?}\n Rust {rs:?}");
+        }
+        let reading = sim.records(laser).unwrap().last().unwrap().record.distance;
+        assert_eq!(reading.map(f64::to_bits), c.ray_distance().map(f64::to_bits), "laser after step {step}");
+        assert_eq!(sim.time().to_bits(), c.time().to_bits());
+        hits += usize::from(reading.is_some());
+    }
+    assert!(hits > 4000, "the laser sees the balls most of the time ({hits} steps)");
+}
+
+#[test]
+fn conical_pendulum_program_is_bit_identical_to_native_ode_for_two_seconds() {
+    use ars::programs::ConicalPendulum;
+    let mut program = ConicalPendulum::default();
+    let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
+    let mut c = CScene::conical_pendulum();
+    let p = runner.program();
+    let bodies = [p.base.unwrap(), p.pole.unwrap(), p.arm.unwrap()];
+    for step in 1..=8000 {
+        runner.step().unwrap();
+        c.step(1);
+        for (i, body) in bodies.iter().enumerate() {
+            let (rs, cs) = (body_state(runner.simulation(), *body), c.body_state(i));
+            assert!(same_bits(&rs, &cs), "body {i} differs after step {step}:\n C    {cs:?}\n Rust {rs:?}");
+        }
+    }
+    // The waist has spun up: 2 s of a torque ramping to 20 N·m against 5 N·m·s friction.
+    let last = *runner.program().rows.last().unwrap();
+    assert!(last.q1_rate.abs() > 1.0, "{last:?}");
+}

@@ -81,8 +81,8 @@ pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, Joi
 pub use program::{Action, ActionMap, Key, Program, ProgramRunner, Repeat};
 pub use sensors::{Record, Sample, Sensor, SensorId, SensorLog};
 pub use simulation::{
-    Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, Hook, JointEnd, JointType, NoHooks,
-    ObjectShape, SimJoint, Simulation, SimulationBuilder, StepHooks, heightfield_faces,
+    CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, Hook, JointEnd, JointType,
+    NoHooks, ObjectShape, SimJoint, Simulation, SimulationBuilder, StepHooks, heightfield_faces,
 };
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 

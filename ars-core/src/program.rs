@@ -275,6 +275,13 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
         self.sim.run_steps_in_frames(&mut hooks, steps)
     }
 
+    /// One step with the program's step hooks (no frame hooks).
+    pub fn step(&mut self) -> Result<()> {
+        let held_actions = self.held.iter().filter_map(|k| self.bindings.get(*k).map(|(a, _)| a)).collect();
+        let mut hooks = ProgramHooks { program: &mut *self.program, held_actions };
+        self.sim.step_with(&mut hooks)
+    }
+
     /// One frame of `steps_per_frame` steps.
     pub fn step_frame(&mut self) -> Result<()> {
         let n = u64::from(self.sim.steps_per_frame());

@@ -49,9 +49,15 @@ static void near_callback(void *data, dGeomID o1, dGeomID o2)
     dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact))
         return;
-    if (is_ray(o1) || is_ray(o2))
+    if (is_ray(o1) && is_ray(o2))
         return;
     int n = dCollide(o1, o2, ARS_C_MAX_CONTACTS, s->scratch, sizeof(dContactGeom));
+    if (is_ray(o1) || is_ray(o2)) {
+        for (int i = 0; i < n; i++)
+            if (s->ray_distance < 0 || s->scratch[i].depth < s->ray_distance)
+                s->ray_distance = s->scratch[i].depth;
+        return;
+    }
     for (int i = 0; i < n; i++) {
         dContact contact;
         memset(&contact, 0, sizeof contact);
@@ -70,13 +76,35 @@ void ars_c_scene_step(ArsCScene *s, int steps)
     for (int i = 0; i < steps; i++) {
         if (s->pre_step)
             s->pre_step(s);
+        s->ray_distance = -1;
         dSpaceCollide(s->space, s, near_callback);
         dWorldStep(s->world, s->dt);
+        s->time += s->dt;
         dJointGroupEmpty(s->contacts);
     }
 }
 
 int ars_c_scene_body_count(const ArsCScene *s) { return s->body_count; }
+dReal ars_c_scene_ray_distance(const ArsCScene *s) { return s->ray_distance; }
+dReal ars_c_scene_time(const ArsCScene *s) { return s->time; }
+
+void ars_c_rotate(dBodyID body, dReal x, dReal y, dReal z, dReal angle)
+{
+    dMatrix3 turn, out;
+    const dReal *cur = dBodyGetRotation(body);
+    ars_c_rotation_about_axis(x, y, z, angle, turn);
+    memset(out, 0, sizeof out);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            out[4 * i + j] = turn[4 * i + 0] * cur[0 + j] + turn[4 * i + 1] * cur[4 + j] + turn[4 * i + 2] * cur[8 + j];
+    dBodySetRotation(body, out);
+}
+
+void ars_c_offset(dBodyID body, dReal x, dReal y, dReal z)
+{
+    const dReal *p = dBodyGetPosition(body);
+    dBodySetPosition(body, p[0] + x, p[1] + y, p[2] + z);
+}
 
 void ars_c_scene_body_state(const ArsCScene *s, int index, dReal out[13])
 {

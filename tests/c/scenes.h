@@ -20,8 +20,13 @@ struct ArsCScene {
     int body_count;
     dBodyID bodies[ARS_C_MAX_BODIES];
     dJointID joints[8];
+    dJointFeedback feedback[8];
     int joint_count;
     dReal torque;                      /* hinge chain: torque on joint 0 every step */
+    dReal time;                        /* accumulated like the Rust simulation: time += dt */
+    dGeomID ray;                       /* a laser's ray, or 0 */
+    dReal ray_distance;                /* closest hit of the last collision, or -1 */
+    dReal rates[2];                    /* conical pendulum: joint rates of the last step */
     void (*pre_step)(ArsCScene *scene);
     dContactGeom scratch[ARS_C_MAX_CONTACTS];
 };
@@ -34,6 +39,8 @@ void ars_c_rotation_about_axis(dReal x, dReal y, dReal z, dReal angle, dMatrix3 
 ArsCScene *ars_c_falling_sphere_new(void);
 ArsCScene *ars_c_hinge_chain_new(void);
 ArsCScene *ars_c_drop_pile_new(int count);
+ArsCScene *ars_c_two_ball_laser_new(void);
+ArsCScene *ars_c_conical_pendulum_new(void);
 
 /* Run `steps` steps: pre-step hook, collide, dWorldStep, empty the contact group. */
 void ars_c_scene_step(ArsCScene *scene, int steps);
@@ -41,5 +48,10 @@ int ars_c_scene_body_count(const ArsCScene *scene);
 /* position (3), quaternion w x y z (4), linear velocity (3), angular velocity (3). */
 void ars_c_scene_body_state(const ArsCScene *scene, int index, dReal out[13]);
 void ars_c_scene_free(ArsCScene *scene);
+dReal ars_c_scene_ray_distance(const ArsCScene *scene);
+dReal ars_c_scene_time(const ArsCScene *scene);
+/* The ARS Simulation's rotate(): R <- R(axis, angle) * R, summed left to right. */
+void ars_c_rotate(dBodyID body, dReal x, dReal y, dReal z, dReal angle);
+void ars_c_offset(dBodyID body, dReal x, dReal y, dReal z);
 
 #endif

@@ -15,6 +15,10 @@ unsafe extern "C" {
     fn ars_c_falling_sphere_new() -> *mut ArsCScene;
     fn ars_c_hinge_chain_new() -> *mut ArsCScene;
     fn ars_c_drop_pile_new(count: c_int) -> *mut ArsCScene;
+    fn ars_c_two_ball_laser_new() -> *mut ArsCScene;
+    fn ars_c_conical_pendulum_new() -> *mut ArsCScene;
+    fn ars_c_scene_ray_distance(scene: *const ArsCScene) -> f64;
+    fn ars_c_scene_time(scene: *const ArsCScene) -> f64;
     fn ars_c_drop_pile_position(i: c_int, out: *mut f64);
     fn ars_c_scene_step(scene: *mut ArsCScene, steps: c_int);
     fn ars_c_scene_body_count(scene: *const ArsCScene) -> c_int;
@@ -44,6 +48,25 @@ impl CScene {
     /// Two hinged cylinders with a torque on the first hinge.
     pub fn hinge_chain() -> Self {
         Self::wrap(ars_c_hinge_chain_new)
+    }
+    /// The thesis' two balls and laser (the `TwoBallLaser` program).
+    pub fn two_ball_laser() -> Self {
+        Self::wrap(ars_c_two_ball_laser_new)
+    }
+    /// IROS example 2 (the `ConicalPendulum` program).
+    pub fn conical_pendulum() -> Self {
+        Self::wrap(ars_c_conical_pendulum_new)
+    }
+    /// Closest ray hit of the last step, if any.
+    pub fn ray_distance(&self) -> Option<f64> {
+        // SAFETY: the scene is live.
+        let d = unsafe { ars_c_scene_ray_distance(self.0) };
+        (d >= 0.0).then_some(d)
+    }
+    /// Accumulated time, s.
+    pub fn time(&self) -> f64 {
+        // SAFETY: the scene is live.
+        unsafe { ars_c_scene_time(self.0) }
     }
     /// `count` spheres and boxes dropped in a hash space.
     pub fn drop_pile(count: usize) -> Self {

@@ -29,7 +29,7 @@ use nalgebra::Vector3;
 
 pub use floor::{Heightfield, heightfield_faces};
 pub use joints::{JointEnd, JointType, SimJoint};
-pub use objects::{Color, ObjectShape};
+pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
 
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};

@@ -44,7 +44,7 @@ pub enum ObjectShape {
     },
     /// Solid cone along local +Z, apex up; the object origin is its centre of mass,
     /// a quarter of the height above the base. It collides as a triangle mesh of
-    /// [`CONE_SEGMENTS`] facets (ODE has no cone collider).
+    /// [`CONE_SEGMENTS`](crate::CONE_SEGMENTS) facets (ODE has no cone collider).
     Cone {
         /// Height, m.
         height: f64,

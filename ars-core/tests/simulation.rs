@@ -1,0 +1,387 @@
+//! The simulation layer: names, objects, joints, hooks and their timing, sensors,
+//! controllers, removal, programs and keys, threads, and bad input.
+
+use std::f64::consts::FRAC_PI_2;
+use std::sync::{Arc, Mutex};
+
+use ars_core::nalgebra::{Isometry3, Point3, Vector3};
+use ars_core::sensors::*;
+use ars_core::*;
+
+fn with_floor() -> Simulation {
+    Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap()
+}
+
+#[test]
+fn names_are_unique_deterministic_and_looked_up() {
+    let mut sim = with_floor();
+    let a = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let b = sim.add_sphere(0.5, [2.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let c = sim.add_sphere(0.5, [4.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    assert_eq!([sim.name(a).unwrap(), sim.name(b).unwrap(), sim.name(c).unwrap()], ["sphere", "sphere/1", "sphere/2"]);
+    assert_eq!(sim.object("floor").unwrap(), sim.objects().find(|(n, _)| *n == "floor").unwrap().1);
+    sim.set_name(b, "arm").unwrap();
+    assert_eq!(sim.object("arm").unwrap(), b);
+    assert!(sim.object("sphere/1").is_err(), "the old name is free again");
+    let err = sim.object("amr").unwrap_err();
+    assert!(matches!(&err, Error::UnknownName { close_matches, .. } if close_matches == &["arm"]), "{err}");
+    assert!(err.to_string().contains("did you mean arm?"));
+    assert!(matches!(sim.set_name(a, "arm"), Err(Error::DuplicateName { .. })));
+    let j = sim.add_rotary_joint("", a, c, None, Vector3::z()).unwrap();
+    let k = sim.add_rotary_joint("", c, JointEnd::World, None, Vector3::z()).unwrap();
+    assert_eq!((sim.joint_name(j).unwrap(), sim.joint_name(k).unwrap()), ("rotary", "rotary/1"));
+    assert_eq!(sim.joint("rotary/1").unwrap(), k);
+    assert!(matches!(sim.joint("rotery"), Err(Error::UnknownName { kind: "joint", .. })));
+    assert!(matches!(sim.add_rotary_joint("rotary", a, c, None, Vector3::y()), Err(Error::DuplicateName { .. })));
+}
+
+#[test]
+fn bad_input_is_refused_with_a_clear_error() {
+    let mut sim = with_floor();
+    let objects_before = sim.objects().count();
+    let err = sim.add_sphere(-1.0, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
+    assert!(matches!(err, Error::NotPositive { what: "sphere radius", .. }), "{err}");
+    let err = sim.add_box([1.0, 1.0, 1.0], [f64::NAN, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
+    assert!(matches!(err, Error::NotFinite { .. }), "{err}");
+    assert!(sim.add_capsule(1.0, 0.1, [0.0, 0.0, 0.0], Mass::Density(-3.0)).is_err());
+    assert!(sim.add_cone(0.0, 0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).is_err());
+    assert_eq!(sim.objects().count(), objects_before, "refused objects leave nothing behind");
+    assert_eq!(sim.world().body_count(), 0);
+
+    let a = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let err = sim.add_rotary_joint("self", a, a, None, Vector3::y()).unwrap_err();
+    assert!(matches!(err, Error::SelfJoint { .. }), "{err}");
+    let floor = sim.object("floor").unwrap();
+    assert!(sim.add_rotary_joint("", floor, a, None, Vector3::y()).is_err(), "a static first object");
+    assert!(sim.rotate(a, Vector3::zeros(), 1.0).is_err());
+    assert!(sim.rotate(a, Vector3::x(), f64::NAN).is_err());
+    assert!(sim.set_color(a, [2.0, 0.0, 0.0]).is_err());
+    assert!(Simulation::builder().time_step(-1.0).build().is_err());
+    assert!(Simulation::builder().steps_per_frame(0).build().is_err());
+    assert!(Simulation::builder().bounce(1.5, 0.0).build().is_err());
+
+    sim.remove_object(a).unwrap();
+    assert!(matches!(sim.body(a), Err(Error::StaleHandle { kind: "object", .. })));
+    assert!(matches!(sim.remove_object(a), Err(Error::StaleHandle { .. })));
+    assert!(sim.object("sphere").is_err());
+    let other = Simulation::new().unwrap();
+    let b = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    assert!(matches!(other.body(b), Err(Error::ForeignHandle { .. })));
+    sim.step().unwrap();
+}
+
+#[test]
+fn rotate_turns_about_a_world_axis_and_offsets_add() {
+    let mut sim = Simulation::new().unwrap();
+    let c = sim.add_capsule(1.0, 0.1, [0.0, 0.0, 0.0], Mass::Density(1.0)).unwrap();
+    sim.rotate(c, Vector3::x(), FRAC_PI_2).unwrap();
+    // Local Z now points down the world's −Y, as the original's idiom intends.
+    let z = sim.rotation(c).unwrap() * Vector3::z();
+    assert!((z - Vector3::new(0.0, -1.0, 0.0)).norm() < 1e-15);
+    sim.rotate(c, Vector3::y(), FRAC_PI_2).unwrap();
+    let x = sim.rotation(c).unwrap() * Vector3::x();
+    assert!((x - Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-15, "a second turn is about the world axis: {x}");
+    sim.offset_by_position(c, [1.0, 2.0, 3.0]).unwrap();
+    sim.offset_by_position(c, [1.0, 0.0, 0.0]).unwrap();
+    assert_eq!(sim.position(c).unwrap(), Point3::new(2.0, 2.0, 3.0));
+}
+
+#[test]
+fn hooks_see_the_time_at_the_start_and_at_the_end_of_the_step() {
+    let mut sim = Simulation::builder().steps_per_frame(4).build().unwrap();
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let (pre, post, frame) = (seen.clone(), seen.clone(), seen.clone());
+    sim.on_pre_step(move |s| {
+        pre.lock().unwrap().push(("pre", s.time()));
+        Ok(())
+    });
+    sim.on_post_step(move |s| {
+        post.lock().unwrap().push(("post", s.time()));
+        Ok(())
+    });
+    sim.on_pre_frame(move |s| {
+        frame.lock().unwrap().push(("frame", s.time()));
+        Ok(())
+    });
+    sim.step_frame().unwrap();
+    let dt = sim.time_step();
+    let log = seen.lock().unwrap().clone();
+    assert_eq!(log[0], ("frame", 0.0));
+    assert_eq!(log[1], ("pre", 0.0));
+    assert_eq!(log[2], ("post", dt));
+    assert_eq!(log[3], ("pre", dt));
+    assert_eq!(log.len(), 1 + 2 * 4);
+    assert_eq!((sim.step_count(), sim.frame_count()), (4, 1));
+    // Time is accumulated by repeated addition, as in the original.
+    let mut t = 0.0;
+    for _ in 0..4 {
+        t += dt;
+    }
+    assert_eq!(sim.time(), t);
+    // An error in a hook stops the run and reaches the caller.
+    sim.on_pre_step(|s| if s.step_count() >= 6 { Err(Error::User("stop".into())) } else { Ok(()) });
+    assert_eq!(sim.run_for(1.0), Err(Error::User("stop".into())));
+    assert_eq!(sim.step_count(), 6);
+}
+
+#[test]
+fn joints_to_the_static_world_friction_and_controllers() {
+    let mut sim = Simulation::new().unwrap();
+    // A 1 kg ball on a 1 m massless arm, hinged to the world at the origin.
+    let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let hinge = sim.add_rotary_joint("hinge", ball, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    sim.joint_mut(hinge).unwrap().set_viscous_friction(2.0).unwrap();
+    let torque = sim.add_sensor(JointTorque::new(hinge)).unwrap();
+    let power = sim.add_sensor(JointPower::new(hinge)).unwrap();
+    sim.run_for(10.0).unwrap();
+    // Friction brings the pendulum to rest hanging straight down.
+    let s = sim.joint_state(hinge).unwrap();
+    assert!((s.position + FRAC_PI_2).abs() < 1e-3, "{s:?}");
+    assert!(s.rate.abs() < 1e-3);
+    // The friction torque is what the sensors saw: always −2 · rate, dissipating power.
+    let (t, p) = (sim.records(torque).unwrap(), sim.records(power).unwrap());
+    assert!(p.iter().all(|s| s.record.power <= 0.0));
+    assert!(t.iter().any(|s| s.record.value.abs() > 0.1));
+
+    // A PD position servo lifts it to horizontal.
+    let servo = PositionServo::pd(Profile::constant(0.0).unwrap(), 200.0, 20.0);
+    sim.joint_mut(hinge).unwrap().set_controller(servo).unwrap();
+    sim.run_for(5.0).unwrap();
+    let q = sim.joint_state(hinge).unwrap().position;
+    // Steady-state error of a PD against gravity: m g l / kp ≈ 0.049 rad.
+    assert!((q + 9.81 / 200.0).abs() < 2e-3, "servo holds near 0 rad: {q}");
+
+    // A velocity servo spins it at 1 rad/s.
+    let mut joint = sim.joint_mut(hinge).unwrap();
+    joint.set_viscous_friction(0.0).unwrap();
+    joint.set_controller(VelocityServo { setpoint: Profile::constant(1.0).unwrap(), gain: 1000.0 }).unwrap();
+    sim.run_for(2.0).unwrap();
+    let rate = sim.joint_state(hinge).unwrap().rate;
+    assert!((rate - 1.0).abs() < 0.02, "{rate}");
+}
+
+#[test]
+fn rotary_speed_motor_limits_slider_and_reactions() {
+    let mut sim = Simulation::new().unwrap();
+    let wheel = sim.add_cylinder(0.1, 0.3, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let axle = sim.add_rotary_joint("axle", wheel, JointEnd::World, None, Vector3::z()).unwrap();
+    sim.joint_mut(axle).unwrap().set_speed(2.0, 50.0).unwrap();
+    sim.run_for(0.5).unwrap();
+    assert!((sim.joint_state(axle).unwrap().rate - 2.0).abs() < 1e-6);
+    // The hinge holds the wheel's weight: 9.81 N up on it.
+    let reaction = sim.add_sensor(JointReaction::new(axle)).unwrap();
+    sim.step().unwrap();
+    let f = sim.records(reaction).unwrap().last().unwrap().record.force;
+    assert!((f.y - 9.81).abs() < 1e-3, "{f}");
+
+    let block = sim.add_box([0.2, 0.2, 0.2], [5.0, 0.0, 0.0], Mass::Total(2.0)).unwrap();
+    let rail = sim.add_slider_joint("rail", block, JointEnd::World, Vector3::x()).unwrap();
+    sim.joint_mut(rail).unwrap().set_limits(-0.1, 0.1).unwrap();
+    let force = sim.add_sensor(JointForce::new(rail)).unwrap();
+    sim.on_pre_step(move |s| s.joint_mut(rail)?.add_force(4.0));
+    sim.run_for(1.0).unwrap();
+    let x = sim.joint_ref(rail).unwrap().position().unwrap();
+    assert!((x - 0.1).abs() < 1e-3, "stops at the high limit: {x}");
+    assert!(sim.records(force).unwrap().iter().all(|s| s.record.value == 4.0));
+    assert!(sim.joint_mut(rail).unwrap().add_torque(1.0).is_err(), "a slider takes forces");
+    assert!(sim.add_sensor(RotaryJointSensor::new(rail)).is_err(), "a rotary sensor on a slider");
+}
+
+#[test]
+fn removing_objects_and_joints_between_steps() {
+    let mut sim = with_floor();
+    let a = sim.add_sphere(0.2, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+    let b = sim.add_sphere(0.2, [1.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+    let j = sim.add_ball_socket_joint("link", a, b, None).unwrap();
+    let gps = sim.add_sensor(Gps::new(a)).unwrap();
+    sim.run_for(0.1).unwrap();
+    sim.remove_joint(j).unwrap();
+    assert!(sim.joint("link").is_err());
+    sim.on_post_step(move |s| if s.step_count() == 300 { s.remove_object(a) } else { Ok(()) });
+    sim.run_for(0.2).unwrap();
+    assert!(sim.body(a).is_err());
+    assert!(sim.is_sensor_detached(gps).unwrap(), "the GPS stops with its object");
+    assert_eq!(sim.records(gps).unwrap().len(), 300);
+    assert!(sim.body(b).is_ok());
+    // And new objects can be dropped in at run time.
+    let c = sim.add_box([0.3, 0.3, 0.3], [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.run_for(1.0).unwrap();
+    assert!((sim.position(c).unwrap().y - 0.15).abs() < 2e-3);
+}
+
+#[test]
+fn energies_use_the_world_frame_inertia() {
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let slab = sim.add_box([2.0, 0.2, 1.0], [0.0, 0.0, 0.0], Mass::Total(3.0)).unwrap();
+    sim.rotate(slab, Vector3::new(1.0, 1.0, 0.0), 0.7).unwrap();
+    let w = Vector3::new(0.3, -1.0, 2.0);
+    sim.body_mut(slab).unwrap().set_angular_velocity(w).unwrap();
+    let ke = sim.add_sensor(KineticEnergy::new(slab)).unwrap();
+    sim.step().unwrap();
+    let b = sim.body(slab).unwrap();
+    let r = b.rotation();
+    let w_now = b.angular_velocity();
+    let w_body = r.inverse() * w_now;
+    let expected = 0.5 * w_body.dot(&(b.inertia() * w_body));
+    let got = sim.records(ke).unwrap().last().unwrap().record.rotational;
+    assert!((got - expected).abs() < 1e-12, "{got} vs {expected}");
+    // The original's formula (body inertia with world ω) differs for a rotated slab.
+    let wrong = 0.5 * w_now.dot(&(b.inertia() * w_now));
+    assert!((wrong - expected).abs() > 1e-3);
+}
+
+#[test]
+fn potential_energy_reference_inclinometer_imu_contacts_and_periods() {
+    let mut sim = with_floor();
+    let ball = sim.add_sphere(0.5, [0.0, 0.5, 0.0], Mass::Total(2.0)).unwrap();
+    let pe = sim.add_sensor(PotentialEnergy::new(ball).reference_height(0.5)).unwrap();
+    let imu = sim.add_sensor(Imu::new(ball)).unwrap();
+    let touch = sim.add_sensor(ContactSensor::new(ball)).unwrap();
+    let slow = sim.add_sensor_every(Gps::new(ball), 0.01).unwrap();
+    sim.run_for(1.0).unwrap();
+    assert!(sim.records(pe).unwrap().last().unwrap().record.potential.abs() < 1e-3);
+    let f = sim.records(imu).unwrap().last().unwrap().record.specific_force;
+    assert!((f - Vector3::new(0.0, 9.81, 0.0)).norm() < 1e-3, "at rest an IMU feels +g up: {f}");
+    assert!(sim.records(touch).unwrap().last().unwrap().record.touching());
+    let slow = sim.records(slow).unwrap();
+    assert_eq!(slow.len(), 100);
+    assert!((slow.samples()[0].time - 0.01).abs() < 1e-9);
+
+    let tilted = sim.add_box([1.0, 1.0, 1.0], [5.0, 5.0, 5.0], Mass::Total(1.0)).unwrap();
+    sim.rotate(tilted, Vector3::z(), 0.3).unwrap();
+    sim.rotate(tilted, Vector3::x(), -0.2).unwrap();
+    let inc = sim.add_sensor(Inclinometer::new(tilted)).unwrap();
+    sim.step().unwrap();
+    let i = sim.records(inc).unwrap().last().unwrap().record;
+    assert!((i.pitch - 0.3).abs() < 1e-3 && (i.roll + 0.2).abs() < 1e-3, "{i:?}");
+}
+
+#[test]
+fn lasers_mount_on_bodies_and_report_the_closest_hit() {
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let robot = sim.add_box([0.2, 0.2, 0.2], [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    for x in [6.0, 3.0, 9.0, 4.5] {
+        sim.add_sphere(0.5, [x, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    }
+    // Mounted 0.1 m ahead of the robot, pointing +X.
+    let offset = Isometry3::new(Vector3::new(0.1, 0.0, 0.0), Vector3::y() * FRAC_PI_2);
+    let laser = sim.add_sensor(Laser::new(100.0).mounted_on(robot, offset)).unwrap();
+    sim.step().unwrap();
+    let r = sim.records(laser).unwrap().last().unwrap().record;
+    assert!((r.distance.unwrap() - 2.4).abs() < 1e-9, "{r:?}");
+    assert!((r.point.unwrap() - Point3::new(2.5, 0.0, 0.0)).norm() < 1e-9);
+    // Turned around, it sees nothing.
+    sim.rotate(robot, Vector3::y(), std::f64::consts::PI).unwrap();
+    sim.step().unwrap();
+    assert_eq!(sim.records(laser).unwrap().last().unwrap().record.distance, None);
+    let mut csv = Vec::new();
+    sim.records(laser).unwrap().write_csv(&mut csv).unwrap();
+    let csv = String::from_utf8(csv).unwrap();
+    assert!(csv.starts_with("time [s],step,distance [m],hit x [m],hit y [m],hit z [m]\n"));
+    assert!(csv.lines().nth(2).unwrap().ends_with(",2,,,,"), "{csv}");
+}
+
+#[test]
+fn terrain_cones_and_static_objects_collide() {
+    let mut sim = Simulation::new().unwrap();
+    let field = Heightfield::constant(6, 6, 0.3).unwrap();
+    sim.add_trimesh_floor(field.vertices(), field.faces(), [-2.5, 0.0, -2.5]).unwrap();
+    let ball = sim.add_sphere(0.5, [0.0, 1.5, 0.0], Mass::Total(1.0)).unwrap();
+    let cone = sim.add_cone(0.6, 0.3, [1.0, 1.5, 1.0], Mass::Total(1.0)).unwrap();
+    sim.rotate(cone, Vector3::x(), -FRAC_PI_2).unwrap();
+    let wall = sim
+        .add_static(ObjectShape::Box { size: Vector3::new(0.2, 2.0, 4.0) }, Isometry3::translation(-1.0, 0.0, 0.0))
+        .unwrap();
+    assert!(sim.body(wall).is_err(), "static objects have no body");
+    sim.run_for(2.0).unwrap();
+    assert!((sim.position(ball).unwrap().y - 0.8).abs() < 2e-3, "rests on the terrain at 0.3 m");
+    // The cone stands on its base: centre of mass a quarter of its height up.
+    let y = sim.position(cone).unwrap().y;
+    assert!((y - (0.3 + 0.15)).abs() < 5e-3, "cone centre at {y}");
+    let axis = sim.rotation(cone).unwrap() * Vector3::z();
+    assert!(axis.y > 0.99, "standing upright: {axis}");
+}
+
+struct Driver {
+    pushes: u32,
+}
+
+impl Program for Driver {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        builder.gravity(Vector3::zeros()).steps_per_frame(10)
+    }
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        sim.add_sphere(0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).map(drop)
+    }
+    fn key_bindings(&self) -> ActionMap<Self> {
+        ActionMap::new()
+            .add(
+                Key::Char('a'),
+                |p: &mut Driver, sim: &mut Simulation| {
+                    p.pushes += 1;
+                    let ball = sim.object("sphere")?;
+                    sim.body_mut(ball)?.add_force(Vector3::new(100.0, 0.0, 0.0))
+                },
+                Repeat::Once,
+            )
+            .add(
+                Key::Up,
+                |_, sim| {
+                    let ball = sim.object("sphere")?;
+                    sim.body_mut(ball)?.add_force(Vector3::new(0.0, 0.0, 10.0))
+                },
+                Repeat::WhileHeld,
+            )
+    }
+}
+
+#[test]
+fn programs_bind_keys_once_or_while_held_and_reset() {
+    let mut program = Driver { pushes: 0 };
+    let mut runner = ProgramRunner::new(&mut program).unwrap();
+    assert!(runner.key_down(Key::Char('a')).unwrap());
+    assert!(!runner.key_down(Key::Char('q')).unwrap(), "unbound keys are ignored");
+    runner.step_frame().unwrap();
+    let ball = runner.simulation().object("sphere").unwrap();
+    let dt = runner.simulation().time_step();
+    // A one-shot push acts for a single step: v = F dt / m.
+    let v = runner.simulation().body(ball).unwrap().linear_velocity();
+    assert!((v.x - 100.0 * dt).abs() < 1e-12);
+    runner.key_down(Key::Up).unwrap();
+    runner.step_frame().unwrap();
+    runner.key_up(Key::Up);
+    runner.step_frame().unwrap();
+    // Held for one frame of 10 steps: v = 10 N · 10 dt.
+    let v = runner.simulation().body(ball).unwrap().linear_velocity();
+    assert!((v.z - 10.0 * 10.0 * dt).abs() < 1e-12, "{v}");
+    runner.reset().unwrap();
+    assert_eq!(runner.simulation().time(), 0.0);
+    assert_eq!(runner.program().pushes, 1);
+}
+
+fn pendulum_trajectory() -> Vec<u64> {
+    let mut sim = with_floor();
+    let a = sim.add_cylinder(1.0, 0.1, [0.5, 1.5, 0.0], Mass::Total(1.0)).unwrap();
+    sim.rotate(a, Vector3::y(), FRAC_PI_2).unwrap();
+    sim.add_rotary_joint("", a, JointEnd::World, Some(Point3::new(0.0, 1.5, 0.0)), Vector3::z()).unwrap();
+    let gps = sim.add_sensor(Gps::new(a)).unwrap();
+    sim.run_for(1.0).unwrap();
+    sim.records(gps).unwrap().iter().map(|s| s.record.position.y.to_bits()).collect()
+}
+
+#[test]
+fn simulations_run_independently_on_several_threads() {
+    let reference = pendulum_trajectory();
+    let threads: Vec<_> = (0..3).map(|_| std::thread::spawn(pendulum_trajectory)).collect();
+    for t in threads {
+        assert_eq!(t.join().unwrap(), reference);
+    }
+    // A simulation can be moved to another thread, too.
+    let mut sim = with_floor();
+    sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let t = std::thread::spawn(move || {
+        sim.run_for(0.1).unwrap();
+        sim.time()
+    });
+    assert!((t.join().unwrap() - 0.1).abs() < 1e-9);
+}

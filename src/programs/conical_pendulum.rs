@@ -1,0 +1,122 @@
+//! The thesis' validation robot (IROS example 2): a 2-DOF arm on a heavy free base,
+//! whose waist is driven by a saturating torque against viscous friction, so that the
+//! free shoulder swings out into a conical pendulum.
+
+use std::f64::consts::FRAC_PI_2;
+
+use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::{JointId, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
+
+/// One row of the pendulum's record: the state the pre-step hook reads at the start of
+/// a step, and the waist torque it applies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PendulumRow {
+    /// Time at the start of the step, s.
+    pub time: f64,
+    /// Waist angle, rad.
+    pub q1: f64,
+    /// Waist rate, rad/s.
+    pub q1_rate: f64,
+    /// Shoulder angle from hanging, rad.
+    pub q2: f64,
+    /// Shoulder rate, rad/s.
+    pub q2_rate: f64,
+    /// Waist torque applied in this step (without friction), N·m.
+    pub torque: f64,
+}
+
+/// IROS example 2 exactly (thesis §1.5, original `example2_conical_pendulum.py`):
+/// base box 10 × 0.5 × 10 m of density 100 (5000 kg) resting free on the plane
+/// y = −0.5; pole and arm cylinders (length 1, radius 0.141421, 10 kg) turned to hang
+/// along −Y; waist hinge (base–pole) about Y at (1, 0.51, 2), shoulder hinge (pole–arm)
+/// about X at (1, 1.01, 2.1). 50 frames/s × 80 steps: dt = 0.25 ms. Before every step
+/// the waist gets `20 t` N·m (saturating at 20 N·m after 1 s) and both joints a viscous
+/// friction of `−5 · rate`, with the rates read in the previous step.
+#[derive(Clone, Debug, Default)]
+pub struct ConicalPendulum {
+    /// The base box.
+    pub base: Option<ObjectId>,
+    /// The pole (first link).
+    pub pole: Option<ObjectId>,
+    /// The arm (second link).
+    pub arm: Option<ObjectId>,
+    /// The waist joint.
+    pub waist: Option<JointId>,
+    /// The shoulder joint.
+    pub shoulder: Option<JointId>,
+    previous_rates: (f64, f64),
+    /// Every step's row.
+    pub rows: Vec<PendulumRow>,
+}
+
+impl ConicalPendulum {
+    /// Frames per second of the original.
+    pub const FPS: f64 = 50.0;
+    /// Steps per frame of the original.
+    pub const STEPS_PER_FRAME: u32 = 80;
+    /// Viscous friction on both joints: 50e-3 N·m·s × gear ratio 100.
+    pub const FRICTION: f64 = 50e-3 * 100.0;
+    /// Saturation of the waist torque, N·m.
+    pub const MAX_TORQUE: f64 = 20.0;
+    /// Time the waist torque takes to saturate, s.
+    pub const SATURATION_TIME: f64 = 1.0;
+
+    /// The waist torque at `time`.
+    pub fn waist_torque(time: f64) -> f64 {
+        if time < Self::SATURATION_TIME { Self::MAX_TORQUE * time / Self::SATURATION_TIME } else { Self::MAX_TORQUE }
+    }
+}
+
+impl Program for ConicalPendulum {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        builder
+            .time_step(1.0 / Self::FPS / f64::from(Self::STEPS_PER_FRAME))
+            .steps_per_frame(Self::STEPS_PER_FRAME)
+            .floor_plane(Vector3::y(), -0.5)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let offset = Vector3::new(1.0, 0.0, 2.0);
+        let radius = 0.141421;
+        let base = sim.add_box([10.0, 0.5, 10.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(100.0))?;
+        let pole = sim.add_cylinder(1.0, radius, [0.0, 0.51, 0.0], Mass::Total(10.0))?;
+        let arm = sim.add_cylinder(1.0, radius, [0.0, 0.51, 0.1], Mass::Total(10.0))?;
+        for link in [pole, arm] {
+            sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
+            sim.offset_by_position(link, offset)?;
+        }
+        sim.set_color(pole, [1.0, 1.0, 0.0])?;
+        sim.set_color(arm, [0.0, 0.0, 0.5])?;
+        let waist = sim.add_rotary_joint("r1", base, pole, None, Vector3::y())?;
+        let shoulder =
+            sim.add_rotary_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
+        (self.base, self.pole, self.arm) = (Some(base), Some(pole), Some(arm));
+        (self.waist, self.shoulder) = (Some(waist), Some(shoulder));
+        Ok(())
+    }
+
+    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (waist, shoulder) = (self.waist.expect("created"), self.shoulder.expect("created"));
+        let time = sim.time();
+        let torque = Self::waist_torque(time);
+        let (q1_prev, q2_prev) = self.previous_rates;
+        {
+            let mut r1 = sim.joint_mut(waist)?;
+            r1.add_torque(torque)?;
+            r1.add_torque(-Self::FRICTION * q1_prev)?;
+        }
+        sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
+        let s1 = sim.joint_state(waist)?;
+        let s2 = sim.joint_state(shoulder)?;
+        self.previous_rates = (s1.rate, s2.rate);
+        self.rows.push(PendulumRow {
+            time,
+            q1: s1.position,
+            q1_rate: s1.rate,
+            q2: s2.position,
+            q2_rate: s2.rate,
+            torque,
+        });
+        Ok(())
+    }
+}

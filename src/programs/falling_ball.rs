@@ -1,0 +1,52 @@
+//! The thesis' falling ball: a 1 kg sphere of radius 0.5 m dropped from (1, 1, 1).
+
+use ars_core::sensors::{Accelerometer, Gps, KineticEnergy, PotentialEnergy, SystemTotalEnergy, Velometer};
+use ars_core::{Mass, ObjectId, Program, Result, SensorId, Simulation};
+
+/// The thesis' hello world: one ball, nothing else.
+#[derive(Clone, Debug, Default)]
+pub struct HelloWorld {
+    /// The ball, once created.
+    pub ball: Option<ObjectId>,
+}
+
+impl Program for HelloWorld {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        self.ball = Some(sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?);
+        Ok(())
+    }
+}
+
+/// The falling ball with the sensors of the thesis' figure 3.2: GPS, velometer,
+/// accelerometer, potential and kinetic energy of the ball, total energy of the system.
+#[derive(Clone, Debug, Default)]
+pub struct FallingBallSensors {
+    /// The ball.
+    pub ball: Option<ObjectId>,
+    /// Its position.
+    pub gps: Option<SensorId<Gps>>,
+    /// Its velocity.
+    pub velometer: Option<SensorId<Velometer>>,
+    /// Its acceleration.
+    pub accelerometer: Option<SensorId<Accelerometer>>,
+    /// Its potential energy (zero at y = 0).
+    pub potential: Option<SensorId<PotentialEnergy>>,
+    /// Its kinetic energy.
+    pub kinetic: Option<SensorId<KineticEnergy>>,
+    /// The energy of the whole system.
+    pub total: Option<SensorId<SystemTotalEnergy>>,
+}
+
+impl Program for FallingBallSensors {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+        self.ball = Some(ball);
+        self.gps = Some(sim.add_sensor(Gps::new(ball))?);
+        self.velometer = Some(sim.add_sensor(Velometer::new(ball))?);
+        self.accelerometer = Some(sim.add_sensor(Accelerometer::new(ball))?);
+        self.potential = Some(sim.add_sensor(PotentialEnergy::new(ball))?);
+        self.kinetic = Some(sim.add_sensor(KineticEnergy::new(ball))?);
+        self.total = Some(sim.add_sensor(SystemTotalEnergy::new())?);
+        Ok(())
+    }
+}
