@@ -113,3 +113,18 @@ fn conical_pendulum_program_is_bit_identical_to_native_ode_for_two_seconds() {
     let last = *runner.program().rows.last().unwrap();
     assert!(last.q1_rate.abs() > 1.0, "{last:?}");
 }
+
+#[test]
+fn falling_ball_program_is_bit_identical_to_native_ode() {
+    use ars::programs::FallingBallSensors;
+    let mut program = FallingBallSensors::default();
+    let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
+    let mut c = CScene::falling_sphere();
+    let ball = runner.program().ball.unwrap();
+    for step in 1..=2500 {
+        runner.step().unwrap();
+        c.step(1);
+        let (rs, cs) = (body_state(runner.simulation(), ball), c.body_state(0));
+        assert!(same_bits(&rs, &cs), "after step {step}:\n C    {cs:?}\n Rust {rs:?}");
+    }
+}
