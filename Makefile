@@ -3,11 +3,13 @@
 #   make test   install what is missing, run the whole test suite
 #   make check  everything CI checks: fmt, clippy, tests, docs, benchmarks compile
 #   make bench  the Rust-against-native-ODE benchmark (prints Rust/C ratios)
+#   make figures       the thesis' figures (PNG) and their CSVs, into figures/
+#   make readme-table  regenerate the README's table of thesis numbers
 
-DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make
+DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make libfontconfig1-dev libfreetype-dev fonts-dejavu-core
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps demo test check bench
+.PHONY: deps demo test check bench figures readme-table
 
 deps:
 	@missing=""; \
@@ -34,3 +36,13 @@ check: deps
 
 bench: deps
 	cargo bench --bench native_comparison
+
+figures: deps
+	cargo build --release --examples
+	cargo run --release --example falling_ball_sensors -- --csv figures/falling_ball.csv --plot figures
+	cargo run --release --example laser -- --csv figures/laser.csv --plot figures
+	cargo run --release --example conical_pendulum -- --csv figures/conical_pendulum.csv --every 40 --plot figures
+	@echo "figures written to $(CURDIR)/figures"
+
+readme-table: deps
+	cargo run --release --example thesis_table -- --write-readme

@@ -1,11 +1,16 @@
 //! The thesis' hello world: a 1 kg ball of radius 0.5 m dropped from (1, 1, 1) onto the
-//! floor y = 0 with ARS' defaults (0.4 ms steps). Runs headless for one second and
-//! prints the ball's height and vertical speed every 10 ms.
+//! floor y = 0 with ARS' defaults (0.4 ms steps). Runs headless and prints the ball's
+//! height and vertical speed every 10 ms; `--csv` writes them for every step
+//! (`step,t,y,vy`), `--plot` draws the height.
 //!
 //! `cargo run --release --example hello_world`
 
+#[path = "common/mod.rs"]
+mod common;
+
 use ars::sensors::{Gps, Velometer};
 use ars::{Mass, Program, Result, SensorId, Simulation};
+use common::plot::{Series, line_chart, over_time};
 
 #[derive(Default)]
 struct HelloWorld {
@@ -15,20 +20,37 @@ struct HelloWorld {
 impl Program for HelloWorld {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
-        let gps = sim.add_sensor_every(Gps::new(ball), 0.01)?;
-        let velometer = sim.add_sensor_every(Velometer::new(ball), 0.01)?;
-        self.sensors = Some((gps, velometer));
+        self.sensors = Some((sim.add_sensor(Gps::new(ball))?, sim.add_sensor(Velometer::new(ball))?));
         Ok(())
     }
 }
 
-fn main() -> Result<()> {
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let args = common::args::parse(1.0);
     let mut program = HelloWorld::default();
-    let sim = program.run_headless(1.0)?;
+    let sim = program.run_headless(args.duration)?;
     let (gps, velometer) = program.sensors.expect("created with the simulation");
+    let (gps, velometer) = (sim.records(gps)?.samples(), sim.records(velometer)?.samples());
+    let every_10_ms = (0.01 / sim.time_step()).round() as usize;
     println!("{:>6} {:>10} {:>11}", "t [s]", "y [m]", "vy [m/s]");
-    for (p, v) in sim.records(gps)?.iter().zip(sim.records(velometer)?) {
+    for (p, v) in gps.iter().zip(velometer).skip(every_10_ms - 1).step_by(every_10_ms) {
         println!("{:>6.3} {:>10.6} {:>11.6}", p.time, p.record.position.y, v.record.linear.y);
+    }
+    if let Some(path) = &args.csv {
+        let rows = gps.iter().zip(velometer).step_by(args.every);
+        let rows = rows.map(|(p, v)| format!("{},{},{},{}", p.step, p.time, p.record.position.y, v.record.linear.y));
+        common::args::write_csv(path, "step,t,y,vy", rows)?;
+    }
+    if let Some(dir) = &args.plot {
+        let height = Series::new("ball centre", over_time(gps, |r| r.position.y));
+        line_chart(
+            dir,
+            "hello_world_height.png",
+            "Hello world: the falling ball",
+            "time [s]",
+            "height y [m]",
+            &[height],
+        )?;
     }
     Ok(())
 }

@@ -112,7 +112,8 @@ impl ReducedArmModel {
         let dj = 2.0 * m * r * d * c + 2.0 * (it - ia) * s * c;
         let tau = ConicalPendulum::waist_torque(t);
         let phi_acc = (tau - p.friction * phi_rate - dj * beta_rate * phi_rate) / j;
-        let beta_acc = (0.5 * dj * phi_rate * phi_rate - m * p.gravity * d * s - p.friction * beta_rate) / (m * d * d + it);
+        let beta_acc =
+            (0.5 * dj * phi_rate * phi_rate - m * p.gravity * d * s - p.friction * beta_rate) / (m * d * d + it);
         (phi_acc, beta_acc)
     }
 

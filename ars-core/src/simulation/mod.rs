@@ -472,7 +472,8 @@ impl Simulation {
         self.run_steps_in_frames(hooks, steps)
     }
 
-    pub(crate) fn steps_in(&self, duration: f64) -> Result<u64> {
+    /// Number of whole steps in `duration` seconds (rounded to the nearest).
+    pub fn steps_in(&self, duration: f64) -> Result<u64> {
         validate::non_negative("duration", duration)?;
         Ok((duration / self.time_step).round() as u64)
     }

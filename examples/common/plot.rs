@@ -1,0 +1,92 @@
+//! Line charts as 800×600 PNG files, with axis labels (quantity and unit) and a legend.
+
+use std::error::Error;
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+
+/// One curve.
+pub struct Series {
+    /// Legend entry.
+    pub label: String,
+    /// `(x, y)` points.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Series {
+    /// A curve from its label and points.
+    pub fn new(label: &str, points: Vec<(f64, f64)>) -> Self {
+        Series { label: label.to_string(), points }
+    }
+}
+
+const COLORS: [RGBColor; 5] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+];
+
+fn range(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo { 0.05 * (hi - lo) } else { lo.abs().max(1.0) * 0.05 };
+    (lo - pad, hi + pad)
+}
+
+/// Draws `series` into `dir/file` and returns the path.
+pub fn line_chart(
+    dir: &Path,
+    file: &str,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<PathBuf, Box<dyn Error>> {
+    std::fs::create_dir_all(dir)?;
+    let path = dir.join(file);
+    {
+        let root = BitMapBackend::new(&path, (800, 600)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let all = series.iter().flat_map(|s| s.points.iter());
+        let (x0, x1) = range(all.clone().map(|p| p.0));
+        let (y0, y1) = range(all.map(|p| p.1));
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 24))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .axis_desc_style(("sans-serif", 18))
+            .label_style(("sans-serif", 15))
+            .draw()?;
+        for (i, s) in series.iter().enumerate() {
+            let color = COLORS[i % COLORS.len()];
+            chart
+                .draw_series(LineSeries::new(s.points.iter().copied(), color.stroke_width(1)))?
+                .label(s.label.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 16))
+            .draw()?;
+        root.present()?;
+    }
+    eprintln!("wrote {}", path.display());
+    Ok(path)
+}
+
+/// `(time, f(record))` for every sample.
+pub fn over_time<R>(samples: &[ars::Sample<R>], f: impl Fn(&R) -> f64) -> Vec<(f64, f64)> {
+    samples.iter().map(|s| (s.time, f(&s.record))).collect()
+}

@@ -1,0 +1,100 @@
+//! The thesis' falling ball with its sensors (thesis §3.1, fig. 3.2): GPS, velometer,
+//! accelerometer, potential and kinetic energy, total energy of the system. Prints the
+//! impacts; `--csv` writes one row per step (`step,t,y,vy,ay,ke,pe,e_total`), `--plot`
+//! the four panels of fig. 3.2.
+//!
+//! `cargo run --release --example falling_ball_sensors -- --csv ball.csv --plot figures`
+
+#[path = "common/mod.rs"]
+mod common;
+
+use ars::Program;
+use ars::programs::FallingBallSensors;
+use common::args::{cell, write_csv};
+use common::plot::{Series, line_chart, over_time};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args = common::args::parse(1.0);
+    let mut program = FallingBallSensors::default();
+    let sim = program.run_headless(args.duration)?;
+    let gps = sim.records(program.gps.unwrap())?.samples();
+    let vel = sim.records(program.velometer.unwrap())?.samples();
+    let acc = sim.records(program.accelerometer.unwrap())?.samples();
+    let ke = sim.records(program.kinetic.unwrap())?.samples();
+    let pe = sim.records(program.potential.unwrap())?.samples();
+    let total = sim.records(program.total.unwrap())?.samples();
+
+    println!("impacts (last sample before -> first after; thesis: 3.13135, 0.62156, 0.11898 m/s):");
+    for (i, w) in vel.windows(2).enumerate().filter(|(_, w)| w[0].record.linear.y < 0.0 && w[1].record.linear.y > 0.0) {
+        let (before, after) = (w[0].record.linear.y, w[1].record.linear.y);
+        println!(
+            "  t = {:.4} s: {:.6} m/s -> {:.6} m/s, restitution {:.6}, acceleration {:.2} m/s^2",
+            w[1].time,
+            -before,
+            after,
+            after / -before,
+            acc[i + 1].record.linear.y
+        );
+    }
+    println!("final height {:.6} m (thesis: rests at 0.5 m)", gps.last().unwrap().record.position.y);
+
+    if let Some(path) = &args.csv {
+        let rows = (0..gps.len()).step_by(args.every).map(|k| {
+            format!(
+                "{},{},{},{},{},{},{},{}",
+                gps[k].step,
+                gps[k].time,
+                gps[k].record.position.y,
+                vel[k].record.linear.y,
+                cell(Some(acc[k].record.linear.y)),
+                ke[k].record.total(),
+                pe[k].record.potential,
+                total[k].record.total()
+            )
+        });
+        write_csv(path, "step,t,y,vy,ay,ke,pe,e_total", rows)?;
+    }
+    if let Some(dir) = &args.plot {
+        let height = over_time(gps, |r| r.position.y);
+        line_chart(
+            dir,
+            "fig3_2a_height.png",
+            "Falling ball: height (fig. 3.2a)",
+            "time [s]",
+            "height y [m]",
+            &[Series::new("GPS y", height)],
+        )?;
+        let speed = over_time(vel, |r| r.linear.y);
+        line_chart(
+            dir,
+            "fig3_2b_vertical_speed.png",
+            "Falling ball: vertical speed (fig. 3.2b)",
+            "time [s]",
+            "vertical speed vy [m/s]",
+            &[Series::new("velometer vy", speed)],
+        )?;
+        let accel = over_time(acc, |r| r.linear.y);
+        line_chart(
+            dir,
+            "fig3_2c_vertical_acceleration.png",
+            "Falling ball: vertical acceleration (fig. 3.2c)",
+            "time [s]",
+            "vertical acceleration ay [m/s^2]",
+            &[Series::new("accelerometer ay", accel)],
+        )?;
+        let energies = [
+            Series::new("kinetic", over_time(ke, |r| r.total())),
+            Series::new("potential", over_time(pe, |r| r.potential)),
+            Series::new("total", over_time(total, |r| r.total())),
+        ];
+        line_chart(
+            dir,
+            "fig3_2d_energies.png",
+            "Falling ball: energies (fig. 3.2d)",
+            "time [s]",
+            "energy [J]",
+            &energies,
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,47 @@
+//! The original's joint sensor demos (`joint_torque1`, `joint_power1`, `rotary_joint`)
+//! on the centrifugal-force scene: the torque and power the "friction" adds to the
+//! cable hinge r2 (once per frame: −500 · rate), and r2's angle and rate every frame.
+//! Prints a summary and the last records; `--csv` writes every step
+//! (`step,t,torque,power`), `--plot` draws the power.
+//!
+//! `cargo run --release --example joint_sensors`
+
+#[path = "common/mod.rs"]
+mod common;
+
+use ars::Program;
+use ars::programs::CentrifugalForce;
+use common::plot::{Series, line_chart, over_time};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args = common::args::parse(5.0);
+    let mut program = CentrifugalForce::default();
+    let sim = program.run_headless(args.duration)?;
+    let (torque, power, angle) = program.sensors.expect("created with the simulation");
+    let (torque, power, angle) = (sim.records(torque)?, sim.records(power)?, sim.records(angle)?);
+    let applied = torque.iter().filter(|s| s.record.value != 0.0).count();
+    println!("JointTorque: {} records, {applied} with a torque (one per frame)", torque.len());
+    let worst = power.iter().map(|s| s.record.power).fold(0.0, f64::min);
+    println!("JointPower: never positive; most negative {worst:.6} W (the friction only takes energy)");
+    println!("RotaryJointSensor: {} records (one per frame); the last three:", angle.len());
+    for s in &angle.samples()[angle.len().saturating_sub(3)..] {
+        println!("  t {:.2} s: angle {:.6} rad, rate {:.6} rad/s", s.time, s.record.position, s.record.rate);
+    }
+    if let Some(path) = &args.csv {
+        let rows = torque.iter().zip(power.iter()).step_by(args.every);
+        let rows = rows.map(|(t, p)| format!("{},{},{},{}", t.step, t.time, t.record.value, p.record.power));
+        common::args::write_csv(path, "step,t,torque,power", rows)?;
+    }
+    if let Some(dir) = &args.plot {
+        let p: Vec<_> = over_time(power.samples(), |r| r.power).into_iter().filter(|p| p.1 != 0.0).collect();
+        line_chart(
+            dir,
+            "joint_power.png",
+            "JointPower on the cable hinge",
+            "time [s]",
+            "power [W]",
+            &[Series::new("r2 friction", p)],
+        )?;
+    }
+    Ok(())
+}
