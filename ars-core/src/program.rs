@@ -4,6 +4,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
+use std::sync::Arc;
 
 use nalgebra::Vector3;
 
@@ -41,6 +42,94 @@ impl fmt::Display for Key {
     }
 }
 
+impl Key {
+    /// A key from its name: `up`, `down`, `left`, `right`, `space`, or one character.
+    pub fn from_name(name: &str) -> Option<Key> {
+        match name {
+            "up" => Some(Key::Up),
+            "down" => Some(Key::Down),
+            "left" => Some(Key::Left),
+            "right" => Some(Key::Right),
+            "space" => Some(Key::Space),
+            _ => {
+                let mut chars = name.chars();
+                match (chars.next(), chars.next()) {
+                    (Some(c), None) => Some(Key::Char(c.to_ascii_lowercase())),
+                    _ => None,
+                }
+            }
+        }
+    }
+}
+
+/// A key going down or up at a moment of simulated time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KeyEvent {
+    /// Simulated time, s.
+    pub time: f64,
+    /// The key.
+    pub key: Key,
+    /// `true` when the key goes down.
+    pub down: bool,
+}
+
+/// Timed key events that drive a program without a keyboard (headless runs, tests).
+///
+/// The text form has one event per line, `TIME down|up KEY`, with `#` comments:
+/// ```
+/// use ars_core::{Key, KeyScript};
+/// let script = KeyScript::parse("# drive, then turn\n0.5 down up\n2.0 down left\n4 up left\n4 up up\n")?;
+/// assert_eq!(script.events().len(), 4);
+/// assert_eq!(script.events()[1].key, Key::Left);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct KeyScript {
+    events: Vec<KeyEvent>,
+}
+
+impl KeyScript {
+    /// A script of these events (sorted by time; equal times keep their order).
+    pub fn new(mut events: Vec<KeyEvent>) -> Result<Self> {
+        if let Some(e) = events.iter().find(|e| !e.time.is_finite() || e.time < 0.0) {
+            return Err(crate::Error::OutOfRange { what: "key event time", detail: format!("{} s", e.time) });
+        }
+        events.sort_by(|a, b| a.time.total_cmp(&b.time));
+        Ok(KeyScript { events })
+    }
+
+    /// Parses the text form (see the type's docs).
+    pub fn parse(text: &str) -> Result<Self> {
+        let mut events = Vec::new();
+        for (n, line) in text.lines().enumerate() {
+            let line = line.split('#').next().unwrap_or("").trim();
+            if line.is_empty() {
+                continue;
+            }
+            let bad = |why: &str| crate::Error::OutOfRange {
+                what: "key script",
+                detail: format!("line {}: {why}: {line:?} (expected `TIME down|up KEY`)", n + 1),
+            };
+            let parts: Vec<&str> = line.split_whitespace().collect();
+            let [time, action, key] = parts[..] else { return Err(bad("three fields needed")) };
+            let time: f64 = time.parse().map_err(|_| bad("bad time"))?;
+            let down = match action {
+                "down" => true,
+                "up" => false,
+                _ => return Err(bad("the action is `down` or `up`")),
+            };
+            let key = Key::from_name(key).ok_or_else(|| bad("unknown key"))?;
+            events.push(KeyEvent { time, key, down });
+        }
+        Self::new(events)
+    }
+
+    /// The events, by time.
+    pub fn events(&self) -> &[KeyEvent] {
+        &self.events
+    }
+}
+
 /// When a bound action runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Repeat {
@@ -52,7 +141,7 @@ pub enum Repeat {
 }
 
 /// What a key does to a program and its simulation.
-pub type Action<P> = fn(&mut P, &mut Simulation) -> Result<()>;
+pub type Action<P> = Arc<dyn Fn(&mut P, &mut Simulation) -> Result<()> + Send + Sync>;
 
 /// Keys bound to actions of a program `P`.
 pub struct ActionMap<P> {
@@ -77,13 +166,18 @@ impl<P> ActionMap<P> {
         ActionMap::default()
     }
     /// Binds `key` (replacing an earlier binding).
-    pub fn add(mut self, key: Key, action: Action<P>, repeat: Repeat) -> Self {
-        self.actions.insert(key, (action, repeat));
+    pub fn add(
+        mut self,
+        key: Key,
+        action: impl Fn(&mut P, &mut Simulation) -> Result<()> + Send + Sync + 'static,
+        repeat: Repeat,
+    ) -> Self {
+        self.actions.insert(key, (Arc::new(action), repeat));
         self
     }
     /// The action bound to `key`.
     pub fn get(&self, key: Key) -> Option<(Action<P>, Repeat)> {
-        self.actions.get(&key).copied()
+        self.actions.get(&key).map(|(a, r)| (Arc::clone(a), *r))
     }
     /// The bound keys.
     pub fn keys(&self) -> impl Iterator<Item = Key> + '_ {
@@ -201,6 +295,7 @@ pub struct ProgramRunner<'p, P: Program> {
     sim: Simulation,
     bindings: ActionMap<P>,
     held: Vec<Key>,
+    script_position: usize,
 }
 
 impl<'p, P: Program> ProgramRunner<'p, P> {
@@ -208,7 +303,7 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     pub fn new(program: &'p mut P) -> Result<Self> {
         let sim = program.create_simulation()?;
         let bindings = program.key_bindings();
-        Ok(ProgramRunner { program, sim, bindings, held: Vec::new() })
+        Ok(ProgramRunner { program, sim, bindings, held: Vec::new(), script_position: 0 })
     }
 
     /// The simulation.
@@ -235,6 +330,7 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     pub fn reset(&mut self) -> Result<()> {
         self.sim = self.program.create_simulation()?;
         self.held.clear();
+        self.script_position = 0;
         Ok(())
     }
 
@@ -286,6 +382,40 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     pub fn step_frame(&mut self) -> Result<()> {
         let n = u64::from(self.sim.steps_per_frame());
         self.run_steps(n)
+    }
+
+    /// Runs for `duration` seconds of simulated time in frames, pressing and releasing
+    /// keys as `script` says. As in the original, keys are handled between frames: an
+    /// event takes effect before the first frame that starts at or after its time.
+    pub fn run_script(&mut self, script: &KeyScript, duration: f64) -> Result<()> {
+        let mut steps = self.sim.steps_in(duration)?;
+        while steps > 0 {
+            self.apply_due_events(script)?;
+            let n = steps.min(u64::from(self.sim.steps_per_frame()));
+            self.run_steps(n)?;
+            steps -= n;
+        }
+        Ok(())
+    }
+
+    /// One frame of a scripted run (see [`run_script`](Self::run_script)).
+    pub fn run_script_frame(&mut self, script: &KeyScript) -> Result<()> {
+        self.apply_due_events(script)?;
+        self.step_frame()
+    }
+
+    /// Applies the script's events that are due at the current time and not yet applied.
+    fn apply_due_events(&mut self, script: &KeyScript) -> Result<()> {
+        let now = self.sim.time() + 0.5 * self.sim.time_step();
+        while let Some(e) = script.events.get(self.script_position).filter(|e| e.time <= now) {
+            if e.down {
+                self.key_down(e.key)?;
+            } else {
+                self.key_up(e.key);
+            }
+            self.script_position += 1;
+        }
+        Ok(())
     }
 
     /// Runs for `duration` seconds of simulated time, in frames.

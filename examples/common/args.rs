@@ -28,7 +28,12 @@ fn usage(program: &str, default_duration: f64) -> String {
 
 /// Parses the command line; prints the usage and exits on `--help` or a mistake.
 pub fn parse(default_duration: f64) -> Args {
-    let mut argv = std::env::args();
+    parse_except(default_duration, &[])
+}
+
+/// As [`parse`], ignoring the example's own flags `extra` (flags without values).
+pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
+    let mut argv = std::env::args().filter(|a| !extra.contains(&a.as_str()));
     let program = argv.next().unwrap_or_else(|| "example".into());
     let mut args = Args { duration: default_duration, csv: None, plot: None, every: 1 };
     let fail = |msg: String| -> ! {

@@ -4,17 +4,25 @@
 mod arm_model;
 mod centrifugal_force;
 mod conical_pendulum;
+mod convoy;
 mod falling_ball;
 mod falling_balls;
+mod iros;
 mod simple_arm;
 mod thesis_table;
 mod two_ball_laser;
+mod vehicle_programs;
+mod vehicles;
 
 pub use arm_model::{ArmParameters, ArmState, ReducedArmModel};
 pub use centrifugal_force::{CentrifugalForce, CentrifugalRow};
 pub use conical_pendulum::{ConicalPendulum, PendulumRow};
+pub use convoy::Convoy;
 pub use falling_ball::{FallingBallSensors, HelloWorld};
 pub use falling_balls::FallingBalls;
+pub use iros::{DrivingRow, SinusoidalTerrain, SpeedProfile, SpeedProfileRow, TerrainRow, TrackingError, UserDriven};
 pub use simple_arm::{ArmParts, ControlRow, ControlledSimpleArm, SimpleArm, build_simple_arm};
 pub use thesis_table::thesis_table;
 pub use two_ball_laser::TwoBallLaser;
+pub use vehicle_programs::{Vehicle1, Vehicle2, VehicleWithArm, VehicleWithControlledArm, WAIST_TORQUE, WHEEL_TORQUE};
+pub use vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_vehicle, build_vehicle_arm, signed_ground_speed};

@@ -1,0 +1,108 @@
+//! IROS example 5: the user drives the mobile manipulator with the arrow keys while a
+//! PD controller holds the shoulder ('d'/'c' move its set-point, 'a'/'z' push the
+//! waist). Headless, a key script plays the user (`--keys FILE`, lines
+//! `TIME down|up KEY`); the default script drives a full circle. `--paper` uses the
+//! paper's friction limit (mu 50) instead of the code's 500. Prints the heading turned
+//! and the shoulder's largest error; `--csv` writes `t,x,z,q1,q2,sp,mv,torque_w1,torque_w2`,
+//! `--plot` the XZ path and the joint errors.
+//!
+//! `cargo run --release --example user_driven -- --paper --plot figures`
+
+#[path = "common/mod.rs"]
+mod common;
+
+use ars::programs::UserDriven;
+use ars::{KeyScript, ProgramRunner};
+use common::plot::{Series, line_chart};
+
+/// A short push forward, then left held (the wheels turn opposite ways: the vehicle
+/// spins) until it has turned a little more than once around, then released.
+const CIRCLE: &str = "\
+0.0 down up
+0.6 up up
+0.6 down left
+7.0 up left
+";
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let argv: Vec<String> = std::env::args().collect();
+    let paper = argv.iter().any(|a| a == "--paper");
+    let keys = argv.iter().position(|a| a == "--keys").and_then(|i| argv.get(i + 1)).cloned();
+    let mut skip: Vec<&str> = vec!["--paper"];
+    if let Some(k) = &keys {
+        skip.extend(["--keys", k.as_str()]);
+    }
+    let args = common::args::parse_except(9.0, &skip);
+    let script = match &keys {
+        Some(path) => KeyScript::parse(&std::fs::read_to_string(path)?)?,
+        None => KeyScript::parse(CIRCLE)?,
+    };
+    let mut program = UserDriven { paper_friction: paper, ..Default::default() };
+    let mut runner = ProgramRunner::new(&mut program)?;
+    let chassis = runner.program().vehicle.expect("built").chassis;
+    let mut heading = Vec::new();
+    let steps_per_frame = u64::from(runner.simulation().steps_per_frame());
+    let frames = runner.simulation().steps_in(args.duration)? / steps_per_frame;
+    for _ in 0..frames {
+        runner.run_script_frame(&script)?;
+        let r = runner.simulation().rotation(chassis)?;
+        let x = r * ars::nalgebra::Vector3::x();
+        heading.push((runner.simulation().time(), (-x.z).atan2(x.x)));
+    }
+    let turned = unwrap(heading.iter().map(|h| h.1)).last().copied().unwrap_or(0.0);
+    let rows = &runner.program().rows;
+    let settled = rows.iter().filter(|r| r.time > 1.0);
+    let worst = settled.map(|r| (r.setpoint - r.q2).abs()).fold(0.0, f64::max);
+    println!(
+        "friction limit {}: heading turned {:.1} deg; shoulder's largest error after 1 s {:.3} deg (paper: under 1.5 deg)",
+        if paper { "50 (paper)" } else { "500 (code)" },
+        turned.to_degrees(),
+        worst.to_degrees()
+    );
+    if let Some(path) = &args.csv {
+        let lines = rows.iter().step_by(args.every).map(|r| {
+            format!(
+                "{},{},{},{},{},{},{},{},{}",
+                r.time, r.x, r.z, r.q1, r.q2, r.setpoint, r.torque, r.wheel_torques.0, r.wheel_torques.1
+            )
+        });
+        common::args::write_csv(path, "t,x,z,q1,q2,sp,mv,torque_w1,torque_w2", lines)?;
+    }
+    if let Some(dir) = &args.plot {
+        let path: Vec<_> = rows.iter().step_by(40).map(|r| (r.x, r.z)).collect();
+        line_chart(
+            dir,
+            "ex5_path_xz.png",
+            "User-driven vehicle: path seen from above",
+            "x [m]",
+            "z [m]",
+            &[Series::new("chassis", path)],
+        )?;
+        let q1 = rows.iter().step_by(40).map(|r| (r.time, r.q1.to_degrees())).collect();
+        let e2 = rows.iter().step_by(40).map(|r| (r.time, (r.setpoint - r.q2).to_degrees())).collect();
+        line_chart(
+            dir,
+            "ex5_joint_errors.png",
+            "User-driven vehicle: arm joint errors",
+            "time [s]",
+            "error [deg]",
+            &[Series::new("waist (free, set-point 0)", q1), Series::new("shoulder (PD)", e2)],
+        )?;
+    }
+    Ok(())
+}
+
+/// Removes the 2π jumps of an angle that wraps at ±π.
+fn unwrap(angles: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::new();
+    for a in angles {
+        let next = match out.last() {
+            Some(&prev) => {
+                prev + (a - prev + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+            }
+            None => a,
+        };
+        out.push(next);
+    }
+    out
+}

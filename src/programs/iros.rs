@@ -1,0 +1,406 @@
+//! The IROS/IFAC mobile-manipulator examples 3, 4 and 5 of the original, with their
+//! parameters (ars-original §8.14–8.17). Where the papers and the code disagree, the
+//! code's behaviour is the default and the paper's is a flag.
+
+use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::{ActionMap, Key, Mass, Pid, Profile, Program, Repeat, Result, Simulation, SimulationBuilder};
+
+use super::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
+use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_vehicle, build_vehicle_arm, signed_ground_speed};
+
+/// 50 frames/s × 80 steps: dt = 0.25 ms.
+fn iros_timing(builder: SimulationBuilder) -> SimulationBuilder {
+    builder.time_step(1.0 / 50.0 / 80.0).steps_per_frame(80)
+}
+
+/// One step of example 3.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpeedProfileRow {
+    /// Time at the start of the step, s.
+    pub time: f64,
+    /// Chassis X, m.
+    pub x: f64,
+    /// Ground speed of the chassis, signed by its X velocity, m/s.
+    pub speed: f64,
+    /// Speed set-point, m/s.
+    pub setpoint: f64,
+    /// Waist angle and rate.
+    pub q1: f64,
+    /// Waist rate, rad/s.
+    pub q1_rate: f64,
+    /// Shoulder angle, rad.
+    pub q2: f64,
+    /// Shoulder rate, rad/s.
+    pub q2_rate: f64,
+    /// Torque on each wheel, N·m.
+    pub wheel_torque: f64,
+}
+
+/// IROS example 3, "mobile manipulator with freely-coasting 2-DOF arm": the vehicle
+/// (at (−4, 0.5, 4), 1 kg links) follows a trapezoidal speed profile (0 until 1 s, up to
+/// 1 m/s at 5 s, held to 9 s, down to 0 at 13 s) with the wheel torque
+/// `10 · (sp − v)` on both wheels; the arm joints have viscous friction 0.02. The code
+/// is proportional only although the thesis calls it PD: `derivative_gain` (default 0)
+/// adds the paper's derivative term.
+#[derive(Clone, Debug)]
+pub struct SpeedProfile {
+    /// Proportional gain, N·m per m/s.
+    pub gain: f64,
+    /// Derivative gain of the paper's PD variant, N·m per m/s² (0: the code's P-only).
+    pub derivative_gain: f64,
+    /// The speed set-point.
+    pub profile: Profile,
+    /// The vehicle.
+    pub vehicle: Option<VehicleParts>,
+    /// The arm.
+    pub arm: Option<VehicleArm>,
+    /// Every step's row.
+    pub rows: Vec<SpeedProfileRow>,
+    previous_error: f64,
+}
+
+impl Default for SpeedProfile {
+    fn default() -> Self {
+        SpeedProfile {
+            gain: 10.0,
+            derivative_gain: 0.0,
+            profile: Profile::new(vec![(0.0, 0.0), (1.0, 0.0), (5.0, 1.0), (9.0, 1.0), (13.0, 0.0), (14.0, 0.0)])
+                .expect("a valid profile"),
+            vehicle: None,
+            arm: None,
+            rows: Vec::new(),
+            previous_error: 0.0,
+        }
+    }
+}
+
+/// How well the speed follows its set-point over a stretch of time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrackingError {
+    /// Mean of `v − sp`, m/s.
+    pub mean: f64,
+    /// Mean of `|v − sp|`, m/s.
+    pub mean_abs: f64,
+    /// Largest `|v − sp|`, m/s.
+    pub worst: f64,
+}
+
+impl SpeedProfile {
+    /// The speed error on the 6–9 s plateau of the profile (1 m/s), if the run got there.
+    pub fn plateau_error(rows: &[SpeedProfileRow]) -> Option<TrackingError> {
+        let errors: Vec<f64> =
+            rows.iter().filter(|r| (6.0..9.0).contains(&r.time)).map(|r| r.speed - r.setpoint).collect();
+        if errors.is_empty() {
+            return None;
+        }
+        let n = errors.len() as f64;
+        Some(TrackingError {
+            mean: errors.iter().sum::<f64>() / n,
+            mean_abs: errors.iter().map(|e| e.abs()).sum::<f64>() / n,
+            worst: errors.iter().fold(0.0, |w: f64, e| w.max(e.abs())),
+        })
+    }
+
+    /// The paper's PD variant, with derivative gain `kd` (N·m per m/s²).
+    pub fn with_derivative_gain(kd: f64) -> Self {
+        SpeedProfile { derivative_gain: kd, ..Default::default() }
+    }
+
+    /// Viscous friction of the arm joints, N·m·s.
+    pub const ARM_FRICTION: f64 = 0.02;
+    /// Where the vehicle starts.
+    pub const OFFSET: Vector3<f64> = Vector3::new(-4.0, 0.5, 4.0);
+}
+
+impl Program for SpeedProfile {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        iros_timing(builder).floor_plane(Vector3::y(), 0.0)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let vehicle = build_vehicle(sim, &VehicleSpec { offset: Self::OFFSET, ..Default::default() })?;
+        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Total(1.0), "")?);
+        self.vehicle = Some(vehicle);
+        Ok(())
+    }
+
+    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
+        let time = sim.time();
+        let speed = signed_ground_speed(sim, v.chassis)?;
+        let setpoint = self.profile.value(time);
+        let error = setpoint - speed;
+        let mut torque = self.gain * error;
+        if self.derivative_gain != 0.0 {
+            torque += self.derivative_gain * (error - self.previous_error) / sim.time_step();
+        }
+        self.previous_error = error;
+        sim.joint_mut(v.w1)?.add_torque(torque)?;
+        sim.joint_mut(v.w2)?.add_torque(torque)?;
+        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
+        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * s1.rate)?;
+        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)?;
+        let x = sim.position(v.chassis)?.x;
+        self.rows.push(SpeedProfileRow {
+            time,
+            x,
+            speed,
+            setpoint,
+            q1: s1.position,
+            q1_rate: s1.rate,
+            q2: s2.position,
+            q2_rate: s2.rate,
+            wheel_torque: torque,
+        });
+        Ok(())
+    }
+
+    fn key_bindings(&self) -> ActionMap<Self> {
+        arm_vehicle_bindings!(Self, WHEEL_TORQUE)
+    }
+}
+
+/// One step of example 4.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TerrainRow {
+    /// Time at the start of the step, s.
+    pub time: f64,
+    /// Chassis position, m.
+    pub position: Point3<f64>,
+    /// Mean X of the two wheel centres, m.
+    pub wheels_x: f64,
+    /// Waist angle, rad.
+    pub q1: f64,
+    /// Waist PD torque, N·m.
+    pub torque1: f64,
+    /// Shoulder angle, rad.
+    pub q2: f64,
+    /// Shoulder PD torque, N·m.
+    pub torque2: f64,
+    /// Torque on each wheel, N·m.
+    pub wheel_torque: f64,
+}
+
+/// IROS example 4: the vehicle (1 kg links) drives along +X over a 40 × 20 m
+/// triangle-mesh terrain `y = 0.7 sin(0.5 x)` placed at (−10, 0, −10), with 4 N·m on
+/// each wheel while its speed is under 2 m/s (bang-bang); PD controllers (Kp 20, Kd 15)
+/// hold both arm joints at 0 (upright), with viscous friction 0.02.
+#[derive(Clone, Debug)]
+pub struct SinusoidalTerrain {
+    /// The vehicle.
+    pub vehicle: Option<VehicleParts>,
+    /// The arm.
+    pub arm: Option<VehicleArm>,
+    /// Waist and shoulder controllers.
+    pub pd: (Pid, Pid),
+    /// Every step's row.
+    pub rows: Vec<TerrainRow>,
+}
+
+impl Default for SinusoidalTerrain {
+    fn default() -> Self {
+        SinusoidalTerrain { vehicle: None, arm: None, pd: (Pid::pd(20.0, 15.0), Pid::pd(20.0, 15.0)), rows: Vec::new() }
+    }
+}
+
+impl SinusoidalTerrain {
+    /// Where the vehicle starts.
+    pub const OFFSET: Vector3<f64> = Vector3::new(-1.05, -0.35, 5.0);
+    /// Where the terrain's first vertex is.
+    pub const TERRAIN_CENTER: Point3<f64> = Point3::new(-10.0, 0.0, -10.0);
+    /// Wheel torque while slower than [`MAX_SPEED`](Self::MAX_SPEED), N·m.
+    pub const WHEEL_TORQUE: f64 = 4.0;
+    /// Speed above which the wheels coast, m/s.
+    pub const MAX_SPEED: f64 = 2.0;
+    /// Viscous friction of the arm joints, N·m·s.
+    pub const ARM_FRICTION: f64 = 0.02;
+
+    /// X of the terrain's far (+X) edge, m.
+    pub const TERRAIN_END_X: f64 = -10.0 + 39.0;
+
+    /// When the wheels pass the terrain's +X edge (the vehicle drops off), if they do.
+    pub fn leaves_terrain(rows: &[TerrainRow]) -> Option<f64> {
+        rows.iter().find(|r| r.wheels_x > Self::TERRAIN_END_X).map(|r| r.time)
+    }
+
+    /// The terrain: 40 × 20 vertices on a 1 m grid, `y = 0.7 sin(0.5 x)`.
+    pub fn terrain() -> Result<ars_core::Heightfield> {
+        ars_core::Heightfield::sinusoidal(40, 20, 0.7, 0.5)
+    }
+}
+
+impl Program for SinusoidalTerrain {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        iros_timing(builder)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let terrain = Self::terrain()?;
+        let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.faces(), Self::TERRAIN_CENTER)?;
+        sim.set_color(floor, [0.7, 0.7, 0.7])?;
+        let vehicle = build_vehicle(sim, &VehicleSpec { offset: Self::OFFSET, ..Default::default() })?;
+        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Total(1.0), "")?);
+        self.vehicle = Some(vehicle);
+        Ok(())
+    }
+
+    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
+        let vel = sim.body(v.chassis)?.linear_velocity();
+        let speed = (vel.x * vel.x + vel.y * vel.y + vel.z * vel.z).sqrt();
+        let wheel_torque = if speed < Self::MAX_SPEED { Self::WHEEL_TORQUE } else { 0.0 };
+        sim.joint_mut(v.w1)?.add_torque(wheel_torque)?;
+        sim.joint_mut(v.w2)?.add_torque(wheel_torque)?;
+        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
+        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * s1.rate)?;
+        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)?;
+        let dt = sim.time_step();
+        let torque1 = self.pd.0.update(0.0 - s1.position, dt);
+        let torque2 = self.pd.1.update(0.0 - s2.position, dt);
+        sim.joint_mut(a.r1)?.add_torque(torque1)?;
+        sim.joint_mut(a.r2)?.add_torque(torque2)?;
+        let position = sim.position(v.chassis)?;
+        let wheels_x = 0.5 * (sim.position(v.wheel_r)?.x + sim.position(v.wheel_l)?.x);
+        self.rows.push(TerrainRow {
+            time: sim.time(),
+            position,
+            wheels_x,
+            q1: s1.position,
+            torque1,
+            q2: s2.position,
+            torque2,
+            wheel_torque,
+        });
+        Ok(())
+    }
+}
+
+/// One step of example 5.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DrivingRow {
+    /// Time at the start of the step, s.
+    pub time: f64,
+    /// Chassis X, m.
+    pub x: f64,
+    /// Chassis Z, m.
+    pub z: f64,
+    /// Waist angle, rad.
+    pub q1: f64,
+    /// Shoulder angle, rad.
+    pub q2: f64,
+    /// Shoulder set-point, rad.
+    pub setpoint: f64,
+    /// Shoulder PD torque, N·m.
+    pub torque: f64,
+    /// Torques the keys put on the right and left wheels in the previous step, N·m.
+    pub wheel_torques: (f64, f64),
+}
+
+/// IROS example 5, the user-driven vehicle: held arrows drive the wheels (±3 N·m, 1 kg
+/// wheels), 'd'/'c' move the shoulder set-point by ±0.1 rad, 'a'/'z' push the waist;
+/// a PD controller (Kp 3, Kd 3) holds the shoulder. The paper's figure needs a friction
+/// limit of 50 instead of the code's 500: set `paper_friction`.
+#[derive(Clone, Debug)]
+pub struct UserDriven {
+    /// Use the paper's contact friction (mu 50) instead of the code's 500.
+    pub paper_friction: bool,
+    /// The vehicle.
+    pub vehicle: Option<VehicleParts>,
+    /// The arm.
+    pub arm: Option<VehicleArm>,
+    /// Shoulder set-point, rad.
+    pub setpoint: f64,
+    /// The shoulder's controller.
+    pub pd: Pid,
+    /// Torques the keys put on the wheels since the last step.
+    pub wheel_torques: (f64, f64),
+    /// Every step's row.
+    pub rows: Vec<DrivingRow>,
+}
+
+impl Default for UserDriven {
+    fn default() -> Self {
+        UserDriven {
+            paper_friction: false,
+            vehicle: None,
+            arm: None,
+            setpoint: 0.0,
+            pd: Pid::pd(3.0, 3.0),
+            wheel_torques: (0.0, 0.0),
+            rows: Vec::new(),
+        }
+    }
+}
+
+impl UserDriven {
+    fn drive(&mut self, sim: &mut Simulation, right: f64, left: f64) -> Result<()> {
+        let v = self.vehicle.expect("built");
+        sim.joint_mut(v.w1)?.add_torque(right)?;
+        sim.joint_mut(v.w2)?.add_torque(left)?;
+        self.wheel_torques.0 += right;
+        self.wheel_torques.1 += left;
+        Ok(())
+    }
+}
+
+impl Program for UserDriven {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        let b = iros_timing(builder).floor_plane(Vector3::y(), 0.0);
+        if self.paper_friction { b.mu(50.0) } else { b }
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let vehicle = build_vehicle(sim, &VehicleSpec { wheel_mass: Mass::Total(1.0), ..Default::default() })?;
+        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Density(1.0), "")?);
+        self.vehicle = Some(vehicle);
+        Ok(())
+    }
+
+    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
+        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
+        let torque = self.pd.update(self.setpoint - s2.position, sim.time_step());
+        sim.joint_mut(a.r1)?.add_torque(0.0)?;
+        sim.joint_mut(a.r2)?.add_torque(torque)?;
+        let p = sim.position(v.chassis)?;
+        self.rows.push(DrivingRow {
+            time: sim.time(),
+            x: p.x,
+            z: p.z,
+            q1: s1.position,
+            q2: s2.position,
+            setpoint: self.setpoint,
+            torque,
+            wheel_torques: self.wheel_torques,
+        });
+        self.wheel_torques = (0.0, 0.0);
+        Ok(())
+    }
+
+    fn key_bindings(&self) -> ActionMap<Self> {
+        let t = WHEEL_TORQUE;
+        ActionMap::new()
+            .add(Key::Up, move |p: &mut Self, sim| p.drive(sim, t, t), Repeat::WhileHeld)
+            .add(Key::Down, move |p: &mut Self, sim| p.drive(sim, -t, -t), Repeat::WhileHeld)
+            .add(Key::Left, move |p: &mut Self, sim| p.drive(sim, -t, t), Repeat::WhileHeld)
+            .add(Key::Right, move |p: &mut Self, sim| p.drive(sim, t, -t), Repeat::WhileHeld)
+            .add(
+                Key::Char('d'),
+                |p: &mut Self, _| {
+                    p.setpoint += 0.1;
+                    Ok(())
+                },
+                Repeat::Once,
+            )
+            .add(
+                Key::Char('c'),
+                |p: &mut Self, _| {
+                    p.setpoint -= 0.1;
+                    Ok(())
+                },
+                Repeat::Once,
+            )
+            .add(Key::Char('a'), |p: &mut Self, sim| push_waist(p.arm, sim, 3.0), Repeat::Once)
+            .add(Key::Char('z'), |p: &mut Self, sim| push_waist(p.arm, sim, -3.0), Repeat::Once)
+    }
+}

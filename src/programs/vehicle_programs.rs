@@ -1,0 +1,279 @@
+//! The original's vehicle demos: `Vehicle1`, `Vehicle2`, `VehicleWithArm` and
+//! `VehicleWithControlledArm`, driven with the arrow keys.
+
+use ars_core::nalgebra::Vector3;
+use ars_core::{ActionMap, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation, SimulationBuilder};
+
+use super::simple_arm::ControlRow;
+use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_vehicle, build_vehicle_arm};
+
+fn torques(sim: &mut Simulation, pairs: &[(JointId, f64)]) -> Result<()> {
+    pairs.iter().try_for_each(|&(j, t)| sim.joint_mut(j)?.add_torque(t))
+}
+
+/// `Vehicle1`: four thin cylinder wheels (length 0.1, radius 0.2, density 1) hinged
+/// about Z to a box chassis (1.3 × 0.2 × 0.6 m, density 10), one metre up. The arrow
+/// keys add 500 N·m (turning: ±250) to the wheels for one step.
+#[derive(Clone, Debug, Default)]
+pub struct Vehicle1 {
+    /// The chassis.
+    pub chassis: Option<ObjectId>,
+    /// Wheel joints r1..r4.
+    pub wheels: Vec<JointId>,
+}
+
+impl Vehicle1 {
+    /// Torque of one key press, N·m.
+    pub const TORQUE: f64 = 500.0;
+
+    fn drive(&self, sim: &mut Simulation, t: [f64; 4]) -> Result<()> {
+        let w = &self.wheels;
+        torques(sim, &[(w[0], t[0]), (w[1], t[1]), (w[2], t[2]), (w[3], t[3])])
+    }
+}
+
+impl Program for Vehicle1 {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let first = Vector3::new(1.0, 1.0, 1.0);
+        let offsets = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
+        let mut wheels = Vec::new();
+        for o in offsets {
+            wheels.push(sim.add_cylinder(
+                0.1,
+                0.2,
+                [o[0] + first.x, o[1] + first.y, o[2] + first.z],
+                Mass::Density(1.0),
+            )?);
+        }
+        let chassis = sim.add_box([1.3, 0.2, 0.6], [1.5, 1.0, 1.5], Mass::Density(10.0))?;
+        for (i, w) in wheels.iter().enumerate() {
+            let j = sim.add_rotary_joint(&format!("r{}", i + 1), chassis, *w, None, Vector3::z())?;
+            self.wheels.push(j);
+        }
+        self.chassis = Some(chassis);
+        Ok(())
+    }
+
+    fn key_bindings(&self) -> ActionMap<Self> {
+        let t = Self::TORQUE;
+        ActionMap::new()
+            .add(Key::Up, move |p: &mut Self, sim| p.drive(sim, [t, t, 0.0, 0.0]), Repeat::Once)
+            .add(Key::Down, move |p: &mut Self, sim| p.drive(sim, [-t, -t, 0.0, 0.0]), Repeat::Once)
+            .add(Key::Left, move |p: &mut Self, sim| p.drive(sim, [-t / 2.0, t / 2.0, -t / 2.0, t / 2.0]), Repeat::Once)
+            .add(
+                Key::Right,
+                move |p: &mut Self, sim| p.drive(sim, [t / 2.0, -t / 2.0, t / 2.0, -t / 2.0]),
+                Repeat::Once,
+            )
+    }
+}
+
+/// `Vehicle2`: a differential-drive base (two cylinder wheels, a caster ball, a 6 kg
+/// chassis) dropped from 0.7 m at (3, 1, 3); the arrow keys, held, drive the wheels
+/// with ±30 N·m in every step. (The original named the wheel joints r1 and r2; here
+/// they are w1 and w2 as on every vehicle.)
+#[derive(Clone, Debug, Default)]
+pub struct Vehicle2 {
+    /// The vehicle.
+    pub vehicle: Option<VehicleParts>,
+}
+
+impl Vehicle2 {
+    /// Wheel torque while a key is held, N·m.
+    pub const TORQUE: f64 = 30.0;
+}
+
+pub(crate) fn drive(vehicle: Option<VehicleParts>, sim: &mut Simulation, right: f64, left: f64) -> Result<()> {
+    let v = vehicle.expect("built");
+    torques(sim, &[(v.w1, right), (v.w2, left)])
+}
+
+impl Program for Vehicle2 {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let spec = VehicleSpec {
+            offset: Vector3::new(3.0, 1.0, 3.0),
+            chassis_mass: Mass::Density(10.0),
+            ..Default::default()
+        };
+        self.vehicle = Some(build_vehicle(sim, &spec)?);
+        Ok(())
+    }
+
+    fn key_bindings(&self) -> ActionMap<Self> {
+        let t = Self::TORQUE;
+        ActionMap::new()
+            .add(Key::Up, move |p: &mut Self, sim| drive(p.vehicle, sim, t, t), Repeat::WhileHeld)
+            .add(Key::Down, move |p: &mut Self, sim| drive(p.vehicle, sim, -t, -t), Repeat::WhileHeld)
+            .add(Key::Left, move |p: &mut Self, sim| drive(p.vehicle, sim, -t, t), Repeat::WhileHeld)
+            .add(Key::Right, move |p: &mut Self, sim| drive(p.vehicle, sim, t, -t), Repeat::WhileHeld)
+    }
+}
+
+/// `VehicleWithArm`: the differential-drive base at (2, 0.35, 4) carrying the 2-DOF arm
+/// (links of density 1), 0.1 ms steps. Held arrows drive the wheels with ±3 N·m; 'a'/'z'
+/// push the waist with ±3 N·m for one step. The original's default is a frictionless
+/// arm; `arm_friction` adds `−0.01 · rate` on both arm joints. Records the arm's rates.
+#[derive(Clone, Debug, Default)]
+pub struct VehicleWithArm {
+    /// Capsule wheels instead of cylinders.
+    pub capsule_wheels: bool,
+    /// Viscous friction on the arm joints (the original's `frictionless_arm = False`).
+    pub arm_friction: bool,
+    /// The vehicle.
+    pub vehicle: Option<VehicleParts>,
+    /// The arm.
+    pub arm: Option<VehicleArm>,
+    /// `(time, q1 rate, q2 rate)` of every step.
+    pub rates: Vec<(f64, f64, f64)>,
+}
+
+
+/// Wheel torque of the arm vehicles while an arrow is held, N·m.
+pub const WHEEL_TORQUE: f64 = 3.0;
+/// Waist torque of one 'a'/'z' press, N·m.
+pub const WAIST_TORQUE: f64 = 3.0;
+
+/// Pushes the waist of `arm` with `torque` (and adds nothing to the shoulder), as the
+/// original's 'a'/'z' keys did.
+pub(crate) fn push_waist(arm: Option<VehicleArm>, sim: &mut Simulation, torque: f64) -> Result<()> {
+    let a = arm.expect("built");
+    torques(sim, &[(a.r1, torque), (a.r2, 0.0)])
+}
+
+/// The key bindings shared by the arm vehicles: held arrows drive the wheels with
+/// `$torque`, 'a'/'z' push the waist for one step.
+macro_rules! arm_vehicle_bindings {
+    ($ty:ty, $torque:expr) => {{
+        let t: f64 = $torque;
+        $crate::ActionMap::<$ty>::new()
+            .add(
+                Key::Up,
+                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, t, t),
+                Repeat::WhileHeld,
+            )
+            .add(
+                Key::Down,
+                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, -t, -t),
+                Repeat::WhileHeld,
+            )
+            .add(
+                Key::Left,
+                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, -t, t),
+                Repeat::WhileHeld,
+            )
+            .add(
+                Key::Right,
+                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, t, -t),
+                Repeat::WhileHeld,
+            )
+            .add(
+                Key::Char('a'),
+                |p: &mut $ty, sim| {
+                    $crate::programs::vehicle_programs::push_waist(p.arm, sim, $crate::programs::WAIST_TORQUE)
+                },
+                Repeat::Once,
+            )
+            .add(
+                Key::Char('z'),
+                |p: &mut $ty, sim| {
+                    $crate::programs::vehicle_programs::push_waist(p.arm, sim, -$crate::programs::WAIST_TORQUE)
+                },
+                Repeat::Once,
+            )
+    }};
+}
+pub(crate) use arm_vehicle_bindings;
+
+impl Program for VehicleWithArm {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        builder.time_step(1.0 / 50.0 / 200.0).steps_per_frame(200).floor_plane(Vector3::y(), 0.0)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let spec = VehicleSpec { capsule_wheels: self.capsule_wheels, ..Default::default() };
+        let vehicle = build_vehicle(sim, &spec)?;
+        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Density(1.0), "")?);
+        self.vehicle = Some(vehicle);
+        Ok(())
+    }
+
+    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let a = self.arm.expect("built");
+        let (q1, q2) = (sim.joint_state(a.r1)?.rate, sim.joint_state(a.r2)?.rate);
+        if self.arm_friction {
+            torques(sim, &[(a.r1, -0.01 * q1), (a.r2, -0.01 * q2)])?;
+        }
+        self.rates.push((sim.time(), q1, q2));
+        Ok(())
+    }
+
+    fn key_bindings(&self) -> ActionMap<Self> {
+        arm_vehicle_bindings!(Self, WHEEL_TORQUE)
+    }
+}
+
+/// `VehicleWithControlledArm`: [`VehicleWithArm`] whose shoulder is held at a
+/// set-point by a PD controller (Kp 1, Kd 0.5; 'd'/'c' move the set-point by ±0.1 rad).
+/// As in the original, no arm friction is applied. Records `time, sp, cv, error, torque`.
+#[derive(Clone, Debug)]
+pub struct VehicleWithControlledArm {
+    /// The vehicle.
+    pub vehicle: Option<VehicleParts>,
+    /// The arm.
+    pub arm: Option<VehicleArm>,
+    /// Shoulder set-point, rad.
+    pub setpoint: f64,
+    /// The shoulder's controller.
+    pub pd: Pid,
+    /// Every step's row.
+    pub rows: Vec<ControlRow>,
+}
+
+impl Default for VehicleWithControlledArm {
+    fn default() -> Self {
+        VehicleWithControlledArm { vehicle: None, arm: None, setpoint: 0.0, pd: Pid::pd(1.0, 0.5), rows: Vec::new() }
+    }
+}
+
+impl Program for VehicleWithControlledArm {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        VehicleWithArm::default().configure(builder)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let vehicle = build_vehicle(sim, &VehicleSpec::default())?;
+        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Density(1.0), "")?);
+        self.vehicle = Some(vehicle);
+        Ok(())
+    }
+
+    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let a = self.arm.expect("built");
+        let cv = sim.joint_state(a.r2)?.position;
+        let error = self.setpoint - cv;
+        let torque = self.pd.update(error, sim.time_step());
+        torques(sim, &[(a.r1, 0.0), (a.r2, torque)])?;
+        self.rows.push(ControlRow { time: sim.time(), setpoint: self.setpoint, angle: cv, error, torque });
+        Ok(())
+    }
+
+    fn key_bindings(&self) -> ActionMap<Self> {
+        arm_vehicle_bindings!(Self, WHEEL_TORQUE)
+            .add(
+                Key::Char('d'),
+                |p: &mut Self, _| {
+                    p.setpoint += 0.1;
+                    Ok(())
+                },
+                Repeat::Once,
+            )
+            .add(
+                Key::Char('c'),
+                |p: &mut Self, _| {
+                    p.setpoint -= 0.1;
+                    Ok(())
+                },
+                Repeat::Once,
+            )
+    }
+}
