@@ -128,3 +128,47 @@ fn falling_ball_program_is_bit_identical_to_native_ode() {
         assert!(same_bits(&rs, &cs), "after step {step}:\n C    {cs:?}\n Rust {rs:?}");
     }
 }
+
+fn assert_rows_bit_identical<P: ars::Program>(
+    name: &str,
+    mut program: P,
+    mut c: CScene,
+    seconds: f64,
+    row: impl Fn(&P) -> [f64; 9],
+) {
+    let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
+    let steps = runner.simulation().steps_in(seconds).unwrap();
+    for step in 1..=steps {
+        runner.step().unwrap();
+        c.step(1);
+        let (rust, native) = (row(runner.program()), c.row());
+        assert!(same_bits(&rust, &native), "{name}: CSV row of step {step} differs:\n C    {native:?}\n Rust {rust:?}");
+        for i in 0..c.body_count() {
+            let b = runner.simulation().world().bodies().nth(i).unwrap();
+            let body = runner.simulation().world().body(b).unwrap();
+            let (p, v) = (body.position(), body.linear_velocity());
+            let rs = [p.x, p.y, p.z, v.x, v.y, v.z];
+            let cs = c.body_state(i);
+            let cs = [cs[0], cs[1], cs[2], cs[7], cs[8], cs[9]];
+            assert!(same_bits(&rs, &cs), "{name}: body {i} differs after step {step}");
+        }
+    }
+}
+
+#[test]
+fn example_3_speed_profile_csv_is_bit_identical_to_native_ode_for_three_seconds() {
+    use ars::programs::SpeedProfile;
+    assert_rows_bit_identical("example 3", SpeedProfile::default(), CScene::speed_profile(), 3.0, |p| {
+        let r = p.rows.last().unwrap();
+        [r.time, r.x, r.setpoint, r.speed, r.wheel_torque, r.q1, r.q1_rate, r.q2, r.q2_rate]
+    });
+}
+
+#[test]
+fn example_4_sinusoidal_terrain_csv_is_bit_identical_to_native_ode_for_three_seconds() {
+    use ars::programs::SinusoidalTerrain;
+    assert_rows_bit_identical("example 4", SinusoidalTerrain::default(), CScene::sinusoidal_terrain(), 3.0, |p| {
+        let r = p.rows.last().unwrap();
+        [r.time, r.position.x, r.position.y, r.position.z, r.q1, r.torque1, r.q2, r.torque2, r.wheel_torque]
+    });
+}

@@ -127,7 +127,6 @@ pub struct VehicleWithArm {
     pub rates: Vec<(f64, f64, f64)>,
 }
 
-
 /// Wheel torque of the arm vehicles while an arrow is held, N·m.
 pub const WHEEL_TORQUE: f64 = 3.0;
 /// Waist torque of one 'a'/'z' press, N·m.

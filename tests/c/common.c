@@ -87,6 +87,7 @@ void ars_c_scene_step(ArsCScene *s, int steps)
 int ars_c_scene_body_count(const ArsCScene *s) { return s->body_count; }
 dReal ars_c_scene_ray_distance(const ArsCScene *s) { return s->ray_distance; }
 dReal ars_c_scene_time(const ArsCScene *s) { return s->time; }
+void ars_c_scene_row(const ArsCScene *s, dReal out[9]) { memcpy(out, s->row, sizeof s->row); }
 
 void ars_c_rotate(dBodyID body, dReal x, dReal y, dReal z, dReal angle)
 {
@@ -127,6 +128,11 @@ void ars_c_scene_free(ArsCScene *s)
      * them one by one. Neither affects the trajectories. */
     dSpaceSetCleanup(s->space, 1);
     dSpaceDestroy(s->space);
+    if (s->trimesh) {
+        dGeomTriMeshDataDestroy(s->trimesh);
+        free(s->trimesh_vertices);
+        free(s->trimesh_indices);
+    }
     dWorldSetStepThreadingImplementation(s->world, NULL, NULL);
     dThreadingFreeImplementation(s->threading);
     dWorldDestroy(s->world);

@@ -27,6 +27,12 @@ struct ArsCScene {
     dGeomID ray;                       /* a laser's ray, or 0 */
     dReal ray_distance;                /* closest hit of the last collision, or -1 */
     dReal rates[2];                    /* conical pendulum: joint rates of the last step */
+    dBodyID chassis, wheels[2];        /* mobile manipulators */
+    dReal pd_state[2][2];              /* per arm joint: PID integral, previous error */
+    dReal row[9];                      /* what the last pre-step hook recorded */
+    dTriMeshDataID trimesh;
+    dReal *trimesh_vertices;
+    dTriIndex *trimesh_indices;
     void (*pre_step)(ArsCScene *scene);
     dContactGeom scratch[ARS_C_MAX_CONTACTS];
 };
@@ -41,6 +47,9 @@ ArsCScene *ars_c_hinge_chain_new(void);
 ArsCScene *ars_c_drop_pile_new(int count);
 ArsCScene *ars_c_two_ball_laser_new(void);
 ArsCScene *ars_c_conical_pendulum_new(void);
+ArsCScene *ars_c_speed_profile_new(void);
+ArsCScene *ars_c_sinusoidal_terrain_new(void);
+void ars_c_scene_row(const ArsCScene *scene, dReal out[9]);
 
 /* Run `steps` steps: pre-step hook, collide, dWorldStep, empty the contact group. */
 void ars_c_scene_step(ArsCScene *scene, int steps);

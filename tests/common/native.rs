@@ -17,6 +17,9 @@ unsafe extern "C" {
     fn ars_c_drop_pile_new(count: c_int) -> *mut ArsCScene;
     fn ars_c_two_ball_laser_new() -> *mut ArsCScene;
     fn ars_c_conical_pendulum_new() -> *mut ArsCScene;
+    fn ars_c_speed_profile_new() -> *mut ArsCScene;
+    fn ars_c_sinusoidal_terrain_new() -> *mut ArsCScene;
+    fn ars_c_scene_row(scene: *const ArsCScene, out: *mut f64);
     fn ars_c_scene_ray_distance(scene: *const ArsCScene) -> f64;
     fn ars_c_scene_time(scene: *const ArsCScene) -> f64;
     fn ars_c_drop_pile_position(i: c_int, out: *mut f64);
@@ -57,6 +60,21 @@ impl CScene {
     pub fn conical_pendulum() -> Self {
         Self::wrap(ars_c_conical_pendulum_new)
     }
+    /// IROS example 3 (the `SpeedProfile` program).
+    pub fn speed_profile() -> Self {
+        Self::wrap(ars_c_speed_profile_new)
+    }
+    /// IROS example 4 (the `SinusoidalTerrain` program).
+    pub fn sinusoidal_terrain() -> Self {
+        Self::wrap(ars_c_sinusoidal_terrain_new)
+    }
+    /// The row the last pre-step hook recorded (the programs' CSV columns).
+    pub fn row(&self) -> [f64; 9] {
+        let mut out = [0.0; 9];
+        // SAFETY: the scene is live and `out` holds 9 reals.
+        unsafe { ars_c_scene_row(self.0, out.as_mut_ptr()) };
+        out
+    }
     /// Closest ray hit of the last step, if any.
     pub fn ray_distance(&self) -> Option<f64> {
         // SAFETY: the scene is live.
@@ -78,6 +96,9 @@ impl CScene {
     }
     /// Runs `n` steps.
     pub fn step(&mut self, n: usize) {
+        // The trimesh collider shares a process-wide cache in this build of ODE: take the
+        // lock the Rust worlds with meshes take, so parallel tests do not race.
+        let _guard = ars_core::lock_ode_global_state();
         // SAFETY: the scene is live.
         unsafe { ars_c_scene_step(self.0, n as c_int) }
     }
