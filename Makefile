@@ -42,6 +42,9 @@ figures: deps
 	cargo run --release --example falling_ball_sensors -- --csv figures/falling_ball.csv --plot figures
 	cargo run --release --example laser -- --csv figures/laser.csv --plot figures
 	cargo run --release --example conical_pendulum -- --csv figures/conical_pendulum.csv --every 40 --plot figures
+	cargo run --release --example speed_profile -- --csv figures/speed_profile.csv --plot figures
+	cargo run --release --example sinusoidal_terrain -- --csv figures/sinusoidal_terrain.csv --plot figures
+	cargo run --release --example user_driven -- --paper --csv figures/user_driven.csv --plot figures
 	@echo "figures written to $(CURDIR)/figures"
 
 readme-table: deps

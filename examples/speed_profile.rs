@@ -10,7 +10,7 @@ mod common;
 
 use ars::Program;
 use ars::programs::SpeedProfile;
-use common::plot::{Series, line_chart};
+use common::plot::{Series, line_chart, unwrapped};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pd = std::env::args().any(|a| a == "--pd");
@@ -69,7 +69,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "Speed profile: arm joint angles (fig. 3.4, bottom)",
             "time [s]",
             "angle [rad]",
-            &[Series::new("waist q1", s(|r| r.q1)), Series::new("shoulder q2", s(|r| r.q2))],
+            &[Series::new("waist q1", unwrapped(s(|r| r.q1))), Series::new("shoulder q2", unwrapped(s(|r| r.q2)))],
         )?;
     }
     Ok(())

@@ -13,7 +13,7 @@ mod common;
 
 use ars::programs::UserDriven;
 use ars::{KeyScript, ProgramRunner};
-use common::plot::{Series, line_chart};
+use common::plot::{Series, line_chart, unwrapped};
 
 /// A short push forward, then left held (the wheels turn opposite ways: the vehicle
 /// spins) until it has turned a little more than once around, then released.
@@ -49,7 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let x = r * ars::nalgebra::Vector3::x();
         heading.push((runner.simulation().time(), (-x.z).atan2(x.x)));
     }
-    let turned = unwrap(heading.iter().map(|h| h.1)).last().copied().unwrap_or(0.0);
+    let turned = unwrapped(heading.clone()).last().map_or(0.0, |h| h.1);
     let rows = &runner.program().rows;
     let settled = rows.iter().filter(|r| r.time > 1.0);
     let worst = settled.map(|r| (r.setpoint - r.q2).abs()).fold(0.0, f64::max);
@@ -90,19 +90,4 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         )?;
     }
     Ok(())
-}
-
-/// Removes the 2π jumps of an angle that wraps at ±π.
-fn unwrap(angles: impl Iterator<Item = f64>) -> Vec<f64> {
-    let mut out: Vec<f64> = Vec::new();
-    for a in angles {
-        let next = match out.last() {
-            Some(&prev) => {
-                prev + (a - prev + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
-            }
-            None => a,
-        };
-        out.push(next);
-    }
-    out
 }

@@ -90,3 +90,18 @@ pub fn line_chart(
 pub fn over_time<R>(samples: &[ars::Sample<R>], f: impl Fn(&R) -> f64) -> Vec<(f64, f64)> {
     samples.iter().map(|s| (s.time, f(&s.record))).collect()
 }
+
+/// Removes the 2π jumps of an angle that ODE reports in (−π, π], so that a joint
+/// turning past ±π plots as one continuous curve.
+pub fn unwrapped(points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    use std::f64::consts::{PI, TAU};
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.len());
+    for (x, a) in points {
+        let a = match out.last() {
+            Some(&(_, prev)) => prev + (a - prev + PI).rem_euclid(TAU) - PI,
+            None => a,
+        };
+        out.push((x, a));
+    }
+    out
+}
