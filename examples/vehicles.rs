@@ -22,12 +22,15 @@ const DEFAULT_KEYS: &str = "\
 4.5 up down
 ";
 
+/// The chassis position after every frame.
+type Path = Vec<(f64, ars::nalgebra::Point3<f64>)>;
+
 fn drive<P: Program>(
     mut program: P,
     chassis: fn(&P) -> ObjectId,
     script: &KeyScript,
     duration: f64,
-) -> Result<Vec<(f64, ars::nalgebra::Point3<f64>)>, Box<dyn std::error::Error>> {
+) -> Result<Path, Box<dyn std::error::Error>> {
     let mut runner = ProgramRunner::new(&mut program)?;
     let body = chassis(runner.program());
     let frames = runner.simulation().steps_in(duration)? / u64::from(runner.simulation().steps_per_frame());
