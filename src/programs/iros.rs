@@ -6,7 +6,7 @@ use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::{ActionMap, Key, Mass, Pid, Profile, Program, Repeat, Result, Simulation, SimulationBuilder};
 
 use super::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
-use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_vehicle, build_vehicle_arm, signed_ground_speed};
+use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, signed_ground_speed};
 
 /// 50 frames/s × 80 steps: dt = 0.25 ms.
 fn iros_timing(builder: SimulationBuilder) -> SimulationBuilder {
@@ -118,9 +118,12 @@ impl Program for SpeedProfile {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let vehicle = build_vehicle(sim, &VehicleSpec { offset: Self::OFFSET, ..Default::default() })?;
-        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Total(1.0), "")?);
-        self.vehicle = Some(vehicle);
+        let (vehicle, arm) = build_mobile_manipulator(
+            sim,
+            &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
+            Mass::Total(1.0),
+        )?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 
@@ -238,9 +241,12 @@ impl Program for SinusoidalTerrain {
         let terrain = Self::terrain()?;
         let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.faces(), Self::TERRAIN_CENTER)?;
         sim.set_color(floor, [0.7, 0.7, 0.7])?;
-        let vehicle = build_vehicle(sim, &VehicleSpec { offset: Self::OFFSET, ..Default::default() })?;
-        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Total(1.0), "")?);
-        self.vehicle = Some(vehicle);
+        let (vehicle, arm) = build_mobile_manipulator(
+            sim,
+            &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
+            Mass::Total(1.0),
+        )?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 
@@ -350,9 +356,12 @@ impl Program for UserDriven {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let vehicle = build_vehicle(sim, &VehicleSpec { wheel_mass: Mass::Total(1.0), ..Default::default() })?;
-        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Density(1.0), "")?);
-        self.vehicle = Some(vehicle);
+        let (vehicle, arm) = build_mobile_manipulator(
+            sim,
+            &VehicleSpec { wheel_mass: Mass::Total(1.0), ..Default::default() },
+            Mass::Density(1.0),
+        )?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 

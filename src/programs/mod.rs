@@ -25,4 +25,7 @@ pub use simple_arm::{ArmParts, ControlRow, ControlledSimpleArm, SimpleArm, build
 pub use thesis_table::thesis_table;
 pub use two_ball_laser::TwoBallLaser;
 pub use vehicle_programs::{Vehicle1, Vehicle2, VehicleWithArm, VehicleWithControlledArm, WAIST_TORQUE, WHEEL_TORQUE};
-pub use vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_vehicle, build_vehicle_arm, signed_ground_speed};
+pub use vehicles::{
+    VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle, build_vehicle_arm,
+    signed_ground_speed,
+};

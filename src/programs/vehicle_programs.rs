@@ -5,7 +5,7 @@ use ars_core::nalgebra::Vector3;
 use ars_core::{ActionMap, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation, SimulationBuilder};
 
 use super::simple_arm::ControlRow;
-use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_vehicle, build_vehicle_arm};
+use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle};
 
 fn torques(sim: &mut Simulation, pairs: &[(JointId, f64)]) -> Result<()> {
     pairs.iter().try_for_each(|&(j, t)| sim.joint_mut(j)?.add_torque(t))
@@ -190,9 +190,8 @@ impl Program for VehicleWithArm {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let spec = VehicleSpec { capsule_wheels: self.capsule_wheels, ..Default::default() };
-        let vehicle = build_vehicle(sim, &spec)?;
-        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Density(1.0), "")?);
-        self.vehicle = Some(vehicle);
+        let (vehicle, arm) = build_mobile_manipulator(sim, &spec, Mass::Density(1.0))?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 
@@ -240,9 +239,8 @@ impl Program for VehicleWithControlledArm {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let vehicle = build_vehicle(sim, &VehicleSpec::default())?;
-        self.arm = Some(build_vehicle_arm(sim, vehicle.chassis, Mass::Density(1.0), "")?);
-        self.vehicle = Some(vehicle);
+        let (vehicle, arm) = build_mobile_manipulator(sim, &VehicleSpec::default(), Mass::Density(1.0))?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 

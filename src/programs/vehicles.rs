@@ -111,6 +111,18 @@ pub fn build_vehicle_arm(sim: &mut Simulation, chassis: ObjectId, link_mass: Mas
     Ok(VehicleArm { link1, link2, r1, r2 })
 }
 
+/// A vehicle with the arm on its chassis (the joints of the arm get the vehicle's
+/// name prefix too).
+pub fn build_mobile_manipulator(
+    sim: &mut Simulation,
+    spec: &VehicleSpec,
+    link_mass: Mass,
+) -> Result<(VehicleParts, VehicleArm)> {
+    let vehicle = build_vehicle(sim, spec)?;
+    let arm = build_vehicle_arm(sim, vehicle.chassis, link_mass, &spec.prefix)?;
+    Ok((vehicle, arm))
+}
+
 /// Speed of the chassis along the ground with the sign of its X velocity, as the
 /// original measured it: `|(vx, vz)| · sign(vx)`, with `sign(0) = −1` as the original's.
 pub fn signed_ground_speed(sim: &Simulation, chassis: ObjectId) -> Result<f64> {
