@@ -72,3 +72,19 @@ fn the_controlled_arm_holds_and_follows_its_shoulder_set_point() {
     let last = *runner.program().rows.last().unwrap();
     assert!((q - 0.3).abs() < 0.1, "follows the set-point 0.3: {q} ({last:?})");
 }
+
+#[test]
+fn the_bouncing_ball_bounces_when_the_code_and_the_paper_say() {
+    use ars::programs::BouncingBall;
+    let mut code = BouncingBall::default();
+    code.run_headless(0.7).unwrap();
+    let mut paper = BouncingBall { paper_bounce: true, ..Default::default() };
+    paper.run_headless(3.5).unwrap();
+    for (program, ideal) in [(&code, &[0.4515, 0.632, 0.668][..]), (&paper, &[0.4515, 1.264, 1.996, 2.654, 3.247][..])] {
+        let times = program.bounce_times();
+        assert!(times.len() >= ideal.len(), "{times:?}");
+        for (t, i) in times.iter().zip(ideal) {
+            assert!((t - i).abs() < 2e-3, "bounce at {t} s, ideal {i} s");
+        }
+    }
+}

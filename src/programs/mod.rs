@@ -2,6 +2,7 @@
 //! run them headless, the tests check their numbers, the viewer shows them.
 
 mod arm_model;
+mod bouncing_ball;
 mod centrifugal_force;
 mod conical_pendulum;
 mod convoy;
@@ -15,6 +16,7 @@ mod vehicle_programs;
 mod vehicles;
 
 pub use arm_model::{ArmParameters, ArmState, ReducedArmModel};
+pub use bouncing_ball::BouncingBall;
 pub use centrifugal_force::{CentrifugalForce, CentrifugalRow};
 pub use conical_pendulum::{ConicalPendulum, PendulumRow};
 pub use convoy::Convoy;
