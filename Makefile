@@ -6,7 +6,8 @@
 #   make figures       the thesis' figures (PNG) and their CSVs, into figures/
 #   make readme-table  regenerate the README's table of thesis numbers
 
-DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make libfontconfig1-dev libfreetype-dev fonts-dejavu-core
+DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make libfontconfig1-dev libfreetype-dev fonts-dejavu-core \
+	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: deps demo test check bench figures readme-table

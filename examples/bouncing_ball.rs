@@ -8,7 +8,6 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::BouncingBall;
 use common::plot::{Series, line_chart};
 
@@ -16,7 +15,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let paper = std::env::args().any(|a| a == "--paper");
     let args = common::args::parse_except(if paper { 4.0 } else { 1.0 }, &["--paper"]);
     let mut program = BouncingBall { paper_bounce: paper, ..Default::default() };
-    program.run_headless(args.duration)?;
+    common::args::run(&mut program, &args)?;
     let ideal: &[f64] = if paper { &[0.4515, 1.264, 1.996, 2.654, 3.247] } else { &[0.4515, 0.632, 0.668, 0.676] };
     println!("restitution {}: bounces at (ideal: {ideal:?} s)", if paper { "0.9 (paper)" } else { "0.2 (code)" });
     for (i, t) in program.bounce_times().iter().take(6).enumerate() {

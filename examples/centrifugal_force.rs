@@ -9,14 +9,13 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::CentrifugalForce;
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(20.0);
     let mut program = CentrifugalForce::default();
-    program.run_headless(args.duration)?;
+    common::args::run(&mut program, &args)?;
     for r in program.rows.iter().step_by(25) {
         let (p, v, w) = (r.position, r.velocity, r.angular_velocity);
         println!(

@@ -10,7 +10,6 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::{ArmParameters, ConicalPendulum, ReducedArmModel};
 use common::args::write_csv;
 use common::plot::{Series, line_chart};
@@ -18,7 +17,7 @@ use common::plot::{Series, line_chart};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(20.0);
     let mut program = ConicalPendulum::default();
-    let sim = program.run_headless(args.duration)?;
+    let sim = common::args::run(&mut program, &args)?;
     let rows = &program.rows;
     let last = rows.last().expect("at least one step");
     let params = ArmParameters::IROS_EXAMPLE_2;

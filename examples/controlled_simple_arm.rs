@@ -19,7 +19,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut runner = ProgramRunner::new(&mut program)?;
     let steps = runner.simulation().steps_in(args.duration)?;
     let dt = runner.simulation().time_step();
+    let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
+    let spf = u64::from(runner.simulation().steps_per_frame());
     for step in 0..steps {
+        if step % spf == 0 {
+            capture.frame(runner.simulation())?;
+        }
         if step == (1.0 / dt).round() as u64 || step == (2.0 / dt).round() as u64 {
             runner.key_down(Key::Char('d'))?;
         }

@@ -8,7 +8,6 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::FallingBallSensors;
 use common::args::{cell, write_csv};
 use common::plot::{Series, line_chart, over_time};
@@ -16,7 +15,7 @@ use common::plot::{Series, line_chart, over_time};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(1.0);
     let mut program = FallingBallSensors::default();
-    let sim = program.run_headless(args.duration)?;
+    let sim = common::args::run(&mut program, &args)?;
     let gps = sim.records(program.gps.unwrap())?.samples();
     let vel = sim.records(program.velometer.unwrap())?.samples();
     let acc = sim.records(program.accelerometer.unwrap())?.samples();

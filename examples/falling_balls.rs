@@ -7,14 +7,13 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::FallingBalls;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(2.0);
     let mut program = FallingBalls::default();
-    let sim = program.run_headless(args.duration)?;
+    let sim = common::args::run(&mut program, &args)?;
     let logs: Vec<_> =
         program.balls.iter().map(|(_, gps)| sim.records(*gps).map(|l| l.samples())).collect::<Result<_, _>>()?;
     for ((ball, _), log) in program.balls.iter().zip(&logs) {

@@ -28,7 +28,7 @@ impl Program for HelloWorld {
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(1.0);
     let mut program = HelloWorld::default();
-    let sim = program.run_headless(args.duration)?;
+    let sim = common::args::run(&mut program, &args)?;
     let (gps, velometer) = program.sensors.expect("created with the simulation");
     let (gps, velometer) = (sim.records(gps)?.samples(), sim.records(velometer)?.samples());
     let every_10_ms = (0.01 / sim.time_step()).round() as usize;

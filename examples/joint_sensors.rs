@@ -9,14 +9,13 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::CentrifugalForce;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(5.0);
     let mut program = CentrifugalForce::default();
-    let sim = program.run_headless(args.duration)?;
+    let sim = common::args::run(&mut program, &args)?;
     let (torque, power, angle) = program.sensors.expect("created with the simulation");
     let (torque, power, angle) = (sim.records(torque)?, sim.records(power)?, sim.records(angle)?);
     let applied = torque.iter().filter(|s| s.record.value != 0.0).count();

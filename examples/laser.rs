@@ -8,7 +8,6 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::TwoBallLaser;
 use common::args::{cell, write_csv};
 use common::plot::{Series, line_chart, over_time};
@@ -16,7 +15,7 @@ use common::plot::{Series, line_chart, over_time};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(2.0);
     let mut program = TwoBallLaser::default();
-    let sim = program.run_headless(args.duration)?;
+    let sim = common::args::run(&mut program, &args)?;
     let (g1, g2) = program.gps.unwrap();
     let (v1, v2) = program.velometers.unwrap();
     let (g1, g2) = (sim.records(g1)?.samples(), sim.records(g2)?.samples());

@@ -19,7 +19,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let parts = runner.program().parts.expect("built");
     let mut rows = Vec::new();
     let steps = runner.simulation().steps_in(args.duration)?;
+    let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
+    let spf = u64::from(runner.simulation().steps_per_frame());
     for step in 0..steps {
+        if step % spf == 0 {
+            capture.frame(runner.simulation())?;
+        }
         if step % u64::from(runner.simulation().steps_per_frame()) == 0 && runner.simulation().time() < 0.2 {
             runner.key_down(Key::Char('a'))?;
         }

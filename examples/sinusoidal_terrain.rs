@@ -9,14 +9,13 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::{SinusoidalTerrain, TerrainRow};
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(14.0);
     let mut program = SinusoidalTerrain::default();
-    program.run_headless(args.duration)?;
+    common::args::run(&mut program, &args)?;
     let rows = &program.rows;
     // The terrain ends at x = 29 m; off it, the base falls below the lowest terrain.
     match (SinusoidalTerrain::leaves_terrain(rows), rows.iter().find(|r| r.position.y < -1.0)) {

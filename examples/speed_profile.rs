@@ -8,7 +8,6 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::Program;
 use ars::programs::SpeedProfile;
 use common::plot::{Series, line_chart, unwrapped};
 
@@ -16,7 +15,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pd = std::env::args().any(|a| a == "--pd");
     let args = common::args::parse_except(20.0, &["--pd"]);
     let mut program = SpeedProfile::with_derivative_gain(if pd { 1.0 } else { 0.0 });
-    program.run_headless(args.duration)?;
+    common::args::run(&mut program, &args)?;
     let rows = &program.rows;
     if let Some(e) = SpeedProfile::plateau_error(rows) {
         println!(

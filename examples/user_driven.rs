@@ -43,7 +43,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut heading = Vec::new();
     let steps_per_frame = u64::from(runner.simulation().steps_per_frame());
     let frames = runner.simulation().steps_in(args.duration)? / steps_per_frame;
+    let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
     for _ in 0..frames {
+        capture.frame(runner.simulation())?;
         runner.run_script_frame(&script)?;
         let r = runner.simulation().rotation(chassis)?;
         let x = r * ars::nalgebra::Vector3::x();

@@ -29,13 +29,16 @@ fn drive<P: Program>(
     mut program: P,
     chassis: fn(&P) -> ObjectId,
     script: &KeyScript,
-    duration: f64,
+    args: &common::args::Args,
 ) -> Result<Path, Box<dyn std::error::Error>> {
+    let duration = args.duration;
+    let mut capture = common::args::Capture::new(args, program.view_settings())?;
     let mut runner = ProgramRunner::new(&mut program)?;
     let body = chassis(runner.program());
     let frames = runner.simulation().steps_in(duration)? / u64::from(runner.simulation().steps_per_frame());
     let mut path = Vec::new();
     for _ in 0..frames {
+        capture.frame(runner.simulation())?;
         runner.run_script_frame(script)?;
         path.push((runner.simulation().time(), runner.simulation().position(body)?));
     }
@@ -56,13 +59,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => DEFAULT_KEYS.to_string(),
     })?;
     let path = match name.as_str() {
-        "vehicle1" => drive(Vehicle1::default(), |p| p.chassis.expect("built"), &script, args.duration)?,
-        "vehicle2" => drive(Vehicle2::default(), |p| p.vehicle.expect("built").chassis, &script, args.duration)?,
-        "vehicle_with_arm" => {
-            drive(VehicleWithArm::default(), |p| p.vehicle.expect("built").chassis, &script, args.duration)?
-        }
+        "vehicle1" => drive(Vehicle1::default(), |p| p.chassis.expect("built"), &script, &args)?,
+        "vehicle2" => drive(Vehicle2::default(), |p| p.vehicle.expect("built").chassis, &script, &args)?,
+        "vehicle_with_arm" => drive(VehicleWithArm::default(), |p| p.vehicle.expect("built").chassis, &script, &args)?,
         "vehicle_with_controlled_arm" => {
-            drive(VehicleWithControlledArm::default(), |p| p.vehicle.expect("built").chassis, &script, args.duration)?
+            drive(VehicleWithControlledArm::default(), |p| p.vehicle.expect("built").chassis, &script, &args)?
         }
         other => {
             return Err(format!(

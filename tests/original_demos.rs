@@ -80,7 +80,8 @@ fn the_bouncing_ball_bounces_when_the_code_and_the_paper_say() {
     code.run_headless(0.7).unwrap();
     let mut paper = BouncingBall { paper_bounce: true, ..Default::default() };
     paper.run_headless(3.5).unwrap();
-    for (program, ideal) in [(&code, &[0.4515, 0.632, 0.668][..]), (&paper, &[0.4515, 1.264, 1.996, 2.654, 3.247][..])] {
+    for (program, ideal) in [(&code, &[0.4515, 0.632, 0.668][..]), (&paper, &[0.4515, 1.264, 1.996, 2.654, 3.247][..])]
+    {
         let times = program.bounce_times();
         assert!(times.len() >= ideal.len(), "{times:?}");
         for (t, i) in times.iter().zip(ideal) {

@@ -103,7 +103,7 @@ pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
-pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat};
+pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
 pub use sensors::{Record, Sample, Sensor, SensorId, SensorLog};
 pub use simulation::{
     CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, Hook, JointEnd, JointType,

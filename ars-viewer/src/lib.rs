@@ -1,7 +1,90 @@
-//! The ARS 3D viewer.
+//! # ars-viewer
 //!
-//! Not built yet: the on-screen window and off-screen screenshot recorder arrive with
-//! the viewer issue. The crate exists so that the workspace layout and the `viewer`
-//! feature of the root `ars` crate are already in place.
+//! The ARS 3D viewer, on kiss3d: a window on screen that runs a program in real time
+//! (orbit camera with the mouse, the program's keys, pause, single step, reset, a text
+//! overlay with the simulated time and the real-time factor), and off-screen rendering
+//! with no display and no GPU (Mesa's software rasterisers) for screenshot recording.
+//!
+//! ```no_run
+//! use ars_core::{Mass, Program, Result, Simulation};
+//! use ars_viewer::ProgramViewer;
+//!
+//! struct HelloWorld;
+//! impl Program for HelloWorld {
+//!     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+//!         sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
+//!     }
+//! }
+//! // A window where there is a display; off-screen frames into a folder otherwise.
+//! HelloWorld.start().unwrap();
+//! ```
+//!
+//! Y is up, as in the simulation. kiss3d works in glam `f32`; the conversion from the
+//! simulation's nalgebra `f64` lives in [`convert`]. Off screen, the product
+//! description asked for OSMesa: wgpu has no OSMesa backend and Mesa removed OSMesa in
+//! 25.1, so the off-screen path is Mesa's surfaceless EGL (llvmpipe) or lavapipe
+//! Vulkan, through wgpu. On Debian: `apt-get install libvulkan1 mesa-vulkan-drivers
+//! libegl1 libegl-mesa0 libgl1-mesa-dri` (and `xvfb` for a virtual display).
 
-pub use ars_core;
+pub mod convert;
+mod error;
+mod offscreen;
+mod scene;
+mod window;
+
+use std::path::PathBuf;
+
+use ars_core::Program;
+
+pub use error::{Result, ViewerError};
+pub use image;
+pub use offscreen::{OffscreenRenderer, ScreenshotRecorder, init_offscreen_context};
+pub use scene::SceneMirror;
+pub use window::VIEWER_KEYS;
+
+/// Whether a display server is reachable (an X11 or Wayland display is named).
+pub fn has_display() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
+}
+
+/// Simulated seconds recorded by [`ProgramViewer::start`] when there is no display.
+pub const HEADLESS_FALLBACK_SECONDS: f64 = 10.0;
+
+/// Shows programs: `program.start()`.
+pub trait ProgramViewer: Program + Sized {
+    /// Opens the program's window and runs it until the window is closed. On a
+    /// machine with no display it records [`HEADLESS_FALLBACK_SECONDS`] of simulated
+    /// time off screen instead, saying where the frames go.
+    fn start(&mut self) -> Result<()> {
+        if has_display() {
+            return window::run_window(self);
+        }
+        let title = self.view_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
+        let dir = std::env::temp_dir().join(format!("ars-frames-{title}"));
+        eprintln!(
+            "no display (DISPLAY and WAYLAND_DISPLAY are unset): recording {HEADLESS_FALLBACK_SECONDS} s off screen, \
+             frames into {}",
+            dir.display()
+        );
+        let (_, written) = ScreenshotRecorder::new(&dir).every(5).record(self, HEADLESS_FALLBACK_SECONDS)?;
+        eprintln!("wrote {} frames into {}", written.len(), dir.display());
+        Ok(())
+    }
+
+    /// Opens the program's window for `frames` frames and returns the last one as
+    /// shown (needs a display; run it on the main thread).
+    fn snapshot_in_window(&mut self, frames: u32) -> Result<image::RgbImage> {
+        if !has_display() {
+            return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
+        }
+        window::snapshot_window(self, frames)
+    }
+
+    /// Runs the program for `duration` simulated seconds off screen, writing frames as
+    /// `recorder` says; returns the simulation and the files written.
+    fn record(&mut self, duration: f64, recorder: &ScreenshotRecorder) -> Result<(ars_core::Simulation, Vec<PathBuf>)> {
+        recorder.record(self, duration)
+    }
+}
+
+impl<P: Program> ProgramViewer for P {}

@@ -14,15 +14,24 @@ pub struct Args {
     pub plot: Option<PathBuf>,
     /// Keep one CSV row every N steps.
     pub every: usize,
+    /// Record off-screen frames into this folder.
+    pub screenshots: Option<PathBuf>,
+    /// One frame every N frames.
+    pub frame_every: u32,
+    /// Frame size, pixels.
+    pub size: Option<(u32, u32)>,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N]\n\
-         \x20 --duration S  simulated seconds to run (default {default_duration})\n\
-         \x20 --csv PATH    write the data as CSV\n\
-         \x20 --plot DIR    write the figures as PNG into DIR\n\
-         \x20 --every N     keep one CSV row every N steps (default 1)"
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--screenshots DIR [--frame-every N] [--size WxH]]\n\
+         \x20 --duration S       simulated seconds to run (default {default_duration})\n\
+         \x20 --csv PATH         write the data as CSV\n\
+         \x20 --plot DIR         write the figures as PNG into DIR\n\
+         \x20 --every N          keep one CSV row every N steps (default 1)\n\
+         \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
+         \x20 --frame-every N    one screenshot every N frames (default 5)\n\
+         \x20 --size WxH         screenshot size in pixels (default: the program's window size)"
     )
 }
 
@@ -35,7 +44,15 @@ pub fn parse(default_duration: f64) -> Args {
 pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
     let mut argv = std::env::args().filter(|a| !extra.contains(&a.as_str()));
     let program = argv.next().unwrap_or_else(|| "example".into());
-    let mut args = Args { duration: default_duration, csv: None, plot: None, every: 1 };
+    let mut args = Args {
+        duration: default_duration,
+        csv: None,
+        plot: None,
+        every: 1,
+        screenshots: None,
+        frame_every: 5,
+        size: None,
+    };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
         exit(2)
@@ -57,6 +74,23 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
                 args.every = match v.parse::<usize>() {
                     Ok(n) if n > 0 => n,
                     _ => fail(format!("--every must be a positive whole number, got {v:?}")),
+                };
+            }
+            "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
+            "--frame-every" => {
+                let v = value("--frame-every");
+                args.frame_every = match v.parse::<u32>() {
+                    Ok(n) if n > 0 => n,
+                    _ => fail(format!("--frame-every must be a positive whole number, got {v:?}")),
+                };
+            }
+            "--size" => {
+                let v = value("--size");
+                let parsed =
+                    v.split_once('x').and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)));
+                args.size = match parsed {
+                    Some((w, h)) if w > 0 && h > 0 => Some((w, h)),
+                    _ => fail(format!("--size must look like 640x480, got {v:?}")),
                 };
             }
             "-h" | "--help" => {
@@ -88,4 +122,84 @@ pub fn write_csv(path: &std::path::Path, header: &str, rows: impl IntoIterator<I
 /// A CSV cell: the number, or empty.
 pub fn cell(v: Option<f64>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
+}
+
+/// Runs `program` for the requested duration: headless, or recording off-screen
+/// frames when `--screenshots` was given. Returns the simulation for its records.
+pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    match &args.screenshots {
+        None => Ok(program.run_headless(args.duration)?),
+        Some(dir) => record(program, args, dir),
+    }
+}
+
+#[cfg(feature = "viewer")]
+fn record<P: ars::Program>(
+    program: &mut P,
+    args: &Args,
+    dir: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    let mut recorder = ars::viewer::ScreenshotRecorder::new(dir).every(args.frame_every);
+    if let Some((w, h)) = args.size {
+        recorder = recorder.size(w, h);
+    }
+    let (sim, written) = recorder.record(program, args.duration)?;
+    eprintln!("wrote {} frames into {}", written.len(), dir.display());
+    Ok(sim)
+}
+
+#[cfg(not(feature = "viewer"))]
+fn record<P: ars::Program>(
+    _: &mut P,
+    _: &Args,
+    _: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    Err("--screenshots needs the viewer: build with the default features".into())
+}
+
+/// Off-screen frames for examples that drive their own [`ars::ProgramRunner`]: call
+/// [`Capture::frame`] after every frame.
+pub struct Capture {
+    #[cfg(feature = "viewer")]
+    inner: Option<(ars::viewer::OffscreenRenderer, PathBuf, u32, u64, u32)>,
+}
+
+impl Capture {
+    /// Records when `--screenshots` was given, with `view` (the program's settings).
+    pub fn new(args: &Args, view: ars::ViewSettings) -> Result<Self, Box<dyn std::error::Error>> {
+        #[cfg(feature = "viewer")]
+        {
+            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None }) };
+            std::fs::create_dir_all(dir)?;
+            let mut view = view;
+            if let Some(size) = args.size {
+                view.size = size;
+            }
+            let renderer = ars::viewer::OffscreenRenderer::new(&view)?;
+            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)) })
+        }
+        #[cfg(not(feature = "viewer"))]
+        {
+            let _ = view;
+            if args.screenshots.is_some() {
+                return Err("--screenshots needs the viewer: build with the default features".into());
+            }
+            Ok(Capture {})
+        }
+    }
+
+    /// Writes the current frame if one is due (the first, then every N frames).
+    pub fn frame(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "viewer")]
+        if let Some((renderer, dir, every, frame, index)) = &mut self.inner {
+            if *frame % u64::from(*every) == 0 {
+                *index += 1;
+                renderer.render(sim)?.save(dir.join(format!("frame_{:05}.png", index)))?;
+            }
+            *frame += 1;
+        }
+        #[cfg(not(feature = "viewer"))]
+        let _ = sim;
+        Ok(())
+    }
 }

@@ -66,6 +66,16 @@ impl CentrifugalForce {
 }
 
 impl Program for CentrifugalForce {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: centrifugal force".into(),
+            camera_position: ars_core::nalgebra::Point3::new(2.0, 5.0, 10.0),
+            size: (900, 600),
+            camera_target: ars_core::nalgebra::Point3::new(2.0, 1.5, 2.0),
+            ..Default::default()
+        }
+    }
+
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         builder.time_step(1.0 / 50.0 / 20.0).steps_per_frame(20).floor_plane(Vector3::y(), 0.0)
     }

@@ -68,6 +68,15 @@ impl ConicalPendulum {
 }
 
 impl Program for ConicalPendulum {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: conical pendulum (IROS example 2)".into(),
+            camera_position: ars_core::nalgebra::Point3::new(6.0, 3.0, 6.0),
+            camera_target: ars_core::nalgebra::Point3::new(1.0, 0.5, 2.0),
+            ..Default::default()
+        }
+    }
+
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         builder
             .time_step(1.0 / Self::FPS / f64::from(Self::STEPS_PER_FRAME))
@@ -85,6 +94,7 @@ impl Program for ConicalPendulum {
             sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
             sim.offset_by_position(link, offset)?;
         }
+        sim.set_color(base, [0.55, 0.6, 0.65])?;
         sim.set_color(pole, [1.0, 1.0, 0.0])?;
         sim.set_color(arm, [0.0, 0.0, 0.5])?;
         let waist = sim.add_rotary_joint("r1", base, pole, None, Vector3::y())?;

@@ -38,6 +38,14 @@ pub struct FallingBallSensors {
 }
 
 impl Program for FallingBallSensors {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: falling ball with sensors".into(),
+            camera_position: ars_core::nalgebra::Point3::new(10.0, 8.0, 10.0),
+            ..Default::default()
+        }
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
         self.ball = Some(ball);

@@ -113,6 +113,14 @@ impl SpeedProfile {
 }
 
 impl Program for SpeedProfile {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: speed profile (IROS example 3)".into(),
+            camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 25.0),
+            ..Default::default()
+        }
+    }
+
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         iros_timing(builder).floor_plane(Vector3::y(), 0.0)
     }
@@ -233,6 +241,15 @@ impl SinusoidalTerrain {
 }
 
 impl Program for SinusoidalTerrain {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: sinusoidal terrain (IROS example 4)".into(),
+            camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 30.0),
+            camera_target: ars_core::nalgebra::Point3::new(5.0, 0.0, 5.0),
+            ..Default::default()
+        }
+    }
+
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         iros_timing(builder)
     }
@@ -350,6 +367,14 @@ impl UserDriven {
 }
 
 impl Program for UserDriven {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: user-driven vehicle (IROS example 5)".into(),
+            camera_position: ars_core::nalgebra::Point3::new(15.0, 10.0, 15.0),
+            ..Default::default()
+        }
+    }
+
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         let b = iros_timing(builder).floor_plane(Vector3::y(), 0.0);
         if self.paper_friction { b.mu(50.0) } else { b }

@@ -31,6 +31,15 @@ impl TwoBallLaser {
 }
 
 impl Program for TwoBallLaser {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: two balls and a laser".into(),
+            camera_position: ars_core::nalgebra::Point3::new(-8.0, 6.0, 16.0),
+            camera_target: ars_core::nalgebra::Point3::new(3.0, 1.5, 1.0),
+            ..Default::default()
+        }
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let b1 = sim.add_sphere(1.0, [3.0, 4.0, 1.0], Mass::Total(1.0))?;
         let b2 = sim.add_sphere(1.0, [5.0, 3.0, 1.0], Mass::Total(1.0))?;

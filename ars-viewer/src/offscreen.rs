@@ -1,0 +1,191 @@
+//! Off-screen rendering with no display and no GPU: Mesa's software rasterisers
+//! through wgpu (llvmpipe via EGL surfaceless first, lavapipe Vulkan otherwise), and
+//! the screenshot recorder that writes numbered PNG frames.
+//!
+//! The product description asked for OSMesa; wgpu has no OSMesa backend and Mesa
+//! removed OSMesa in 25.1, so Mesa's surfaceless EGL (or lavapipe) is the off-screen path.
+
+use std::path::{Path, PathBuf};
+
+use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
+use kiss3d::camera::OrbitCamera3d;
+use kiss3d::light::Light;
+use kiss3d::scene::SceneNode3d;
+use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
+
+use crate::convert;
+use crate::error::{Result, ViewerError};
+use crate::scene::SceneMirror;
+
+/// Creates kiss3d's wgpu context on this thread with a software-friendly adapter:
+/// OpenGL ES through EGL (Mesa llvmpipe, the faster software path) first, then any
+/// other backend (lavapipe Vulkan). Does nothing if a context already exists.
+pub fn init_offscreen_context() -> Result<()> {
+    if kiss3d::context::Context::is_initialized() {
+        return Ok(());
+    }
+    kiss3d::pollster::block_on(async {
+        let mut reasons = Vec::new();
+        for backends in [wgpu::Backends::GL, wgpu::Backends::all()] {
+            let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+                backends,
+                ..wgpu::InstanceDescriptor::new_without_display_handle()
+            });
+            let adapter = match instance
+                .request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::default(),
+                    compatible_surface: None,
+                    force_fallback_adapter: false,
+                    apply_limit_buckets: false,
+                })
+                .await
+            {
+                Ok(a) => a,
+                Err(e) => {
+                    reasons.push(format!("{backends:?}: {e}"));
+                    continue;
+                }
+            };
+            let device = adapter
+                .request_device(&wgpu::DeviceDescriptor {
+                    label: Some("ars-viewer off-screen device"),
+                    required_features: wgpu::Features::empty(),
+                    required_limits: adapter.limits(),
+                    memory_hints: wgpu::MemoryHints::default(),
+                    trace: wgpu::Trace::Off,
+                    experimental_features: wgpu::ExperimentalFeatures::disabled(),
+                })
+                .await;
+            match device {
+                Ok((device, queue)) => {
+                    log::info!("off-screen rendering on {:?}", adapter.get_info());
+                    kiss3d::context::Context::init(instance, device, queue, adapter, wgpu::TextureFormat::Rgba8Unorm);
+                    return Ok(());
+                }
+                Err(e) => reasons.push(format!("{backends:?}: {e}")),
+            }
+        }
+        Err(ViewerError::NoAdapter(reasons.join("; ")))
+    })
+}
+
+/// Renders a simulation into images, off screen.
+pub struct OffscreenRenderer {
+    surface: OffscreenSurface,
+    scene: SceneNode3d,
+    camera: OrbitCamera3d,
+    mirror: SceneMirror,
+}
+
+impl OffscreenRenderer {
+    /// A renderer of `view.size` pixels with the view's camera and background.
+    pub fn new(view: &ViewSettings) -> Result<Self> {
+        let (w, h) = view.size;
+        if w == 0 || h == 0 || w > 8192 || h > 8192 {
+            return Err(ViewerError::Settings(format!("image size {w}×{h} must be between 1 and 8192 pixels")));
+        }
+        init_offscreen_context()?;
+        // One sample: MSAA ×4 renders black on Mesa's GL path.
+        let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
+        let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(w, h, setup));
+        surface.set_background_color(convert::color(view.background));
+        let mut scene = SceneNode3d::empty();
+        add_lights(&mut scene, view);
+        let camera = OrbitCamera3d::new(convert::point(&view.camera_position), convert::point(&view.camera_target));
+        Ok(OffscreenRenderer { surface, scene, camera, mirror: SceneMirror::new() })
+    }
+
+    /// Renders the simulation as it is now.
+    pub fn render(&mut self, sim: &Simulation) -> Result<image::RgbImage> {
+        self.mirror.sync(sim, &mut self.scene)?;
+        self.mirror.draw_overlays(sim, self.surface.window_mut());
+        Ok(kiss3d::pollster::block_on(self.surface.render_image_3d(&mut self.scene, &mut self.camera)))
+    }
+
+    /// Forgets the scene (after the simulation was rebuilt).
+    pub fn reset(&mut self) {
+        self.mirror.clear();
+    }
+}
+
+/// Lights that show every side: a point light above and behind the camera, and a
+/// dimmer one from the other side.
+pub(crate) fn add_lights(scene: &mut SceneNode3d, view: &ViewSettings) {
+    let eye = view.camera_position;
+    scene.add_light(Light::point(200.0)).set_position(kiss3d::glamx::Vec3::new(
+        eye.x as f32,
+        eye.y as f32 + 10.0,
+        eye.z as f32,
+    ));
+    scene.add_light(Light::point(200.0).with_intensity(1.5)).set_position(kiss3d::glamx::Vec3::new(
+        -eye.x as f32,
+        eye.y as f32 + 5.0,
+        -eye.z as f32,
+    ));
+}
+
+/// Writes numbered PNG frames (`frame_00001.png`, `frame_00002.png`...) of a running
+/// simulation into a folder: the first before any step, then one every `every`
+/// frames.
+#[derive(Clone, Debug)]
+pub struct ScreenshotRecorder {
+    dir: PathBuf,
+    every: u32,
+    size: Option<(u32, u32)>,
+}
+
+impl ScreenshotRecorder {
+    /// Frames into `dir` (created if missing), one every frame.
+    pub fn new(dir: impl Into<PathBuf>) -> Self {
+        ScreenshotRecorder { dir: dir.into(), every: 1, size: None }
+    }
+    /// One image every `frames` frames.
+    pub fn every(mut self, frames: u32) -> Self {
+        self.every = frames;
+        self
+    }
+    /// Images of `width × height` pixels (default: the program's window size).
+    pub fn size(mut self, width: u32, height: u32) -> Self {
+        self.size = Some((width, height));
+        self
+    }
+    /// The folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    fn write(&self, index: u32, image: &image::RgbImage) -> Result<PathBuf> {
+        let path = self.dir.join(format!("frame_{index:05}.png"));
+        image
+            .save(&path)
+            .map_err(|e| ViewerError::Write { path: path.display().to_string(), message: e.to_string() })?;
+        Ok(path)
+    }
+
+    /// Runs `program` for `duration` seconds of simulated time, off screen, writing
+    /// frames; returns the simulation (for its records) and the files written.
+    pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, Vec<PathBuf>)> {
+        if self.every == 0 {
+            return Err(ViewerError::Settings("the screenshot period must be at least one frame".into()));
+        }
+        std::fs::create_dir_all(&self.dir)
+            .map_err(|e| ViewerError::Write { path: self.dir.display().to_string(), message: e.to_string() })?;
+        let mut view = program.view_settings();
+        if let Some(size) = self.size {
+            view.size = size;
+        }
+        let mut renderer = OffscreenRenderer::new(&view)?;
+        let mut runner = ProgramRunner::new(program)?;
+        let mut written = vec![self.write(1, &renderer.render(runner.simulation())?)?];
+        let spf = u64::from(runner.simulation().steps_per_frame());
+        let frames = runner.simulation().steps_in(duration)?.div_ceil(spf);
+        for frame in 1..=frames {
+            runner.step_frame()?;
+            if frame % u64::from(self.every) == 0 {
+                let index = written.len() as u32 + 1;
+                written.push(self.write(index, &renderer.render(runner.simulation())?)?);
+            }
+        }
+        Ok((runner.into_simulation(), written))
+    }
+}

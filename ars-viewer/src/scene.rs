@@ -1,0 +1,168 @@
+//! Mirrors a simulation into a kiss3d scene: one node per object, posed every frame,
+//! added and removed as objects come and go; plus lines for axes, joints and lasers.
+
+use std::collections::HashMap;
+
+use ars_core::nalgebra::Isometry3;
+use ars_core::{ObjectId, ObjectShape, Shape, Simulation};
+use kiss3d::color::Color;
+use kiss3d::glamx::{Quat, Vec3};
+use kiss3d::scene::SceneNode3d;
+use kiss3d::window::Window;
+
+use crate::convert;
+
+/// Colours given to objects that have none, in creation order.
+const PALETTE: [[f32; 3]; 6] =
+    [[0.8, 0.1, 0.1], [0.1, 0.3, 0.8], [0.9, 0.7, 0.1], [0.1, 0.6, 0.2], [0.6, 0.2, 0.7], [0.9, 0.4, 0.1]];
+/// The floor's colour (the original's 0.7 grey).
+const FLOOR: [f32; 3] = [0.7, 0.7, 0.7];
+/// Half the side of the square drawn for an infinite floor plane, m.
+const PLANE_HALF_SIZE: f32 = 25.0;
+
+struct ObjectNode {
+    group: SceneNode3d,
+    dynamic: bool,
+}
+
+/// The scene nodes of a simulation's objects.
+#[derive(Default)]
+pub struct SceneMirror {
+    nodes: HashMap<ObjectId, ObjectNode>,
+    /// Draw joint anchors and axes.
+    pub show_joints: bool,
+}
+
+
+impl SceneMirror {
+    /// An empty mirror.
+    pub fn new() -> Self {
+        SceneMirror::default()
+    }
+
+    /// Forgets every node (after the simulation was rebuilt).
+    pub fn clear(&mut self) {
+        for (_, mut n) in self.nodes.drain() {
+            n.group.remove();
+        }
+    }
+
+    /// Creates nodes for new objects, removes those of removed objects, and poses
+    /// every dynamic one.
+    pub fn sync(&mut self, sim: &Simulation, scene: &mut SceneNode3d) -> ars_core::Result<()> {
+        let live: Vec<(String, ObjectId)> = sim.objects().map(|(n, id)| (n.to_string(), id)).collect();
+        self.nodes.retain(|id, node| {
+            let keep = live.iter().any(|(_, l)| l == id);
+            if !keep {
+                node.group.remove();
+            }
+            keep
+        });
+        for (_, id) in &live {
+            if !self.nodes.contains_key(id) {
+                let n = self.nodes.len();
+                let node = build_node(sim, *id, scene, n)?;
+                self.nodes.insert(*id, node);
+            }
+        }
+        for (id, node) in &mut self.nodes {
+            if node.dynamic {
+                node.group.set_pose(convert::pose(&sim.pose(*id)?));
+            }
+        }
+        Ok(())
+    }
+
+    /// Queues the lines of this frame: world axes, laser beams with their hit points,
+    /// and (when `show_joints`) joint anchors and axes.
+    pub fn draw_overlays(&self, sim: &Simulation, window: &mut Window) {
+        let o = Vec3::ZERO;
+        window.draw_line(o, Vec3::X, Color::new(1.0, 0.0, 0.0, 1.0), 3.0, false);
+        window.draw_line(o, Vec3::Y, Color::new(0.0, 0.7, 0.0, 1.0), 3.0, false);
+        window.draw_line(o, Vec3::Z, Color::new(0.0, 0.0, 1.0, 1.0), 3.0, false);
+        let world = sim.world();
+        for g in world.geoms() {
+            let Ok(geom) = world.geom(g) else { continue };
+            let (Shape::Ray { length }, Some((start, dir))) = (geom.shape(), geom.ray()) else { continue };
+            let red = Color::new(1.0, 0.0, 0.0, 1.0);
+            match world.closest_ray_hit(g) {
+                Some(hit) => {
+                    window.draw_line(convert::point(&start), convert::point(&hit.position), red, 2.0, false);
+                    window.draw_point(convert::point(&hit.position), Color::new(1.0, 1.0, 0.0, 1.0), 8.0);
+                }
+                None => {
+                    let end = start + dir * length.min(50.0);
+                    window.draw_line(convert::point(&start), convert::point(&end), red, 1.0, false);
+                }
+            }
+        }
+        if self.show_joints {
+            for (_, j) in sim.joints() {
+                let Ok(joint) = sim.joint_ref(j) else { continue };
+                if let Ok(anchor) = joint.anchor() {
+                    window.draw_point(convert::point(&anchor), Color::new(1.0, 0.0, 1.0, 1.0), 10.0);
+                    if let Ok(axis) = joint.axis() {
+                        let tip = anchor + axis * 0.4;
+                        window.draw_line(
+                            convert::point(&anchor),
+                            convert::point(&tip),
+                            Color::new(1.0, 0.0, 1.0, 1.0),
+                            3.0,
+                            false,
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The rotation taking kiss3d's +Y-aligned round primitives to ODE's +Z.
+fn y_to_z() -> Quat {
+    Quat::from_rotation_arc(Vec3::Y, Vec3::Z)
+}
+
+fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: usize) -> ars_core::Result<ObjectNode> {
+    let shape = sim.shape(id)?.clone();
+    let dynamic = sim.body_handle(id)?.is_some();
+    let default = if matches!(shape, ObjectShape::Plane { .. } | ObjectShape::TriMesh { .. }) {
+        FLOOR
+    } else {
+        PALETTE[index % PALETTE.len()]
+    };
+    let color = convert::color(sim.color(id)?.unwrap_or(default));
+    let mut group = scene.add_group();
+    let mut child = match &shape {
+        ObjectShape::Sphere { radius } => group.add_sphere(*radius as f32),
+        ObjectShape::Box { size } => group.add_cube(size.x as f32, size.y as f32, size.z as f32),
+        ObjectShape::Cylinder { length, radius } => {
+            group.add_cylinder(*radius as f32, *length as f32).set_rotation(y_to_z())
+        }
+        ObjectShape::Capsule { length, radius } => {
+            group.add_capsule(*radius as f32, *length as f32).set_rotation(y_to_z())
+        }
+        ObjectShape::Cone { height, radius } => {
+            // kiss3d's cone is centred on half its height; ours on its centre of mass,
+            // a quarter of the height above the base.
+            let mut c = group.add_cone(*radius as f32, *height as f32).set_rotation(y_to_z());
+            c.set_position(Vec3::new(0.0, 0.0, (*height / 4.0) as f32));
+            c
+        }
+        ObjectShape::Plane { normal, distance } => {
+            // A large square in the plane, centred where the plane meets its normal.
+            let n = normal.normalize();
+            let mut q = group.add_quad(2.0 * PLANE_HALF_SIZE, 2.0 * PLANE_HALF_SIZE, 1, 1);
+            q.set_rotation(Quat::from_rotation_arc(Vec3::Z, convert::vector(&n)));
+            q.set_position(convert::vector(&(n * *distance)));
+            q
+        }
+        ObjectShape::TriMesh { vertices, faces } => {
+            let v = vertices.iter().map(convert::point).collect();
+            group.add_trimesh(v, faces.clone(), Vec3::ONE, true)
+        }
+        _ => group.add_sphere(0.05),
+    };
+    child.set_color(color);
+    group.set_pose(convert::pose(&sim.pose(id).unwrap_or(Isometry3::identity())));
+    Ok(ObjectNode { group, dynamic })
+}

@@ -1,0 +1,201 @@
+//! The on-screen viewer: a window that runs a program in real time, with an orbit
+//! camera, keyboard control and a text overlay.
+
+use std::time::{Duration, Instant};
+
+use ars_core::{Key, Program, ProgramRunner};
+use kiss3d::camera::OrbitCamera3d;
+use kiss3d::event::{Action, Key as WindowKey, WindowEvent};
+use kiss3d::glamx::Vec2;
+use kiss3d::scene::SceneNode3d;
+use kiss3d::text::Font;
+use kiss3d::window::Window;
+
+use crate::convert;
+use crate::error::Result;
+use crate::offscreen::add_lights;
+use crate::scene::SceneMirror;
+
+/// The viewer's own keys (they are not passed to the program).
+pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: show joints, escape: quit";
+
+/// Frames run per drawn frame at most when the simulation is behind wall time.
+const MAX_CATCH_UP_FRAMES: u32 = 4;
+
+fn program_key(key: WindowKey) -> Option<Key> {
+    use WindowKey as K;
+    Some(match key {
+        K::Up => Key::Up,
+        K::Down => Key::Down,
+        K::Left => Key::Left,
+        K::Right => Key::Right,
+        K::Space => Key::Space,
+        K::A => Key::Char('a'),
+        K::B => Key::Char('b'),
+        K::C => Key::Char('c'),
+        K::D => Key::Char('d'),
+        K::E => Key::Char('e'),
+        K::F => Key::Char('f'),
+        K::G => Key::Char('g'),
+        K::H => Key::Char('h'),
+        K::I => Key::Char('i'),
+        K::J => Key::Char('j'),
+        K::K => Key::Char('k'),
+        K::L => Key::Char('l'),
+        K::M => Key::Char('m'),
+        K::N => Key::Char('n'),
+        K::O => Key::Char('o'),
+        K::P => Key::Char('p'),
+        K::Q => Key::Char('q'),
+        K::R => Key::Char('r'),
+        K::S => Key::Char('s'),
+        K::T => Key::Char('t'),
+        K::U => Key::Char('u'),
+        K::V => Key::Char('v'),
+        K::W => Key::Char('w'),
+        K::X => Key::Char('x'),
+        K::Y => Key::Char('y'),
+        K::Z => Key::Char('z'),
+        _ => return None,
+    })
+}
+
+/// Real-time pacing: simulated time follows wall time while the machine keeps up.
+struct Pacer {
+    wall_origin: Instant,
+    sim_origin: f64,
+    /// (wall, sim) a second ago, for the real-time factor.
+    window: (Instant, f64),
+    factor: f64,
+    behind: bool,
+}
+
+impl Pacer {
+    fn new(sim_time: f64) -> Self {
+        let now = Instant::now();
+        Pacer { wall_origin: now, sim_origin: sim_time, window: (now, sim_time), factor: 0.0, behind: false }
+    }
+
+    /// Simulated time to reach now.
+    fn target(&self) -> f64 {
+        self.sim_origin + self.wall_origin.elapsed().as_secs_f64()
+    }
+
+    fn measure(&mut self, sim_time: f64) {
+        let elapsed = self.window.0.elapsed();
+        if elapsed >= Duration::from_millis(500) {
+            self.factor = (sim_time - self.window.1) / elapsed.as_secs_f64();
+            self.window = (Instant::now(), sim_time);
+        }
+    }
+}
+
+/// Opens the program's window and runs it until the window is closed.
+pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<()> {
+    let view = program.view_settings();
+    kiss3d::pollster::block_on(async move {
+        let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
+        window.rebind_close_key(Some(WindowKey::Escape));
+        window.set_background_color(convert::color(view.background));
+        let mut camera = OrbitCamera3d::new(convert::point(&view.camera_position), convert::point(&view.camera_target));
+        let mut scene = SceneNode3d::empty();
+        add_lights(&mut scene, &view);
+        let font = Font::default();
+        let mut mirror = SceneMirror::new();
+        let mut runner = ProgramRunner::new(program)?;
+        let mut paused = false;
+        let mut pacer = Pacer::new(0.0);
+        while window.render_3d(&mut scene, &mut camera).await {
+            for mut event in window.events().iter() {
+                let WindowEvent::Key(key, action, _) = event.value else { continue };
+                event.inhibited = true;
+                match (key, action) {
+                    (WindowKey::Space, Action::Press) => {
+                        paused = !paused;
+                        pacer = Pacer::new(runner.simulation().time());
+                    }
+                    (WindowKey::N, Action::Press) if paused => runner.step()?,
+                    (WindowKey::R, Action::Press) => {
+                        runner.reset()?;
+                        mirror.clear();
+                        pacer = Pacer::new(0.0);
+                    }
+                    (WindowKey::J, Action::Press) => mirror.show_joints = !mirror.show_joints,
+                    (k, Action::Press) => {
+                        if let Some(k) = program_key(k) {
+                            runner.key_down(k)?;
+                        }
+                    }
+                    (k, Action::Release) => {
+                        if let Some(k) = program_key(k) {
+                            runner.key_up(k);
+                        }
+                    }
+                }
+            }
+            if !paused {
+                let mut frames = 0;
+                while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
+                    runner.step_frame()?;
+                    frames += 1;
+                }
+                pacer.behind = runner.simulation().time() < pacer.target() - 0.1;
+                if pacer.behind {
+                    // Give up on the lost time rather than spiral: keep pacing from now.
+                    pacer.wall_origin = Instant::now();
+                    pacer.sim_origin = runner.simulation().time();
+                }
+                pacer.measure(runner.simulation().time());
+            }
+            let sim = runner.simulation();
+            mirror.sync(sim, &mut scene)?;
+            mirror.draw_overlays(sim, &mut window);
+            let status = if paused {
+                "paused".to_string()
+            } else if pacer.behind {
+                format!("x{:.2} real time: slower than real time", pacer.factor)
+            } else {
+                format!("x{:.2} real time", pacer.factor)
+            };
+            let text = format!("t = {:.3} s   {status}", sim.time());
+            window.draw_text(&text, Vec2::new(10.0, 10.0), 28.0, &font, kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0));
+            window.draw_text(
+                VIEWER_KEYS,
+                Vec2::new(10.0, 44.0),
+                20.0,
+                &font,
+                kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
+            );
+        }
+        Ok(())
+    })
+}
+
+/// Opens the program's window, runs `frames` frames (one drawn frame each, no real-time
+/// pacing), and returns the last frame as the window showed it. For tests and
+/// thumbnails; must run on the main thread, with a display.
+pub(crate) fn snapshot_window<P: Program>(program: &mut P, frames: u32) -> Result<image::RgbImage> {
+    let view = program.view_settings();
+    kiss3d::pollster::block_on(async move {
+        let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
+        window.set_background_color(convert::color(view.background));
+        let mut camera = OrbitCamera3d::new(convert::point(&view.camera_position), convert::point(&view.camera_target));
+        let mut scene = SceneNode3d::empty();
+        add_lights(&mut scene, &view);
+        let mut mirror = SceneMirror::new();
+        let mut runner = ProgramRunner::new(program)?;
+        for frame in 0..frames.max(1) {
+            if frame > 0 {
+                runner.step_frame()?;
+            }
+            mirror.sync(runner.simulation(), &mut scene)?;
+            mirror.draw_overlays(runner.simulation(), &mut window);
+            if !window.render_3d(&mut scene, &mut camera).await {
+                break;
+            }
+        }
+        let image = window.snap_image();
+        window.close();
+        Ok(image)
+    })
+}

@@ -1,0 +1,180 @@
+//! The viewer renders what the simulation holds: off screen with no display and no GPU
+//! (Mesa's software rasterisers), and in a real window under Xvfb.
+//!
+//! A test binary of its own with no harness: on-screen windows must be created on the
+//! main thread. Prints `N passed, N failed` like the other runners.
+
+use std::process::{Child, Command};
+use std::time::{Duration, Instant};
+
+use ars::nalgebra::{Matrix4, Point3, Vector3};
+use ars::viewer::image::RgbImage;
+use ars::viewer::{OffscreenRenderer, ProgramViewer};
+use ars::{Mass, Program, ProgramRunner, Result, Simulation, ViewSettings};
+
+/// The thesis' falling ball, painted red, seen from the original's camera.
+struct RedBall;
+
+impl Program for RedBall {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+        sim.set_color(ball, [1.0, 0.0, 0.0])
+    }
+    fn view_settings(&self) -> ViewSettings {
+        ViewSettings { size: (320, 240), ..ViewSettings::default() }
+    }
+}
+
+/// Where `p` lands in the image: the camera looks from `eye` at `target`, Y up, with a
+/// vertical field of view of π/4 (kiss3d's orbit camera).
+fn project(view: &ViewSettings, p: Point3<f64>) -> (f64, f64) {
+    let (w, h) = (view.size.0 as f64, view.size.1 as f64);
+    let v = Matrix4::look_at_rh(&view.camera_position, &view.camera_target, &Vector3::y());
+    let proj = Matrix4::new_perspective(w / h, std::f64::consts::FRAC_PI_4, 0.1, 1000.0);
+    let c = proj * v * p.to_homogeneous();
+    let (x, y) = (c.x / c.w, c.y / c.w);
+    ((x + 1.0) / 2.0 * w, (1.0 - y) / 2.0 * h)
+}
+
+fn reddish(image: &RgbImage, x: f64, y: f64, radius: i64) -> bool {
+    let mut red = 0;
+    for dx in -radius..=radius {
+        for dy in -radius..=radius {
+            let (px, py) = (x as i64 + dx, y as i64 + dy);
+            if px < 0 || py < 0 || px >= image.width() as i64 || py >= image.height() as i64 {
+                continue;
+            }
+            let [r, g, b] = image.get_pixel(px as u32, py as u32).0;
+            if r > 90 && u32::from(r) > 2 * u32::from(g) && u32::from(r) > 2 * u32::from(b) {
+                red += 1;
+            }
+        }
+    }
+    red > (2 * radius + 1).pow(2) / 2
+}
+
+fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), String> {
+    let view = RedBall.view_settings();
+    let mut renderer = OffscreenRenderer::new(&view).map_err(|e| e.to_string())?;
+    let mut program = RedBall;
+    let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
+    let start = renderer.render(runner.simulation()).map_err(|e| e.to_string())?;
+    runner.run_for(1.0).map_err(|e| e.to_string())?;
+    let ball = runner.simulation().object("sphere").unwrap();
+    let rest_center = runner.simulation().position(ball).unwrap();
+    let rest = renderer.render(runner.simulation()).map_err(|e| e.to_string())?;
+    let _ = start.save(std::env::temp_dir().join("ars_viewer_test_start.png"));
+    let _ = rest.save(std::env::temp_dir().join("ars_viewer_test_rest.png"));
+
+    let (x0, y0) = project(&view, Point3::new(1.0, 1.0, 1.0));
+    let (x1, y1) = project(&view, rest_center);
+    if !reddish(&start, x0, y0, 3) {
+        return Err(format!("no red ball at ({x0:.0}, {y0:.0}) in the first frame"));
+    }
+    if !reddish(&rest, x1, y1, 3) {
+        return Err(format!("no red ball at ({x1:.0}, {y1:.0}) in the frame at rest"));
+    }
+    // Far from the ball (top left corner), no red.
+    if reddish(&start, 10.0, 10.0, 3) {
+        return Err("red where there is no ball".into());
+    }
+    let changed =
+        start.pixels().zip(rest.pixels()).filter(|(a, b)| a.0.iter().zip(b.0).any(|(p, q)| p.abs_diff(q) > 40)).count();
+    if changed < 100 {
+        return Err(format!("the frame at rest differs from the first in only {changed} pixels"));
+    }
+    println!("  ball at ({x0:.0}, {y0:.0}) then ({x1:.0}, {y1:.0}); {changed} pixels changed");
+    Ok(())
+}
+
+fn start_xvfb() -> Option<(Child, String)> {
+    for n in 90..99 {
+        let display = format!(":{n}");
+        if std::path::Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
+            continue;
+        }
+        let Ok(mut child) =
+            Command::new("Xvfb").args([display.as_str(), "-screen", "0", "1024x768x24", "-nolisten", "tcp"]).spawn()
+        else {
+            return None;
+        };
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while Instant::now() < deadline {
+            if std::path::Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
+                return Some((child, display));
+            }
+            if let Ok(Some(_)) = child.try_wait() {
+                break;
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        let _ = child.kill();
+    }
+    None
+}
+
+fn a_real_window_under_xvfb_shows_the_ball() -> std::result::Result<bool, String> {
+    let Some((mut xvfb, display)) = start_xvfb() else {
+        println!("  skipped: Xvfb could not start (apt-get install xvfb)");
+        return Ok(false);
+    };
+    // SAFETY: the test is single-threaded at this point (the off-screen test's thread
+    // has been joined), so no other thread reads the environment.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    let result = RedBall.snapshot_in_window(3);
+    let _ = xvfb.kill();
+    let image = result.map_err(|e| e.to_string())?;
+    let view = RedBall.view_settings();
+    let _ = image.save(std::env::temp_dir().join("ars_viewer_test_window.png"));
+    let (x, y) = project(&view, Point3::new(1.0, 1.0, 1.0));
+    let (sx, sy) = (x * image.width() as f64 / view.size.0 as f64, y * image.height() as f64 / view.size.1 as f64);
+    if !reddish(&image, sx, sy, 2) {
+        return Err(format!(
+            "no red ball at ({sx:.0}, {sy:.0}) in the window's frame ({}×{})",
+            image.width(),
+            image.height()
+        ));
+    }
+    println!("  window {}×{} on {display}: ball at ({sx:.0}, {sy:.0})", image.width(), image.height());
+    Ok(true)
+}
+
+fn main() {
+    let (mut passed, mut failed, mut skipped) = (0, 0, 0);
+    println!("test offscreen_frames_show_the_ball_where_it_is ...");
+    // Off screen on a thread of its own: kiss3d's context is per thread.
+    match std::thread::spawn(offscreen_frames_show_the_ball_where_it_is).join() {
+        Ok(Ok(())) => {
+            println!("test offscreen_frames_show_the_ball_where_it_is ... ok");
+            passed += 1;
+        }
+        Ok(Err(e)) => {
+            println!("test offscreen_frames_show_the_ball_where_it_is ... FAILED: {e}");
+            failed += 1;
+        }
+        Err(_) => {
+            println!("test offscreen_frames_show_the_ball_where_it_is ... FAILED (panicked)");
+            failed += 1;
+        }
+    }
+    println!("test a_real_window_under_xvfb_shows_the_ball ...");
+    match std::panic::catch_unwind(a_real_window_under_xvfb_shows_the_ball) {
+        Ok(Ok(true)) => {
+            println!("test a_real_window_under_xvfb_shows_the_ball ... ok");
+            passed += 1;
+        }
+        Ok(Ok(false)) => skipped += 1,
+        Ok(Err(e)) => {
+            println!("test a_real_window_under_xvfb_shows_the_ball ... FAILED: {e}");
+            failed += 1;
+        }
+        Err(_) => {
+            println!("test a_real_window_under_xvfb_shows_the_ball ... FAILED (panicked)");
+            failed += 1;
+        }
+    }
+    println!("{passed} passed, {failed} failed, {skipped} skipped");
+    if failed > 0 {
+        std::process::exit(1);
+    }
+}
