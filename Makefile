@@ -1,5 +1,6 @@
 # ARS: one entry point for newcomers, developers and CI.
-#   make demo   install what is missing (Debian packages), run the falling-ball demo headless
+#   make demo   install what is missing (Debian packages), show the conical pendulum
+#               (a window where there is a display; frames, CSV and plots otherwise)
 #   make test   install what is missing, run the whole test suite
 #   make check  everything CI checks: fmt, clippy, tests, docs, benchmarks compile
 #   make bench  the Rust-against-native-ODE benchmark (prints Rust/C ratios)
@@ -22,8 +23,17 @@ deps:
 	fi
 	@command -v cargo >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs) first"; exit 1; }
 
+# Where there is a display: the conical pendulum in a window. Otherwise: off-screen
+# frames, the CSV and the plots of the conical pendulum into demo-output/.
 demo: deps
-	cargo run --release --example hello_world
+	cargo build --release --example conical_pendulum
+	@if [ -n "$${DISPLAY}$${WAYLAND_DISPLAY}" ]; then \
+		cargo run --release --example conical_pendulum -- --window; \
+	else \
+		cargo run --release --example conical_pendulum -- --duration 10 --screenshots demo-output/frames \
+			--frame-every 10 --size 800x600 --csv demo-output/conical_pendulum.csv --every 40 --plot demo-output && \
+		echo "no display: frames, CSV and plots of the conical pendulum are in $(CURDIR)/demo-output"; \
+	fi
 
 test: deps
 	cargo test --workspace --locked

@@ -56,6 +56,12 @@ pub trait ProgramViewer: Program + Sized {
     /// machine with no display it records [`HEADLESS_FALLBACK_SECONDS`] of simulated
     /// time off screen instead, saying where the frames go.
     fn start(&mut self) -> Result<()> {
+        self.show().map(drop)
+    }
+
+    /// As [`start`](Self::start), and returns the simulation as it was when the window
+    /// closed (or when the off-screen recording ended), for its records.
+    fn show(&mut self) -> Result<ars_core::Simulation> {
         if has_display() {
             return window::run_window(self);
         }
@@ -66,9 +72,9 @@ pub trait ProgramViewer: Program + Sized {
              frames into {}",
             dir.display()
         );
-        let (_, written) = ScreenshotRecorder::new(&dir).every(5).record(self, HEADLESS_FALLBACK_SECONDS)?;
+        let (sim, written) = ScreenshotRecorder::new(&dir).every(5).record(self, HEADLESS_FALLBACK_SECONDS)?;
         eprintln!("wrote {} frames into {}", written.len(), dir.display());
-        Ok(())
+        Ok(sim)
     }
 
     /// Opens the program's window for `frames` frames and returns the last one as

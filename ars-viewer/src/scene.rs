@@ -33,7 +33,6 @@ pub struct SceneMirror {
     pub show_joints: bool,
 }
 
-
 impl SceneMirror {
     /// An empty mirror.
     pub fn new() -> Self {

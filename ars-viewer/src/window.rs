@@ -90,8 +90,9 @@ impl Pacer {
     }
 }
 
-/// Opens the program's window and runs it until the window is closed.
-pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<()> {
+/// Opens the program's window and runs it until the window is closed; returns the
+/// simulation as it was then.
+pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simulation> {
     let view = program.view_settings();
     kiss3d::pollster::block_on(async move {
         let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
@@ -167,7 +168,7 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<()> {
                 kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
             );
         }
-        Ok(())
+        Ok(runner.into_simulation())
     })
 }
 

@@ -20,6 +20,8 @@ pub struct Args {
     pub frame_every: u32,
     /// Frame size, pixels.
     pub size: Option<(u32, u32)>,
+    /// Show the program in a window (until it is closed) instead of running headless.
+    pub window: bool,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
@@ -31,7 +33,8 @@ fn usage(program: &str, default_duration: f64) -> String {
          \x20 --every N          keep one CSV row every N steps (default 1)\n\
          \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
          \x20 --frame-every N    one screenshot every N frames (default 5)\n\
-         \x20 --size WxH         screenshot size in pixels (default: the program's window size)"
+         \x20 --size WxH         screenshot size in pixels (default: the program's window size)\n\
+         \x20 --window           show the program in a window instead (records off screen if there is no display)"
     )
 }
 
@@ -52,6 +55,7 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         screenshots: None,
         frame_every: 5,
         size: None,
+        window: false,
     };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
@@ -76,6 +80,7 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
                     _ => fail(format!("--every must be a positive whole number, got {v:?}")),
                 };
             }
+            "--window" => args.window = true,
             "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
             "--frame-every" => {
                 let v = value("--frame-every");
@@ -127,10 +132,25 @@ pub fn cell(v: Option<f64>) -> String {
 /// Runs `program` for the requested duration: headless, or recording off-screen
 /// frames when `--screenshots` was given. Returns the simulation for its records.
 pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    if args.window {
+        return show(program);
+    }
     match &args.screenshots {
         None => Ok(program.run_headless(args.duration)?),
         Some(dir) => record(program, args, dir),
     }
+}
+
+#[cfg(feature = "viewer")]
+fn show<P: ars::Program>(program: &mut P) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    use ars::viewer::ProgramViewer;
+    eprintln!("{}", ars::viewer::VIEWER_KEYS);
+    Ok(program.show()?)
+}
+
+#[cfg(not(feature = "viewer"))]
+fn show<P: ars::Program>(_: &mut P) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    Err("--window needs the viewer: build with the default features".into())
 }
 
 #[cfg(feature = "viewer")]
