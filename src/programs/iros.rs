@@ -2,6 +2,7 @@
 //! parameters (ars-original §8.14–8.17). Where the papers and the code disagree, the
 //! code's behaviour is the default and the paper's is a flag.
 
+use super::{SetpointKeys, ShoulderSetpoint};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::{ActionMap, Key, Mass, Pid, Profile, Program, Repeat, Result, Simulation, SimulationBuilder};
 
@@ -418,23 +419,14 @@ impl Program for UserDriven {
             .add(Key::Down, move |p: &mut Self, sim| p.drive(sim, -t, -t), Repeat::WhileHeld)
             .add(Key::Left, move |p: &mut Self, sim| p.drive(sim, -t, t), Repeat::WhileHeld)
             .add(Key::Right, move |p: &mut Self, sim| p.drive(sim, t, -t), Repeat::WhileHeld)
-            .add(
-                Key::Char('d'),
-                |p: &mut Self, _| {
-                    p.setpoint += 0.1;
-                    Ok(())
-                },
-                Repeat::Once,
-            )
-            .add(
-                Key::Char('c'),
-                |p: &mut Self, _| {
-                    p.setpoint -= 0.1;
-                    Ok(())
-                },
-                Repeat::Once,
-            )
+            .add_setpoint_keys(0.1)
             .add(Key::Char('a'), |p: &mut Self, sim| push_waist(p.arm, sim, 3.0), Repeat::Once)
             .add(Key::Char('z'), |p: &mut Self, sim| push_waist(p.arm, sim, -3.0), Repeat::Once)
+    }
+}
+
+impl ShoulderSetpoint for UserDriven {
+    fn setpoint_mut(&mut self) -> &mut f64 {
+        &mut self.setpoint
     }
 }

@@ -31,3 +31,36 @@ pub use vehicles::{
     VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle, build_vehicle_arm,
     signed_ground_speed,
 };
+
+/// Programs whose shoulder set-point the 'd' and 'c' keys move, as in the original.
+pub trait ShoulderSetpoint {
+    /// The set-point, rad.
+    fn setpoint_mut(&mut self) -> &mut f64;
+}
+
+/// Binds 'd' (raise) and 'c' (lower) to a program's shoulder set-point.
+pub(crate) trait SetpointKeys {
+    fn add_setpoint_keys(self, step: f64) -> Self;
+}
+
+impl<P: ShoulderSetpoint + 'static> SetpointKeys for ars_core::ActionMap<P> {
+    fn add_setpoint_keys(self, step: f64) -> Self {
+        use ars_core::{Key, Repeat};
+        self.add(
+            Key::Char('d'),
+            move |p: &mut P, _| {
+                *p.setpoint_mut() += step;
+                Ok(())
+            },
+            Repeat::Once,
+        )
+        .add(
+            Key::Char('c'),
+            move |p: &mut P, _| {
+                *p.setpoint_mut() -= step;
+                Ok(())
+            },
+            Repeat::Once,
+        )
+    }
+}

@@ -4,6 +4,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
+use super::{SetpointKeys, ShoulderSetpoint};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::{ActionMap, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation};
 
@@ -135,21 +136,12 @@ impl Program for ControlledSimpleArm {
         ActionMap::new()
             .add(Key::Char('a'), |p: &mut Self, sim| push_waist(p.parts, sim, SimpleArm::TORQUE), Repeat::Once)
             .add(Key::Char('z'), |p: &mut Self, sim| push_waist(p.parts, sim, -SimpleArm::TORQUE), Repeat::Once)
-            .add(
-                Key::Char('d'),
-                |p: &mut Self, _| {
-                    p.setpoint += Self::SETPOINT_STEP;
-                    Ok(())
-                },
-                Repeat::Once,
-            )
-            .add(
-                Key::Char('c'),
-                |p: &mut Self, _| {
-                    p.setpoint -= Self::SETPOINT_STEP;
-                    Ok(())
-                },
-                Repeat::Once,
-            )
+            .add_setpoint_keys(Self::SETPOINT_STEP)
+    }
+}
+
+impl ShoulderSetpoint for ControlledSimpleArm {
+    fn setpoint_mut(&mut self) -> &mut f64 {
+        &mut self.setpoint
     }
 }

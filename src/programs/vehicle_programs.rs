@@ -1,6 +1,7 @@
 //! The original's vehicle demos: `Vehicle1`, `Vehicle2`, `VehicleWithArm` and
 //! `VehicleWithControlledArm`, driven with the arrow keys.
 
+use super::{SetpointKeys, ShoulderSetpoint};
 use ars_core::nalgebra::Vector3;
 use ars_core::{ActionMap, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation, SimulationBuilder};
 
@@ -255,22 +256,12 @@ impl Program for VehicleWithControlledArm {
     }
 
     fn key_bindings(&self) -> ActionMap<Self> {
-        arm_vehicle_bindings!(Self, WHEEL_TORQUE)
-            .add(
-                Key::Char('d'),
-                |p: &mut Self, _| {
-                    p.setpoint += 0.1;
-                    Ok(())
-                },
-                Repeat::Once,
-            )
-            .add(
-                Key::Char('c'),
-                |p: &mut Self, _| {
-                    p.setpoint -= 0.1;
-                    Ok(())
-                },
-                Repeat::Once,
-            )
+        arm_vehicle_bindings!(Self, WHEEL_TORQUE).add_setpoint_keys(0.1)
+    }
+}
+
+impl ShoulderSetpoint for VehicleWithControlledArm {
+    fn setpoint_mut(&mut self) -> &mut f64 {
+        &mut self.setpoint
     }
 }
