@@ -90,6 +90,7 @@ pub mod handle;
 mod init;
 pub mod joint;
 pub mod program;
+pub mod random;
 pub mod sensors;
 pub mod simulation;
 mod validate;
@@ -112,3 +113,4 @@ pub use simulation::{
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 
 pub use nalgebra;
+pub use simulation::colors;

@@ -385,3 +385,27 @@ fn simulations_run_independently_on_several_threads() {
     });
     assert!((t.join().unwrap() - 0.1).abs() < 1e-9);
 }
+
+#[test]
+fn noisy_sensors_add_seeded_gaussian_noise() {
+    let run = |seed: u64| {
+        let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+        let still = sim.add_sphere(0.5, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        let gps = sim.add_sensor(Noisy::new(Gps::new(still), 0.05, seed).unwrap()).unwrap();
+        sim.run_for(1.0).unwrap();
+        sim.records(gps).unwrap().iter().map(|s| s.record.position.y - 2.0).collect::<Vec<_>>()
+    };
+    let errors = run(1);
+    let n = errors.len() as f64;
+    let mean = errors.iter().sum::<f64>() / n;
+    let sd = (errors.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / n).sqrt();
+    assert!(mean.abs() < 0.005 && (sd - 0.05).abs() < 0.005, "mean {mean}, sd {sd}");
+    assert_eq!(errors, run(1), "the same seed, the same noise");
+    assert_ne!(errors, run(2));
+    assert!(Noisy::new(Gps::new(sim_object()), -1.0, 0).is_err());
+}
+
+fn sim_object() -> ObjectId {
+    let mut sim = Simulation::new().unwrap();
+    sim.add_sphere(0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap()
+}

@@ -63,7 +63,7 @@ pub trait ProgramViewer: Program + Sized {
     /// closed (or when the off-screen recording ended), for its records.
     fn show(&mut self) -> Result<ars_core::Simulation> {
         if has_display() {
-            return window::run_window(self);
+            return catch_window_panic(|| window::run_window(self));
         }
         let title = self.view_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
         let dir = std::env::temp_dir().join(format!("ars-frames-{title}"));
@@ -83,7 +83,7 @@ pub trait ProgramViewer: Program + Sized {
         if !has_display() {
             return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
         }
-        window::snapshot_window(self, frames)
+        catch_window_panic(|| window::snapshot_window(self, frames))
     }
 
     /// Runs the program for `duration` simulated seconds off screen, writing frames as
@@ -94,3 +94,24 @@ pub trait ProgramViewer: Program + Sized {
 }
 
 impl<P: Program> ProgramViewer for P {}
+
+/// The windowing stack panics when it cannot open a window or find a graphics
+/// adapter; turn that into an error that says what to install or check.
+fn catch_window_panic<T>(open: impl FnOnce() -> Result<T>) -> Result<T> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(open)) {
+        Ok(result) => result,
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "unknown panic".into());
+            if message.to_lowercase().contains("adapter") {
+                Err(ViewerError::NoAdapter(message))
+            } else {
+                let display = std::env::var("DISPLAY").unwrap_or_default();
+                Err(ViewerError::Settings(format!("could not open a window (DISPLAY={display:?}): {message}")))
+            }
+        }
+    }
+}

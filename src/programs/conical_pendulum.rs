@@ -95,8 +95,8 @@ impl Program for ConicalPendulum {
             sim.offset_by_position(link, offset)?;
         }
         sim.set_color(base, [0.55, 0.6, 0.65])?;
-        sim.set_color(pole, [1.0, 1.0, 0.0])?;
-        sim.set_color(arm, [0.0, 0.0, 0.5])?;
+        sim.set_color(pole, ars_core::colors::YELLOW)?;
+        sim.set_color(arm, ars_core::colors::NAVY)?;
         let waist = sim.add_rotary_joint("r1", base, pole, None, Vector3::y())?;
         let shoulder =
             sim.add_rotary_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;

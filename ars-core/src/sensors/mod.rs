@@ -23,6 +23,7 @@ mod body;
 mod energy;
 mod joint;
 mod laser;
+mod noise;
 
 use std::any::Any;
 use std::io::{self, Write};
@@ -37,6 +38,7 @@ pub use joint::{
     Effort, JointForce, JointPower, JointReaction, JointTorque, Power, Reaction, RotaryJointSensor, RotaryReading,
 };
 pub use laser::{Laser, LaserReading};
+pub use noise::{Noisy, Perturb};
 
 use crate::error::{Error, Result};
 use crate::handle::{JointId, ObjectId, WorldId};

@@ -72,16 +72,8 @@ impl Heightfield {
     /// Heights drawn uniformly from `[0, scale)` by a generator seeded with `seed`
     /// (the same seed gives the same terrain).
     pub fn random(num_x: u32, num_z: u32, scale: f64, seed: u64) -> Result<Self> {
-        let mut state = seed;
-        Self::from_fn(num_x, num_z, |_, _| {
-            // SplitMix64.
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^= z >> 31;
-            (z >> 11) as f64 / (1u64 << 53) as f64 * scale
-        })
+        let mut rng = crate::random::SplitMix64::new(seed);
+        Self::from_fn(num_x, num_z, |_, _| rng.uniform() * scale)
     }
 
     /// A flat grid at `height`.

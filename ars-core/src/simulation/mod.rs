@@ -20,6 +20,7 @@
 //! post-frame hooks. Forces and torques added through the API act during the next step
 //! only (ODE clears its accumulators after each step).
 
+pub mod colors;
 mod floor;
 mod joints;
 mod names;
