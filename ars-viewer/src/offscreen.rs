@@ -8,14 +8,11 @@
 use std::path::{Path, PathBuf};
 
 use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
-use kiss3d::camera::OrbitCamera3d;
-use kiss3d::light::Light;
-use kiss3d::scene::SceneNode3d;
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::convert;
 use crate::error::{Result, ViewerError};
-use crate::scene::SceneMirror;
+use crate::scene::View;
 
 /// Creates kiss3d's wgpu context on this thread with a software-friendly adapter:
 /// OpenGL ES through EGL (Mesa llvmpipe, the faster software path) first, then any
@@ -72,9 +69,7 @@ pub fn init_offscreen_context() -> Result<()> {
 /// Renders a simulation into images, off screen.
 pub struct OffscreenRenderer {
     surface: OffscreenSurface,
-    scene: SceneNode3d,
-    camera: OrbitCamera3d,
-    mirror: SceneMirror,
+    view: View,
 }
 
 impl OffscreenRenderer {
@@ -89,39 +84,20 @@ impl OffscreenRenderer {
         let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(w, h, setup));
         surface.set_background_color(convert::color(view.background));
-        let mut scene = SceneNode3d::empty();
-        add_lights(&mut scene, view);
-        let camera = OrbitCamera3d::new(convert::point(&view.camera_position), convert::point(&view.camera_target));
-        Ok(OffscreenRenderer { surface, scene, camera, mirror: SceneMirror::new() })
+        Ok(OffscreenRenderer { surface, view: View::new(view) })
     }
 
     /// Renders the simulation as it is now.
     pub fn render(&mut self, sim: &Simulation) -> Result<image::RgbImage> {
-        self.mirror.sync(sim, &mut self.scene)?;
-        self.mirror.draw_overlays(sim, self.surface.window_mut());
-        Ok(kiss3d::pollster::block_on(self.surface.render_image_3d(&mut self.scene, &mut self.camera)))
+        self.view.update(sim, self.surface.window_mut())?;
+        let View { scene, camera, .. } = &mut self.view;
+        Ok(kiss3d::pollster::block_on(self.surface.render_image_3d(scene, camera)))
     }
 
     /// Forgets the scene (after the simulation was rebuilt).
     pub fn reset(&mut self) {
-        self.mirror.clear();
+        self.view.mirror.clear();
     }
-}
-
-/// Lights that show every side: a point light above and behind the camera, and a
-/// dimmer one from the other side.
-pub(crate) fn add_lights(scene: &mut SceneNode3d, view: &ViewSettings) {
-    let eye = view.camera_position;
-    scene.add_light(Light::point(200.0)).set_position(kiss3d::glamx::Vec3::new(
-        eye.x as f32,
-        eye.y as f32 + 10.0,
-        eye.z as f32,
-    ));
-    scene.add_light(Light::point(200.0).with_intensity(1.5)).set_position(kiss3d::glamx::Vec3::new(
-        -eye.x as f32,
-        eye.y as f32 + 5.0,
-        -eye.z as f32,
-    ));
 }
 
 /// Writes numbered PNG frames (`frame_00001.png`, `frame_00002.png`...) of a running

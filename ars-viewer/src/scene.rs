@@ -4,9 +4,11 @@
 use std::collections::HashMap;
 
 use ars_core::nalgebra::Isometry3;
-use ars_core::{ObjectId, ObjectShape, Shape, Simulation};
+use ars_core::{ObjectId, ObjectShape, Shape, Simulation, ViewSettings};
+use kiss3d::camera::OrbitCamera3d;
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
+use kiss3d::light::Light;
 use kiss3d::scene::SceneNode3d;
 use kiss3d::window::Window;
 
@@ -164,4 +166,45 @@ fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: us
     child.set_color(color);
     group.set_pose(convert::pose(&sim.pose(id).unwrap_or(Isometry3::identity())));
     Ok(ObjectNode { group, dynamic })
+}
+
+/// What every viewer draws from: the scene graph (with its lights), the camera of the
+/// program's view settings, and the mirror of the simulation's objects.
+pub(crate) struct View {
+    pub(crate) scene: SceneNode3d,
+    pub(crate) camera: OrbitCamera3d,
+    pub(crate) mirror: SceneMirror,
+}
+
+impl View {
+    pub(crate) fn new(settings: &ViewSettings) -> Self {
+        let mut scene = SceneNode3d::empty();
+        add_lights(&mut scene, settings);
+        let camera =
+            OrbitCamera3d::new(convert::point(&settings.camera_position), convert::point(&settings.camera_target));
+        View { scene, camera, mirror: SceneMirror::new() }
+    }
+
+    /// Brings the scene up to date with `sim` and queues this frame's lines.
+    pub(crate) fn update(&mut self, sim: &Simulation, window: &mut Window) -> ars_core::Result<()> {
+        self.mirror.sync(sim, &mut self.scene)?;
+        self.mirror.draw_overlays(sim, window);
+        Ok(())
+    }
+}
+
+/// Lights that show every side: a point light above and behind the camera, and a
+/// dimmer one from the other side.
+fn add_lights(scene: &mut SceneNode3d, view: &ViewSettings) {
+    let eye = view.camera_position;
+    scene.add_light(Light::point(200.0)).set_position(kiss3d::glamx::Vec3::new(
+        eye.x as f32,
+        eye.y as f32 + 10.0,
+        eye.z as f32,
+    ));
+    scene.add_light(Light::point(200.0).with_intensity(1.5)).set_position(kiss3d::glamx::Vec3::new(
+        -eye.x as f32,
+        eye.y as f32 + 5.0,
+        -eye.z as f32,
+    ));
 }

@@ -4,17 +4,14 @@
 use std::time::{Duration, Instant};
 
 use ars_core::{Key, Program, ProgramRunner};
-use kiss3d::camera::OrbitCamera3d;
 use kiss3d::event::{Action, Key as WindowKey, WindowEvent};
 use kiss3d::glamx::Vec2;
-use kiss3d::scene::SceneNode3d;
 use kiss3d::text::Font;
 use kiss3d::window::Window;
 
 use crate::convert;
 use crate::error::Result;
-use crate::offscreen::add_lights;
-use crate::scene::SceneMirror;
+use crate::scene::View;
 
 /// The viewer's own keys (they are not passed to the program).
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: show joints, escape: quit";
@@ -98,15 +95,12 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
         let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
-        let mut camera = OrbitCamera3d::new(convert::point(&view.camera_position), convert::point(&view.camera_target));
-        let mut scene = SceneNode3d::empty();
-        add_lights(&mut scene, &view);
+        let mut shown = View::new(&view);
         let font = Font::default();
-        let mut mirror = SceneMirror::new();
         let mut runner = ProgramRunner::new(program)?;
         let mut paused = false;
         let mut pacer = Pacer::new(0.0);
-        while window.render_3d(&mut scene, &mut camera).await {
+        while window.render_3d(&mut shown.scene, &mut shown.camera).await {
             for mut event in window.events().iter() {
                 let WindowEvent::Key(key, action, _) = event.value else { continue };
                 event.inhibited = true;
@@ -118,10 +112,10 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
                     (WindowKey::N, Action::Press) if paused => runner.step()?,
                     (WindowKey::R, Action::Press) => {
                         runner.reset()?;
-                        mirror.clear();
+                        shown.mirror.clear();
                         pacer = Pacer::new(0.0);
                     }
-                    (WindowKey::J, Action::Press) => mirror.show_joints = !mirror.show_joints,
+                    (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
                     (k, Action::Press) => {
                         if let Some(k) = program_key(k) {
                             runner.key_down(k)?;
@@ -149,8 +143,7 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
                 pacer.measure(runner.simulation().time());
             }
             let sim = runner.simulation();
-            mirror.sync(sim, &mut scene)?;
-            mirror.draw_overlays(sim, &mut window);
+            shown.update(sim, &mut window)?;
             let status = if paused {
                 "paused".to_string()
             } else if pacer.behind {
@@ -180,18 +173,14 @@ pub(crate) fn snapshot_window<P: Program>(program: &mut P, frames: u32) -> Resul
     kiss3d::pollster::block_on(async move {
         let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
         window.set_background_color(convert::color(view.background));
-        let mut camera = OrbitCamera3d::new(convert::point(&view.camera_position), convert::point(&view.camera_target));
-        let mut scene = SceneNode3d::empty();
-        add_lights(&mut scene, &view);
-        let mut mirror = SceneMirror::new();
+        let mut shown = View::new(&view);
         let mut runner = ProgramRunner::new(program)?;
         for frame in 0..frames.max(1) {
             if frame > 0 {
                 runner.step_frame()?;
             }
-            mirror.sync(runner.simulation(), &mut scene)?;
-            mirror.draw_overlays(runner.simulation(), &mut window);
-            if !window.render_3d(&mut scene, &mut camera).await {
+            shown.update(runner.simulation(), &mut window)?;
+            if !window.render_3d(&mut shown.scene, &mut shown.camera).await {
                 break;
             }
         }
