@@ -399,17 +399,21 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
         &self.held
     }
 
-    fn run_steps(&mut self, steps: u64) -> Result<()> {
+    /// The program's hooks, with the actions of the keys held now.
+    fn hooks(&mut self) -> (ProgramHooks<'_, P>, &mut Simulation) {
         let held_actions = self.held.iter().filter_map(|k| self.bindings.get(*k).map(|(a, _)| a)).collect();
-        let mut hooks = ProgramHooks { program: &mut *self.program, held_actions };
-        self.sim.run_steps_in_frames(&mut hooks, steps)
+        (ProgramHooks { program: &mut *self.program, held_actions }, &mut self.sim)
+    }
+
+    fn run_steps(&mut self, steps: u64) -> Result<()> {
+        let (mut hooks, sim) = self.hooks();
+        sim.run_steps_in_frames(&mut hooks, steps)
     }
 
     /// One step with the program's step hooks (no frame hooks).
     pub fn step(&mut self) -> Result<()> {
-        let held_actions = self.held.iter().filter_map(|k| self.bindings.get(*k).map(|(a, _)| a)).collect();
-        let mut hooks = ProgramHooks { program: &mut *self.program, held_actions };
-        self.sim.step_with(&mut hooks)
+        let (mut hooks, sim) = self.hooks();
+        sim.step_with(&mut hooks)
     }
 
     /// One frame of `steps_per_frame` steps.

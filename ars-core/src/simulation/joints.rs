@@ -303,12 +303,9 @@ impl Simulation {
     }
 
     pub(crate) fn end_joint_step(&mut self) {
-        let ids: Vec<_> = self.joints.iter().map(|(h, _)| h).collect();
-        for h in ids {
-            if let Ok(d) = self.joints.get_mut(h, JointId::KIND, &"joint") {
-                d.applied = 0.0;
-                d.applied_power = 0.0;
-            }
+        for d in self.joints.values_mut() {
+            d.applied = 0.0;
+            d.applied_power = 0.0;
         }
     }
 
