@@ -1,6 +1,7 @@
-//! Finds the system ODE with pkg-config, insists on 0.16.x in double precision and
-//! generates the bindings with bindgen. Every failure ends the build with one message
-//! that says which Debian packages to install.
+//! Finds the system ODE with pkg-config, insists on 0.16.x in double precision,
+//! generates the bindings with bindgen and compiles the guard shim `src/guard.c`.
+//! Every failure ends the build with one message that says which Debian packages to
+//! install.
 
 use std::env;
 use std::path::PathBuf;
@@ -15,6 +16,8 @@ fn fail(what: &str) -> ! {
 
 fn main() {
     println!("cargo:rerun-if-changed=wrapper.h");
+    println!("cargo:rerun-if-changed=src/guard.c");
+    println!("cargo:rerun-if-changed=src/guard.h");
     println!("cargo:rerun-if-env-changed=PKG_CONFIG_PATH");
     println!("cargo:rerun-if-env-changed=LIBCLANG_PATH");
 
@@ -33,7 +36,9 @@ fn main() {
         .allowlist_function("d[A-Z].*")
         .allowlist_type("d[A-Z].*")
         .allowlist_var("d[A-Z].*")
-        .allowlist_function("vsnprintf")
+        .allowlist_function("odesys_.*")
+        .allowlist_type("odesys_.*")
+        .allowlist_var("ODESYS_.*")
         .derive_default(true)
         .derive_debug(true)
         .layout_tests(false)
@@ -51,4 +56,12 @@ fn main() {
     };
     let out = PathBuf::from(env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
     bindings.write_to_file(out.join("bindings.rs")).expect("writing the generated bindings into OUT_DIR");
+
+    // The guard that turns ODE's internal errors into return codes (src/guard.c).
+    cc::Build::new()
+        .file("src/guard.c")
+        .includes(&ode.include_paths)
+        .flag_if_supported("-std=c11")
+        .warnings(true)
+        .compile("odesys_guard");
 }

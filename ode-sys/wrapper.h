@@ -1,4 +1,3 @@
-/* The headers ode-sys binds: all of ODE, plus vsnprintf to format the va_list that
- * ODE's message, debug and error handlers receive. */
+/* The headers ode-sys binds: all of ODE, and the guarded calls of src/guard.c. */
 #include <ode/ode.h>
-#include <stdio.h>
+#include "src/guard.h"

@@ -11,7 +11,7 @@
 //! use ars::nalgebra::{Point3, Vector3};
 //!
 //! let mut world = World::new();
-//! let space = world.create_space(SpaceKind::Simple);
+//! let space = world.create_space(SpaceKind::Simple)?;
 //! world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0))?;
 //! let ball = world.insert_body(
 //!     BodyBuilder::new().position(Point3::new(1.0, 1.0, 1.0)).mass(MassSpec::sphere_total(1.0, 0.5)),

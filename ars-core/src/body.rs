@@ -7,6 +7,7 @@ use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::BodyHandle;
 use crate::init::ensure_ode_ready;
+use crate::limits;
 use crate::validate;
 use crate::world::World;
 
@@ -92,39 +93,32 @@ impl MassSpec {
     pub(crate) fn to_ode(self) -> Result<ffi::dMass> {
         let amount = |a: Mass| -> Result<Mass> {
             match a {
-                Mass::Total(m) => validate::positive("mass", m).map(Mass::Total),
+                Mass::Total(m) => limits::mass("mass", m).map(Mass::Total),
+                // The resulting mass is checked below.
                 Mass::Density(d) => validate::positive("density", d).map(Mass::Density),
             }
         };
         // Check every number first; the ODE calls below then cannot fail.
         let checked = match self {
             MassSpec::Sphere { radius, amount: a } => {
-                MassSpec::Sphere { radius: validate::positive("sphere radius", radius)?, amount: amount(a)? }
+                MassSpec::Sphere { radius: limits::size("sphere radius", radius)?, amount: amount(a)? }
             }
             MassSpec::Box { size, amount: a } => {
-                MassSpec::Box { size: validate::positive_vector("box size", &size)?, amount: amount(a)? }
+                MassSpec::Box { size: limits::sizes("box size", &size)?, amount: amount(a)? }
             }
             MassSpec::Capsule { radius, length, amount: a } => MassSpec::Capsule {
-                radius: validate::positive("capsule radius", radius)?,
-                length: validate::positive("capsule length", length)?,
+                radius: limits::size("capsule radius", radius)?,
+                length: limits::size("capsule length", length)?,
                 amount: amount(a)?,
             },
             MassSpec::Cylinder { radius, length, amount: a } => MassSpec::Cylinder {
-                radius: validate::positive("cylinder radius", radius)?,
-                length: validate::positive("cylinder length", length)?,
+                radius: limits::size("cylinder radius", radius)?,
+                length: limits::size("cylinder length", length)?,
                 amount: amount(a)?,
             },
             MassSpec::Custom { mass, inertia: i } => {
-                validate::positive("mass", mass)?;
-                if !i.iter().all(|x| x.is_finite()) {
-                    return Err(Error::NotFinite { what: "inertia tensor", value: format!("{i:?}") });
-                }
-                if (i - i.transpose()).norm() > 1e-12 * i.norm().max(1.0) || i.cholesky().is_none() {
-                    return Err(Error::OutOfRange {
-                        what: "inertia tensor",
-                        detail: "must be symmetric and positive definite".into(),
-                    });
-                }
+                limits::mass("mass", mass)?;
+                limits::inertia(&i)?;
                 self
             }
         };
@@ -165,6 +159,10 @@ impl MassSpec {
                 ),
             }
         }
+        // A density gives a mass (and every shape an inertia) that must be in range too:
+        // a density of 1e10 kg/m³ in a sphere of radius 1e150 m overflows to infinity.
+        limits::mass("mass (from the density and the shape)", m.mass)?;
+        limits::inertia(&convert::matrix_from_ode(&m.I))?;
         // SAFETY: `m` is a valid dMass; dMassCheck only reads it.
         if unsafe { ffi::dMassCheck(&m) } == 0 {
             return Err(Error::OutOfRange { what: "mass", detail: "ODE rejects these mass parameters".into() });
@@ -253,13 +251,14 @@ pub struct BodyMut<'w> {
 impl World {
     /// Creates a body as described by `builder`.
     pub fn insert_body(&mut self, builder: BodyBuilder) -> Result<BodyHandle> {
+        self.check_usable()?;
         ensure_ode_ready();
         // Check everything first, so that a bad argument leaves the world untouched.
         let mass = builder.mass.map(MassSpec::to_ode).transpose()?;
-        let position = builder.position.map(|p| validate::point("body position", &p)).transpose()?;
+        let position = builder.position.map(|p| limits::point("body position", &p)).transpose()?;
         let rotation = builder.rotation.map(|r| validate::rotation("body rotation", &r)).transpose()?;
-        let lin = builder.linear_velocity.map(|v| validate::vector("linear velocity", &v)).transpose()?;
-        let ang = builder.angular_velocity.map(|v| validate::vector("angular velocity", &v)).transpose()?;
+        let lin = builder.linear_velocity.map(|v| linear_velocity(&v)).transpose()?;
+        let ang = builder.angular_velocity.map(|v| angular_velocity(&v)).transpose()?;
         // SAFETY: the world is live; the new body is owned by the arena entry below and
         // destroyed by `remove_body` or the world's Drop.
         let raw = unsafe { ffi::dBodyCreate(self.raw) };
@@ -292,6 +291,7 @@ impl World {
 
     /// Removes a body together with the geoms attached to it and the joints that use it.
     pub fn remove_body(&mut self, body: BodyHandle) -> Result<()> {
+        self.check_usable()?;
         self.body(body)?;
         let geoms: Vec<_> = self.geoms_of_body(body);
         for g in geoms {
@@ -302,6 +302,9 @@ impl World {
             self.remove_joint(j)?;
         }
         let data = self.bodies.remove(body.0, BodyHandle::KIND, &body)?;
+        if self.diverged == Some(body) {
+            self.diverged = None;
+        }
         // SAFETY: the body was created by this world; its geoms and joints are gone and
         // contact joints only live within a step.
         unsafe { ffi::dBodyDestroy(data.raw) };
@@ -316,6 +319,7 @@ impl World {
 
     /// Write access to a body.
     pub fn body_mut(&mut self, body: BodyHandle) -> Result<BodyMut<'_>> {
+        self.check_usable()?;
         let raw = self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw;
         Ok(BodyMut { raw, handle: body, _world: self })
     }
@@ -447,7 +451,7 @@ impl BodyMut<'_> {
 
     /// Sets the position of the body origin, m.
     pub fn set_position(&mut self, p: Point3<f64>) -> Result<()> {
-        let p = validate::point("body position", &p)?;
+        let p = limits::point("body position", &p)?;
         // SAFETY: the body is live (checked handle, exclusive borrow of the world).
         unsafe { ffi::dBodySetPosition(self.raw, p.x, p.y, p.z) };
         Ok(())
@@ -480,7 +484,7 @@ impl BodyMut<'_> {
 
     /// Sets the linear velocity, m/s.
     pub fn set_linear_velocity(&mut self, v: Vector3<f64>) -> Result<()> {
-        let v = validate::vector("linear velocity", &v)?;
+        let v = linear_velocity(&v)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodySetLinearVel(self.raw, v.x, v.y, v.z) };
         Ok(())
@@ -488,7 +492,7 @@ impl BodyMut<'_> {
 
     /// Sets the angular velocity (world frame), rad/s.
     pub fn set_angular_velocity(&mut self, w: Vector3<f64>) -> Result<()> {
-        let w = validate::vector("angular velocity", &w)?;
+        let w = angular_velocity(&w)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodySetAngularVel(self.raw, w.x, w.y, w.z) };
         Ok(())
@@ -508,7 +512,7 @@ impl BodyMut<'_> {
 
     /// Adds a force (world frame, N) at the centre of mass, for the next step.
     pub fn add_force(&mut self, f: Vector3<f64>) -> Result<()> {
-        let f = validate::vector("force", &f)?;
+        let f = force(&f)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddForce(self.raw, f.x, f.y, f.z) };
         Ok(())
@@ -516,7 +520,7 @@ impl BodyMut<'_> {
 
     /// Adds a force given in the body frame, at the centre of mass.
     pub fn add_relative_force(&mut self, f: Vector3<f64>) -> Result<()> {
-        let f = validate::vector("force", &f)?;
+        let f = force(&f)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddRelForce(self.raw, f.x, f.y, f.z) };
         Ok(())
@@ -524,7 +528,7 @@ impl BodyMut<'_> {
 
     /// Adds a torque (world frame, N·m), for the next step.
     pub fn add_torque(&mut self, t: Vector3<f64>) -> Result<()> {
-        let t = validate::vector("torque", &t)?;
+        let t = torque(&t)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddTorque(self.raw, t.x, t.y, t.z) };
         Ok(())
@@ -532,7 +536,7 @@ impl BodyMut<'_> {
 
     /// Adds a torque given in the body frame.
     pub fn add_relative_torque(&mut self, t: Vector3<f64>) -> Result<()> {
-        let t = validate::vector("torque", &t)?;
+        let t = torque(&t)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddRelTorque(self.raw, t.x, t.y, t.z) };
         Ok(())
@@ -540,8 +544,8 @@ impl BodyMut<'_> {
 
     /// Adds a world-frame force at a point given in world coordinates.
     pub fn add_force_at_point(&mut self, f: Vector3<f64>, point: Point3<f64>) -> Result<()> {
-        let f = validate::vector("force", &f)?;
-        let p = validate::point("force application point", &point)?;
+        let f = force(&f)?;
+        let p = limits::point("force application point", &point)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddForceAtPos(self.raw, f.x, f.y, f.z, p.x, p.y, p.z) };
         Ok(())
@@ -549,11 +553,20 @@ impl BodyMut<'_> {
 
     /// Adds a body-frame force at a point given in body coordinates.
     pub fn add_relative_force_at_relative_point(&mut self, f: Vector3<f64>, point: Point3<f64>) -> Result<()> {
-        let f = validate::vector("force", &f)?;
-        let p = validate::point("force application point", &point)?;
+        let f = force(&f)?;
+        let p = limits::point("force application point", &point)?;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddRelForceAtRelPos(self.raw, f.x, f.y, f.z, p.x, p.y, p.z) };
         Ok(())
+    }
+
+    /// Clears the force and torque accumulated for the next step.
+    pub fn clear_forces(&mut self) {
+        // SAFETY: the body is live.
+        unsafe {
+            ffi::dBodySetForce(self.raw, 0.0, 0.0, 0.0);
+            ffi::dBodySetTorque(self.raw, 0.0, 0.0, 0.0);
+        }
     }
 
     /// Enables or disables the body (a disabled body does not move).
@@ -574,4 +587,20 @@ impl BodyMut<'_> {
         // SAFETY: the body is live.
         unsafe { ffi::dBodySetGravityMode(self.raw, on.into()) };
     }
+}
+
+fn linear_velocity(v: &Vector3<f64>) -> Result<Vector3<f64>> {
+    limits::vector_within("linear velocity", v, limits::MAX_SPEED, "m/s")
+}
+
+fn angular_velocity(w: &Vector3<f64>) -> Result<Vector3<f64>> {
+    limits::vector_within("angular velocity", w, limits::MAX_ANGULAR_SPEED, "rad/s")
+}
+
+fn force(f: &Vector3<f64>) -> Result<Vector3<f64>> {
+    limits::vector_within("force", f, limits::MAX_FORCE, "N")
+}
+
+fn torque(t: &Vector3<f64>) -> Result<Vector3<f64>> {
+    limits::vector_within("torque", t, limits::MAX_TORQUE, "N·m")
 }

@@ -23,10 +23,11 @@ use ode_sys as ffi;
 
 use crate::convert;
 use crate::error::{Error, Result};
+use crate::guard::{self, OdeFailure};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
 use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::validate;
-use crate::world::World;
+use crate::world::{Poison, SpaceKind, World};
 
 /// Most contact points ODE generates for one pair of geoms (PyODE's fixed limit,
 /// which the original ARS inherited).
@@ -230,6 +231,8 @@ struct NearContext<'a, H: CollisionHooks + ?Sized> {
     world: &'a mut World,
     hooks: &'a mut H,
     panic: Option<Box<dyn Any + Send>>,
+    /// The first pair whose `dCollide` failed inside ODE (caught by its guard).
+    failure: Option<(GeomHandle, GeomHandle, OdeFailure)>,
 }
 
 impl World {
@@ -253,9 +256,20 @@ impl World {
     }
 
     /// As [`World::collide`], with `hooks` choosing the surface of each pair.
+    ///
+    /// A panic in `hooks` is re-raised once ODE has returned (the remaining pairs are
+    /// skipped). An `Err` leaves no contact joint behind: a hash space whose geoms
+    /// reach beyond what its integer cells hold is refused before ODE is called; a
+    /// pair whose collider fails inside ODE is reported ([`Error::OdeInternal`], the
+    /// world stays usable); a failure of the space itself poisons the world.
     pub fn collide_with<H: CollisionHooks + ?Sized>(&mut self, space: SpaceHandle, hooks: &mut H) -> Result<()> {
+        self.check_usable()?;
         ensure_ode_ready();
-        let raw_space = self.space_data(space)?.raw;
+        let data = self.space_data(space)?;
+        let raw_space = data.raw;
+        if let SpaceKind::Hash { min_level, .. } = data.kind {
+            self.check_hash_bounds(space, min_level)?;
+        }
         self.collision.contacts.clear();
         self.collision.ray_hits.clear();
         if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
@@ -264,17 +278,56 @@ impl World {
         // ODE's trimesh colliders share one process-wide cache in this build of ODE;
         // every other collider only touches the geoms it is given.
         let needs_lock = self.trimesh_count > 0;
-        let mut ctx = NearContext { world: self, hooks, panic: None };
-        {
+        let mut ctx = NearContext { world: self, hooks, panic: None, failure: None };
+        let collided = {
             let _guard = needs_lock.then(lock_ode_global_state);
             // SAFETY: the space is live; `ctx` outlives the call and is only accessed
-            // by `near_callback`, which ODE calls synchronously on this thread.
-            unsafe {
-                ffi::dSpaceCollide(raw_space, (&raw mut ctx).cast::<c_void>(), Some(near_callback::<H>));
-            }
+            // by `near_callback`, which ODE calls synchronously on this thread and
+            // which never unwinds (it catches panics).
+            unsafe { guard::space_collide(raw_space, (&raw mut ctx).cast::<c_void>(), near_callback::<H>) }
+        };
+        let (panic, pair_failure) = (ctx.panic, ctx.failure);
+        if let Err(failure) = collided {
+            self.poison = Some(Poison::Collide(failure.message.clone()));
+            return Err(Error::OdeInternal { during: "collision", message: failure.message });
         }
-        if let Some(payload) = ctx.panic {
+        if let Some(payload) = panic {
+            self.clear_contacts();
             resume_unwind(payload);
+        }
+        if let Some((g1, g2, failure)) = pair_failure {
+            self.clear_contacts();
+            return Err(Error::OdeInternal {
+                during: "collision",
+                message: format!("colliding geoms {g1} and {g2}: {}", failure.message),
+            });
+        }
+        Ok(())
+    }
+
+    /// ODE's hash space puts each geom in integer cells of size `2^level`, at least
+    /// `2^min_level`; a coordinate beyond `i32::MAX` cells aborts inside ODE
+    /// (`aabbBound`). Refuse such a geom before colliding (O(geoms), hash spaces only).
+    fn check_hash_bounds(&self, space: SpaceHandle, min_level: i32) -> Result<()> {
+        let cells_per_metre = 2f64.powi(-min_level);
+        let limit = f64::from(i32::MAX) / cells_per_metre;
+        for (h, g) in self.geoms.iter() {
+            if g.space != space || matches!(g.shape, crate::geom::Shape::Plane { .. }) {
+                continue;
+            }
+            let mut a = [0.0; 6];
+            // SAFETY: the geom is live; `a` holds 6 reals.
+            unsafe { ffi::dGeomGetAABB(g.raw, a.as_mut_ptr()) };
+            if a.iter().any(|c| c.is_nan() || c.abs() >= limit) {
+                return Err(Error::OutOfRange {
+                    what: "geom position in a hash space",
+                    detail: format!(
+                        "geom {} reaches {:e} m; a hash space with min_level {min_level} holds coordinates within ±{limit:e} m (use a simple space, or a larger min_level)",
+                        GeomHandle(h),
+                        a.iter().fold(0.0_f64, |m, c| m.max(c.abs()))
+                    ),
+                });
+            }
         }
         Ok(())
     }
@@ -317,22 +370,28 @@ impl World {
         Some((GeomHandle(h), matches!(data.shape, crate::geom::Shape::Ray { .. }), data.body, data.body_raw))
     }
 
-    /// One candidate pair: everything the near callback does, in Rust.
-    fn near<H: CollisionHooks + ?Sized>(&mut self, hooks: &mut H, o1: ffi::dGeomID, o2: ffi::dGeomID) {
+    /// One candidate pair: everything the near callback does, in Rust. `Err` when the
+    /// pair's collider failed inside ODE.
+    fn near<H: CollisionHooks + ?Sized>(
+        &mut self,
+        hooks: &mut H,
+        o1: ffi::dGeomID,
+        o2: ffi::dGeomID,
+    ) -> Result<(), (GeomHandle, GeomHandle, OdeFailure)> {
         let (Some((g1, ray1, body1, b1)), Some((g2, ray2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
         else {
             log::error!("collision reported a geom that this world does not own; pair skipped");
-            return;
+            return Ok(());
         };
         if !b1.is_null() && !b2.is_null() {
             // SAFETY: both bodies are live and non-null (ODE asserts on null).
             let connected = unsafe { ffi::dAreConnectedExcluding(b1, b2, ffi::dJointType_dJointTypeContact as i32) };
             if connected != 0 {
-                return;
+                return Ok(());
             }
         }
         if ray1 && ray2 {
-            return;
+            return Ok(());
         }
         let pair = GeomPair { geom1: g1, geom2: g2, body1, body2 };
         // (max contacts, ODE surface); `None` for a ray pair.
@@ -345,22 +404,23 @@ impl World {
                 Some(s) if s.validate().is_ok() => Some((s.max_contacts, s.to_ode())),
                 Some(s) => {
                     log::error!("contact hooks returned an invalid surface {s:?}; pair skipped");
-                    return;
+                    return Ok(());
                 }
-                None => return,
+                None => return Ok(()),
             }
         };
         let max = surface.map_or(MAX_CONTACTS_LIMIT, |(max, _)| max);
         let scratch = &mut self.collision.scratch;
         // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `max`
-        // entries with the stride given.
-        let n =
-            unsafe { ffi::dCollide(o1, o2, max as i32, scratch.as_mut_ptr(), size_of::<ffi::dContactGeom>() as i32) };
-        let n = n.max(0) as usize;
+        // entries of dContactGeom.
+        let n = match unsafe { guard::collide(o1, o2, max as i32, scratch.as_mut_ptr()) } {
+            Ok(n) => n.min(max),
+            Err(failure) => return Err((g1, g2, failure)),
+        };
         match surface {
             None => {
                 let (ray, other, flip) = if ray1 { (g1, g2, false) } else { (g2, g1, true) };
-                for c in &self.collision.scratch[..n] {
+                for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
                     let normal = convert::vector_from_ode(&c.normal);
                     self.collision.ray_hits.push(RayHit {
                         ray,
@@ -373,6 +433,12 @@ impl World {
             }
             Some((_, surface)) => {
                 for c in &self.collision.scratch[..n] {
+                    // Colliders given degenerate geometry (a deep overlap of tiny shapes)
+                    // can return a NaN normal, which would turn the whole step into NaN.
+                    if !contact_is_finite(c) {
+                        log::debug!("a contact between {g1} and {g2} is not finite; dropped");
+                        continue;
+                    }
                     let contact = ffi::dContact { surface, geom: *c, fdir1: [0.0; 4] };
                     // SAFETY: world and contact group are live; `contact` is fully
                     // initialised; the bodies are live or null (static environment).
@@ -389,19 +455,31 @@ impl World {
                 }
             }
         }
+        Ok(())
     }
+}
+
+/// Position, normal and depth all finite, and the normal not zero.
+#[inline]
+fn contact_is_finite(c: &ffi::dContactGeom) -> bool {
+    let n = &c.normal;
+    c.pos[..3].iter().chain(&n[..3]).all(|x| x.is_finite())
+        && c.depth.is_finite()
+        && n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.5
 }
 
 unsafe extern "C" fn near_callback<H: CollisionHooks + ?Sized>(data: *mut c_void, o1: ffi::dGeomID, o2: ffi::dGeomID) {
     // SAFETY: `data` is the `NearContext<H>` that `collide_with::<H>` passed to
     // dSpaceCollide, alive and not otherwise borrowed for the duration of the call.
     let ctx = unsafe { &mut *data.cast::<NearContext<'_, H>>() };
-    if ctx.panic.is_some() {
+    if ctx.panic.is_some() || ctx.failure.is_some() {
         return;
     }
     let world = &mut *ctx.world;
     let hooks = &mut *ctx.hooks;
-    if let Err(payload) = catch_unwind(AssertUnwindSafe(|| world.near(hooks, o1, o2))) {
-        ctx.panic = Some(payload);
+    match catch_unwind(AssertUnwindSafe(|| world.near(hooks, o1, o2))) {
+        Ok(Ok(())) => {}
+        Ok(Err(failure)) => ctx.failure = Some(failure),
+        Err(payload) => ctx.panic = Some(payload),
     }
 }

@@ -99,6 +99,40 @@ pub enum Error {
     /// ODE refused an operation (it returned a failure code).
     #[error("ODE failed to {0}")]
     Ode(&'static str),
+    /// A body whose state cannot be integrated: before a step (non-finite or too large
+    /// force or torque accumulated, a state that diverged earlier and was not reset),
+    /// or after a step (non-finite or runaway position, orientation or velocity). The
+    /// world refuses to step until the body is reset or removed; nothing else is lost.
+    #[error("body {body} diverged at t = {time} s: {detail}")]
+    Diverged {
+        /// The body (its name, in a simulation).
+        body: String,
+        /// Time at which it was found: the sum of the time steps taken by the world.
+        time: f64,
+        /// What was wrong with it.
+        detail: String,
+    },
+    /// ODE reported an internal error while it stepped or collided the world, caught by
+    /// the [guard](crate::guard): the world is now poisoned.
+    #[error("ODE reported an internal error during {during}: {message}; the world is poisoned (drop it)")]
+    OdeInternal {
+        /// What ODE was doing: "step" or "collision".
+        during: &'static str,
+        /// ODE's message.
+        message: String,
+    },
+    /// The world was poisoned by an earlier ODE internal error and can only be dropped.
+    #[error("the world is poisoned by an earlier ODE internal error ({0}); build a new one")]
+    Poisoned(String),
+    /// User code (a hook or a sensor) panicked; the panic was contained and the
+    /// simulation keeps its other hooks, sensors and records.
+    #[error("{during} panicked: {message}")]
+    Panicked {
+        /// What was running, e.g. "pre-step hook 2".
+        during: String,
+        /// The panic message.
+        message: String,
+    },
     /// An error raised by user code inside a program or hook.
     #[error("{0}")]
     User(String),

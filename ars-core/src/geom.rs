@@ -7,6 +7,7 @@ use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
 use crate::init::ensure_ode_ready;
+use crate::limits;
 use crate::validate;
 use crate::world::World;
 
@@ -51,7 +52,8 @@ pub enum Shape {
         length: f64,
     },
     /// Triangle mesh (vertices in the geom's frame; faces wound counter-clockwise seen
-    /// from outside).
+    /// from outside). A mesh of one triangle is handed to ODE with that triangle twice
+    /// (ODE's mesh–mesh collider crashes on a one-triangle tree).
     TriMesh {
         /// Vertex positions, m.
         vertices: Vec<Point3<f64>>,
@@ -76,28 +78,28 @@ impl Shape {
 
     fn validate(&self) -> Result<()> {
         match self {
-            Shape::Sphere { radius } => validate::positive("sphere radius", *radius).map(drop),
-            Shape::Box { size } => validate::positive_vector("box size", size).map(drop),
+            Shape::Sphere { radius } => limits::size("sphere radius", *radius).map(drop),
+            Shape::Box { size } => limits::sizes("box size", size).map(drop),
             Shape::Capsule { radius, length } => {
-                validate::positive("capsule radius", *radius)?;
-                validate::positive("capsule length", *length).map(drop)
+                limits::size("capsule radius", *radius)?;
+                limits::size("capsule length", *length).map(drop)
             }
             Shape::Cylinder { radius, length } => {
-                validate::positive("cylinder radius", *radius)?;
-                validate::positive("cylinder length", *length).map(drop)
+                limits::size("cylinder radius", *radius)?;
+                limits::size("cylinder length", *length).map(drop)
             }
             Shape::Plane { normal, distance } => {
                 validate::direction("plane normal", normal)?;
-                validate::finite("plane distance", *distance).map(drop)
+                limits::coordinate("plane distance", *distance).map(drop)
             }
-            Shape::Ray { length } => validate::positive("ray length", *length).map(drop),
+            Shape::Ray { length } => limits::size("ray length", *length).map(drop),
             Shape::TriMesh { vertices, triangles } => {
                 if triangles.is_empty() {
                     return Err(Error::InvalidMesh("it has no triangles".into()));
                 }
                 for (i, v) in vertices.iter().enumerate() {
-                    if !v.coords.iter().all(|c| c.is_finite()) {
-                        return Err(Error::InvalidMesh(format!("vertex {i} is not finite: {v}")));
+                    if let Err(e) = limits::point("trimesh vertex", v) {
+                        return Err(Error::InvalidMesh(format!("vertex {i}: {e}")));
                     }
                 }
                 for (i, t) in triangles.iter().enumerate() {
@@ -240,6 +242,7 @@ pub struct GeomMut<'w> {
 impl World {
     /// Creates a geom in `space`.
     pub fn insert_geom(&mut self, space: SpaceHandle, builder: GeomBuilder) -> Result<GeomHandle> {
+        self.check_usable()?;
         ensure_ode_ready();
         let space_raw = self.space_data(space)?.raw;
         let shape = builder.shape;
@@ -275,7 +278,14 @@ impl World {
         let mut mesh = None;
         if let Shape::TriMesh { vertices, triangles } = &shape {
             let flat_v: Vec<f64> = vertices.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
-            let flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
+            let mut flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
+            if triangles.len() == 1 {
+                // OPCODE's tree of a one-triangle mesh is a lone leaf, and its
+                // trimesh–trimesh collider reads a child that leaf does not have
+                // (SIGSEGV when two such meshes overlap). Give ODE the triangle twice:
+                // a two-leaf tree, the same surface.
+                flat_i.extend_from_within(..);
+            }
             // SAFETY: the buffers are kept alive in `TriMeshStorage` for as long as the
             // data exists; counts and strides describe them exactly (checked above:
             // every index is in range, counts fit in an int).
@@ -353,6 +363,7 @@ impl World {
 
     /// Removes a geom.
     pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
+        self.check_usable()?;
         let data = self.geoms.remove(geom.0, GeomHandle::KIND, &geom)?;
         if matches!(data.shape, Shape::TriMesh { .. }) {
             self.trimesh_count -= 1;
@@ -372,6 +383,7 @@ impl World {
 
     /// Write access to a geom.
     pub fn geom_mut(&mut self, geom: GeomHandle) -> Result<GeomMut<'_>> {
+        self.check_usable()?;
         let data = self.geoms.get(geom.0, GeomHandle::KIND, &geom)?;
         Ok(GeomMut {
             handle: geom,
@@ -395,7 +407,7 @@ impl World {
 }
 
 fn check_isometry(what: &'static str, iso: &Isometry3<f64>) -> Result<Isometry3<f64>> {
-    validate::vector(what, &iso.translation.vector)?;
+    limits::vector_within(what, &iso.translation.vector, limits::MAX_COORDINATE, "m")?;
     validate::quaternion(what, &iso.rotation)?;
     Ok(*iso)
 }
@@ -472,7 +484,7 @@ impl GeomMut<'_> {
     /// Sets the world position of a geom without a body.
     pub fn set_position(&mut self, p: Point3<f64>) -> Result<()> {
         self.check_movable("setting a position")?;
-        let p = validate::point("geom position", &p)?;
+        let p = limits::point("geom position", &p)?;
         // SAFETY: the geom is live and placeable.
         unsafe { ffi::dGeomSetPosition(self.raw, p.x, p.y, p.z) };
         Ok(())
@@ -505,7 +517,7 @@ impl GeomMut<'_> {
         if !self.is_ray {
             return Err(Error::WrongGeomKind { operation: "setting a ray length", kind: self.kind });
         }
-        let l = validate::positive("ray length", length)?;
+        let l = limits::size("ray length", length)?;
         // SAFETY: the geom is a live ray.
         unsafe { ffi::dGeomRaySetLength(self.raw, l) };
         Ok(())

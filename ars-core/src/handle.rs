@@ -179,6 +179,16 @@ impl<T> Arena<T> {
         })
     }
 
+    pub(crate) fn iter_mut(&mut self) -> impl Iterator<Item = (RawHandle, &mut T)> + '_ {
+        let world = self.world;
+        self.slots.iter_mut().enumerate().filter_map(move |(i, s)| match s {
+            Slot::Occupied { generation, value } => {
+                Some((RawHandle { world, index: i as u32, generation: *generation }, value))
+            }
+            Slot::Vacant { .. } => None,
+        })
+    }
+
     pub(crate) fn values_mut(&mut self) -> impl Iterator<Item = &mut T> + '_ {
         self.slots.iter_mut().filter_map(|s| match s {
             Slot::Occupied { value, .. } => Some(value),

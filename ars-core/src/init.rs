@@ -13,7 +13,6 @@
 //! holding triangle meshes, and QuickStep) across threads.
 
 use std::cell::Cell;
-use std::ffi::{CStr, c_char, c_int};
 use std::sync::{Mutex, MutexGuard, Once};
 
 use ode_sys as ffi;
@@ -30,15 +29,9 @@ thread_local! {
 /// call; every constructor of the safe layer calls it.
 pub fn ensure_ode_ready() {
     INIT.call_once(|| {
-        // SAFETY: first and only initialisation of the library; the handlers are
-        // `extern "C"` functions that never unwind.
-        let ok = unsafe {
-            let ok = ffi::dInitODE2(0);
-            ffi::dSetMessageHandler(Some(on_ode_message));
-            ffi::dSetDebugHandler(Some(on_ode_debug));
-            ffi::dSetErrorHandler(Some(on_ode_error));
-            ok
-        };
+        // SAFETY: first and only initialisation of the library.
+        let ok = unsafe { ffi::dInitODE2(0) };
+        crate::guard::install_handlers();
         assert!(ok != 0, "ODE failed to initialise (dInitODE2)");
         // SAFETY: the configuration string is NUL-terminated and static.
         let double = unsafe { ffi::dCheckConfiguration(c"ODE_double_precision".as_ptr()) };
@@ -66,50 +59,4 @@ pub fn lock_ode_global_state() -> MutexGuard<'static, ()> {
     // A panic while the lock is held happens in Rust code only (the near callback
     // catches panics), never halfway through an ODE call, so the state is consistent.
     GLOBAL_STATE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
-}
-
-/// Formats ODE's printf-style message.
-///
-/// # Safety
-/// `msg` must be a valid format string and `ap` the matching `va_list`, as ODE passes.
-unsafe fn format_message(msg: *const c_char, ap: *mut ffi::__va_list_tag) -> String {
-    if msg.is_null() {
-        return String::from("(no message)");
-    }
-    let mut buf = [0 as c_char; 1024];
-    // SAFETY: the buffer is writable for its full length and vsnprintf NUL-terminates
-    // within it; the format and va_list come from ODE (caller's contract).
-    let n = unsafe { ffi::vsnprintf(buf.as_mut_ptr(), buf.len() as _, msg, ap) };
-    if n < 0 {
-        // SAFETY: ODE's format strings are NUL-terminated.
-        return unsafe { CStr::from_ptr(msg) }.to_string_lossy().into_owned();
-    }
-    // SAFETY: vsnprintf wrote a NUL-terminated string into `buf`.
-    unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy().into_owned()
-}
-
-unsafe extern "C" fn on_ode_message(num: c_int, msg: *const c_char, ap: *mut ffi::__va_list_tag) {
-    // SAFETY: arguments as ODE passes them to its message handler.
-    let text = unsafe { format_message(msg, ap) };
-    log::warn!(target: "ode", "ODE message {num}: {text}");
-}
-
-unsafe extern "C" fn on_ode_debug(num: c_int, msg: *const c_char, ap: *mut ffi::__va_list_tag) {
-    // SAFETY: arguments as ODE passes them to its debug handler.
-    let text = unsafe { format_message(msg, ap) };
-    fatal("internal error", num, &text);
-}
-
-unsafe extern "C" fn on_ode_error(num: c_int, msg: *const c_char, ap: *mut ffi::__va_list_tag) {
-    // SAFETY: arguments as ODE passes them to its error handler.
-    let text = unsafe { format_message(msg, ap) };
-    fatal("error", num, &text);
-}
-
-/// ODE terminates the process when an error or debug handler returns; do it here,
-/// with the message, rather than return into ODE.
-fn fatal(kind: &str, num: c_int, text: &str) -> ! {
-    log::error!(target: "ode", "ODE {kind} {num}: {text}");
-    eprintln!("ODE {kind} {num}: {text}\nThis is a bug in ars-core: invalid input reached ODE. Aborting.");
-    std::process::abort();
 }

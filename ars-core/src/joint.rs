@@ -7,6 +7,7 @@ use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, JointHandle};
 use crate::init::ensure_ode_ready;
+use crate::limits;
 use crate::validate;
 use crate::world::World;
 
@@ -108,7 +109,7 @@ impl JointKind {
     }
 
     fn validate(&self) -> Result<()> {
-        let anchor = |p: &Point3<f64>| validate::point("joint anchor", p).map(drop);
+        let anchor = |p: &Point3<f64>| limits::point("joint anchor", p).map(drop);
         let axis = |v: &Vector3<f64>| validate::direction("joint axis", v).map(drop);
         match self {
             JointKind::Fixed => Ok(()),
@@ -118,7 +119,25 @@ impl JointKind {
             }
             JointKind::Slider { axis: x } => axis(x),
             JointKind::Ball { anchor: a } => anchor(a),
-            JointKind::Universal { anchor: a, axis1, axis2 } | JointKind::Hinge2 { anchor: a, axis1, axis2 } => {
+            JointKind::Universal { anchor: a, axis1, axis2 } => {
+                anchor(a)?;
+                axis(axis1)?;
+                axis(axis2)?;
+                // ODE keeps the two axes perpendicular by construction of its
+                // constraint; axes that are not give a joint other than the one asked for.
+                let cos = axis1.dot(axis2) / (axis1.norm() * axis2.norm());
+                if cos.abs() > 1e-6 {
+                    return Err(Error::OutOfRange {
+                        what: "joint axes",
+                        detail: format!(
+                            "universal joint axes must be perpendicular, the angle between them is {:.6}°",
+                            cos.clamp(-1.0, 1.0).acos().to_degrees()
+                        ),
+                    });
+                }
+                Ok(())
+            }
+            JointKind::Hinge2 { anchor: a, axis1, axis2 } => {
                 anchor(a)?;
                 axis(axis1)?;
                 axis(axis2)?;
@@ -301,6 +320,7 @@ pub struct JointMut<'w> {
 impl World {
     /// Creates a joint.
     pub fn insert_joint(&mut self, builder: JointBuilder) -> Result<JointHandle> {
+        self.check_usable()?;
         ensure_ode_ready();
         let kind_name = builder.kind.name();
         let body1 = builder.body1.ok_or(Error::OutOfRange {
@@ -313,6 +333,13 @@ impl World {
                 return Err(Error::SelfJoint { joint: kind_name, body: body1.to_string() });
             }
             Some(b) => self.body_raw(b)?,
+            None if matches!(builder.kind, JointKind::Hinge2 { .. }) => {
+                // ODE asserts "joint can not be attached to just one body".
+                return Err(Error::OutOfRange {
+                    what: "joint bodies",
+                    detail: "a hinge-2 joint connects two bodies; it cannot be attached to the world".into(),
+                });
+            }
             None => std::ptr::null_mut(),
         };
         builder.kind.validate()?;
@@ -392,6 +419,7 @@ impl World {
 
     /// Removes a joint.
     pub fn remove_joint(&mut self, joint: JointHandle) -> Result<()> {
+        self.check_usable()?;
         let data = self.joints.remove(joint.0, JointHandle::KIND, &joint)?;
         // SAFETY: the joint was created by this world and is destroyed once; its
         // feedback buffer is freed after it.
@@ -408,6 +436,7 @@ impl World {
     /// Write access to a joint.
     #[inline]
     pub fn joint_mut(&mut self, joint: JointHandle) -> Result<JointMut<'_>> {
+        self.check_usable()?;
         Ok(JointMut { handle: joint, data: self.joints.get_mut(joint.0, JointHandle::KIND, &joint)? })
     }
 
@@ -440,7 +469,7 @@ fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> 
             }
         }
         JointParam::MaxForce => {
-            validate::non_negative("joint motor max force", value)?;
+            limits::in_range("joint motor max force", value, 0.0, limits::MAX_FORCE)?;
         }
         JointParam::Cfm | JointParam::StopCfm => {
             validate::non_negative("joint CFM", value)?;
@@ -454,7 +483,7 @@ fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> 
             }
         }
         JointParam::Velocity => {
-            validate::finite("joint motor velocity", value)?;
+            limits::in_range("joint motor velocity", value, -limits::MAX_SPEED, limits::MAX_SPEED)?;
         }
     }
     Ok(())
@@ -723,7 +752,7 @@ impl JointMut<'_> {
     /// hinge-2, about a piston's axis), for the next step: `+torque·axis` on body 1,
     /// `−torque·axis` on body 2.
     pub fn add_torque(&mut self, torque: f64) -> Result<()> {
-        validate::finite("joint torque", torque)?;
+        limits::in_range("joint torque", torque, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
         let j = self.data.raw;
         // SAFETY: the joint is live and of the kind matched.
         unsafe {
@@ -740,8 +769,8 @@ impl JointMut<'_> {
 
     /// Adds torques about both axes of a universal or hinge-2 joint.
     pub fn add_torques(&mut self, torque1: f64, torque2: f64) -> Result<()> {
-        validate::finite("joint torque", torque1)?;
-        validate::finite("joint torque", torque2)?;
+        limits::in_range("joint torque", torque1, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
+        limits::in_range("joint torque", torque2, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
         let j = self.data.raw;
         // SAFETY: the joint is live and of the kind matched.
         unsafe {
@@ -757,7 +786,7 @@ impl JointMut<'_> {
     /// Adds a force along the axis of a slider or piston, for the next step:
     /// `+force·axis` on body 1, `−force·axis` on body 2.
     pub fn add_force(&mut self, force: f64) -> Result<()> {
-        validate::finite("joint force", force)?;
+        limits::in_range("joint force", force, -limits::MAX_FORCE, limits::MAX_FORCE)?;
         let j = self.data.raw;
         // SAFETY: the joint is live and of the kind matched.
         unsafe {

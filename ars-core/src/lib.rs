@@ -42,7 +42,7 @@
 //! use nalgebra::{Point3, Vector3};
 //!
 //! let mut world = World::new();
-//! let space = world.create_space(SpaceKind::Simple);
+//! let space = world.create_space(SpaceKind::Simple)?;
 //! world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0))?;
 //! let ball = world.insert_body(
 //!     BodyBuilder::new().position(Point3::new(1.0, 1.0, 1.0)).mass(MassSpec::sphere_total(1.0, 0.5)),
@@ -64,7 +64,7 @@
 //! ```
 //! use ars_core::{BodyBuilder, Error, GeomBuilder, SpaceKind, World};
 //! let mut world = World::new();
-//! let space = world.create_space(SpaceKind::Simple);
+//! let space = world.create_space(SpaceKind::Simple)?;
 //! let err = world.insert_geom(space, GeomBuilder::sphere(-1.0)).unwrap_err();
 //! assert!(matches!(err, Error::NotPositive { what: "sphere radius", .. }));
 //! let body = world.insert_body(BodyBuilder::new())?;
@@ -86,9 +86,11 @@ pub mod control;
 pub mod convert;
 pub mod error;
 pub mod geom;
+pub mod guard;
 pub mod handle;
 mod init;
 pub mod joint;
+pub mod limits;
 pub mod program;
 pub mod random;
 pub mod sensors;

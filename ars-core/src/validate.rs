@@ -44,14 +44,6 @@ pub fn direction(what: &'static str, v: &Vector3<f64>) -> Result<Vector3<f64>> {
     if v.norm_squared() > 0.0 { Ok(v) } else { Err(Error::ZeroVector { what }) }
 }
 
-/// Every component positive.
-pub fn positive_vector(what: &'static str, v: &Vector3<f64>) -> Result<Vector3<f64>> {
-    for c in v.iter() {
-        positive(what, *c)?;
-    }
-    Ok(*v)
-}
-
 /// A finite unit quaternion (nalgebra's `UnitQuaternion` can still hold NaN).
 pub fn quaternion(what: &'static str, q: &UnitQuaternion<f64>) -> Result<UnitQuaternion<f64>> {
     let c = q.coords;

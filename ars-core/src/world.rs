@@ -10,9 +10,11 @@ use crate::contact::CollisionState;
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::geom::GeomData;
-use crate::handle::{Arena, SpaceHandle, WorldId};
+use crate::guard;
+use crate::handle::{Arena, BodyHandle, SpaceHandle, WorldId};
 use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::joint::JointData;
+use crate::limits;
 use crate::validate;
 
 /// The ARS default gravity: 9.81 m/s² down the Y axis (Y is up).
@@ -66,7 +68,7 @@ pub enum Stepper {
 /// An ODE world with its bodies, geoms, joints, spaces and the group of contact joints.
 ///
 /// The world owns every ODE object and frees them all when dropped; users hold small
-/// `Copy` handles ([`BodyHandle`](crate::BodyHandle), [`GeomHandle`](crate::GeomHandle),
+/// `Copy` handles ([`BodyHandle`], [`GeomHandle`](crate::GeomHandle),
 /// [`JointHandle`](crate::JointHandle), [`SpaceHandle`]). A handle of a removed object
 /// or of another world is an `Err`, never a dangling pointer.
 ///
@@ -79,7 +81,7 @@ pub enum Stepper {
 /// use nalgebra::{Point3, Vector3};
 ///
 /// let mut world = World::new();
-/// let space = world.create_space(SpaceKind::Simple);
+/// let space = world.create_space(SpaceKind::Simple)?;
 /// world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0))?;
 /// let ball = world.insert_body(
 ///     BodyBuilder::new().position(Point3::new(1.0, 1.0, 1.0)).mass(MassSpec::sphere_total(1.0, 0.5)),
@@ -107,6 +109,26 @@ pub struct World {
     /// cache, so collision takes the global lock while there are any.
     pub(crate) trimesh_count: usize,
     stepper: Stepper,
+    /// Seed of ODE's process-wide random generator as this world left it: restored
+    /// before each QuickStep and saved after it, under the global lock, so that a
+    /// world's QuickStep sequence does not depend on other worlds.
+    random_seed: std::ffi::c_ulong,
+    /// Sum of the time steps taken, s.
+    time: f64,
+    /// The body that failed the last state check, if any; while set, every step
+    /// first checks the whole state again.
+    pub(crate) diverged: Option<BodyHandle>,
+    pub(crate) poison: Option<Poison>,
+}
+
+/// Why a world refuses to go on after an ODE internal error.
+#[derive(Clone, Debug)]
+pub(crate) enum Poison {
+    /// Caught during a step: the world's state is half-integrated; it can be dropped.
+    Step(String),
+    /// Caught during `dSpaceCollide`: the space stays locked inside ODE, and
+    /// destroying its geoms would assert; the world's ODE objects are leaked on drop.
+    Collide(String),
 }
 
 // SAFETY: the ODE objects of a world are reachable only through the `World` (shared
@@ -170,7 +192,37 @@ impl World {
             collision: CollisionState::default(),
             trimesh_count: 0,
             stepper: Stepper::Exact,
+            random_seed: 0,
+            time: 0.0,
+            diverged: None,
+            poison: None,
         }
+    }
+
+    /// `Err` once an ODE internal error has poisoned the world.
+    #[inline]
+    pub(crate) fn check_usable(&self) -> Result<()> {
+        match &self.poison {
+            None => Ok(()),
+            Some(Poison::Step(m) | Poison::Collide(m)) => Err(Error::Poisoned(m.clone())),
+        }
+    }
+
+    /// Whether an ODE internal error has poisoned the world (it then refuses every
+    /// step, collision and change, and can only be dropped).
+    pub fn is_poisoned(&self) -> bool {
+        self.poison.is_some()
+    }
+
+    /// Sum of the time steps taken by [`World::step`], s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The body whose state failed the last check (see [`Error::Diverged`]), until it
+    /// is reset or removed.
+    pub fn diverged_body(&self) -> Option<BodyHandle> {
+        self.diverged
     }
 
     /// This world's id; every handle it issues carries it.
@@ -186,9 +238,9 @@ impl World {
         convert::vector_from_ode(&g)
     }
 
-    /// Sets gravity, in m/s².
+    /// Sets gravity, in m/s² (at most [`limits::MAX_ACCELERATION`]).
     pub fn set_gravity(&mut self, gravity: Vector3<f64>) -> Result<()> {
-        let g = validate::vector("gravity", &gravity)?;
+        let g = limits::vector_within("gravity", &gravity, limits::MAX_ACCELERATION, "m/s²")?;
         // SAFETY: the world is live.
         unsafe { ffi::dWorldSetGravity(self.raw, g.x, g.y, g.z) };
         Ok(())
@@ -249,34 +301,121 @@ impl World {
     /// Advances the world by `dt` seconds with the chosen stepper (`dWorldStep` by
     /// default). Contact joints created by [`World::collide`] take part; forces and
     /// torques added since the last step act during this one and are then cleared.
+    ///
+    /// Before the step, every body's accumulated force and torque must be finite and
+    /// within [`limits::MAX_FORCE`] and [`limits::MAX_TORQUE`]; after it, every body's
+    /// state must be finite and within the [`limits`]. Otherwise the step returns
+    /// [`Error::Diverged`] naming the body, and the world refuses to step until that
+    /// body is reset or removed. An ODE internal error during the step is caught by the
+    /// [`guard`]: [`Error::OdeInternal`], and the world is poisoned.
     pub fn step(&mut self, dt: f64) -> Result<()> {
-        validate::positive("time step", dt)?;
+        self.check_usable()?;
+        limits::time_step(dt)?;
+        self.check_before_step()?;
         // No `ensure_ode_ready` here: ODE's per-thread data is collision data only
         // (`dAllocateFlagCollisionData`), prepared by `collide` on the calling thread.
-        let ok = match self.stepper {
-            // SAFETY: the world is live and every object in it is owned by `self`.
-            Stepper::Exact => unsafe { ffi::dWorldStep(self.raw, dt) },
+        let stepped = match self.stepper {
+            // SAFETY: the world is live, every object in it is owned by `self`, and its
+            // step threading implementation is its own self-threaded one.
+            Stepper::Exact => unsafe { guard::world_step(self.raw, dt, false) },
             Stepper::Quick { .. } => {
-                // QuickStep shuffles constraints with ODE's process-wide RNG.
+                // QuickStep shuffles constraints with ODE's process-wide RNG: give it
+                // this world's seed, and keep where the world left it.
                 let _guard = lock_ode_global_state();
-                // SAFETY: as above.
-                unsafe { ffi::dWorldQuickStep(self.raw, dt) }
+                // SAFETY: as above; the generator is guarded by the global lock.
+                unsafe {
+                    ffi::dRandSetSeed(self.random_seed);
+                    let stepped = guard::world_step(self.raw, dt, true);
+                    self.random_seed = ffi::dRandGetSeed();
+                    stepped
+                }
             }
         };
-        if ok == 0 { Err(Error::Ode("step the world (out of memory)")) } else { Ok(()) }
+        match stepped {
+            Ok(true) => {}
+            Ok(false) => return Err(Error::Ode("step the world (out of memory)")),
+            Err(failure) => {
+                self.poison = Some(Poison::Step(failure.message.clone()));
+                return Err(Error::OdeInternal { during: "step", message: failure.message });
+            }
+        }
+        self.time += dt;
+        self.check_after_step()
     }
 
-    /// Seeds ODE's random number generator (used by QuickStep to order constraints).
-    /// ODE has one generator per process: the seed affects every world.
-    pub fn seed_random(seed: u32) {
-        ensure_ode_ready();
-        let _guard = lock_ode_global_state();
-        // SAFETY: ODE is initialised; the generator is guarded by the global lock.
-        unsafe { ffi::dRandSetSeed(seed.into()) };
+    /// The accumulators (and, after a divergence, the whole state) of every body.
+    fn check_before_step(&mut self) -> Result<()> {
+        if self.diverged.is_some() {
+            self.check_after_step()?;
+        }
+        for (h, body) in self.bodies.iter() {
+            // SAFETY: the body is live; ODE returns pointers to 3 reals.
+            let (f, t) = unsafe {
+                (
+                    std::slice::from_raw_parts(ffi::dBodyGetForce(body.raw), 3),
+                    std::slice::from_raw_parts(ffi::dBodyGetTorque(body.raw), 3),
+                )
+            };
+            let bad = limits::state_problem("accumulated force", f, limits::MAX_FORCE, "N")
+                .or_else(|| limits::state_problem("accumulated torque", t, limits::MAX_TORQUE, "N·m"));
+            if let Some(detail) = bad {
+                let body = BodyHandle(h);
+                return Err(Error::Diverged {
+                    body: body.to_string(),
+                    time: self.time,
+                    detail: format!("{detail} (clear it with BodyMut::clear_forces)"),
+                });
+            }
+        }
+        Ok(())
     }
 
-    /// Creates a collision space.
-    pub fn create_space(&mut self, kind: SpaceKind) -> SpaceHandle {
+    /// Position, orientation and velocities of every body: finite and within limits.
+    fn check_after_step(&mut self) -> Result<()> {
+        for (h, body) in self.bodies.iter() {
+            // SAFETY: the body is live; ODE returns pointers to 3, 4, 3 and 3 reals.
+            let (p, q, v, w) = unsafe {
+                (
+                    std::slice::from_raw_parts(ffi::dBodyGetPosition(body.raw), 3),
+                    std::slice::from_raw_parts(ffi::dBodyGetQuaternion(body.raw), 4),
+                    std::slice::from_raw_parts(ffi::dBodyGetLinearVel(body.raw), 3),
+                    std::slice::from_raw_parts(ffi::dBodyGetAngularVel(body.raw), 3),
+                )
+            };
+            let bad = limits::state_problem("position", p, limits::MAX_COORDINATE, "m")
+                .or_else(|| limits::state_problem("orientation quaternion", q, 1.5, ""))
+                .or_else(|| limits::state_problem("linear velocity", v, limits::MAX_SPEED, "m/s"))
+                .or_else(|| limits::state_problem("angular velocity", w, limits::MAX_ANGULAR_SPEED, "rad/s"));
+            if let Some(detail) = bad {
+                let body = BodyHandle(h);
+                self.diverged = Some(body);
+                return Err(Error::Diverged { body: body.to_string(), time: self.time, detail });
+            }
+        }
+        self.diverged = None;
+        Ok(())
+    }
+
+    /// Seeds ODE's random number generator for this world's QuickSteps. Each world
+    /// keeps its own seed (ODE's generator is process-wide: the world restores its
+    /// seed before each QuickStep and saves it after), so QuickStep is deterministic
+    /// per world whatever other worlds do on other threads. The default seed is 0.
+    pub fn set_random_seed(&mut self, seed: u32) {
+        self.random_seed = seed.into();
+    }
+
+    /// Creates a collision space. A hash space needs
+    /// `-30 ≤ min_level ≤ max_level ≤ 30` (cells from about 1 nm to 1e9 m).
+    pub fn create_space(&mut self, kind: SpaceKind) -> Result<SpaceHandle> {
+        self.check_usable()?;
+        if let SpaceKind::Hash { min_level, max_level } = kind
+            && !(-30..=30).contains(&min_level) | !(-30..=30).contains(&max_level) | (min_level > max_level)
+        {
+            return Err(Error::OutOfRange {
+                what: "hash space levels",
+                detail: format!("need -30 ≤ min_level ≤ max_level ≤ 30, got min {min_level}, max {max_level}"),
+            });
+        }
         ensure_ode_ready();
         // SAFETY: a top-level space (no parent); cleanup is turned off because the
         // world destroys the geoms itself; the space is freed in Drop.
@@ -292,7 +431,7 @@ impl World {
             ffi::dSpaceSetCleanup(s, 0);
             s
         };
-        SpaceHandle(self.spaces.insert(SpaceData { raw, kind }))
+        Ok(SpaceHandle(self.spaces.insert(SpaceData { raw, kind })))
     }
 
     /// The kind of a space.
@@ -323,6 +462,13 @@ impl World {
 
 impl Drop for World {
     fn drop(&mut self) {
+        if let Some(Poison::Collide(_)) = self.poison {
+            // A space is still locked inside ODE: destroying anything in it would
+            // assert. Leak the world's ODE objects and the buffers they point into.
+            std::mem::forget(self.geoms.drain());
+            std::mem::forget(self.joints.drain());
+            return;
+        }
         ensure_ode_ready();
         // Joints first (their feedback buffers are freed after them), then geoms
         // (before their trimesh data and their spaces), then spaces, then the world,
@@ -345,7 +491,11 @@ impl Drop for World {
                 ffi::dBodyDestroy(body.raw);
             }
             ffi::dWorldSetStepThreadingImplementation(self.raw, std::ptr::null(), std::ptr::null_mut());
-            ffi::dThreadingFreeImplementation(self.threading);
+            // A step left by the guard leaves stale jobs in the world's job list,
+            // and freeing the list asserts on them: leak it (a few hundred bytes).
+            if self.poison.is_none() {
+                ffi::dThreadingFreeImplementation(self.threading);
+            }
             ffi::dWorldDestroy(self.raw);
         }
     }

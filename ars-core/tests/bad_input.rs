@@ -6,7 +6,7 @@ use ars_core::*;
 
 fn world_with_space() -> (World, SpaceHandle) {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     (world, space)
 }
 
@@ -28,8 +28,8 @@ fn non_positive_or_non_finite_sizes_are_refused() {
     ];
     for (builder, expected) in cases {
         match world.insert_geom(space, builder) {
-            Err(Error::NotPositive { what, .. }) => assert_eq!(what, expected),
-            other => panic!("expected NotPositive for {expected}, got {other:?}"),
+            Err(Error::NotPositive { what, .. } | Error::NotFinite { what, .. }) => assert_eq!(what, expected),
+            other => panic!("expected NotPositive or NotFinite for {expected}, got {other:?}"),
         }
     }
     assert_eq!(world.geom_count(), 0, "nothing was created");
@@ -146,7 +146,7 @@ fn handles_of_another_world_are_refused() {
     let mut one = World::new();
     let mut two = World::new();
     let a = body(&mut one);
-    let space_two = two.create_space(SpaceKind::Simple);
+    let space_two = two.create_space(SpaceKind::Simple).unwrap();
     let err = two.body(a).unwrap_err();
     assert!(matches!(err, Error::ForeignHandle { kind: "body", .. }), "{err}");
     assert!(err.to_string().contains("another world"));

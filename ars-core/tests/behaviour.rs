@@ -25,7 +25,7 @@ fn falling_ball(world: &mut World, space: SpaceHandle, at: Point3<f64>) -> BodyH
 #[test]
 fn free_fall_follows_semi_implicit_euler() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(0.0, 10.0, 0.0));
     run(&mut world, space, 100);
     let body = world.body(b).unwrap();
@@ -37,7 +37,7 @@ fn free_fall_follows_semi_implicit_euler() {
 #[test]
 fn a_hinged_pendulum_swings_and_its_joint_reports_angle_and_rate() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     // A 1 kg ball on a massless 1 m arm, hinged to the world about Z, starting horizontal.
     let b = falling_ball(&mut world, space, Point3::new(1.0, 5.0, 0.0));
     let j = world.insert_joint(JointBuilder::hinge(Point3::new(0.0, 5.0, 0.0), Vector3::z()).to_world(b)).unwrap();
@@ -72,7 +72,7 @@ fn a_hinge_torque_turns_body1_positively_about_the_axis() {
 #[test]
 fn limits_stop_the_joint_and_motors_reach_their_speed() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(1.0, 5.0, 0.0));
     let stop = -0.3;
     let j = world
@@ -129,7 +129,7 @@ fn a_slider_reports_its_position_and_a_force_moves_it() {
 #[test]
 fn geoms_with_an_offset_collide_where_they_are() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
     let b = world
         .insert_body(BodyBuilder::new().position(Point3::new(0.0, 2.0, 0.0)).mass(MassSpec::sphere_total(1.0, 0.5)))
@@ -145,7 +145,7 @@ fn geoms_with_an_offset_collide_where_they_are() {
 #[test]
 fn rays_record_every_hit_and_the_closest_is_found() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     world.set_gravity(Vector3::zeros()).unwrap();
     for x in [5.0, 3.0, 8.0] {
         falling_ball(&mut world, space, Point3::new(x, 0.0, 0.0));
@@ -173,7 +173,7 @@ fn hooks_choose_the_surface_of_each_pair() {
         }
     }
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
     let solid = falling_ball(&mut world, space, Point3::new(0.0, 1.0, 0.0));
     let ghost_body = world.insert_body(BodyBuilder::new().position(Point3::new(3.0, 1.0, 0.0))).unwrap();
@@ -191,7 +191,7 @@ fn hooks_choose_the_surface_of_each_pair() {
 #[test]
 fn jointed_bodies_do_not_collide() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     world.set_gravity(Vector3::zeros()).unwrap();
     let a = falling_ball(&mut world, space, Point3::new(0.0, 0.0, 0.0));
     let b = falling_ball(&mut world, space, Point3::new(0.5, 0.0, 0.0));
@@ -212,7 +212,7 @@ fn a_panic_in_a_hook_reaches_the_caller_not_ode() {
         }
     }
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(0.0, 0.4, 0.0));
     let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| world.collide_with(space, &mut Boom)));
@@ -227,7 +227,7 @@ fn a_panic_in_a_hook_reaches_the_caller_not_ode() {
 #[test]
 fn kinematic_bodies_move_with_their_velocity_only() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     let k = world.insert_body(BodyBuilder::kinematic().linear_velocity(Vector3::new(1.0, 0.0, 0.0))).unwrap();
     assert!(world.body(k).unwrap().is_kinematic());
     run(&mut world, space, 250);
@@ -238,7 +238,7 @@ fn kinematic_bodies_move_with_their_velocity_only() {
 #[test]
 fn quickstep_is_selectable() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::HASH);
+    let space = world.create_space(SpaceKind::HASH).unwrap();
     world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
     world.set_stepper(Stepper::Quick { iterations: 30 }).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(1.0, 1.0, 1.0));
@@ -248,7 +248,7 @@ fn quickstep_is_selectable() {
 
 fn trajectory() -> Vec<u64> {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(1.0, 1.0, 1.0));
     (0..2500)
@@ -268,7 +268,7 @@ fn worlds_on_different_threads_give_identical_results() {
     }
     // A world can also be built on one thread and stepped on another.
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(0.0, 1.0, 0.0));
     let y = std::thread::spawn(move || {
         run(&mut world, space, 10);
@@ -282,7 +282,7 @@ fn worlds_on_different_threads_give_identical_results() {
 #[test]
 fn removing_joints_and_geoms_between_steps() {
     let mut world = World::new();
-    let space = world.create_space(SpaceKind::Simple);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
     let b = falling_ball(&mut world, space, Point3::new(0.0, 1.0, 0.0));
     let j = world.insert_joint(JointBuilder::ball(Point3::new(0.0, 1.0, 0.0)).to_world(b)).unwrap();
     run(&mut world, space, 10);
@@ -319,7 +319,7 @@ fn mass_properties_are_odes() {
 fn many_worlds_come_and_go() {
     for _ in 0..200 {
         let mut world = World::new();
-        let space = world.create_space(SpaceKind::HASH);
+        let space = world.create_space(SpaceKind::HASH).unwrap();
         world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
         let a = falling_ball(&mut world, space, Point3::new(0.0, 0.5, 0.0));
         let b = falling_ball(&mut world, space, Point3::new(0.9, 0.5, 0.0));

@@ -20,7 +20,7 @@ pub struct RustScene {
 impl RustScene {
     fn new(kind: SpaceKind) -> Self {
         let mut world = World::new();
-        let space = world.create_space(kind);
+        let space = world.create_space(kind).unwrap();
         world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
         RustScene { world, space, bodies: Vec::new(), dt: 0.0004, torque: None }
     }

@@ -28,6 +28,7 @@ mod noise;
 use std::any::Any;
 use std::io::{self, Write};
 use std::marker::PhantomData;
+use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use body::{
     Acceleration, Accelerometer, ContactReading, ContactSensor, Gps, Imu, ImuReading, Inclination, Inclinometer,
@@ -41,8 +42,8 @@ pub use laser::{Laser, LaserReading};
 pub use noise::{Noisy, Perturb};
 
 use crate::error::{Error, Result};
-use crate::handle::{JointId, ObjectId, WorldId};
-use crate::simulation::Simulation;
+use crate::handle::{Arena, JointId, ObjectId, RawHandle, WorldId};
+use crate::simulation::{Simulation, panic_message};
 
 /// A sensor: measures something of a simulation after every step it samples.
 pub trait Sensor: Send + 'static {
@@ -148,10 +149,9 @@ impl<'a, R> IntoIterator for &'a SensorLog<R> {
     }
 }
 
-/// A typed handle to a sensor of a simulation.
+/// A typed handle to a sensor of a simulation (stale once the sensor is removed).
 pub struct SensorId<S> {
-    world: WorldId,
-    index: usize,
+    handle: RawHandle,
     _sensor: PhantomData<fn() -> S>,
 }
 
@@ -163,7 +163,7 @@ impl<S> Clone for SensorId<S> {
 impl<S> Copy for SensorId<S> {}
 impl<S> std::fmt::Debug for SensorId<S> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "sensor#{}@{:?}", self.index, self.world)
+        write!(f, "sensor#{}v{}@{:?}", self.handle.index, self.handle.generation, self.handle.world)
     }
 }
 
@@ -182,6 +182,7 @@ trait ErasedSlot: Send {
     fn forget_joint(&mut self, id: JointId);
     fn as_any(&self) -> &dyn Any;
     fn as_any_mut(&mut self) -> &mut dyn Any;
+    fn into_any(self: Box<Self>) -> Box<dyn Any>;
 }
 
 impl<S: Sensor> ErasedSlot for Slot<S> {
@@ -222,26 +223,50 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
     fn as_any_mut(&mut self) -> &mut dyn Any {
         self
     }
+    fn into_any(self: Box<Self>) -> Box<dyn Any> {
+        self
+    }
 }
 
 /// The sensors of a simulation.
-#[derive(Default)]
 pub(crate) struct SensorSet {
-    slots: Vec<Box<dyn ErasedSlot>>,
+    slots: Arena<Box<dyn ErasedSlot>>,
 }
 
 impl SensorSet {
-    pub(crate) fn before_step(&mut self, sim: &Simulation) -> Result<()> {
-        self.slots.iter_mut().try_for_each(|s| s.before_step(sim))
+    pub(crate) fn new(world: WorldId) -> Self {
+        SensorSet { slots: Arena::new(world) }
     }
+    /// Every sensor notes the state before the step; a failing or panicking sensor
+    /// does not keep the others from it. The first error is returned.
+    pub(crate) fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+        self.each(|s| s.before_step(sim))
+    }
+    /// Every sensor samples; as [`SensorSet::before_step`].
     pub(crate) fn after_step(&mut self, sim: &Simulation) -> Result<()> {
-        self.slots.iter_mut().try_for_each(|s| s.after_step(sim))
+        self.each(|s| s.after_step(sim))
+    }
+    fn each(&mut self, mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>) -> Result<()> {
+        let mut first = Ok(());
+        for (h, slot) in self.slots.iter_mut() {
+            let result = match catch_unwind(AssertUnwindSafe(|| f(&mut **slot))) {
+                Ok(r) => r,
+                Err(payload) => Err(Error::Panicked {
+                    during: format!("sensor#{}v{}", h.index, h.generation),
+                    message: panic_message(payload),
+                }),
+            };
+            if first.is_ok() {
+                first = result;
+            }
+        }
+        first
     }
     pub(crate) fn forget_object(&mut self, id: ObjectId) {
-        self.slots.iter_mut().for_each(|s| s.forget_object(id));
+        self.slots.values_mut().for_each(|s| s.forget_object(id));
     }
     pub(crate) fn forget_joint(&mut self, id: JointId) {
-        self.slots.iter_mut().for_each(|s| s.forget_joint(id));
+        self.slots.values_mut().for_each(|s| s.forget_joint(id));
     }
 }
 
@@ -258,34 +283,50 @@ impl Simulation {
         self.insert_sensor(sensor, Some(period))
     }
 
+    /// Refuses a sensor that reads an object or joint that is not (or no longer) in
+    /// this simulation, then attaches it.
     fn insert_sensor<S: Sensor>(&mut self, mut sensor: S, period: Option<f64>) -> Result<SensorId<S>> {
+        for object in sensor.objects() {
+            self.object_data(object)?;
+        }
+        for joint in sensor.joints() {
+            self.joint_data(joint)?;
+        }
         sensor.attach(self)?;
         let next_sample = self.time() + period.unwrap_or(0.0);
         let slot = Slot { sensor, period, next_sample, detached: false, log: SensorLog { samples: Vec::new() } };
-        self.sensors.slots.push(Box::new(slot));
-        Ok(SensorId { world: self.world_id(), index: self.sensors.slots.len() - 1, _sensor: PhantomData })
+        let handle = self.sensors.slots.insert(Box::new(slot));
+        Ok(SensorId { handle, _sensor: PhantomData })
+    }
+
+    /// Removes a sensor and hands back its samples.
+    pub fn remove_sensor<S: Sensor>(&mut self, id: SensorId<S>) -> Result<SensorLog<S::Record>> {
+        self.slot(id)?;
+        let slot = self.sensors.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
+        match slot.into_any().downcast::<Slot<S>>() {
+            Ok(slot) => Ok(slot.log),
+            Err(_) => unreachable!("the slot's type was checked above"),
+        }
     }
 
     fn slot<S: Sensor>(&self, id: SensorId<S>) -> Result<&Slot<S>> {
-        if id.world != self.world_id() {
-            return Err(Error::ForeignHandle { kind: "sensor", handle: format!("{id:?}") });
-        }
+        let shown = format!("{id:?}");
         self.sensors
             .slots
-            .get(id.index)
-            .and_then(|s| s.as_any().downcast_ref::<Slot<S>>())
-            .ok_or_else(|| Error::StaleHandle { kind: "sensor", handle: format!("{id:?}") })
+            .get(id.handle, "sensor", &shown)?
+            .as_any()
+            .downcast_ref::<Slot<S>>()
+            .ok_or(Error::StaleHandle { kind: "sensor", handle: shown })
     }
 
     fn slot_mut<S: Sensor>(&mut self, id: SensorId<S>) -> Result<&mut Slot<S>> {
-        if id.world != self.world_id() {
-            return Err(Error::ForeignHandle { kind: "sensor", handle: format!("{id:?}") });
-        }
+        let shown = format!("{id:?}");
         self.sensors
             .slots
-            .get_mut(id.index)
-            .and_then(|s| s.as_any_mut().downcast_mut::<Slot<S>>())
-            .ok_or_else(|| Error::StaleHandle { kind: "sensor", handle: format!("{id:?}") })
+            .get_mut(id.handle, "sensor", &shown)?
+            .as_any_mut()
+            .downcast_mut::<Slot<S>>()
+            .ok_or(Error::StaleHandle { kind: "sensor", handle: shown })
     }
 
     /// The samples of a sensor.

@@ -26,6 +26,9 @@ mod joints;
 mod names;
 mod objects;
 
+use std::any::Any;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, heightfield_faces};
@@ -35,6 +38,7 @@ pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};
+use crate::limits;
 use crate::sensors::SensorSet;
 use crate::validate;
 use crate::world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
@@ -95,6 +99,37 @@ enum HookPoint {
     PostStep,
     PreFrame,
     PostFrame,
+}
+
+impl HookPoint {
+    fn name(self) -> &'static str {
+        match self {
+            HookPoint::PreStep => "pre-step",
+            HookPoint::PostStep => "post-step",
+            HookPoint::PreFrame => "pre-frame",
+            HookPoint::PostFrame => "post-frame",
+        }
+    }
+}
+
+/// The message of a caught panic.
+pub(crate) fn panic_message(payload: Box<dyn Any + Send>) -> String {
+    let message = match payload.downcast_ref::<&str>() {
+        Some(s) => (*s).to_owned(),
+        None => match payload.downcast_ref::<String>() {
+            Some(s) => s.clone(),
+            None => "(a panic without a message)".to_owned(),
+        },
+    };
+    // Dropping a payload runs user code that may panic again: leak it instead.
+    std::mem::forget(payload);
+    message
+}
+
+/// Runs user code, turning a panic into [`Error::Panicked`].
+fn contain(during: impl FnOnce() -> String, f: impl FnOnce() -> Result<()>) -> Result<()> {
+    catch_unwind(AssertUnwindSafe(f))
+        .unwrap_or_else(|payload| Err(Error::Panicked { during: during(), message: panic_message(payload) }))
 }
 
 impl HookLists {
@@ -216,8 +251,8 @@ impl SimulationBuilder {
     pub fn floor_plane(self, normal: Vector3<f64>, distance: f64) -> Self {
         self.floor(Floor::Plane { normal, distance })
     }
-    /// Seeds ODE's random generator (used by QuickStep). ODE has one generator per
-    /// process: seeding affects every simulation in the process.
+    /// Seeds the random generator of QuickStep for this simulation (see
+    /// [`World::set_random_seed`]: each world keeps its own seed).
     pub fn seed(mut self, seed: u32) -> Self {
         self.seed = Some(seed);
         self
@@ -225,7 +260,7 @@ impl SimulationBuilder {
 
     /// Creates the simulation: world, contact group, space, then the floor.
     pub fn build(self) -> Result<Simulation> {
-        validate::positive("time step", self.time_step)?;
+        limits::time_step(self.time_step)?;
         if self.steps_per_frame == 0 {
             return Err(Error::OutOfRange { what: "steps per frame", detail: "must be at least 1".into() });
         }
@@ -237,9 +272,9 @@ impl SimulationBuilder {
         world.set_stepper(self.stepper)?;
         world.set_default_surface(self.surface)?;
         if let Some(seed) = self.seed {
-            World::seed_random(seed);
+            world.set_random_seed(seed);
         }
-        let space = world.create_space(self.space);
+        let space = world.create_space(self.space)?;
         let id = world.id();
         let mut sim = Simulation {
             world,
@@ -248,7 +283,7 @@ impl SimulationBuilder {
             object_names: Names::new("object"),
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
-            sensors: SensorSet::default(),
+            sensors: SensorSet::new(id),
             hooks: HookLists::default(),
             time: 0.0,
             step_count: 0,
@@ -347,7 +382,7 @@ impl Simulation {
 
     /// Changes the time step for the next steps.
     pub fn set_time_step(&mut self, dt: f64) -> Result<()> {
-        self.time_step = validate::positive("time step", dt)?;
+        self.time_step = limits::time_step(dt)?;
         Ok(())
     }
 
@@ -391,11 +426,13 @@ impl Simulation {
         self.hooks.post_frame.push(Box::new(hook));
     }
 
+    /// Runs the closures of one point in order, up to the first error; a panic is
+    /// contained and reported as [`Error::Panicked`], and every hook stays registered.
     fn run_hooks(&mut self, at: HookPoint) -> Result<()> {
         let mut hooks = std::mem::take(self.hooks.list(at));
         let mut result = Ok(());
-        for hook in &mut hooks {
-            result = hook(self);
+        for (i, hook) in hooks.iter_mut().enumerate() {
+            result = contain(|| format!("{} hook {i}", at.name()), || hook(self));
             if result.is_err() {
                 break;
             }
@@ -412,27 +449,57 @@ impl Simulation {
     }
 
     /// One step, with `hooks` running before the closures registered in the simulation.
+    ///
+    /// Errors end the step where they happen; nothing registered is lost:
+    /// - a hook or sensor that panics is reported as [`Error::Panicked`] (hooks after it
+    ///   at the same point do not run for this step; other sensors still sample);
+    /// - a body whose state cannot be integrated is [`Error::Diverged`], named: before
+    ///   the step nothing happened; after it, time has advanced but the sensors did not
+    ///   sample the diverged state. Steps are refused until the body is reset or
+    ///   removed; the records so far stay readable.
     pub fn step_with(&mut self, hooks: &mut (impl StepHooks + ?Sized)) -> Result<()> {
-        hooks.pre_step(self)?;
+        contain(|| "the program's pre-step hook".into(), || hooks.pre_step(self))?;
         self.run_hooks(HookPoint::PreStep)?;
         self.apply_joint_drives()?;
-        let mut sensors = std::mem::take(&mut self.sensors);
+        let mut sensors = std::mem::replace(&mut self.sensors, SensorSet::new(self.world.id()));
         let before = sensors.before_step(self);
         self.sensors = sensors;
         before?;
         self.world.collide(self.space)?;
+        let time_before = self.world.time();
         let stepped = self.world.step(self.time_step);
         self.world.clear_contacts();
-        stepped?;
-        self.time += self.time_step;
-        self.step_count += 1;
-        let mut sensors = std::mem::take(&mut self.sensors);
+        if self.world.time() != time_before {
+            self.time += self.time_step;
+            self.step_count += 1;
+        }
+        stepped.map_err(|e| self.name_diverged_body(e))?;
+        let mut sensors = std::mem::replace(&mut self.sensors, SensorSet::new(self.world.id()));
         let sampled = sensors.after_step(self);
         self.sensors = sensors;
         self.end_joint_step();
         sampled?;
-        hooks.post_step(self)?;
+        contain(|| "the program's post-step hook".into(), || hooks.post_step(self))?;
         self.run_hooks(HookPoint::PostStep)
+    }
+
+    /// Puts the object's name in a [`Error::Diverged`] from the world.
+    fn name_diverged_body(&self, error: Error) -> Error {
+        match (error, self.world.diverged_body()) {
+            (Error::Diverged { body, time, detail }, Some(handle)) => {
+                let name = self
+                    .objects
+                    .iter()
+                    .find(|(_, o)| o.body == Some(handle))
+                    .and_then(|(id, _)| self.name(ObjectId(id)).ok());
+                let body = match name {
+                    Some(name) => format!("{name:?} ({body})"),
+                    None => body,
+                };
+                Error::Diverged { body, time, detail }
+            }
+            (error, _) => error,
+        }
     }
 
     /// `n` steps.
@@ -452,12 +519,12 @@ impl Simulation {
 
     fn partial_frame(&mut self, hooks: &mut (impl StepHooks + ?Sized), steps: u32) -> Result<()> {
         self.frame_count += 1;
-        hooks.pre_frame(self)?;
+        contain(|| "the program's pre-frame hook".into(), || hooks.pre_frame(self))?;
         self.run_hooks(HookPoint::PreFrame)?;
         for _ in 0..steps {
             self.step_with(hooks)?;
         }
-        hooks.post_frame(self)?;
+        contain(|| "the program's post-frame hook".into(), || hooks.post_frame(self))?;
         self.run_hooks(HookPoint::PostFrame)
     }
 

@@ -1,0 +1,171 @@
+//! The last line of defence: ODE's internal errors become `Err`, not `abort`.
+//!
+//! Validation ([`limits`](crate::limits)) keeps bad input away from ODE, but a valid
+//! scene can still drive ODE's solver into an internal assertion (a badly conditioned
+//! constraint system that yields NaN, say), and ODE answers every internal error by
+//! calling its process-wide debug or error handler and then `abort`/`exit`. The only
+//! way on is a handler that does not return.
+//!
+//! ## Design
+//! `ode-sys` compiles a small C shim (`ode-sys/src/guard.c`). It installs ODE's debug
+//! and error handlers once, and wraps the four ODE entry points that run ODE's
+//! numerical code: `dWorldStep`, `dWorldQuickStep`, `dSpaceCollide` and `dCollide`.
+//! Each wrapper `setjmp`s into a frame of its own and arms it as the calling thread's
+//! jump target; the handlers, when a target is armed, copy the message and `longjmp`
+//! to it, and the wrapper returns "caught".
+//!
+//! ## Why the jumps are sound
+//! - **No Rust frame is jumped over.** A target is armed only by a C wrapper, and only
+//!   for the duration of the one ODE call it makes; the frames between the failure and
+//!   the wrapper are ODE's and libccd's. `dSpaceCollide` calls back into Rust (the near
+//!   callback): the C trampoline *disarms* the outer target for the duration of the
+//!   callback, and the callback's own `dCollide` arms a nested target that jumps back
+//!   into the nested wrapper, inside the callback. A failure in an unguarded ODE call
+//!   made from Rust (none is known: their preconditions are checked) aborts as ODE
+//!   would, rather than jump over Rust.
+//! - **Targets are per thread** (`_Thread_local` in C); handlers are process-wide, so a
+//!   failure on one thread never jumps into another thread's stack.
+//! - **ODE's frames hold no resources that must be released for memory safety.** ODE
+//!   is C++, and `longjmp` skips C++ destructors. On the step and collision paths the
+//!   frames at an assertion hold plain data in the world's step arena, which is then
+//!   never returned (a leak of about 64 KiB per caught failure); the hash space's
+//!   collide holds `std::vector`s (leaked). The world's internal state is left
+//!   half-updated: it is **poisoned** (see below), never stepped or collided again.
+//! - **A poisoned world only gets dropped.** After a caught step failure the world
+//!   refuses every further step, collision and change ([`Error::Poisoned`](crate::Error::Poisoned)); dropping it
+//!   destroys its ODE objects as usual (measured: valgrind clean apart from the leak).
+//!   After a caught `dSpaceCollide` failure the space stays locked inside ODE, and
+//!   destroying or moving a geom of a locked space asserts: such a world is dropped
+//!   without calling ODE at all (its ODE objects are leaked).
+//!
+//! Only ODE's self-threaded step implementation is used (each world has its own), so
+//! every stage of a step runs on the calling thread, under its target.
+
+use std::ffi::{CStr, c_char, c_int, c_void};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use ode_sys as ffi;
+
+/// An internal error that ODE reported during a guarded call.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct OdeFailure {
+    /// ODE's message number.
+    pub(crate) number: i32,
+    /// ODE's message.
+    pub(crate) message: String,
+}
+
+impl OdeFailure {
+    fn from_raw(raw: &ffi::odesys_failure) -> Self {
+        // SAFETY: the C side always NUL-terminates the message within its buffer
+        // (snprintf/vsnprintf); the buffer was zero-initialised before the call.
+        let message = unsafe { CStr::from_ptr(raw.message.as_ptr()) }.to_string_lossy().into_owned();
+        let kind = if raw.kind == ffi::ODESYS_FAILURE_ERROR as c_int { "error" } else { "internal assertion" };
+        OdeFailure { number: raw.number, message: format!("{kind} {}: {message}", raw.number) }
+    }
+}
+
+fn empty_failure() -> ffi::odesys_failure {
+    ffi::odesys_failure { kind: 0, number: 0, message: [0; 512] }
+}
+
+/// Installs the handlers (once per process, from `init`).
+pub(crate) fn install_handlers() {
+    // SAFETY: `report` is an `extern "C"` function that never unwinds.
+    unsafe { ffi::odesys_install_handlers(Some(report)) };
+}
+
+/// ODE's warnings, and failures no guard caught (just before the C side aborts). A
+/// panicking logger is contained here: nothing unwinds into C.
+unsafe extern "C" fn report(kind: c_int, number: c_int, message: *const c_char) {
+    let text = if message.is_null() {
+        String::from("(no message)")
+    } else {
+        // SAFETY: the C side passes a NUL-terminated buffer that lives during the call.
+        unsafe { CStr::from_ptr(message) }.to_string_lossy().into_owned()
+    };
+    let logged = catch_unwind(AssertUnwindSafe(|| {
+        if kind == ffi::ODESYS_MESSAGE as c_int {
+            log::warn!(target: "ode", "ODE message {number}: {text}");
+        } else {
+            log::error!(target: "ode", "ODE internal error {number} outside any guard: {text}");
+        }
+    }));
+    if let Err(payload) = logged {
+        // Dropping a panic payload can itself panic; leak it instead.
+        std::mem::forget(payload);
+    }
+}
+
+/// `dWorldStep` (or `dWorldQuickStep`) under a guard: `Ok(false)` when ODE reports that
+/// it ran out of memory.
+///
+/// # Safety
+/// `world` must be a live world whose step threading implementation is
+/// self-threaded (or unset).
+pub(crate) unsafe fn world_step(world: ffi::dWorldID, dt: f64, quick: bool) -> Result<bool, OdeFailure> {
+    let mut failure = empty_failure();
+    // SAFETY: the caller's contract; `failure` outlives the call.
+    let r = unsafe { ffi::odesys_guarded_world_step(world, dt, quick.into(), &mut failure) };
+    match r {
+        r if r == ffi::ODESYS_CAUGHT => Err(OdeFailure::from_raw(&failure)),
+        r => Ok(r == ffi::ODESYS_OK as c_int),
+    }
+}
+
+/// `dSpaceCollide` under a guard.
+///
+/// # Safety
+/// `space` must be live, and `callback` must accept `data` for the duration of the call;
+/// the callback must not unwind.
+pub(crate) unsafe fn space_collide(
+    space: ffi::dSpaceID,
+    data: *mut c_void,
+    callback: unsafe extern "C" fn(*mut c_void, ffi::dGeomID, ffi::dGeomID),
+) -> Result<(), OdeFailure> {
+    let mut failure = empty_failure();
+    // SAFETY: the caller's contract; `failure` outlives the call.
+    let r = unsafe { ffi::odesys_guarded_space_collide(space, data, Some(callback), &mut failure) };
+    if r == ffi::ODESYS_CAUGHT { Err(OdeFailure::from_raw(&failure)) } else { Ok(()) }
+}
+
+/// `dCollide` under a guard: the number of contacts written.
+///
+/// # Safety
+/// Both geoms must be live; `contacts` must have room for `max` entries.
+pub(crate) unsafe fn collide(
+    o1: ffi::dGeomID,
+    o2: ffi::dGeomID,
+    max: c_int,
+    contacts: *mut ffi::dContactGeom,
+) -> Result<usize, OdeFailure> {
+    let mut failure = empty_failure();
+    let mut count = 0;
+    let stride = size_of::<ffi::dContactGeom>() as c_int;
+    // SAFETY: the caller's contract; `failure` and `count` outlive the call.
+    let r = unsafe { ffi::odesys_guarded_collide(o1, o2, max, contacts, stride, &mut count, &mut failure) };
+    if r == ffi::ODESYS_CAUGHT { Err(OdeFailure::from_raw(&failure)) } else { Ok(count.max(0) as usize) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_ode_internal_error_under_a_guard_becomes_an_err() {
+        crate::init::ensure_ode_ready();
+        let mut failure = empty_failure();
+        // SAFETY: the message is NUL-terminated; `failure` outlives the call.
+        let r = unsafe { ffi::odesys_guarded_debug_report(7, c"provoked".as_ptr(), &mut failure) };
+        assert_eq!(r, ffi::ODESYS_CAUGHT);
+        let f = OdeFailure::from_raw(&failure);
+        assert_eq!(f.number, 7);
+        assert!(f.message.contains("provoked"), "{}", f.message);
+        // The guard is disarmed again and works a second time on the same thread.
+        let mut again = empty_failure();
+        // SAFETY: as above.
+        let r = unsafe { ffi::odesys_guarded_debug_report(8, c"again".as_ptr(), &mut again) };
+        assert_eq!(r, ffi::ODESYS_CAUGHT);
+        assert_eq!(OdeFailure::from_raw(&again).number, 8);
+    }
+}

@@ -1,0 +1,214 @@
+//! The range of values the safe layer accepts, and why.
+//!
+//! ODE works in double precision but aborts (or loops forever) well before the ends
+//! of that range: a capsule 1e17 m long makes libccd's penetration search loop
+//! forever, a body at x = 1e17 m overflows the integer cells of a hash space, an
+//! angular velocity of 1e300 rad/s overflows the quaternion update, a cylinder
+//! 5e-324 m long fails ODE's own validity check. Every size, distance, mass, inertia,
+//! velocity, force and time step that reaches ODE is therefore held to a documented,
+//! physically generous range; anything outside is an [`Error`] naming
+//! the value, before ODE is called.
+//!
+//! | quantity | accepted | reason |
+//! | --- | --- | --- |
+//! | sizes (radius, length, edge, ray length) | [`MIN_SIZE`] ‥ [`MAX_SIZE`] | libccd's tolerance (1e-6 m absolute) must stay above the rounding of coordinates; ODE's cylinder checks |
+//! | coordinates (positions, anchors, offsets, plane distance) | ‖·‖∞ ≤ [`MAX_COORDINATE`] | as above; a hash space also needs `coordinate · 2^−min_level` within `int` |
+//! | mass | [`MIN_MASS`] ‥ [`MAX_MASS`] | the inverse mass and inertia stay far from underflow and overflow |
+//! | principal moments of inertia | [`MIN_INERTIA`] ‥ [`MAX_INERTIA`], triangle inequality | a physical body; ODE normalises quaternions updated with ω = I⁻¹τ |
+//! | linear speed | ≤ [`MAX_SPEED`] | |
+//! | angular speed | ≤ [`MAX_ANGULAR_SPEED`] | the quaternion update (ω·dt) stays small enough to normalise |
+//! | force, torque (per call and accumulated) | ≤ [`MAX_FORCE`], [`MAX_TORQUE`] | one step of acceleration cannot overflow |
+//! | time step | [`MIN_TIME_STEP`] ‥ [`MAX_TIME_STEP`] | ERP/dt and dt·F/m stay finite |
+//! | gravity | ≤ [`MAX_ACCELERATION`] | |
+//!
+//! After every step, a body whose state left these ranges (or became non-finite) is
+//! reported as [`Error::Diverged`], and the world refuses to
+//! step until it is reset or removed.
+
+use nalgebra::{Matrix3, Point3, Vector3};
+
+use crate::error::{Error, Result};
+
+/// Smallest size (radius, length, box edge, ray length), m: 1 nm.
+pub const MIN_SIZE: f64 = 1e-9;
+/// Largest size, m: a million kilometres.
+pub const MAX_SIZE: f64 = 1e9;
+/// Largest absolute coordinate of a position, anchor, offset or plane distance, m.
+pub const MAX_COORDINATE: f64 = 1e9;
+/// Smallest mass, kg: a microgram.
+pub const MIN_MASS: f64 = 1e-9;
+/// Largest mass, kg: a million tonnes.
+pub const MAX_MASS: f64 = 1e9;
+/// Smallest principal moment of inertia, kg·m² (below that of the smallest, lightest
+/// sphere: 0.4 · 1e-9 kg · (1e-9 m)² = 4e-28).
+pub const MIN_INERTIA: f64 = 1e-30;
+/// Largest principal moment of inertia, kg·m² (above that of the largest, heaviest
+/// sphere: 0.4 · 1e9 kg · (1e9 m)² = 4e26).
+pub const MAX_INERTIA: f64 = 1e30;
+/// Largest linear speed, m/s.
+pub const MAX_SPEED: f64 = 1e9;
+/// Largest angular speed, rad/s.
+pub const MAX_ANGULAR_SPEED: f64 = 1e9;
+/// Largest force, N (per call, and accumulated for one step).
+pub const MAX_FORCE: f64 = 1e15;
+/// Largest torque, N·m (per call, and accumulated for one step).
+pub const MAX_TORQUE: f64 = 1e15;
+/// Smallest time step, s.
+pub const MIN_TIME_STEP: f64 = 1e-9;
+/// Largest time step, s.
+pub const MAX_TIME_STEP: f64 = 1.0;
+/// Largest gravity, m/s².
+pub const MAX_ACCELERATION: f64 = 1e9;
+
+/// `value` in `[min, max]` (finite).
+pub(crate) fn in_range(what: &'static str, value: f64, min: f64, max: f64) -> Result<f64> {
+    if !value.is_finite() {
+        return Err(Error::NotFinite { what, value: value.to_string() });
+    }
+    if value <= 0.0 && min > 0.0 {
+        return Err(Error::NotPositive { what, value });
+    }
+    if value < min || value > max {
+        return Err(Error::OutOfRange { what, detail: format!("must be within [{min:e}, {max:e}], got {value:e}") });
+    }
+    Ok(value)
+}
+
+/// A size: within [`MIN_SIZE`], [`MAX_SIZE`].
+pub(crate) fn size(what: &'static str, value: f64) -> Result<f64> {
+    in_range(what, value, MIN_SIZE, MAX_SIZE)
+}
+
+/// Every component a valid size.
+pub(crate) fn sizes(what: &'static str, v: &Vector3<f64>) -> Result<Vector3<f64>> {
+    for c in v.iter() {
+        size(what, *c)?;
+    }
+    Ok(*v)
+}
+
+/// A coordinate: finite, within ±[`MAX_COORDINATE`].
+pub(crate) fn coordinate(what: &'static str, value: f64) -> Result<f64> {
+    if !value.is_finite() {
+        return Err(Error::NotFinite { what, value: value.to_string() });
+    }
+    if value.abs() > MAX_COORDINATE {
+        return Err(Error::OutOfRange {
+            what, detail: format!("must be within ±{MAX_COORDINATE:e} m, got {value:e}")
+        });
+    }
+    Ok(value)
+}
+
+/// A point (or translation) whose coordinates are all valid.
+pub(crate) fn point(what: &'static str, p: &Point3<f64>) -> Result<Point3<f64>> {
+    vector_within(what, &p.coords, MAX_COORDINATE, "m").map(Point3::from)
+}
+
+/// A finite vector whose components are all within ±`max`.
+pub(crate) fn vector_within(what: &'static str, v: &Vector3<f64>, max: f64, unit: &str) -> Result<Vector3<f64>> {
+    if !v.iter().all(|c| c.is_finite()) {
+        return Err(Error::NotFinite { what, value: format!("({}, {}, {})", v.x, v.y, v.z) });
+    }
+    if v.iter().any(|c| c.abs() > max) {
+        return Err(Error::OutOfRange {
+            what,
+            detail: format!("each component must be within ±{max:e} {unit}, got ({:e}, {:e}, {:e})", v.x, v.y, v.z),
+        });
+    }
+    Ok(*v)
+}
+
+/// What is wrong with a part of a body's state or accumulators (non-finite, or a
+/// component beyond ±`max`), or `None`. Cheap: used on every body at every step.
+#[inline]
+pub(crate) fn state_problem(what: &str, values: &[f64], max: f64, unit: &str) -> Option<String> {
+    // `!(|c| <= max)` is also true for NaN.
+    if values.iter().all(|c| c.abs() <= max) {
+        return None;
+    }
+    if values.iter().all(|c| c.is_finite()) {
+        Some(format!("{what} {values:?} has a component beyond ±{max:e} {unit}"))
+    } else {
+        Some(format!("{what} {values:?} is not finite"))
+    }
+}
+
+/// A mass within [`MIN_MASS`], [`MAX_MASS`].
+pub(crate) fn mass(what: &'static str, value: f64) -> Result<f64> {
+    in_range(what, value, MIN_MASS, MAX_MASS)
+}
+
+/// A time step within [`MIN_TIME_STEP`], [`MAX_TIME_STEP`].
+pub(crate) fn time_step(value: f64) -> Result<f64> {
+    in_range("time step", value, MIN_TIME_STEP, MAX_TIME_STEP)
+}
+
+/// An inertia tensor (about the centre of mass, body frame) of a physical body:
+/// symmetric, principal moments within [`MIN_INERTIA`], [`MAX_INERTIA`], and each
+/// moment at most the sum of the other two (the triangle inequality every real mass
+/// distribution satisfies).
+pub(crate) fn inertia(i: &Matrix3<f64>) -> Result<Matrix3<f64>> {
+    const WHAT: &str = "inertia tensor";
+    if !i.iter().all(|x| x.is_finite()) {
+        return Err(Error::NotFinite { what: WHAT, value: format!("{i:?}") });
+    }
+    let scale = i.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if (i - i.transpose()).amax() > 1e-12 * scale {
+        return Err(Error::OutOfRange { what: WHAT, detail: "must be symmetric".into() });
+    }
+    let mut moments: Vec<f64> = i.symmetric_eigenvalues().iter().copied().collect();
+    moments.sort_by(f64::total_cmp);
+    let (a, b, c) = (moments[0], moments[1], moments[2]);
+    if a <= 0.0 {
+        return Err(Error::OutOfRange {
+            what: WHAT,
+            detail: format!("must be positive definite, principal moments are {a:e}, {b:e}, {c:e}"),
+        });
+    }
+    if a < MIN_INERTIA || c > MAX_INERTIA {
+        return Err(Error::OutOfRange {
+            what: WHAT,
+            detail: format!(
+                "principal moments must be within [{MIN_INERTIA:e}, {MAX_INERTIA:e}] kg·m², got {a:e}, {b:e}, {c:e}"
+            ),
+        });
+    }
+    // Relative slack for the rounding of the eigenvalues (a thin rod or a flat plate
+    // sits exactly on the inequality).
+    if c > (a + b) * (1.0 + 1e-9) {
+        return Err(Error::OutOfRange {
+            what: WHAT,
+            detail: format!(
+                "breaks the triangle inequality: principal moment {c:e} exceeds the sum of the others ({a:e} + {b:e}); no mass distribution has it"
+            ),
+        });
+    }
+    Ok(*i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_are_inclusive_and_named() {
+        assert!(size("r", MIN_SIZE).is_ok() && size("r", MAX_SIZE).is_ok());
+        assert!(matches!(size("r", 5e-324), Err(Error::OutOfRange { what: "r", .. })));
+        assert!(matches!(size("r", -1.0), Err(Error::NotPositive { .. })));
+        assert!(matches!(coordinate("x", 1e17), Err(Error::OutOfRange { .. })));
+        assert!(coordinate("x", -MAX_COORDINATE).is_ok());
+        assert!(mass("m", 1e-300).is_err() && mass("m", 1e300).is_err() && mass("m", 1.0).is_ok());
+    }
+
+    #[test]
+    fn inertia_must_be_physical() {
+        assert!(inertia(&Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 1.0))).is_ok());
+        // A thin rod: (0, m l²/12, m l²/12) is the limit; a flat plate: a + b = c.
+        assert!(inertia(&Matrix3::from_diagonal(&Vector3::new(1.0, 2.0, 3.0))).is_ok());
+        let broken = inertia(&Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 3.0))).unwrap_err();
+        assert!(broken.to_string().contains("triangle inequality"), "{broken}");
+        assert!(inertia(&Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 1e-300))).is_err());
+        assert!(inertia(&Matrix3::new(1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)).is_err());
+    }
+}
