@@ -226,13 +226,39 @@ impl Default for DefaultOdeSurface {
     }
 }
 
+/// Why a pair stopped the collision pass.
+enum PairFailure {
+    /// Its collider failed inside ODE (caught by the guard).
+    Ode(GeomHandle, GeomHandle, OdeFailure),
+    /// Its sizes are too far apart for libccd to finish: never handed to ODE.
+    Refused(GeomHandle, GeomHandle, f64),
+}
+
+/// For the pairs that ODE collides with libccd (cylinder–cylinder, capsule–cylinder):
+/// the ratio of their largest to their smallest dimension.
+fn convex_pair_ratio(a: &crate::geom::Shape, b: &crate::geom::Shape) -> Option<f64> {
+    use crate::geom::Shape::{Capsule, Cylinder};
+    let dims = |s: &crate::geom::Shape| match *s {
+        Cylinder { radius, length } | Capsule { radius, length } => Some((radius, length)),
+        _ => None,
+    };
+    let cylinder = |s: &crate::geom::Shape| matches!(s, Cylinder { .. });
+    if !(cylinder(a) || cylinder(b)) {
+        return None;
+    }
+    let ((r1, l1), (r2, l2)) = (dims(a)?, dims(b)?);
+    let max = r1.max(l1).max(r2).max(l2);
+    let min = r1.min(l1).min(r2).min(l2);
+    Some(max / min)
+}
+
 /// What the near callback sees through its `void*`.
 struct NearContext<'a, H: CollisionHooks + ?Sized> {
     world: &'a mut World,
     hooks: &'a mut H,
     panic: Option<Box<dyn Any + Send>>,
     /// The first pair whose `dCollide` failed inside ODE (caught by its guard).
-    failure: Option<(GeomHandle, GeomHandle, OdeFailure)>,
+    failure: Option<PairFailure>,
 }
 
 impl World {
@@ -295,14 +321,26 @@ impl World {
             self.clear_contacts();
             resume_unwind(payload);
         }
-        if let Some((g1, g2, failure)) = pair_failure {
-            self.clear_contacts();
-            return Err(Error::OdeInternal {
-                during: "collision",
-                message: format!("colliding geoms {g1} and {g2}: {}", failure.message),
-            });
+        match pair_failure {
+            None => Ok(()),
+            Some(PairFailure::Ode(g1, g2, failure)) => {
+                self.clear_contacts();
+                Err(Error::OdeInternal {
+                    during: "collision",
+                    message: format!("colliding geoms {g1} and {g2}: {}", failure.message),
+                })
+            }
+            Some(PairFailure::Refused(g1, g2, ratio)) => {
+                self.clear_contacts();
+                Err(Error::OutOfRange {
+                    what: "sizes of a colliding pair",
+                    detail: format!(
+                        "geoms {g1} and {g2} touch, and their radii and lengths differ by a factor {ratio:e}; ODE's cylinder collider (libccd) may never finish beyond {:e}",
+                        crate::limits::MAX_CONVEX_PAIR_RATIO
+                    ),
+                })
+            }
         }
-        Ok(())
     }
 
     /// ODE's hash space puts each geom in integer cells of size `2^level`, at least
@@ -359,6 +397,13 @@ impl World {
             .copied()
     }
 
+    fn shape_of(&self, g: GeomHandle) -> &crate::geom::Shape {
+        match self.geoms.get_by_index(g.0.index) {
+            Some((_, data)) => &data.shape,
+            None => unreachable!("the near callback only sees live geoms"),
+        }
+    }
+
     fn geom_info(&self, raw: ffi::dGeomID) -> Option<(GeomHandle, bool, Option<BodyHandle>, ffi::dBodyID)> {
         // SAFETY: ODE hands the callback live geoms of the collided space; their user
         // data is the arena index set at creation.
@@ -377,7 +422,7 @@ impl World {
         hooks: &mut H,
         o1: ffi::dGeomID,
         o2: ffi::dGeomID,
-    ) -> Result<(), (GeomHandle, GeomHandle, OdeFailure)> {
+    ) -> Result<(), PairFailure> {
         let (Some((g1, ray1, body1, b1)), Some((g2, ray2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
         else {
             log::error!("collision reported a geom that this world does not own; pair skipped");
@@ -392,6 +437,11 @@ impl World {
         }
         if ray1 && ray2 {
             return Ok(());
+        }
+        if let Some(ratio) = convex_pair_ratio(self.shape_of(g1), self.shape_of(g2))
+            && ratio > crate::limits::MAX_CONVEX_PAIR_RATIO
+        {
+            return Err(PairFailure::Refused(g1, g2, ratio));
         }
         let pair = GeomPair { geom1: g1, geom2: g2, body1, body2 };
         // (max contacts, ODE surface); `None` for a ray pair.
@@ -415,7 +465,7 @@ impl World {
         // entries of dContactGeom.
         let n = match unsafe { guard::collide(o1, o2, max as i32, scratch.as_mut_ptr()) } {
             Ok(n) => n.min(max),
-            Err(failure) => return Err((g1, g2, failure)),
+            Err(failure) => return Err(PairFailure::Ode(g1, g2, failure)),
         };
         match surface {
             None => {

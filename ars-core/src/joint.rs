@@ -125,8 +125,9 @@ impl JointKind {
                 axis(axis2)?;
                 // ODE keeps the two axes perpendicular by construction of its
                 // constraint; axes that are not give a joint other than the one asked for.
-                let cos = axis1.dot(axis2) / (axis1.norm() * axis2.norm());
-                if cos.abs() > 1e-6 {
+                let (u, v) = (unit(axis1), unit(axis2));
+                let cos = u.dot(&v);
+                if cos.is_nan() || cos.abs() > 1e-6 {
                     return Err(Error::OutOfRange {
                         what: "joint axes",
                         detail: format!(
@@ -141,7 +142,8 @@ impl JointKind {
                 anchor(a)?;
                 axis(axis1)?;
                 axis(axis2)?;
-                if axis1.cross(axis2).norm() <= 1e-9 * axis1.norm() * axis2.norm() {
+                let sin = unit(axis1).cross(&unit(axis2)).norm();
+                if sin.is_nan() || sin <= 1e-9 {
                     return Err(Error::OutOfRange {
                         what: "joint axes",
                         detail: format!("{} axes must not be parallel", self.name()),
@@ -160,6 +162,13 @@ impl JointKind {
             }
         }
     }
+}
+
+/// `v` scaled to unit length without overflow (for checks only: ODE gets the axis as
+/// given and normalises it itself).
+fn unit(v: &Vector3<f64>) -> Vector3<f64> {
+    let scaled = v / v.amax();
+    scaled / scaled.norm()
 }
 
 /// A joint parameter of ODE (`dParam*`), set per axis with [`JointMut::set_param`].

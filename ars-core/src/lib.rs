@@ -59,7 +59,10 @@
 //! ```
 //!
 //! Bad input is an [`Error`], never a crash: a negative radius, a NaN position, a
-//! handle of a removed body or of another world, a joint from a body to itself...
+//! handle of a removed body or of another world, a joint from a body to itself, a
+//! number outside the documented [`limits`]... A body whose state diverges is
+//! [`Error::Diverged`], and an internal error that ODE reports anyway is caught by the
+//! [`guard`] ([`Error::OdeInternal`]): nothing reachable from safe code aborts.
 //!
 //! ```
 //! use ars_core::{BodyBuilder, Error, GeomBuilder, SpaceKind, World};
@@ -78,7 +81,8 @@
 //! of ODE keeps some state per process (the trimesh collider cache, the random
 //! generator), so trimesh collision and QuickStep are serialised by a process-wide lock
 //! ([`lock_ode_global_state`]); `dWorldStep` runs in parallel, each world with its own
-//! step job queue.
+//! step job queue. Each world keeps its own QuickStep random seed, so QuickStep is
+//! deterministic per world even when worlds run concurrently.
 
 pub mod body;
 pub mod contact;

@@ -11,10 +11,11 @@
 //!
 //! | quantity | accepted | reason |
 //! | --- | --- | --- |
-//! | sizes (radius, length, edge, ray length) | [`MIN_SIZE`] ‥ [`MAX_SIZE`] | libccd's tolerance (1e-6 m absolute) must stay above the rounding of coordinates; ODE's cylinder checks |
-//! | coordinates (positions, anchors, offsets, plane distance) | ‖·‖∞ ≤ [`MAX_COORDINATE`] | as above; a hash space also needs `coordinate · 2^−min_level` within `int` |
+//! | sizes (radius, length, edge, ray length) | [`MIN_SIZE`] ‥ [`MAX_SIZE`] | ODE's cylinder colliders assert below 4.4e-16 m; physical scales |
+//! | cylinder–cylinder and capsule–cylinder pairs | largest / smallest dimension ≤ [`MAX_CONVEX_PAIR_RATIO`], checked when they meet | libccd's search loops forever beyond it |
+//! | coordinates (positions, anchors, offsets, plane distance) | each within ±[`MAX_COORDINATE`] | a hash space also needs `coordinate · 2^−min_level` within `int`, checked before it collides |
 //! | mass | [`MIN_MASS`] ‥ [`MAX_MASS`] | the inverse mass and inertia stay far from underflow and overflow |
-//! | principal moments of inertia | [`MIN_INERTIA`] ‥ [`MAX_INERTIA`], triangle inequality | a physical body; ODE normalises quaternions updated with ω = I⁻¹τ |
+//! | principal moments of inertia | [`MIN_INERTIA`] ‥ [`MAX_INERTIA`], ratio ≤ [`MAX_INERTIA_RATIO`], triangle inequality | a physical body; ODE inverts the inertia in its gyroscopic step (a subnormal determinant gives NaN) |
 //! | linear speed | ≤ [`MAX_SPEED`] | |
 //! | angular speed | ≤ [`MAX_ANGULAR_SPEED`] | the quaternion update (ω·dt) stays small enough to normalise |
 //! | force, torque (per call and accumulated) | ≤ [`MAX_FORCE`], [`MAX_TORQUE`] | one step of acceleration cannot overflow |
@@ -45,14 +46,23 @@ pub const MIN_INERTIA: f64 = 1e-30;
 /// Largest principal moment of inertia, kg·m² (above that of the largest, heaviest
 /// sphere: 0.4 · 1e9 kg · (1e9 m)² = 4e26).
 pub const MAX_INERTIA: f64 = 1e30;
-/// Largest linear speed, m/s.
-pub const MAX_SPEED: f64 = 1e9;
-/// Largest angular speed, rad/s.
-pub const MAX_ANGULAR_SPEED: f64 = 1e9;
-/// Largest force, N (per call, and accumulated for one step).
-pub const MAX_FORCE: f64 = 1e15;
+/// Largest ratio between the largest and the smallest principal moment of inertia.
+/// ODE's implicit gyroscopic step inverts the inertia; measured: a ratio of 1e16
+/// still steps, 1e20 ends in NaN.
+pub const MAX_INERTIA_RATIO: f64 = 1e12;
+/// Largest linear speed, m/s (a third of the speed of light).
+pub const MAX_SPEED: f64 = 1e8;
+/// Largest angular speed, rad/s (160,000 turns per second).
+pub const MAX_ANGULAR_SPEED: f64 = 1e6;
+/// Largest force, N (per call, and accumulated for one step): 100,000 tonnes-force.
+pub const MAX_FORCE: f64 = 1e9;
 /// Largest torque, N·m (per call, and accumulated for one step).
-pub const MAX_TORQUE: f64 = 1e15;
+pub const MAX_TORQUE: f64 = 1e9;
+/// Largest ratio between the largest and the smallest dimension (radius, length) of
+/// a cylinder–cylinder or capsule–cylinder pair, the pairs ODE hands to libccd:
+/// beyond it libccd's portal search can loop forever (measured: no hang in 100,000
+/// random pairs up to 1e8; hangs from about 6e9).
+pub const MAX_CONVEX_PAIR_RATIO: f64 = 1e8;
 /// Smallest time step, s.
 pub const MIN_TIME_STEP: f64 = 1e-9;
 /// Largest time step, s.
@@ -154,29 +164,36 @@ pub(crate) fn inertia(i: &Matrix3<f64>) -> Result<Matrix3<f64>> {
         return Err(Error::NotFinite { what: WHAT, value: format!("{i:?}") });
     }
     let scale = i.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    // Bounding the entries first keeps the eigen-decomposition finite.
+    if scale > MAX_INERTIA {
+        return Err(Error::OutOfRange {
+            what: WHAT,
+            detail: format!("entries must be within ±{MAX_INERTIA:e} kg·m², got {scale:e}"),
+        });
+    }
     if (i - i.transpose()).amax() > 1e-12 * scale {
         return Err(Error::OutOfRange { what: WHAT, detail: "must be symmetric".into() });
     }
     let mut moments: Vec<f64> = i.symmetric_eigenvalues().iter().copied().collect();
     moments.sort_by(f64::total_cmp);
     let (a, b, c) = (moments[0], moments[1], moments[2]);
-    if a <= 0.0 {
+    if a.is_nan() || a <= 0.0 {
         return Err(Error::OutOfRange {
             what: WHAT,
             detail: format!("must be positive definite, principal moments are {a:e}, {b:e}, {c:e}"),
         });
     }
-    if a < MIN_INERTIA || c > MAX_INERTIA {
+    if a < MIN_INERTIA || c.is_nan() || c > MAX_INERTIA || c > a * MAX_INERTIA_RATIO {
         return Err(Error::OutOfRange {
             what: WHAT,
             detail: format!(
-                "principal moments must be within [{MIN_INERTIA:e}, {MAX_INERTIA:e}] kg·m², got {a:e}, {b:e}, {c:e}"
+                "principal moments must be within [{MIN_INERTIA:e}, {MAX_INERTIA:e}] kg·m², at most {MAX_INERTIA_RATIO:e} apart, got {a:e}, {b:e}, {c:e}"
             ),
         });
     }
     // Relative slack for the rounding of the eigenvalues (a thin rod or a flat plate
     // sits exactly on the inequality).
-    if c > (a + b) * (1.0 + 1e-9) {
+    if c.is_nan() || c > (a + b) * (1.0 + 1e-9) {
         return Err(Error::OutOfRange {
             what: WHAT,
             detail: format!(

@@ -50,7 +50,8 @@ pub fn quaternion(what: &'static str, q: &UnitQuaternion<f64>) -> Result<UnitQua
     if !c.iter().all(|x| x.is_finite()) {
         return Err(Error::NotFinite { what, value: format!("{q:?}") });
     }
-    if (c.norm() - 1.0).abs() > 1e-6 {
+    let norm_err = (c.norm() - 1.0).abs();
+    if norm_err.is_nan() || norm_err > 1e-6 {
         return Err(Error::OutOfRange { what, detail: format!("quaternion norm is {}, not 1", c.norm()) });
     }
     Ok(*q)
@@ -62,8 +63,15 @@ pub fn rotation(what: &'static str, r: &Rotation3<f64>) -> Result<Rotation3<f64>
     if !m.iter().all(|x| x.is_finite()) {
         return Err(Error::NotFinite { what, value: format!("{m:?}") });
     }
-    let err = (m * m.transpose() - nalgebra::Matrix3::identity()).norm();
-    if err > 1e-6 || (m.determinant() - 1.0).abs() > 1e-6 {
+    // Entries of a rotation are within [-1, 1]; checking that first keeps the products
+    // below from overflowing to ∞ − ∞ = NaN, which no comparison would catch.
+    let err = if m.iter().all(|x| x.abs() <= 1.0 + 1e-6) {
+        (m * m.transpose() - nalgebra::Matrix3::identity()).norm()
+    } else {
+        f64::INFINITY
+    };
+    let det_err = (m.determinant() - 1.0).abs();
+    if err.is_nan() || err > 1e-6 || det_err.is_nan() || det_err > 1e-6 {
         return Err(Error::OutOfRange { what, detail: "not a proper rotation matrix".into() });
     }
     Ok(*r)

@@ -259,6 +259,53 @@ fn trajectory() -> Vec<u64> {
         .collect()
 }
 
+/// A pile of boxes whose QuickStep order depends on ODE's random generator, stepped
+/// `steps` times; with `disturb`, another QuickStep world steps in between each step.
+fn quickstep_pile(steps: usize, seed: u32, disturb: Option<&mut (World, SpaceHandle)>) -> Vec<u64> {
+    let mut world = World::new();
+    world.set_stepper(Stepper::Quick { iterations: 10 }).unwrap();
+    world.set_random_seed(seed);
+    let space = world.create_space(SpaceKind::Simple).unwrap();
+    world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
+    let boxes: Vec<_> = (0..6)
+        .map(|i| {
+            let at = Point3::new(0.1 * i as f64, 0.5 + 1.01 * i as f64, 0.0);
+            let b = world
+                .insert_body(BodyBuilder::new().position(at).mass(MassSpec::box_total(1.0, Vector3::repeat(1.0))))
+                .unwrap();
+            world.insert_geom(space, GeomBuilder::cuboid(Vector3::repeat(1.0)).attached_to(b)).unwrap();
+            b
+        })
+        .collect();
+    let mut disturb = disturb;
+    let mut out = Vec::new();
+    for _ in 0..steps {
+        run(&mut world, space, 1);
+        if let Some((other, other_space)) = disturb.as_deref_mut() {
+            run(other, *other_space, 1);
+        }
+        out.extend(boxes.iter().map(|&b| world.body(b).unwrap().position().x.to_bits()));
+    }
+    out
+}
+
+#[test]
+fn quickstep_is_deterministic_per_world_whatever_other_worlds_do() {
+    let alone = quickstep_pile(400, 5, None);
+    let mut other = World::new();
+    other.set_stepper(Stepper::Quick { iterations: 10 }).unwrap();
+    other.set_random_seed(99);
+    let other_space = other.create_space(SpaceKind::Simple).unwrap();
+    other.insert_geom(other_space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
+    for i in 0..4 {
+        let b = falling_ball(&mut other, other_space, Point3::new(0.3 * i as f64, 0.5 + i as f64, 0.0));
+        let _ = b;
+    }
+    let mut disturbance = (other, other_space);
+    assert_eq!(quickstep_pile(400, 5, Some(&mut disturbance)), alone, "another world's QuickSteps change nothing");
+    assert_ne!(quickstep_pile(400, 6, None), alone, "the seed matters: the test can see a difference");
+}
+
 #[test]
 fn worlds_on_different_threads_give_identical_results() {
     let reference = trajectory();

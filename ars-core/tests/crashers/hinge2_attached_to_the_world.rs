@@ -17,3 +17,17 @@ fn a_hinge2_to_the_world_is_refused_and_between_two_bodies_accepted() {
     world.insert_joint(hinge2().between(a, b)).unwrap();
     world.step(0.0004).unwrap();
 }
+
+#[test]
+fn motors_attached_to_the_world_with_body_relative_axes_step() {
+    let mut world = World::new();
+    let a = world.insert_body(BodyBuilder::new()).unwrap();
+    for frame in [AxisFrame::World, AxisFrame::Body1, AxisFrame::Body2] {
+        let axes = vec![(frame, Vector3::x()), (frame, Vector3::y())];
+        for kind in [JointKind::AngularMotor { axes: axes.clone() }, JointKind::LinearMotor { axes }] {
+            let j = world.insert_joint(JointBuilder::new(kind).to_world(a).motor(1.0, 10.0)).unwrap();
+            world.step(0.0004).unwrap();
+            world.remove_joint(j).unwrap();
+        }
+    }
+}

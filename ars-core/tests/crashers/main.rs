@@ -20,6 +20,7 @@ mod panicking_hook;
 mod panicking_logger;
 mod panicking_sensor;
 mod redundant_fixed_joints_with_zero_cfm;
+mod rotation_matrix_with_huge_entries;
 mod sensor_on_removed_object;
 mod single_triangle_trimeshes;
 mod tiny_and_huge_masses;
