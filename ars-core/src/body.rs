@@ -13,6 +13,43 @@ use crate::world::World;
 
 pub(crate) struct BodyData {
     pub(crate) raw: ffi::dBodyID,
+    /// Where ODE keeps the body's state, read by the checks around every step.
+    pub(crate) state: StatePointers,
+}
+
+/// Pointers to a body's position, orientation quaternion, linear and angular velocity,
+/// and force and torque accumulators, inside ODE's body.
+///
+/// ODE's getters (`dBodyGetPosition`...) return the addresses of members of the
+/// `dxBody` object, which `dBodyCreate` allocates with `new` and which stays in place
+/// until `dBodyDestroy` (ODE 0.16's ode.cpp; ode-sys insists on 0.16). Taking them
+/// once saves six library calls per body and step.
+pub(crate) struct StatePointers {
+    pub(crate) position: *const [f64; 3],
+    pub(crate) quaternion: *const [f64; 4],
+    pub(crate) linear_velocity: *const [f64; 3],
+    pub(crate) angular_velocity: *const [f64; 3],
+    pub(crate) force: *const [f64; 3],
+    pub(crate) torque: *const [f64; 3],
+}
+
+impl StatePointers {
+    /// # Safety
+    /// `raw` must be a live body.
+    unsafe fn of(raw: ffi::dBodyID) -> Self {
+        // SAFETY: the caller's contract; each getter returns a pointer to at least as
+        // many reals as the array type says (dVector3 has 4, dQuaternion 4).
+        unsafe {
+            StatePointers {
+                position: ffi::dBodyGetPosition(raw).cast(),
+                quaternion: ffi::dBodyGetQuaternion(raw).cast(),
+                linear_velocity: ffi::dBodyGetLinearVel(raw).cast(),
+                angular_velocity: ffi::dBodyGetAngularVel(raw).cast(),
+                force: ffi::dBodyGetForce(raw).cast(),
+                torque: ffi::dBodyGetTorque(raw).cast(),
+            }
+        }
+    }
 }
 
 /// How the mass of a shape is given: the total mass in kg, or a density in kg/m³.
@@ -245,7 +282,7 @@ pub struct BodyRef<'w> {
 pub struct BodyMut<'w> {
     raw: ffi::dBodyID,
     handle: BodyHandle,
-    _world: &'w mut World,
+    world: &'w mut World,
 }
 
 impl World {
@@ -262,7 +299,9 @@ impl World {
         // SAFETY: the world is live; the new body is owned by the arena entry below and
         // destroyed by `remove_body` or the world's Drop.
         let raw = unsafe { ffi::dBodyCreate(self.raw) };
-        let handle = BodyHandle(self.bodies.insert(BodyData { raw }));
+        // SAFETY: the body was just created.
+        let state = unsafe { StatePointers::of(raw) };
+        let handle = BodyHandle(self.bodies.insert(BodyData { raw, state }));
         // SAFETY: the body id was just created by this world.
         unsafe {
             ffi::dBodySetData(raw, handle.0.index as usize as *mut _);
@@ -321,7 +360,7 @@ impl World {
     pub fn body_mut(&mut self, body: BodyHandle) -> Result<BodyMut<'_>> {
         self.check_usable()?;
         let raw = self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw;
-        Ok(BodyMut { raw, handle: body, _world: self })
+        Ok(BodyMut { raw, handle: body, world: self })
     }
 
     /// Every body of the world, in slot order.
@@ -452,6 +491,7 @@ impl BodyMut<'_> {
     /// Sets the position of the body origin, m.
     pub fn set_position(&mut self, p: Point3<f64>) -> Result<()> {
         let p = limits::point("body position", &p)?;
+        self.world.note_body_coordinate(p.coords.amax());
         // SAFETY: the body is live (checked handle, exclusive borrow of the world).
         unsafe { ffi::dBodySetPosition(self.raw, p.x, p.y, p.z) };
         Ok(())

@@ -226,6 +226,13 @@ impl Default for DefaultOdeSurface {
     }
 }
 
+/// The largest absolute coordinate a hash space with this `min_level` holds: ODE puts
+/// a geom in integer cells of at least `2^min_level` m, and aborts beyond `i32::MAX`
+/// cells (`aabbBound`).
+fn hash_limit(min_level: i32) -> f64 {
+    f64::from(i32::MAX) * 2f64.powi(min_level)
+}
+
 /// Why a pair stopped the collision pass.
 enum PairFailure {
     /// Its collider failed inside ODE (caught by the guard).
@@ -236,6 +243,7 @@ enum PairFailure {
 
 /// For the pairs that ODE collides with libccd (cylinder–cylinder, capsule–cylinder):
 /// the ratio of their largest to their smallest dimension.
+#[inline]
 fn convex_pair_ratio(a: &crate::geom::Shape, b: &crate::geom::Shape) -> Option<f64> {
     use crate::geom::Shape::{Capsule, Cylinder};
     let dims = |s: &crate::geom::Shape| match *s {
@@ -293,7 +301,9 @@ impl World {
         ensure_ode_ready();
         let data = self.space_data(space)?;
         let raw_space = data.raw;
-        if let SpaceKind::Hash { min_level, .. } = data.kind {
+        if let SpaceKind::Hash { min_level, .. } = data.kind
+            && self.coordinate_bound() >= 0.5 * hash_limit(min_level)
+        {
             self.check_hash_bounds(space, min_level)?;
         }
         self.collision.contacts.clear();
@@ -347,8 +357,7 @@ impl World {
     /// `2^min_level`; a coordinate beyond `i32::MAX` cells aborts inside ODE
     /// (`aabbBound`). Refuse such a geom before colliding (O(geoms), hash spaces only).
     fn check_hash_bounds(&self, space: SpaceHandle, min_level: i32) -> Result<()> {
-        let cells_per_metre = 2f64.powi(-min_level);
-        let limit = f64::from(i32::MAX) / cells_per_metre;
+        let limit = hash_limit(min_level);
         for (h, g) in self.geoms.iter() {
             if g.space != space || matches!(g.shape, crate::geom::Shape::Plane { .. }) {
                 continue;
@@ -397,14 +406,10 @@ impl World {
             .copied()
     }
 
-    fn shape_of(&self, g: GeomHandle) -> &crate::geom::Shape {
-        match self.geoms.get_by_index(g.0.index) {
-            Some((_, data)) => &data.shape,
-            None => unreachable!("the near callback only sees live geoms"),
-        }
-    }
-
-    fn geom_info(&self, raw: ffi::dGeomID) -> Option<(GeomHandle, bool, Option<BodyHandle>, ffi::dBodyID)> {
+    fn geom_info(
+        &self,
+        raw: ffi::dGeomID,
+    ) -> Option<(GeomHandle, &crate::geom::Shape, Option<BodyHandle>, ffi::dBodyID)> {
         // SAFETY: ODE hands the callback live geoms of the collided space; their user
         // data is the arena index set at creation.
         let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
@@ -412,7 +417,7 @@ impl World {
         if data.raw != raw {
             return None;
         }
-        Some((GeomHandle(h), matches!(data.shape, crate::geom::Shape::Ray { .. }), data.body, data.body_raw))
+        Some((GeomHandle(h), &data.shape, data.body, data.body_raw))
     }
 
     /// One candidate pair: everything the near callback does, in Rust. `Err` when the
@@ -423,11 +428,14 @@ impl World {
         o1: ffi::dGeomID,
         o2: ffi::dGeomID,
     ) -> Result<(), PairFailure> {
-        let (Some((g1, ray1, body1, b1)), Some((g2, ray2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
+        let (Some((g1, shape1, body1, b1)), Some((g2, shape2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
         else {
             log::error!("collision reported a geom that this world does not own; pair skipped");
             return Ok(());
         };
+        let ray1 = matches!(shape1, crate::geom::Shape::Ray { .. });
+        let ray2 = matches!(shape2, crate::geom::Shape::Ray { .. });
+        let ratio = convex_pair_ratio(shape1, shape2);
         if !b1.is_null() && !b2.is_null() {
             // SAFETY: both bodies are live and non-null (ODE asserts on null).
             let connected = unsafe { ffi::dAreConnectedExcluding(b1, b2, ffi::dJointType_dJointTypeContact as i32) };
@@ -438,7 +446,7 @@ impl World {
         if ray1 && ray2 {
             return Ok(());
         }
-        if let Some(ratio) = convex_pair_ratio(self.shape_of(g1), self.shape_of(g2))
+        if let Some(ratio) = ratio
             && ratio > crate::limits::MAX_CONVEX_PAIR_RATIO
         {
             return Err(PairFailure::Refused(g1, g2, ratio));
@@ -512,10 +520,11 @@ impl World {
 /// Position, normal and depth all finite, and the normal not zero.
 #[inline]
 fn contact_is_finite(c: &ffi::dContactGeom) -> bool {
-    let n = &c.normal;
-    c.pos[..3].iter().chain(&n[..3]).all(|x| x.is_finite())
-        && c.depth.is_finite()
-        && n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.5
+    let (p, n) = (&c.pos, &c.normal);
+    // A NaN or an infinity anywhere makes the sum NaN or infinite (the values are far
+    // too small to overflow a finite sum).
+    let sum = p[0] + p[1] + p[2] + n[0] + n[1] + n[2] + c.depth;
+    sum.is_finite() && n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.5
 }
 
 unsafe extern "C" fn near_callback<H: CollisionHooks + ?Sized>(data: *mut c_void, o1: ffi::dGeomID, o2: ffi::dGeomID) {

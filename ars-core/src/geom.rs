@@ -76,6 +76,19 @@ impl Shape {
         }
     }
 
+    /// How far the shape reaches from its origin (a bound), m; 0 for a plane.
+    fn reach(&self) -> f64 {
+        match self {
+            Shape::Sphere { radius } => *radius,
+            Shape::Box { size } => 0.5 * size.norm(),
+            Shape::Capsule { radius, length } => radius + 0.5 * length,
+            Shape::Cylinder { radius, length } => radius.hypot(0.5 * length),
+            Shape::Plane { .. } => 0.0,
+            Shape::Ray { length } => *length,
+            Shape::TriMesh { vertices, .. } => vertices.iter().fold(0.0, |m, v| m.max(v.coords.norm())),
+        }
+    }
+
     fn validate(&self) -> Result<()> {
         match self {
             Shape::Sphere { radius } => limits::size("sphere radius", *radius).map(drop),
@@ -236,7 +249,7 @@ pub struct GeomMut<'w> {
     kind: &'static str,
     is_ray: bool,
     has_body: bool,
-    _world: &'w mut World,
+    world: &'w mut World,
 }
 
 impl World {
@@ -335,6 +348,8 @@ impl World {
         }));
         // SAFETY: the geom was just created; the data is the slot index, never dereferenced.
         unsafe { ffi::dGeomSetData(raw, handle.0.index as usize as *mut _) };
+        let has_body = body_raw.is_some();
+        let reach = self.geoms.get(handle.0, GeomHandle::KIND, &handle)?.shape.reach();
         let mut g = self.geom_mut(handle)?;
         if let Some(b) = body_raw {
             // SAFETY: geom and body are live and belong to this world; the geom is placeable.
@@ -351,6 +366,11 @@ impl World {
         }
         if let Some(p) = pose {
             g.set_pose(p)?;
+        }
+        g.note_reach();
+        if has_body {
+            let offset = offset.map_or(0.0, |o| o.translation.vector.amax());
+            g.world.note_geom_reach(offset + reach);
         }
         if let Some(bits) = builder.category_bits {
             g.set_category_bits(bits);
@@ -392,7 +412,7 @@ impl World {
             kind: data.shape.kind_name(),
             is_ray: matches!(data.shape, Shape::Ray { .. }),
             has_body: data.body.is_some(),
-            _world: self,
+            world: self,
         })
     }
 
@@ -487,6 +507,7 @@ impl GeomMut<'_> {
         let p = limits::point("geom position", &p)?;
         // SAFETY: the geom is live and placeable.
         unsafe { ffi::dGeomSetPosition(self.raw, p.x, p.y, p.z) };
+        self.note_reach();
         Ok(())
     }
 
@@ -497,6 +518,7 @@ impl GeomMut<'_> {
         let m = convert::rotation_to_ode(&r);
         // SAFETY: the geom is live and placeable; `m` is a dMatrix3.
         unsafe { ffi::dGeomSetRotation(self.raw, m.as_ptr()) };
+        self.note_reach();
         Ok(())
     }
 
@@ -509,6 +531,7 @@ impl GeomMut<'_> {
         let q = convert::quaternion_to_ode(&q);
         // SAFETY: the geom is live and placeable; `q` is a dQuaternion.
         unsafe { ffi::dGeomSetQuaternion(self.raw, q.as_ptr()) };
+        self.note_reach();
         Ok(())
     }
 
@@ -520,7 +543,21 @@ impl GeomMut<'_> {
         let l = limits::size("ray length", length)?;
         // SAFETY: the geom is a live ray.
         unsafe { ffi::dGeomRaySetLength(self.raw, l) };
+        self.world.note_geom_reach(l);
+        self.note_reach();
         Ok(())
+    }
+
+    /// Notes how far a geom without a body reaches (its world AABB), for the hash
+    /// spaces' cheap bound (see `World::note_geom_reach`).
+    fn note_reach(&mut self) {
+        if self.has_body || !self.placeable {
+            return;
+        }
+        let mut a = [0.0; 6];
+        // SAFETY: the geom is live and placeable; `a` holds 6 reals.
+        unsafe { ffi::dGeomGetAABB(self.raw, a.as_mut_ptr()) };
+        self.world.note_geom_reach(a.iter().fold(0.0, |m, c| m.max(c.abs())));
     }
 
     /// Sets the category bits.

@@ -65,8 +65,23 @@ impl OdeFailure {
     }
 }
 
+#[cfg(test)]
 fn empty_failure() -> ffi::odesys_failure {
     ffi::odesys_failure { kind: 0, number: 0, message: [0; 512] }
+}
+
+/// Room for a failure report, written by the C side only when it catches one (so it
+/// is not zeroed on the hot path).
+type FailureSlot = std::mem::MaybeUninit<ffi::odesys_failure>;
+
+/// The report of a caught failure.
+///
+/// # Safety
+/// The C side returned `ODESYS_CAUGHT` for the call that was given `slot`, and so
+/// wrote every field of it (`record` in guard.c).
+unsafe fn caught(slot: &FailureSlot) -> OdeFailure {
+    // SAFETY: the caller's contract: the slot is initialised.
+    OdeFailure::from_raw(unsafe { slot.assume_init_ref() })
 }
 
 /// Installs the handlers (once per process, from `init`).
@@ -104,11 +119,12 @@ unsafe extern "C" fn report(kind: c_int, number: c_int, message: *const c_char) 
 /// `world` must be a live world whose step threading implementation is
 /// self-threaded (or unset).
 pub(crate) unsafe fn world_step(world: ffi::dWorldID, dt: f64, quick: bool) -> Result<bool, OdeFailure> {
-    let mut failure = empty_failure();
+    let mut failure = FailureSlot::uninit();
     // SAFETY: the caller's contract; `failure` outlives the call.
-    let r = unsafe { ffi::odesys_guarded_world_step(world, dt, quick.into(), &mut failure) };
+    let r = unsafe { ffi::odesys_guarded_world_step(world, dt, quick.into(), failure.as_mut_ptr()) };
     match r {
-        r if r == ffi::ODESYS_CAUGHT => Err(OdeFailure::from_raw(&failure)),
+        // SAFETY: caught: the C side filled the slot.
+        r if r == ffi::ODESYS_CAUGHT => Err(unsafe { caught(&failure) }),
         r => Ok(r == ffi::ODESYS_OK as c_int),
     }
 }
@@ -123,10 +139,11 @@ pub(crate) unsafe fn space_collide(
     data: *mut c_void,
     callback: unsafe extern "C" fn(*mut c_void, ffi::dGeomID, ffi::dGeomID),
 ) -> Result<(), OdeFailure> {
-    let mut failure = empty_failure();
+    let mut failure = FailureSlot::uninit();
     // SAFETY: the caller's contract; `failure` outlives the call.
-    let r = unsafe { ffi::odesys_guarded_space_collide(space, data, Some(callback), &mut failure) };
-    if r == ffi::ODESYS_CAUGHT { Err(OdeFailure::from_raw(&failure)) } else { Ok(()) }
+    let r = unsafe { ffi::odesys_guarded_space_collide(space, data, Some(callback), failure.as_mut_ptr()) };
+    // SAFETY: caught: the C side filled the slot.
+    if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(()) }
 }
 
 /// `dCollide` under a guard: the number of contacts written.
@@ -139,12 +156,13 @@ pub(crate) unsafe fn collide(
     max: c_int,
     contacts: *mut ffi::dContactGeom,
 ) -> Result<usize, OdeFailure> {
-    let mut failure = empty_failure();
+    let mut failure = FailureSlot::uninit();
     let mut count = 0;
     let stride = size_of::<ffi::dContactGeom>() as c_int;
     // SAFETY: the caller's contract; `failure` and `count` outlive the call.
-    let r = unsafe { ffi::odesys_guarded_collide(o1, o2, max, contacts, stride, &mut count, &mut failure) };
-    if r == ffi::ODESYS_CAUGHT { Err(OdeFailure::from_raw(&failure)) } else { Ok(count.max(0) as usize) }
+    let r = unsafe { ffi::odesys_guarded_collide(o1, o2, max, contacts, stride, &mut count, failure.as_mut_ptr()) };
+    // SAFETY: caught: the C side filled the slot.
+    if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(count.max(0) as usize) }
 }
 
 #[cfg(test)]

@@ -189,6 +189,15 @@ impl<T> Arena<T> {
         })
     }
 
+    /// Every value, in slot order.
+    #[inline]
+    pub(crate) fn values(&self) -> impl Iterator<Item = &T> + '_ {
+        self.slots.iter().filter_map(|s| match s {
+            Slot::Occupied { value, .. } => Some(value),
+            Slot::Vacant { .. } => None,
+        })
+    }
+
     pub(crate) fn values_mut(&mut self) -> impl Iterator<Item = &mut T> + '_ {
         self.slots.iter_mut().filter_map(|s| match s {
             Slot::Occupied { value, .. } => Some(value),

@@ -119,6 +119,15 @@ pub struct World {
     /// first checks the whole state again.
     pub(crate) diverged: Option<BodyHandle>,
     pub(crate) poison: Option<Poison>,
+    /// A bound on every body's largest absolute coordinate (exact after each step,
+    /// raised by every position set in between).
+    max_body_coordinate: f64,
+    /// Number of hash spaces (only they need `max_body_coordinate`).
+    hash_spaces: usize,
+    /// A bound on how far any geom reaches beyond its body (or, for a geom without a
+    /// body, from the origin); it never decreases. With `max_body_coordinate` it lets
+    /// a hash space skip its exact bounds check when everything is well inside.
+    geom_reach: f64,
 }
 
 /// Why a world refuses to go on after an ODE internal error.
@@ -196,7 +205,28 @@ impl World {
             time: 0.0,
             diverged: None,
             poison: None,
+            max_body_coordinate: 0.0,
+            hash_spaces: 0,
+            geom_reach: 0.0,
         }
+    }
+
+    /// A body is placed at a coordinate of this magnitude.
+    #[inline]
+    pub(crate) fn note_body_coordinate(&mut self, coordinate: f64) {
+        self.max_body_coordinate = self.max_body_coordinate.max(coordinate);
+    }
+
+    /// A geom reaches this far (see `geom_reach`).
+    #[inline]
+    pub(crate) fn note_geom_reach(&mut self, reach: f64) {
+        self.geom_reach = self.geom_reach.max(reach);
+    }
+
+    /// The largest coordinate any geom may have (a bound).
+    #[inline]
+    pub(crate) fn coordinate_bound(&self) -> f64 {
+        self.max_body_coordinate + self.geom_reach
     }
 
     /// `Err` once an ODE internal error has poisoned the world.
@@ -284,13 +314,14 @@ impl World {
     /// Chooses the stepper used by [`World::step`].
     pub fn set_stepper(&mut self, stepper: Stepper) -> Result<()> {
         if let Stepper::Quick { iterations } = stepper {
-            if iterations == 0 {
-                return Err(Error::OutOfRange { what: "QuickStep iterations", detail: "must be at least 1".into() });
+            // A bound keeps one step finite in time (ODE's default is 20).
+            if !(1..=100_000).contains(&iterations) {
+                return Err(Error::OutOfRange {
+                    what: "QuickStep iterations",
+                    detail: format!("must be within 1..=100000, got {iterations}"),
+                });
             }
-            let n = i32::try_from(iterations).map_err(|_| Error::OutOfRange {
-                what: "QuickStep iterations",
-                detail: format!("{iterations} is too large"),
-            })?;
+            let n = iterations as i32;
             // SAFETY: the world is live.
             unsafe { ffi::dWorldSetQuickStepNumIterations(self.raw, n) };
         }
@@ -310,7 +341,9 @@ impl World {
     /// [`guard`]: [`Error::OdeInternal`], and the world is poisoned.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         self.check_usable()?;
-        limits::time_step(dt)?;
+        if !(limits::MIN_TIME_STEP..=limits::MAX_TIME_STEP).contains(&dt) {
+            limits::time_step(dt)?;
+        }
         self.check_before_step()?;
         // No `ensure_ode_ready` here: ODE's per-thread data is collision data only
         // (`dAllocateFlagCollisionData`), prepared by `collide` on the calling thread.
@@ -344,56 +377,72 @@ impl World {
     }
 
     /// The accumulators (and, after a divergence, the whole state) of every body.
+    #[inline]
     fn check_before_step(&mut self) -> Result<()> {
         if self.diverged.is_some() {
             self.check_after_step()?;
         }
-        for (h, body) in self.bodies.iter() {
-            // SAFETY: the body is live; ODE returns pointers to 3 reals.
-            let (f, t) = unsafe {
-                (
-                    std::slice::from_raw_parts(ffi::dBodyGetForce(body.raw), 3),
-                    std::slice::from_raw_parts(ffi::dBodyGetTorque(body.raw), 3),
-                )
-            };
-            let bad = limits::state_problem("accumulated force", f, limits::MAX_FORCE, "N")
-                .or_else(|| limits::state_problem("accumulated torque", t, limits::MAX_TORQUE, "N·m"));
-            if let Some(detail) = bad {
-                let body = BodyHandle(h);
-                return Err(Error::Diverged {
-                    body: body.to_string(),
-                    time: self.time,
-                    detail: format!("{detail} (clear it with BodyMut::clear_forces)"),
-                });
-            }
-        }
-        Ok(())
+        // SAFETY: every body in the arena is live, so are its state pointers.
+        let fine = self.bodies.values().all(|b| unsafe { accumulators_fine(&b.state) });
+        if fine { Ok(()) } else { Err(self.divergence(accumulators_fine, true)) }
     }
 
     /// Position, orientation and velocities of every body: finite and within limits.
+    #[inline]
     fn check_after_step(&mut self) -> Result<()> {
-        for (h, body) in self.bodies.iter() {
-            // SAFETY: the body is live; ODE returns pointers to 3, 4, 3 and 3 reals.
-            let (p, q, v, w) = unsafe {
-                (
-                    std::slice::from_raw_parts(ffi::dBodyGetPosition(body.raw), 3),
-                    std::slice::from_raw_parts(ffi::dBodyGetQuaternion(body.raw), 4),
-                    std::slice::from_raw_parts(ffi::dBodyGetLinearVel(body.raw), 3),
-                    std::slice::from_raw_parts(ffi::dBodyGetAngularVel(body.raw), 3),
-                )
-            };
-            let bad = limits::state_problem("position", p, limits::MAX_COORDINATE, "m")
-                .or_else(|| limits::state_problem("orientation quaternion", q, 1.5, ""))
-                .or_else(|| limits::state_problem("linear velocity", v, limits::MAX_SPEED, "m/s"))
-                .or_else(|| limits::state_problem("angular velocity", w, limits::MAX_ANGULAR_SPEED, "rad/s"));
-            if let Some(detail) = bad {
-                let body = BodyHandle(h);
-                self.diverged = Some(body);
-                return Err(Error::Diverged { body: body.to_string(), time: self.time, detail });
-            }
+        let mut fine = true;
+        for b in self.bodies.values() {
+            // SAFETY: every body in the arena is live, so are its state pointers.
+            fine &= unsafe { state_fine(&b.state) };
         }
-        self.diverged = None;
-        Ok(())
+        if self.hash_spaces > 0 {
+            // The bound for the hash spaces' cheap check (only they need it).
+            let mut far = 0.0_f64;
+            for b in self.bodies.values() {
+                // SAFETY: as above.
+                let p = unsafe { &*b.state.position };
+                for c in p {
+                    let c = c.abs();
+                    if c > far {
+                        far = c;
+                    }
+                }
+            }
+            self.max_body_coordinate = far;
+        }
+        if fine {
+            self.diverged = None;
+            Ok(())
+        } else {
+            Err(self.divergence(state_fine, false))
+        }
+    }
+
+    /// The error naming the first body that fails `fine` (the slow path of the
+    /// checks); a state (not accumulator) failure marks the body as diverged.
+    #[cold]
+    fn divergence(&mut self, fine: unsafe fn(&crate::body::StatePointers) -> bool, accumulators: bool) -> Error {
+        // SAFETY: every body in the arena is live, so are its state pointers.
+        let Some((h, data)) = self.bodies.iter().find(|(_, b)| !unsafe { fine(&b.state) }) else {
+            return Error::Ode("find the diverged body");
+        };
+        let s = &data.state;
+        // SAFETY: the body is live (just found in the arena), so are its pointers.
+        let (p, q, v, w, f, t) =
+            unsafe { (*s.position, *s.quaternion, *s.linear_velocity, *s.angular_velocity, *s.force, *s.torque) };
+        let body = BodyHandle(h);
+        let detail = if accumulators {
+            limits::state_problem("accumulated force", &f, limits::MAX_FORCE, "N")
+                .or_else(|| limits::state_problem("accumulated torque", &t, limits::MAX_TORQUE, "N·m"))
+                .map(|d| format!("{d} (clear it with BodyMut::clear_forces)"))
+        } else {
+            self.diverged = Some(body);
+            limits::state_problem("position", &p, limits::MAX_COORDINATE, "m")
+                .or_else(|| limits::state_problem("orientation quaternion", &q, 1.5, ""))
+                .or_else(|| limits::state_problem("linear velocity", &v, limits::MAX_SPEED, "m/s"))
+                .or_else(|| limits::state_problem("angular velocity", &w, limits::MAX_ANGULAR_SPEED, "rad/s"))
+        };
+        Error::Diverged { body: body.to_string(), time: self.time, detail: detail.unwrap_or_default() }
     }
 
     /// Seeds ODE's random number generator for this world's QuickSteps. Each world
@@ -431,6 +480,9 @@ impl World {
             ffi::dSpaceSetCleanup(s, 0);
             s
         };
+        if matches!(kind, SpaceKind::Hash { .. }) {
+            self.hash_spaces += 1;
+        }
         Ok(SpaceHandle(self.spaces.insert(SpaceData { raw, kind })))
     }
 
@@ -457,6 +509,41 @@ impl World {
     /// Number of joints in the world (contact joints are not counted).
     pub fn joint_count(&self) -> usize {
         self.joints.len()
+    }
+}
+
+/// Every component within ±`max` (false for NaN).
+#[inline(always)]
+fn within<const N: usize>(values: &[f64; N], max: f64) -> bool {
+    let mut ok = true;
+    for c in values {
+        ok &= c.abs() <= max;
+    }
+    ok
+}
+
+/// Force and torque accumulators finite and within limits.
+///
+/// # Safety
+/// The pointers belong to a live body.
+#[inline(always)]
+unsafe fn accumulators_fine(s: &crate::body::StatePointers) -> bool {
+    // SAFETY: the caller's contract.
+    unsafe { within(&*s.force, limits::MAX_FORCE) & within(&*s.torque, limits::MAX_TORQUE) }
+}
+
+/// Position, orientation and velocities finite and within limits.
+///
+/// # Safety
+/// The pointers belong to a live body.
+#[inline(always)]
+unsafe fn state_fine(s: &crate::body::StatePointers) -> bool {
+    // SAFETY: the caller's contract.
+    unsafe {
+        within(&*s.position, limits::MAX_COORDINATE)
+            & within(&*s.quaternion, 1.5)
+            & within(&*s.linear_velocity, limits::MAX_SPEED)
+            & within(&*s.angular_velocity, limits::MAX_ANGULAR_SPEED)
     }
 }
 

@@ -27,22 +27,41 @@
 
 #include "guard.h"
 
+/* GCC's and Clang's builtin setjmp saves only the frame and stack pointers and the
+ * resume address (the compiler treats every register as clobbered at the receiver),
+ * several times cheaper than libc's setjmp, which also saves the signal mask; the
+ * guard needs neither the mask nor more registers. Other compilers use _setjmp. */
+#if defined(__GNUC__)
+typedef void *guard_env[5];
+#define GUARD_SETJMP(env) __builtin_setjmp(env)
+#define GUARD_LONGJMP(env) __builtin_longjmp(env, 1)
+#else
+typedef jmp_buf guard_env;
+#define GUARD_SETJMP(env) _setjmp(env)
+#define GUARD_LONGJMP(env) _longjmp(env, 1)
+#endif
+
 struct guard_frame {
-    jmp_buf env;
+    guard_env env;
     struct odesys_failure *failure;
 };
 
-static _Thread_local struct guard_frame *armed = NULL;
+/* initial-exec: one direct TLS access on the hot path instead of a __tls_get_addr
+ * call (this file is linked into the program, or into a module loaded early). */
+static _Thread_local struct guard_frame *armed __attribute__((tls_model("initial-exec"))) = NULL;
 static odesys_sink sink = NULL;
 
 static void record(struct odesys_failure *f, int kind, int num, const char *fmt, va_list ap) {
+    /* Every field is written: the Rust side reads the report only after a catch. */
     f->kind = kind;
     f->number = num;
+    memset(f->message, 0, sizeof f->message);
     if (fmt == NULL) {
         snprintf(f->message, sizeof f->message, "(no message)");
     } else {
         vsnprintf(f->message, sizeof f->message, fmt, ap);
     }
+    f->message[sizeof f->message - 1] = '\0';
 }
 
 static void on_failure(int kind, int num, const char *fmt, va_list ap) {
@@ -50,7 +69,7 @@ static void on_failure(int kind, int num, const char *fmt, va_list ap) {
     if (frame != NULL) {
         record(frame->failure, kind, num, fmt, ap);
         armed = NULL;
-        longjmp(frame->env, 1);
+        GUARD_LONGJMP(frame->env);
     }
     struct odesys_failure unguarded;
     record(&unguarded, kind, num, fmt, ap);
@@ -89,7 +108,7 @@ void odesys_install_handlers(odesys_sink message_sink) {
         struct guard_frame frame;                  \
         struct guard_frame *previous = armed;      \
         frame.failure = (failure);                 \
-        if (setjmp(frame.env) != 0) {              \
+        if (GUARD_SETJMP(frame.env) != 0) {        \
             armed = previous;                      \
             on_fail;                               \
         }                                          \

@@ -10,11 +10,34 @@ use crate::error::{Error, Result};
 /// the cell's type is its vertex index, plus one when `size_z` is even; an even type
 /// gives `(i00, i11, i10), (i00, i01, i11)`, an odd one `(i00, i01, i10), (i01, i11, i10)`.
 ///
+/// The grid may hold at most [`MAX_GRID_VERTICES`] vertices.
+///
 /// ```
-/// let faces = ars_core::heightfield_faces(2, 4);
+/// let faces = ars_core::heightfield_faces(2, 4)?;
 /// assert_eq!(faces, [[0, 1, 4], [1, 5, 4], [1, 6, 5], [1, 2, 6], [2, 3, 6], [3, 7, 6]]);
+/// # Ok::<(), ars_core::Error>(())
 /// ```
-pub fn heightfield_faces(size_x: u32, size_z: u32) -> Vec<[u32; 3]> {
+pub fn heightfield_faces(size_x: u32, size_z: u32) -> Result<Vec<[u32; 3]>> {
+    check_grid(size_x, size_z)?;
+    Ok(grid_faces(size_x, size_z))
+}
+
+/// Most vertices of a heightfield grid (a 2048 × 2048 grid): its faces and vertices
+/// then take a few hundred megabytes, and every index fits ODE's.
+pub const MAX_GRID_VERTICES: u64 = 1 << 22;
+
+fn check_grid(size_x: u32, size_z: u32) -> Result<()> {
+    if u64::from(size_x) * u64::from(size_z) > MAX_GRID_VERTICES {
+        return Err(Error::OutOfRange {
+            what: "heightfield size",
+            detail: format!("at most {MAX_GRID_VERTICES} vertices, got {size_x} × {size_z}"),
+        });
+    }
+    Ok(())
+}
+
+/// [`heightfield_faces`] of a grid already checked.
+fn grid_faces(size_x: u32, size_z: u32) -> Vec<[u32; 3]> {
     let mut faces = Vec::new();
     let index = |x: u32, z: u32| size_z * x + z;
     for x in 0..size_x.saturating_sub(1) {
@@ -51,6 +74,7 @@ impl Heightfield {
                 detail: format!("needs at least 2 × 2 vertices, got {num_x} × {num_z}"),
             });
         }
+        check_grid(num_x, num_z)?;
         let mut heights = Vec::with_capacity((num_x * num_z) as usize);
         for x in 0..num_x {
             for z in 0..num_z {
@@ -94,7 +118,7 @@ impl Heightfield {
 
     /// The faces, see [`heightfield_faces`].
     pub fn faces(&self) -> Vec<[u32; 3]> {
-        heightfield_faces(self.num_x, self.num_z)
+        grid_faces(self.num_x, self.num_z)
     }
 
     /// Height at grid vertex `(x, z)`.

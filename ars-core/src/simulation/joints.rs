@@ -275,6 +275,7 @@ impl Simulation {
 
     /// Removes a joint.
     pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
+        self.world.check_usable()?;
         let data = self.joints.remove(id.0, JointId::KIND, &id)?;
         self.joint_names.remove(&data.name);
         self.sensors.forget_joint(id);

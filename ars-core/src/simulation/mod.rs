@@ -31,7 +31,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use nalgebra::Vector3;
 
-pub use floor::{Heightfield, heightfield_faces};
+pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_faces};
 pub use joints::{JointEnd, JointType, SimJoint};
 pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
 

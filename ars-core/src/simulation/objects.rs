@@ -450,6 +450,7 @@ impl Simulation {
 
     /// Removes an object with its body and geom; joints attached to it are removed too.
     pub fn remove_object(&mut self, id: ObjectId) -> Result<()> {
+        self.world.check_usable()?;
         self.object_data(id)?;
         let attached: Vec<_> = self.joints_of_object(id);
         for j in attached {

@@ -624,7 +624,9 @@ impl Harness {
                     0 => s.sim.step(),
                     1 => s.sim.step_n(u64::from(input.byte() % 30)),
                     2 => s.sim.step_frame(),
-                    _ => s.sim.run_for(input.real().min(0.05)),
+                    // At most 100 steps: a tiny time step makes a long duration a
+                    // legitimately long run, not a hang.
+                    _ => s.sim.run_for(input.real().min(100.0 * s.sim.time_step())),
                 };
             }
             12 => {
