@@ -218,6 +218,14 @@ pub(crate) struct CollisionState {
     scratch: Vec<ffi::dContactGeom>,
 }
 
+impl CollisionState {
+    /// Number of contact points of the last collision pass.
+    #[inline]
+    pub(crate) fn contact_count(&self) -> usize {
+        self.contacts.len()
+    }
+}
+
 struct DefaultOdeSurface(ffi::dSurfaceParameters);
 
 impl Default for DefaultOdeSurface {

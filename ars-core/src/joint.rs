@@ -164,6 +164,45 @@ impl JointKind {
     }
 }
 
+/// Sets a universal joint's axes so that no intermediate pair is parallel: ODE
+/// recomputes the joint's reference rotations after each axis, from the new axis and
+/// the other one as it stands, and with parallel axes it reads an uninitialised
+/// matrix (seen by valgrind). The usual order (axis 1, then 2) is kept whenever it is
+/// safe, so that results stay identical to plain ODE calls.
+///
+/// # Safety
+/// `raw` is a live universal joint, attached; `u` and `v` are finite, non-zero and
+/// perpendicular (checked by `JointKind::validate`).
+unsafe fn set_universal_axes(raw: ffi::dJointID, u: &Vector3<f64>, v: &Vector3<f64>) {
+    let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
+    // SAFETY: the caller's contract; each array holds a dVector3.
+    unsafe {
+        ffi::dJointGetUniversalAxis1(raw, a.as_mut_ptr());
+        ffi::dJointGetUniversalAxis2(raw, b.as_mut_ptr());
+    }
+    let parallel = |p: &Vector3<f64>, q: &[f64; 4]| unit(p).cross(&unit(&Vector3::new(q[0], q[1], q[2]))).norm() < 1e-6;
+    let set1 = |w: &Vector3<f64>| {
+        // SAFETY: the caller's contract.
+        unsafe { ffi::dJointSetUniversalAxis1(raw, w.x, w.y, w.z) }
+    };
+    let set2 = |w: &Vector3<f64>| {
+        // SAFETY: the caller's contract.
+        unsafe { ffi::dJointSetUniversalAxis2(raw, w.x, w.y, w.z) }
+    };
+    if !parallel(u, &b) {
+        set1(u);
+        set2(v);
+    } else if !parallel(v, &a) {
+        set2(v);
+        set1(u);
+    } else {
+        // u ∥ b and v ∥ a: pass through w ⟂ both.
+        set2(&u.cross(v));
+        set1(u);
+        set2(v);
+    }
+}
+
 /// `v` scaled to unit length without overflow (for checks only: ODE gets the axis as
 /// given and normalises it itself).
 fn unit(v: &Vector3<f64>) -> Vector3<f64> {
@@ -387,8 +426,7 @@ impl World {
                 JointKind::Slider { axis: x } => ffi::dJointSetSliderAxis(raw, x.x, x.y, x.z),
                 JointKind::Universal { anchor: a, axis1: x, axis2: y } => {
                     ffi::dJointSetUniversalAnchor(raw, a.x, a.y, a.z);
-                    ffi::dJointSetUniversalAxis1(raw, x.x, x.y, x.z);
-                    ffi::dJointSetUniversalAxis2(raw, y.x, y.y, y.z);
+                    set_universal_axes(raw, x, y);
                 }
                 JointKind::Ball { anchor: a } => ffi::dJointSetBallAnchor(raw, a.x, a.y, a.z),
                 JointKind::Hinge2 { anchor: a, axis1: x, axis2: y } => {

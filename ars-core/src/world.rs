@@ -122,6 +122,8 @@ pub struct World {
     /// A bound on every body's largest absolute coordinate (exact after each step,
     /// raised by every position set in between).
     max_body_coordinate: f64,
+    /// Most contacts in one island that the exact stepper takes.
+    exact_step_contacts: usize,
     /// Number of hash spaces (only they need `max_body_coordinate`).
     hash_spaces: usize,
     /// A bound on how far any geom reaches beyond its body (or, for a geom without a
@@ -206,6 +208,7 @@ impl World {
             diverged: None,
             poison: None,
             max_body_coordinate: 0.0,
+            exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
             hash_spaces: 0,
             geom_reach: 0.0,
         }
@@ -345,6 +348,9 @@ impl World {
             limits::time_step(dt)?;
         }
         self.check_before_step()?;
+        if self.stepper == Stepper::Exact && self.collision.contact_count() > self.exact_step_contacts {
+            self.check_island_sizes()?;
+        }
         // No `ensure_ode_ready` here: ODE's per-thread data is collision data only
         // (`dAllocateFlagCollisionData`), prepared by `collide` on the calling thread.
         let stepped = match self.stepper {
@@ -443,6 +449,61 @@ impl World {
                 .or_else(|| limits::state_problem("angular velocity", &w, limits::MAX_ANGULAR_SPEED, "rad/s"))
         };
         Error::Diverged { body: body.to_string(), time: self.time, detail: detail.unwrap_or_default() }
+    }
+
+    /// The largest number of contacts in one island the exact stepper takes (see
+    /// [`World::set_exact_step_contact_limit`]).
+    pub fn exact_step_contact_limit(&self) -> usize {
+        self.exact_step_contacts
+    }
+
+    /// Sets the largest number of contact points that one island (bodies linked by
+    /// contacts) may hold for the exact stepper (default
+    /// [`limits::DEFAULT_EXACT_STEP_CONTACTS`]). `dWorldStep` solves an island as one
+    /// dense problem whose cost grows with the cube of its size; beyond the limit
+    /// [`World::step`] returns an `Err` instead of computing for minutes. QuickStep has
+    /// no such limit (its cost is linear). Scenes of separate islands are unaffected.
+    pub fn set_exact_step_contact_limit(&mut self, limit: usize) {
+        self.exact_step_contacts = limit;
+    }
+
+    /// Counts the contacts of each island (union–find over the bodies of the contact
+    /// points); runs only when the contacts in all exceed the limit.
+    #[cold]
+    fn check_island_sizes(&self) -> Result<()> {
+        let slots = self.bodies.iter().map(|(h, _)| h.index as usize + 1).max().unwrap_or(0);
+        let mut parent: Vec<usize> = (0..slots).collect();
+        fn root(parent: &mut [usize], mut i: usize) -> usize {
+            while parent[i] != i {
+                parent[i] = parent[parent[i]];
+                i = parent[i];
+            }
+            i
+        }
+        let contacts = self.contacts();
+        for c in contacts {
+            if let (Some(a), Some(b)) = (c.pair.body1, c.pair.body2) {
+                let (ra, rb) = (root(&mut parent, a.0.index as usize), root(&mut parent, b.0.index as usize));
+                parent[ra] = rb;
+            }
+        }
+        let mut count = vec![0usize; slots];
+        for c in contacts {
+            if let Some(b) = c.pair.body1.or(c.pair.body2) {
+                let r = root(&mut parent, b.0.index as usize);
+                count[r] += 1;
+                if count[r] > self.exact_step_contacts {
+                    return Err(Error::OutOfRange {
+                        what: "contacts in one island for the exact stepper",
+                        detail: format!(
+                            "more than {} contact points link the bodies around {b}; dWorldStep's time grows with the cube of that number (1,640 take 43 s per step). Use Stepper::Quick, fewer contacts per pair (ContactSurface::max_contacts), or World::set_exact_step_contact_limit",
+                            self.exact_step_contacts
+                        ),
+                    });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Seeds ODE's random number generator for this world's QuickSteps. Each world

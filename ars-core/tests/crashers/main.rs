@@ -20,6 +20,7 @@ mod long_capsule_against_cylinder_hang;
 mod panicking_hook;
 mod panicking_logger;
 mod panicking_sensor;
+mod pile_of_overlapping_boxes;
 mod redundant_fixed_joints_with_zero_cfm;
 mod rotation_matrix_with_huge_entries;
 mod sensor_on_removed_object;
