@@ -363,6 +363,8 @@ pub struct JointRef<'w> {
 pub struct JointMut<'w> {
     handle: JointHandle,
     data: &'w mut JointData,
+    /// The world's note that forces were added since the last step.
+    forces_added: &'w mut bool,
 }
 
 impl World {
@@ -484,7 +486,11 @@ impl World {
     #[inline]
     pub fn joint_mut(&mut self, joint: JointHandle) -> Result<JointMut<'_>> {
         self.check_usable()?;
-        Ok(JointMut { handle: joint, data: self.joints.get_mut(joint.0, JointHandle::KIND, &joint)? })
+        Ok(JointMut {
+            handle: joint,
+            data: self.joints.get_mut(joint.0, JointHandle::KIND, &joint)?,
+            forces_added: &mut self.forces_added,
+        })
     }
 
     /// Every joint of the world, in slot order.
@@ -800,6 +806,7 @@ impl JointMut<'_> {
     /// `−torque·axis` on body 2.
     pub fn add_torque(&mut self, torque: f64) -> Result<()> {
         limits::in_range("joint torque", torque, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
+        *self.forces_added = true;
         let j = self.data.raw;
         // SAFETY: the joint is live and of the kind matched.
         unsafe {
@@ -818,6 +825,7 @@ impl JointMut<'_> {
     pub fn add_torques(&mut self, torque1: f64, torque2: f64) -> Result<()> {
         limits::in_range("joint torque", torque1, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
         limits::in_range("joint torque", torque2, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
+        *self.forces_added = true;
         let j = self.data.raw;
         // SAFETY: the joint is live and of the kind matched.
         unsafe {
@@ -834,6 +842,7 @@ impl JointMut<'_> {
     /// `+force·axis` on body 1, `−force·axis` on body 2.
     pub fn add_force(&mut self, force: f64) -> Result<()> {
         limits::in_range("joint force", force, -limits::MAX_FORCE, limits::MAX_FORCE)?;
+        *self.forces_added = true;
         let j = self.data.raw;
         // SAFETY: the joint is live and of the kind matched.
         unsafe {

@@ -122,6 +122,9 @@ pub struct World {
     /// A bound on every body's largest absolute coordinate (exact after each step,
     /// raised by every position set in between).
     max_body_coordinate: f64,
+    /// Whether a force or torque was added through the API since the last step (ODE
+    /// clears the accumulators after each step; nothing else fills them).
+    pub(crate) forces_added: bool,
     /// Most contacts in one island that the exact stepper takes.
     exact_step_contacts: usize,
     /// Number of hash spaces (only they need `max_body_coordinate`).
@@ -209,6 +212,7 @@ impl World {
             poison: None,
             max_body_coordinate: 0.0,
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
+            forces_added: false,
             hash_spaces: 0,
             geom_reach: 0.0,
         }
@@ -379,6 +383,7 @@ impl World {
             }
         }
         self.time += dt;
+        self.forces_added = false;
         self.check_after_step()
     }
 
@@ -388,13 +393,16 @@ impl World {
         if self.diverged.is_some() {
             self.check_after_step()?;
         }
+        if !self.forces_added {
+            return Ok(());
+        }
         // SAFETY: every body in the arena is live, so are its state pointers.
         let fine = self.bodies.values().all(|b| unsafe { accumulators_fine(&b.state) });
         if fine { Ok(()) } else { Err(self.divergence(accumulators_fine, true)) }
     }
 
     /// Position, orientation and velocities of every body: finite and within limits.
-    #[inline]
+    #[inline(always)]
     fn check_after_step(&mut self) -> Result<()> {
         let mut fine = true;
         for b in self.bodies.values() {
