@@ -103,6 +103,11 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
         while window.render_3d(&mut shown.scene, &mut shown.camera).await {
             for mut event in window.events().iter() {
                 let WindowEvent::Key(key, action, _) = event.value else { continue };
+                if key == WindowKey::Escape {
+                    // kiss3d's close key: it must reach kiss3d, which closes the window.
+                    continue;
+                }
+                // Every other key is the viewer's or the program's, not the camera's.
                 event.inhibited = true;
                 match (key, action) {
                     (WindowKey::Space, Action::Press) => {
