@@ -16,6 +16,11 @@ use common::plot::{Series, line_chart};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(6.0);
     let mut program = ControlledSimpleArm::default();
+    if args.window {
+        // Live: the program's keys move the set-point.
+        common::args::run(&mut program, &args)?;
+        return Ok(());
+    }
     let mut runner = ProgramRunner::new(&mut program)?;
     let steps = runner.simulation().steps_in(args.duration)?;
     let dt = runner.simulation().time_step();

@@ -15,6 +15,11 @@ use common::plot::{Series, line_chart};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(3.0);
     let mut program = SimpleArm::default();
+    if args.window {
+        // Live: 'a'/'z' push the waist.
+        common::args::run(&mut program, &args)?;
+        return Ok(());
+    }
     let mut runner = ProgramRunner::new(&mut program)?;
     let parts = runner.program().parts.expect("built");
     let mut rows = Vec::new();

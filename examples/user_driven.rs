@@ -38,6 +38,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => KeyScript::parse(CIRCLE)?,
     };
     let mut program = UserDriven { paper_friction: paper, ..Default::default() };
+    if args.window {
+        // Live: the arrow keys drive it, as in the original.
+        let sim = common::args::run(&mut program, &args)?;
+        let chassis = program.vehicle.expect("built").chassis;
+        let x = sim.rotation(chassis)? * ars::nalgebra::Vector3::x();
+        let p = sim.position(chassis)?;
+        println!(
+            "after {:.1} s: chassis at ({:.2}, {:.2}) m, heading {:.1} deg",
+            sim.time(),
+            p.x,
+            p.z,
+            (-x.z).atan2(x.x).to_degrees()
+        );
+        return Ok(());
+    }
     let mut runner = ProgramRunner::new(&mut program)?;
     let chassis = runner.program().vehicle.expect("built").chassis;
     let mut heading = Vec::new();

@@ -31,6 +31,11 @@ fn drive<P: Program>(
     script: &KeyScript,
     args: &common::args::Args,
 ) -> Result<Path, Box<dyn std::error::Error>> {
+    if args.window {
+        // Live: the program's keys drive it.
+        common::args::run(&mut program, args)?;
+        return Ok(Vec::new());
+    }
     let duration = args.duration;
     let mut capture = common::args::Capture::new(args, program.view_settings())?;
     let mut runner = ProgramRunner::new(&mut program)?;
@@ -72,6 +77,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .into());
         }
     };
+    if args.window {
+        return Ok(());
+    }
     for (t, p) in path.iter().filter(|(t, _)| (t.fract() < 1e-6 || t.fract() > 1.0 - 1e-6) && *t > 0.5) {
         println!("{name} at {t:.1} s: chassis at ({:.3}, {:.3}, {:.3}) m", p.x, p.y, p.z);
     }
