@@ -237,13 +237,32 @@ fn kinematic_bodies_move_with_their_velocity_only() {
 
 #[test]
 fn quickstep_is_selectable() {
-    let mut world = World::new();
-    let space = world.create_space(SpaceKind::HASH).unwrap();
-    world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
-    world.set_stepper(Stepper::Quick { iterations: 30 }).unwrap();
-    let b = falling_ball(&mut world, space, Point3::new(1.0, 1.0, 1.0));
-    run(&mut world, space, 2500);
-    assert!((world.body(b).unwrap().position().y - 0.5).abs() < 2e-3);
+    // The same pile with each stepper: QuickStep's iterative solver lands somewhere
+    // else than dWorldStep's exact one (so `set_stepper` demonstrably did something),
+    // and still rests the boxes on the floor.
+    let rest = |stepper: Stepper| {
+        let mut world = World::new();
+        let space = world.create_space(SpaceKind::HASH).unwrap();
+        world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.0)).unwrap();
+        world.set_stepper(stepper).unwrap();
+        assert_eq!(world.stepper(), stepper);
+        let size = Vector3::repeat(1.0);
+        let boxes: Vec<_> = (0..3)
+            .map(|i| {
+                let at = Point3::new(0.2 * i as f64, 0.5 + 1.02 * i as f64, 0.0);
+                let b =
+                    world.insert_body(BodyBuilder::new().position(at).mass(MassSpec::box_total(1.0, size))).unwrap();
+                world.insert_geom(space, GeomBuilder::cuboid(size).attached_to(b)).unwrap();
+                b
+            })
+            .collect();
+        run(&mut world, space, 2500);
+        boxes.iter().map(|&b| world.body(b).unwrap().position()).collect::<Vec<_>>()
+    };
+    let exact = rest(Stepper::Exact);
+    let quick = rest(Stepper::Quick { iterations: 30 });
+    assert_ne!(exact, quick, "QuickStep gave dWorldStep's result bit for bit: was it used?");
+    assert!((quick[0].y - 0.5).abs() < 5e-3, "the bottom box rests on the floor: {}", quick[0].y);
 }
 
 fn trajectory() -> Vec<u64> {
@@ -364,6 +383,9 @@ fn mass_properties_are_odes() {
 
 #[test]
 fn many_worlds_come_and_go() {
+    // 200 worlds built, stepped and dropped in turn: each gives the first one's result
+    // bit for bit (nothing leaks from one world into the next through ODE's state).
+    let mut first = None;
     for _ in 0..200 {
         let mut world = World::new();
         let space = world.create_space(SpaceKind::HASH).unwrap();
@@ -376,5 +398,9 @@ fn many_worlds_come_and_go() {
         let verts = vec![Point3::new(-5.0, 0.0, -5.0), Point3::new(5.0, 0.0, -5.0), Point3::new(0.0, 0.0, 5.0)];
         world.insert_geom(space, GeomBuilder::trimesh(verts, vec![[0, 2, 1]])).unwrap();
         run(&mut world, space, 5);
+        let state = (world.body(a).unwrap().position().y.to_bits(), world.body(b).unwrap().linear_velocity());
+        let joint = world.joints().next().unwrap();
+        assert!(world.joint(joint).unwrap().feedback().is_some_and(|f| f.force1.norm() > 0.0));
+        assert_eq!(*first.get_or_insert(state), state);
     }
 }

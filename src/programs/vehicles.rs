@@ -124,9 +124,11 @@ pub fn build_mobile_manipulator(
 }
 
 /// Speed of the chassis along the ground with the sign of its X velocity, as the
-/// original measured it: `|(vx, vz)| · sign(vx)`, with `sign(0) = −1` as the original's.
+/// original measured it: `sqrt(vx² + vz²) · sign(vx)`, with `sign(0) = −1` as the
+/// original's. Computed as the original did (its `length2`: squares, sum, square
+/// root), not with `hypot`, which rounds differently in the last digit.
 pub fn signed_ground_speed(sim: &Simulation, chassis: ObjectId) -> Result<f64> {
     let v = sim.body(chassis)?.linear_velocity();
     let sign = if v.x > 0.0 { 1.0 } else { -1.0 };
-    Ok(v.x.hypot(v.z) * sign)
+    Ok((v.x * v.x + v.z * v.z).sqrt() * sign)
 }

@@ -105,7 +105,7 @@ static void speed_profile_pre_step(ArsCScene *s)
     dReal time = s->time;
     const dReal *v = dBodyGetLinearVel(s->chassis);
     dReal sign = v[0] > 0.0 ? 1.0 : -1.0;
-    dReal speed = hypot(v[0], v[2]) * sign;
+    dReal speed = sqrt(v[0] * v[0] + v[2] * v[2]) * sign;
     dReal setpoint = profile(time);
     dReal error = setpoint - speed;
     dReal torque = 10.0 * error;
