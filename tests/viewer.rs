@@ -4,7 +4,8 @@
 //! A test binary of its own with no harness: on-screen windows must be created on the
 //! main thread. Prints `N passed, N failed` like the other runners.
 
-use std::process::{Child, Command};
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use ars::nalgebra::{Matrix4, Point3, Vector3};
@@ -87,37 +88,53 @@ fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), Strin
     Ok(())
 }
 
+/// Starts Xvfb on a display it picks itself (`-displayfd`: the first free one, past
+/// stale sockets and locks of servers that died) and returns it with its number.
 fn start_xvfb() -> Option<(Child, String)> {
-    for n in 90..99 {
-        let display = format!(":{n}");
-        if std::path::Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
-            continue;
+    let mut child = Command::new("Xvfb")
+        .args(["-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .ok()?;
+    let stdout = child.stdout.take()?;
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = BufReader::new(stdout).read_line(&mut line);
+        let _ = tx.send(line);
+    });
+    match rx.recv_timeout(Duration::from_secs(10)) {
+        Ok(line) if line.trim().parse::<u32>().is_ok() => Some((child, format!(":{}", line.trim()))),
+        _ => {
+            stop_xvfb(child);
+            None
         }
-        let Ok(mut child) =
-            Command::new("Xvfb").args([display.as_str(), "-screen", "0", "1024x768x24", "-nolisten", "tcp"]).spawn()
-        else {
-            return None;
-        };
-        let deadline = Instant::now() + Duration::from_secs(10);
-        while Instant::now() < deadline {
-            if std::path::Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
-                return Some((child, display));
-            }
-            if let Ok(Some(_)) = child.try_wait() {
-                break;
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
+    }
+}
+
+/// Stops Xvfb with SIGTERM, so that it removes its socket and lock file.
+fn stop_xvfb(mut child: Child) {
+    let terminated = Command::new("kill").arg(child.id().to_string()).status().is_ok_and(|s| s.success());
+    if !terminated {
         let _ = child.kill();
     }
-    None
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while Instant::now() < deadline {
+        if let Ok(Some(_)) = child.try_wait() {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let _ = child.kill();
+    let _ = child.wait();
 }
 
 /// Without Xvfb the window test fails (`make deps` installs it), unless
 /// `ARS_SKIP_WINDOW_TEST=1` says to skip it on purpose: a test that quietly passes as
 /// "skipped" would hide a broken window.
 fn a_real_window_under_xvfb_shows_the_ball() -> std::result::Result<bool, String> {
-    let Some((mut xvfb, display)) = start_xvfb() else {
+    let Some((xvfb, display)) = start_xvfb() else {
         if std::env::var_os("ARS_SKIP_WINDOW_TEST").is_some_and(|v| v == "1") {
             println!("  skipped: Xvfb could not start, and ARS_SKIP_WINDOW_TEST=1");
             return Ok(false);
@@ -128,7 +145,7 @@ fn a_real_window_under_xvfb_shows_the_ball() -> std::result::Result<bool, String
     // has been joined), so no other thread reads the environment.
     unsafe { std::env::set_var("DISPLAY", &display) };
     let result = RedBall.snapshot_in_window(3);
-    let _ = xvfb.kill();
+    stop_xvfb(xvfb);
     let image = result.map_err(|e| e.to_string())?;
     let view = RedBall.view_settings();
     let _ = image.save(std::env::temp_dir().join("ars_viewer_test_window.png"));

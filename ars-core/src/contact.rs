@@ -444,6 +444,11 @@ impl World {
         let ray1 = matches!(shape1, crate::geom::Shape::Ray { .. });
         let ray2 = matches!(shape2, crate::geom::Shape::Ray { .. });
         let ratio = convex_pair_ratio(shape1, shape2);
+        if b1.is_null() && b2.is_null() && !ray1 && !ray2 {
+            // Two static geoms (a static box on the floor): contact joints between no
+            // bodies would change nothing and cost a collision every step.
+            return Ok(());
+        }
         if !b1.is_null() && !b2.is_null() {
             // SAFETY: both bodies are live and non-null (ODE asserts on null).
             let connected = unsafe { ffi::dAreConnectedExcluding(b1, b2, ffi::dJointType_dJointTypeContact as i32) };

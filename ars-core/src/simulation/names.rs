@@ -1,6 +1,6 @@
 //! Unique, deterministic names for objects and joints, and "did you mean" suggestions.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use crate::error::{Error, Result};
 
@@ -9,20 +9,29 @@ use crate::error::{Error, Result};
 pub(crate) struct Names<Id> {
     kind: &'static str,
     by_name: BTreeMap<String, Id>,
+    /// For each base name, a suffix below which every `base/i` is taken: `unique`
+    /// starts its search there instead of at 1 (10,000 spheres once took 11 s).
+    next_suffix: HashMap<String, u64>,
 }
 
 impl<Id: Copy + PartialEq> Names<Id> {
     pub(crate) fn new(kind: &'static str) -> Self {
-        Names { kind, by_name: BTreeMap::new() }
+        Names { kind, by_name: BTreeMap::new(), next_suffix: HashMap::new() }
     }
 
     /// `base` if free, else `base/1`, `base/2`... (the first free one): deterministic,
     /// unlike the original's memory-address suffixes.
-    pub(crate) fn unique(&self, base: &str) -> String {
+    pub(crate) fn unique(&mut self, base: &str) -> String {
         if !self.by_name.contains_key(base) {
             return base.to_string();
         }
-        (1..).map(|i| format!("{base}/{i}")).find(|n| !self.by_name.contains_key(n)).expect("a free suffix exists")
+        let start = self.next_suffix.get(base).copied().unwrap_or(1);
+        let (i, name) = (start..)
+            .map(|i| (i, format!("{base}/{i}")))
+            .find(|(_, n)| !self.by_name.contains_key(n))
+            .expect("a free suffix exists");
+        self.next_suffix.insert(base.to_string(), i);
+        name
     }
 
     pub(crate) fn insert(&mut self, name: String, id: Id) -> Result<()> {
@@ -38,6 +47,14 @@ impl<Id: Copy + PartialEq> Names<Id> {
 
     pub(crate) fn remove(&mut self, name: &str) {
         self.by_name.remove(name);
+        // A freed `base/i` below the hint becomes the first free suffix again.
+        if let Some((base, suffix)) = name.rsplit_once('/')
+            && let Ok(i) = suffix.parse::<u64>()
+            && let Some(next) = self.next_suffix.get_mut(base)
+            && i < *next
+        {
+            *next = i;
+        }
     }
 
     pub(crate) fn get(&self, name: &str) -> Result<Id> {
@@ -97,6 +114,14 @@ mod tests {
         }
         let all: Vec<_> = names.iter().map(|(n, _)| n.to_string()).collect();
         assert_eq!(all, ["sphere", "sphere/1", "sphere/2"]);
+        // The first free suffix, also after a removal or a name taken by hand.
+        names.remove("sphere/1");
+        assert_eq!(names.unique("sphere"), "sphere/1");
+        names.insert("sphere/1".into(), 5).unwrap();
+        names.insert("sphere/3".into(), 6).unwrap();
+        assert_eq!(names.unique("sphere"), "sphere/4");
+        names.remove("sphere/2");
+        assert_eq!(names.unique("sphere"), "sphere/2");
     }
 
     #[test]
