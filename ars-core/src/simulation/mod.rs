@@ -429,6 +429,9 @@ impl Simulation {
     /// Runs the closures of one point in order, up to the first error; a panic is
     /// contained and reported as [`Error::Panicked`], and every hook stays registered.
     fn run_hooks(&mut self, at: HookPoint) -> Result<()> {
+        if self.hooks.list(at).is_empty() {
+            return Ok(());
+        }
         let mut hooks = std::mem::take(self.hooks.list(at));
         let mut result = Ok(());
         for (i, hook) in hooks.iter_mut().enumerate() {
