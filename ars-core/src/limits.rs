@@ -78,18 +78,22 @@ pub const MAX_ACCELERATION: f64 = 1e9;
 /// 1,640 contacts in one island take 43 s for one step; 400 take about half a second.
 pub const DEFAULT_EXACT_STEP_CONTACTS: usize = 400;
 
-/// `value` in `[min, max]` (finite).
+/// `value` in `[min, max]` (finite). The check is inlined; building the error is not.
+#[inline]
 pub(crate) fn in_range(what: &'static str, value: f64, min: f64, max: f64) -> Result<f64> {
+    // False for NaN, as for anything outside.
+    if value >= min && value <= max && value.is_finite() { Ok(value) } else { out_of_range(what, value, min, max) }
+}
+
+#[cold]
+fn out_of_range(what: &'static str, value: f64, min: f64, max: f64) -> Result<f64> {
     if !value.is_finite() {
         return Err(Error::NotFinite { what, value: value.to_string() });
     }
     if value <= 0.0 && min > 0.0 {
         return Err(Error::NotPositive { what, value });
     }
-    if value < min || value > max {
-        return Err(Error::OutOfRange { what, detail: format!("must be within [{min:e}, {max:e}], got {value:e}") });
-    }
-    Ok(value)
+    Err(Error::OutOfRange { what, detail: format!("must be within [{min:e}, {max:e}], got {value:e}") })
 }
 
 /// A size: within [`MIN_SIZE`], [`MAX_SIZE`].
@@ -107,15 +111,7 @@ pub(crate) fn sizes(what: &'static str, v: &Vector3<f64>) -> Result<Vector3<f64>
 
 /// A coordinate: finite, within ±[`MAX_COORDINATE`].
 pub(crate) fn coordinate(what: &'static str, value: f64) -> Result<f64> {
-    if !value.is_finite() {
-        return Err(Error::NotFinite { what, value: value.to_string() });
-    }
-    if value.abs() > MAX_COORDINATE {
-        return Err(Error::OutOfRange {
-            what, detail: format!("must be within ±{MAX_COORDINATE:e} m, got {value:e}")
-        });
-    }
-    Ok(value)
+    in_range(what, value, -MAX_COORDINATE, MAX_COORDINATE)
 }
 
 /// A point (or translation) whose coordinates are all valid.
@@ -138,8 +134,7 @@ pub(crate) fn vector_within(what: &'static str, v: &Vector3<f64>, max: f64, unit
 }
 
 /// What is wrong with a part of a body's state or accumulators (non-finite, or a
-/// component beyond ±`max`), or `None`. Cheap: used on every body at every step.
-#[inline]
+/// component beyond ±`max`), or `None`: the message of a failed state check.
 pub(crate) fn state_problem(what: &str, values: &[f64], max: f64, unit: &str) -> Option<String> {
     // `!(|c| <= max)` is also true for NaN.
     if values.iter().all(|c| c.abs() <= max) {
@@ -158,6 +153,7 @@ pub(crate) fn mass(what: &'static str, value: f64) -> Result<f64> {
 }
 
 /// A time step within [`MIN_TIME_STEP`], [`MAX_TIME_STEP`].
+#[inline]
 pub(crate) fn time_step(value: f64) -> Result<f64> {
     in_range("time step", value, MIN_TIME_STEP, MAX_TIME_STEP)
 }

@@ -348,9 +348,7 @@ impl World {
     /// [`guard`]: [`Error::OdeInternal`], and the world is poisoned.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         self.check_usable()?;
-        if !(limits::MIN_TIME_STEP..=limits::MAX_TIME_STEP).contains(&dt) {
-            limits::time_step(dt)?;
-        }
+        limits::time_step(dt)?;
         self.check_before_step()?;
         if self.stepper == Stepper::Exact && self.collision.contact_count() > self.exact_step_contacts {
             self.check_island_sizes()?;

@@ -28,7 +28,6 @@ mod noise;
 use std::any::Any;
 use std::io::{self, Write};
 use std::marker::PhantomData;
-use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use body::{
     Acceleration, Accelerometer, ContactReading, ContactSensor, Gps, Imu, ImuReading, Inclination, Inclinometer,
@@ -43,7 +42,7 @@ pub use noise::{Noisy, Perturb};
 
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, RawHandle, WorldId};
-use crate::simulation::{Simulation, panic_message};
+use crate::simulation::{Simulation, contain};
 
 /// A sensor: measures something of a simulation after every step it samples.
 pub trait Sensor: Send + 'static {
@@ -249,13 +248,7 @@ impl SensorSet {
     fn each(&mut self, mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>) -> Result<()> {
         let mut first = Ok(());
         for (h, slot) in self.slots.iter_mut() {
-            let result = match catch_unwind(AssertUnwindSafe(|| f(&mut **slot))) {
-                Ok(r) => r,
-                Err(payload) => Err(Error::Panicked {
-                    during: format!("sensor#{}v{}", h.index, h.generation),
-                    message: panic_message(payload),
-                }),
-            };
+            let result = contain(|| format!("sensor#{}v{}", h.index, h.generation), || f(&mut **slot));
             if first.is_ok() {
                 first = result;
             }

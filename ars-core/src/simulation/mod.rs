@@ -113,7 +113,7 @@ impl HookPoint {
 }
 
 /// The message of a caught panic.
-pub(crate) fn panic_message(payload: Box<dyn Any + Send>) -> String {
+fn panic_message(payload: Box<dyn Any + Send>) -> String {
     let message = match payload.downcast_ref::<&str>() {
         Some(s) => (*s).to_owned(),
         None => match payload.downcast_ref::<String>() {
@@ -127,7 +127,7 @@ pub(crate) fn panic_message(payload: Box<dyn Any + Send>) -> String {
 }
 
 /// Runs user code, turning a panic into [`Error::Panicked`].
-fn contain(during: impl FnOnce() -> String, f: impl FnOnce() -> Result<()>) -> Result<()> {
+pub(crate) fn contain(during: impl FnOnce() -> String, f: impl FnOnce() -> Result<()>) -> Result<()> {
     catch_unwind(AssertUnwindSafe(f))
         .unwrap_or_else(|payload| Err(Error::Panicked { during: during(), message: panic_message(payload) }))
 }
