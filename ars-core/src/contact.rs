@@ -443,7 +443,6 @@ impl World {
         };
         let ray1 = matches!(shape1, crate::geom::Shape::Ray { .. });
         let ray2 = matches!(shape2, crate::geom::Shape::Ray { .. });
-        let ratio = convex_pair_ratio(shape1, shape2);
         if b1.is_null() && b2.is_null() && !ray1 && !ray2 {
             // Two static geoms (a static box on the floor): contact joints between no
             // bodies would change nothing and cost a collision every step.
@@ -459,7 +458,7 @@ impl World {
         if ray1 && ray2 {
             return Ok(());
         }
-        if let Some(ratio) = ratio
+        if let Some(ratio) = convex_pair_ratio(shape1, shape2)
             && ratio > crate::limits::MAX_CONVEX_PAIR_RATIO
         {
             return Err(PairFailure::Refused(g1, g2, ratio));
@@ -503,13 +502,9 @@ impl World {
                 }
             }
             Some((_, surface)) => {
-                for c in &self.collision.scratch[..n] {
-                    // Colliders given degenerate geometry (a deep overlap of tiny shapes)
-                    // can return a NaN normal, which would turn the whole step into NaN.
-                    if !contact_is_finite(c) {
-                        log::debug!("a contact between {g1} and {g2} is not finite; dropped");
-                        continue;
-                    }
+                // Colliders given degenerate geometry (a deep overlap of tiny shapes) can
+                // return a NaN normal, which would turn the whole step into NaN.
+                for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
                     let contact = ffi::dContact { surface, geom: *c, fdir1: [0.0; 4] };
                     // SAFETY: world and contact group are live; `contact` is fully
                     // initialised; the bodies are live or null (static environment).

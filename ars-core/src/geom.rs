@@ -76,19 +76,6 @@ impl Shape {
         }
     }
 
-    /// How far the shape reaches from its origin (a bound), m; 0 for a plane.
-    fn reach(&self) -> f64 {
-        match self {
-            Shape::Sphere { radius } => *radius,
-            Shape::Box { size } => 0.5 * size.norm(),
-            Shape::Capsule { radius, length } => radius + 0.5 * length,
-            Shape::Cylinder { radius, length } => radius.hypot(0.5 * length),
-            Shape::Plane { .. } => 0.0,
-            Shape::Ray { length } => *length,
-            Shape::TriMesh { vertices, .. } => vertices.iter().fold(0.0, |m, v| m.max(v.coords.norm())),
-        }
-    }
-
     fn validate(&self) -> Result<()> {
         match self {
             Shape::Sphere { radius } => limits::size("sphere radius", *radius).map(drop),
@@ -248,7 +235,8 @@ pub struct GeomMut<'w> {
     placeable: bool,
     kind: &'static str,
     is_ray: bool,
-    has_body: bool,
+    /// The ODE body it is attached to (null: none).
+    body_raw: ffi::dBodyID,
     world: &'w mut World,
 }
 
@@ -348,8 +336,6 @@ impl World {
         }));
         // SAFETY: the geom was just created; the data is the slot index, never dereferenced.
         unsafe { ffi::dGeomSetData(raw, handle.0.index as usize as *mut _) };
-        let has_body = body_raw.is_some();
-        let reach = self.geoms.get(handle.0, GeomHandle::KIND, &handle)?.shape.reach();
         let mut g = self.geom_mut(handle)?;
         if let Some(b) = body_raw {
             // SAFETY: geom and body are live and belong to this world; the geom is placeable.
@@ -368,10 +354,6 @@ impl World {
             g.set_pose(p)?;
         }
         g.note_reach();
-        if has_body {
-            let offset = offset.map_or(0.0, |o| o.translation.vector.amax());
-            g.world.note_geom_reach(offset + reach);
-        }
         if let Some(bits) = builder.category_bits {
             g.set_category_bits(bits);
         }
@@ -411,7 +393,7 @@ impl World {
             placeable: !matches!(data.shape, Shape::Plane { .. }),
             kind: data.shape.kind_name(),
             is_ray: matches!(data.shape, Shape::Ray { .. }),
-            has_body: data.body.is_some(),
+            body_raw: data.body_raw,
             world: self,
         })
     }
@@ -492,7 +474,7 @@ impl GeomMut<'_> {
         if !self.placeable {
             return Err(Error::WrongGeomKind { operation, kind: self.kind });
         }
-        if self.has_body {
+        if !self.body_raw.is_null() {
             return Err(Error::OutOfRange {
                 what: "geom pose",
                 detail: "the geom is attached to a body and follows it; move the body instead".into(),
@@ -543,21 +525,29 @@ impl GeomMut<'_> {
         let l = limits::size("ray length", length)?;
         // SAFETY: the geom is a live ray.
         unsafe { ffi::dGeomRaySetLength(self.raw, l) };
-        self.world.note_geom_reach(l);
         self.note_reach();
         Ok(())
     }
 
-    /// Notes how far a geom without a body reaches (its world AABB), for the hash
-    /// spaces' cheap bound (see `World::note_geom_reach`).
+    /// Notes how far the geom reaches from its body's origin (from the world's origin
+    /// without a body), for the hash spaces' cheap bound (`World::note_geom_reach`):
+    /// the farthest corner of its AABB, a distance, so the bound holds however the
+    /// body turns.
     fn note_reach(&mut self) {
-        if self.has_body || !self.placeable {
+        if !self.placeable {
             return;
         }
-        let mut a = [0.0; 6];
-        // SAFETY: the geom is live and placeable; `a` holds 6 reals.
-        unsafe { ffi::dGeomGetAABB(self.raw, a.as_mut_ptr()) };
-        self.world.note_geom_reach(a.iter().fold(0.0, |m, c| m.max(c.abs())));
+        let (mut a, mut origin) = ([0.0; 6], [0.0; 3]);
+        // SAFETY: the geom is live and placeable; `a` holds 6 reals; its body, if any,
+        // is live and ODE returns 3 reals for its position.
+        unsafe {
+            ffi::dGeomGetAABB(self.raw, a.as_mut_ptr());
+            if !self.body_raw.is_null() {
+                origin.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetPosition(self.body_raw), 3));
+            }
+        }
+        let corner = |i: usize| (a[2 * i] - origin[i]).abs().max((a[2 * i + 1] - origin[i]).abs());
+        self.world.note_geom_reach((0..3).map(|i| corner(i).powi(2)).sum::<f64>().sqrt());
     }
 
     /// Sets the category bits.

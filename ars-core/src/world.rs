@@ -127,8 +127,6 @@ pub struct World {
     pub(crate) forces_added: bool,
     /// Most contacts in one island that the exact stepper takes.
     exact_step_contacts: usize,
-    /// Number of hash spaces (only they need `max_body_coordinate`).
-    hash_spaces: usize,
     /// A bound on how far any geom reaches beyond its body (or, for a geom without a
     /// body, from the origin); it never decreases. With `max_body_coordinate` it lets
     /// a hash space skip its exact bounds check when everything is well inside.
@@ -213,7 +211,6 @@ impl World {
             max_body_coordinate: 0.0,
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
             forces_added: false,
-            hash_spaces: 0,
             geom_reach: 0.0,
         }
     }
@@ -402,26 +399,19 @@ impl World {
     /// Position, orientation and velocities of every body: finite and within limits.
     #[inline(always)]
     fn check_after_step(&mut self) -> Result<()> {
-        let mut fine = true;
+        let (mut fine, mut far) = (true, 0.0_f64);
         for b in self.bodies.values() {
             // SAFETY: every body in the arena is live, so are its state pointers.
             fine &= unsafe { state_fine(&b.state) };
-        }
-        if self.hash_spaces > 0 {
-            // The bound for the hash spaces' cheap check (only they need it).
-            let mut far = 0.0_f64;
-            for b in self.bodies.values() {
-                // SAFETY: as above.
-                let p = unsafe { &*b.state.position };
-                for c in p {
-                    let c = c.abs();
-                    if c > far {
-                        far = c;
-                    }
+            // The bound for the hash spaces' cheap check (NaN never counts: `fine` fails).
+            // SAFETY: as above.
+            for c in unsafe { &*b.state.position } {
+                if c.abs() > far {
+                    far = c.abs();
                 }
             }
-            self.max_body_coordinate = far;
         }
+        self.max_body_coordinate = far;
         if fine {
             self.diverged = None;
             Ok(())
@@ -547,9 +537,6 @@ impl World {
             ffi::dSpaceSetCleanup(s, 0);
             s
         };
-        if matches!(kind, SpaceKind::Hash { .. }) {
-            self.hash_spaces += 1;
-        }
         Ok(SpaceHandle(self.spaces.insert(SpaceData { raw, kind })))
     }
 
