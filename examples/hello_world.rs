@@ -9,13 +9,15 @@
 mod common;
 
 use ars::sensors::{Gps, Velometer};
-use ars::{Mass, Program, Result, SensorId, Simulation};
+use ars::{Hooks, Mass, Program, Result, SensorId, Simulation};
 use common::plot::{Series, line_chart, over_time};
 
 #[derive(Default)]
 struct HelloWorld {
     sensors: Option<(SensorId<Gps>, SensorId<Velometer>)>,
 }
+
+impl Hooks for HelloWorld {}
 
 impl Program for HelloWorld {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {

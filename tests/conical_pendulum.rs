@@ -2,10 +2,16 @@
 //! formula and an independent reduced-coordinate model of the same arm.
 
 use ars::programs::{ArmParameters, ConicalPendulum, PendulumRow, ReducedArmModel};
-use ars::{Program, SimulationBuilder};
+use ars::{Hooks, Program, SimulationBuilder};
 
 /// The conical pendulum at a chosen time step (the original's is 0.25 ms).
 struct AtTimeStep(ConicalPendulum, f64);
+
+impl Hooks for AtTimeStep {
+    fn pre_step(&mut self, sim: &mut ars::Simulation) -> ars::Result<()> {
+        self.0.pre_step(sim)
+    }
+}
 
 impl Program for AtTimeStep {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
@@ -13,9 +19,6 @@ impl Program for AtTimeStep {
     }
     fn create_sim_objects(&mut self, sim: &mut ars::Simulation) -> ars::Result<()> {
         self.0.create_sim_objects(sim)
-    }
-    fn on_pre_step(&mut self, sim: &mut ars::Simulation) -> ars::Result<()> {
-        self.0.on_pre_step(sim)
     }
 }
 

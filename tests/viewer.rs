@@ -11,10 +11,12 @@ use std::time::{Duration, Instant};
 use ars::nalgebra::{Matrix4, Point3, Vector3};
 use ars::viewer::image::RgbImage;
 use ars::viewer::{OffscreenRenderer, ProgramViewer};
-use ars::{Mass, Program, ProgramRunner, Result, Simulation, ViewSettings};
+use ars::{Hooks, Mass, Program, ProgramRunner, Result, Simulation, ViewSettings};
 
 /// The thesis' falling ball, painted red, seen from the original's camera.
 struct RedBall;
+
+impl Hooks for RedBall {}
 
 impl Program for RedBall {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {

@@ -13,9 +13,10 @@
 //! centre height of 1 m bounces and comes to rest on the floor:
 //!
 //! ```
-//! use ars_core::{Mass, Program, Result, Simulation};
+//! use ars_core::{Hooks, Mass, Program, Result, Simulation};
 //!
 //! struct HelloWorld;
+//! impl Hooks for HelloWorld {}
 //! impl Program for HelloWorld {
 //!     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
 //!         sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
@@ -92,6 +93,7 @@ pub mod error;
 pub mod geom;
 pub mod guard;
 pub mod handle;
+pub mod hooks;
 mod init;
 pub mod joint;
 pub mod limits;
@@ -108,13 +110,14 @@ pub use control::{DcMotor, JointController, JointState, Pid, PositionServo, Prof
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
+pub use hooks::{HookId, Hooks, PostFrame, PostStep, PreFrame, PreStep};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
 pub use sensors::{Record, Sample, Sensor, SensorId, SensorLog};
 pub use simulation::{
-    CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, Hook, JointEnd, JointType,
-    NoHooks, ObjectShape, SimJoint, Simulation, SimulationBuilder, StepHooks, heightfield_faces,
+    CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, JointEnd, JointType,
+    ObjectShape, SimJoint, Simulation, SimulationBuilder, heightfield_faces,
 };
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 

@@ -91,18 +91,21 @@ fn hooks_see_the_time_at_the_start_and_at_the_end_of_the_step() {
     let mut sim = Simulation::builder().steps_per_frame(4).build().unwrap();
     let seen = Arc::new(Mutex::new(Vec::new()));
     let (pre, post, frame) = (seen.clone(), seen.clone(), seen.clone());
-    sim.on_pre_step(move |s| {
+    sim.add_hooks(PreStep(move |s| {
         pre.lock().unwrap().push(("pre", s.time()));
         Ok(())
-    });
-    sim.on_post_step(move |s| {
+    }))
+    .unwrap();
+    sim.add_hooks(PostStep(move |s| {
         post.lock().unwrap().push(("post", s.time()));
         Ok(())
-    });
-    sim.on_pre_frame(move |s| {
+    }))
+    .unwrap();
+    sim.add_hooks(PreFrame(move |s| {
         frame.lock().unwrap().push(("frame", s.time()));
         Ok(())
-    });
+    }))
+    .unwrap();
     sim.step_frame().unwrap();
     let dt = sim.time_step();
     let log = seen.lock().unwrap().clone();
@@ -119,7 +122,7 @@ fn hooks_see_the_time_at_the_start_and_at_the_end_of_the_step() {
     }
     assert_eq!(sim.time(), t);
     // An error in a hook stops the run and reaches the caller.
-    sim.on_pre_step(|s| if s.step_count() >= 6 { Err(Error::User("stop".into())) } else { Ok(()) });
+    sim.add_hooks(PreStep(|s| if s.step_count() >= 6 { Err(Error::User("stop".into())) } else { Ok(()) })).unwrap();
     assert_eq!(sim.run_for(1.0), Err(Error::User("stop".into())));
     assert_eq!(sim.step_count(), 6);
 }
@@ -178,7 +181,7 @@ fn rotary_speed_motor_limits_slider_and_reactions() {
     let rail = sim.add_slider_joint("rail", block, JointEnd::World, Vector3::x()).unwrap();
     sim.joint_mut(rail).unwrap().set_limits(-0.1, 0.1).unwrap();
     let force = sim.add_sensor(JointForce::new(rail)).unwrap();
-    sim.on_pre_step(move |s| s.joint_mut(rail)?.add_force(4.0));
+    sim.add_hooks(PreStep(move |s| s.joint_mut(rail)?.add_force(4.0))).unwrap();
     sim.run_for(1.0).unwrap();
     let x = sim.joint_ref(rail).unwrap().position().unwrap();
     assert!((x - 0.1).abs() < 1e-3, "stops at the high limit: {x}");
@@ -197,7 +200,7 @@ fn removing_objects_and_joints_between_steps() {
     sim.run_for(0.1).unwrap();
     sim.remove_joint(j).unwrap();
     assert!(sim.joint("link").is_err());
-    sim.on_post_step(move |s| if s.step_count() == 300 { s.remove_object(a) } else { Ok(()) });
+    sim.add_hooks(PostStep(move |s| if s.step_count() == 300 { s.remove_object(a) } else { Ok(()) })).unwrap();
     sim.run_for(0.2).unwrap();
     assert!(sim.body(a).is_err());
     assert!(sim.is_sensor_detached(gps).unwrap(), "the GPS stops with its object");
@@ -306,6 +309,8 @@ struct Driver {
     pushes: u32,
 }
 
+impl Hooks for Driver {}
+
 impl Program for Driver {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         builder.gravity(Vector3::zeros()).steps_per_frame(10)
@@ -408,4 +413,72 @@ fn noisy_sensors_add_seeded_gaussian_noise() {
 fn sim_object() -> ObjectId {
     let mut sim = Simulation::new().unwrap();
     sim.add_sphere(0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap()
+}
+
+#[test]
+fn hooks_are_added_read_and_removed_by_id_and_run_in_the_order_added() {
+    #[derive(Default)]
+    struct Counter {
+        steps: u32,
+        frames: u32,
+    }
+    impl Hooks for Counter {
+        fn pre_step(&mut self, _: &mut Simulation) -> Result<()> {
+            self.steps += 1;
+            Ok(())
+        }
+        fn post_frame(&mut self, _: &mut Simulation) -> Result<()> {
+            self.frames += 1;
+            Ok(())
+        }
+    }
+    let mut sim = Simulation::builder().steps_per_frame(5).build().unwrap();
+    let counter = sim.add_hooks(Counter::default()).unwrap();
+    sim.step_frame().unwrap();
+    assert_eq!((sim.hooks(counter).unwrap().steps, sim.hooks(counter).unwrap().frames), (5, 1));
+    sim.hooks_mut(counter).unwrap().steps = 100;
+    sim.step().unwrap();
+    assert_eq!(sim.remove_hooks(counter).unwrap().steps, 101);
+    assert!(matches!(sim.hooks(counter), Err(Error::StaleHandle { .. })));
+    assert!(sim.remove_hooks(counter).is_err());
+
+    // Slots are reused, the order is still the order added: b, then c in a's old slot.
+    let seen = Arc::new(Mutex::new(String::new()));
+    let tag = |c: char| {
+        let seen = seen.clone();
+        PreStep(move |_: &mut Simulation| {
+            seen.lock().unwrap().push(c);
+            Ok(())
+        })
+    };
+    let a = sim.add_hooks(tag('a')).unwrap();
+    sim.add_hooks(tag('b')).unwrap();
+    sim.remove_hooks(a).unwrap();
+    sim.add_hooks(tag('c')).unwrap();
+    sim.step().unwrap();
+    assert_eq!(*seen.lock().unwrap(), "bc");
+
+    // A running hook cannot reach itself through the simulation, but can add others.
+    struct Selfish {
+        me: Option<HookId<Selfish>>,
+        seen: Arc<Mutex<String>>,
+    }
+    impl Hooks for Selfish {
+        fn post_step(&mut self, sim: &mut Simulation) -> Result<()> {
+            assert!(sim.remove_hooks(self.me.unwrap()).is_err(), "removing itself while running");
+            assert!(sim.hooks(self.me.unwrap()).is_err(), "reading itself while running");
+            let seen = self.seen.clone();
+            sim.add_hooks(PostFrame(move |_: &mut Simulation| {
+                seen.lock().unwrap().push('f');
+                Ok(())
+            }))
+            .map(drop)
+        }
+    }
+    let selfish = sim.add_hooks(Selfish { me: None, seen: seen.clone() }).unwrap();
+    sim.hooks_mut(selfish).unwrap().me = Some(selfish);
+    seen.lock().unwrap().clear();
+    sim.step_frame().unwrap();
+    assert_eq!(*seen.lock().unwrap(), "bcbcbcbcbcfffff", "five steps, then five post-frame hooks");
+    sim.remove_hooks(selfish).unwrap();
 }

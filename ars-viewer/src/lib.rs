@@ -6,10 +6,11 @@
 //! with no display and no GPU (Mesa's software rasterisers) for screenshot recording.
 //!
 //! ```no_run
-//! use ars_core::{Mass, Program, Result, Simulation};
+//! use ars_core::{Hooks, Mass, Program, Result, Simulation};
 //! use ars_viewer::ProgramViewer;
 //!
 //! struct HelloWorld;
+//! impl Hooks for HelloWorld {}
 //! impl Program for HelloWorld {
 //!     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
 //!         sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)

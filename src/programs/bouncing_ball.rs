@@ -1,7 +1,7 @@
 //! IROS example 1: a small ball bouncing on the floor.
 
 use ars_core::nalgebra::Vector3;
-use ars_core::{Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
 
 /// IROS example 1: a 1 kg ball of radius 0.01 m dropped from 1 m (centre at
 /// (1, 1.01, 1)), dt 0.25 ms; the pre-step hook records `(time, y, vy)` every step. The
@@ -24,6 +24,15 @@ impl BouncingBall {
     }
 }
 
+impl Hooks for BouncingBall {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let b = sim.body(self.ball.expect("created"))?;
+        let (y, vy) = (b.position().y, b.linear_velocity().y);
+        self.rows.push((sim.time(), y, vy));
+        Ok(())
+    }
+}
+
 impl Program for BouncingBall {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         let b = builder.time_step(1.0 / 50.0 / 80.0).steps_per_frame(80).floor_plane(Vector3::y(), 0.0);
@@ -32,13 +41,6 @@ impl Program for BouncingBall {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         self.ball = Some(sim.add_sphere(0.01, [1.0, 1.01, 1.0], Mass::Total(1.0))?);
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let b = sim.body(self.ball.expect("created"))?;
-        let (y, vy) = (b.position().y, b.linear_velocity().y);
-        self.rows.push((sim.time(), y, vy));
         Ok(())
     }
 }

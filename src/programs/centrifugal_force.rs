@@ -6,7 +6,7 @@ use std::f64::consts::FRAC_PI_2;
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{JointPower, JointTorque, RotaryJointSensor};
 use ars_core::{
-    ActionMap, JointId, Key, Mass, ObjectId, Program, Repeat, Result, SensorId, Simulation, SimulationBuilder,
+    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, SensorId, Simulation, SimulationBuilder,
 };
 
 /// One frame's reading: ball position, velocity and angular velocity, and the cable's
@@ -65,6 +65,20 @@ impl CentrifugalForce {
     }
 }
 
+impl Hooks for CentrifugalForce {
+    fn pre_frame(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (r1, r2) = self.joints.expect("built");
+        sim.joint_mut(r1)?.set_speed(self.speed, 100.0)?;
+        let rate = sim.joint_state(r2)?.rate;
+        sim.joint_mut(r2)?.add_torque(-500.0 * rate)?;
+        let b = sim.body(self.ball.expect("built"))?;
+        let (position, velocity, angular_velocity) = (b.position(), b.linear_velocity(), b.angular_velocity());
+        let theta = ((2.0 - position.y + 0.5) / 1.0).clamp(-1.0, 1.0).acos();
+        self.rows.push(CentrifugalRow { time: sim.time(), position, velocity, angular_velocity, theta });
+        Ok(())
+    }
+}
+
 impl Program for CentrifugalForce {
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
@@ -97,18 +111,6 @@ impl Program for CentrifugalForce {
         ));
         self.ball = Some(ball);
         self.joints = Some((r1, r2));
-        Ok(())
-    }
-
-    fn on_pre_frame(&mut self, sim: &mut Simulation) -> Result<()> {
-        let (r1, r2) = self.joints.expect("built");
-        sim.joint_mut(r1)?.set_speed(self.speed, 100.0)?;
-        let rate = sim.joint_state(r2)?.rate;
-        sim.joint_mut(r2)?.add_torque(-500.0 * rate)?;
-        let b = sim.body(self.ball.expect("built"))?;
-        let (position, velocity, angular_velocity) = (b.position(), b.linear_velocity(), b.angular_velocity());
-        let theta = ((2.0 - position.y + 0.5) / 1.0).clamp(-1.0, 1.0).acos();
-        self.rows.push(CentrifugalRow { time: sim.time(), position, velocity, angular_velocity, theta });
         Ok(())
     }
 

@@ -5,7 +5,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{JointId, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
+use ars_core::{Hooks, JointId, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
 
 /// One row of the pendulum's record: the state the pre-step hook reads at the start of
 /// a step, and the waist torque it applies.
@@ -67,6 +67,33 @@ impl ConicalPendulum {
     }
 }
 
+impl Hooks for ConicalPendulum {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (waist, shoulder) = (self.waist.expect("created"), self.shoulder.expect("created"));
+        let time = sim.time();
+        let torque = Self::waist_torque(time);
+        let (q1_prev, q2_prev) = self.previous_rates;
+        {
+            let mut r1 = sim.joint_mut(waist)?;
+            r1.add_torque(torque)?;
+            r1.add_torque(-Self::FRICTION * q1_prev)?;
+        }
+        sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
+        let s1 = sim.joint_state(waist)?;
+        let s2 = sim.joint_state(shoulder)?;
+        self.previous_rates = (s1.rate, s2.rate);
+        self.rows.push(PendulumRow {
+            time,
+            q1: s1.position,
+            q1_rate: s1.rate,
+            q2: s2.position,
+            q2_rate: s2.rate,
+            torque,
+        });
+        Ok(())
+    }
+}
+
 impl Program for ConicalPendulum {
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
@@ -102,31 +129,6 @@ impl Program for ConicalPendulum {
             sim.add_rotary_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
         (self.base, self.pole, self.arm) = (Some(base), Some(pole), Some(arm));
         (self.waist, self.shoulder) = (Some(waist), Some(shoulder));
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let (waist, shoulder) = (self.waist.expect("created"), self.shoulder.expect("created"));
-        let time = sim.time();
-        let torque = Self::waist_torque(time);
-        let (q1_prev, q2_prev) = self.previous_rates;
-        {
-            let mut r1 = sim.joint_mut(waist)?;
-            r1.add_torque(torque)?;
-            r1.add_torque(-Self::FRICTION * q1_prev)?;
-        }
-        sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
-        let s1 = sim.joint_state(waist)?;
-        let s2 = sim.joint_state(shoulder)?;
-        self.previous_rates = (s1.rate, s2.rate);
-        self.rows.push(PendulumRow {
-            time,
-            q1: s1.position,
-            q1_rate: s1.rate,
-            q2: s2.position,
-            q2_rate: s2.rate,
-            torque,
-        });
         Ok(())
     }
 }

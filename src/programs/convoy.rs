@@ -3,7 +3,7 @@
 //! simulation, controllers attached to joints, objects added and removed at run time.
 
 use ars_core::nalgebra::Vector3;
-use ars_core::{Mass, ObjectId, Profile, Program, Result, Simulation, VelocityServo};
+use ars_core::{Hooks, Mass, ObjectId, Profile, Program, Result, Simulation, VelocityServo};
 
 use super::vehicles::{VehicleParts, VehicleSpec, build_vehicle};
 
@@ -40,21 +40,8 @@ impl Default for Convoy {
     }
 }
 
-impl Program for Convoy {
-    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        for (prefix, z) in [("left/", 0.0), ("right/", 3.0)] {
-            let spec = VehicleSpec { offset: Vector3::new(0.0, 0.31, z), prefix: prefix.into(), ..Default::default() };
-            let v = build_vehicle(sim, &spec)?;
-            for wheel in [v.w1, v.w2] {
-                let setpoint = Profile::ramp(0.0, 1.0, 0.0, self.wheel_speed)?;
-                sim.joint_mut(wheel)?.set_controller(VelocityServo { setpoint, gain: 5.0 })?;
-            }
-            self.vehicles.push(v);
-        }
-        Ok(())
-    }
-
-    fn on_post_step(&mut self, sim: &mut Simulation) -> Result<()> {
+impl Hooks for Convoy {
+    fn post_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let t = sim.time();
         if !self.events.0 && t >= self.drop_time {
             let front = sim.position(self.vehicles[0].chassis)?;
@@ -68,6 +55,21 @@ impl Program for Convoy {
                 sim.remove_object(b)?;
             }
             self.events.1 = true;
+        }
+        Ok(())
+    }
+}
+
+impl Program for Convoy {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        for (prefix, z) in [("left/", 0.0), ("right/", 3.0)] {
+            let spec = VehicleSpec { offset: Vector3::new(0.0, 0.31, z), prefix: prefix.into(), ..Default::default() };
+            let v = build_vehicle(sim, &spec)?;
+            for wheel in [v.w1, v.w2] {
+                let setpoint = Profile::ramp(0.0, 1.0, 0.0, self.wheel_speed)?;
+                sim.joint_mut(wheel)?.set_controller(VelocityServo { setpoint, gain: 5.0 })?;
+            }
+            self.vehicles.push(v);
         }
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! The thesis' falling ball: a 1 kg sphere of radius 0.5 m dropped from (1, 1, 1).
 
 use ars_core::sensors::{Accelerometer, Gps, KineticEnergy, PotentialEnergy, SystemTotalEnergy, Velometer};
-use ars_core::{Mass, ObjectId, Program, Result, SensorId, Simulation};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation};
 
 /// The thesis' hello world: one ball, nothing else.
 #[derive(Clone, Debug, Default)]
@@ -9,6 +9,8 @@ pub struct HelloWorld {
     /// The ball, once created.
     pub ball: Option<ObjectId>,
 }
+
+impl Hooks for HelloWorld {}
 
 impl Program for HelloWorld {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
@@ -36,6 +38,8 @@ pub struct FallingBallSensors {
     /// The energy of the whole system.
     pub total: Option<SensorId<SystemTotalEnergy>>,
 }
+
+impl Hooks for FallingBallSensors {}
 
 impl Program for FallingBallSensors {
     fn view_settings(&self) -> ars_core::ViewSettings {

@@ -1,7 +1,7 @@
 //! The original's `FallingBalls` demo: three balls of different sizes and masses.
 
 use ars_core::sensors::Gps;
-use ars_core::{Mass, ObjectId, Program, Result, SensorId, Simulation};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation};
 
 /// Three spheres: radius 0.3 m at (1, 6, 1) with density 1; radius 0.5 m at (2, 4, 2)
 /// with density 0.5; radius 0.2 m at (3, 2, 3) with mass 5 kg; floor y = 0.
@@ -10,6 +10,8 @@ pub struct FallingBalls {
     /// The balls and a GPS on each.
     pub balls: Vec<(ObjectId, SensorId<Gps>)>,
 }
+
+impl Hooks for FallingBalls {}
 
 impl Program for FallingBalls {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {

@@ -4,7 +4,7 @@
 
 use super::{SetpointKeys, ShoulderSetpoint};
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{ActionMap, Key, Mass, Pid, Profile, Program, Repeat, Result, Simulation, SimulationBuilder};
+use ars_core::{ActionMap, Hooks, Key, Mass, Pid, Profile, Program, Repeat, Result, Simulation, SimulationBuilder};
 
 use super::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
 use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, signed_ground_speed};
@@ -113,30 +113,8 @@ impl SpeedProfile {
     pub const OFFSET: Vector3<f64> = Vector3::new(-4.0, 0.5, 4.0);
 }
 
-impl Program for SpeedProfile {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
-            title: "ARS: speed profile (IROS example 3)".into(),
-            camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 25.0),
-            ..Default::default()
-        }
-    }
-
-    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
-        iros_timing(builder).floor_plane(Vector3::y(), 0.0)
-    }
-
-    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let (vehicle, arm) = build_mobile_manipulator(
-            sim,
-            &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
-            Mass::Total(1.0),
-        )?;
-        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+impl Hooks for SpeedProfile {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
         let time = sim.time();
         let speed = signed_ground_speed(sim, v.chassis)?;
@@ -164,6 +142,30 @@ impl Program for SpeedProfile {
             q2_rate: s2.rate,
             wheel_torque: torque,
         });
+        Ok(())
+    }
+}
+
+impl Program for SpeedProfile {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: speed profile (IROS example 3)".into(),
+            camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 25.0),
+            ..Default::default()
+        }
+    }
+
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        iros_timing(builder).floor_plane(Vector3::y(), 0.0)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (vehicle, arm) = build_mobile_manipulator(
+            sim,
+            &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
+            Mass::Total(1.0),
+        )?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 
@@ -241,34 +243,8 @@ impl SinusoidalTerrain {
     }
 }
 
-impl Program for SinusoidalTerrain {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
-            title: "ARS: sinusoidal terrain (IROS example 4)".into(),
-            camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 30.0),
-            camera_target: ars_core::nalgebra::Point3::new(5.0, 0.0, 5.0),
-            ..Default::default()
-        }
-    }
-
-    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
-        iros_timing(builder)
-    }
-
-    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let terrain = Self::terrain()?;
-        let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.faces(), Self::TERRAIN_CENTER)?;
-        sim.set_color(floor, [0.7, 0.7, 0.7])?;
-        let (vehicle, arm) = build_mobile_manipulator(
-            sim,
-            &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
-            Mass::Total(1.0),
-        )?;
-        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+impl Hooks for SinusoidalTerrain {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
         let vel = sim.body(v.chassis)?.linear_velocity();
         let speed = (vel.x * vel.x + vel.y * vel.y + vel.z * vel.z).sqrt();
@@ -295,6 +271,34 @@ impl Program for SinusoidalTerrain {
             torque2,
             wheel_torque,
         });
+        Ok(())
+    }
+}
+
+impl Program for SinusoidalTerrain {
+    fn view_settings(&self) -> ars_core::ViewSettings {
+        ars_core::ViewSettings {
+            title: "ARS: sinusoidal terrain (IROS example 4)".into(),
+            camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 30.0),
+            camera_target: ars_core::nalgebra::Point3::new(5.0, 0.0, 5.0),
+            ..Default::default()
+        }
+    }
+
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        iros_timing(builder)
+    }
+
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let terrain = Self::terrain()?;
+        let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.faces(), Self::TERRAIN_CENTER)?;
+        sim.set_color(floor, [0.7, 0.7, 0.7])?;
+        let (vehicle, arm) = build_mobile_manipulator(
+            sim,
+            &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
+            Mass::Total(1.0),
+        )?;
+        (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 }
@@ -367,6 +371,29 @@ impl UserDriven {
     }
 }
 
+impl Hooks for UserDriven {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
+        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
+        let torque = self.pd.update(self.setpoint - s2.position, sim.time_step());
+        sim.joint_mut(a.r1)?.add_torque(0.0)?;
+        sim.joint_mut(a.r2)?.add_torque(torque)?;
+        let p = sim.position(v.chassis)?;
+        self.rows.push(DrivingRow {
+            time: sim.time(),
+            x: p.x,
+            z: p.z,
+            q1: s1.position,
+            q2: s2.position,
+            setpoint: self.setpoint,
+            torque,
+            wheel_torques: self.wheel_torques,
+        });
+        self.wheel_torques = (0.0, 0.0);
+        Ok(())
+    }
+}
+
 impl Program for UserDriven {
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
@@ -388,27 +415,6 @@ impl Program for UserDriven {
             Mass::Density(1.0),
         )?;
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
-        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
-        let torque = self.pd.update(self.setpoint - s2.position, sim.time_step());
-        sim.joint_mut(a.r1)?.add_torque(0.0)?;
-        sim.joint_mut(a.r2)?.add_torque(torque)?;
-        let p = sim.position(v.chassis)?;
-        self.rows.push(DrivingRow {
-            time: sim.time(),
-            x: p.x,
-            z: p.z,
-            q1: s1.position,
-            q2: s2.position,
-            setpoint: self.setpoint,
-            torque,
-            wheel_torques: self.wheel_torques,
-        });
-        self.wheel_torques = (0.0, 0.0);
         Ok(())
     }
 

@@ -6,7 +6,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use super::{SetpointKeys, ShoulderSetpoint};
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{ActionMap, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation};
+use ars_core::{ActionMap, Hooks, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation};
 
 /// The arm's bodies and joints.
 #[derive(Clone, Copy, Debug)]
@@ -57,6 +57,8 @@ fn push_waist(parts: Option<ArmParts>, sim: &mut Simulation, torque: f64) -> Res
     let r1 = parts.expect("built").r1;
     sim.joint_mut(r1)?.add_torque(torque)
 }
+
+impl Hooks for SimpleArm {}
 
 impl Program for SimpleArm {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
@@ -114,12 +116,8 @@ impl ControlledSimpleArm {
     pub const SETPOINT_STEP: f64 = 0.1;
 }
 
-impl Program for ControlledSimpleArm {
-    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        self.parts = Some(build_simple_arm(sim)?);
-        Ok(())
-    }
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+impl Hooks for ControlledSimpleArm {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let p = self.parts.expect("built");
         let cv = sim.joint_state(p.r2)?.position;
         let error = self.setpoint - cv;
@@ -130,6 +128,13 @@ impl Program for ControlledSimpleArm {
         sim.joint_mut(p.r1)?.add_torque(-Self::FRICTION * q1)?;
         sim.joint_mut(p.r2)?.add_torque(-Self::FRICTION * q2)?;
         self.rows.push(ControlRow { time: sim.time(), setpoint: self.setpoint, angle: cv, error, torque });
+        Ok(())
+    }
+}
+
+impl Program for ControlledSimpleArm {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        self.parts = Some(build_simple_arm(sim)?);
         Ok(())
     }
     fn key_bindings(&self) -> ActionMap<Self> {

@@ -5,7 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 use ars_core::convert::rotation_about_axis;
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Gps, Laser, SystemTotalEnergy, Velometer};
-use ars_core::{Mass, ObjectId, Program, Result, SensorId, Simulation};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation};
 
 /// Two balls (radius 1 m, 1 kg, at (3, 4, 1) then (5, 3, 1)) and a laser at
 /// (1.5, 1.5, 1) pointing +X (local +Z turned π/2 about Y), 1000 m long, floor y = 0.
@@ -29,6 +29,8 @@ impl TwoBallLaser {
     /// Where the laser is.
     pub const LASER_POSITION: Point3<f64> = Point3::new(1.5, 1.5, 1.0);
 }
+
+impl Hooks for TwoBallLaser {}
 
 impl Program for TwoBallLaser {
     fn view_settings(&self) -> ars_core::ViewSettings {

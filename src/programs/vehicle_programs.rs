@@ -3,7 +3,9 @@
 
 use super::{SetpointKeys, ShoulderSetpoint};
 use ars_core::nalgebra::Vector3;
-use ars_core::{ActionMap, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation, SimulationBuilder};
+use ars_core::{
+    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation, SimulationBuilder,
+};
 
 use super::simple_arm::ControlRow;
 use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle};
@@ -32,6 +34,8 @@ impl Vehicle1 {
         torques(sim, &[(w[0], t[0]), (w[1], t[1]), (w[2], t[2]), (w[3], t[3])])
     }
 }
+
+impl Hooks for Vehicle1 {}
 
 impl Program for Vehicle1 {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
@@ -88,6 +92,8 @@ pub(crate) fn drive(vehicle: Option<VehicleParts>, sim: &mut Simulation, right: 
     let v = vehicle.expect("built");
     torques(sim, &[(v.w1, right), (v.w2, left)])
 }
+
+impl Hooks for Vehicle2 {}
 
 impl Program for Vehicle2 {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
@@ -184,6 +190,18 @@ macro_rules! arm_vehicle_bindings {
 }
 pub(crate) use arm_vehicle_bindings;
 
+impl Hooks for VehicleWithArm {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let a = self.arm.expect("built");
+        let (q1, q2) = (sim.joint_state(a.r1)?.rate, sim.joint_state(a.r2)?.rate);
+        if self.arm_friction {
+            torques(sim, &[(a.r1, -0.01 * q1), (a.r2, -0.01 * q2)])?;
+        }
+        self.rates.push((sim.time(), q1, q2));
+        Ok(())
+    }
+}
+
 impl Program for VehicleWithArm {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         builder.time_step(1.0 / 50.0 / 200.0).steps_per_frame(200).floor_plane(Vector3::y(), 0.0)
@@ -193,16 +211,6 @@ impl Program for VehicleWithArm {
         let spec = VehicleSpec { capsule_wheels: self.capsule_wheels, ..Default::default() };
         let (vehicle, arm) = build_mobile_manipulator(sim, &spec, Mass::Density(1.0))?;
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let a = self.arm.expect("built");
-        let (q1, q2) = (sim.joint_state(a.r1)?.rate, sim.joint_state(a.r2)?.rate);
-        if self.arm_friction {
-            torques(sim, &[(a.r1, -0.01 * q1), (a.r2, -0.01 * q2)])?;
-        }
-        self.rates.push((sim.time(), q1, q2));
         Ok(())
     }
 
@@ -234,6 +242,18 @@ impl Default for VehicleWithControlledArm {
     }
 }
 
+impl Hooks for VehicleWithControlledArm {
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let a = self.arm.expect("built");
+        let cv = sim.joint_state(a.r2)?.position;
+        let error = self.setpoint - cv;
+        let torque = self.pd.update(error, sim.time_step());
+        torques(sim, &[(a.r1, 0.0), (a.r2, torque)])?;
+        self.rows.push(ControlRow { time: sim.time(), setpoint: self.setpoint, angle: cv, error, torque });
+        Ok(())
+    }
+}
+
 impl Program for VehicleWithControlledArm {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         VehicleWithArm::default().configure(builder)
@@ -242,16 +262,6 @@ impl Program for VehicleWithControlledArm {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let (vehicle, arm) = build_mobile_manipulator(sim, &VehicleSpec::default(), Mass::Density(1.0))?;
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
-        Ok(())
-    }
-
-    fn on_pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let a = self.arm.expect("built");
-        let cv = sim.joint_state(a.r2)?.position;
-        let error = self.setpoint - cv;
-        let torque = self.pd.update(error, sim.time_step());
-        torques(sim, &[(a.r1, 0.0), (a.r2, torque)])?;
-        self.rows.push(ControlRow { time: sim.time(), setpoint: self.setpoint, angle: cv, error, torque });
         Ok(())
     }
 

@@ -3,9 +3,9 @@
 //!
 //! ## The step
 //! One [`Simulation::step`] of `time_step` seconds does, in this order:
-//! 1. pre-step hooks (the program's, the actions of held keys, then closures
-//!    registered with [`Simulation::on_pre_step`]), with [`Simulation::time`] at the
-//!    start of the step;
+//! 1. pre-step [`Hooks`] (the program's, the actions of held keys, then those added
+//!    with [`Simulation::add_hooks`] in the order added), with [`Simulation::time`] at
+//!    the start of the step;
 //! 2. joint controllers and viscous joint friction (torques from the rates at the start
 //!    of the step); sensors note the state before the step;
 //! 3. collision on the poses before the step (`dSpaceCollide`): rays record hits, other
@@ -38,6 +38,7 @@ pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};
+use crate::hooks::{HookPoint, HookSet, Hooks};
 use crate::limits;
 use crate::sensors::SensorSet;
 use crate::validate;
@@ -50,67 +51,6 @@ use objects::ObjectData;
 pub const DEFAULT_TIME_STEP: f64 = 0.0004;
 /// The ARS default number of steps per frame.
 pub const DEFAULT_STEPS_PER_FRAME: u32 = 50;
-
-/// Code run by the simulation at fixed points of the step loop; implemented by
-/// programs (see [`Program`](crate::Program)) or passed to the `*_with` methods.
-/// Every method does nothing by default.
-pub trait StepHooks {
-    /// Before each step, with the time at the start of the step.
-    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let _ = sim;
-        Ok(())
-    }
-    /// After each step, with the time at the end of the step.
-    fn post_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let _ = sim;
-        Ok(())
-    }
-    /// Before the steps of a frame.
-    fn pre_frame(&mut self, sim: &mut Simulation) -> Result<()> {
-        let _ = sim;
-        Ok(())
-    }
-    /// After the steps of a frame.
-    fn post_frame(&mut self, sim: &mut Simulation) -> Result<()> {
-        let _ = sim;
-        Ok(())
-    }
-}
-
-/// No hooks.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NoHooks;
-impl StepHooks for NoHooks {}
-
-/// A hook closure registered with the simulation.
-pub type Hook = Box<dyn FnMut(&mut Simulation) -> Result<()> + Send>;
-
-#[derive(Default)]
-struct HookLists {
-    pre_step: Vec<Hook>,
-    post_step: Vec<Hook>,
-    pre_frame: Vec<Hook>,
-    post_frame: Vec<Hook>,
-}
-
-#[derive(Clone, Copy)]
-enum HookPoint {
-    PreStep,
-    PostStep,
-    PreFrame,
-    PostFrame,
-}
-
-impl HookPoint {
-    fn name(self) -> &'static str {
-        match self {
-            HookPoint::PreStep => "pre-step",
-            HookPoint::PostStep => "post-step",
-            HookPoint::PreFrame => "pre-frame",
-            HookPoint::PostFrame => "post-frame",
-        }
-    }
-}
 
 /// The message of a caught panic.
 fn panic_message(payload: Box<dyn Any + Send>) -> String {
@@ -130,17 +70,6 @@ fn panic_message(payload: Box<dyn Any + Send>) -> String {
 pub(crate) fn contain(during: impl FnOnce() -> String, f: impl FnOnce() -> Result<()>) -> Result<()> {
     catch_unwind(AssertUnwindSafe(f))
         .unwrap_or_else(|payload| Err(Error::Panicked { during: during(), message: panic_message(payload) }))
-}
-
-impl HookLists {
-    fn list(&mut self, at: HookPoint) -> &mut Vec<Hook> {
-        match at {
-            HookPoint::PreStep => &mut self.pre_step,
-            HookPoint::PostStep => &mut self.post_step,
-            HookPoint::PreFrame => &mut self.pre_frame,
-            HookPoint::PostFrame => &mut self.post_frame,
-        }
-    }
 }
 
 /// The floor a simulation starts with.
@@ -284,7 +213,7 @@ impl SimulationBuilder {
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
             sensors: SensorSet::new(id),
-            hooks: HookLists::default(),
+            hooks: HookSet::new(id),
             time: 0.0,
             step_count: 0,
             frame_count: 0,
@@ -319,7 +248,7 @@ pub struct Simulation {
     joints: Arena<JointData>,
     joint_names: Names<JointId>,
     pub(crate) sensors: SensorSet,
-    hooks: HookLists,
+    pub(crate) hooks: HookSet,
     time: f64,
     step_count: u64,
     frame_count: u64,
@@ -406,52 +335,7 @@ impl Simulation {
         self.world.gravity()
     }
 
-    /// Registers a closure to run before every step (after the program's hook).
-    pub fn on_pre_step(&mut self, hook: impl FnMut(&mut Simulation) -> Result<()> + Send + 'static) {
-        self.hooks.pre_step.push(Box::new(hook));
-    }
-
-    /// Registers a closure to run after every step (after the sensors).
-    pub fn on_post_step(&mut self, hook: impl FnMut(&mut Simulation) -> Result<()> + Send + 'static) {
-        self.hooks.post_step.push(Box::new(hook));
-    }
-
-    /// Registers a closure to run before every frame.
-    pub fn on_pre_frame(&mut self, hook: impl FnMut(&mut Simulation) -> Result<()> + Send + 'static) {
-        self.hooks.pre_frame.push(Box::new(hook));
-    }
-
-    /// Registers a closure to run after every frame.
-    pub fn on_post_frame(&mut self, hook: impl FnMut(&mut Simulation) -> Result<()> + Send + 'static) {
-        self.hooks.post_frame.push(Box::new(hook));
-    }
-
-    /// Runs the closures of one point in order, up to the first error; a panic is
-    /// contained and reported as [`Error::Panicked`], and every hook stays registered.
-    fn run_hooks(&mut self, at: HookPoint) -> Result<()> {
-        if self.hooks.list(at).is_empty() {
-            return Ok(());
-        }
-        let mut hooks = std::mem::take(self.hooks.list(at));
-        let mut result = Ok(());
-        for (i, hook) in hooks.iter_mut().enumerate() {
-            result = contain(|| format!("{} hook {i}", at.name()), || hook(self));
-            if result.is_err() {
-                break;
-            }
-        }
-        // Keep hooks registered by the hooks themselves, after the existing ones.
-        let added = std::mem::replace(self.hooks.list(at), hooks);
-        self.hooks.list(at).extend(added);
-        result
-    }
-
     /// One step (see the [module docs](self)).
-    pub fn step(&mut self) -> Result<()> {
-        self.step_with(&mut NoHooks)
-    }
-
-    /// One step, with `hooks` running before the closures registered in the simulation.
     ///
     /// Errors end the step where they happen; nothing registered is lost:
     /// - a hook or sensor that panics is reported as [`Error::Panicked`] (hooks after it
@@ -460,9 +344,39 @@ impl Simulation {
     ///   the step nothing happened; after it, time has advanced but the sensors did not
     ///   sample the diverged state. Steps are refused until the body is reset or
     ///   removed; the records so far stay readable.
-    pub fn step_with(&mut self, hooks: &mut (impl StepHooks + ?Sized)) -> Result<()> {
-        contain(|| "the program's pre-step hook".into(), || hooks.pre_step(self))?;
-        self.run_hooks(HookPoint::PreStep)?;
+    pub fn step(&mut self) -> Result<()> {
+        self.step_driven(&mut ())
+    }
+
+    /// `n` steps (no frame hooks).
+    pub fn step_n(&mut self, n: u64) -> Result<()> {
+        (0..n).try_for_each(|_| self.step())
+    }
+
+    /// One frame: pre-frame hooks, `steps_per_frame` steps, post-frame hooks.
+    pub fn step_frame(&mut self) -> Result<()> {
+        let steps = self.steps_per_frame;
+        self.frame_driven(&mut (), steps)
+    }
+
+    /// Runs for `duration` seconds of simulated time (rounded to whole steps), in
+    /// frames of `steps_per_frame` steps (the last frame may be shorter).
+    pub fn run_for(&mut self, duration: f64) -> Result<()> {
+        let steps = self.steps_in(duration)?;
+        self.run_driven(&mut (), steps)
+    }
+
+    /// Number of whole steps in `duration` seconds (rounded to the nearest).
+    pub fn steps_in(&self, duration: f64) -> Result<u64> {
+        validate::non_negative("duration", duration)?;
+        Ok((duration / self.time_step).round() as u64)
+    }
+
+    /// One step driven by `program` (a [`Program`](crate::Program) with its held keys),
+    /// whose hooks run before the added ones.
+    pub(crate) fn step_driven<H: Hooks + ?Sized>(&mut self, program: &mut H) -> Result<()> {
+        HookPoint::PreStep.run(program, self, &"the program")?;
+        self.run_added_hooks(HookPoint::PreStep)?;
         self.apply_joint_drives()?;
         let mut sensors = std::mem::replace(&mut self.sensors, SensorSet::new(self.world.id()));
         let before = sensors.before_step(self);
@@ -482,8 +396,30 @@ impl Simulation {
         self.sensors = sensors;
         self.end_joint_step();
         sampled?;
-        contain(|| "the program's post-step hook".into(), || hooks.post_step(self))?;
-        self.run_hooks(HookPoint::PostStep)
+        HookPoint::PostStep.run(program, self, &"the program")?;
+        self.run_added_hooks(HookPoint::PostStep)
+    }
+
+    /// A frame of `steps` steps driven by `program`.
+    pub(crate) fn frame_driven<H: Hooks + ?Sized>(&mut self, program: &mut H, steps: u32) -> Result<()> {
+        self.frame_count += 1;
+        HookPoint::PreFrame.run(program, self, &"the program")?;
+        self.run_added_hooks(HookPoint::PreFrame)?;
+        for _ in 0..steps {
+            self.step_driven(program)?;
+        }
+        HookPoint::PostFrame.run(program, self, &"the program")?;
+        self.run_added_hooks(HookPoint::PostFrame)
+    }
+
+    /// `steps` steps in frames of `steps_per_frame` (the last may be shorter), driven by `program`.
+    pub(crate) fn run_driven<H: Hooks + ?Sized>(&mut self, program: &mut H, mut steps: u64) -> Result<()> {
+        while steps > 0 {
+            let n = steps.min(u64::from(self.steps_per_frame));
+            self.frame_driven(program, n as u32)?;
+            steps -= n;
+        }
+        Ok(())
     }
 
     /// Puts the object's name in a [`Error::Diverged`] from the world.
@@ -503,58 +439,5 @@ impl Simulation {
             }
             (error, _) => error,
         }
-    }
-
-    /// `n` steps.
-    pub fn step_n(&mut self, n: u64) -> Result<()> {
-        (0..n).try_for_each(|_| self.step())
-    }
-
-    /// One frame: pre-frame hooks, `steps_per_frame` steps, post-frame hooks.
-    pub fn step_frame(&mut self) -> Result<()> {
-        self.step_frame_with(&mut NoHooks)
-    }
-
-    /// One frame with `hooks`.
-    pub fn step_frame_with(&mut self, hooks: &mut (impl StepHooks + ?Sized)) -> Result<()> {
-        self.partial_frame(hooks, self.steps_per_frame)
-    }
-
-    fn partial_frame(&mut self, hooks: &mut (impl StepHooks + ?Sized), steps: u32) -> Result<()> {
-        self.frame_count += 1;
-        contain(|| "the program's pre-frame hook".into(), || hooks.pre_frame(self))?;
-        self.run_hooks(HookPoint::PreFrame)?;
-        for _ in 0..steps {
-            self.step_with(hooks)?;
-        }
-        contain(|| "the program's post-frame hook".into(), || hooks.post_frame(self))?;
-        self.run_hooks(HookPoint::PostFrame)
-    }
-
-    /// Runs for `duration` seconds of simulated time (rounded to whole steps), in
-    /// frames of `steps_per_frame` steps (the last frame may be shorter).
-    pub fn run_for(&mut self, duration: f64) -> Result<()> {
-        self.run_for_with(&mut NoHooks, duration)
-    }
-
-    /// [`Simulation::run_for`] with `hooks`.
-    pub fn run_for_with(&mut self, hooks: &mut (impl StepHooks + ?Sized), duration: f64) -> Result<()> {
-        let steps = self.steps_in(duration)?;
-        self.run_steps_in_frames(hooks, steps)
-    }
-
-    /// Number of whole steps in `duration` seconds (rounded to the nearest).
-    pub fn steps_in(&self, duration: f64) -> Result<u64> {
-        validate::non_negative("duration", duration)?;
-        Ok((duration / self.time_step).round() as u64)
-    }
-
-    pub(crate) fn run_steps_in_frames(&mut self, hooks: &mut (impl StepHooks + ?Sized), mut steps: u64) -> Result<()> {
-        while steps > 0 {
-            let n = steps.min(u64::from(self.steps_per_frame));
-            self.partial_frame(hooks, n as u32)?;
-            steps -= n;
-        }
-        Ok(())
     }
 }

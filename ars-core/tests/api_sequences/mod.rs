@@ -647,14 +647,14 @@ impl Harness {
                 // A hook that sometimes fails or panics.
                 let mode = input.byte() % if self.panicking_hooks { 3 } else { 2 };
                 let mut calls = 0u32;
-                s.sim.on_pre_step(move |_| {
+                let _ = s.sim.add_hooks(PreStep(move |_| {
                     calls += 1;
                     match (mode, calls % 7) {
                         (1, 0) => Err(Error::User("hook error".into())),
                         (2, 0) => panic!("hook panic"),
                         _ => Ok(()),
                     }
-                });
+                }));
             }
             _ => {
                 let _ = (s.sim.time(), s.sim.objects().count(), s.sim.world().body_count());

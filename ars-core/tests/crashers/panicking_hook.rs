@@ -25,17 +25,21 @@ fn a_panicking_hook_is_reported_and_no_hook_is_lost() {
                 }
                 Ok(())
             };
-            if point == 0 { sim.on_pre_step(hook) } else { sim.on_post_step(hook) }
+            if point == 0 { sim.add_hooks(PreStep(hook)).map(drop) } else { sim.add_hooks(PostStep(hook)).map(drop) }
+                .unwrap();
         }
     }
     sim.step_n(2).unwrap();
     let err = sim.step().unwrap_err();
     assert!(
-        matches!(&err, Error::Panicked { during, message } if during == "pre-step hook 1" && message.contains("fails")),
+        matches!(&err, Error::Panicked { during, message } if during.starts_with("the pre-step hook of hooks#1v") && message.contains("fails")),
         "{err}"
     );
     let err = sim.step().unwrap_err();
-    assert!(matches!(&err, Error::Panicked { during, .. } if during == "post-step hook 1"), "{err}");
+    assert!(
+        matches!(&err, Error::Panicked { during, .. } if during.starts_with("the post-step hook of hooks#4v")),
+        "{err}"
+    );
     let before = calls.load(Ordering::Relaxed);
     sim.step().unwrap();
     assert_eq!(calls.load(Ordering::Relaxed) - before, 6, "all six hooks still run");
@@ -43,14 +47,24 @@ fn a_panicking_hook_is_reported_and_no_hook_is_lost() {
 
 #[test]
 fn a_panicking_program_hook_is_reported() {
-    struct Panics;
-    impl StepHooks for Panics {
+    struct Panics(bool);
+    impl Hooks for Panics {
         fn pre_step(&mut self, _: &mut Simulation) -> Result<()> {
-            panic!("program hook");
+            if self.0 {
+                panic!("program hook");
+            }
+            Ok(())
         }
     }
-    let mut sim = Simulation::new().unwrap();
-    let err = sim.step_with(&mut Panics).unwrap_err();
-    assert!(matches!(err, Error::Panicked { .. }), "{err}");
-    sim.step().unwrap();
+    impl Program for Panics {
+        fn create_sim_objects(&mut self, _: &mut Simulation) -> Result<()> {
+            Ok(())
+        }
+    }
+    let mut program = Panics(true);
+    let mut runner = ProgramRunner::new(&mut program).unwrap();
+    let err = runner.step().unwrap_err();
+    assert!(matches!(&err, Error::Panicked { during, .. } if during == "the pre-step hook of the program"), "{err}");
+    runner.program().0 = false;
+    runner.step().unwrap();
 }

@@ -1,0 +1,260 @@
+//! Hooks: code a [`Simulation`] runs at fixed points of its step loop.
+//!
+//! There is one mechanism: the [`Hooks`] trait. A [`Program`](crate::Program) is
+//! hooks plus a scene; anything else (a controller, a logger, a closure) is added to a
+//! simulation with [`Simulation::add_hooks`] and runs after the program's hooks, in
+//! the order added. Closures become hooks through [`PreStep`], [`PostStep`],
+//! [`PreFrame`] and [`PostFrame`]:
+//!
+//! ```
+//! use ars_core::{Mass, PostStep, Simulation};
+//!
+//! let mut sim = Simulation::new()?;
+//! let ball = sim.add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
+//! let lowest = sim.add_hooks(PostStep(move |sim: &mut Simulation| {
+//!     let y = sim.body(ball)?.position().y;
+//!     Ok(())
+//! }))?;
+//! sim.step_n(10)?;
+//! sim.remove_hooks(lowest)?;
+//! # Ok::<(), ars_core::Error>(())
+//! ```
+
+use std::any::Any;
+use std::fmt;
+use std::marker::PhantomData;
+
+use crate::error::{Error, Result};
+use crate::handle::{Arena, RawHandle, WorldId};
+use crate::simulation::{Simulation, contain};
+
+/// Code run by a simulation at fixed points of its step loop (see the order in the
+/// [simulation docs](crate::simulation)). Every method does nothing by default.
+pub trait Hooks {
+    /// Before each step, with the time at the start of the step.
+    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let _ = sim;
+        Ok(())
+    }
+    /// After each step (after the sensors sampled), with the time at the end of the step.
+    fn post_step(&mut self, sim: &mut Simulation) -> Result<()> {
+        let _ = sim;
+        Ok(())
+    }
+    /// Before the steps of a frame.
+    fn pre_frame(&mut self, sim: &mut Simulation) -> Result<()> {
+        let _ = sim;
+        Ok(())
+    }
+    /// After the steps of a frame.
+    fn post_frame(&mut self, sim: &mut Simulation) -> Result<()> {
+        let _ = sim;
+        Ok(())
+    }
+}
+
+/// No hooks.
+impl Hooks for () {}
+
+macro_rules! closure_hook {
+    ($(#[$doc:meta])* $name:ident, $method:ident) => {
+        $(#[$doc])*
+        pub struct $name<F: FnMut(&mut Simulation) -> Result<()>>(pub F);
+
+        impl<F: FnMut(&mut Simulation) -> Result<()>> Hooks for $name<F> {
+            fn $method(&mut self, sim: &mut Simulation) -> Result<()> {
+                (self.0)(sim)
+            }
+        }
+
+        impl<F: FnMut(&mut Simulation) -> Result<()>> fmt::Debug for $name<F> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(stringify!($name))
+            }
+        }
+    };
+}
+
+closure_hook!(
+    /// A closure run before every step.
+    PreStep,
+    pre_step
+);
+closure_hook!(
+    /// A closure run after every step.
+    PostStep,
+    post_step
+);
+closure_hook!(
+    /// A closure run before every frame.
+    PreFrame,
+    pre_frame
+);
+closure_hook!(
+    /// A closure run after every frame.
+    PostFrame,
+    post_frame
+);
+
+/// The points of the step loop where hooks run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum HookPoint {
+    PreStep,
+    PostStep,
+    PreFrame,
+    PostFrame,
+}
+
+impl HookPoint {
+    fn name(self) -> &'static str {
+        match self {
+            HookPoint::PreStep => "pre-step",
+            HookPoint::PostStep => "post-step",
+            HookPoint::PreFrame => "pre-frame",
+            HookPoint::PostFrame => "post-frame",
+        }
+    }
+
+    /// Runs `hooks` at this point, turning a panic into [`Error::Panicked`].
+    pub(crate) fn run<H: Hooks + ?Sized>(
+        self,
+        hooks: &mut H,
+        sim: &mut Simulation,
+        who: &dyn fmt::Display,
+    ) -> Result<()> {
+        contain(
+            || format!("the {} hook of {who}", self.name()),
+            || match self {
+                HookPoint::PreStep => hooks.pre_step(sim),
+                HookPoint::PostStep => hooks.post_step(sim),
+                HookPoint::PreFrame => hooks.pre_frame(sim),
+                HookPoint::PostFrame => hooks.post_frame(sim),
+            },
+        )
+    }
+}
+
+/// A typed handle to hooks added to a simulation (stale once they are removed).
+pub struct HookId<H> {
+    handle: RawHandle,
+    _hooks: PhantomData<fn() -> H>,
+}
+
+impl<H> Clone for HookId<H> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<H> Copy for HookId<H> {}
+impl<H> fmt::Debug for HookId<H> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "hooks#{}v{}@{:?}", self.handle.index, self.handle.generation, self.handle.world)
+    }
+}
+impl<H> fmt::Display for HookId<H> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(self, f)
+    }
+}
+
+trait AnyHooks: Hooks + Send {
+    fn as_any(&self) -> &dyn Any;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+    fn into_any(self: Box<Self>) -> Box<dyn Any>;
+}
+
+impl<H: Hooks + Send + 'static> AnyHooks for H {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+    fn into_any(self: Box<Self>) -> Box<dyn Any> {
+        self
+    }
+}
+
+/// The hooks added to a simulation. A slot is empty while its hooks run (they get the
+/// simulation mutably, so they cannot stay inside it).
+pub(crate) struct HookSet {
+    slots: Arena<Option<Box<dyn AnyHooks>>>,
+    /// The handles in the order the hooks were added (slots are reused, so slot order
+    /// is not that order).
+    order: Vec<RawHandle>,
+}
+
+impl HookSet {
+    pub(crate) fn new(world: WorldId) -> Self {
+        HookSet { slots: Arena::new(world), order: Vec::new() }
+    }
+}
+
+impl Simulation {
+    /// Adds hooks that run at every step and frame after the program's, in the order
+    /// added. Hooks added by a hook run from the next point of the step loop on.
+    pub fn add_hooks<H: Hooks + Send + 'static>(&mut self, hooks: H) -> Result<HookId<H>> {
+        let handle = self.hooks.slots.insert(Some(Box::new(hooks)));
+        self.hooks.order.push(handle);
+        Ok(HookId { handle, _hooks: PhantomData })
+    }
+
+    /// Removes hooks and hands them back. Hooks cannot remove themselves while they run.
+    pub fn remove_hooks<H: Hooks + Send + 'static>(&mut self, id: HookId<H>) -> Result<H> {
+        self.hook_slot(id)?;
+        let slot = self.hooks.slots.remove(id.handle, "hooks", &id)?;
+        self.hooks.order.retain(|h| *h != id.handle);
+        let boxed = slot.expect("checked above: not running");
+        match boxed.into_any().downcast::<H>() {
+            Ok(hooks) => Ok(*hooks),
+            Err(_) => unreachable!("the slot's type was checked above"),
+        }
+    }
+
+    /// Hooks added with [`add_hooks`](Self::add_hooks) (their state).
+    pub fn hooks<H: Hooks + Send + 'static>(&self, id: HookId<H>) -> Result<&H> {
+        self.hook_slot(id)?.as_any().downcast_ref::<H>().ok_or_else(|| stale(id))
+    }
+
+    /// Hooks added with [`add_hooks`](Self::add_hooks), mutably.
+    pub fn hooks_mut<H: Hooks + Send + 'static>(&mut self, id: HookId<H>) -> Result<&mut H> {
+        self.hook_slot(id)?;
+        let slot = self.hooks.slots.get_mut(id.handle, "hooks", &id)?;
+        slot.as_mut().and_then(|h| h.as_any_mut().downcast_mut::<H>()).ok_or_else(|| stale(id))
+    }
+
+    fn hook_slot<H: Hooks + Send + 'static>(&self, id: HookId<H>) -> Result<&dyn AnyHooks> {
+        match self.hooks.slots.get(id.handle, "hooks", &id)? {
+            Some(hooks) if hooks.as_any().is::<H>() => Ok(&**hooks),
+            Some(_) => Err(stale(id)),
+            None => Err(Error::OutOfRange {
+                what: "hooks",
+                detail: format!("{id} are running: hooks cannot reach themselves through the simulation"),
+            }),
+        }
+    }
+
+    /// Runs the added hooks of one point in the order added, up to the first error.
+    pub(crate) fn run_added_hooks(&mut self, at: HookPoint) -> Result<()> {
+        let mut i = 0;
+        while let Some(&handle) = self.hooks.order.get(i) {
+            // Take the hooks out of their slot while they run (they get the simulation
+            // mutably), then put them back: a running slot cannot be removed.
+            let Ok(Some(mut hooks)) = self.hooks.slots.get_mut(handle, "hooks", &"").map(Option::take) else {
+                i += 1;
+                continue;
+            };
+            let id = HookId::<()> { handle, _hooks: PhantomData };
+            let result = at.run(&mut *hooks, self, &id);
+            *self.hooks.slots.get_mut(handle, "hooks", &id).expect("a running slot is not removed") = Some(hooks);
+            result?;
+            // Hooks removed by this one may have shifted the order.
+            i = self.hooks.order.iter().position(|h| *h == handle).map_or(i, |p| p + 1);
+        }
+        Ok(())
+    }
+}
+
+fn stale<H>(id: HookId<H>) -> Error {
+    Error::StaleHandle { kind: "hooks", handle: id.to_string() }
+}

@@ -1,0 +1,30 @@
+//! How a program wants to be shown: the viewer's window and camera.
+
+/// How a program wants to be shown (the viewer's window and camera); the defaults
+/// are the original's: 1024 × 768, camera at (10, 8, 10) looking at the origin, white
+/// background.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ViewSettings {
+    /// Window title.
+    pub title: String,
+    /// Window (or off-screen image) size, pixels.
+    pub size: (u32, u32),
+    /// Where the camera is.
+    pub camera_position: nalgebra::Point3<f64>,
+    /// What it looks at.
+    pub camera_target: nalgebra::Point3<f64>,
+    /// Background colour (RGB in [0, 1]).
+    pub background: [f32; 3],
+}
+
+impl Default for ViewSettings {
+    fn default() -> Self {
+        ViewSettings {
+            title: "Autonomous Robot Simulator".into(),
+            size: (1024, 768),
+            camera_position: nalgebra::Point3::new(10.0, 8.0, 10.0),
+            camera_target: nalgebra::Point3::origin(),
+            background: [1.0, 1.0, 1.0],
+        }
+    }
+}
