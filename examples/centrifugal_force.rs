@@ -1,7 +1,8 @@
 //! The original's `CentrifugalForceTest`: a 1 kg ball on a 1 m rigid cable swung by a
 //! pole turning at 3 rad/s. Prints the original's per-frame tuple (ball position,
 //! velocity, angular velocity, cable angle) every 0.5 s and the final cable angle next
-//! to the formula's 1.0415 rad; `--csv` writes every frame (`frame,t,x,y,z,theta`),
+//! to the formula's 1.0415 rad; `--csv` writes the record of every frame (time, step,
+//! ball position, velocity, angular velocity, cable angle),
 //! `--plot` draws the cable angle.
 //!
 //! `cargo run --release --example centrifugal_force`
@@ -15,28 +16,27 @@ use common::plot::{Series, line_chart};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(20.0);
     let mut program = CentrifugalForce::default();
-    common::args::run(&mut program, &args)?;
-    for r in program.rows.iter().step_by(25) {
+    let sim = common::args::run(&mut program, &args)?;
+    let log = sim.records(program.record.expect("created"))?;
+    for s in log.iter().step_by(25) {
+        let r = &s.record;
         let (p, v, w) = (r.position, r.velocity, r.angular_velocity);
         println!(
             "t {:6.2} s: ball ({:.4}, {:.4}, {:.4}) m, v ({:.4}, {:.4}, {:.4}) m/s, w ({:.4}, {:.4}, {:.4}) rad/s, theta {:.4} rad",
-            r.time, p.x, p.y, p.z, v.x, v.y, v.z, w.x, w.y, w.z, r.theta
+            s.time, p.x, p.y, p.z, v.x, v.y, v.z, w.x, w.y, w.z, r.theta
         );
     }
-    let last = program.rows.last().expect("at least one frame");
+    let last = log.last().expect("at least one frame");
     println!(
         "final cable angle {:.4} rad; tan θ / (d + l sin θ) = ω²/g gives {:.4} rad",
-        last.theta,
+        last.record.theta,
         CentrifugalForce::steady_angle(3.0)
     );
     if let Some(path) = &args.csv {
-        let rows = program.rows.iter().enumerate().step_by(args.every);
-        let rows =
-            rows.map(|(k, r)| format!("{k},{},{},{},{},{}", r.time, r.position.x, r.position.y, r.position.z, r.theta));
-        common::args::write_csv(path, "frame,t,x,y,z,theta", rows)?;
+        common::args::export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let theta = Series::new("ARS", program.rows.iter().map(|r| (r.time, r.theta)).collect());
+        let theta = Series::new("ARS", log.iter().map(|s| (s.time, s.record.theta)).collect());
         let formula = CentrifugalForce::steady_angle(3.0);
         let steady = Series::new("steady-state formula", vec![(0.0, formula), (last.time, formula)]);
         line_chart(

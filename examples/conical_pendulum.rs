@@ -1,8 +1,9 @@
 //! The thesis' validation robot (IROS example 2, thesis §1.5, fig. 1.11): a 2-DOF arm on
 //! a heavy free base; a saturating waist torque against viscous friction swings the
 //! free shoulder out into a conical pendulum. Prints the final waist rate and shoulder
-//! angle next to the thesis'; `--csv` writes `step,t,q1,q1dot,q2,q2dot,tau1` (the
-//! state the pre-step hook reads at the start of each step, every `--every N` steps),
+//! angle next to the thesis'; `--csv` writes the program's record (time, step, waist
+//! and shoulder angles and rates, waist torque: the state the pre-step hook reads at the
+//! start of each step, every `--every N` steps),
 //! `--plot` the waist rate and shoulder angle of ARS against the reduced-coordinate model.
 //!
 //! `cargo run --release --example conical_pendulum -- --csv pendulum.csv --every 40 --plot figures`
@@ -11,15 +12,15 @@
 mod common;
 
 use ars::programs::{ArmParameters, ConicalPendulum, ReducedArmModel};
-use common::args::write_csv;
+use common::args::export_csv;
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(20.0);
     let mut program = ConicalPendulum::default();
     let sim = common::args::run(&mut program, &args)?;
-    let rows = &program.rows;
-    let last = rows.last().expect("at least one step");
+    let log = sim.records(program.record.expect("created"))?;
+    let last = log.last().expect("at least one step").record;
     let params = ArmParameters::IROS_EXAMPLE_2;
     println!("after {:.2} s of simulated time ({} steps of {} s):", sim.time(), sim.step_count(), sim.time_step());
     println!("  waist rate     {:.4} rad/s   (thesis: almost 4 rad/s; ODE reference 3.9994)", last.q1_rate);
@@ -34,18 +35,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
 
     if let Some(path) = &args.csv {
-        let lines = rows
-            .iter()
-            .enumerate()
-            .step_by(args.every)
-            .map(|(k, r)| format!("{k},{},{},{},{},{},{}", r.time, r.q1, r.q1_rate, r.q2, r.q2_rate, r.torque));
-        write_csv(path, "step,t,q1,q1dot,q2,q2dot,tau1", lines)?;
+        export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
         let model = ReducedArmModel::trajectory(params, args.duration, 0.01, 0.001);
         let every = (0.01 / sim.time_step()).round() as usize;
-        let ars_rate = rows.iter().step_by(every).map(|r| (r.time, r.q1_rate)).collect();
-        let ars_angle = rows.iter().step_by(every).map(|r| (r.time, r.q2)).collect();
+        let ars_rate = log.iter().step_by(every).map(|s| (s.time, s.record.q1_rate)).collect();
+        let ars_angle = log.iter().step_by(every).map(|s| (s.time, s.record.q2)).collect();
         line_chart(
             dir,
             "fig1_11a_waist_rate.png",

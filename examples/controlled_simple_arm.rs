@@ -1,8 +1,9 @@
 //! The original's `ControlledSimpleArm` demo: the shoulder held upright by a PD
 //! controller; in the viewer 'd'/'c' move its set-point. Headless, the set-point is
 //! raised by 0.1 rad (a 'd' press) at 1 s and 2 s. Prints the original's line
-//! (`time, sp, cv, error, torque`) every 0.25 s; `--csv` writes every step
-//! (`step,t,sp,cv,error,torque`), `--plot` draws set-point and angle.
+//! (`time, sp, cv, error, torque`) every 0.25 s; `--csv` writes the program's record
+//! of every step (time, step, set-point, angle, error, torque), `--plot` draws set-point
+//! and angle.
 //!
 //! `cargo run --release --example controlled_simple_arm`
 
@@ -35,22 +36,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         runner.step()?;
     }
-    let rows = &runner.program().rows;
+    let record = runner.program().record.expect("created");
+    let log = runner.simulation().records(record)?;
     let every = (0.25 / dt).round() as usize;
-    for r in rows.iter().step_by(every) {
+    for s in log.iter().step_by(every) {
+        let r = &s.record;
         println!(
             "time: {:.6}, sp: {:.6}, cv: {:.6}, error: {:.6}, torque: {:.6}",
-            r.time, r.setpoint, r.angle, r.error, r.torque
+            s.time, r.setpoint, r.angle, r.error, r.torque
         );
     }
     if let Some(path) = &args.csv {
-        let lines = rows.iter().enumerate().step_by(args.every);
-        let lines = lines.map(|(k, r)| format!("{k},{},{},{},{},{}", r.time, r.setpoint, r.angle, r.error, r.torque));
-        common::args::write_csv(path, "step,t,sp,cv,error,torque", lines)?;
+        common::args::export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let sp = Series::new("set-point", rows.iter().map(|r| (r.time, r.setpoint)).collect());
-        let cv = Series::new("shoulder angle", rows.iter().map(|r| (r.time, r.angle)).collect());
+        let sp = Series::new("set-point", log.iter().map(|s| (s.time, s.record.setpoint)).collect());
+        let cv = Series::new("shoulder angle", log.iter().map(|s| (s.time, s.record.angle)).collect());
         line_chart(
             dir,
             "controlled_simple_arm.png",

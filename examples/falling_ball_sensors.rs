@@ -1,7 +1,7 @@
 //! The thesis' falling ball with its sensors (thesis §3.1, fig. 3.2): GPS, velometer,
 //! accelerometer, potential and kinetic energy, total energy of the system. Prints the
-//! impacts; `--csv` writes one row per step (`step,t,y,vy,ay,ke,pe,e_total`), `--plot`
-//! the four panels of fig. 3.2.
+//! impacts; `--csv` writes one row per step with every sensor's columns, `--plot` the
+//! four panels of fig. 3.2.
 //!
 //! `cargo run --release --example falling_ball_sensors -- --csv ball.csv --plot figures`
 
@@ -9,19 +9,23 @@
 mod common;
 
 use ars::programs::FallingBallSensors;
-use common::args::{cell, write_csv};
+use common::args::export_csv_table;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(1.0);
     let mut program = FallingBallSensors::default();
     let sim = common::args::run(&mut program, &args)?;
-    let gps = sim.records(program.gps.unwrap())?.samples();
-    let vel = sim.records(program.velometer.unwrap())?.samples();
-    let acc = sim.records(program.accelerometer.unwrap())?.samples();
-    let ke = sim.records(program.kinetic.unwrap())?.samples();
-    let pe = sim.records(program.potential.unwrap())?.samples();
-    let total = sim.records(program.total.unwrap())?.samples();
+    let logs = (
+        sim.records(program.gps.unwrap())?,
+        sim.records(program.velometer.unwrap())?,
+        sim.records(program.accelerometer.unwrap())?,
+        sim.records(program.kinetic.unwrap())?,
+        sim.records(program.potential.unwrap())?,
+        sim.records(program.total.unwrap())?,
+    );
+    let (gps, vel, acc, ke, pe, total) =
+        (logs.0.samples(), logs.1.samples(), logs.2.samples(), logs.3.samples(), logs.4.samples(), logs.5.samples());
 
     println!("impacts (last sample before -> first after; thesis: 3.13135, 0.62156, 0.11898 m/s):");
     for (i, w) in vel.windows(2).enumerate().filter(|(_, w)| w[0].record.linear.y < 0.0 && w[1].record.linear.y > 0.0) {
@@ -38,20 +42,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("final height {:.6} m (thesis: rests at 0.5 m)", gps.last().unwrap().record.position.y);
 
     if let Some(path) = &args.csv {
-        let rows = (0..gps.len()).step_by(args.every).map(|k| {
-            format!(
-                "{},{},{},{},{},{},{},{}",
-                gps[k].step,
-                gps[k].time,
-                gps[k].record.position.y,
-                vel[k].record.linear.y,
-                cell(Some(acc[k].record.linear.y)),
-                ke[k].record.total(),
-                pe[k].record.potential,
-                total[k].record.total()
-            )
-        });
-        write_csv(path, "step,t,y,vy,ay,ke,pe,e_total", rows)?;
+        let table: [(&str, &dyn ars::sensors::CsvColumns); 6] = [
+            ("gps", logs.0),
+            ("velometer", logs.1),
+            ("accelerometer", logs.2),
+            ("kinetic", logs.3),
+            ("potential", logs.4),
+            ("total", logs.5),
+        ];
+        export_csv_table(path, &table, args.every)?;
     }
     if let Some(dir) = &args.plot {
         let height = over_time(gps, |r| r.position.y);

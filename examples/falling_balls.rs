@@ -30,18 +30,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     if let Some(path) = &args.csv {
-        let rows = (0..logs[0].len()).step_by(args.every).map(|k| {
-            let s = &logs[0][k];
-            format!(
-                "{},{},{},{},{}",
-                s.step,
-                s.time,
-                logs[0][k].record.position.y,
-                logs[1][k].record.position.y,
-                logs[2][k].record.position.y
-            )
-        });
-        common::args::write_csv(path, "step,t,y1,y2,y3", rows)?;
+        let names = ["ball 1", "ball 2", "ball 3"];
+        let table: Vec<(&str, &dyn ars::sensors::CsvColumns)> = program
+            .balls
+            .iter()
+            .zip(names)
+            .map(|((_, gps), name)| Ok((name, sim.records(*gps)? as _)))
+            .collect::<ars::Result<_>>()?;
+        common::args::export_csv_table(path, &table, args.every)?;
     }
     if let Some(dir) = &args.plot {
         let series: Vec<_> = logs

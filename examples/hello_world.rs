@@ -32,16 +32,15 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let mut program = HelloWorld::default();
     let sim = common::args::run(&mut program, &args)?;
     let (gps, velometer) = program.sensors.expect("created with the simulation");
-    let (gps, velometer) = (sim.records(gps)?.samples(), sim.records(velometer)?.samples());
+    let (gps_log, velometer_log) = (sim.records(gps)?, sim.records(velometer)?);
+    let (gps, velometer) = (gps_log.samples(), velometer_log.samples());
     let every_10_ms = (0.01 / sim.time_step()).round() as usize;
     println!("{:>6} {:>10} {:>11}", "t [s]", "y [m]", "vy [m/s]");
     for (p, v) in gps.iter().zip(velometer).skip(every_10_ms - 1).step_by(every_10_ms) {
         println!("{:>6.3} {:>10.6} {:>11.6}", p.time, p.record.position.y, v.record.linear.y);
     }
     if let Some(path) = &args.csv {
-        let rows = gps.iter().zip(velometer).step_by(args.every);
-        let rows = rows.map(|(p, v)| format!("{},{},{},{}", p.step, p.time, p.record.position.y, v.record.linear.y));
-        common::args::write_csv(path, "step,t,y,vy", rows)?;
+        common::args::export_csv_table(path, &[("gps", gps_log), ("velometer", velometer_log)], args.every)?;
     }
     if let Some(dir) = &args.plot {
         let height = Series::new("ball centre", over_time(gps, |r| r.position.y));

@@ -27,9 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  t {:.2} s: angle {:.6} rad, rate {:.6} rad/s", s.time, s.record.position, s.record.rate);
     }
     if let Some(path) = &args.csv {
-        let rows = torque.iter().zip(power.iter()).step_by(args.every);
-        let rows = rows.map(|(t, p)| format!("{},{},{},{}", t.step, t.time, t.record.value, p.record.power));
-        common::args::write_csv(path, "step,t,torque,power", rows)?;
+        common::args::export_csv_table(path, &[("r2 torque", torque), ("r2 power", power)], args.every)?;
     }
     if let Some(dir) = &args.plot {
         let p: Vec<_> = over_time(power.samples(), |r| r.power).into_iter().filter(|p| p.1 != 0.0).collect();

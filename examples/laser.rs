@@ -1,7 +1,7 @@
 //! The thesis' laser example (thesis §3.2, fig. 3.3): two balls fall past a laser beam
 //! pointing +X. Prints the first hit and the resting distance; `--csv` writes one row
-//! per step (`step,t,x1,y1,vy1,x2,y2,vy2,distance,ke,pe,e_total`, `distance` empty when
-//! the beam hits nothing), `--plot` the system's energies and the laser distance.
+//! per step with every sensor's columns (the laser's empty when the beam hits nothing),
+//! `--plot` the system's energies and the laser distance.
 //!
 //! `cargo run --release --example laser -- --csv laser.csv --plot figures`
 
@@ -9,7 +9,7 @@
 mod common;
 
 use ars::programs::TwoBallLaser;
-use common::args::{cell, write_csv};
+use common::args::export_csv_table;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -18,10 +18,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let sim = common::args::run(&mut program, &args)?;
     let (g1, g2) = program.gps.unwrap();
     let (v1, v2) = program.velometers.unwrap();
-    let (g1, g2) = (sim.records(g1)?.samples(), sim.records(g2)?.samples());
-    let (v1, v2) = (sim.records(v1)?.samples(), sim.records(v2)?.samples());
-    let laser = sim.records(program.laser.unwrap())?.samples();
-    let energy = sim.records(program.energy.unwrap())?.samples();
+    let (g1, g2) = (sim.records(g1)?, sim.records(g2)?);
+    let (v1, v2) = (sim.records(v1)?, sim.records(v2)?);
+    let laser_log = sim.records(program.laser.unwrap())?;
+    let energy_log = sim.records(program.energy.unwrap())?;
+    let (laser, energy) = (laser_log.samples(), energy_log.samples());
 
     match laser.iter().find(|s| s.record.distance.is_some()) {
         Some(s) => println!(
@@ -32,29 +33,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => println!("the laser hit nothing"),
     }
     let last = laser.last().unwrap();
-    println!("distance at {:.2} s: {} m (thesis: rests at 0.63397 m)", last.time, cell(last.record.distance));
+    let distance = last.record.distance.map_or("none".into(), |d| d.to_string());
+    println!("distance at {:.2} s: {distance} m (thesis: rests at 0.63397 m)", last.time);
 
     if let Some(path) = &args.csv {
-        let rows = (0..laser.len()).step_by(args.every).map(|k| {
-            let (p1, p2) = (g1[k].record.position, g2[k].record.position);
-            let e = energy[k].record;
-            format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{}",
-                laser[k].step,
-                laser[k].time,
-                p1.x,
-                p1.y,
-                v1[k].record.linear.y,
-                p2.x,
-                p2.y,
-                v2[k].record.linear.y,
-                cell(laser[k].record.distance),
-                e.kinetic,
-                e.potential,
-                e.total()
-            )
-        });
-        write_csv(path, "step,t,x1,y1,vy1,x2,y2,vy2,distance,ke,pe,e_total", rows)?;
+        let table: [(&str, &dyn ars::sensors::CsvColumns); 6] = [
+            ("ball 1", g1),
+            ("ball 1", v1),
+            ("ball 2", g2),
+            ("ball 2", v2),
+            ("laser", laser_log),
+            ("energy", energy_log),
+        ];
+        export_csv_table(path, &table, args.every)?;
     }
     if let Some(dir) = &args.plot {
         let energies = [

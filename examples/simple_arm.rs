@@ -1,7 +1,7 @@
 //! The original's `SimpleArm` demo: a two-link arm on a free base; in the viewer the
 //! keys 'a'/'z' push the waist. Headless, the waist gets one push per frame for the
 //! first 0.2 s (as if 'a' were tapped); prints the joint angles every 0.5 s.
-//! `--csv` writes `step,t,q1,q2`, `--plot` draws them.
+//! `--csv` writes the two joints' angle sensors as one table, `--plot` draws them.
 //!
 //! `cargo run --release --example simple_arm`
 
@@ -9,8 +9,9 @@
 mod common;
 
 use ars::programs::SimpleArm;
+use ars::sensors::RotaryJointSensor;
 use ars::{Key, ProgramRunner};
-use common::plot::{Series, line_chart};
+use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(3.0);
@@ -22,7 +23,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut runner = ProgramRunner::new(&mut program)?;
     let parts = runner.program().parts.expect("built");
-    let mut rows = Vec::new();
+    let waist = runner.simulation_mut().add_sensor(RotaryJointSensor::new(parts.r1))?;
+    let shoulder = runner.simulation_mut().add_sensor(RotaryJointSensor::new(parts.r2))?;
     let steps = runner.simulation().steps_in(args.duration)?;
     let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
     let spf = u64::from(runner.simulation().steps_per_frame());
@@ -34,24 +36,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             runner.key_down(Key::Char('a'))?;
         }
         runner.step()?;
-        let sim = runner.simulation();
-        let (q1, q2) = (sim.joint_state(parts.r1)?.position, sim.joint_state(parts.r2)?.position);
-        rows.push((sim.step_count(), sim.time(), q1, q2));
     }
-    let every_half_second = (0.5 / runner.simulation().time_step()).round() as usize;
-    for (_, t, q1, q2) in rows.iter().skip(every_half_second - 1).step_by(every_half_second) {
+    let sim = runner.simulation();
+    let (q1, q2) = (sim.records(waist)?, sim.records(shoulder)?);
+    let every_half_second = (0.5 / sim.time_step()).round() as usize;
+    for (a, b) in q1.iter().zip(q2).skip(every_half_second - 1).step_by(every_half_second) {
+        let (t, q1, q2) = (a.time, a.record.position, b.record.position);
         println!("t = {t:.2} s: waist q1 = {q1:+.4} rad, shoulder q2 = {q2:+.4} rad");
     }
     if let Some(path) = &args.csv {
-        common::args::write_csv(
-            path,
-            "step,t,q1,q2",
-            rows.iter().step_by(args.every).map(|(k, t, a, b)| format!("{k},{t},{a},{b}")),
-        )?;
+        common::args::export_csv_table(path, &[("waist", q1), ("shoulder", q2)], args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let q1 = Series::new("waist q1", rows.iter().map(|r| (r.1, r.2)).collect());
-        let q2 = Series::new("shoulder q2", rows.iter().map(|r| (r.1, r.3)).collect());
+        let q1 = Series::new("waist q1", over_time(q1.samples(), |r| r.position));
+        let q2 = Series::new("shoulder q2", over_time(q2.samples(), |r| r.position));
         line_chart(dir, "simple_arm_angles.png", "SimpleArm: joint angles", "time [s]", "angle [rad]", &[q1, q2])?;
     }
     Ok(())

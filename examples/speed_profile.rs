@@ -1,7 +1,8 @@
 //! IROS example 3 (thesis §3.3, fig. 3.4): the mobile manipulator follows a
 //! trapezoidal speed profile while its free arm falls from upright and swings. Prints a
-//! summary; `--csv` writes `t,x,sp,v,wheel_torque,q1,q1dot,q2,q2dot` every step,
-//! `--plot` the three panels of fig. 3.4. `--pd` uses the paper's PD variant (Kd 1).
+//! summary; `--csv` writes the program's record of every step (time, step, x, speed,
+//! set-point, arm angles and rates, wheel torque), `--plot` the three panels of
+//! fig. 3.4. `--pd` uses the paper's PD variant (Kd 1).
 //!
 //! `cargo run --release --example speed_profile -- --csv ex3.csv --plot figures`
 
@@ -15,33 +16,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pd = std::env::args().any(|a| a == "--pd");
     let args = common::args::parse_except(20.0, &["--pd"]);
     let mut program = SpeedProfile::with_derivative_gain(if pd { 1.0 } else { 0.0 });
-    common::args::run(&mut program, &args)?;
-    let rows = &program.rows;
-    if let Some(e) = SpeedProfile::plateau_error(rows) {
+    let sim = common::args::run(&mut program, &args)?;
+    let log = sim.records(program.record.expect("created"))?;
+    if let Some(e) = SpeedProfile::plateau_error(log) {
         println!(
             "speed error (v - sp) on the 6-9 s plateau: mean {:.2e} m/s, mean |error| {:.2e} m/s, worst {:.2e} m/s",
             e.mean, e.mean_abs, e.worst
         );
     }
-    let peak = rows.iter().max_by(|a, b| a.wheel_torque.abs().total_cmp(&b.wheel_torque.abs())).expect("stepped");
+    let torque = |s: &&ars::Sample<ars::programs::SpeedProfileRow>| s.record.wheel_torque.abs();
+    let peak = log.iter().max_by(|a, b| torque(a).total_cmp(&torque(b))).expect("stepped");
     println!(
         "peak wheel torque {:.4} N m at {:.3} s (shoulder at {:.3} rad then)",
-        peak.wheel_torque, peak.time, peak.q2
+        peak.record.wheel_torque, peak.time, peak.record.q2
     );
-    let last = rows.last().expect("stepped");
-    println!("at {:.1} s: x {:.3} m, waist q1 {:.4} rad, shoulder q2 {:.4} rad", last.time, last.x, last.q1, last.q2);
+    let last = log.last().expect("stepped");
+    let r = &last.record;
+    println!("at {:.1} s: x {:.3} m, waist q1 {:.4} rad, shoulder q2 {:.4} rad", last.time, r.x, r.q1, r.q2);
     if let Some(path) = &args.csv {
-        let lines = rows.iter().step_by(args.every).map(|r| {
-            format!(
-                "{},{},{},{},{},{},{},{},{}",
-                r.time, r.x, r.setpoint, r.speed, r.wheel_torque, r.q1, r.q1_rate, r.q2, r.q2_rate
-            )
-        });
-        common::args::write_csv(path, "t,x,sp,v,wheel_torque,q1,q1dot,q2,q2dot", lines)?;
+        common::args::export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let s =
-            |f: fn(&ars::programs::SpeedProfileRow) -> f64| rows.iter().step_by(40).map(|r| (r.time, f(r))).collect();
+        let s = |f: fn(&ars::programs::SpeedProfileRow) -> f64| {
+            log.iter().step_by(40).map(|s| (s.time, f(&s.record))).collect()
+        };
         line_chart(
             dir,
             "fig3_4a_position_speed.png",

@@ -3,7 +3,7 @@
 //! waist). Headless, a key script plays the user (`--keys FILE`, lines
 //! `TIME down|up KEY`); the default script drives a full circle. `--paper` uses the
 //! paper's friction limit (mu 50) instead of the code's 500. Prints the heading turned
-//! and the shoulder's largest error; `--csv` writes `t,x,z,q1,q2,sp,mv,torque_w1,torque_w2`,
+//! and the shoulder's largest error; `--csv` writes the program's record of every step,
 //! `--plot` the XZ path and the joint errors.
 //!
 //! `cargo run --release --example user_driven -- --paper --plot figures`
@@ -67,9 +67,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         heading.push((runner.simulation().time(), (-x.z).atan2(x.x)));
     }
     let turned = unwrapped(heading.clone()).last().map_or(0.0, |h| h.1);
-    let rows = &runner.program().rows;
-    let settled = rows.iter().filter(|r| r.time > 1.0);
-    let worst = settled.map(|r| (r.setpoint - r.q2).abs()).fold(0.0, f64::max);
+    let record = runner.program().record.expect("created");
+    let log = runner.simulation().records(record)?;
+    let settled = log.iter().filter(|s| s.time > 1.0);
+    let worst = settled.map(|s| (s.record.setpoint - s.record.q2).abs()).fold(0.0, f64::max);
     println!(
         "friction limit {}: heading turned {:.1} deg; shoulder's largest error after 1 s {:.3} deg (paper: under 1.5 deg)",
         if paper { "50 (paper)" } else { "500 (code)" },
@@ -77,16 +78,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         worst.to_degrees()
     );
     if let Some(path) = &args.csv {
-        let lines = rows.iter().step_by(args.every).map(|r| {
-            format!(
-                "{},{},{},{},{},{},{},{},{}",
-                r.time, r.x, r.z, r.q1, r.q2, r.setpoint, r.torque, r.wheel_torques.0, r.wheel_torques.1
-            )
-        });
-        common::args::write_csv(path, "t,x,z,q1,q2,sp,mv,torque_w1,torque_w2", lines)?;
+        common::args::export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let path: Vec<_> = rows.iter().step_by(40).map(|r| (r.x, r.z)).collect();
+        let path: Vec<_> = log.iter().step_by(40).map(|s| (s.record.x, s.record.z)).collect();
         line_chart(
             dir,
             "ex5_path_xz.png",
@@ -95,8 +90,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "z [m]",
             &[Series::new("chassis", path)],
         )?;
-        let q1 = rows.iter().step_by(40).map(|r| (r.time, r.q1.to_degrees())).collect();
-        let e2 = rows.iter().step_by(40).map(|r| (r.time, (r.setpoint - r.q2).to_degrees())).collect();
+        let q1 = log.iter().step_by(40).map(|s| (s.time, s.record.q1.to_degrees())).collect();
+        let e2 = log.iter().step_by(40).map(|s| (s.time, (s.record.setpoint - s.record.q2).to_degrees())).collect();
         line_chart(
             dir,
             "ex5_joint_errors.png",

@@ -10,6 +10,7 @@
 mod common;
 
 use ars::programs::{Vehicle1, Vehicle2, VehicleWithArm, VehicleWithControlledArm};
+use ars::sensors::Gps;
 use ars::{KeyScript, ObjectId, Program, ProgramRunner};
 use common::plot::{Series, line_chart};
 
@@ -23,7 +24,7 @@ const DEFAULT_KEYS: &str = "\
 ";
 
 /// The chassis position after every frame.
-type Path = Vec<(f64, ars::nalgebra::Point3<f64>)>;
+type Path = ars::SensorLog<ars::sensors::Position>;
 
 fn drive<P: Program>(
     mut program: P,
@@ -34,20 +35,21 @@ fn drive<P: Program>(
     if args.window {
         // Live: the program's keys drive it.
         common::args::run(&mut program, args)?;
-        return Ok(Vec::new());
+        return Ok(Path::default());
     }
     let duration = args.duration;
     let mut capture = common::args::Capture::new(args, program.view_settings())?;
     let mut runner = ProgramRunner::new(&mut program)?;
     let body = chassis(runner.program());
-    let frames = runner.simulation().steps_in(duration)? / u64::from(runner.simulation().steps_per_frame());
-    let mut path = Vec::new();
+    let sim = runner.simulation_mut();
+    let frame = sim.time_step() * f64::from(sim.steps_per_frame());
+    let gps = sim.add_sensor_every(Gps::new(body), frame)?;
+    let frames = sim.steps_in(duration)? / u64::from(sim.steps_per_frame());
     for _ in 0..frames {
         capture.frame(runner.simulation())?;
         runner.run_script_frame(script)?;
-        path.push((runner.simulation().time(), runner.simulation().position(body)?));
     }
-    Ok(path)
+    Ok(runner.simulation_mut().remove_sensor(gps)?)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -80,15 +82,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if args.window {
         return Ok(());
     }
-    for (t, p) in path.iter().filter(|(t, _)| (t.fract() < 1e-6 || t.fract() > 1.0 - 1e-6) && *t > 0.5) {
+    for (t, p) in path.iter().map(|s| (s.time, s.record.position)) {
+        if !((t.fract() < 1e-6 || t.fract() > 1.0 - 1e-6) && t > 0.5) {
+            continue;
+        }
         println!("{name} at {t:.1} s: chassis at ({:.3}, {:.3}, {:.3}) m", p.x, p.y, p.z);
     }
     if let Some(file) = &args.csv {
-        let rows = path.iter().step_by(args.every).map(|(t, p)| format!("{t},{},{},{}", p.x, p.y, p.z));
-        common::args::write_csv(file, "t,x,y,z", rows)?;
+        common::args::export_csv(file, &path, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let xz = path.iter().map(|(_, p)| (p.x, p.z)).collect();
+        let xz = path.iter().map(|s| (s.record.position.x, s.record.position.z)).collect();
         line_chart(
             dir,
             &format!("{name}_path.png"),

@@ -2,7 +2,7 @@
 //! formula and an independent reduced-coordinate model of the same arm.
 
 use ars::programs::{ArmParameters, ConicalPendulum, PendulumRow, ReducedArmModel};
-use ars::{Hooks, Program, SimulationBuilder};
+use ars::{Hooks, Program, Sample, SimulationBuilder};
 
 /// The conical pendulum at a chosen time step (the original's is 0.25 ms).
 struct AtTimeStep(ConicalPendulum, f64);
@@ -22,23 +22,23 @@ impl Program for AtTimeStep {
     }
 }
 
-fn run(dt: f64, seconds: f64) -> Vec<PendulumRow> {
+fn run(dt: f64, seconds: f64) -> Vec<Sample<PendulumRow>> {
     let mut program = AtTimeStep(ConicalPendulum::default(), dt);
     let sim = program.run_headless(seconds).unwrap();
     assert!((sim.time() - seconds).abs() < 1e-6);
-    program.0.rows
+    sim.records(program.0.record.unwrap()).unwrap().samples().to_vec()
 }
 
 /// Largest |ODE − model| of the shoulder angle and of the waist rate, sampled every
 /// 10 ms over the run.
-fn gaps(rows: &[PendulumRow], dt: f64, model: &[ars::programs::ArmState]) -> (f64, f64) {
+fn gaps(rows: &[Sample<PendulumRow>], dt: f64, model: &[ars::programs::ArmState]) -> (f64, f64) {
     let every = (0.01 / dt).round() as usize;
     let (mut beta, mut rate) = (0.0f64, 0.0f64);
     for (k, m) in model.iter().enumerate() {
         let Some(row) = rows.get(k * every) else { break };
         assert!((row.time - m.time).abs() < 1e-6, "sample times {} vs {}", row.time, m.time);
-        beta = beta.max((row.q2 - m.beta).abs());
-        rate = rate.max((row.q1_rate - m.phi_rate).abs());
+        beta = beta.max((row.record.q2 - m.beta).abs());
+        rate = rate.max((row.record.q1_rate - m.phi_rate).abs());
     }
     (beta, rate)
 }
@@ -46,7 +46,7 @@ fn gaps(rows: &[PendulumRow], dt: f64, model: &[ars::programs::ArmState]) -> (f6
 #[test]
 fn the_waist_and_shoulder_settle_where_the_thesis_says() {
     let rows = run(0.00025, 20.0);
-    let last = rows.last().unwrap();
+    let last = rows.last().unwrap().record;
     assert!((last.q1_rate - 3.9994).abs() < 2e-4, "waist rate {}", last.q1_rate);
     assert!((last.q2 - 0.7115).abs() < 5e-4, "shoulder angle {}", last.q2);
     // Thesis: "from π/2 to about 0.87 rad" in its DH convention: π/2 − q2.

@@ -10,43 +10,45 @@ use ars::{KeyScript, Program, ProgramRunner};
 #[test]
 fn example_3_follows_the_speed_profile_and_the_arm_falls_and_settles() {
     let mut program = SpeedProfile::default();
-    program.run_headless(60.0).unwrap();
-    let rows = &program.rows;
+    let sim = program.run_headless(60.0).unwrap();
+    let log = sim.records(program.record.unwrap()).unwrap();
+    let rows = log.samples();
     // The original: on the 6–9 s plateau, mean error under 1e-3 m/s, worst under 0.05.
-    let e = SpeedProfile::plateau_error(rows).unwrap();
+    let e = SpeedProfile::plateau_error(log).unwrap();
     assert!(e.mean.abs() < 1e-3, "{e:?}");
     assert!(e.worst < 0.05, "{e:?}");
     // The shoulder falls from upright: when does it leave, and first reach hanging?
-    let leaves = rows.iter().find(|r| r.q2.abs() > 0.1).unwrap().time;
-    let hangs = rows.iter().find(|r| r.q2.abs() > 3.0).unwrap().time;
+    let leaves = rows.iter().find(|r| r.record.q2.abs() > 0.1).unwrap().time;
+    let hangs = rows.iter().find(|r| r.record.q2.abs() > 3.0).unwrap().time;
     assert!(leaves > 1.0 && hangs > leaves, "{leaves} {hangs}");
     // The peak wheel torque comes while the arm falls.
-    let peak = rows.iter().max_by(|a, b| a.wheel_torque.abs().total_cmp(&b.wheel_torque.abs())).unwrap();
+    let peak = rows.iter().max_by(|a, b| a.record.wheel_torque.abs().total_cmp(&b.record.wheel_torque.abs())).unwrap();
     assert!((leaves..=hangs + 0.5).contains(&peak.time), "peak at {} (fall {leaves}..{hangs})", peak.time);
     // After 60 s: hanging straight down, the waist at rest at a non-zero angle.
     let last = rows.last().unwrap();
-    assert!((last.q2.abs() - PI).abs() < 0.01, "shoulder {}", last.q2);
-    assert!(last.q1.abs() > 0.1 && last.q1_rate.abs() < 1e-3, "waist {} at {} rad/s", last.q1, last.q1_rate);
+    assert!((last.record.q2.abs() - PI).abs() < 0.01, "shoulder {}", last.record.q2);
+    assert!(last.record.q1.abs() > 0.1 && last.record.q1_rate.abs() < 1e-3, "waist {} at {} rad/s", last.record.q1, last.record.q1_rate);
     // And it stopped about 8 m further (the area under the profile).
-    let travelled = last.x - rows[0].x;
+    let travelled = last.record.x - rows[0].record.x;
     assert!((travelled - 8.0).abs() < 0.5, "travelled {travelled} m");
 }
 
 #[test]
 fn example_4_crosses_the_terrain_with_its_arm_upright() {
     let mut program = SinusoidalTerrain::default();
-    program.run_headless(12.0).unwrap();
-    let rows = &program.rows;
-    let off = SinusoidalTerrain::leaves_terrain(rows).expect("drives off the end");
+    let sim = program.run_headless(12.0).unwrap();
+    let log = sim.records(program.record.unwrap()).unwrap();
+    let rows = log.samples();
+    let off = SinusoidalTerrain::leaves_terrain(log).expect("drives off the end");
     assert!((off - 10.7).abs() < 0.3, "drops off the +X end at {off} s (the original: near 10.7 s)");
     let on_terrain = rows.iter().filter(|r| r.time < off);
     let worst_after =
-        on_terrain.clone().filter(|r| r.time > 3.5).map(|r| r.q1.abs().max(r.q2.abs())).fold(0.0, f64::max);
+        on_terrain.clone().filter(|r| r.time > 3.5).map(|r| r.record.q1.abs().max(r.record.q2.abs())).fold(0.0, f64::max);
     assert!(worst_after.to_degrees() < 3.0, "arm deviation {}° after 3.5 s", worst_after.to_degrees());
-    let peak = on_terrain.max_by(|a, b| a.q1.abs().max(a.q2.abs()).total_cmp(&b.q1.abs().max(b.q2.abs()))).unwrap();
+    let peak = on_terrain.max_by(|a, b| a.record.q1.abs().max(a.record.q2.abs()).total_cmp(&b.record.q1.abs().max(b.record.q2.abs()))).unwrap();
     eprintln!(
         "example 4: largest arm deviation {:.2}° at {:.2} s (the original: 3.3° at 2.4 s)",
-        peak.q1.abs().max(peak.q2.abs()).to_degrees(),
+        peak.record.q1.abs().max(peak.record.q2.abs()).to_degrees(),
         peak.time
     );
     assert!((peak.time - 2.4).abs() < 0.5);
@@ -54,7 +56,7 @@ fn example_4_crosses_the_terrain_with_its_arm_upright() {
     let (lo, hi) = rows
         .iter()
         .filter(|r| r.time < off)
-        .fold((f64::MAX, f64::MIN), |(l, h), r| (l.min(r.position.y), h.max(r.position.y)));
+        .fold((f64::MAX, f64::MIN), |(l, h), r| (l.min(r.record.position.y), h.max(r.record.position.y)));
     assert!(hi - lo > 1.0, "height range {lo}..{hi}");
 }
 
@@ -77,12 +79,13 @@ fn example_5_scripted_keys_turn_the_vehicle_through_a_full_circle() {
         previous = h;
     }
     assert!(turned > 2.0 * PI, "turned {}°", turned.to_degrees());
-    let rows = &runner.program().rows;
-    let worst = rows.iter().filter(|r| r.time > 1.0).map(|r| (r.setpoint - r.q2).abs()).fold(0.0, f64::max);
+    let log = runner.simulation().records(runner.program().record.unwrap()).unwrap();
+    let rows = log.samples();
+    let worst = rows.iter().filter(|r| r.time > 1.0).map(|r| (r.record.setpoint - r.record.q2).abs()).fold(0.0, f64::max);
     eprintln!("example 5: shoulder's largest error {:.3}° (the paper: under 1.5°)", worst.to_degrees());
     assert!(worst.to_degrees() < 1.5);
     // The recorded wheel torques are the keys' (left held: −3 right, +3 left).
-    assert!(rows.iter().any(|r| r.wheel_torques == (-3.0, 3.0)));
+    assert!(rows.iter().any(|r| r.record.wheel_torques == (-3.0, 3.0)));
 
     // With the code's friction limit of 500 N the wheels cannot scrub: it barely turns.
     let mut stiff = UserDriven::default();
@@ -114,8 +117,9 @@ fn two_vehicles_share_a_simulation_and_a_box_comes_and_goes() {
 
 fn ex4_bits(seconds: f64) -> Vec<u64> {
     let mut program = SinusoidalTerrain::default();
-    program.run_headless(seconds).unwrap();
-    program.rows.iter().flat_map(|r| [r.position.x.to_bits(), r.position.y.to_bits(), r.q2.to_bits()]).collect()
+    let sim = program.run_headless(seconds).unwrap();
+    let log = sim.records(program.record.unwrap()).unwrap();
+    log.iter().flat_map(|s| [s.record.position.x, s.record.position.y, s.record.q2].map(f64::to_bits)).collect()
 }
 
 #[test]

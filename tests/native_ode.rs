@@ -110,7 +110,8 @@ fn conical_pendulum_program_is_bit_identical_to_native_ode_for_two_seconds() {
         }
     }
     // The waist has spun up: 2 s of a torque ramping to 20 N·m against 5 N·m·s friction.
-    let last = *runner.program().rows.last().unwrap();
+    let record = runner.program().record.unwrap();
+    let last = runner.simulation().records(record).unwrap().last().unwrap().record;
     assert!(last.q1_rate.abs() > 1.0, "{last:?}");
 }
 
@@ -134,14 +135,14 @@ fn assert_rows_bit_identical<P: ars::Program>(
     mut program: P,
     mut c: CScene,
     seconds: f64,
-    row: impl Fn(&P) -> [f64; 9],
+    row: impl Fn(&ars::Simulation, &P) -> [f64; 9],
 ) {
     let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
     let steps = runner.simulation().steps_in(seconds).unwrap();
     for step in 1..=steps {
         runner.step().unwrap();
         c.step(1);
-        let (rust, native) = (row(runner.program()), c.row());
+        let (rust, native) = (row(runner.simulation(), runner.program()), c.row());
         assert!(same_bits(&rust, &native), "{name}: CSV row of step {step} differs:\n C    {native:?}\n Rust {rust:?}");
         for i in 0..c.body_count() {
             let b = runner.simulation().world().bodies().nth(i).unwrap();
@@ -158,17 +159,25 @@ fn assert_rows_bit_identical<P: ars::Program>(
 #[test]
 fn example_3_speed_profile_csv_is_bit_identical_to_native_ode_for_three_seconds() {
     use ars::programs::SpeedProfile;
-    assert_rows_bit_identical("example 3", SpeedProfile::default(), CScene::speed_profile(), 3.0, |p| {
-        let r = p.rows.last().unwrap();
-        [r.time, r.x, r.setpoint, r.speed, r.wheel_torque, r.q1, r.q1_rate, r.q2, r.q2_rate]
+    assert_rows_bit_identical("example 3", SpeedProfile::default(), CScene::speed_profile(), 3.0, |sim, p| {
+        let s = sim.records(p.record.unwrap()).unwrap().last().unwrap();
+        let r = s.record;
+        [s.time, r.x, r.setpoint, r.speed, r.wheel_torque, r.q1, r.q1_rate, r.q2, r.q2_rate]
     });
 }
 
 #[test]
 fn example_4_sinusoidal_terrain_csv_is_bit_identical_to_native_ode_for_three_seconds() {
     use ars::programs::SinusoidalTerrain;
-    assert_rows_bit_identical("example 4", SinusoidalTerrain::default(), CScene::sinusoidal_terrain(), 3.0, |p| {
-        let r = p.rows.last().unwrap();
-        [r.time, r.position.x, r.position.y, r.position.z, r.q1, r.torque1, r.q2, r.torque2, r.wheel_torque]
-    });
+    assert_rows_bit_identical(
+        "example 4",
+        SinusoidalTerrain::default(),
+        CScene::sinusoidal_terrain(),
+        3.0,
+        |sim, p| {
+            let s = sim.records(p.record.unwrap()).unwrap().last().unwrap();
+            let r = s.record;
+            [s.time, r.position.x, r.position.y, r.position.z, r.q1, r.torque1, r.q2, r.torque2, r.wheel_torque]
+        },
+    );
 }

@@ -28,7 +28,10 @@ fn the_centrifugal_ball_settles_at_the_cable_angle_of_the_formula() {
     let sim = program.run_headless(30.0).unwrap();
     let expected = CentrifugalForce::steady_angle(3.0);
     assert!((expected - 1.0415).abs() < 1e-4, "{expected}");
-    let last = program.rows.last().unwrap();
+    let frames = sim.records(program.record.unwrap()).unwrap();
+    assert_eq!(frames.len(), 30 * 50, "one record per frame");
+    assert!(frames.iter().enumerate().all(|(k, s)| s.step == 20 * k as u64), "at the start of each frame");
+    let last = frames.last().unwrap().record;
     assert!((last.theta - expected).abs() < 0.01, "θ = {} vs {expected}", last.theta);
     // The sensor demos: the friction torque acts on the first step of each frame only,
     // and its power is never positive.
@@ -68,8 +71,9 @@ fn the_controlled_arm_holds_and_follows_its_shoulder_set_point() {
     }
     runner.run_for(10.0).unwrap();
     let q = runner.simulation().joint_state(r2).unwrap().position;
-    assert!((runner.program().setpoint - 0.3).abs() < 1e-12);
-    let last = *runner.program().rows.last().unwrap();
+    let record = runner.program().record.unwrap();
+    let last = runner.simulation().records(record).unwrap().last().unwrap().record;
+    assert!((last.setpoint - 0.3).abs() < 1e-12, "three 'd' presses: {last:?}");
     assert!((q - 0.3).abs() < 0.1, "follows the set-point 0.3: {q} ({last:?})");
 }
 
@@ -77,12 +81,14 @@ fn the_controlled_arm_holds_and_follows_its_shoulder_set_point() {
 fn the_bouncing_ball_bounces_when_the_code_and_the_paper_say() {
     use ars::programs::BouncingBall;
     let mut code = BouncingBall::default();
-    code.run_headless(0.7).unwrap();
+    let code_sim = code.run_headless(0.7).unwrap();
     let mut paper = BouncingBall { paper_bounce: true, ..Default::default() };
-    paper.run_headless(3.5).unwrap();
-    for (program, ideal) in [(&code, &[0.4515, 0.632, 0.668][..]), (&paper, &[0.4515, 1.264, 1.996, 2.654, 3.247][..])]
-    {
-        let times = program.bounce_times();
+    let paper_sim = paper.run_headless(3.5).unwrap();
+    for (program, sim, ideal) in [
+        (&code, &code_sim, &[0.4515, 0.632, 0.668][..]),
+        (&paper, &paper_sim, &[0.4515, 1.264, 1.996, 2.654, 3.247][..]),
+    ] {
+        let times = BouncingBall::bounce_times(sim.records(program.record.unwrap()).unwrap());
         assert!(times.len() >= ideal.len(), "{times:?}");
         for (t, i) in times.iter().zip(ideal) {
             assert!((t - i).abs() < 2e-3, "bounce at {t} s, ideal {i} s");

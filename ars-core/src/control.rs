@@ -15,7 +15,7 @@ pub struct JointState {
 }
 
 /// Something that computes a joint torque (or force) every step.
-pub trait JointController: Send {
+pub trait JointController: Send + std::any::Any {
     /// The torque or force for the step starting at `time`, given the joint's state.
     fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64;
 }

@@ -114,10 +114,10 @@ pub use hooks::{HookId, Hooks, PostFrame, PostStep, PreFrame, PreStep};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
-pub use sensors::{Record, Sample, Sensor, SensorId, SensorLog};
+pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use simulation::{
-    CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, JointEnd, JointType,
-    ObjectShape, SimJoint, Simulation, SimulationBuilder, heightfield_faces,
+    CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, JointEfforts, JointEnd,
+    JointType, ObjectShape, SimJoint, Simulation, SimulationBuilder, heightfield_faces,
 };
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 

@@ -108,25 +108,40 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
     args
 }
 
-/// Writes CSV `rows` under `header` to `path` and says so.
-pub fn write_csv(path: &std::path::Path, header: &str, rows: impl IntoIterator<Item = String>) -> std::io::Result<()> {
+/// Writes a sensor's records as CSV to `path` (one sample in every `every`; the
+/// header names each column and unit) and says so.
+pub fn export_csv<R: ars::Record>(
+    path: &std::path::Path,
+    log: &ars::SensorLog<R>,
+    every: usize,
+) -> std::io::Result<()> {
     use std::io::Write;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(out, "{header}")?;
-    for row in rows {
-        writeln!(out, "{row}")?;
-    }
+    log.thinned(every).write_csv(&mut out)?;
     out.flush()?;
     eprintln!("wrote {}", path.display());
     Ok(())
 }
 
-/// A CSV cell: the number, or empty.
-pub fn cell(v: Option<f64>) -> String {
-    v.map(|x| x.to_string()).unwrap_or_default()
+/// Writes several sensors' records as one CSV table to `path` (see
+/// [`ars::sensors::write_csv_table`]) and says so.
+pub fn export_csv_table(
+    path: &std::path::Path,
+    logs: &[(&str, &dyn ars::sensors::CsvColumns)],
+    every: usize,
+) -> std::io::Result<()> {
+    use std::io::Write;
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)?;
+    }
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
+    ars::sensors::write_csv_table(&mut out, logs, every)?;
+    out.flush()?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
 }
 
 /// Runs `program` for the requested duration: headless, or recording off-screen

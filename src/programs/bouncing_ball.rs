@@ -1,10 +1,29 @@
 //! IROS example 1: a small ball bouncing on the floor.
 
 use ars_core::nalgebra::Vector3;
+use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
 use ars_core::{Hooks, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
 
+/// The ball's height and vertical velocity at the start of a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BallHeight {
+    /// Centre height, m.
+    pub y: f64,
+    /// Vertical velocity, m/s.
+    pub vy: f64,
+}
+
+impl Record for BallHeight {
+    fn columns() -> Vec<&'static str> {
+        vec!["y [m]", "vy [m/s]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        vec![Some(self.y), Some(self.vy)]
+    }
+}
+
 /// IROS example 1: a 1 kg ball of radius 0.01 m dropped from 1 m (centre at
-/// (1, 1.01, 1)), dt 0.25 ms; the pre-step hook records `(time, y, vy)` every step. The
+/// (1, 1.01, 1)), dt 0.25 ms; its probe records `y, vy` at the start of every step. The
 /// code bounces with the default restitution 0.2; the paper's figure needs 0.9: set
 /// `paper_bounce`.
 #[derive(Clone, Debug, Default)]
@@ -13,25 +32,18 @@ pub struct BouncingBall {
     pub paper_bounce: bool,
     /// The ball.
     pub ball: Option<ObjectId>,
-    /// `(time, y, vy)` at the start of every step.
-    pub rows: Vec<(f64, f64, f64)>,
+    /// Height and vertical velocity at the start of every step.
+    pub record: Option<SensorId<Probe<BallHeight>>>,
 }
 
 impl BouncingBall {
     /// Times at which the ball starts moving up again (the bounces), s.
-    pub fn bounce_times(&self) -> Vec<f64> {
-        self.rows.windows(2).filter(|w| w[0].2 < 0.0 && w[1].2 > 0.0).map(|w| w[1].0).collect()
+    pub fn bounce_times(log: &SensorLog<BallHeight>) -> Vec<f64> {
+        log.samples().windows(2).filter(|w| w[0].record.vy < 0.0 && w[1].record.vy > 0.0).map(|w| w[1].time).collect()
     }
 }
 
-impl Hooks for BouncingBall {
-    fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let b = sim.body(self.ball.expect("created"))?;
-        let (y, vy) = (b.position().y, b.linear_velocity().y);
-        self.rows.push((sim.time(), y, vy));
-        Ok(())
-    }
-}
+impl Hooks for BouncingBall {}
 
 impl Program for BouncingBall {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
@@ -40,7 +52,13 @@ impl Program for BouncingBall {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        self.ball = Some(sim.add_sphere(0.01, [1.0, 1.01, 1.0], Mass::Total(1.0))?);
+        let ball = sim.add_sphere(0.01, [1.0, 1.01, 1.0], Mass::Total(1.0))?;
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            let b = sim.body(ball)?;
+            Ok(BallHeight { y: b.position().y, vy: b.linear_velocity().y })
+        });
+        self.record = Some(sim.add_sensor(probe.reads_objects([ball]))?);
+        self.ball = Some(ball);
         Ok(())
     }
 }

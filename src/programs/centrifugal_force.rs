@@ -4,17 +4,15 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::sensors::{JointPower, JointTorque, RotaryJointSensor};
+use ars_core::sensors::{JointPower, JointTorque, Probe, Record, RotaryJointSensor};
 use ars_core::{
     ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, SensorId, Simulation, SimulationBuilder,
 };
 
-/// One frame's reading: ball position, velocity and angular velocity, and the cable's
-/// angle from the vertical.
+/// One frame's reading (at its start): ball position, velocity and angular velocity,
+/// and the cable's angle from the vertical.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CentrifugalRow {
-    /// Time at the start of the frame, s.
-    pub time: f64,
     /// Ball position, m.
     pub position: Point3<f64>,
     /// Ball velocity, m/s.
@@ -43,13 +41,34 @@ pub struct CentrifugalForce {
     pub joints: Option<(JointId, JointId)>,
     /// The sensor demos' sensors on r2: torque, power, angle.
     pub sensors: Option<(SensorId<JointTorque>, SensorId<JointPower>, SensorId<RotaryJointSensor>)>,
-    /// Every frame's row.
-    pub rows: Vec<CentrifugalRow>,
+    /// The reading at the start of every frame.
+    pub record: Option<SensorId<Probe<CentrifugalRow>>>,
+}
+
+impl Record for CentrifugalRow {
+    fn columns() -> Vec<&'static str> {
+        vec![
+            "x [m]",
+            "y [m]",
+            "z [m]",
+            "vx [m/s]",
+            "vy [m/s]",
+            "vz [m/s]",
+            "wx [rad/s]",
+            "wy [rad/s]",
+            "wz [rad/s]",
+            "theta [rad]",
+        ]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        let (p, v, w) = (self.position, self.velocity, self.angular_velocity);
+        [p.x, p.y, p.z, v.x, v.y, v.z, w.x, w.y, w.z, self.theta].map(Some).to_vec()
+    }
 }
 
 impl Default for CentrifugalForce {
     fn default() -> Self {
-        CentrifugalForce { speed: 3.0, ball: None, joints: None, sensors: None, rows: Vec::new() }
+        CentrifugalForce { speed: 3.0, ball: None, joints: None, sensors: None, record: None }
     }
 }
 
@@ -70,12 +89,7 @@ impl Hooks for CentrifugalForce {
         let (r1, r2) = self.joints.expect("built");
         sim.joint_mut(r1)?.set_speed(self.speed, 100.0)?;
         let rate = sim.joint_state(r2)?.rate;
-        sim.joint_mut(r2)?.add_torque(-500.0 * rate)?;
-        let b = sim.body(self.ball.expect("built"))?;
-        let (position, velocity, angular_velocity) = (b.position(), b.linear_velocity(), b.angular_velocity());
-        let theta = ((2.0 - position.y + 0.5) / 1.0).clamp(-1.0, 1.0).acos();
-        self.rows.push(CentrifugalRow { time: sim.time(), position, velocity, angular_velocity, theta });
-        Ok(())
+        sim.joint_mut(r2)?.add_torque(-500.0 * rate)
     }
 }
 
@@ -109,6 +123,14 @@ impl Program for CentrifugalForce {
             sim.add_sensor(JointPower::new(r2))?,
             sim.add_sensor_every(RotaryJointSensor::new(r2), 1.0 / 50.0)?,
         ));
+        let frame = sim.time_step() * f64::from(sim.steps_per_frame());
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            let b = sim.body(ball)?;
+            let (position, velocity, angular_velocity) = (b.position(), b.linear_velocity(), b.angular_velocity());
+            let theta = ((2.0 - position.y + 0.5) / 1.0).clamp(-1.0, 1.0).acos();
+            Ok(CentrifugalRow { position, velocity, angular_velocity, theta })
+        });
+        self.record = Some(sim.add_sensor_every(probe.reads_objects([ball]), frame)?);
         self.ball = Some(ball);
         self.joints = Some((r1, r2));
         Ok(())

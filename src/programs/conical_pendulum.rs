@@ -5,14 +5,13 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::sensors::{Probe, Record, SensorId};
 use ars_core::{Hooks, JointId, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
 
-/// One row of the pendulum's record: the state the pre-step hook reads at the start of
-/// a step, and the waist torque it applies.
+/// One record of the pendulum: the state the pre-step hook reads at the start of a
+/// step, and the waist torque it applies (without friction).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PendulumRow {
-    /// Time at the start of the step, s.
-    pub time: f64,
     /// Waist angle, rad.
     pub q1: f64,
     /// Waist rate, rad/s.
@@ -45,8 +44,17 @@ pub struct ConicalPendulum {
     /// The shoulder joint.
     pub shoulder: Option<JointId>,
     previous_rates: (f64, f64),
-    /// Every step's row.
-    pub rows: Vec<PendulumRow>,
+    /// The record of every step (at its start).
+    pub record: Option<SensorId<Probe<PendulumRow>>>,
+}
+
+impl Record for PendulumRow {
+    fn columns() -> Vec<&'static str> {
+        vec!["q1 [rad]", "q1 rate [rad/s]", "q2 [rad]", "q2 rate [rad/s]", "waist torque [N m]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        [self.q1, self.q1_rate, self.q2, self.q2_rate, self.torque].map(Some).to_vec()
+    }
 }
 
 impl ConicalPendulum {
@@ -79,17 +87,7 @@ impl Hooks for ConicalPendulum {
             r1.add_torque(-Self::FRICTION * q1_prev)?;
         }
         sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
-        let s1 = sim.joint_state(waist)?;
-        let s2 = sim.joint_state(shoulder)?;
-        self.previous_rates = (s1.rate, s2.rate);
-        self.rows.push(PendulumRow {
-            time,
-            q1: s1.position,
-            q1_rate: s1.rate,
-            q2: s2.position,
-            q2_rate: s2.rate,
-            torque,
-        });
+        self.previous_rates = (sim.joint_state(waist)?.rate, sim.joint_state(shoulder)?.rate);
         Ok(())
     }
 }
@@ -129,6 +127,12 @@ impl Program for ConicalPendulum {
             sim.add_rotary_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
         (self.base, self.pole, self.arm) = (Some(base), Some(pole), Some(arm));
         (self.waist, self.shoulder) = (Some(waist), Some(shoulder));
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            let (s1, s2) = (sim.joint_state(waist)?, sim.joint_state(shoulder)?);
+            let torque = Self::waist_torque(sim.time());
+            Ok(PendulumRow { q1: s1.position, q1_rate: s1.rate, q2: s2.position, q2_rate: s2.rate, torque })
+        });
+        self.record = Some(sim.add_sensor(probe.reads_joints([waist, shoulder]))?);
         Ok(())
     }
 }

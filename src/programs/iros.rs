@@ -2,9 +2,12 @@
 //! parameters (ars-original §8.14–8.17). Where the papers and the code disagree, the
 //! code's behaviour is the default and the paper's is a flag.
 
-use super::{SetpointKeys, ShoulderSetpoint};
+use super::{SetpointKeys, ShoulderSetpoint, servo_reading};
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{ActionMap, Hooks, Key, Mass, Pid, Profile, Program, Repeat, Result, Simulation, SimulationBuilder};
+use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
+use ars_core::{
+    ActionMap, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Simulation, SimulationBuilder,
+};
 
 use super::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
 use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, signed_ground_speed};
@@ -14,11 +17,9 @@ fn iros_timing(builder: SimulationBuilder) -> SimulationBuilder {
     builder.time_step(1.0 / 50.0 / 80.0).steps_per_frame(80)
 }
 
-/// One step of example 3.
+/// One step of example 3, at its start.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpeedProfileRow {
-    /// Time at the start of the step, s.
-    pub time: f64,
     /// Chassis X, m.
     pub x: f64,
     /// Ground speed of the chassis, signed by its X velocity, m/s.
@@ -35,6 +36,26 @@ pub struct SpeedProfileRow {
     pub q2_rate: f64,
     /// Torque on each wheel, N·m.
     pub wheel_torque: f64,
+}
+
+impl Record for SpeedProfileRow {
+    fn columns() -> Vec<&'static str> {
+        vec![
+            "x [m]",
+            "speed [m/s]",
+            "setpoint [m/s]",
+            "q1 [rad]",
+            "q1 rate [rad/s]",
+            "q2 [rad]",
+            "q2 rate [rad/s]",
+            "wheel torque [N m]",
+        ]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        [self.x, self.speed, self.setpoint, self.q1, self.q1_rate, self.q2, self.q2_rate, self.wheel_torque]
+            .map(Some)
+            .to_vec()
+    }
 }
 
 /// IROS example 3, "mobile manipulator with freely-coasting 2-DOF arm": the vehicle
@@ -55,8 +76,8 @@ pub struct SpeedProfile {
     pub vehicle: Option<VehicleParts>,
     /// The arm.
     pub arm: Option<VehicleArm>,
-    /// Every step's row.
-    pub rows: Vec<SpeedProfileRow>,
+    /// The record of every step (at its start).
+    pub record: Option<SensorId<Probe<SpeedProfileRow>>>,
     previous_error: f64,
 }
 
@@ -69,7 +90,7 @@ impl Default for SpeedProfile {
                 .expect("a valid profile"),
             vehicle: None,
             arm: None,
-            rows: Vec::new(),
+            record: None,
             previous_error: 0.0,
         }
     }
@@ -88,9 +109,9 @@ pub struct TrackingError {
 
 impl SpeedProfile {
     /// The speed error on the 6–9 s plateau of the profile (1 m/s), if the run got there.
-    pub fn plateau_error(rows: &[SpeedProfileRow]) -> Option<TrackingError> {
+    pub fn plateau_error(log: &SensorLog<SpeedProfileRow>) -> Option<TrackingError> {
         let errors: Vec<f64> =
-            rows.iter().filter(|r| (6.0..9.0).contains(&r.time)).map(|r| r.speed - r.setpoint).collect();
+            log.iter().filter(|s| (6.0..9.0).contains(&s.time)).map(|s| s.record.speed - s.record.setpoint).collect();
         if errors.is_empty() {
             return None;
         }
@@ -129,20 +150,7 @@ impl Hooks for SpeedProfile {
         sim.joint_mut(v.w2)?.add_torque(torque)?;
         let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
         sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * s1.rate)?;
-        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)?;
-        let x = sim.position(v.chassis)?.x;
-        self.rows.push(SpeedProfileRow {
-            time,
-            x,
-            speed,
-            setpoint,
-            q1: s1.position,
-            q1_rate: s1.rate,
-            q2: s2.position,
-            q2_rate: s2.rate,
-            wheel_torque: torque,
-        });
-        Ok(())
+        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)
     }
 }
 
@@ -165,6 +173,22 @@ impl Program for SpeedProfile {
             &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
             Mass::Total(1.0),
         )?;
+        let profile = self.profile.clone();
+        let (chassis, w1, r1, r2) = (vehicle.chassis, vehicle.w1, arm.r1, arm.r2);
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            let (s1, s2) = (sim.joint_state(r1)?, sim.joint_state(r2)?);
+            Ok(SpeedProfileRow {
+                x: sim.position(chassis)?.x,
+                speed: signed_ground_speed(sim, chassis)?,
+                setpoint: profile.value(sim.time()),
+                q1: s1.position,
+                q1_rate: s1.rate,
+                q2: s2.position,
+                q2_rate: s2.rate,
+                wheel_torque: sim.joint_efforts(w1)?.added,
+            })
+        });
+        self.record = Some(sim.add_sensor(probe.reads_objects([chassis]).reads_joints([w1, r1, r2]))?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
@@ -174,47 +198,59 @@ impl Program for SpeedProfile {
     }
 }
 
-/// One step of example 4.
+/// One step of example 4, at its start.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TerrainRow {
-    /// Time at the start of the step, s.
-    pub time: f64,
     /// Chassis position, m.
     pub position: Point3<f64>,
     /// Mean X of the two wheel centres, m.
     pub wheels_x: f64,
     /// Waist angle, rad.
     pub q1: f64,
-    /// Waist PD torque, N·m.
+    /// Waist PD servo torque, N·m.
     pub torque1: f64,
     /// Shoulder angle, rad.
     pub q2: f64,
-    /// Shoulder PD torque, N·m.
+    /// Shoulder PD servo torque, N·m.
     pub torque2: f64,
     /// Torque on each wheel, N·m.
     pub wheel_torque: f64,
 }
 
+impl Record for TerrainRow {
+    fn columns() -> Vec<&'static str> {
+        vec![
+            "x [m]",
+            "y [m]",
+            "z [m]",
+            "wheels x [m]",
+            "q1 [rad]",
+            "torque1 [N m]",
+            "q2 [rad]",
+            "torque2 [N m]",
+            "wheel torque [N m]",
+        ]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        let p = self.position;
+        [p.x, p.y, p.z, self.wheels_x, self.q1, self.torque1, self.q2, self.torque2, self.wheel_torque]
+            .map(Some)
+            .to_vec()
+    }
+}
+
 /// IROS example 4: the vehicle (1 kg links) drives along +X over a 40 × 20 m
 /// triangle-mesh terrain `y = 0.7 sin(0.5 x)` placed at (−10, 0, −10), with 4 N·m on
-/// each wheel while its speed is under 2 m/s (bang-bang); PD controllers (Kp 20, Kd 15)
-/// hold both arm joints at 0 (upright), with viscous friction 0.02.
-#[derive(Clone, Debug)]
+/// each wheel while its speed is under 2 m/s (bang-bang); PD position servos (Kp 20,
+/// Kd 15) hold both arm joints at 0 (upright), with viscous friction 0.02.
+#[derive(Clone, Debug, Default)]
 pub struct SinusoidalTerrain {
     /// The vehicle.
     pub vehicle: Option<VehicleParts>,
     /// The arm.
     pub arm: Option<VehicleArm>,
-    /// Waist and shoulder controllers.
-    pub pd: (Pid, Pid),
-    /// Every step's row.
-    pub rows: Vec<TerrainRow>,
-}
-
-impl Default for SinusoidalTerrain {
-    fn default() -> Self {
-        SinusoidalTerrain { vehicle: None, arm: None, pd: (Pid::pd(20.0, 15.0), Pid::pd(20.0, 15.0)), rows: Vec::new() }
-    }
+    /// The record of every step (at its start).
+    pub record: Option<SensorId<Probe<TerrainRow>>>,
 }
 
 impl SinusoidalTerrain {
@@ -228,13 +264,15 @@ impl SinusoidalTerrain {
     pub const MAX_SPEED: f64 = 2.0;
     /// Viscous friction of the arm joints, N·m·s.
     pub const ARM_FRICTION: f64 = 0.02;
+    /// Gains of the arm's PD servos.
+    pub const GAINS: (f64, f64) = (20.0, 15.0);
 
     /// X of the terrain's far (+X) edge, m.
     pub const TERRAIN_END_X: f64 = -10.0 + 39.0;
 
     /// When the wheels pass the terrain's +X edge (the vehicle drops off), if they do.
-    pub fn leaves_terrain(rows: &[TerrainRow]) -> Option<f64> {
-        rows.iter().find(|r| r.wheels_x > Self::TERRAIN_END_X).map(|r| r.time)
+    pub fn leaves_terrain(log: &SensorLog<TerrainRow>) -> Option<f64> {
+        log.iter().find(|s| s.record.wheels_x > Self::TERRAIN_END_X).map(|s| s.time)
     }
 
     /// The terrain: 40 × 20 vertices on a 1 m grid, `y = 0.7 sin(0.5 x)`.
@@ -253,25 +291,8 @@ impl Hooks for SinusoidalTerrain {
         sim.joint_mut(v.w2)?.add_torque(wheel_torque)?;
         let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
         sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * s1.rate)?;
-        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)?;
-        let dt = sim.time_step();
-        let torque1 = self.pd.0.update(0.0 - s1.position, dt);
-        let torque2 = self.pd.1.update(0.0 - s2.position, dt);
-        sim.joint_mut(a.r1)?.add_torque(torque1)?;
-        sim.joint_mut(a.r2)?.add_torque(torque2)?;
-        let position = sim.position(v.chassis)?;
-        let wheels_x = 0.5 * (sim.position(v.wheel_r)?.x + sim.position(v.wheel_l)?.x);
-        self.rows.push(TerrainRow {
-            time: sim.time(),
-            position,
-            wheels_x,
-            q1: s1.position,
-            torque1,
-            q2: s2.position,
-            torque2,
-            wheel_torque,
-        });
-        Ok(())
+        // The servos add their PD torques after this hook.
+        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)
     }
 }
 
@@ -298,16 +319,33 @@ impl Program for SinusoidalTerrain {
             &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
             Mass::Total(1.0),
         )?;
+        let (kp, kd) = Self::GAINS;
+        for joint in [arm.r1, arm.r2] {
+            sim.joint_mut(joint)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
+        }
+        let (chassis, wheel_r, wheel_l, w1, r1, r2) =
+            (vehicle.chassis, vehicle.wheel_r, vehicle.wheel_l, vehicle.w1, arm.r1, arm.r2);
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            Ok(TerrainRow {
+                position: sim.position(chassis)?,
+                wheels_x: 0.5 * (sim.position(wheel_r)?.x + sim.position(wheel_l)?.x),
+                q1: sim.joint_state(r1)?.position,
+                torque1: sim.joint_efforts(r1)?.controller,
+                q2: sim.joint_state(r2)?.position,
+                torque2: sim.joint_efforts(r2)?.controller,
+                wheel_torque: sim.joint_efforts(w1)?.added,
+            })
+        });
+        let probe = probe.reads_objects([chassis, wheel_r, wheel_l]).reads_joints([w1, r1, r2]);
+        self.record = Some(sim.add_sensor(probe)?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
 }
 
-/// One step of example 5.
+/// One step of example 5, at its start (after the keys acted).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DrivingRow {
-    /// Time at the start of the step, s.
-    pub time: f64,
     /// Chassis X, m.
     pub x: f64,
     /// Chassis Z, m.
@@ -318,17 +356,36 @@ pub struct DrivingRow {
     pub q2: f64,
     /// Shoulder set-point, rad.
     pub setpoint: f64,
-    /// Shoulder PD torque, N·m.
+    /// Shoulder PD servo torque, N·m.
     pub torque: f64,
-    /// Torques the keys put on the right and left wheels in the previous step, N·m.
+    /// Torques the keys put on the right and left wheels in this step, N·m.
     pub wheel_torques: (f64, f64),
+}
+
+impl Record for DrivingRow {
+    fn columns() -> Vec<&'static str> {
+        vec![
+            "x [m]",
+            "z [m]",
+            "q1 [rad]",
+            "q2 [rad]",
+            "setpoint [rad]",
+            "torque [N m]",
+            "right wheel torque [N m]",
+            "left wheel torque [N m]",
+        ]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        let (r, l) = self.wheel_torques;
+        [self.x, self.z, self.q1, self.q2, self.setpoint, self.torque, r, l].map(Some).to_vec()
+    }
 }
 
 /// IROS example 5, the user-driven vehicle: held arrows drive the wheels (±3 N·m, 1 kg
 /// wheels), 'd'/'c' move the shoulder set-point by ±0.1 rad, 'a'/'z' push the waist;
-/// a PD controller (Kp 3, Kd 3) holds the shoulder. The paper's figure needs a friction
-/// limit of 50 instead of the code's 500: set `paper_friction`.
-#[derive(Clone, Debug)]
+/// a PD position servo (Kp 3, Kd 3) holds the shoulder. The paper's figure needs a
+/// friction limit of 50 instead of the code's 500: set `paper_friction`.
+#[derive(Clone, Debug, Default)]
 pub struct UserDriven {
     /// Use the paper's contact friction (mu 50) instead of the code's 500.
     pub paper_friction: bool,
@@ -336,61 +393,24 @@ pub struct UserDriven {
     pub vehicle: Option<VehicleParts>,
     /// The arm.
     pub arm: Option<VehicleArm>,
-    /// Shoulder set-point, rad.
-    pub setpoint: f64,
-    /// The shoulder's controller.
-    pub pd: Pid,
-    /// Torques the keys put on the wheels since the last step.
-    pub wheel_torques: (f64, f64),
-    /// Every step's row.
-    pub rows: Vec<DrivingRow>,
-}
-
-impl Default for UserDriven {
-    fn default() -> Self {
-        UserDriven {
-            paper_friction: false,
-            vehicle: None,
-            arm: None,
-            setpoint: 0.0,
-            pd: Pid::pd(3.0, 3.0),
-            wheel_torques: (0.0, 0.0),
-            rows: Vec::new(),
-        }
-    }
+    /// The record of every step (at its start).
+    pub record: Option<SensorId<Probe<DrivingRow>>>,
 }
 
 impl UserDriven {
+    /// Gains of the shoulder's PD servo.
+    pub const GAINS: (f64, f64) = (3.0, 3.0);
+
     fn drive(&mut self, sim: &mut Simulation, right: f64, left: f64) -> Result<()> {
         let v = self.vehicle.expect("built");
         sim.joint_mut(v.w1)?.add_torque(right)?;
-        sim.joint_mut(v.w2)?.add_torque(left)?;
-        self.wheel_torques.0 += right;
-        self.wheel_torques.1 += left;
-        Ok(())
+        sim.joint_mut(v.w2)?.add_torque(left)
     }
 }
 
 impl Hooks for UserDriven {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
-        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
-        let torque = self.pd.update(self.setpoint - s2.position, sim.time_step());
-        sim.joint_mut(a.r1)?.add_torque(0.0)?;
-        sim.joint_mut(a.r2)?.add_torque(torque)?;
-        let p = sim.position(v.chassis)?;
-        self.rows.push(DrivingRow {
-            time: sim.time(),
-            x: p.x,
-            z: p.z,
-            q1: s1.position,
-            q2: s2.position,
-            setpoint: self.setpoint,
-            torque,
-            wheel_torques: self.wheel_torques,
-        });
-        self.wheel_torques = (0.0, 0.0);
-        Ok(())
+        sim.joint_mut(self.arm.expect("built").r1)?.add_torque(0.0)
     }
 }
 
@@ -414,6 +434,23 @@ impl Program for UserDriven {
             &VehicleSpec { wheel_mass: Mass::Total(1.0), ..Default::default() },
             Mass::Density(1.0),
         )?;
+        let (kp, kd) = Self::GAINS;
+        sim.joint_mut(arm.r2)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
+        let (chassis, w1, w2, r1, r2) = (vehicle.chassis, vehicle.w1, vehicle.w2, arm.r1, arm.r2);
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            let p = sim.position(chassis)?;
+            let servo = servo_reading(sim, r2)?;
+            Ok(DrivingRow {
+                x: p.x,
+                z: p.z,
+                q1: sim.joint_state(r1)?.position,
+                q2: servo.angle,
+                setpoint: servo.setpoint,
+                torque: servo.torque,
+                wheel_torques: (sim.joint_efforts(w1)?.added, sim.joint_efforts(w2)?.added),
+            })
+        });
+        self.record = Some(sim.add_sensor(probe.reads_objects([chassis]).reads_joints([w1, w2, r1, r2]))?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
@@ -432,7 +469,7 @@ impl Program for UserDriven {
 }
 
 impl ShoulderSetpoint for UserDriven {
-    fn setpoint_mut(&mut self) -> &mut f64 {
-        &mut self.setpoint
+    fn shoulder(&self) -> Option<ars_core::JointId> {
+        self.arm.map(|a| a.r2)
     }
 }

@@ -32,10 +32,11 @@ pub use vehicles::{
     signed_ground_speed,
 };
 
-/// Programs whose shoulder set-point the 'd' and 'c' keys move, as in the original.
+/// Programs whose shoulder is held by a [`PositionServo`](ars_core::PositionServo),
+/// whose set-point the 'd' and 'c' keys move, as in the original.
 pub trait ShoulderSetpoint {
-    /// The set-point, rad.
-    fn setpoint_mut(&mut self) -> &mut f64;
+    /// The shoulder joint (once built).
+    fn shoulder(&self) -> Option<ars_core::JointId>;
 }
 
 /// Binds 'd' (raise) and 'c' (lower) to a program's shoulder set-point.
@@ -46,21 +47,46 @@ pub(crate) trait SetpointKeys {
 impl<P: ShoulderSetpoint + 'static> SetpointKeys for ars_core::ActionMap<P> {
     fn add_setpoint_keys(self, step: f64) -> Self {
         use ars_core::{Key, Repeat};
-        self.add(
-            Key::Char('d'),
-            move |p: &mut P, _| {
-                *p.setpoint_mut() += step;
-                Ok(())
-            },
-            Repeat::Once,
-        )
-        .add(
+        self.add(Key::Char('d'), move |p: &mut P, sim| shift_setpoint(sim, p.shoulder(), step), Repeat::Once).add(
             Key::Char('c'),
-            move |p: &mut P, _| {
-                *p.setpoint_mut() -= step;
-                Ok(())
-            },
+            move |p: &mut P, sim| shift_setpoint(sim, p.shoulder(), -step),
             Repeat::Once,
         )
     }
+}
+
+/// Moves the set-point of the servo on `joint` by `delta`, from its value now.
+fn shift_setpoint(
+    sim: &mut ars_core::Simulation,
+    joint: Option<ars_core::JointId>,
+    delta: f64,
+) -> ars_core::Result<()> {
+    let now = sim.time();
+    let mut joint = sim.joint_mut(joint.expect("built"))?;
+    let servo = joint.controller_mut::<ars_core::PositionServo>().expect("the shoulder has a position servo");
+    servo.setpoint = ars_core::Profile::constant(servo.setpoint.value(now) + delta)?;
+    Ok(())
+}
+
+/// Holds `shoulder` at 0 rad with a PD [`PositionServo`](ars_core::PositionServo) and
+/// records what it does at the start of every step (its set-point, the angle, the error
+/// and the servo's torque).
+pub(crate) fn hold_shoulder(
+    sim: &mut ars_core::Simulation,
+    shoulder: ars_core::JointId,
+    kp: f64,
+    kd: f64,
+) -> ars_core::Result<ars_core::SensorId<ars_core::Probe<ControlRow>>> {
+    use ars_core::{PositionServo, Probe, Profile, Simulation};
+    sim.joint_mut(shoulder)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
+    let probe = Probe::at_step_start(move |sim: &Simulation| servo_reading(sim, shoulder));
+    sim.add_sensor(probe.reads_joints([shoulder]))
+}
+
+/// What the position servo on `joint` does in the step being taken.
+pub(crate) fn servo_reading(sim: &ars_core::Simulation, joint: ars_core::JointId) -> ars_core::Result<ControlRow> {
+    let servo = sim.joint_controller::<ars_core::PositionServo>(joint)?.expect("the joint has a position servo");
+    let setpoint = servo.setpoint.value(sim.time());
+    let angle = sim.joint_state(joint)?.position;
+    Ok(ControlRow { setpoint, angle, error: setpoint - angle, torque: sim.joint_efforts(joint)?.controller })
 }

@@ -4,9 +4,10 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use super::{SetpointKeys, ShoulderSetpoint};
+use super::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{ActionMap, Hooks, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation};
+use ars_core::sensors::{Probe, Record, SensorId};
+use ars_core::{ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation};
 
 /// The arm's bodies and joints.
 #[derive(Clone, Copy, Debug)]
@@ -72,41 +73,38 @@ impl Program for SimpleArm {
     }
 }
 
-/// One line of `ControlledSimpleArm`'s output.
+/// One line of `ControlledSimpleArm`'s output, at the start of a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ControlRow {
-    /// Time at the start of the step, s.
-    pub time: f64,
     /// Shoulder set-point, rad.
     pub setpoint: f64,
     /// Shoulder angle, rad.
     pub angle: f64,
     /// Set-point minus angle, rad.
     pub error: f64,
-    /// Shoulder torque, N·m.
+    /// Torque of the shoulder's servo, N·m.
     pub torque: f64,
 }
 
-/// `ControlledSimpleArm`: the shoulder held at a set-point by a PD controller
+impl Record for ControlRow {
+    fn columns() -> Vec<&'static str> {
+        vec!["setpoint [rad]", "angle [rad]", "error [rad]", "torque [N m]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        [self.setpoint, self.angle, self.error, self.torque].map(Some).to_vec()
+    }
+}
+
+/// `ControlledSimpleArm`: the shoulder held at a set-point by a PD position servo
 /// (Kp 1, Kd 0.5; keys 'd'/'c' move the set-point by ±0.1 rad), viscous friction 0.01
 /// on both joints from the current rates; keys 'a'/'z' push the waist as in
-/// [`SimpleArm`]. Every step records `time, sp, cv, error, torque`.
-#[derive(Clone, Debug)]
+/// [`SimpleArm`]. Every step records set-point, angle, error and servo torque.
+#[derive(Clone, Debug, Default)]
 pub struct ControlledSimpleArm {
     /// The arm, once built.
     pub parts: Option<ArmParts>,
-    /// Shoulder set-point, rad.
-    pub setpoint: f64,
-    /// The shoulder's controller.
-    pub pd: Pid,
-    /// Every step's row.
-    pub rows: Vec<ControlRow>,
-}
-
-impl Default for ControlledSimpleArm {
-    fn default() -> Self {
-        ControlledSimpleArm { parts: None, setpoint: 0.0, pd: Pid::pd(1.0, 0.5), rows: Vec::new() }
-    }
+    /// What the shoulder's servo does, at the start of every step.
+    pub record: Option<SensorId<Probe<ControlRow>>>,
 }
 
 impl ControlledSimpleArm {
@@ -114,27 +112,32 @@ impl ControlledSimpleArm {
     pub const FRICTION: f64 = 0.01;
     /// Set-point change of one key press, rad.
     pub const SETPOINT_STEP: f64 = 0.1;
+    /// Gains of the shoulder's PD servo.
+    pub const GAINS: (f64, f64) = (1.0, 0.5);
 }
 
 impl Hooks for ControlledSimpleArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let p = self.parts.expect("built");
-        let cv = sim.joint_state(p.r2)?.position;
-        let error = self.setpoint - cv;
-        let torque = self.pd.update(error, sim.time_step());
         sim.joint_mut(p.r1)?.add_torque(0.0)?;
-        sim.joint_mut(p.r2)?.add_torque(torque)?;
         let (q1, q2) = (sim.joint_state(p.r1)?.rate, sim.joint_state(p.r2)?.rate);
         sim.joint_mut(p.r1)?.add_torque(-Self::FRICTION * q1)?;
-        sim.joint_mut(p.r2)?.add_torque(-Self::FRICTION * q2)?;
-        self.rows.push(ControlRow { time: sim.time(), setpoint: self.setpoint, angle: cv, error, torque });
-        Ok(())
+        sim.joint_mut(p.r2)?.add_torque(-Self::FRICTION * q2)
+    }
+}
+
+impl ShoulderSetpoint for ControlledSimpleArm {
+    fn shoulder(&self) -> Option<JointId> {
+        self.parts.map(|p| p.r2)
     }
 }
 
 impl Program for ControlledSimpleArm {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        self.parts = Some(build_simple_arm(sim)?);
+        let parts = build_simple_arm(sim)?;
+        let (kp, kd) = Self::GAINS;
+        self.record = Some(hold_shoulder(sim, parts.r2, kp, kd)?);
+        self.parts = Some(parts);
         Ok(())
     }
     fn key_bindings(&self) -> ActionMap<Self> {
@@ -142,11 +145,5 @@ impl Program for ControlledSimpleArm {
             .add(Key::Char('a'), |p: &mut Self, sim| push_waist(p.parts, sim, SimpleArm::TORQUE), Repeat::Once)
             .add(Key::Char('z'), |p: &mut Self, sim| push_waist(p.parts, sim, -SimpleArm::TORQUE), Repeat::Once)
             .add_setpoint_keys(Self::SETPOINT_STEP)
-    }
-}
-
-impl ShoulderSetpoint for ControlledSimpleArm {
-    fn setpoint_mut(&mut self) -> &mut f64 {
-        &mut self.setpoint
     }
 }

@@ -59,8 +59,8 @@ pub fn thesis_table() -> Result<String> {
     rows.push(("laser: resting distance at 2 s [m]".into(), "0.63397".into(), format!("{resting:.5}")));
 
     let mut pendulum = ConicalPendulum::default();
-    pendulum.run_headless(20.0)?;
-    let last = pendulum.rows.last().expect("stepped");
+    let sim = pendulum.run_headless(20.0)?;
+    let last = sim.records(pendulum.record.expect("created"))?.last().expect("stepped").record;
     rows.push((
         "conical pendulum: waist rate at 20 s [rad/s]".into(),
         "almost 4".into(),

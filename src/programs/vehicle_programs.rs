@@ -1,10 +1,11 @@
 //! The original's vehicle demos: `Vehicle1`, `Vehicle2`, `VehicleWithArm` and
 //! `VehicleWithControlledArm`, driven with the arrow keys.
 
-use super::{SetpointKeys, ShoulderSetpoint};
+use super::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
 use ars_core::nalgebra::Vector3;
+use ars_core::sensors::{Probe, Record, SensorId};
 use ars_core::{
-    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Pid, Program, Repeat, Result, Simulation, SimulationBuilder,
+    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation, SimulationBuilder,
 };
 
 use super::simple_arm::ControlRow;
@@ -119,7 +120,8 @@ impl Program for Vehicle2 {
 /// `VehicleWithArm`: the differential-drive base at (2, 0.35, 4) carrying the 2-DOF arm
 /// (links of density 1), 0.1 ms steps. Held arrows drive the wheels with ±3 N·m; 'a'/'z'
 /// push the waist with ±3 N·m for one step. The original's default is a frictionless
-/// arm; `arm_friction` adds `−0.01 · rate` on both arm joints. Records the arm's rates.
+/// arm; `arm_friction` adds `−0.01 · rate` on both arm joints. Records the arm's rates
+/// at the start of every step.
 #[derive(Clone, Debug, Default)]
 pub struct VehicleWithArm {
     /// Capsule wheels instead of cylinders.
@@ -130,8 +132,26 @@ pub struct VehicleWithArm {
     pub vehicle: Option<VehicleParts>,
     /// The arm.
     pub arm: Option<VehicleArm>,
-    /// `(time, q1 rate, q2 rate)` of every step.
-    pub rates: Vec<(f64, f64, f64)>,
+    /// The arm's rates at the start of every step.
+    pub record: Option<SensorId<Probe<ArmRates>>>,
+}
+
+/// The rates of an arm's two joints.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArmRates {
+    /// Waist rate, rad/s.
+    pub q1_rate: f64,
+    /// Shoulder rate, rad/s.
+    pub q2_rate: f64,
+}
+
+impl Record for ArmRates {
+    fn columns() -> Vec<&'static str> {
+        vec!["q1 rate [rad/s]", "q2 rate [rad/s]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        vec![Some(self.q1_rate), Some(self.q2_rate)]
+    }
 }
 
 /// Wheel torque of the arm vehicles while an arrow is held, N·m.
@@ -197,7 +217,6 @@ impl Hooks for VehicleWithArm {
         if self.arm_friction {
             torques(sim, &[(a.r1, -0.01 * q1), (a.r2, -0.01 * q2)])?;
         }
-        self.rates.push((sim.time(), q1, q2));
         Ok(())
     }
 }
@@ -210,6 +229,11 @@ impl Program for VehicleWithArm {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let spec = VehicleSpec { capsule_wheels: self.capsule_wheels, ..Default::default() };
         let (vehicle, arm) = build_mobile_manipulator(sim, &spec, Mass::Density(1.0))?;
+        let (r1, r2) = (arm.r1, arm.r2);
+        let probe = Probe::at_step_start(move |sim: &Simulation| {
+            Ok(ArmRates { q1_rate: sim.joint_state(r1)?.rate, q2_rate: sim.joint_state(r2)?.rate })
+        });
+        self.record = Some(sim.add_sensor(probe.reads_joints([r1, r2]))?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
@@ -220,37 +244,22 @@ impl Program for VehicleWithArm {
 }
 
 /// `VehicleWithControlledArm`: [`VehicleWithArm`] whose shoulder is held at a
-/// set-point by a PD controller (Kp 1, Kd 0.5; 'd'/'c' move the set-point by ±0.1 rad).
-/// As in the original, no arm friction is applied. Records `time, sp, cv, error, torque`.
-#[derive(Clone, Debug)]
+/// set-point by a PD position servo (Kp 1, Kd 0.5; 'd'/'c' move the set-point by
+/// ±0.1 rad). As in the original, no arm friction is applied. Records set-point, angle,
+/// error and servo torque at the start of every step.
+#[derive(Clone, Debug, Default)]
 pub struct VehicleWithControlledArm {
     /// The vehicle.
     pub vehicle: Option<VehicleParts>,
     /// The arm.
     pub arm: Option<VehicleArm>,
-    /// Shoulder set-point, rad.
-    pub setpoint: f64,
-    /// The shoulder's controller.
-    pub pd: Pid,
-    /// Every step's row.
-    pub rows: Vec<ControlRow>,
-}
-
-impl Default for VehicleWithControlledArm {
-    fn default() -> Self {
-        VehicleWithControlledArm { vehicle: None, arm: None, setpoint: 0.0, pd: Pid::pd(1.0, 0.5), rows: Vec::new() }
-    }
+    /// What the shoulder's servo does, at the start of every step.
+    pub record: Option<SensorId<Probe<ControlRow>>>,
 }
 
 impl Hooks for VehicleWithControlledArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let a = self.arm.expect("built");
-        let cv = sim.joint_state(a.r2)?.position;
-        let error = self.setpoint - cv;
-        let torque = self.pd.update(error, sim.time_step());
-        torques(sim, &[(a.r1, 0.0), (a.r2, torque)])?;
-        self.rows.push(ControlRow { time: sim.time(), setpoint: self.setpoint, angle: cv, error, torque });
-        Ok(())
+        sim.joint_mut(self.arm.expect("built").r1)?.add_torque(0.0)
     }
 }
 
@@ -261,6 +270,7 @@ impl Program for VehicleWithControlledArm {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let (vehicle, arm) = build_mobile_manipulator(sim, &VehicleSpec::default(), Mass::Density(1.0))?;
+        self.record = Some(hold_shoulder(sim, arm.r2, 1.0, 0.5)?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));
         Ok(())
     }
@@ -271,7 +281,7 @@ impl Program for VehicleWithControlledArm {
 }
 
 impl ShoulderSetpoint for VehicleWithControlledArm {
-    fn setpoint_mut(&mut self) -> &mut f64 {
-        &mut self.setpoint
+    fn shoulder(&self) -> Option<JointId> {
+        self.arm.map(|a| a.r2)
     }
 }

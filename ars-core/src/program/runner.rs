@@ -59,7 +59,12 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     }
 
     /// The program.
-    pub fn program(&mut self) -> &mut P {
+    pub fn program(&self) -> &P {
+        self.program
+    }
+
+    /// The program, mutably.
+    pub fn program_mut(&mut self) -> &mut P {
         self.program
     }
 

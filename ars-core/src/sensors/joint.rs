@@ -80,7 +80,7 @@ impl Sensor for JointTorque {
         expect_type(sim, self.joint, &[JointType::Rotary, JointType::Universal], "a joint torque sensor")
     }
     fn measure(&mut self, sim: &Simulation) -> Result<Effort> {
-        Ok(Effort { value: sim.applied_effort(self.joint)?.0 })
+        Ok(Effort { value: sim.joint_efforts(self.joint)?.total() })
     }
     fn joints(&self) -> Vec<JointId> {
         vec![self.joint]
@@ -115,24 +115,26 @@ impl Sensor for JointForce {
         expect_type(sim, self.joint, &[JointType::Slider, JointType::Piston], "a joint force sensor")
     }
     fn measure(&mut self, sim: &Simulation) -> Result<Effort> {
-        Ok(Effort { value: sim.applied_effort(self.joint)?.0 })
+        Ok(Effort { value: sim.joint_efforts(self.joint)?.total() })
     }
     fn joints(&self) -> Vec<JointId> {
         vec![self.joint]
     }
 }
 
-/// Power of the torques (forces) added through the API during a step: each one times
-/// the joint rate when it was added (the rate before the step).
+/// Power of the torques (forces) put on a joint during a step (added through the API,
+/// by friction and by its controller): their sum times the joint rate at the start of
+/// the step.
 #[derive(Clone, Debug)]
 pub struct JointPower {
     joint: JointId,
+    rate_before: f64,
 }
 
 impl JointPower {
     /// On `joint`.
     pub fn new(joint: JointId) -> Self {
-        JointPower { joint }
+        JointPower { joint, rate_before: 0.0 }
     }
 }
 
@@ -154,8 +156,12 @@ impl Record for Power {
 
 impl Sensor for JointPower {
     type Record = Power;
+    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+        self.rate_before = sim.joint_state(self.joint)?.rate;
+        Ok(())
+    }
     fn measure(&mut self, sim: &Simulation) -> Result<Power> {
-        Ok(Power { power: sim.applied_effort(self.joint)?.1 })
+        Ok(Power { power: sim.joint_efforts(self.joint)?.total() * self.rate_before })
     }
     fn joints(&self) -> Vec<JointId> {
         vec![self.joint]

@@ -24,6 +24,7 @@ mod energy;
 mod joint;
 mod laser;
 mod noise;
+mod probe;
 
 use std::any::Any;
 use std::io::{self, Write};
@@ -39,6 +40,7 @@ pub use joint::{
 };
 pub use laser::{Laser, LaserReading};
 pub use noise::{Noisy, Perturb};
+pub use probe::Probe;
 
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, RawHandle, WorldId};
@@ -74,6 +76,24 @@ pub trait Sensor: Send + 'static {
     fn joints(&self) -> Vec<JointId> {
         Vec::new()
     }
+
+    /// When the sensor samples (default: at the end of each step).
+    fn sample_at(&self) -> SampleAt {
+        SampleAt::EndOfStep
+    }
+}
+
+/// When in the step a sensor samples.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SampleAt {
+    /// After the step, stamped with the time at its end and its number (1 for the first).
+    #[default]
+    EndOfStep,
+    /// At the start of the step, after the pre-step hooks, the joint controllers and
+    /// friction (the state the hooks read and the efforts they put), stamped with the
+    /// time at the start and the number of steps taken before (0 for the first). This
+    /// is where the original's programs printed their lines.
+    StartOfStep,
 }
 
 /// One measurement as CSV columns.
@@ -140,6 +160,92 @@ impl<R: Record> SensorLog<R> {
     }
 }
 
+impl<R> Default for SensorLog<R> {
+    fn default() -> Self {
+        SensorLog { samples: Vec::new() }
+    }
+}
+
+/// A sensor log seen through its CSV columns, whatever its record type: what
+/// [`write_csv_table`] joins.
+pub trait CsvColumns {
+    /// Column headers of the record.
+    fn headers(&self) -> Vec<&'static str>;
+    /// The samples' times and step numbers.
+    fn stamps(&self) -> Vec<(f64, u64)>;
+    /// The values of sample `i`, in column order.
+    fn cells(&self, i: usize) -> Vec<Option<f64>>;
+}
+
+impl<R: Record> CsvColumns for SensorLog<R> {
+    fn headers(&self) -> Vec<&'static str> {
+        R::columns()
+    }
+    fn stamps(&self) -> Vec<(f64, u64)> {
+        self.samples.iter().map(|s| (s.time, s.step)).collect()
+    }
+    fn cells(&self, i: usize) -> Vec<Option<f64>> {
+        self.samples[i].record.values()
+    }
+}
+
+/// Writes several sensors' logs as one CSV table: `time [s],step`, then each log's
+/// columns prefixed with its name (`"gps: y [m]"`), one row per sample (one in every
+/// `every`). The logs must hold the same samples (same times and steps: sensors added
+/// together, sampled at the same points); otherwise nothing is written and the error
+/// says which log differs.
+///
+/// ```
+/// use ars_core::sensors::{Gps, Velometer, write_csv_table};
+/// use ars_core::{Mass, Simulation};
+///
+/// let mut sim = Simulation::new()?;
+/// let ball = sim.add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
+/// let (gps, vel) = (sim.add_sensor(Gps::new(ball))?, sim.add_sensor(Velometer::new(ball))?);
+/// sim.step_n(4)?;
+/// let mut csv = Vec::new();
+/// write_csv_table(&mut csv, &[("gps", sim.records(gps)?), ("vel", sim.records(vel)?)], 2).unwrap();
+/// let csv = String::from_utf8(csv).unwrap();
+/// assert!(csv.starts_with("time [s],step,gps: x [m],gps: y [m],gps: z [m],vel: vx [m/s]"), "{csv}");
+/// assert_eq!(csv.lines().count(), 1 + 2);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+pub fn write_csv_table(mut w: impl Write, logs: &[(&str, &dyn CsvColumns)], every: usize) -> io::Result<()> {
+    let stamps = logs.first().map(|(_, log)| log.stamps()).unwrap_or_default();
+    if let Some((name, _)) = logs.iter().find(|(_, log)| log.stamps() != stamps) {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("the samples of {name:?} are not those of {:?}: a table needs the same samples", logs[0].0),
+        ));
+    }
+    let mut header = vec!["time [s]".to_string(), "step".to_string()];
+    for (name, log) in logs {
+        header.extend(log.headers().iter().map(|c| format!("{name}: {c}")));
+    }
+    writeln!(w, "{}", header.join(","))?;
+    for (i, (time, step)) in stamps.iter().enumerate().step_by(every.max(1)) {
+        write!(w, "{time},{step}")?;
+        for (_, log) in logs {
+            for v in log.cells(i) {
+                match v {
+                    Some(x) => write!(w, ",{x}")?,
+                    None => write!(w, ",")?,
+                }
+            }
+        }
+        writeln!(w)?;
+    }
+    Ok(())
+}
+
+impl<R: Clone> SensorLog<R> {
+    /// One sample in every `every` (the first, then every `every`-th), as a new log;
+    /// `every = 0` or `1` keeps them all.
+    pub fn thinned(&self, every: usize) -> SensorLog<R> {
+        SensorLog { samples: self.samples.iter().step_by(every.max(1)).cloned().collect() }
+    }
+}
+
 impl<'a, R> IntoIterator for &'a SensorLog<R> {
     type Item = &'a Sample<R>;
     type IntoIter = std::slice::Iter<'a, Sample<R>>;
@@ -168,6 +274,7 @@ impl<S> std::fmt::Debug for SensorId<S> {
 
 struct Slot<S: Sensor> {
     sensor: S,
+    at: SampleAt,
     period: Option<f64>,
     next_sample: f64,
     detached: bool,
@@ -184,14 +291,9 @@ trait ErasedSlot: Send {
     fn into_any(self: Box<Self>) -> Box<dyn Any>;
 }
 
-impl<S: Sensor> ErasedSlot for Slot<S> {
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
-        if self.detached { Ok(()) } else { self.sensor.before_step(sim) }
-    }
-    fn after_step(&mut self, sim: &Simulation) -> Result<()> {
-        if self.detached {
-            return Ok(());
-        }
+impl<S: Sensor> Slot<S> {
+    /// Measures, and keeps the record if a sample is due.
+    fn sample(&mut self, sim: &Simulation, step: u64) -> Result<()> {
         let time = sim.time();
         if let Some(period) = self.period {
             // Half a step of slack absorbs the drift of the accumulated time.
@@ -203,8 +305,27 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
             self.next_sample += period;
         }
         let record = self.sensor.measure(sim)?;
-        self.log.samples.push(Sample { time, step: sim.step_count(), record });
+        self.log.samples.push(Sample { time, step, record });
         Ok(())
+    }
+}
+
+impl<S: Sensor> ErasedSlot for Slot<S> {
+    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+        match (self.detached, self.at) {
+            (true, _) => Ok(()),
+            (false, SampleAt::EndOfStep) => self.sensor.before_step(sim),
+            (false, SampleAt::StartOfStep) => {
+                self.sensor.before_step(sim)?;
+                self.sample(sim, sim.step_count())
+            }
+        }
+    }
+    fn after_step(&mut self, sim: &Simulation) -> Result<()> {
+        match (self.detached, self.at) {
+            (false, SampleAt::EndOfStep) => self.sample(sim, sim.step_count()),
+            _ => Ok(()),
+        }
     }
     fn forget_object(&mut self, id: ObjectId) {
         if self.sensor.objects().contains(&id) {
@@ -286,8 +407,11 @@ impl Simulation {
             self.joint_data(joint)?;
         }
         sensor.attach(self)?;
-        let next_sample = self.time() + period.unwrap_or(0.0);
-        let slot = Slot { sensor, period, next_sample, detached: false, log: SensorLog { samples: Vec::new() } };
+        let at = sensor.sample_at();
+        // The first sample: the first step ending a period from now, or the first step
+        // starting now.
+        let next_sample = self.time() + if at == SampleAt::EndOfStep { period.unwrap_or(0.0) } else { 0.0 };
+        let slot = Slot { sensor, at, period, next_sample, detached: false, log: SensorLog { samples: Vec::new() } };
         let handle = self.sensors.slots.insert(Box::new(slot));
         Ok(SensorId { handle, _sensor: PhantomData })
     }

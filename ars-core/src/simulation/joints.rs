@@ -66,10 +66,32 @@ pub(crate) struct JointData {
     pub(crate) object2: Option<ObjectId>,
     friction: f64,
     controller: Option<Box<dyn JointController>>,
-    /// Torque (or force) added through the API during the current step.
-    pub(crate) applied: f64,
-    /// Power of those additions: Σ torque · rate at the moment each was added.
-    pub(crate) applied_power: f64,
+    /// Torques (or forces) of the current step.
+    pub(crate) efforts: JointEfforts,
+}
+
+/// The torques (rotary joints) or forces (sliders and pistons) put on a joint during
+/// the step being taken, by where they came from; read them from a sensor or a
+/// [`Probe`](crate::sensors::Probe) (they are zeroed after the sensors sampled).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct JointEfforts {
+    /// Added through the API ([`SimJoint::add_torque`] or [`add_force`](SimJoint::add_force),
+    /// from hooks and key actions), summed in call order; N·m or N.
+    pub added: f64,
+    /// Of the viscous friction (`−coefficient · rate` at the start of the step).
+    pub friction: f64,
+    /// Of the attached controller.
+    pub controller: f64,
+    /// Friction plus controller, as one addition after the pre-step hooks.
+    pub driven: f64,
+}
+
+impl JointEfforts {
+    /// Everything put on the joint in this step: `added + driven`.
+    pub fn total(&self) -> f64 {
+        self.added + self.driven
+    }
 }
 
 impl Simulation {
@@ -117,8 +139,7 @@ impl Simulation {
             object2,
             friction: 0.0,
             controller: None,
-            applied: 0.0,
-            applied_power: 0.0,
+            efforts: JointEfforts::default(),
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;
@@ -258,11 +279,15 @@ impl Simulation {
         Ok(SimJoint { sim: self, id })
     }
 
-    /// Torque (rotary) or force (slider) added through the API during the step being
-    /// taken; sensors read it after the step.
-    pub(crate) fn applied_effort(&self, id: JointId) -> Result<(f64, f64)> {
+    /// The torques (or forces) put on a joint during the step being taken.
+    pub fn joint_efforts(&self, id: JointId) -> Result<JointEfforts> {
+        Ok(self.joint_data(id)?.efforts)
+    }
+
+    /// The controller attached to a joint, if it is a `C`.
+    pub fn joint_controller<C: JointController + 'static>(&self, id: JointId) -> Result<Option<&C>> {
         let d = self.joint_data(id)?;
-        Ok((d.applied, d.applied_power))
+        Ok(d.controller.as_deref().and_then(|c| (c as &dyn std::any::Any).downcast_ref::<C>()))
     }
 
     pub(crate) fn joints_of_object(&self, object: ObjectId) -> Vec<JointId> {
@@ -278,35 +303,74 @@ impl Simulation {
         self.world.check_usable()?;
         let data = self.joints.remove(id.0, JointId::KIND, &id)?;
         self.joint_names.remove(&data.name);
+        self.driven_joints.retain(|j| *j != id);
         self.sensors.forget_joint(id);
         self.world.remove_joint(data.handle)
     }
 
-    /// Controllers and viscous friction, from the rates at the start of the step.
+    /// Controllers and viscous friction, from the rates at the start of the step (one
+    /// addition per driven joint, after the pre-step hooks).
     pub(crate) fn apply_joint_drives(&mut self) -> Result<()> {
         let (time, dt) = (self.time, self.time_step);
-        let ids: Vec<JointId> = self
-            .joints
-            .iter()
-            .filter(|(_, j)| j.friction != 0.0 || j.controller.is_some())
-            .map(|(h, _)| JointId(h))
-            .collect();
-        for id in ids {
+        for i in 0..self.driven_joints.len() {
+            let id = self.driven_joints[i];
             let state = self.joint_state(id)?;
             let data = self.joints.get_mut(id.0, JointId::KIND, &id)?;
-            let mut effort = -data.friction * state.rate;
-            if let Some(c) = data.controller.as_mut() {
-                effort += c.output(time, state, dt);
-            }
-            self.joint_mut(id)?.add_effort(effort)?;
+            let friction = -data.friction * state.rate;
+            let (effort, controller) = match data.controller.as_mut() {
+                Some(c) => {
+                    let output = c.output(time, state, dt);
+                    // Exactly the controller's output when there is no friction.
+                    (if data.friction == 0.0 { output } else { friction + output }, output)
+                }
+                None => (friction, 0.0),
+            };
+            data.efforts.friction = friction;
+            data.efforts.controller = controller;
+            self.put_effort(id, effort, true)?;
         }
         Ok(())
     }
 
+    /// Puts a torque (rotary, universal) or force (slider, piston) on a joint for the
+    /// next step and books it.
+    fn put_effort(&mut self, id: JointId, effort: f64, driven: bool) -> Result<()> {
+        validate::finite("joint torque or force", effort)?;
+        let data = self.joints.get(id.0, JointId::KIND, &id)?;
+        let (kind, handle) = (data.kind, data.handle);
+        let mut j = self.world.joint_mut(handle)?;
+        match kind {
+            JointType::Rotary | JointType::Universal => j.add_torque(effort)?,
+            _ => j.add_force(effort)?,
+        }
+        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND, &id)?.efforts;
+        if driven {
+            efforts.driven += effort;
+        } else {
+            efforts.added += effort;
+        }
+        Ok(())
+    }
+
+    /// Keeps the list of joints with friction or a controller.
+    fn update_driven(&mut self, id: JointId) {
+        let driven = self.joint_data(id).is_ok_and(|d| d.friction != 0.0 || d.controller.is_some());
+        match (driven, self.driven_joints.iter().position(|j| *j == id)) {
+            (true, None) => {
+                self.driven_joints.push(id);
+                // Drive in joint creation order, whatever the order they were set up in.
+                self.driven_joints.sort_by_key(|j| j.0.index);
+            }
+            (false, Some(i)) => {
+                self.driven_joints.remove(i);
+            }
+            _ => {}
+        }
+    }
+
     pub(crate) fn end_joint_step(&mut self) {
         for d in self.joints.values_mut() {
-            d.applied = 0.0;
-            d.applied_power = 0.0;
+            d.efforts = JointEfforts::default();
         }
     }
 
@@ -390,18 +454,7 @@ impl SimJoint<'_> {
     }
 
     fn add_effort(&mut self, effort: f64) -> Result<()> {
-        validate::finite("joint torque or force", effort)?;
-        let (kind, handle) = (self.data().kind, self.data().handle);
-        let state = self.sim.joint_state(self.id)?;
-        let mut j = self.sim.world.joint_mut(handle)?;
-        match kind {
-            JointType::Rotary | JointType::Universal => j.add_torque(effort)?,
-            _ => j.add_force(effort)?,
-        }
-        let data = self.data_mut();
-        data.applied += effort;
-        data.applied_power += effort * state.rate;
-        Ok(())
+        self.sim.put_effort(self.id, effort, false)
     }
 
     /// Drives the joint at `speed` (rad/s or m/s) with at most `max_force` (N·m or N),
@@ -444,6 +497,7 @@ impl SimJoint<'_> {
             _ => {}
         }
         self.data_mut().friction = coefficient;
+        self.sim.update_driven(self.id);
         Ok(())
     }
 
@@ -455,12 +509,20 @@ impl SimJoint<'_> {
             _ => {}
         }
         self.data_mut().controller = Some(Box::new(controller));
+        self.sim.update_driven(self.id);
         Ok(())
+    }
+
+    /// The attached controller, if it is a `C` (to change its set-point, say).
+    pub fn controller_mut<C: JointController + 'static>(&mut self) -> Option<&mut C> {
+        let c = self.data_mut().controller.as_deref_mut()?;
+        (c as &mut dyn std::any::Any).downcast_mut::<C>()
     }
 
     /// Detaches the controller.
     pub fn clear_controller(&mut self) {
         self.data_mut().controller = None;
+        self.sim.update_driven(self.id);
     }
 }
 

@@ -32,7 +32,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_faces};
-pub use joints::{JointEnd, JointType, SimJoint};
+pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
 pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
 
 use crate::contact::ContactSurface;
@@ -212,6 +212,7 @@ impl SimulationBuilder {
             object_names: Names::new("object"),
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
+            driven_joints: Vec::new(),
             sensors: SensorSet::new(id),
             hooks: HookSet::new(id),
             time: 0.0,
@@ -247,6 +248,8 @@ pub struct Simulation {
     object_names: Names<ObjectId>,
     joints: Arena<JointData>,
     joint_names: Names<JointId>,
+    /// Joints with viscous friction or a controller, in creation order.
+    driven_joints: Vec<JointId>,
     pub(crate) sensors: SensorSet,
     pub(crate) hooks: HookSet,
     time: f64,

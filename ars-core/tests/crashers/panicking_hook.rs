@@ -65,6 +65,6 @@ fn a_panicking_program_hook_is_reported() {
     let mut runner = ProgramRunner::new(&mut program).unwrap();
     let err = runner.step().unwrap_err();
     assert!(matches!(&err, Error::Panicked { during, .. } if during == "the pre-step hook of the program"), "{err}");
-    runner.program().0 = false;
+    runner.program_mut().0 = false;
     runner.step().unwrap();
 }
