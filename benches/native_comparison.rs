@@ -7,14 +7,10 @@
 //!
 //! `cargo bench --bench native_comparison`
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use common::native::CScene;
-use common::scenes::RustScene;
+use ars_reference_scenes::{CScene, RustScene};
 use criterion::{BatchSize, Criterion};
 
 struct Case {

@@ -8,7 +8,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::BouncingBall;
+use ars_programs::BouncingBall;
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

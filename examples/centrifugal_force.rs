@@ -10,7 +10,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::CentrifugalForce;
+use ars_programs::CentrifugalForce;
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

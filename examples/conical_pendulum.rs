@@ -11,7 +11,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::{ArmParameters, ConicalPendulum, ReducedArmModel};
+use ars_programs::{ArmParameters, ConicalPendulum, ReducedArmModel};
 use common::args::export_csv;
 use common::plot::{Series, line_chart};
 

@@ -10,8 +10,8 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::ControlledSimpleArm;
 use ars::{Key, ProgramRunner};
+use ars_programs::ControlledSimpleArm;
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -8,7 +8,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::FallingBallSensors;
+use ars_programs::FallingBallSensors;
 use common::args::export_csv_table;
 use common::plot::{Series, line_chart, over_time};
 

@@ -7,7 +7,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::FallingBalls;
+use ars_programs::FallingBalls;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

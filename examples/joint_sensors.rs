@@ -9,7 +9,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::CentrifugalForce;
+use ars_programs::CentrifugalForce;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -8,7 +8,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::TwoBallLaser;
+use ars_programs::TwoBallLaser;
 use common::args::export_csv_table;
 use common::plot::{Series, line_chart, over_time};
 

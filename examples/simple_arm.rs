@@ -8,9 +8,9 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::SimpleArm;
 use ars::sensors::RotaryJointSensor;
 use ars::{Key, ProgramRunner};
+use ars_programs::SimpleArm;
 use common::plot::{Series, line_chart, over_time};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -11,7 +11,7 @@
 mod common;
 
 use ars::Sample;
-use ars::programs::{SinusoidalTerrain, TerrainRow};
+use ars_programs::{SinusoidalTerrain, TerrainRow};
 use common::plot::{Series, line_chart};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

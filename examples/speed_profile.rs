@@ -9,7 +9,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::SpeedProfile;
+use ars_programs::SpeedProfile;
 use common::plot::{Series, line_chart, unwrapped};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -24,7 +24,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             e.mean, e.mean_abs, e.worst
         );
     }
-    let torque = |s: &&ars::Sample<ars::programs::SpeedProfileRow>| s.record.wheel_torque.abs();
+    let torque = |s: &&ars::Sample<ars_programs::SpeedProfileRow>| s.record.wheel_torque.abs();
     let peak = log.iter().max_by(|a, b| torque(a).total_cmp(&torque(b))).expect("stepped");
     println!(
         "peak wheel torque {:.4} N m at {:.3} s (shoulder at {:.3} rad then)",
@@ -37,7 +37,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         common::args::export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let s = |f: fn(&ars::programs::SpeedProfileRow) -> f64| {
+        let s = |f: fn(&ars_programs::SpeedProfileRow) -> f64| {
             log.iter().step_by(40).map(|s| (s.time, f(&s.record))).collect()
         };
         line_chart(

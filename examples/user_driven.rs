@@ -11,8 +11,8 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::UserDriven;
 use ars::{KeyScript, ProgramRunner};
+use ars_programs::UserDriven;
 use common::plot::{Series, line_chart, unwrapped};
 
 /// A short push forward, then left held (the wheels turn opposite ways: the vehicle

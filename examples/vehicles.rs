@@ -9,9 +9,9 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::programs::{Vehicle1, Vehicle2, VehicleWithArm, VehicleWithControlledArm};
 use ars::sensors::Gps;
 use ars::{KeyScript, ObjectId, Program, ProgramRunner};
+use ars_programs::{Vehicle1, Vehicle2, VehicleWithArm, VehicleWithControlledArm};
 use common::plot::{Series, line_chart};
 
 const DEFAULT_KEYS: &str = "\

@@ -31,6 +31,10 @@ fn main() {
         Err(err) => fail(&format!("could not read ODE's precision from pkg-config ({err})")),
     }
 
+    // For the build scripts of crates that compile C against ODE (DEP_ODE_INCLUDE).
+    let includes = env::join_paths(&ode.include_paths).expect("include paths without separators");
+    println!("cargo:include={}", includes.to_string_lossy());
+
     let mut builder = bindgen::Builder::default()
         .header("wrapper.h")
         .allowlist_function("d[A-Z].*")

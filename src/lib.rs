@@ -29,5 +29,3 @@ pub use ars_core::*;
 /// The 3D viewer (`ars-viewer`).
 #[cfg(feature = "viewer")]
 pub use ars_viewer as viewer;
-
-pub mod programs;

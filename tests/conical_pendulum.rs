@@ -1,8 +1,8 @@
 //! The thesis' validation robot (IROS example 2) against the thesis, the steady-state
 //! formula and an independent reduced-coordinate model of the same arm.
 
-use ars::programs::{ArmParameters, ConicalPendulum, PendulumRow, ReducedArmModel};
 use ars::{Hooks, Program, Sample, SimulationBuilder};
+use ars_programs::{ArmParameters, ConicalPendulum, PendulumRow, ReducedArmModel};
 
 /// The conical pendulum at a chosen time step (the original's is 0.25 ms).
 struct AtTimeStep(ConicalPendulum, f64);
@@ -31,7 +31,7 @@ fn run(dt: f64, seconds: f64) -> Vec<Sample<PendulumRow>> {
 
 /// Largest |ODE − model| of the shoulder angle and of the waist rate, sampled every
 /// 10 ms over the run.
-fn gaps(rows: &[Sample<PendulumRow>], dt: f64, model: &[ars::programs::ArmState]) -> (f64, f64) {
+fn gaps(rows: &[Sample<PendulumRow>], dt: f64, model: &[ars_programs::ArmState]) -> (f64, f64) {
     let every = (0.01 / dt).round() as usize;
     let (mut beta, mut rate) = (0.0f64, 0.0f64);
     for (k, m) in model.iter().enumerate() {

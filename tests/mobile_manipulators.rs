@@ -4,8 +4,8 @@
 
 use std::f64::consts::PI;
 
-use ars::programs::{Convoy, SinusoidalTerrain, SpeedProfile, UserDriven};
 use ars::{KeyScript, Program, ProgramRunner};
+use ars_programs::{Convoy, SinusoidalTerrain, SpeedProfile, UserDriven};
 
 #[test]
 fn example_3_follows_the_speed_profile_and_the_arm_falls_and_settles() {
@@ -27,7 +27,12 @@ fn example_3_follows_the_speed_profile_and_the_arm_falls_and_settles() {
     // After 60 s: hanging straight down, the waist at rest at a non-zero angle.
     let last = rows.last().unwrap();
     assert!((last.record.q2.abs() - PI).abs() < 0.01, "shoulder {}", last.record.q2);
-    assert!(last.record.q1.abs() > 0.1 && last.record.q1_rate.abs() < 1e-3, "waist {} at {} rad/s", last.record.q1, last.record.q1_rate);
+    assert!(
+        last.record.q1.abs() > 0.1 && last.record.q1_rate.abs() < 1e-3,
+        "waist {} at {} rad/s",
+        last.record.q1,
+        last.record.q1_rate
+    );
     // And it stopped about 8 m further (the area under the profile).
     let travelled = last.record.x - rows[0].record.x;
     assert!((travelled - 8.0).abs() < 0.5, "travelled {travelled} m");
@@ -42,10 +47,15 @@ fn example_4_crosses_the_terrain_with_its_arm_upright() {
     let off = SinusoidalTerrain::leaves_terrain(log).expect("drives off the end");
     assert!((off - 10.7).abs() < 0.3, "drops off the +X end at {off} s (the original: near 10.7 s)");
     let on_terrain = rows.iter().filter(|r| r.time < off);
-    let worst_after =
-        on_terrain.clone().filter(|r| r.time > 3.5).map(|r| r.record.q1.abs().max(r.record.q2.abs())).fold(0.0, f64::max);
+    let worst_after = on_terrain
+        .clone()
+        .filter(|r| r.time > 3.5)
+        .map(|r| r.record.q1.abs().max(r.record.q2.abs()))
+        .fold(0.0, f64::max);
     assert!(worst_after.to_degrees() < 3.0, "arm deviation {}° after 3.5 s", worst_after.to_degrees());
-    let peak = on_terrain.max_by(|a, b| a.record.q1.abs().max(a.record.q2.abs()).total_cmp(&b.record.q1.abs().max(b.record.q2.abs()))).unwrap();
+    let peak = on_terrain
+        .max_by(|a, b| a.record.q1.abs().max(a.record.q2.abs()).total_cmp(&b.record.q1.abs().max(b.record.q2.abs())))
+        .unwrap();
     eprintln!(
         "example 4: largest arm deviation {:.2}° at {:.2} s (the original: 3.3° at 2.4 s)",
         peak.record.q1.abs().max(peak.record.q2.abs()).to_degrees(),
@@ -81,7 +91,8 @@ fn example_5_scripted_keys_turn_the_vehicle_through_a_full_circle() {
     assert!(turned > 2.0 * PI, "turned {}°", turned.to_degrees());
     let log = runner.simulation().records(runner.program().record.unwrap()).unwrap();
     let rows = log.samples();
-    let worst = rows.iter().filter(|r| r.time > 1.0).map(|r| (r.record.setpoint - r.record.q2).abs()).fold(0.0, f64::max);
+    let worst =
+        rows.iter().filter(|r| r.time > 1.0).map(|r| (r.record.setpoint - r.record.q2).abs()).fold(0.0, f64::max);
     eprintln!("example 5: shoulder's largest error {:.3}° (the paper: under 1.5°)", worst.to_degrees());
     assert!(worst.to_degrees() < 1.5);
     // The recorded wheel torques are the keys' (left held: −3 right, +3 left).

@@ -1,10 +1,7 @@
 //! The Rust port against native ODE: the same scene written in plain C (`tests/c`) and
 //! through `ars-core` must produce bit-identical trajectories, step by step.
 
-mod common;
-
-use common::native::{BodyState, CScene};
-use common::scenes::RustScene;
+use ars_reference_scenes::{BodyState, CScene, RustScene};
 
 /// Steps both scenes one at a time for `steps` steps and compares every body's
 /// position, orientation and velocities bit for bit after each step.
@@ -70,7 +67,7 @@ fn same_bits(a: &[f64], b: &[f64]) -> bool {
 
 #[test]
 fn two_ball_laser_program_is_bit_identical_to_native_ode_for_two_seconds() {
-    use ars::programs::TwoBallLaser;
+    use ars_programs::TwoBallLaser;
     let mut program = TwoBallLaser::default();
     let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
     let mut c = CScene::two_ball_laser();
@@ -95,7 +92,7 @@ fn two_ball_laser_program_is_bit_identical_to_native_ode_for_two_seconds() {
 
 #[test]
 fn conical_pendulum_program_is_bit_identical_to_native_ode_for_two_seconds() {
-    use ars::programs::ConicalPendulum;
+    use ars_programs::ConicalPendulum;
     let mut program = ConicalPendulum::default();
     let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
     let mut c = CScene::conical_pendulum();
@@ -117,7 +114,7 @@ fn conical_pendulum_program_is_bit_identical_to_native_ode_for_two_seconds() {
 
 #[test]
 fn falling_ball_program_is_bit_identical_to_native_ode() {
-    use ars::programs::FallingBallSensors;
+    use ars_programs::FallingBallSensors;
     let mut program = FallingBallSensors::default();
     let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
     let mut c = CScene::falling_sphere();
@@ -158,7 +155,7 @@ fn assert_rows_bit_identical<P: ars::Program>(
 
 #[test]
 fn example_3_speed_profile_csv_is_bit_identical_to_native_ode_for_three_seconds() {
-    use ars::programs::SpeedProfile;
+    use ars_programs::SpeedProfile;
     assert_rows_bit_identical("example 3", SpeedProfile::default(), CScene::speed_profile(), 3.0, |sim, p| {
         let s = sim.records(p.record.unwrap()).unwrap().last().unwrap();
         let r = s.record;
@@ -168,7 +165,7 @@ fn example_3_speed_profile_csv_is_bit_identical_to_native_ode_for_three_seconds(
 
 #[test]
 fn example_4_sinusoidal_terrain_csv_is_bit_identical_to_native_ode_for_three_seconds() {
-    use ars::programs::SinusoidalTerrain;
+    use ars_programs::SinusoidalTerrain;
     assert_rows_bit_identical(
         "example 4",
         SinusoidalTerrain::default(),

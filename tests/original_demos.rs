@@ -1,8 +1,8 @@
 //! The original's other demos (ars-original §8.2–8.5, §8.18) run and behave as their
 //! documentation says.
 
-use ars::programs::{CentrifugalForce, ControlledSimpleArm, FallingBalls, SimpleArm};
 use ars::{Key, Program, ProgramRunner};
+use ars_programs::{CentrifugalForce, ControlledSimpleArm, FallingBalls, SimpleArm};
 
 #[test]
 fn falling_balls_land_when_free_fall_says() {
@@ -79,7 +79,7 @@ fn the_controlled_arm_holds_and_follows_its_shoulder_set_point() {
 
 #[test]
 fn the_bouncing_ball_bounces_when_the_code_and_the_paper_say() {
-    use ars::programs::BouncingBall;
+    use ars_programs::BouncingBall;
     let mut code = BouncingBall::default();
     let code_sim = code.run_headless(0.7).unwrap();
     let mut paper = BouncingBall { paper_bounce: true, ..Default::default() };

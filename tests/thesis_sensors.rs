@@ -2,8 +2,8 @@
 //! SPEC §6): the falling ball's impacts, restitution, accelerations and rest height,
 //! and the two-ball laser's first hit and resting distance.
 
-use ars::programs::{FallingBallSensors, TwoBallLaser};
 use ars::{Program, Simulation};
+use ars_programs::{FallingBallSensors, TwoBallLaser};
 
 /// One bounce: the last velocity sample before it and the first after it.
 #[derive(Debug)]

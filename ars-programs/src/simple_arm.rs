@@ -4,7 +4,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use super::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
+use crate::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId};
 use ars_core::{ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation};

@@ -1,15 +1,15 @@
 //! The original's vehicle demos: `Vehicle1`, `Vehicle2`, `VehicleWithArm` and
 //! `VehicleWithControlledArm`, driven with the arrow keys.
 
-use super::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
+use crate::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
 use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{Probe, Record, SensorId};
 use ars_core::{
     ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation, SimulationBuilder,
 };
 
-use super::simple_arm::ControlRow;
-use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle};
+use crate::simple_arm::ControlRow;
+use crate::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle};
 
 fn torques(sim: &mut Simulation, pairs: &[(JointId, f64)]) -> Result<()> {
     pairs.iter().try_for_each(|&(j, t)| sim.joint_mut(j)?.add_torque(t))
@@ -171,39 +171,35 @@ pub(crate) fn push_waist(arm: Option<VehicleArm>, sim: &mut Simulation, torque: 
 macro_rules! arm_vehicle_bindings {
     ($ty:ty, $torque:expr) => {{
         let t: f64 = $torque;
-        $crate::ActionMap::<$ty>::new()
+        ars_core::ActionMap::<$ty>::new()
             .add(
                 Key::Up,
-                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, t, t),
+                move |p: &mut $ty, sim| $crate::vehicle_programs::drive(p.vehicle, sim, t, t),
                 Repeat::WhileHeld,
             )
             .add(
                 Key::Down,
-                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, -t, -t),
+                move |p: &mut $ty, sim| $crate::vehicle_programs::drive(p.vehicle, sim, -t, -t),
                 Repeat::WhileHeld,
             )
             .add(
                 Key::Left,
-                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, -t, t),
+                move |p: &mut $ty, sim| $crate::vehicle_programs::drive(p.vehicle, sim, -t, t),
                 Repeat::WhileHeld,
             )
             .add(
                 Key::Right,
-                move |p: &mut $ty, sim| $crate::programs::vehicle_programs::drive(p.vehicle, sim, t, -t),
+                move |p: &mut $ty, sim| $crate::vehicle_programs::drive(p.vehicle, sim, t, -t),
                 Repeat::WhileHeld,
             )
             .add(
                 Key::Char('a'),
-                |p: &mut $ty, sim| {
-                    $crate::programs::vehicle_programs::push_waist(p.arm, sim, $crate::programs::WAIST_TORQUE)
-                },
+                |p: &mut $ty, sim| $crate::vehicle_programs::push_waist(p.arm, sim, $crate::WAIST_TORQUE),
                 Repeat::Once,
             )
             .add(
                 Key::Char('z'),
-                |p: &mut $ty, sim| {
-                    $crate::programs::vehicle_programs::push_waist(p.arm, sim, -$crate::programs::WAIST_TORQUE)
-                },
+                |p: &mut $ty, sim| $crate::vehicle_programs::push_waist(p.arm, sim, -$crate::WAIST_TORQUE),
                 Repeat::Once,
             )
     }};

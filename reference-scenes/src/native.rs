@@ -2,9 +2,9 @@
 
 use std::ffi::c_int;
 
-// The C scenes are compiled into the `ars` library by its build script; naming the
-// crate links it.
-use ars as _;
+// The C scenes are compiled into this crate by its build script; libode is linked
+// through ode-sys.
+use ode_sys as _;
 
 #[repr(C)]
 struct ArsCScene {

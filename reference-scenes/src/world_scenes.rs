@@ -6,14 +6,19 @@ use ars_core::{
     convert::rotation_about_axis,
 };
 
-use super::native::{BodyState, drop_pile_position};
+use crate::native::{BodyState, drop_pile_position};
 
 /// A world, its space, its bodies in creation order and an optional hinge torque.
 pub struct RustScene {
+    /// The world.
     pub world: World,
+    /// Its one space (with the floor plane y = 0).
     pub space: SpaceHandle,
+    /// The bodies, in creation order (the C scene's order).
     pub bodies: Vec<BodyHandle>,
+    /// Time step, s.
     pub dt: f64,
+    /// A hinge and the torque added to it before every step.
     pub torque: Option<(JointHandle, f64)>,
 }
 

@@ -5,7 +5,7 @@
 use ars_core::nalgebra::Vector3;
 use ars_core::{Hooks, Mass, ObjectId, Profile, Program, Result, Simulation, VelocityServo};
 
-use super::vehicles::{VehicleParts, VehicleSpec, build_vehicle};
+use crate::vehicles::{VehicleParts, VehicleSpec, build_vehicle};
 
 /// Two differential-drive vehicles (joint names `left/…` and `right/…`), 3 m apart,
 /// driving along +X: each wheel has a velocity servo whose set-point ramps to

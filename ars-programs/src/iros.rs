@@ -2,15 +2,15 @@
 //! parameters (ars-original §8.14–8.17). Where the papers and the code disagree, the
 //! code's behaviour is the default and the paper's is a flag.
 
-use super::{SetpointKeys, ShoulderSetpoint, servo_reading};
+use crate::{SetpointKeys, ShoulderSetpoint, servo_reading};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
 use ars_core::{
     ActionMap, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Simulation, SimulationBuilder,
 };
 
-use super::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
-use super::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, signed_ground_speed};
+use crate::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
+use crate::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, signed_ground_speed};
 
 /// 50 frames/s × 80 steps: dt = 0.25 ms.
 fn iros_timing(builder: SimulationBuilder) -> SimulationBuilder {

@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use ars_core::{Program, Result};
 
-use super::{ConicalPendulum, FallingBallSensors, TwoBallLaser};
+use crate::{ConicalPendulum, FallingBallSensors, TwoBallLaser};
 
 /// Runs the falling ball (1 s), the two-ball laser (2 s) and the conical pendulum
 /// (20 s) and returns the table `| quantity | thesis | ARS in Rust |`.

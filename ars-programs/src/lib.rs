@@ -1,4 +1,4 @@
-//! The programs of the thesis, as reusable [`Program`](crate::Program)s: the examples
+//! The programs of the thesis, as reusable [`Program`](ars_core::Program)s: the examples
 //! run them headless, the tests check their numbers, the viewer shows them.
 
 mod arm_model;

@@ -19,7 +19,7 @@
 //! The base is taken as fixed (in ODE it is a free 5000 kg box resting on the floor).
 //! In steady state `φ̇ = τ/c` and `tan β = (φ̇²/g) (a1 + (2L/3 − ρ²/(2L)) sin β)`.
 
-use super::ConicalPendulum;
+use crate::ConicalPendulum;
 
 /// Parameters of the arm.
 #[derive(Clone, Copy, Debug, PartialEq)]
