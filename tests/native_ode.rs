@@ -1,7 +1,7 @@
 //! The Rust port against native ODE: the same scene written in plain C (`tests/c`) and
 //! through `ars-core` must produce bit-identical trajectories, step by step.
 
-use ars_reference_scenes::{BodyState, CScene, RustScene};
+use ars_reference_scenes::{BodyState, CScene, RustScene, SimScene};
 
 /// Steps both scenes one at a time for `steps` steps and compares every body's
 /// position, orientation and velocities bit for bit after each step.
@@ -39,6 +39,30 @@ fn hinge_chain_is_bit_identical_to_native_ode_for_one_second() {
 #[test]
 fn drop_pile_in_a_hash_space_is_bit_identical_to_native_ode() {
     assert_bit_identical("drop pile", CScene::drop_pile(100), RustScene::drop_pile(100), 500);
+}
+
+#[test]
+fn the_simulation_layer_bench_scenes_are_bit_identical_to_native_ode() {
+    // What `benches/step_cost.rs` measures must be the same work as its C twin.
+    type Case = (&'static str, fn() -> CScene, fn() -> SimScene, usize);
+    let cases: [Case; 4] = [
+        ("falling sphere", CScene::falling_sphere, SimScene::falling_sphere, 2500),
+        ("drop pile", || CScene::drop_pile(100), || SimScene::drop_pile(100), 300),
+        ("conical pendulum", CScene::conical_pendulum, SimScene::conical_pendulum, 2500),
+        ("mobile manipulator", CScene::speed_profile, SimScene::mobile_manipulator, 2500),
+    ];
+    for (name, c, sim, steps) in cases {
+        let (mut c, mut sim) = (c(), sim());
+        assert_eq!(c.body_count(), sim.sim.bodies().count(), "{name}: body count");
+        for step in 1..=steps {
+            c.step(1);
+            sim.step(1);
+            for i in 0..c.body_count() {
+                let (cs, rs) = (c.body_state(i), sim.body_state(i));
+                assert!(same_bits(&cs, &rs), "{name}: body {i} differs after step {step}:\n C   {cs:?}\n Rust {rs:?}");
+            }
+        }
+    }
 }
 
 #[test]

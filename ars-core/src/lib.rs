@@ -93,12 +93,13 @@ pub mod error;
 pub mod geom;
 pub mod guard;
 pub mod handle;
-pub mod hooks;
 mod init;
 pub mod joint;
 pub mod limits;
+mod panic;
 pub mod program;
 pub mod random;
+pub mod scene;
 pub mod sensors;
 pub mod simulation;
 mod validate;
@@ -110,16 +111,17 @@ pub use control::{DcMotor, JointController, JointState, Pid, PositionServo, Prof
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
-pub use hooks::{HookId, Hooks, PostFrame, PostStep, PreFrame, PreStep};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
-pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
-pub use simulation::{
-    CONE_SEGMENTS, Color, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Heightfield, JointEfforts, JointEnd,
-    JointType, ObjectShape, SimJoint, Simulation, SimulationBuilder, heightfield_faces,
+pub use scene::{
+    CONE_SEGMENTS, Color, Heightfield, JointEfforts, JointEnd, JointType, ObjectShape, Scene, SimJoint,
+    heightfield_faces,
 };
+pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
+pub use simulation::hooks::{self, HookId, Hooks, PostFrame, PostStep, PreFrame, PreStep};
+pub use simulation::{DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Simulation, SimulationBuilder};
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 
 pub use nalgebra;
-pub use simulation::colors;
+pub use scene::colors;

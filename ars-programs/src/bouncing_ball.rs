@@ -2,7 +2,7 @@
 
 use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
-use ars_core::{Hooks, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder};
 
 /// The ball's height and vertical velocity at the start of a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -53,8 +53,8 @@ impl Program for BouncingBall {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let ball = sim.add_sphere(0.01, [1.0, 1.01, 1.0], Mass::Total(1.0))?;
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
-            let b = sim.body(ball)?;
+        let probe = Probe::at_step_start(move |scene: &Scene| {
+            let b = scene.body(ball)?;
             Ok(BallHeight { y: b.position().y, vy: b.linear_velocity().y })
         });
         self.record = Some(sim.add_sensor(probe.reads_objects([ball]))?);

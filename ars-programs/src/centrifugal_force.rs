@@ -6,7 +6,8 @@ use std::f64::consts::FRAC_PI_2;
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{JointPower, JointTorque, Probe, Record, RotaryJointSensor};
 use ars_core::{
-    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, SensorId, Simulation, SimulationBuilder,
+    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Scene, SensorId, Simulation,
+    SimulationBuilder,
 };
 
 /// One frame's reading (at its start): ball position, velocity and angular velocity,
@@ -124,8 +125,8 @@ impl Program for CentrifugalForce {
             sim.add_sensor_every(RotaryJointSensor::new(r2), 1.0 / 50.0)?,
         ));
         let frame = sim.time_step() * f64::from(sim.steps_per_frame());
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
-            let b = sim.body(ball)?;
+        let probe = Probe::at_step_start(move |scene: &Scene| {
+            let b = scene.body(ball)?;
             let (position, velocity, angular_velocity) = (b.position(), b.linear_velocity(), b.angular_velocity());
             let theta = ((2.0 - position.y + 0.5) / 1.0).clamp(-1.0, 1.0).acos();
             Ok(CentrifugalRow { position, velocity, angular_velocity, theta })

@@ -6,7 +6,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId};
-use ars_core::{Hooks, JointId, Mass, ObjectId, Program, Result, Simulation, SimulationBuilder};
+use ars_core::{Hooks, JointId, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder};
 
 /// One record of the pendulum: the state the pre-step hook reads at the start of a
 /// step, and the waist torque it applies (without friction).
@@ -127,9 +127,9 @@ impl Program for ConicalPendulum {
             sim.add_rotary_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
         (self.base, self.pole, self.arm) = (Some(base), Some(pole), Some(arm));
         (self.waist, self.shoulder) = (Some(waist), Some(shoulder));
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
-            let (s1, s2) = (sim.joint_state(waist)?, sim.joint_state(shoulder)?);
-            let torque = Self::waist_torque(sim.time());
+        let probe = Probe::at_step_start(move |scene: &Scene| {
+            let (s1, s2) = (scene.joint_state(waist)?, scene.joint_state(shoulder)?);
+            let torque = Self::waist_torque(scene.time());
             Ok(PendulumRow { q1: s1.position, q1_rate: s1.rate, q2: s2.position, q2_rate: s2.rate, torque })
         });
         self.record = Some(sim.add_sensor(probe.reads_joints([waist, shoulder]))?);

@@ -6,7 +6,7 @@ use crate::{SetpointKeys, ShoulderSetpoint, servo_reading};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
 use ars_core::{
-    ActionMap, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Simulation, SimulationBuilder,
+    ActionMap, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Scene, Simulation, SimulationBuilder,
 };
 
 use crate::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
@@ -175,17 +175,17 @@ impl Program for SpeedProfile {
         )?;
         let profile = self.profile.clone();
         let (chassis, w1, r1, r2) = (vehicle.chassis, vehicle.w1, arm.r1, arm.r2);
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
-            let (s1, s2) = (sim.joint_state(r1)?, sim.joint_state(r2)?);
+        let probe = Probe::at_step_start(move |scene: &Scene| {
+            let (s1, s2) = (scene.joint_state(r1)?, scene.joint_state(r2)?);
             Ok(SpeedProfileRow {
-                x: sim.position(chassis)?.x,
-                speed: signed_ground_speed(sim, chassis)?,
-                setpoint: profile.value(sim.time()),
+                x: scene.position(chassis)?.x,
+                speed: signed_ground_speed(scene, chassis)?,
+                setpoint: profile.value(scene.time()),
                 q1: s1.position,
                 q1_rate: s1.rate,
                 q2: s2.position,
                 q2_rate: s2.rate,
-                wheel_torque: sim.joint_efforts(w1)?.added,
+                wheel_torque: scene.joint_efforts(w1)?.added,
             })
         });
         self.record = Some(sim.add_sensor(probe.reads_objects([chassis]).reads_joints([w1, r1, r2]))?);
@@ -325,15 +325,15 @@ impl Program for SinusoidalTerrain {
         }
         let (chassis, wheel_r, wheel_l, w1, r1, r2) =
             (vehicle.chassis, vehicle.wheel_r, vehicle.wheel_l, vehicle.w1, arm.r1, arm.r2);
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
+        let probe = Probe::at_step_start(move |scene: &Scene| {
             Ok(TerrainRow {
-                position: sim.position(chassis)?,
-                wheels_x: 0.5 * (sim.position(wheel_r)?.x + sim.position(wheel_l)?.x),
-                q1: sim.joint_state(r1)?.position,
-                torque1: sim.joint_efforts(r1)?.controller,
-                q2: sim.joint_state(r2)?.position,
-                torque2: sim.joint_efforts(r2)?.controller,
-                wheel_torque: sim.joint_efforts(w1)?.added,
+                position: scene.position(chassis)?,
+                wheels_x: 0.5 * (scene.position(wheel_r)?.x + scene.position(wheel_l)?.x),
+                q1: scene.joint_state(r1)?.position,
+                torque1: scene.joint_efforts(r1)?.controller,
+                q2: scene.joint_state(r2)?.position,
+                torque2: scene.joint_efforts(r2)?.controller,
+                wheel_torque: scene.joint_efforts(w1)?.added,
             })
         });
         let probe = probe.reads_objects([chassis, wheel_r, wheel_l]).reads_joints([w1, r1, r2]);
@@ -437,17 +437,17 @@ impl Program for UserDriven {
         let (kp, kd) = Self::GAINS;
         sim.joint_mut(arm.r2)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
         let (chassis, w1, w2, r1, r2) = (vehicle.chassis, vehicle.w1, vehicle.w2, arm.r1, arm.r2);
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
-            let p = sim.position(chassis)?;
-            let servo = servo_reading(sim, r2)?;
+        let probe = Probe::at_step_start(move |scene: &Scene| {
+            let p = scene.position(chassis)?;
+            let servo = servo_reading(scene, r2)?;
             Ok(DrivingRow {
                 x: p.x,
                 z: p.z,
-                q1: sim.joint_state(r1)?.position,
+                q1: scene.joint_state(r1)?.position,
                 q2: servo.angle,
                 setpoint: servo.setpoint,
                 torque: servo.torque,
-                wheel_torques: (sim.joint_efforts(w1)?.added, sim.joint_efforts(w2)?.added),
+                wheel_torques: (scene.joint_efforts(w1)?.added, scene.joint_efforts(w2)?.added),
             })
         });
         self.record = Some(sim.add_sensor(probe.reads_objects([chassis]).reads_joints([w1, w2, r1, r2]))?);

@@ -77,16 +77,16 @@ pub(crate) fn hold_shoulder(
     kp: f64,
     kd: f64,
 ) -> ars_core::Result<ars_core::SensorId<ars_core::Probe<ControlRow>>> {
-    use ars_core::{PositionServo, Probe, Profile, Simulation};
+    use ars_core::{PositionServo, Probe, Profile, Scene};
     sim.joint_mut(shoulder)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
-    let probe = Probe::at_step_start(move |sim: &Simulation| servo_reading(sim, shoulder));
+    let probe = Probe::at_step_start(move |scene: &Scene| servo_reading(scene, shoulder));
     sim.add_sensor(probe.reads_joints([shoulder]))
 }
 
 /// What the position servo on `joint` does in the step being taken.
-pub(crate) fn servo_reading(sim: &ars_core::Simulation, joint: ars_core::JointId) -> ars_core::Result<ControlRow> {
-    let servo = sim.joint_controller::<ars_core::PositionServo>(joint)?.expect("the joint has a position servo");
-    let setpoint = servo.setpoint.value(sim.time());
-    let angle = sim.joint_state(joint)?.position;
-    Ok(ControlRow { setpoint, angle, error: setpoint - angle, torque: sim.joint_efforts(joint)?.controller })
+pub(crate) fn servo_reading(scene: &ars_core::Scene, joint: ars_core::JointId) -> ars_core::Result<ControlRow> {
+    let servo = scene.joint_controller::<ars_core::PositionServo>(joint)?.expect("the joint has a position servo");
+    let setpoint = servo.setpoint.value(scene.time());
+    let angle = scene.joint_state(joint)?.position;
+    Ok(ControlRow { setpoint, angle, error: setpoint - angle, torque: scene.joint_efforts(joint)?.controller })
 }

@@ -5,7 +5,7 @@ use crate::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
 use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{Probe, Record, SensorId};
 use ars_core::{
-    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation, SimulationBuilder,
+    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Scene, Simulation, SimulationBuilder,
 };
 
 use crate::simple_arm::ControlRow;
@@ -226,8 +226,8 @@ impl Program for VehicleWithArm {
         let spec = VehicleSpec { capsule_wheels: self.capsule_wheels, ..Default::default() };
         let (vehicle, arm) = build_mobile_manipulator(sim, &spec, Mass::Density(1.0))?;
         let (r1, r2) = (arm.r1, arm.r2);
-        let probe = Probe::at_step_start(move |sim: &Simulation| {
-            Ok(ArmRates { q1_rate: sim.joint_state(r1)?.rate, q2_rate: sim.joint_state(r2)?.rate })
+        let probe = Probe::at_step_start(move |scene: &Scene| {
+            Ok(ArmRates { q1_rate: scene.joint_state(r1)?.rate, q2_rate: scene.joint_state(r2)?.rate })
         });
         self.record = Some(sim.add_sensor(probe.reads_joints([r1, r2]))?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));

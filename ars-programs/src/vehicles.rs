@@ -5,7 +5,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{JointId, Mass, ObjectId, ObjectShape, Result, Simulation};
+use ars_core::{JointId, Mass, ObjectId, ObjectShape, Result, Scene, Simulation};
 
 /// Parameters of a differential-drive base (the original's `Vehicle2` /
 /// `VehicleWithArm` geometry before its offset: wheels at (0, 0, ∓0.5), caster ball at
@@ -127,8 +127,8 @@ pub fn build_mobile_manipulator(
 /// original measured it: `sqrt(vx² + vz²) · sign(vx)`, with `sign(0) = −1` as the
 /// original's. Computed as the original did (its `length2`: squares, sum, square
 /// root), not with `hypot`, which rounds differently in the last digit.
-pub fn signed_ground_speed(sim: &Simulation, chassis: ObjectId) -> Result<f64> {
-    let v = sim.body(chassis)?.linear_velocity();
+pub fn signed_ground_speed(scene: &Scene, chassis: ObjectId) -> Result<f64> {
+    let v = scene.body(chassis)?.linear_velocity();
     let sign = if v.x > 0.0 { 1.0 } else { -1.0 };
     Ok((v.x * v.x + v.z * v.z).sqrt() * sign)
 }

@@ -17,7 +17,7 @@ pub use runner::ProgramRunner;
 pub use view::ViewSettings;
 
 use crate::error::Result;
-use crate::hooks::Hooks;
+use crate::simulation::hooks::Hooks;
 use crate::simulation::{Simulation, SimulationBuilder};
 
 /// A simulation program: a scene ([`create_sim_objects`](Program::create_sim_objects),

@@ -3,8 +3,8 @@
 use super::Program;
 use super::input::{Action, ActionMap, Key, KeyScript, Repeat};
 use crate::error::Result;
-use crate::hooks::Hooks;
 use crate::simulation::Simulation;
+use crate::simulation::hooks::Hooks;
 
 /// The held-keys decorator: a program's hooks, with the actions of the keys held now
 /// run right after its pre-step hook.

@@ -5,7 +5,7 @@ use nalgebra::{Point3, Vector3};
 use super::{Record, Sensor};
 use crate::error::Result;
 use crate::handle::ObjectId;
-use crate::simulation::Simulation;
+use crate::scene::Scene;
 
 fn xyz(v: &Vector3<f64>) -> [Option<f64>; 3] {
     [Some(v.x), Some(v.y), Some(v.z)]
@@ -42,7 +42,7 @@ impl Record for Position {
 
 impl Sensor for Gps {
     type Record = Position;
-    fn measure(&mut self, sim: &Simulation) -> Result<Position> {
+    fn measure(&mut self, sim: &Scene) -> Result<Position> {
         Ok(Position { position: sim.body(self.object)?.position() })
     }
     fn objects(&self) -> Vec<ObjectId> {
@@ -83,7 +83,7 @@ impl Record for Velocity {
 
 impl Sensor for Velometer {
     type Record = Velocity;
-    fn measure(&mut self, sim: &Simulation) -> Result<Velocity> {
+    fn measure(&mut self, sim: &Scene) -> Result<Velocity> {
         let b = sim.body(self.object)?;
         Ok(Velocity { linear: b.linear_velocity(), angular: b.angular_velocity() })
     }
@@ -132,12 +132,12 @@ impl Record for Acceleration {
 
 impl Sensor for Accelerometer {
     type Record = Acceleration;
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn before_step(&mut self, sim: &Scene) -> Result<()> {
         let b = sim.body(self.object)?;
         self.start = Some((b.linear_velocity(), b.angular_velocity()));
         Ok(())
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<Acceleration> {
+    fn measure(&mut self, sim: &Scene) -> Result<Acceleration> {
         let b = sim.body(self.object)?;
         let (v0, w0) = self.start.expect("before_step runs before every measurement");
         let dt = sim.time_step();
@@ -183,7 +183,7 @@ impl Record for Inclination {
 
 impl Sensor for Inclinometer {
     type Record = Inclination;
-    fn measure(&mut self, sim: &Simulation) -> Result<Inclination> {
+    fn measure(&mut self, sim: &Scene) -> Result<Inclination> {
         let r = sim.body(self.object)?.rotation();
         let m = r.matrix();
         Ok(Inclination { pitch: (-m[(0, 1)]).atan2(m[(0, 0)]), roll: (-m[(1, 2)]).atan2(m[(2, 2)]) })
@@ -229,10 +229,10 @@ impl Record for ImuReading {
 
 impl Sensor for Imu {
     type Record = ImuReading;
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn before_step(&mut self, sim: &Scene) -> Result<()> {
         self.inner.before_step(sim)
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<ImuReading> {
+    fn measure(&mut self, sim: &Scene) -> Result<ImuReading> {
         let a = self.inner.measure(sim)?.linear;
         let b = sim.body(self.inner.object)?;
         let to_body = b.rotation().inverse();
@@ -287,7 +287,7 @@ impl Record for ContactReading {
 
 impl Sensor for ContactSensor {
     type Record = ContactReading;
-    fn measure(&mut self, sim: &Simulation) -> Result<ContactReading> {
+    fn measure(&mut self, sim: &Scene) -> Result<ContactReading> {
         let geom = sim.geom_handle(self.object)?;
         let mut reading = ContactReading { contacts: 0, max_depth: 0.0 };
         for c in sim.world().contacts() {

@@ -6,7 +6,7 @@ use super::{Record, Sensor};
 use crate::body::BodyRef;
 use crate::error::Result;
 use crate::handle::ObjectId;
-use crate::simulation::Simulation;
+use crate::scene::Scene;
 
 /// Translational `½ m v·v` and rotational `½ ωᵀ I_w ω` kinetic energy, with the
 /// world-frame inertia `I_w = R I Rᵀ` (correct for rotated bodies, unlike the
@@ -63,7 +63,7 @@ impl Record for Kinetic {
 
 impl Sensor for KineticEnergy {
     type Record = Kinetic;
-    fn measure(&mut self, sim: &Simulation) -> Result<Kinetic> {
+    fn measure(&mut self, sim: &Scene) -> Result<Kinetic> {
         Ok(kinetic(&sim.body(self.object)?))
     }
     fn objects(&self) -> Vec<ObjectId> {
@@ -109,7 +109,7 @@ impl Record for Potential {
 
 impl Sensor for PotentialEnergy {
     type Record = Potential;
-    fn measure(&mut self, sim: &Simulation) -> Result<Potential> {
+    fn measure(&mut self, sim: &Scene) -> Result<Potential> {
         Ok(Potential { potential: potential(&sim.body(self.object)?, &sim.gravity(), self.reference_height) })
     }
     fn objects(&self) -> Vec<ObjectId> {
@@ -163,7 +163,7 @@ impl TotalEnergy {
 
 impl Sensor for TotalEnergy {
     type Record = Energy;
-    fn measure(&mut self, sim: &Simulation) -> Result<Energy> {
+    fn measure(&mut self, sim: &Scene) -> Result<Energy> {
         let b = sim.body(self.object)?;
         Ok(Energy { kinetic: kinetic(&b).total(), potential: potential(&b, &sim.gravity(), self.reference_height) })
     }
@@ -193,7 +193,7 @@ impl SystemTotalEnergy {
 
 impl Sensor for SystemTotalEnergy {
     type Record = Energy;
-    fn measure(&mut self, sim: &Simulation) -> Result<Energy> {
+    fn measure(&mut self, sim: &Scene) -> Result<Energy> {
         let g = sim.gravity();
         let mut e = Energy { kinetic: 0.0, potential: 0.0 };
         for (_, body) in sim.bodies() {

@@ -7,7 +7,7 @@ use super::{Record, Sensor};
 use crate::control::JointState;
 use crate::error::{Error, Result};
 use crate::handle::JointId;
-use crate::simulation::{JointType, Simulation};
+use crate::scene::{JointType, Scene};
 
 /// Angle and rate of a rotary joint (after the step).
 #[derive(Clone, Debug)]
@@ -36,10 +36,10 @@ impl Record for JointState {
 
 impl Sensor for RotaryJointSensor {
     type Record = JointState;
-    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+    fn attach(&mut self, sim: &mut Scene) -> Result<()> {
         expect_type(sim, self.joint, &[JointType::Rotary], "a rotary joint sensor")
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<JointState> {
+    fn measure(&mut self, sim: &Scene) -> Result<JointState> {
         sim.joint_state(self.joint)
     }
     fn joints(&self) -> Vec<JointId> {
@@ -47,7 +47,7 @@ impl Sensor for RotaryJointSensor {
     }
 }
 
-fn expect_type(sim: &Simulation, joint: JointId, types: &[JointType], operation: &'static str) -> Result<()> {
+fn expect_type(sim: &Scene, joint: JointId, types: &[JointType], operation: &'static str) -> Result<()> {
     let t = sim.joint_type(joint)?;
     if types.contains(&t) { Ok(()) } else { Err(Error::WrongJointKind { operation, kind: t.default_name() }) }
 }
@@ -76,10 +76,10 @@ impl JointTorque {
 
 impl Sensor for JointTorque {
     type Record = Effort;
-    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+    fn attach(&mut self, sim: &mut Scene) -> Result<()> {
         expect_type(sim, self.joint, &[JointType::Rotary, JointType::Universal], "a joint torque sensor")
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<Effort> {
+    fn measure(&mut self, sim: &Scene) -> Result<Effort> {
         Ok(Effort { value: sim.joint_efforts(self.joint)?.total() })
     }
     fn joints(&self) -> Vec<JointId> {
@@ -111,10 +111,10 @@ impl Record for Effort {
 
 impl Sensor for JointForce {
     type Record = Effort;
-    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+    fn attach(&mut self, sim: &mut Scene) -> Result<()> {
         expect_type(sim, self.joint, &[JointType::Slider, JointType::Piston], "a joint force sensor")
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<Effort> {
+    fn measure(&mut self, sim: &Scene) -> Result<Effort> {
         Ok(Effort { value: sim.joint_efforts(self.joint)?.total() })
     }
     fn joints(&self) -> Vec<JointId> {
@@ -156,11 +156,11 @@ impl Record for Power {
 
 impl Sensor for JointPower {
     type Record = Power;
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn before_step(&mut self, sim: &Scene) -> Result<()> {
         self.rate_before = sim.joint_state(self.joint)?.rate;
         Ok(())
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<Power> {
+    fn measure(&mut self, sim: &Scene) -> Result<Power> {
         Ok(Power { power: sim.joint_efforts(self.joint)?.total() * self.rate_before })
     }
     fn joints(&self) -> Vec<JointId> {
@@ -203,7 +203,7 @@ impl Record for Reaction {
 
 impl Sensor for JointReaction {
     type Record = Reaction;
-    fn measure(&mut self, sim: &Simulation) -> Result<Reaction> {
+    fn measure(&mut self, sim: &Scene) -> Result<Reaction> {
         let fb = sim.joint_ref(self.joint)?.feedback().expect("simulation joints record feedback");
         Ok(Reaction { force: fb.force1, torque: fb.torque1 })
     }

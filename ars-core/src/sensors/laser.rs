@@ -6,7 +6,7 @@ use super::{Record, Sensor};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{GeomHandle, ObjectId};
-use crate::simulation::Simulation;
+use crate::scene::Scene;
 use crate::validate;
 
 #[derive(Clone, Debug)]
@@ -97,7 +97,7 @@ impl Record for LaserReading {
 impl Sensor for Laser {
     type Record = LaserReading;
 
-    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+    fn attach(&mut self, sim: &mut Scene) -> Result<()> {
         validate::positive("laser max distance", self.max_distance)?;
         let space = sim.space();
         let ray = match &self.mount {
@@ -123,7 +123,7 @@ impl Sensor for Laser {
         Ok(())
     }
 
-    fn measure(&mut self, sim: &Simulation) -> Result<LaserReading> {
+    fn measure(&mut self, sim: &Scene) -> Result<LaserReading> {
         let ray = self.ray.expect("attached when added");
         let hit = sim.world().closest_ray_hit(ray);
         Ok(LaserReading { distance: hit.map(|h| h.distance), point: hit.map(|h| h.position) })

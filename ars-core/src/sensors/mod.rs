@@ -44,7 +44,8 @@ pub use probe::Probe;
 
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, RawHandle, WorldId};
-use crate::simulation::{Simulation, contain};
+use crate::panic::contain;
+use crate::scene::Scene;
 
 /// A sensor: measures something of a simulation after every step it samples.
 pub trait Sensor: Send + 'static {
@@ -52,20 +53,20 @@ pub trait Sensor: Send + 'static {
     type Record: Record;
 
     /// Called once when the sensor is added (a laser creates its ray here).
-    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
-        let _ = sim;
+    fn attach(&mut self, scene: &mut Scene) -> Result<()> {
+        let _ = scene;
         Ok(())
     }
 
     /// Called before every step, after the pre-step hooks, on the state before the
     /// step (an accelerometer remembers the velocity here).
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn before_step(&mut self, sim: &Scene) -> Result<()> {
         let _ = sim;
         Ok(())
     }
 
     /// One measurement, after a step.
-    fn measure(&mut self, sim: &Simulation) -> Result<Self::Record>;
+    fn measure(&mut self, sim: &Scene) -> Result<Self::Record>;
 
     /// Objects the sensor reads; it stops sampling when one is removed.
     fn objects(&self) -> Vec<ObjectId> {
@@ -282,8 +283,8 @@ struct Slot<S: Sensor> {
 }
 
 trait ErasedSlot: Send {
-    fn before_step(&mut self, sim: &Simulation) -> Result<()>;
-    fn after_step(&mut self, sim: &Simulation) -> Result<()>;
+    fn before_step(&mut self, sim: &Scene) -> Result<()>;
+    fn after_step(&mut self, sim: &Scene) -> Result<()>;
     fn forget_object(&mut self, id: ObjectId);
     fn forget_joint(&mut self, id: JointId);
     fn as_any(&self) -> &dyn Any;
@@ -293,7 +294,7 @@ trait ErasedSlot: Send {
 
 impl<S: Sensor> Slot<S> {
     /// Measures, and keeps the record if a sample is due.
-    fn sample(&mut self, sim: &Simulation, step: u64) -> Result<()> {
+    fn sample(&mut self, sim: &Scene, step: u64) -> Result<()> {
         let time = sim.time();
         if let Some(period) = self.period {
             // Half a step of slack absorbs the drift of the accumulated time.
@@ -311,7 +312,7 @@ impl<S: Sensor> Slot<S> {
 }
 
 impl<S: Sensor> ErasedSlot for Slot<S> {
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn before_step(&mut self, sim: &Scene) -> Result<()> {
         match (self.detached, self.at) {
             (true, _) => Ok(()),
             (false, SampleAt::EndOfStep) => self.sensor.before_step(sim),
@@ -321,7 +322,7 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
             }
         }
     }
-    fn after_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn after_step(&mut self, sim: &Scene) -> Result<()> {
         match (self.detached, self.at) {
             (false, SampleAt::EndOfStep) => self.sample(sim, sim.step_count()),
             _ => Ok(()),
@@ -359,11 +360,11 @@ impl SensorSet {
     }
     /// Every sensor notes the state before the step; a failing or panicking sensor
     /// does not keep the others from it. The first error is returned.
-    pub(crate) fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    pub(crate) fn before_step(&mut self, sim: &Scene) -> Result<()> {
         self.each(|s| s.before_step(sim))
     }
     /// Every sensor samples; as [`SensorSet::before_step`].
-    pub(crate) fn after_step(&mut self, sim: &Simulation) -> Result<()> {
+    pub(crate) fn after_step(&mut self, sim: &Scene) -> Result<()> {
         self.each(|s| s.after_step(sim))
     }
     fn each(&mut self, mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>) -> Result<()> {
@@ -384,42 +385,38 @@ impl SensorSet {
     }
 }
 
-impl Simulation {
-    /// Adds a sensor that samples after every step.
-    pub fn add_sensor<S: Sensor>(&mut self, sensor: S) -> Result<SensorId<S>> {
-        self.insert_sensor(sensor, None)
-    }
-
-    /// Adds a sensor that samples every `period` seconds of simulated time (at the
-    /// first step ending at or after each multiple of the period).
-    pub fn add_sensor_every<S: Sensor>(&mut self, sensor: S, period: f64) -> Result<SensorId<S>> {
-        crate::validate::positive("sensor period", period)?;
-        self.insert_sensor(sensor, Some(period))
+impl SensorSet {
+    pub(crate) fn len(&self) -> usize {
+        self.slots.len()
     }
 
     /// Refuses a sensor that reads an object or joint that is not (or no longer) in
-    /// this simulation, then attaches it.
-    fn insert_sensor<S: Sensor>(&mut self, mut sensor: S, period: Option<f64>) -> Result<SensorId<S>> {
+    /// the scene, then attaches it.
+    pub(crate) fn insert<S: Sensor>(
+        &mut self,
+        scene: &mut Scene,
+        mut sensor: S,
+        period: Option<f64>,
+    ) -> Result<SensorId<S>> {
         for object in sensor.objects() {
-            self.object_data(object)?;
+            scene.name(object)?;
         }
         for joint in sensor.joints() {
-            self.joint_data(joint)?;
+            scene.joint_name(joint)?;
         }
-        sensor.attach(self)?;
+        sensor.attach(scene)?;
         let at = sensor.sample_at();
         // The first sample: the first step ending a period from now, or the first step
         // starting now.
-        let next_sample = self.time() + if at == SampleAt::EndOfStep { period.unwrap_or(0.0) } else { 0.0 };
+        let next_sample = scene.time() + if at == SampleAt::EndOfStep { period.unwrap_or(0.0) } else { 0.0 };
         let slot = Slot { sensor, at, period, next_sample, detached: false, log: SensorLog { samples: Vec::new() } };
-        let handle = self.sensors.slots.insert(Box::new(slot));
+        let handle = self.slots.insert(Box::new(slot));
         Ok(SensorId { handle, _sensor: PhantomData })
     }
 
-    /// Removes a sensor and hands back its samples.
-    pub fn remove_sensor<S: Sensor>(&mut self, id: SensorId<S>) -> Result<SensorLog<S::Record>> {
+    pub(crate) fn remove<S: Sensor>(&mut self, id: SensorId<S>) -> Result<SensorLog<S::Record>> {
         self.slot(id)?;
-        let slot = self.sensors.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
+        let slot = self.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
         match slot.into_any().downcast::<Slot<S>>() {
             Ok(slot) => Ok(slot.log),
             Err(_) => unreachable!("the slot's type was checked above"),
@@ -428,8 +425,7 @@ impl Simulation {
 
     fn slot<S: Sensor>(&self, id: SensorId<S>) -> Result<&Slot<S>> {
         let shown = format!("{id:?}");
-        self.sensors
-            .slots
+        self.slots
             .get(id.handle, "sensor", &shown)?
             .as_any()
             .downcast_ref::<Slot<S>>()
@@ -438,32 +434,27 @@ impl Simulation {
 
     fn slot_mut<S: Sensor>(&mut self, id: SensorId<S>) -> Result<&mut Slot<S>> {
         let shown = format!("{id:?}");
-        self.sensors
-            .slots
+        self.slots
             .get_mut(id.handle, "sensor", &shown)?
             .as_any_mut()
             .downcast_mut::<Slot<S>>()
             .ok_or(Error::StaleHandle { kind: "sensor", handle: shown })
     }
 
-    /// The samples of a sensor.
-    pub fn records<S: Sensor>(&self, id: SensorId<S>) -> Result<&SensorLog<S::Record>> {
+    pub(crate) fn log<S: Sensor>(&self, id: SensorId<S>) -> Result<&SensorLog<S::Record>> {
         Ok(&self.slot(id)?.log)
     }
 
-    /// Forgets the samples of a sensor so far.
-    pub fn clear_records<S: Sensor>(&mut self, id: SensorId<S>) -> Result<()> {
+    pub(crate) fn clear<S: Sensor>(&mut self, id: SensorId<S>) -> Result<()> {
         self.slot_mut(id)?.log.samples.clear();
         Ok(())
     }
 
-    /// The sensor itself (its configuration).
-    pub fn sensor<S: Sensor>(&self, id: SensorId<S>) -> Result<&S> {
+    pub(crate) fn sensor<S: Sensor>(&self, id: SensorId<S>) -> Result<&S> {
         Ok(&self.slot(id)?.sensor)
     }
 
-    /// Whether a sensor stopped sampling because an object or joint it reads was removed.
-    pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
+    pub(crate) fn is_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         Ok(self.slot(id)?.detached)
     }
 }

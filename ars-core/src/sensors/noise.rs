@@ -11,7 +11,7 @@ use crate::control::JointState;
 use crate::error::Result;
 use crate::handle::{JointId, ObjectId};
 use crate::random::SplitMix64;
-use crate::simulation::Simulation;
+use crate::scene::Scene;
 
 /// A record whose values can be perturbed by noise.
 pub trait Perturb: Record {
@@ -121,13 +121,13 @@ where
 {
     type Record = S::Record;
 
-    fn attach(&mut self, sim: &mut Simulation) -> Result<()> {
+    fn attach(&mut self, sim: &mut Scene) -> Result<()> {
         self.inner.attach(sim)
     }
-    fn before_step(&mut self, sim: &Simulation) -> Result<()> {
+    fn before_step(&mut self, sim: &Scene) -> Result<()> {
         self.inner.before_step(sim)
     }
-    fn measure(&mut self, sim: &Simulation) -> Result<S::Record> {
+    fn measure(&mut self, sim: &Scene) -> Result<S::Record> {
         let mut record = self.inner.measure(sim)?;
         let (rng, std_dev) = (&mut self.rng, self.std_dev);
         record.perturb(&mut || std_dev * rng.normal());

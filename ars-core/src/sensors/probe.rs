@@ -6,7 +6,7 @@ use std::marker::PhantomData;
 use super::{Record, SampleAt, Sensor};
 use crate::error::Result;
 use crate::handle::{JointId, ObjectId};
-use crate::simulation::Simulation;
+use crate::scene::Scene;
 
 /// A sensor that records what its closure reads of the simulation: the way a program
 /// declares the rows it records (a state, a set-point, the torques it put), with the
@@ -15,7 +15,7 @@ use crate::simulation::Simulation;
 ///
 /// ```
 /// use ars_core::sensors::{Probe, Record};
-/// use ars_core::{Mass, Simulation};
+/// use ars_core::{Mass, Scene, Simulation};
 ///
 /// #[derive(Clone)]
 /// struct Height {
@@ -34,7 +34,7 @@ use crate::simulation::Simulation;
 /// let mut sim = Simulation::new()?;
 /// let ball = sim.add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
 /// let probe = sim.add_sensor(
-///     Probe::new(move |sim: &Simulation| {
+///     Probe::new(move |sim: &Scene| {
 ///         let b = sim.body(ball)?;
 ///         Ok(Height { y: b.position().y, vy: b.linear_velocity().y })
 ///     })
@@ -55,11 +55,11 @@ pub struct Probe<R> {
 }
 
 /// What a probe calls to measure.
-type ReadFn<R> = dyn FnMut(&Simulation) -> Result<R> + Send;
+type ReadFn<R> = dyn FnMut(&Scene) -> Result<R> + Send;
 
 impl<R: Record> Probe<R> {
     /// Records `read(sim)` at the end of every step.
-    pub fn new(read: impl FnMut(&Simulation) -> Result<R> + Send + 'static) -> Self {
+    pub fn new(read: impl FnMut(&Scene) -> Result<R> + Send + 'static) -> Self {
         Probe {
             read: Box::new(read),
             at: SampleAt::EndOfStep,
@@ -71,7 +71,7 @@ impl<R: Record> Probe<R> {
 
     /// Records `read(sim)` at the start of every step, after the pre-step hooks (see
     /// [`SampleAt::StartOfStep`]).
-    pub fn at_step_start(read: impl FnMut(&Simulation) -> Result<R> + Send + 'static) -> Self {
+    pub fn at_step_start(read: impl FnMut(&Scene) -> Result<R> + Send + 'static) -> Self {
         Probe { at: SampleAt::StartOfStep, ..Self::new(read) }
     }
 
@@ -102,7 +102,7 @@ impl<R> fmt::Debug for Probe<R> {
 impl<R: Record> Sensor for Probe<R> {
     type Record = R;
 
-    fn measure(&mut self, sim: &Simulation) -> Result<R> {
+    fn measure(&mut self, sim: &Scene) -> Result<R> {
         (self.read)(sim)
     }
 

@@ -1,10 +1,12 @@
-//! The [`Simulation`]: named objects and joints on a [`World`], floors, sensors, hooks
-//! and the step loop of the original ARS.
+//! The [`Simulation`]: a [`Scene`] (named objects and joints on a [`World`], floors,
+//! the clock) with its sensors and [`hooks`], and the step loop of the original ARS.
+//! The step borrows the three apart: sensors read the scene, hooks get the whole
+//! simulation.
 //!
 //! ## The step
 //! One [`Simulation::step`] of `time_step` seconds does, in this order:
 //! 1. pre-step [`Hooks`] (the program's, the actions of held keys, then those added
-//!    with [`Simulation::add_hooks`] in the order added), with [`Simulation::time`] at
+//!    with [`Simulation::add_hooks`] in the order added), with [`Scene::time`] at
 //!    the start of the step;
 //! 2. joint controllers and viscous joint friction (torques from the rates at the start
 //!    of the step); sensors note the state before the step;
@@ -20,57 +22,25 @@
 //! post-frame hooks. Forces and torques added through the API act during the next step
 //! only (ODE clears its accumulators after each step).
 
-pub mod colors;
-mod floor;
-mod joints;
-mod names;
-mod objects;
+pub mod hooks;
 
-use std::any::Any;
-use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::ops::{Deref, DerefMut};
 
 use nalgebra::Vector3;
 
-pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_faces};
-pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
-pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
-
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
-use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};
-use crate::hooks::{HookPoint, HookSet, Hooks};
+use crate::handle::{JointId, ObjectId};
 use crate::limits;
-use crate::sensors::SensorSet;
-use crate::validate;
+use crate::scene::Scene;
+use crate::sensors::{Sensor, SensorId, SensorLog, SensorSet};
 use crate::world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
-use joints::JointData;
-use names::Names;
-use objects::ObjectData;
+use hooks::{HookPoint, HookSet, Hooks};
 
 /// The ARS default time step: 0.4 ms (the original's 1 / (50 frames/s × 50 steps/frame)).
 pub const DEFAULT_TIME_STEP: f64 = 0.0004;
 /// The ARS default number of steps per frame.
 pub const DEFAULT_STEPS_PER_FRAME: u32 = 50;
-
-/// The message of a caught panic.
-fn panic_message(payload: Box<dyn Any + Send>) -> String {
-    let message = match payload.downcast_ref::<&str>() {
-        Some(s) => (*s).to_owned(),
-        None => match payload.downcast_ref::<String>() {
-            Some(s) => s.clone(),
-            None => "(a panic without a message)".to_owned(),
-        },
-    };
-    // Dropping a payload runs user code that may panic again: leak it instead.
-    std::mem::forget(payload);
-    message
-}
-
-/// Runs user code, turning a panic into [`Error::Panicked`].
-pub(crate) fn contain(during: impl FnOnce() -> String, f: impl FnOnce() -> Result<()>) -> Result<()> {
-    catch_unwind(AssertUnwindSafe(f))
-        .unwrap_or_else(|payload| Err(Error::Panicked { during: during(), message: panic_message(payload) }))
-}
 
 /// The floor a simulation starts with.
 #[derive(Clone, Debug, PartialEq)]
@@ -206,20 +176,9 @@ impl SimulationBuilder {
         let space = world.create_space(self.space)?;
         let id = world.id();
         let mut sim = Simulation {
-            world,
-            space,
-            objects: Arena::new(id),
-            object_names: Names::new("object"),
-            joints: Arena::new(id),
-            joint_names: Names::new("joint"),
-            driven_joints: Vec::new(),
+            scene: Scene::new(world, space, self.time_step, self.steps_per_frame),
             sensors: SensorSet::new(id),
             hooks: HookSet::new(id),
-            time: 0.0,
-            step_count: 0,
-            frame_count: 0,
-            time_step: self.time_step,
-            steps_per_frame: self.steps_per_frame,
         };
         if let Floor::Plane { normal, distance } = self.floor {
             sim.add_floor_plane(normal, distance)?;
@@ -228,8 +187,9 @@ impl SimulationBuilder {
     }
 }
 
-/// A simulation: a [`World`] with named objects and joints, sensors, hooks, and the
-/// step loop of the original ARS (see the [module docs](self)).
+/// A simulation: a [`Scene`] (a [`World`] with named objects and joints), sensors,
+/// hooks, and the step loop of the original ARS (see the [module docs](self)). It
+/// dereferences to its scene: the objects, joints and clock are scene methods.
 ///
 /// ```
 /// use ars_core::{Mass, Simulation};
@@ -242,31 +202,31 @@ impl SimulationBuilder {
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 pub struct Simulation {
-    world: World,
-    space: SpaceHandle,
-    objects: Arena<ObjectData>,
-    object_names: Names<ObjectId>,
-    joints: Arena<JointData>,
-    joint_names: Names<JointId>,
-    /// Joints with viscous friction or a controller, in creation order.
-    driven_joints: Vec<JointId>,
-    pub(crate) sensors: SensorSet,
+    scene: Scene,
+    sensors: SensorSet,
     pub(crate) hooks: HookSet,
-    time: f64,
-    step_count: u64,
-    frame_count: u64,
-    time_step: f64,
-    steps_per_frame: u32,
 }
 
 impl std::fmt::Debug for Simulation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Simulation")
-            .field("time", &self.time)
-            .field("steps", &self.step_count)
-            .field("objects", &self.objects.len())
-            .field("joints", &self.joints.len())
+            .field("scene", &self.scene)
+            .field("sensors", &self.sensors.len())
+            .field("hooks", &self.hooks.len())
             .finish()
+    }
+}
+
+impl Deref for Simulation {
+    type Target = Scene;
+    fn deref(&self) -> &Scene {
+        &self.scene
+    }
+}
+
+impl DerefMut for Simulation {
+    fn deref_mut(&mut self) -> &mut Scene {
+        &mut self.scene
     }
 }
 
@@ -281,61 +241,14 @@ impl Simulation {
         SimulationBuilder::default()
     }
 
-    /// The underlying world (for everything the simulation layer does not wrap).
-    pub fn world(&self) -> &World {
-        &self.world
+    /// The scene: objects, joints, world and clock (also reached by dereferencing).
+    pub fn scene(&self) -> &Scene {
+        &self.scene
     }
 
-    /// The underlying world, mutably. Objects and joints created directly in it are
-    /// not named or tracked by the simulation.
-    pub fn world_mut(&mut self) -> &mut World {
-        &mut self.world
-    }
-
-    /// The collision space of the simulation.
-    pub fn space(&self) -> SpaceHandle {
-        self.space
-    }
-
-    /// Id of the world (and of every handle of this simulation).
-    pub fn world_id(&self) -> WorldId {
-        self.world.id()
-    }
-
-    /// Simulated time, s: the sum of the time steps taken so far.
-    pub fn time(&self) -> f64 {
-        self.time
-    }
-
-    /// Time step, s.
-    pub fn time_step(&self) -> f64 {
-        self.time_step
-    }
-
-    /// Changes the time step for the next steps.
-    pub fn set_time_step(&mut self, dt: f64) -> Result<()> {
-        self.time_step = limits::time_step(dt)?;
-        Ok(())
-    }
-
-    /// Steps per frame.
-    pub fn steps_per_frame(&self) -> u32 {
-        self.steps_per_frame
-    }
-
-    /// Steps taken so far.
-    pub fn step_count(&self) -> u64 {
-        self.step_count
-    }
-
-    /// Frames started so far.
-    pub fn frame_count(&self) -> u64 {
-        self.frame_count
-    }
-
-    /// Gravity, m/s².
-    pub fn gravity(&self) -> Vector3<f64> {
-        self.world.gravity()
+    /// The scene, mutably.
+    pub fn scene_mut(&mut self) -> &mut Scene {
+        &mut self.scene
     }
 
     /// One step (see the [module docs](self)).
@@ -358,21 +271,15 @@ impl Simulation {
 
     /// One frame: pre-frame hooks, `steps_per_frame` steps, post-frame hooks.
     pub fn step_frame(&mut self) -> Result<()> {
-        let steps = self.steps_per_frame;
+        let steps = self.scene.steps_per_frame();
         self.frame_driven(&mut (), steps)
     }
 
     /// Runs for `duration` seconds of simulated time (rounded to whole steps), in
     /// frames of `steps_per_frame` steps (the last frame may be shorter).
     pub fn run_for(&mut self, duration: f64) -> Result<()> {
-        let steps = self.steps_in(duration)?;
+        let steps = self.scene.steps_in(duration)?;
         self.run_driven(&mut (), steps)
-    }
-
-    /// Number of whole steps in `duration` seconds (rounded to the nearest).
-    pub fn steps_in(&self, duration: f64) -> Result<u64> {
-        validate::non_negative("duration", duration)?;
-        Ok((duration / self.time_step).round() as u64)
     }
 
     /// One step driven by `program` (a [`Program`](crate::Program) with its held keys),
@@ -380,24 +287,20 @@ impl Simulation {
     pub(crate) fn step_driven<H: Hooks + ?Sized>(&mut self, program: &mut H) -> Result<()> {
         HookPoint::PreStep.run(program, self, &"the program")?;
         self.run_added_hooks(HookPoint::PreStep)?;
-        self.apply_joint_drives()?;
-        let mut sensors = std::mem::replace(&mut self.sensors, SensorSet::new(self.world.id()));
-        let before = sensors.before_step(self);
-        self.sensors = sensors;
-        before?;
-        self.world.collide(self.space)?;
-        let time_before = self.world.time();
-        let stepped = self.world.step(self.time_step);
-        self.world.clear_contacts();
-        if self.world.time() != time_before {
-            self.time += self.time_step;
-            self.step_count += 1;
+        self.scene.apply_joint_drives()?;
+        self.sensors.before_step(&self.scene)?;
+        let scene = &mut self.scene;
+        scene.world.collide(scene.space())?;
+        let time_before = scene.world.time();
+        let stepped = scene.world.step(scene.time_step());
+        scene.world.clear_contacts();
+        if scene.world.time() != time_before {
+            scene.time += scene.time_step();
+            scene.step_count += 1;
         }
-        stepped.map_err(|e| self.name_diverged_body(e))?;
-        let mut sensors = std::mem::replace(&mut self.sensors, SensorSet::new(self.world.id()));
-        let sampled = sensors.after_step(self);
-        self.sensors = sensors;
-        self.end_joint_step();
+        stepped.map_err(|e| scene.name_diverged_body(e))?;
+        let sampled = self.sensors.after_step(&self.scene);
+        self.scene.end_joint_step();
         sampled?;
         HookPoint::PostStep.run(program, self, &"the program")?;
         self.run_added_hooks(HookPoint::PostStep)
@@ -405,7 +308,7 @@ impl Simulation {
 
     /// A frame of `steps` steps driven by `program`.
     pub(crate) fn frame_driven<H: Hooks + ?Sized>(&mut self, program: &mut H, steps: u32) -> Result<()> {
-        self.frame_count += 1;
+        self.scene.frame_count += 1;
         HookPoint::PreFrame.run(program, self, &"the program")?;
         self.run_added_hooks(HookPoint::PreFrame)?;
         for _ in 0..steps {
@@ -417,30 +320,70 @@ impl Simulation {
 
     /// `steps` steps in frames of `steps_per_frame` (the last may be shorter), driven by `program`.
     pub(crate) fn run_driven<H: Hooks + ?Sized>(&mut self, program: &mut H, mut steps: u64) -> Result<()> {
+        let per_frame = u64::from(self.scene.steps_per_frame());
         while steps > 0 {
-            let n = steps.min(u64::from(self.steps_per_frame));
+            let n = steps.min(per_frame);
             self.frame_driven(program, n as u32)?;
             steps -= n;
         }
         Ok(())
     }
 
-    /// Puts the object's name in a [`Error::Diverged`] from the world.
-    fn name_diverged_body(&self, error: Error) -> Error {
-        match (error, self.world.diverged_body()) {
-            (Error::Diverged { body, time, detail }, Some(handle)) => {
-                let name = self
-                    .objects
-                    .iter()
-                    .find(|(_, o)| o.body == Some(handle))
-                    .and_then(|(id, _)| self.name(ObjectId(id)).ok());
-                let body = match name {
-                    Some(name) => format!("{name:?} ({body})"),
-                    None => body,
-                };
-                Error::Diverged { body, time, detail }
-            }
-            (error, _) => error,
+    /// Removes an object with its body and geom; joints attached to it are removed too,
+    /// and sensors reading it stop.
+    pub fn remove_object(&mut self, id: ObjectId) -> Result<()> {
+        self.scene.world.check_usable()?;
+        self.scene.name(id)?;
+        for joint in self.scene.joints_of_object(id) {
+            self.remove_joint(joint)?;
         }
+        self.sensors.forget_object(id);
+        self.scene.remove_object(id)
+    }
+
+    /// Removes a joint; sensors reading it stop.
+    pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
+        self.scene.world.check_usable()?;
+        self.scene.joint_name(id)?;
+        self.sensors.forget_joint(id);
+        self.scene.remove_joint(id)
+    }
+
+    /// Adds a sensor that samples after every step (or at the start, if it says so:
+    /// see [`Sensor::sample_at`]).
+    pub fn add_sensor<S: Sensor>(&mut self, sensor: S) -> Result<SensorId<S>> {
+        self.sensors.insert(&mut self.scene, sensor, None)
+    }
+
+    /// Adds a sensor that samples every `period` seconds of simulated time (at the
+    /// first step ending at or after each multiple of the period).
+    pub fn add_sensor_every<S: Sensor>(&mut self, sensor: S, period: f64) -> Result<SensorId<S>> {
+        crate::validate::positive("sensor period", period)?;
+        self.sensors.insert(&mut self.scene, sensor, Some(period))
+    }
+
+    /// Removes a sensor and hands back its samples.
+    pub fn remove_sensor<S: Sensor>(&mut self, id: SensorId<S>) -> Result<SensorLog<S::Record>> {
+        self.sensors.remove(id)
+    }
+
+    /// The samples of a sensor.
+    pub fn records<S: Sensor>(&self, id: SensorId<S>) -> Result<&SensorLog<S::Record>> {
+        self.sensors.log(id)
+    }
+
+    /// Forgets the samples of a sensor so far.
+    pub fn clear_records<S: Sensor>(&mut self, id: SensorId<S>) -> Result<()> {
+        self.sensors.clear(id)
+    }
+
+    /// The sensor itself (its configuration).
+    pub fn sensor<S: Sensor>(&self, id: SensorId<S>) -> Result<&S> {
+        self.sensors.sensor(id)
+    }
+
+    /// Whether a sensor stopped sampling because an object or joint it reads was removed.
+    pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
+        self.sensors.is_detached(id)
     }
 }

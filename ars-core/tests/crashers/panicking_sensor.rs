@@ -12,7 +12,7 @@ struct Flaky {
 
 impl Sensor for Flaky {
     type Record = Position;
-    fn measure(&mut self, sim: &Simulation) -> Result<Position> {
+    fn measure(&mut self, sim: &Scene) -> Result<Position> {
         if sim.step_count() == 3 {
             panic!("flaky sensor");
         }

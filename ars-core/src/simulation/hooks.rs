@@ -24,9 +24,10 @@ use std::any::Any;
 use std::fmt;
 use std::marker::PhantomData;
 
+use super::Simulation;
 use crate::error::{Error, Result};
 use crate::handle::{Arena, RawHandle, WorldId};
-use crate::simulation::{Simulation, contain};
+use crate::panic::contain;
 
 /// Code run by a simulation at fixed points of its step loop (see the order in the
 /// [simulation docs](crate::simulation)). Every method does nothing by default.
@@ -187,6 +188,10 @@ pub(crate) struct HookSet {
 impl HookSet {
     pub(crate) fn new(world: WorldId) -> Self {
         HookSet { slots: Arena::new(world), order: Vec::new() }
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.order.len()
     }
 }
 

@@ -1,4 +1,4 @@
-//! Heightfield terrains for [`Simulation::add_trimesh_floor`](super::Simulation::add_trimesh_floor),
+//! Heightfield terrains for [`Simulation::add_trimesh_floor`](super::Scene::add_trimesh_floor),
 //! with the original's vertex and face layout.
 
 use nalgebra::Point3;

@@ -2,7 +2,7 @@
 
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Vector3};
 
-use super::Simulation;
+use super::Scene;
 use crate::body::{BodyBuilder, BodyMut, BodyRef, Mass, MassSpec};
 use crate::convert::rotation_about_axis;
 use crate::error::{Error, Result};
@@ -162,7 +162,7 @@ pub(crate) struct ObjectData {
     pub(crate) color: Option<Color>,
 }
 
-impl Simulation {
+impl Scene {
     fn register(&mut self, shape: ObjectShape, body: Option<BodyHandle>, geom: Option<GeomHandle>) -> Result<ObjectId> {
         let base = shape.default_name();
         self.register_as(base, shape, body, geom)
@@ -448,17 +448,11 @@ impl Simulation {
         self.offset_by_position(id, by)
     }
 
-    /// Removes an object with its body and geom; joints attached to it are removed too.
-    pub fn remove_object(&mut self, id: ObjectId) -> Result<()> {
-        self.world.check_usable()?;
-        self.object_data(id)?;
-        let attached: Vec<_> = self.joints_of_object(id);
-        for j in attached {
-            self.remove_joint(j)?;
-        }
+    /// Removes an object with its body and geom (its joints and the sensors reading
+    /// it are the simulation's business: [`Simulation::remove_object`](crate::Simulation::remove_object)).
+    pub(crate) fn remove_object(&mut self, id: ObjectId) -> Result<()> {
         let data = self.objects.remove(id.0, ObjectId::KIND, &id)?;
         self.object_names.remove(&data.name);
-        self.sensors.forget_object(id);
         match (data.body, data.geom) {
             (Some(b), _) => self.world.remove_body(b),
             (None, Some(g)) => self.world.remove_geom(g),

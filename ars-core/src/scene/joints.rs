@@ -4,7 +4,7 @@
 
 use nalgebra::{Point3, Vector3};
 
-use super::Simulation;
+use super::Scene;
 use crate::control::{JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
@@ -94,7 +94,7 @@ impl JointEfforts {
     }
 }
 
-impl Simulation {
+impl Scene {
     fn insert_sim_joint(
         &mut self,
         name: &str,
@@ -298,13 +298,12 @@ impl Simulation {
             .collect()
     }
 
-    /// Removes a joint.
-    pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
-        self.world.check_usable()?;
+    /// Removes a joint (the sensors reading it are the simulation's business:
+    /// [`Simulation::remove_joint`](crate::Simulation::remove_joint)).
+    pub(crate) fn remove_joint(&mut self, id: JointId) -> Result<()> {
         let data = self.joints.remove(id.0, JointId::KIND, &id)?;
         self.joint_names.remove(&data.name);
         self.driven_joints.retain(|j| *j != id);
-        self.sensors.forget_joint(id);
         self.world.remove_joint(data.handle)
     }
 
@@ -391,9 +390,9 @@ impl Simulation {
     }
 }
 
-/// Actions on one joint of a simulation, from [`Simulation::joint_mut`].
+/// Actions on one joint of a simulation, from [`Scene::joint_mut`].
 pub struct SimJoint<'s> {
-    sim: &'s mut Simulation,
+    sim: &'s mut Scene,
     id: JointId,
 }
 

@@ -1,0 +1,160 @@
+//! The [`Scene`] of a simulation: its named objects and joints on a [`World`], and its
+//! clock. Sensors read a scene; a [`Simulation`](crate::Simulation) is a scene with
+//! its sensors and hooks, and the step loop (it dereferences to its scene, so
+//! `sim.add_sphere(..)` and `sim.body(..)` are scene methods).
+//!
+//! - [`objects`](self::ObjectShape): bodies with their shape, static shapes, floors;
+//! - joints: named joints with their efforts, friction and controllers;
+//! - floors: heightfield terrains.
+
+pub mod colors;
+mod floor;
+mod joints;
+mod names;
+mod objects;
+
+use nalgebra::Vector3;
+
+pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_faces};
+pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
+pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
+
+use crate::error::{Error, Result};
+use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};
+use crate::limits;
+use crate::world::World;
+use joints::JointData;
+use names::Names;
+use objects::ObjectData;
+
+/// The objects, joints and world of a simulation, and its clock: everything a sensor
+/// reads. Built by [`SimulationBuilder::build`](crate::SimulationBuilder::build).
+pub struct Scene {
+    pub(crate) world: World,
+    space: SpaceHandle,
+    objects: Arena<ObjectData>,
+    object_names: Names<ObjectId>,
+    joints: Arena<JointData>,
+    joint_names: Names<JointId>,
+    /// Joints with viscous friction or a controller, in creation order.
+    driven_joints: Vec<JointId>,
+    pub(crate) time: f64,
+    pub(crate) step_count: u64,
+    pub(crate) frame_count: u64,
+    time_step: f64,
+    steps_per_frame: u32,
+}
+
+impl std::fmt::Debug for Scene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Scene")
+            .field("time", &self.time)
+            .field("steps", &self.step_count)
+            .field("objects", &self.objects.len())
+            .field("joints", &self.joints.len())
+            .finish()
+    }
+}
+
+impl Scene {
+    /// A scene on `world` (already configured) colliding in `space`.
+    pub(crate) fn new(world: World, space: SpaceHandle, time_step: f64, steps_per_frame: u32) -> Scene {
+        let id = world.id();
+        Scene {
+            world,
+            space,
+            objects: Arena::new(id),
+            object_names: Names::new("object"),
+            joints: Arena::new(id),
+            joint_names: Names::new("joint"),
+            driven_joints: Vec::new(),
+            time: 0.0,
+            step_count: 0,
+            frame_count: 0,
+            time_step,
+            steps_per_frame,
+        }
+    }
+
+    /// The underlying world (for everything the simulation layer does not wrap).
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The underlying world, mutably. Objects and joints created directly in it are
+    /// not named or tracked by the simulation.
+    pub fn world_mut(&mut self) -> &mut World {
+        &mut self.world
+    }
+
+    /// The collision space of the simulation.
+    pub fn space(&self) -> SpaceHandle {
+        self.space
+    }
+
+    /// Id of the world (and of every handle of this simulation).
+    pub fn world_id(&self) -> WorldId {
+        self.world.id()
+    }
+
+    /// Simulated time, s: the sum of the time steps taken so far.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Time step, s.
+    pub fn time_step(&self) -> f64 {
+        self.time_step
+    }
+
+    /// Changes the time step for the next steps.
+    pub fn set_time_step(&mut self, dt: f64) -> Result<()> {
+        self.time_step = limits::time_step(dt)?;
+        Ok(())
+    }
+
+    /// Steps per frame.
+    pub fn steps_per_frame(&self) -> u32 {
+        self.steps_per_frame
+    }
+
+    /// Steps taken so far.
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+
+    /// Frames started so far.
+    pub fn frame_count(&self) -> u64 {
+        self.frame_count
+    }
+
+    /// Gravity, m/s².
+    pub fn gravity(&self) -> Vector3<f64> {
+        self.world.gravity()
+    }
+
+    /// Number of whole steps in `duration` seconds (rounded to the nearest).
+    pub fn steps_in(&self, duration: f64) -> Result<u64> {
+        crate::validate::non_negative("duration", duration)?;
+        Ok((duration / self.time_step).round() as u64)
+    }
+
+    /// Puts the object's name in a [`Error::Diverged`] from the world.
+    pub(crate) fn name_diverged_body(&self, error: Error) -> Error {
+        match (error, self.world.diverged_body()) {
+            (Error::Diverged { body, time, detail }, Some(handle)) => {
+                let name = self
+                    .objects
+                    .iter()
+                    .find(|(_, o)| o.body == Some(handle))
+                    .and_then(|(id, _)| self.name(ObjectId(id)).ok());
+                let body = match name {
+                    Some(name) => format!("{name:?} ({body})"),
+                    None => body,
+                };
+                Error::Diverged { body, time, detail }
+            }
+            (error, _) => error,
+        }
+    }
+}

@@ -1,0 +1,120 @@
+//! Instructions per step of the reference scenes, in plain C against native ODE,
+//! through `ars-core`'s `World` and through its `Simulation`, counted by valgrind's
+//! callgrind (instruction counts are repeatable on a noisy machine, unlike times).
+//!
+//! `cargo bench --bench step_cost` prints, for each scene, the instructions per step of
+//! each layer and their ratios to C (it needs `valgrind`). Only the stepping is
+//! counted (`--toggle-collect` on `measured_steps`), not building the scene.
+//! `step_cost --run SCENE LAYER STEPS` runs one case (what callgrind is given).
+
+use std::hint::black_box;
+use std::path::Path;
+use std::process::Command;
+
+use ars_reference_scenes::{CScene, RustScene, SimScene};
+
+/// A scene, its step count, and which layers have it.
+struct Case {
+    scene: &'static str,
+    steps: usize,
+    has_world: bool,
+}
+
+const CASES: [Case; 4] = [
+    Case { scene: "falling_sphere", steps: 2500, has_world: true },
+    Case { scene: "drop_pile", steps: 500, has_world: true },
+    Case { scene: "conical_pendulum", steps: 2500, has_world: false },
+    Case { scene: "mobile_manipulator", steps: 2500, has_world: false },
+];
+
+const LAYERS: [&str; 3] = ["c", "world", "simulation"];
+
+enum Scene {
+    C(CScene),
+    World(Box<RustScene>),
+    Sim(Box<SimScene>),
+}
+
+fn build(scene: &str, layer: &str) -> Scene {
+    match (scene, layer) {
+        ("falling_sphere", "c") => Scene::C(CScene::falling_sphere()),
+        ("falling_sphere", "world") => Scene::World(Box::new(RustScene::falling_sphere())),
+        ("falling_sphere", "simulation") => Scene::Sim(Box::new(SimScene::falling_sphere())),
+        ("drop_pile", "c") => Scene::C(CScene::drop_pile(100)),
+        ("drop_pile", "world") => Scene::World(Box::new(RustScene::drop_pile(100))),
+        ("drop_pile", "simulation") => Scene::Sim(Box::new(SimScene::drop_pile(100))),
+        ("conical_pendulum", "c") => Scene::C(CScene::conical_pendulum()),
+        ("conical_pendulum", "simulation") => Scene::Sim(Box::new(SimScene::conical_pendulum())),
+        ("mobile_manipulator", "c") => Scene::C(CScene::speed_profile()),
+        ("mobile_manipulator", "simulation") => Scene::Sim(Box::new(SimScene::mobile_manipulator())),
+        _ => panic!("no scene {scene:?} in layer {layer:?}"),
+    }
+}
+
+/// The stepping callgrind counts (by this name).
+#[inline(never)]
+fn measured_steps(scene: &mut Scene, steps: usize) {
+    match scene {
+        Scene::C(s) => s.step(black_box(steps)),
+        Scene::World(s) => s.step(black_box(steps)),
+        Scene::Sim(s) => s.step(black_box(steps)),
+    }
+}
+
+/// Instructions callgrind counted in `measured_steps` for one case.
+fn count(exe: &Path, scene: &str, layer: &str, steps: usize) -> Result<u64, String> {
+    let out = std::env::temp_dir().join(format!("ars-step-cost-{}-{scene}-{layer}.out", std::process::id()));
+    let status = Command::new("valgrind")
+        .args(["--tool=callgrind", "--toggle-collect=*measured_steps*"])
+        .arg(format!("--callgrind-out-file={}", out.display()))
+        .arg(exe)
+        .args(["--run", scene, layer, &steps.to_string()])
+        .output()
+        .map_err(|e| format!("valgrind could not start ({e}): install it (apt-get install valgrind)"))?;
+    if !status.status.success() {
+        return Err(format!("valgrind failed on {scene}/{layer}: {}", String::from_utf8_lossy(&status.stderr)));
+    }
+    let text = std::fs::read_to_string(&out).map_err(|e| format!("reading {}: {e}", out.display()))?;
+    let _ = std::fs::remove_file(&out);
+    text.lines()
+        .find_map(|l| l.strip_prefix("totals:").or_else(|| l.strip_prefix("summary:")))
+        .and_then(|n| n.split_whitespace().next()?.parse().ok())
+        .ok_or_else(|| format!("no totals in {}", out.display()))
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(i) = args.iter().position(|a| a == "--run") {
+        let (scene, layer) = (&args[i + 1], &args[i + 2]);
+        let steps: usize = args[i + 3].parse().expect("a step count");
+        let mut s = build(scene, layer);
+        measured_steps(&mut s, steps);
+        return;
+    }
+    if args.iter().any(|a| a == "--test") {
+        // `cargo test --benches`: every case builds and steps.
+        for case in &CASES {
+            for layer in LAYERS.into_iter().filter(|l| *l != "world" || case.has_world) {
+                measured_steps(&mut build(case.scene, layer), 10);
+            }
+        }
+        return;
+    }
+    let exe = std::env::current_exe().expect("the bench binary");
+    println!("instructions per step (callgrind), and the ratio to native C:");
+    println!(
+        "{:<20} {:>7} {:>12} {:>12} {:>8} {:>12} {:>8}",
+        "scene", "steps", "C", "World", "ratio", "Simulation", "ratio"
+    );
+    for case in &CASES {
+        let per_step = |layer| count(&exe, case.scene, layer, case.steps).map(|n| n as f64 / case.steps as f64);
+        let c = per_step("c").unwrap_or_else(|e| panic!("{e}"));
+        let world = if case.has_world { Some(per_step("world").unwrap_or_else(|e| panic!("{e}"))) } else { None };
+        let sim = per_step("simulation").unwrap_or_else(|e| panic!("{e}"));
+        let (w, wr) = match world {
+            Some(w) => (format!("{w:.0}"), format!("{:.3}", w / c)),
+            None => ("-".into(), "-".into()),
+        };
+        println!("{:<20} {:>7} {:>12.0} {:>12} {:>8} {:>12.0} {:>8.3}", case.scene, case.steps, c, w, wr, sim, sim / c);
+    }
+}
