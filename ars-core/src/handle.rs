@@ -120,21 +120,32 @@ impl<T> Arena<T> {
 
     #[inline]
     fn check(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<usize> {
-        if h.world != self.world {
-            return Err(Error::ForeignHandle { kind, handle: shown.to_string() });
-        }
         match self.slots.get(h.index as usize) {
-            Some(Slot::Occupied { generation, .. }) if *generation == h.generation => Ok(h.index as usize),
-            _ => Err(Error::StaleHandle { kind, handle: shown.to_string() }),
+            Some(Slot::Occupied { generation, .. }) if *generation == h.generation && h.world == self.world => {
+                Ok(h.index as usize)
+            }
+            _ => Err(self.refusal(h, kind, shown)),
+        }
+    }
+
+    /// Why `h` does not reach a value (out of the hot path: it formats).
+    #[cold]
+    #[inline(never)]
+    fn refusal(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Error {
+        if h.world != self.world {
+            Error::ForeignHandle { kind, handle: shown.to_string() }
+        } else {
+            Error::StaleHandle { kind, handle: shown.to_string() }
         }
     }
 
     #[inline]
     pub(crate) fn get(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&T> {
-        let i = self.check(h, kind, shown)?;
-        match &self.slots[i] {
-            Slot::Occupied { value, .. } => Ok(value),
-            Slot::Vacant { .. } => unreachable!("checked above"),
+        match self.slots.get(h.index as usize) {
+            Some(Slot::Occupied { generation, value }) if *generation == h.generation && h.world == self.world => {
+                Ok(value)
+            }
+            _ => Err(self.refusal(h, kind, shown)),
         }
     }
 

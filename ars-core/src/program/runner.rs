@@ -119,13 +119,13 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
 
     fn run_steps(&mut self, steps: u64) -> Result<()> {
         let (mut program, sim) = self.driven();
-        sim.run_driven(&mut program, steps)
+        sim.run_driven(Some(&mut program), steps)
     }
 
     /// One step with the program's step hooks (no frame hooks).
     pub fn step(&mut self) -> Result<()> {
         let (mut program, sim) = self.driven();
-        sim.step_driven(&mut program)
+        sim.step_driven(Some(&mut program))
     }
 
     /// One frame of `steps_per_frame` steps.

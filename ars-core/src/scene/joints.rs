@@ -275,8 +275,9 @@ impl Scene {
 
     /// Actions on a joint: torques, forces, motors, limits, friction, controllers.
     pub fn joint_mut(&mut self, id: JointId) -> Result<SimJoint<'_>> {
-        self.joint_data(id)?;
-        Ok(SimJoint { sim: self, id })
+        let data = self.joint_data(id)?;
+        let (kind, handle) = (data.kind, data.handle);
+        Ok(SimJoint { sim: self, id, kind, handle })
     }
 
     /// The torques (or forces) put on a joint during the step being taken.
@@ -309,12 +310,19 @@ impl Scene {
 
     /// Controllers and viscous friction, from the rates at the start of the step (one
     /// addition per driven joint, after the pre-step hooks).
+    #[inline]
     pub(crate) fn apply_joint_drives(&mut self) -> Result<()> {
+        if self.driven_joints.is_empty() { Ok(()) } else { self.drive_joints() }
+    }
+
+    #[inline(never)]
+    fn drive_joints(&mut self) -> Result<()> {
         let (time, dt) = (self.time, self.time_step);
         for i in 0..self.driven_joints.len() {
             let id = self.driven_joints[i];
             let state = self.joint_state(id)?;
             let data = self.joints.get_mut(id.0, JointId::KIND, &id)?;
+            let (kind, handle) = (data.kind, data.handle);
             let friction = -data.friction * state.rate;
             let (effort, controller) = match data.controller.as_mut() {
                 Some(c) => {
@@ -326,17 +334,23 @@ impl Scene {
             };
             data.efforts.friction = friction;
             data.efforts.controller = controller;
-            self.put_effort(id, effort, true)?;
+            self.put_effort(id, handle, kind, effort, true)?;
         }
         Ok(())
     }
 
     /// Puts a torque (rotary, universal) or force (slider, piston) on a joint for the
     /// next step and books it.
-    fn put_effort(&mut self, id: JointId, effort: f64, driven: bool) -> Result<()> {
-        validate::finite("joint torque or force", effort)?;
-        let data = self.joints.get(id.0, JointId::KIND, &id)?;
-        let (kind, handle) = (data.kind, data.handle);
+    fn put_effort(
+        &mut self,
+        id: JointId,
+        handle: JointHandle,
+        kind: JointType,
+        effort: f64,
+        driven: bool,
+    ) -> Result<()> {
+        // The world's add_torque / add_force refuse NaN, infinities and values beyond
+        // the limits before anything is booked.
         let mut j = self.world.joint_mut(handle)?;
         match kind {
             JointType::Rotary | JointType::Universal => j.add_torque(effort)?,
@@ -394,20 +408,18 @@ impl Scene {
 pub struct SimJoint<'s> {
     sim: &'s mut Scene,
     id: JointId,
+    kind: JointType,
+    handle: JointHandle,
 }
 
 impl SimJoint<'_> {
-    fn data(&self) -> &JointData {
-        self.sim.joint_data(self.id).expect("checked when the view was made")
-    }
-
     fn data_mut(&mut self) -> &mut JointData {
         let id = self.id;
         self.sim.joints.get_mut(id.0, JointId::KIND, &id).expect("checked when the view was made")
     }
 
     fn wrong(&self, operation: &'static str) -> Error {
-        Error::WrongJointKind { operation, kind: self.data().kind.default_name() }
+        Error::WrongJointKind { operation, kind: self.kind.default_name() }
     }
 
     /// Angle of a rotary joint (first angle of a universal), rad; zero at creation.
@@ -438,22 +450,20 @@ impl SimJoint<'_> {
     /// Adds a torque about a rotary joint's axis for the next step (`+torque` on the
     /// first object, `−torque` on the second). Joint sensors see it.
     pub fn add_torque(&mut self, torque: f64) -> Result<()> {
-        match self.data().kind {
-            JointType::Rotary | JointType::Universal => self.add_effort(torque),
+        match self.kind {
+            JointType::Rotary | JointType::Universal => {
+                self.sim.put_effort(self.id, self.handle, self.kind, torque, false)
+            }
             _ => Err(self.wrong("adding a torque")),
         }
     }
 
     /// Adds a force along a slider's or piston's axis for the next step.
     pub fn add_force(&mut self, force: f64) -> Result<()> {
-        match self.data().kind {
-            JointType::Slider | JointType::Piston => self.add_effort(force),
+        match self.kind {
+            JointType::Slider | JointType::Piston => self.sim.put_effort(self.id, self.handle, self.kind, force, false),
             _ => Err(self.wrong("adding a force")),
         }
-    }
-
-    fn add_effort(&mut self, effort: f64) -> Result<()> {
-        self.sim.put_effort(self.id, effort, false)
     }
 
     /// Drives the joint at `speed` (rad/s or m/s) with at most `max_force` (N·m or N),
@@ -461,8 +471,8 @@ impl SimJoint<'_> {
     /// it off. (The original's `set_speed` without a force did nothing: ODE's default
     /// limit is 0.)
     pub fn set_speed(&mut self, speed: f64, max_force: f64) -> Result<()> {
-        let handle = self.data().handle;
-        match self.data().kind {
+        let handle = self.handle;
+        match self.kind {
             JointType::Rotary | JointType::Slider | JointType::Universal | JointType::Piston => {
                 self.sim.world.joint_mut(handle)?.set_motor(0, speed, max_force)
             }
@@ -474,8 +484,8 @@ impl SimJoint<'_> {
     /// [`JointMut::set_limits`](crate::JointMut::set_limits) for ODE's behaviour when
     /// stops are removed from an axis resting at one.
     pub fn set_limits(&mut self, low: f64, high: f64) -> Result<()> {
-        let handle = self.data().handle;
-        match self.data().kind {
+        let handle = self.handle;
+        match self.kind {
             JointType::Fixed | JointType::BallSocket => Err(self.wrong("setting limits")),
             _ => self.sim.world.joint_mut(handle)?.set_limits(0, low, high),
         }
@@ -483,7 +493,7 @@ impl SimJoint<'_> {
 
     /// A joint parameter of the first axis (ODE's `dParam*`).
     pub fn set_param(&mut self, param: JointParam, value: f64) -> Result<()> {
-        let handle = self.data().handle;
+        let handle = self.handle;
         self.sim.world.joint_mut(handle)?.set_param(param, 0, value)
     }
 
@@ -491,7 +501,7 @@ impl SimJoint<'_> {
     /// step, from the rate at the start of the step. `0` turns it off.
     pub fn set_viscous_friction(&mut self, coefficient: f64) -> Result<()> {
         validate::non_negative("viscous friction coefficient", coefficient)?;
-        match self.data().kind {
+        match self.kind {
             JointType::Fixed | JointType::BallSocket => return Err(self.wrong("viscous friction")),
             _ => {}
         }
@@ -503,7 +513,7 @@ impl SimJoint<'_> {
     /// Attaches a controller whose output (torque or force) is added in every step,
     /// after the pre-step hooks. Replaces any previous controller.
     pub fn set_controller(&mut self, controller: impl JointController + 'static) -> Result<()> {
-        match self.data().kind {
+        match self.kind {
             JointType::Fixed | JointType::BallSocket => return Err(self.wrong("a controller")),
             _ => {}
         }

@@ -360,13 +360,22 @@ impl SensorSet {
     }
     /// Every sensor notes the state before the step; a failing or panicking sensor
     /// does not keep the others from it. The first error is returned.
-    pub(crate) fn before_step(&mut self, sim: &Scene) -> Result<()> {
-        self.each(|s| s.before_step(sim))
+    #[inline]
+    pub(crate) fn before_step(&mut self, scene: &Scene) -> Result<()> {
+        if self.slots.len() == 0 {
+            return Ok(());
+        }
+        self.each(|s| s.before_step(scene))
     }
     /// Every sensor samples; as [`SensorSet::before_step`].
-    pub(crate) fn after_step(&mut self, sim: &Scene) -> Result<()> {
-        self.each(|s| s.after_step(sim))
+    #[inline]
+    pub(crate) fn after_step(&mut self, scene: &Scene) -> Result<()> {
+        if self.slots.len() == 0 {
+            return Ok(());
+        }
+        self.each(|s| s.after_step(scene))
     }
+    #[inline(never)]
     fn each(&mut self, mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>) -> Result<()> {
         let mut first = Ok(());
         for (h, slot) in self.slots.iter_mut() {

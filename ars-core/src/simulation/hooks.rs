@@ -183,11 +183,13 @@ pub(crate) struct HookSet {
     /// The handles in the order the hooks were added (slots are reused, so slot order
     /// is not that order).
     order: Vec<RawHandle>,
+    /// Changes to `order` so far (a running hook may add or remove others).
+    edits: u64,
 }
 
 impl HookSet {
     pub(crate) fn new(world: WorldId) -> Self {
-        HookSet { slots: Arena::new(world), order: Vec::new() }
+        HookSet { slots: Arena::new(world), order: Vec::new(), edits: 0 }
     }
 
     pub(crate) fn len(&self) -> usize {
@@ -201,6 +203,7 @@ impl Simulation {
     pub fn add_hooks<H: Hooks + Send + 'static>(&mut self, hooks: H) -> Result<HookId<H>> {
         let handle = self.hooks.slots.insert(Some(Box::new(hooks)));
         self.hooks.order.push(handle);
+        self.hooks.edits += 1;
         Ok(HookId { handle, _hooks: PhantomData })
     }
 
@@ -209,6 +212,7 @@ impl Simulation {
         self.hook_slot(id)?;
         let slot = self.hooks.slots.remove(id.handle, "hooks", &id)?;
         self.hooks.order.retain(|h| *h != id.handle);
+        self.hooks.edits += 1;
         let boxed = slot.expect("checked above: not running");
         match boxed.into_any().downcast::<H>() {
             Ok(hooks) => Ok(*hooks),
@@ -240,7 +244,13 @@ impl Simulation {
     }
 
     /// Runs the added hooks of one point in the order added, up to the first error.
+    #[inline]
     pub(crate) fn run_added_hooks(&mut self, at: HookPoint) -> Result<()> {
+        if self.hooks.order.is_empty() { Ok(()) } else { self.run_each_added_hook(at) }
+    }
+
+    #[inline(never)]
+    fn run_each_added_hook(&mut self, at: HookPoint) -> Result<()> {
         let mut i = 0;
         while let Some(&handle) = self.hooks.order.get(i) {
             // Take the hooks out of their slot while they run (they get the simulation
@@ -249,12 +259,17 @@ impl Simulation {
                 i += 1;
                 continue;
             };
+            let edits = self.hooks.edits;
             let id = HookId::<()> { handle, _hooks: PhantomData };
             let result = at.run(&mut *hooks, self, &id);
             *self.hooks.slots.get_mut(handle, "hooks", &id).expect("a running slot is not removed") = Some(hooks);
             result?;
             // Hooks removed by this one may have shifted the order.
-            i = self.hooks.order.iter().position(|h| *h == handle).map_or(i, |p| p + 1);
+            i = if self.hooks.edits == edits {
+                i + 1
+            } else {
+                self.hooks.order.iter().position(|h| *h == handle).map_or(i, |p| p + 1)
+            };
         }
         Ok(())
     }

@@ -261,7 +261,7 @@ impl Simulation {
     ///   sample the diverged state. Steps are refused until the body is reset or
     ///   removed; the records so far stay readable.
     pub fn step(&mut self) -> Result<()> {
-        self.step_driven(&mut ())
+        self.step_driven(None::<&mut ()>)
     }
 
     /// `n` steps (no frame hooks).
@@ -272,20 +272,22 @@ impl Simulation {
     /// One frame: pre-frame hooks, `steps_per_frame` steps, post-frame hooks.
     pub fn step_frame(&mut self) -> Result<()> {
         let steps = self.scene.steps_per_frame();
-        self.frame_driven(&mut (), steps)
+        self.frame_driven(None::<&mut ()>, steps)
     }
 
     /// Runs for `duration` seconds of simulated time (rounded to whole steps), in
     /// frames of `steps_per_frame` steps (the last frame may be shorter).
     pub fn run_for(&mut self, duration: f64) -> Result<()> {
         let steps = self.scene.steps_in(duration)?;
-        self.run_driven(&mut (), steps)
+        self.run_driven(None::<&mut ()>, steps)
     }
 
     /// One step driven by `program` (a [`Program`](crate::Program) with its held keys),
     /// whose hooks run before the added ones.
-    pub(crate) fn step_driven<H: Hooks + ?Sized>(&mut self, program: &mut H) -> Result<()> {
-        HookPoint::PreStep.run(program, self, &"the program")?;
+    pub(crate) fn step_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>) -> Result<()> {
+        if let Some(program) = program.as_deref_mut() {
+            HookPoint::PreStep.run(program, self, &"the program")?;
+        }
         self.run_added_hooks(HookPoint::PreStep)?;
         self.scene.apply_joint_drives()?;
         self.sensors.before_step(&self.scene)?;
@@ -302,28 +304,34 @@ impl Simulation {
         let sampled = self.sensors.after_step(&self.scene);
         self.scene.end_joint_step();
         sampled?;
-        HookPoint::PostStep.run(program, self, &"the program")?;
+        if let Some(program) = program {
+            HookPoint::PostStep.run(program, self, &"the program")?;
+        }
         self.run_added_hooks(HookPoint::PostStep)
     }
 
     /// A frame of `steps` steps driven by `program`.
-    pub(crate) fn frame_driven<H: Hooks + ?Sized>(&mut self, program: &mut H, steps: u32) -> Result<()> {
+    pub(crate) fn frame_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>, steps: u32) -> Result<()> {
         self.scene.frame_count += 1;
-        HookPoint::PreFrame.run(program, self, &"the program")?;
+        if let Some(program) = program.as_deref_mut() {
+            HookPoint::PreFrame.run(program, self, &"the program")?;
+        }
         self.run_added_hooks(HookPoint::PreFrame)?;
         for _ in 0..steps {
-            self.step_driven(program)?;
+            self.step_driven(program.as_deref_mut())?;
         }
-        HookPoint::PostFrame.run(program, self, &"the program")?;
+        if let Some(program) = program {
+            HookPoint::PostFrame.run(program, self, &"the program")?;
+        }
         self.run_added_hooks(HookPoint::PostFrame)
     }
 
     /// `steps` steps in frames of `steps_per_frame` (the last may be shorter), driven by `program`.
-    pub(crate) fn run_driven<H: Hooks + ?Sized>(&mut self, program: &mut H, mut steps: u64) -> Result<()> {
+    pub(crate) fn run_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>, mut steps: u64) -> Result<()> {
         let per_frame = u64::from(self.scene.steps_per_frame());
         while steps > 0 {
             let n = steps.min(per_frame);
-            self.frame_driven(program, n as u32)?;
+            self.frame_driven(program.as_deref_mut(), n as u32)?;
             steps -= n;
         }
         Ok(())
