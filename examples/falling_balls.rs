@@ -19,7 +19,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for ((ball, _), log) in program.balls.iter().zip(&logs) {
         let (name, radius) = (sim.name(*ball)?, sim.shape(*ball)?.clone());
         let r = match radius {
-            ars::ObjectShape::Sphere { radius } => radius,
+            ars::Shape::Sphere { radius } => radius,
             _ => unreachable!("the balls are spheres"),
         };
         let landed = log.iter().find(|s| s.record.position.y < r + 1e-3).map(|s| s.time);

@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::handle::BodyHandle;
 use crate::init::ensure_ode_ready;
 use crate::limits;
+use crate::shape::Shape;
 use crate::validate;
 use crate::world::World;
 
@@ -64,38 +65,15 @@ pub enum Mass {
 /// The mass distribution of a body, computed with ODE's mass functions (so the numbers
 /// are ODE's own). Capsules and cylinders lie along the body's local Z axis; box sizes
 /// are full edge lengths; a capsule's length excludes its two hemispherical caps.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum MassSpec {
-    /// Solid sphere.
-    Sphere {
-        /// Radius, m.
-        radius: f64,
-        /// Mass or density.
-        amount: Mass,
-    },
-    /// Solid box.
-    Box {
-        /// Full edge lengths along X, Y, Z, m.
-        size: Vector3<f64>,
-        /// Mass or density.
-        amount: Mass,
-    },
-    /// Solid capsule along local Z.
-    Capsule {
-        /// Radius, m.
-        radius: f64,
-        /// Length of the cylindrical part (without the caps), m.
-        length: f64,
-        /// Mass or density.
-        amount: Mass,
-    },
-    /// Solid cylinder along local Z.
-    Cylinder {
-        /// Radius, m.
-        radius: f64,
-        /// Length, m.
-        length: f64,
+    /// A uniformly dense solid of this shape: sphere, box, capsule, cylinder (ODE's
+    /// formulas) or cone (3/10 m r² about its axis, 3/20 m r² + 3/80 m h² across, about
+    /// its centre of mass). Planes, rays and meshes have no mass.
+    Solid {
+        /// The shape.
+        shape: Shape,
         /// Mass or density.
         amount: Mass,
     },
@@ -109,103 +87,118 @@ pub enum MassSpec {
 }
 
 impl MassSpec {
+    /// A solid `shape` of total mass or density `amount`.
+    pub fn solid(shape: Shape, amount: Mass) -> Self {
+        MassSpec::Solid { shape, amount }
+    }
     /// Sphere of total mass `mass` (kg) and radius `radius` (m).
     pub fn sphere_total(mass: f64, radius: f64) -> Self {
-        MassSpec::Sphere { radius, amount: Mass::Total(mass) }
+        Self::solid(Shape::Sphere { radius }, Mass::Total(mass))
     }
-    /// Box of total mass `mass` and full edge lengths `size`.
-    pub fn box_total(mass: f64, size: Vector3<f64>) -> Self {
-        MassSpec::Box { size, amount: Mass::Total(mass) }
+    /// Box of total mass `mass` and full edge lengths `edges`.
+    pub fn box_total(mass: f64, edges: Vector3<f64>) -> Self {
+        Self::solid(Shape::Box { edges }, Mass::Total(mass))
     }
     /// Capsule along Z of total mass `mass`.
     pub fn capsule_total(mass: f64, radius: f64, length: f64) -> Self {
-        MassSpec::Capsule { radius, length, amount: Mass::Total(mass) }
+        Self::solid(Shape::Capsule { radius, length }, Mass::Total(mass))
     }
     /// Cylinder along Z of total mass `mass`.
     pub fn cylinder_total(mass: f64, radius: f64, length: f64) -> Self {
-        MassSpec::Cylinder { radius, length, amount: Mass::Total(mass) }
+        Self::solid(Shape::Cylinder { radius, length }, Mass::Total(mass))
     }
 
     /// The ODE mass structure, after checking every number.
-    pub(crate) fn to_ode(self) -> Result<ffi::dMass> {
-        let amount = |a: Mass| -> Result<Mass> {
-            match a {
-                Mass::Total(m) => limits::mass("mass", m).map(Mass::Total),
-                // The resulting mass is checked below.
-                Mass::Density(d) => validate::positive("density", d).map(Mass::Density),
+    pub(crate) fn to_ode(&self) -> Result<ffi::dMass> {
+        let (shape, amount) = match self {
+            MassSpec::Solid { shape, amount } => (shape, *amount),
+            MassSpec::Custom { mass, inertia } => {
+                limits::mass("mass", *mass)?;
+                limits::inertia(inertia)?;
+                return finish(custom(*mass, inertia));
             }
         };
         // Check every number first; the ODE calls below then cannot fail.
-        let checked = match self {
-            MassSpec::Sphere { radius, amount: a } => {
-                MassSpec::Sphere { radius: limits::size("sphere radius", radius)?, amount: amount(a)? }
-            }
-            MassSpec::Box { size, amount: a } => {
-                MassSpec::Box { size: limits::sizes("box size", &size)?, amount: amount(a)? }
-            }
-            MassSpec::Capsule { radius, length, amount: a } => MassSpec::Capsule {
-                radius: limits::size("capsule radius", radius)?,
-                length: limits::size("capsule length", length)?,
-                amount: amount(a)?,
-            },
-            MassSpec::Cylinder { radius, length, amount: a } => MassSpec::Cylinder {
-                radius: limits::size("cylinder radius", radius)?,
-                length: limits::size("cylinder length", length)?,
-                amount: amount(a)?,
-            },
-            MassSpec::Custom { mass, inertia: i } => {
-                limits::mass("mass", mass)?;
-                limits::inertia(&i)?;
-                self
-            }
+        let amount = match amount {
+            Mass::Total(m) => Mass::Total(limits::mass("mass", m)?),
+            // The resulting mass is checked at the end.
+            Mass::Density(d) => Mass::Density(validate::positive("density", d)?),
         };
+        if matches!(shape, Shape::Plane { .. } | Shape::Ray { .. } | Shape::TriMesh { .. }) {
+            return Err(Error::OutOfRange {
+                what: "mass",
+                detail: format!("a {} has no volume: give the body a solid shape or a custom mass", shape.kind_name()),
+            });
+        }
+        shape.validate()?;
         use Mass::{Density, Total};
         let mut m = ffi::dMass::default();
         // SAFETY: `m` is a valid dMass to fill; every size and amount was checked
         // positive and finite above, which is all ODE's mass functions need.
         unsafe {
-            match checked {
-                MassSpec::Sphere { radius: r, amount: Total(t) } => ffi::dMassSetSphereTotal(&mut m, t, r),
-                MassSpec::Sphere { radius: r, amount: Density(d) } => ffi::dMassSetSphere(&mut m, d, r),
-                MassSpec::Box { size: s, amount: Total(t) } => ffi::dMassSetBoxTotal(&mut m, t, s.x, s.y, s.z),
-                MassSpec::Box { size: s, amount: Density(d) } => ffi::dMassSetBox(&mut m, d, s.x, s.y, s.z),
-                MassSpec::Capsule { radius: r, length: l, amount: Total(t) } => {
-                    ffi::dMassSetCapsuleTotal(&mut m, t, 3, r, l)
+            match (shape, amount) {
+                (Shape::Sphere { radius: r }, Total(t)) => ffi::dMassSetSphereTotal(&mut m, t, *r),
+                (Shape::Sphere { radius: r }, Density(d)) => ffi::dMassSetSphere(&mut m, d, *r),
+                (Shape::Box { edges: e }, Total(t)) => ffi::dMassSetBoxTotal(&mut m, t, e.x, e.y, e.z),
+                (Shape::Box { edges: e }, Density(d)) => ffi::dMassSetBox(&mut m, d, e.x, e.y, e.z),
+                (Shape::Capsule { radius: r, length: l }, Total(t)) => ffi::dMassSetCapsuleTotal(&mut m, t, 3, *r, *l),
+                (Shape::Capsule { radius: r, length: l }, Density(d)) => ffi::dMassSetCapsule(&mut m, d, 3, *r, *l),
+                (Shape::Cylinder { radius: r, length: l }, Total(t)) => {
+                    ffi::dMassSetCylinderTotal(&mut m, t, 3, *r, *l)
                 }
-                MassSpec::Capsule { radius: r, length: l, amount: Density(d) } => {
-                    ffi::dMassSetCapsule(&mut m, d, 3, r, l)
+                (Shape::Cylinder { radius: r, length: l }, Density(d)) => ffi::dMassSetCylinder(&mut m, d, 3, *r, *l),
+                (Shape::Cone { radius: r, height: h }, amount) => {
+                    let volume = std::f64::consts::PI * r * r * h / 3.0;
+                    let mass = match amount {
+                        Total(t) => t,
+                        Density(d) => d * volume,
+                    };
+                    let mass = limits::mass("mass (from the density and the shape)", mass)?;
+                    // Solid cone about its centre of mass.
+                    let axial = 0.3 * mass * r * r;
+                    let transverse = 0.15 * mass * r * r + 0.0375 * mass * h * h;
+                    m = custom(mass, &Matrix3::from_diagonal(&Vector3::new(transverse, transverse, axial)));
                 }
-                MassSpec::Cylinder { radius: r, length: l, amount: Total(t) } => {
-                    ffi::dMassSetCylinderTotal(&mut m, t, 3, r, l)
-                }
-                MassSpec::Cylinder { radius: r, length: l, amount: Density(d) } => {
-                    ffi::dMassSetCylinder(&mut m, d, 3, r, l)
-                }
-                MassSpec::Custom { mass, inertia: i } => ffi::dMassSetParameters(
-                    &mut m,
-                    mass,
-                    0.0,
-                    0.0,
-                    0.0,
-                    i[(0, 0)],
-                    i[(1, 1)],
-                    i[(2, 2)],
-                    i[(0, 1)],
-                    i[(0, 2)],
-                    i[(1, 2)],
-                ),
+                _ => unreachable!("massless shapes were refused above"),
             }
         }
-        // A density gives a mass (and every shape an inertia) that must be in range too:
-        // a density of 1e10 kg/m³ in a sphere of radius 1e150 m overflows to infinity.
-        limits::mass("mass (from the density and the shape)", m.mass)?;
-        limits::inertia(&convert::matrix_from_ode(&m.I))?;
-        // SAFETY: `m` is a valid dMass; dMassCheck only reads it.
-        if unsafe { ffi::dMassCheck(&m) } == 0 {
-            return Err(Error::OutOfRange { what: "mass", detail: "ODE rejects these mass parameters".into() });
-        }
-        Ok(m)
+        finish(m)
     }
+}
+
+/// ODE's mass structure of a mass and inertia tensor about the body origin.
+fn custom(mass: f64, i: &Matrix3<f64>) -> ffi::dMass {
+    let mut m = ffi::dMass::default();
+    // SAFETY: `m` is a valid dMass to fill; dMassSetParameters only writes it.
+    unsafe {
+        ffi::dMassSetParameters(
+            &mut m,
+            mass,
+            0.0,
+            0.0,
+            0.0,
+            i[(0, 0)],
+            i[(1, 1)],
+            i[(2, 2)],
+            i[(0, 1)],
+            i[(0, 2)],
+            i[(1, 2)],
+        )
+    };
+    m
+}
+
+/// Checks what ODE computed: a density gives a mass (and every shape an inertia) that
+/// must be in range too (a density of 1e10 kg/m³ in a sphere of radius 1e150 m
+/// overflows to infinity).
+fn finish(m: ffi::dMass) -> Result<ffi::dMass> {
+    limits::mass("mass (from the density and the shape)", m.mass)?;
+    limits::inertia(&convert::matrix_from_ode(&m.I))?;
+    // SAFETY: `m` is a valid dMass; dMassCheck only reads it.
+    if unsafe { ffi::dMassCheck(&m) } == 0 {
+        return Err(Error::OutOfRange { what: "mass", detail: "ODE rejects these mass parameters".into() });
+    }
+    Ok(m)
 }
 
 /// How a body moves.
@@ -291,7 +284,7 @@ impl World {
         self.check_usable()?;
         ensure_ode_ready();
         // Check everything first, so that a bad argument leaves the world untouched.
-        let mass = builder.mass.map(MassSpec::to_ode).transpose()?;
+        let mass = builder.mass.as_ref().map(MassSpec::to_ode).transpose()?;
         let position = builder.position.map(|p| limits::point("body position", &p)).transpose()?;
         let rotation = builder.rotation.map(|r| validate::rotation("body rotation", &r)).transpose()?;
         let lin = builder.linear_velocity.map(|v| linear_velocity(&v)).transpose()?;

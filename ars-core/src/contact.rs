@@ -252,13 +252,13 @@ enum PairFailure {
 /// For the pairs that ODE collides with libccd (cylinder–cylinder, capsule–cylinder):
 /// the ratio of their largest to their smallest dimension.
 #[inline]
-fn convex_pair_ratio(a: &crate::geom::Shape, b: &crate::geom::Shape) -> Option<f64> {
-    use crate::geom::Shape::{Capsule, Cylinder};
-    let dims = |s: &crate::geom::Shape| match *s {
+fn convex_pair_ratio(a: &crate::shape::Shape, b: &crate::shape::Shape) -> Option<f64> {
+    use crate::shape::Shape::{Capsule, Cylinder};
+    let dims = |s: &crate::shape::Shape| match *s {
         Cylinder { radius, length } | Capsule { radius, length } => Some((radius, length)),
         _ => None,
     };
-    let cylinder = |s: &crate::geom::Shape| matches!(s, Cylinder { .. });
+    let cylinder = |s: &crate::shape::Shape| matches!(s, Cylinder { .. });
     if !(cylinder(a) || cylinder(b)) {
         return None;
     }
@@ -367,7 +367,7 @@ impl World {
     fn check_hash_bounds(&self, space: SpaceHandle, min_level: i32) -> Result<()> {
         let limit = hash_limit(min_level);
         for (h, g) in self.geoms.iter() {
-            if g.space != space || matches!(g.shape, crate::geom::Shape::Plane { .. }) {
+            if g.space != space || matches!(g.shape, crate::shape::Shape::Plane { .. }) {
                 continue;
             }
             let mut a = [0.0; 6];
@@ -417,7 +417,7 @@ impl World {
     fn geom_info(
         &self,
         raw: ffi::dGeomID,
-    ) -> Option<(GeomHandle, &crate::geom::Shape, Option<BodyHandle>, ffi::dBodyID)> {
+    ) -> Option<(GeomHandle, &crate::shape::Shape, Option<BodyHandle>, ffi::dBodyID)> {
         // SAFETY: ODE hands the callback live geoms of the collided space; their user
         // data is the arena index set at creation.
         let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
@@ -441,8 +441,8 @@ impl World {
             log::error!("collision reported a geom that this world does not own; pair skipped");
             return Ok(());
         };
-        let ray1 = matches!(shape1, crate::geom::Shape::Ray { .. });
-        let ray2 = matches!(shape2, crate::geom::Shape::Ray { .. });
+        let ray1 = matches!(shape1, crate::shape::Shape::Ray { .. });
+        let ray2 = matches!(shape2, crate::shape::Shape::Ray { .. });
         if b1.is_null() && b2.is_null() && !ray1 && !ray2 {
             // Two static geoms (a static box on the floor): contact joints between no
             // bodies would change nothing and cost a collision every step.

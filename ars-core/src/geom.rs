@@ -8,117 +8,9 @@ use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
 use crate::init::ensure_ode_ready;
 use crate::limits;
+use crate::shape::{Shape, cone_mesh};
 use crate::validate;
 use crate::world::World;
-
-/// The shape of a geom.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum Shape {
-    /// Sphere of this radius, m.
-    Sphere {
-        /// Radius, m.
-        radius: f64,
-    },
-    /// Box with these full edge lengths, m.
-    Box {
-        /// Edge lengths along local X, Y, Z.
-        size: Vector3<f64>,
-    },
-    /// Capsule along local Z; `length` excludes the caps.
-    Capsule {
-        /// Radius, m.
-        radius: f64,
-        /// Length of the cylindrical part, m.
-        length: f64,
-    },
-    /// Cylinder along local Z.
-    Cylinder {
-        /// Radius, m.
-        radius: f64,
-        /// Length, m.
-        length: f64,
-    },
-    /// Infinite plane `normal · x = distance` (not placeable: cannot be attached or moved).
-    Plane {
-        /// Plane normal (normalised by ODE).
-        normal: Vector3<f64>,
-        /// Offset along the normal, m.
-        distance: f64,
-    },
-    /// Ray of this length from the geom's origin along its local +Z axis.
-    Ray {
-        /// Length, m.
-        length: f64,
-    },
-    /// Triangle mesh (vertices in the geom's frame; faces wound counter-clockwise seen
-    /// from outside). A mesh of one triangle is handed to ODE with that triangle twice
-    /// (ODE's mesh–mesh collider crashes on a one-triangle tree).
-    TriMesh {
-        /// Vertex positions, m.
-        vertices: Vec<Point3<f64>>,
-        /// Vertex indices, three per triangle.
-        triangles: Vec<[u32; 3]>,
-    },
-}
-
-impl Shape {
-    /// Short name of the shape kind, as used in error messages.
-    pub fn kind_name(&self) -> &'static str {
-        match self {
-            Shape::Sphere { .. } => "sphere",
-            Shape::Box { .. } => "box",
-            Shape::Capsule { .. } => "capsule",
-            Shape::Cylinder { .. } => "cylinder",
-            Shape::Plane { .. } => "plane",
-            Shape::Ray { .. } => "ray",
-            Shape::TriMesh { .. } => "trimesh",
-        }
-    }
-
-    fn validate(&self) -> Result<()> {
-        match self {
-            Shape::Sphere { radius } => limits::size("sphere radius", *radius).map(drop),
-            Shape::Box { size } => limits::sizes("box size", size).map(drop),
-            Shape::Capsule { radius, length } => {
-                limits::size("capsule radius", *radius)?;
-                limits::size("capsule length", *length).map(drop)
-            }
-            Shape::Cylinder { radius, length } => {
-                limits::size("cylinder radius", *radius)?;
-                limits::size("cylinder length", *length).map(drop)
-            }
-            Shape::Plane { normal, distance } => {
-                validate::direction("plane normal", normal)?;
-                limits::coordinate("plane distance", *distance).map(drop)
-            }
-            Shape::Ray { length } => limits::size("ray length", *length).map(drop),
-            Shape::TriMesh { vertices, triangles } => {
-                if triangles.is_empty() {
-                    return Err(Error::InvalidMesh("it has no triangles".into()));
-                }
-                for (i, v) in vertices.iter().enumerate() {
-                    if let Err(e) = limits::point("trimesh vertex", v) {
-                        return Err(Error::InvalidMesh(format!("vertex {i}: {e}")));
-                    }
-                }
-                for (i, t) in triangles.iter().enumerate() {
-                    if let Some(bad) = t.iter().find(|&&k| k as usize >= vertices.len()) {
-                        return Err(Error::InvalidMesh(format!(
-                            "triangle {i} uses vertex {bad}, but there are only {} vertices",
-                            vertices.len()
-                        )));
-                    }
-                }
-                let limit = i32::MAX as usize / 3;
-                if vertices.len() > limit || triangles.len() > limit {
-                    return Err(Error::InvalidMesh("too many vertices or triangles".into()));
-                }
-                Ok(())
-            }
-        }
-    }
-}
 
 /// The buffers ODE's trimesh data points into, freed after the geom.
 struct TriMeshStorage {
@@ -170,9 +62,9 @@ impl GeomBuilder {
     pub fn sphere(radius: f64) -> Self {
         Self::new(Shape::Sphere { radius })
     }
-    /// A box with full edge lengths `size`.
-    pub fn cuboid(size: Vector3<f64>) -> Self {
-        Self::new(Shape::Box { size })
+    /// A box with full edge lengths `edges` (not half-extents).
+    pub fn box_edges(edges: Vector3<f64>) -> Self {
+        Self::new(Shape::Box { edges })
     }
     /// A capsule along local Z.
     pub fn capsule(radius: f64, length: f64) -> Self {
@@ -182,7 +74,12 @@ impl GeomBuilder {
     pub fn cylinder(radius: f64, length: f64) -> Self {
         Self::new(Shape::Cylinder { radius, length })
     }
-    /// The infinite plane `normal · x = distance`.
+    /// A solid cone along +Z of base `radius` and `height`, its origin at its centre of
+    /// mass (it collides as a triangle mesh).
+    pub fn cone(radius: f64, height: f64) -> Self {
+        Self::new(Shape::Cone { radius, height })
+    }
+    /// An infinite plane `normal · x = distance` (never attached or moved).
     pub fn plane(normal: Vector3<f64>, distance: f64) -> Self {
         Self::new(Shape::Plane { normal, distance })
     }
@@ -277,7 +174,16 @@ impl World {
         let pose = builder.pose.map(|p| check_isometry("geom pose", &p)).transpose()?;
 
         let mut mesh = None;
-        if let Shape::TriMesh { vertices, triangles } = &shape {
+        let cone = match &shape {
+            Shape::Cone { radius, height } => Some(cone_mesh(*radius, *height)),
+            _ => None,
+        };
+        let triangle_mesh = match (&shape, &cone) {
+            (Shape::TriMesh { vertices, triangles }, _) => Some((vertices, triangles)),
+            (_, Some((vertices, triangles))) => Some((vertices, triangles)),
+            _ => None,
+        };
+        if let Some((vertices, triangles)) = triangle_mesh {
             let flat_v: Vec<f64> = vertices.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
             let mut flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
             if triangles.len() == 1 {
@@ -310,14 +216,14 @@ impl World {
         let raw = unsafe {
             match &shape {
                 Shape::Sphere { radius } => ffi::dCreateSphere(space_raw, *radius),
-                Shape::Box { size } => ffi::dCreateBox(space_raw, size.x, size.y, size.z),
+                Shape::Box { edges: e } => ffi::dCreateBox(space_raw, e.x, e.y, e.z),
                 Shape::Capsule { radius, length } => ffi::dCreateCapsule(space_raw, *radius, *length),
                 Shape::Cylinder { radius, length } => ffi::dCreateCylinder(space_raw, *radius, *length),
                 Shape::Plane { normal, distance } => {
                     ffi::dCreatePlane(space_raw, normal.x, normal.y, normal.z, *distance)
                 }
                 Shape::Ray { length } => ffi::dCreateRay(space_raw, *length),
-                Shape::TriMesh { .. } => {
+                Shape::TriMesh { .. } | Shape::Cone { .. } => {
                     let data = mesh.as_ref().map_or(std::ptr::null_mut(), |m| m.data);
                     ffi::dCreateTriMesh(space_raw, data, None, None, None)
                 }
@@ -367,7 +273,7 @@ impl World {
     pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
         self.check_usable()?;
         let data = self.geoms.remove(geom.0, GeomHandle::KIND, &geom)?;
-        if matches!(data.shape, Shape::TriMesh { .. }) {
+        if matches!(data.shape, Shape::TriMesh { .. } | Shape::Cone { .. }) {
             self.trimesh_count -= 1;
         }
         // SAFETY: the geom was created by this world and is destroyed once; its

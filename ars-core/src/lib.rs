@@ -101,6 +101,7 @@ pub mod program;
 pub mod random;
 pub mod scene;
 pub mod sensors;
+pub mod shape;
 pub mod simulation;
 mod validate;
 pub mod world;
@@ -109,16 +110,14 @@ pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, Mass, MassSpec};
 pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit};
 pub use control::{DcMotor, JointController, JointState, Pid, PositionServo, Profile, TorqueMotor, VelocityServo};
 pub use error::{Error, Result};
-pub use geom::{GeomBuilder, GeomMut, GeomRef, Shape};
+pub use geom::{GeomBuilder, GeomMut, GeomRef};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
-pub use scene::{
-    CONE_SEGMENTS, Color, Heightfield, JointEfforts, JointEnd, JointType, ObjectShape, Scene, SimJoint,
-    heightfield_faces,
-};
+pub use scene::{Color, Heightfield, JointEfforts, JointEnd, JointType, Scene, SimJoint, heightfield_triangles};
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
+pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, Hooks, PostFrame, PostStep, PreFrame, PreStep};
 pub use simulation::{DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Simulation, SimulationBuilder};
 pub use world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};

@@ -21,7 +21,7 @@ fn non_positive_or_non_finite_sizes_are_refused() {
         (GeomBuilder::sphere(-1.0), "sphere radius"),
         (GeomBuilder::sphere(0.0), "sphere radius"),
         (GeomBuilder::sphere(f64::NAN), "sphere radius"),
-        (GeomBuilder::cuboid(Vector3::new(1.0, -1.0, 1.0)), "box size"),
+        (GeomBuilder::box_edges(Vector3::new(1.0, -1.0, 1.0)), "box edges"),
         (GeomBuilder::capsule(0.1, f64::INFINITY), "capsule length"),
         (GeomBuilder::cylinder(0.0, 1.0), "cylinder radius"),
         (GeomBuilder::ray(-3.0), "ray length"),
@@ -42,12 +42,12 @@ fn bad_masses_are_refused() {
         MassSpec::sphere_total(0.0, 1.0),
         MassSpec::sphere_total(-2.0, 1.0),
         MassSpec::sphere_total(1.0, f64::NAN),
-        MassSpec::Box { size: Vector3::new(1.0, 1.0, 1.0), amount: Mass::Density(-5.0) },
+        MassSpec::solid(Shape::Box { edges: Vector3::new(1.0, 1.0, 1.0) }, Mass::Density(-5.0)),
         MassSpec::cylinder_total(1.0, 0.1, 0.0),
         MassSpec::Custom { mass: 1.0, inertia: Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0) },
         MassSpec::Custom { mass: 1.0, inertia: Matrix3::new(1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0) },
     ] {
-        let err = world.insert_body(BodyBuilder::new().mass(spec)).unwrap_err();
+        let err = world.insert_body(BodyBuilder::new().mass(spec.clone())).unwrap_err();
         let text = err.to_string();
         assert!(
             text.contains("mass")

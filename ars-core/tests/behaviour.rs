@@ -252,7 +252,7 @@ fn quickstep_is_selectable() {
                 let at = Point3::new(0.2 * i as f64, 0.5 + 1.02 * i as f64, 0.0);
                 let b =
                     world.insert_body(BodyBuilder::new().position(at).mass(MassSpec::box_total(1.0, size))).unwrap();
-                world.insert_geom(space, GeomBuilder::cuboid(size).attached_to(b)).unwrap();
+                world.insert_geom(space, GeomBuilder::box_edges(size).attached_to(b)).unwrap();
                 b
             })
             .collect();
@@ -292,7 +292,7 @@ fn quickstep_pile(steps: usize, seed: u32, disturb: Option<&mut (World, SpaceHan
             let b = world
                 .insert_body(BodyBuilder::new().position(at).mass(MassSpec::box_total(1.0, Vector3::repeat(1.0))))
                 .unwrap();
-            world.insert_geom(space, GeomBuilder::cuboid(Vector3::repeat(1.0)).attached_to(b)).unwrap();
+            world.insert_geom(space, GeomBuilder::box_edges(Vector3::repeat(1.0)).attached_to(b)).unwrap();
             b
         })
         .collect();
@@ -373,7 +373,7 @@ fn mass_properties_are_odes() {
     let dense = world
         .insert_body(
             BodyBuilder::new()
-                .mass(MassSpec::Box { size: Vector3::new(10.0, 0.5, 10.0), amount: Mass::Density(100.0) }),
+                .mass(MassSpec::solid(Shape::Box { edges: Vector3::new(10.0, 0.5, 10.0) }, Mass::Density(100.0))),
         )
         .unwrap();
     assert!((world.body(dense).unwrap().mass() - 5000.0).abs() < 1e-9);

@@ -43,8 +43,8 @@ fn bad_input_is_refused_with_a_clear_error() {
     assert!(matches!(err, Error::NotPositive { what: "sphere radius", .. }), "{err}");
     let err = sim.add_box([1.0, 1.0, 1.0], [f64::NAN, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
     assert!(matches!(err, Error::NotFinite { .. }), "{err}");
-    assert!(sim.add_capsule(1.0, 0.1, [0.0, 0.0, 0.0], Mass::Density(-3.0)).is_err());
-    assert!(sim.add_cone(0.0, 0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).is_err());
+    assert!(sim.add_capsule(0.1, 1.0, [0.0, 0.0, 0.0], Mass::Density(-3.0)).is_err());
+    assert!(sim.add_cone(0.1, 0.0, [0.0, 0.0, 0.0], Mass::Total(1.0)).is_err());
     assert_eq!(sim.objects().count(), objects_before, "refused objects leave nothing behind");
     assert_eq!(sim.world().body_count(), 0);
 
@@ -73,7 +73,7 @@ fn bad_input_is_refused_with_a_clear_error() {
 #[test]
 fn rotate_turns_about_a_world_axis_and_offsets_add() {
     let mut sim = Simulation::new().unwrap();
-    let c = sim.add_capsule(1.0, 0.1, [0.0, 0.0, 0.0], Mass::Density(1.0)).unwrap();
+    let c = sim.add_capsule(0.1, 1.0, [0.0, 0.0, 0.0], Mass::Density(1.0)).unwrap();
     sim.rotate(c, Vector3::x(), FRAC_PI_2).unwrap();
     // Local Z now points down the world's −Y, as the original's idiom intends.
     let z = sim.rotation(c).unwrap() * Vector3::z();
@@ -166,7 +166,7 @@ fn joints_to_the_static_world_friction_and_controllers() {
 #[test]
 fn rotary_speed_motor_limits_slider_and_reactions() {
     let mut sim = Simulation::new().unwrap();
-    let wheel = sim.add_cylinder(0.1, 0.3, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let wheel = sim.add_cylinder(0.3, 0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
     let axle = sim.add_rotary_joint("axle", wheel, JointEnd::World, None, Vector3::z()).unwrap();
     sim.joint_mut(axle).unwrap().set_speed(2.0, 50.0).unwrap();
     sim.run_for(0.5).unwrap();
@@ -288,12 +288,12 @@ fn lasers_mount_on_bodies_and_report_the_closest_hit() {
 fn terrain_cones_and_static_objects_collide() {
     let mut sim = Simulation::new().unwrap();
     let field = Heightfield::constant(6, 6, 0.3).unwrap();
-    sim.add_trimesh_floor(field.vertices(), field.faces(), [-2.5, 0.0, -2.5]).unwrap();
+    sim.add_trimesh_floor(field.vertices(), field.triangles(), [-2.5, 0.0, -2.5]).unwrap();
     let ball = sim.add_sphere(0.5, [0.0, 1.5, 0.0], Mass::Total(1.0)).unwrap();
-    let cone = sim.add_cone(0.6, 0.3, [1.0, 1.5, 1.0], Mass::Total(1.0)).unwrap();
+    let cone = sim.add_cone(0.3, 0.6, [1.0, 1.5, 1.0], Mass::Total(1.0)).unwrap();
     sim.rotate(cone, Vector3::x(), -FRAC_PI_2).unwrap();
     let wall = sim
-        .add_static(ObjectShape::Box { size: Vector3::new(0.2, 2.0, 4.0) }, Isometry3::translation(-1.0, 0.0, 0.0))
+        .add_static(Shape::Box { edges: Vector3::new(0.2, 2.0, 4.0) }, Isometry3::translation(-1.0, 0.0, 0.0))
         .unwrap();
     assert!(sim.body(wall).is_err(), "static objects have no body");
     sim.run_for(2.0).unwrap();
@@ -366,7 +366,7 @@ fn programs_bind_keys_once_or_while_held_and_reset() {
 
 fn pendulum_trajectory() -> Vec<u64> {
     let mut sim = with_floor();
-    let a = sim.add_cylinder(1.0, 0.1, [0.5, 1.5, 0.0], Mass::Total(1.0)).unwrap();
+    let a = sim.add_cylinder(0.1, 1.0, [0.5, 1.5, 0.0], Mass::Total(1.0)).unwrap();
     sim.rotate(a, Vector3::y(), FRAC_PI_2).unwrap();
     sim.add_rotary_joint("", a, JointEnd::World, Some(Point3::new(0.0, 1.5, 0.0)), Vector3::z()).unwrap();
     let gps = sim.add_sensor(Gps::new(a)).unwrap();

@@ -112,7 +112,7 @@ impl Program for CentrifugalForce {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let offset = Vector3::new(2.0, 0.5, 2.0);
         let base = sim.add_box([5.0, 0.5, 5.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(1.0))?;
-        let pole = sim.add_cylinder(2.0, 0.05, [0.0, 1.0, 0.0], Mass::Density(1.0))?;
+        let pole = sim.add_cylinder(0.05, 2.0, [0.0, 1.0, 0.0], Mass::Density(1.0))?;
         sim.rotate(pole, Vector3::x(), FRAC_PI_2)?;
         sim.offset_by_position(pole, offset)?;
         let density = 1.0 / (4.0 / 3.0 * std::f64::consts::PI * 0.01f64.powi(3));

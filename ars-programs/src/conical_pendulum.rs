@@ -113,8 +113,8 @@ impl Program for ConicalPendulum {
         let offset = Vector3::new(1.0, 0.0, 2.0);
         let radius = 0.141421;
         let base = sim.add_box([10.0, 0.5, 10.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(100.0))?;
-        let pole = sim.add_cylinder(1.0, radius, [0.0, 0.51, 0.0], Mass::Total(10.0))?;
-        let arm = sim.add_cylinder(1.0, radius, [0.0, 0.51, 0.1], Mass::Total(10.0))?;
+        let pole = sim.add_cylinder(radius, 1.0, [0.0, 0.51, 0.0], Mass::Total(10.0))?;
+        let arm = sim.add_cylinder(radius, 1.0, [0.0, 0.51, 0.1], Mass::Total(10.0))?;
         for link in [pole, arm] {
             sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
             sim.offset_by_position(link, offset)?;

@@ -312,7 +312,7 @@ impl Program for SinusoidalTerrain {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let terrain = Self::terrain()?;
-        let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.faces(), Self::TERRAIN_CENTER)?;
+        let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.triangles(), Self::TERRAIN_CENTER)?;
         sim.set_color(floor, [0.7, 0.7, 0.7])?;
         let (vehicle, arm) = build_mobile_manipulator(
             sim,

@@ -30,8 +30,8 @@ pub struct ArmParts {
 pub fn build_simple_arm(sim: &mut Simulation) -> Result<ArmParts> {
     let offset = Vector3::new(2.5, 1.0, 2.5);
     let base = sim.add_box([3.0, 0.5, 3.0], Point3::new(0.0, -0.75, 0.0) + offset, Mass::Density(1.0))?;
-    let link1 = sim.add_capsule(0.8, 0.1, [0.0, 0.0, 0.0], Mass::Density(1.0))?;
-    let link2 = sim.add_capsule(0.6, 0.1, [0.0, 0.7, 0.2], Mass::Density(1.0))?;
+    let link1 = sim.add_capsule(0.1, 0.8, [0.0, 0.0, 0.0], Mass::Density(1.0))?;
+    let link2 = sim.add_capsule(0.1, 0.6, [0.0, 0.7, 0.2], Mass::Density(1.0))?;
     for link in [link1, link2] {
         sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
         sim.offset_by_position(link, offset)?;

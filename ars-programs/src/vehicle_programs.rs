@@ -45,8 +45,8 @@ impl Program for Vehicle1 {
         let mut wheels = Vec::new();
         for o in offsets {
             wheels.push(sim.add_cylinder(
-                0.1,
                 0.2,
+                0.1,
                 [o[0] + first.x, o[1] + first.y, o[2] + first.z],
                 Mass::Density(1.0),
             )?);

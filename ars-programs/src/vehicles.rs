@@ -5,7 +5,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{JointId, Mass, ObjectId, ObjectShape, Result, Scene, Simulation};
+use ars_core::{JointId, Mass, ObjectId, Result, Scene, Shape, Simulation};
 
 /// Parameters of a differential-drive base (the original's `Vehicle2` /
 /// `VehicleWithArm` geometry before its offset: wheels at (0, 0, ∓0.5), caster ball at
@@ -62,9 +62,9 @@ pub fn build_vehicle(sim: &mut Simulation, spec: &VehicleSpec) -> Result<Vehicle
     let ball = sim.add_sphere(0.3, [1.0, 0.0, 0.0], Mass::Density(1.0))?;
     let chassis = sim.add_box([2.0, 0.2, 1.5], [0.5, 0.45, 0.0], spec.chassis_mass)?;
     let wheel = if spec.capsule_wheels {
-        ObjectShape::Capsule { length: 0.4, radius: 0.3 }
+        Shape::Capsule { length: 0.4, radius: 0.3 }
     } else {
-        ObjectShape::Cylinder { length: 0.4, radius: 0.3 }
+        Shape::Cylinder { length: 0.4, radius: 0.3 }
     };
     let wheel_r = sim.add_body(wheel.clone(), [0.0, 0.0, -0.5], spec.wheel_mass)?;
     let wheel_l = sim.add_body(wheel, [0.0, 0.0, 0.5], spec.wheel_mass)?;
@@ -96,8 +96,8 @@ pub struct VehicleArm {
 /// the chassis centre, link2 (capsule 0.6 × 0.1) on top of it and 0.2 m to +Z; waist
 /// about Y at link1's centre, shoulder about Z 0.3 m below link2's centre.
 pub fn build_vehicle_arm(sim: &mut Simulation, chassis: ObjectId, link_mass: Mass, prefix: &str) -> Result<VehicleArm> {
-    let link1 = sim.add_capsule(0.8, 0.1, [0.0, 0.0, 0.0], link_mass)?;
-    let link2 = sim.add_capsule(0.6, 0.1, [0.0, 0.7, 0.2], link_mass)?;
+    let link1 = sim.add_capsule(0.1, 0.8, [0.0, 0.0, 0.0], link_mass)?;
+    let link2 = sim.add_capsule(0.1, 0.6, [0.0, 0.7, 0.2], link_mass)?;
     sim.rotate(link1, Vector3::x(), FRAC_PI_2)?;
     sim.rotate(link2, Vector3::x(), FRAC_PI_2)?;
     sim.offset_by_object(link1, chassis)?;

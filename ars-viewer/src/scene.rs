@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use ars_core::nalgebra::Isometry3;
-use ars_core::{ObjectId, ObjectShape, Shape, Simulation, ViewSettings};
+use ars_core::{ObjectId, Shape, Simulation, ViewSettings};
 use kiss3d::camera::OrbitCamera3d;
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
@@ -126,7 +126,7 @@ fn y_to_z() -> Quat {
 fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: usize) -> ars_core::Result<ObjectNode> {
     let shape = sim.shape(id)?.clone();
     let dynamic = sim.body_handle(id)?.is_some();
-    let default = if matches!(shape, ObjectShape::Plane { .. } | ObjectShape::TriMesh { .. }) {
+    let default = if matches!(shape, Shape::Plane { .. } | Shape::TriMesh { .. }) {
         FLOOR
     } else {
         PALETTE[index % PALETTE.len()]
@@ -134,22 +134,18 @@ fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: us
     let color = convert::color(sim.color(id)?.unwrap_or(default));
     let mut group = scene.add_group();
     let mut child = match &shape {
-        ObjectShape::Sphere { radius } => group.add_sphere(*radius as f32),
-        ObjectShape::Box { size } => group.add_cube(size.x as f32, size.y as f32, size.z as f32),
-        ObjectShape::Cylinder { length, radius } => {
-            group.add_cylinder(*radius as f32, *length as f32).set_rotation(y_to_z())
-        }
-        ObjectShape::Capsule { length, radius } => {
-            group.add_capsule(*radius as f32, *length as f32).set_rotation(y_to_z())
-        }
-        ObjectShape::Cone { height, radius } => {
+        Shape::Sphere { radius } => group.add_sphere(*radius as f32),
+        Shape::Box { edges } => group.add_cube(edges.x as f32, edges.y as f32, edges.z as f32),
+        Shape::Cylinder { length, radius } => group.add_cylinder(*radius as f32, *length as f32).set_rotation(y_to_z()),
+        Shape::Capsule { length, radius } => group.add_capsule(*radius as f32, *length as f32).set_rotation(y_to_z()),
+        Shape::Cone { height, radius } => {
             // kiss3d's cone is centred on half its height; ours on its centre of mass,
             // a quarter of the height above the base.
             let mut c = group.add_cone(*radius as f32, *height as f32).set_rotation(y_to_z());
             c.set_position(Vec3::new(0.0, 0.0, (*height / 4.0) as f32));
             c
         }
-        ObjectShape::Plane { normal, distance } => {
+        Shape::Plane { normal, distance } => {
             // A large square in the plane, centred where the plane meets its normal.
             let n = normal.normalize();
             let mut q = group.add_quad(2.0 * PLANE_HALF_SIZE, 2.0 * PLANE_HALF_SIZE, 1, 1);
@@ -157,9 +153,9 @@ fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: us
             q.set_position(convert::vector(&(n * *distance)));
             q
         }
-        ObjectShape::TriMesh { vertices, faces } => {
+        Shape::TriMesh { vertices, triangles } => {
             let v = vertices.iter().map(convert::point).collect();
-            group.add_trimesh(v, faces.clone(), Vec3::ONE, true)
+            group.add_trimesh(v, triangles.clone(), Vec3::ONE, true)
         }
         _ => group.add_sphere(0.05),
     };

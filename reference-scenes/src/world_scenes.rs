@@ -76,7 +76,7 @@ impl RustScene {
                 (MassSpec::sphere_total(1.0, 0.2), GeomBuilder::sphere(0.2))
             } else {
                 let size = Vector3::new(0.3, 0.3, 0.3);
-                (MassSpec::box_total(1.0, size), GeomBuilder::cuboid(size))
+                (MassSpec::box_total(1.0, size), GeomBuilder::box_edges(size))
             };
             let b = s.world.insert_body(BodyBuilder::new().mass(mass).position(Point3::new(x, y, z))).unwrap();
             s.world.insert_geom(s.space, geom.attached_to(b)).unwrap();

@@ -13,11 +13,11 @@ use crate::error::{Error, Result};
 /// The grid may hold at most [`MAX_GRID_VERTICES`] vertices.
 ///
 /// ```
-/// let faces = ars_core::heightfield_faces(2, 4)?;
+/// let faces = ars_core::heightfield_triangles(2, 4)?;
 /// assert_eq!(faces, [[0, 1, 4], [1, 5, 4], [1, 6, 5], [1, 2, 6], [2, 3, 6], [3, 7, 6]]);
 /// # Ok::<(), ars_core::Error>(())
 /// ```
-pub fn heightfield_faces(size_x: u32, size_z: u32) -> Result<Vec<[u32; 3]>> {
+pub fn heightfield_triangles(size_x: u32, size_z: u32) -> Result<Vec<[u32; 3]>> {
     check_grid(size_x, size_z)?;
     Ok(grid_faces(size_x, size_z))
 }
@@ -36,7 +36,7 @@ fn check_grid(size_x: u32, size_z: u32) -> Result<()> {
     Ok(())
 }
 
-/// [`heightfield_faces`] of a grid already checked.
+/// [`heightfield_triangles`] of a grid already checked.
 fn grid_faces(size_x: u32, size_z: u32) -> Vec<[u32; 3]> {
     let mut faces = Vec::new();
     let index = |x: u32, z: u32| size_z * x + z;
@@ -116,8 +116,8 @@ impl Heightfield {
         v
     }
 
-    /// The faces, see [`heightfield_faces`].
-    pub fn faces(&self) -> Vec<[u32; 3]> {
+    /// The triangles, see [`heightfield_triangles`].
+    pub fn triangles(&self) -> Vec<[u32; 3]> {
         grid_faces(self.num_x, self.num_z)
     }
 
@@ -135,11 +135,11 @@ mod tests {
     fn faces_point_up() {
         let field = Heightfield::constant(4, 5, 0.0).unwrap();
         let v = field.vertices();
-        for [a, b, c] in field.faces() {
+        for [a, b, c] in field.triangles() {
             let n = (v[b as usize] - v[a as usize]).cross(&(v[c as usize] - v[a as usize]));
             assert!(n.y > 0.0, "face {a} {b} {c} faces down");
         }
-        assert_eq!(field.faces().len(), 2 * 3 * 4);
+        assert_eq!(field.triangles().len(), 2 * 3 * 4);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! its sensors and hooks, and the step loop (it dereferences to its scene, so
 //! `sim.add_sphere(..)` and `sim.body(..)` are scene methods).
 //!
-//! - [`objects`](self::ObjectShape): bodies with their shape, static shapes, floors;
+//! - objects: bodies with their [`Shape`](crate::Shape), static shapes, floors;
 //! - joints: named joints with their efforts, friction and controllers;
 //! - floors: heightfield terrains.
 
@@ -15,9 +15,9 @@ mod objects;
 
 use nalgebra::Vector3;
 
-pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_faces};
+pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
-pub use objects::{CONE_SEGMENTS, Color, ObjectShape};
+pub use objects::Color;
 
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};

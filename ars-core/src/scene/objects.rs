@@ -8,170 +8,33 @@ use crate::convert::rotation_about_axis;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{BodyHandle, GeomHandle, ObjectId};
+use crate::shape::Shape;
 use crate::validate;
 
 /// An RGB colour, each channel in [0, 1] (used by the viewer).
 pub type Color = [f32; 3];
 
-/// The shape of an object, in its own frame (capsules, cylinders and cones along
-/// local Z, as in ODE).
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum ObjectShape {
-    /// Sphere.
-    Sphere {
-        /// Radius, m.
-        radius: f64,
-    },
-    /// Box.
-    Box {
-        /// Full edge lengths, m.
-        size: Vector3<f64>,
-    },
-    /// Cylinder along local Z.
-    Cylinder {
-        /// Length, m.
-        length: f64,
-        /// Radius, m.
-        radius: f64,
-    },
-    /// Capsule along local Z (length without the caps).
-    Capsule {
-        /// Length of the cylindrical part, m.
-        length: f64,
-        /// Radius, m.
-        radius: f64,
-    },
-    /// Solid cone along local +Z, apex up; the object origin is its centre of mass,
-    /// a quarter of the height above the base. It collides as a triangle mesh of
-    /// [`CONE_SEGMENTS`](crate::CONE_SEGMENTS) facets (ODE has no cone collider).
-    Cone {
-        /// Height, m.
-        height: f64,
-        /// Base radius, m.
-        radius: f64,
-    },
-    /// Infinite plane `normal · x = distance` (a floor).
-    Plane {
-        /// Normal.
-        normal: Vector3<f64>,
-        /// Offset along the normal, m.
-        distance: f64,
-    },
-    /// Triangle mesh (terrain), vertices in the object frame.
-    TriMesh {
-        /// Vertices, m.
-        vertices: Vec<Point3<f64>>,
-        /// Triangles (indices into `vertices`, counter-clockwise seen from outside).
-        faces: Vec<[u32; 3]>,
-    },
-}
-
-/// Facets of the triangle mesh a cone collides as.
-pub const CONE_SEGMENTS: u32 = 24;
-
-impl ObjectShape {
-    /// The default name of objects of this shape.
-    pub fn default_name(&self) -> &'static str {
-        match self {
-            ObjectShape::Sphere { .. } => "sphere",
-            ObjectShape::Box { .. } => "box",
-            ObjectShape::Cylinder { .. } => "cylinder",
-            ObjectShape::Capsule { .. } => "capsule",
-            ObjectShape::Cone { .. } => "cone",
-            ObjectShape::Plane { .. } => "floor",
-            ObjectShape::TriMesh { .. } => "trimesh",
-        }
-    }
-
-    fn geom(&self) -> GeomBuilder {
-        match self {
-            ObjectShape::Sphere { radius } => GeomBuilder::sphere(*radius),
-            ObjectShape::Box { size } => GeomBuilder::cuboid(*size),
-            ObjectShape::Cylinder { length, radius } => GeomBuilder::cylinder(*radius, *length),
-            ObjectShape::Capsule { length, radius } => GeomBuilder::capsule(*radius, *length),
-            ObjectShape::Cone { height, radius } => {
-                let (vertices, faces) = cone_mesh(*height, *radius);
-                GeomBuilder::trimesh(vertices, faces)
-            }
-            ObjectShape::Plane { normal, distance } => GeomBuilder::plane(*normal, *distance),
-            ObjectShape::TriMesh { vertices, faces } => GeomBuilder::trimesh(vertices.clone(), faces.clone()),
-        }
-    }
-
-    fn mass(&self, mass: Mass) -> Result<MassSpec> {
-        Ok(match self {
-            ObjectShape::Sphere { radius } => MassSpec::Sphere { radius: *radius, amount: mass },
-            ObjectShape::Box { size } => MassSpec::Box { size: *size, amount: mass },
-            ObjectShape::Cylinder { length, radius } => {
-                MassSpec::Cylinder { radius: *radius, length: *length, amount: mass }
-            }
-            ObjectShape::Capsule { length, radius } => {
-                MassSpec::Capsule { radius: *radius, length: *length, amount: mass }
-            }
-            ObjectShape::Cone { height, radius } => {
-                let h = validate::positive("cone height", *height)?;
-                let r = validate::positive("cone radius", *radius)?;
-                let volume = std::f64::consts::PI * r * r * h / 3.0;
-                let m = match mass {
-                    Mass::Total(m) => validate::positive("mass", m)?,
-                    Mass::Density(d) => validate::positive("density", d)? * volume,
-                };
-                // Solid cone about its centre of mass: 3/10 m r² about the axis,
-                // 3/20 m r² + 3/80 m h² across.
-                let axial = 0.3 * m * r * r;
-                let transverse = 0.15 * m * r * r + 0.0375 * m * h * h;
-                MassSpec::Custom {
-                    mass: m,
-                    inertia: Matrix3::from_diagonal(&Vector3::new(transverse, transverse, axial)),
-                }
-            }
-            ObjectShape::Plane { .. } | ObjectShape::TriMesh { .. } => {
-                return Err(Error::OutOfRange {
-                    what: "object shape",
-                    detail: "planes and meshes are static; use add_floor_plane or add_trimesh_floor".into(),
-                });
-            }
-        })
-    }
-}
-
-/// Vertices and faces of a cone along +Z with its centre of mass at the origin.
-fn cone_mesh(height: f64, radius: f64) -> (Vec<Point3<f64>>, Vec<[u32; 3]>) {
-    let base_z = -height / 4.0;
-    let n = CONE_SEGMENTS;
-    let mut vertices = vec![Point3::new(0.0, 0.0, base_z + height), Point3::new(0.0, 0.0, base_z)];
-    for i in 0..n {
-        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-        vertices.push(Point3::new(radius * a.cos(), radius * a.sin(), base_z));
-    }
-    let mut faces = Vec::new();
-    for i in 0..n {
-        let (a, b) = (2 + i, 2 + (i + 1) % n);
-        faces.push([0, a, b]); // side, outward
-        faces.push([1, b, a]); // base, facing -Z
-    }
-    (vertices, faces)
-}
-
 pub(crate) struct ObjectData {
     pub(crate) name: String,
-    pub(crate) shape: ObjectShape,
+    pub(crate) shape: Shape,
     pub(crate) body: Option<BodyHandle>,
     pub(crate) geom: Option<GeomHandle>,
     pub(crate) color: Option<Color>,
 }
 
 impl Scene {
-    fn register(&mut self, shape: ObjectShape, body: Option<BodyHandle>, geom: Option<GeomHandle>) -> Result<ObjectId> {
-        let base = shape.default_name();
+    fn register(&mut self, shape: Shape, body: Option<BodyHandle>, geom: Option<GeomHandle>) -> Result<ObjectId> {
+        let base = match shape {
+            Shape::Plane { .. } => "floor",
+            _ => shape.kind_name(),
+        };
         self.register_as(base, shape, body, geom)
     }
 
     fn register_as(
         &mut self,
         base: &str,
-        shape: ObjectShape,
+        shape: Shape,
         body: Option<BodyHandle>,
         geom: Option<GeomHandle>,
     ) -> Result<ObjectId> {
@@ -184,9 +47,9 @@ impl Scene {
     /// Adds a dynamic body of `shape` centred at `center` (its centre of mass), with
     /// its mass given as a total or a density. ODE calls: create the body, set its mass
     /// and position, create the geom and attach it.
-    pub fn add_body(&mut self, shape: ObjectShape, center: impl Into<Point3<f64>>, mass: Mass) -> Result<ObjectId> {
-        let spec = shape.mass(mass)?;
-        let geom = shape.geom();
+    pub fn add_body(&mut self, shape: Shape, center: impl Into<Point3<f64>>, mass: Mass) -> Result<ObjectId> {
+        let spec = MassSpec::solid(shape.clone(), mass);
+        let geom = GeomBuilder::new(shape.clone());
         let center = center.into();
         // Check the geom before creating the body, so that bad input leaves nothing.
         spec.to_ode()?;
@@ -203,58 +66,61 @@ impl Scene {
 
     /// Adds a sphere of `radius` (m) centred at `center`.
     pub fn add_sphere(&mut self, radius: f64, center: impl Into<Point3<f64>>, mass: Mass) -> Result<ObjectId> {
-        self.add_body(ObjectShape::Sphere { radius }, center, mass)
+        self.add_body(Shape::Sphere { radius }, center, mass)
     }
 
-    /// Adds a box with full edge lengths `size` (m) centred at `center`.
+    /// Adds a box with full edge lengths `edges` (m, not half-extents) centred at `center`.
     pub fn add_box(
         &mut self,
-        size: impl Into<Vector3<f64>>,
+        edges: impl Into<Vector3<f64>>,
         center: impl Into<Point3<f64>>,
         mass: Mass,
     ) -> Result<ObjectId> {
-        self.add_body(ObjectShape::Box { size: size.into() }, center, mass)
+        self.add_body(Shape::Box { edges: edges.into() }, center, mass)
     }
 
-    /// Adds a cylinder along local Z of `length` and `radius` (m) centred at `center`.
+    /// Adds a cylinder along local Z of `radius` and `length` (m) centred at `center`.
     pub fn add_cylinder(
         &mut self,
-        length: f64,
         radius: f64,
+        length: f64,
         center: impl Into<Point3<f64>>,
         mass: Mass,
     ) -> Result<ObjectId> {
-        self.add_body(ObjectShape::Cylinder { length, radius }, center, mass)
+        self.add_body(Shape::Cylinder { radius, length }, center, mass)
     }
 
-    /// Adds a capsule along local Z (`length` without the caps) centred at `center`.
+    /// Adds a capsule along local Z of `radius` and `length` (without the caps)
+    /// centred at `center`.
     pub fn add_capsule(
         &mut self,
-        length: f64,
         radius: f64,
+        length: f64,
         center: impl Into<Point3<f64>>,
         mass: Mass,
     ) -> Result<ObjectId> {
-        self.add_body(ObjectShape::Capsule { length, radius }, center, mass)
+        self.add_body(Shape::Capsule { radius, length }, center, mass)
     }
 
-    /// Adds a solid cone along local +Z with its centre of mass at `center`. It
-    /// collides as a triangle mesh of [`CONE_SEGMENTS`] facets (ODE has no cone).
+    /// Adds a solid cone along local +Z of base `radius` and `height` with its centre
+    /// of mass at `center`. It collides as a triangle mesh of
+    /// [`CONE_SEGMENTS`](crate::CONE_SEGMENTS) facets (ODE has no cone).
     pub fn add_cone(
         &mut self,
-        height: f64,
         radius: f64,
+        height: f64,
         center: impl Into<Point3<f64>>,
         mass: Mass,
     ) -> Result<ObjectId> {
-        self.add_body(ObjectShape::Cone { height, radius }, center, mass)
+        self.add_body(Shape::Cone { radius, height }, center, mass)
     }
 
-    /// Adds a static (immovable, bodyless) shape at `pose`: it collides, but nothing moves it.
-    pub fn add_static(&mut self, shape: ObjectShape, pose: Isometry3<f64>) -> Result<ObjectId> {
+    /// Adds a static (immovable, bodyless) shape at `pose`: it collides, but nothing
+    /// moves it (a plane ignores the pose).
+    pub fn add_static(&mut self, shape: Shape, pose: Isometry3<f64>) -> Result<ObjectId> {
         let geom = match shape {
-            ObjectShape::Plane { .. } => shape.geom(),
-            _ => shape.geom().pose(pose),
+            Shape::Plane { .. } => GeomBuilder::new(shape.clone()),
+            _ => GeomBuilder::new(shape.clone()).pose(pose),
         };
         let g = self.world.insert_geom(self.space, geom)?;
         self.register(shape, None, Some(g))
@@ -262,22 +128,22 @@ impl Scene {
 
     /// Adds the infinite floor plane `normal · x = distance` (named "floor").
     pub fn add_floor_plane(&mut self, normal: Vector3<f64>, distance: f64) -> Result<ObjectId> {
-        self.add_static(ObjectShape::Plane { normal, distance }, Isometry3::identity())
+        self.add_static(Shape::Plane { normal, distance }, Isometry3::identity())
     }
 
     /// Adds a triangle-mesh floor (terrain) translated by `center` (named "floor").
     pub fn add_trimesh_floor(
         &mut self,
         vertices: Vec<Point3<f64>>,
-        faces: Vec<[u32; 3]>,
+        triangles: Vec<[u32; 3]>,
         center: impl Into<Point3<f64>>,
     ) -> Result<ObjectId> {
         let c = center.into();
-        let g = self.world.insert_geom(
-            self.space,
-            GeomBuilder::trimesh(vertices.clone(), faces.clone()).pose(Isometry3::translation(c.x, c.y, c.z)),
-        )?;
-        self.register_as("floor", ObjectShape::TriMesh { vertices, faces }, None, Some(g))
+        let shape = Shape::TriMesh { vertices, triangles };
+        let g = self
+            .world
+            .insert_geom(self.space, GeomBuilder::new(shape.clone()).pose(Isometry3::translation(c.x, c.y, c.z)))?;
+        self.register_as("floor", shape, None, Some(g))
     }
 
     pub(crate) fn object_data(&self, id: ObjectId) -> Result<&ObjectData> {
@@ -312,7 +178,7 @@ impl Scene {
     }
 
     /// The shape of an object.
-    pub fn shape(&self, id: ObjectId) -> Result<&ObjectShape> {
+    pub fn shape(&self, id: ObjectId) -> Result<&Shape> {
         Ok(&self.object_data(id)?.shape)
     }
 
@@ -397,7 +263,7 @@ impl Scene {
         let p = position.into();
         let data = self.object_data(id)?;
         match (data.body, data.geom, &data.shape) {
-            (_, _, ObjectShape::Plane { .. }) => Err(Error::WrongGeomKind { operation: "moving", kind: "plane" }),
+            (_, _, Shape::Plane { .. }) => Err(Error::WrongGeomKind { operation: "moving", kind: "plane" }),
             (Some(b), _, _) => self.world.body_mut(b)?.set_position(p),
             (None, Some(g), _) => self.world.geom_mut(g)?.set_position(p),
             (None, None, _) => Ok(()),
@@ -408,7 +274,7 @@ impl Scene {
     pub fn set_rotation(&mut self, id: ObjectId, rotation: Rotation3<f64>) -> Result<()> {
         let data = self.object_data(id)?;
         match (data.body, data.geom, &data.shape) {
-            (_, _, ObjectShape::Plane { .. }) => Err(Error::WrongGeomKind { operation: "rotating", kind: "plane" }),
+            (_, _, Shape::Plane { .. }) => Err(Error::WrongGeomKind { operation: "rotating", kind: "plane" }),
             (Some(b), _, _) => self.world.body_mut(b)?.set_rotation(rotation),
             (None, Some(g), _) => self.world.geom_mut(g)?.set_rotation(rotation),
             (None, None, _) => Ok(()),

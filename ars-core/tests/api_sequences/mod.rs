@@ -179,7 +179,7 @@ impl Harness {
     fn shape(input: &mut Bytes<'_>) -> Shape {
         match input.byte() % 7 {
             0 => Shape::Sphere { radius: input.positive() },
-            1 => Shape::Box { size: input.vector() },
+            1 => Shape::Box { edges: input.vector() },
             2 => Shape::Capsule { radius: input.positive(), length: input.positive() },
             3 => Shape::Cylinder { radius: input.positive(), length: input.positive() },
             4 => Shape::Plane { normal: input.vector(), distance: input.real() },
@@ -197,10 +197,12 @@ impl Harness {
 
     fn mass(input: &mut Bytes<'_>) -> MassSpec {
         match input.byte() % 5 {
-            0 => MassSpec::Sphere { radius: input.positive(), amount: input.amount() },
-            1 => MassSpec::Box { size: input.vector(), amount: input.amount() },
-            2 => MassSpec::Capsule { radius: input.positive(), length: input.positive(), amount: input.amount() },
-            3 => MassSpec::Cylinder { radius: input.positive(), length: input.positive(), amount: input.amount() },
+            0 => MassSpec::solid(Shape::Sphere { radius: input.positive() }, input.amount()),
+            1 => MassSpec::solid(Shape::Box { edges: input.vector() }, input.amount()),
+            2 => MassSpec::solid(Shape::Capsule { radius: input.positive(), length: input.positive() }, input.amount()),
+            3 => {
+                MassSpec::solid(Shape::Cylinder { radius: input.positive(), length: input.positive() }, input.amount())
+            }
             _ => MassSpec::Custom {
                 mass: input.positive(),
                 inertia: Matrix3::from_fn(|r, c| if r == c { input.positive() } else { input.real() * 0.1 }),
@@ -524,7 +526,7 @@ impl Harness {
                     2 => s.sim.add_cylinder(input.real(), input.real(), c, m),
                     3 => s.sim.add_capsule(input.real(), input.real(), c, m),
                     4 => s.sim.add_cone(input.real(), input.real(), c, m),
-                    _ => s.sim.add_static(ObjectShape::Box { size: input.vector() }, input.isometry()),
+                    _ => s.sim.add_static(Shape::Box { edges: input.vector() }, input.isometry()),
                 };
                 if let Ok(id) = r {
                     s.objects.push(id);

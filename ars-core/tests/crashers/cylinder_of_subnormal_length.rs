@@ -26,7 +26,7 @@ fn cylinders_at_the_smallest_size_collide_with_every_shape() {
     let (mut world, space) = super::common::world_with_floor();
     let others = [
         GeomBuilder::sphere(MIN_SIZE),
-        GeomBuilder::cuboid(Vector3::repeat(MIN_SIZE)),
+        GeomBuilder::box_edges(Vector3::repeat(MIN_SIZE)),
         GeomBuilder::capsule(MIN_SIZE, MIN_SIZE),
         GeomBuilder::cylinder(MIN_SIZE, MIN_SIZE),
         GeomBuilder::cylinder(BIG, MIN_SIZE),

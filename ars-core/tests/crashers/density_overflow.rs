@@ -8,9 +8,9 @@ use ars_core::*;
 #[test]
 fn a_density_that_overflows_the_mass_is_refused() {
     let mut world = World::new();
-    let spec = MassSpec::Sphere { radius: 1e150, amount: Mass::Density(1e10) };
+    let spec = MassSpec::solid(Shape::Sphere { radius: 1e150 }, Mass::Density(1e10));
     assert!(world.insert_body(BodyBuilder::new().mass(spec)).is_err());
-    let spec = MassSpec::Sphere { radius: MAX_SIZE, amount: Mass::Density(1e10) };
+    let spec = MassSpec::solid(Shape::Sphere { radius: MAX_SIZE }, Mass::Density(1e10));
     let err = world.insert_body(BodyBuilder::new().mass(spec)).unwrap_err();
     assert!(err.to_string().contains("from the density"), "{err}");
     let mut sim = Simulation::new().unwrap();

@@ -32,10 +32,10 @@ fn a_geom_beyond_the_hash_cells_is_an_err_and_the_world_goes_on() {
 
     // A static geom far away, too.
     let pose = Isometry3::translation(0.0, -4e8, 0.0);
-    world.insert_geom(space, GeomBuilder::cuboid(Vector3::new(1.0, 1.0, 1.0)).pose(pose)).unwrap();
+    world.insert_geom(space, GeomBuilder::box_edges(Vector3::new(1.0, 1.0, 1.0)).pose(pose)).unwrap();
     assert!(world.collide(space).is_err());
     // A simple space has no integer cells: the same geoms collide there.
     let simple = world.create_space(SpaceKind::Simple).unwrap();
-    world.insert_geom(simple, GeomBuilder::cuboid(Vector3::new(1.0, 1.0, 1.0)).pose(pose)).unwrap();
+    world.insert_geom(simple, GeomBuilder::box_edges(Vector3::new(1.0, 1.0, 1.0)).pose(pose)).unwrap();
     world.collide(simple).unwrap();
 }

@@ -15,7 +15,7 @@ fn boxes(world: &mut World, space: SpaceHandle, at: impl Iterator<Item = Point3<
         let b = world
             .insert_body(BodyBuilder::new().position(p).mass(MassSpec::box_total(1.0, Vector3::repeat(1.0))))
             .unwrap();
-        world.insert_geom(space, GeomBuilder::cuboid(Vector3::repeat(1.0)).attached_to(b)).unwrap();
+        world.insert_geom(space, GeomBuilder::box_edges(Vector3::repeat(1.0)).attached_to(b)).unwrap();
     }
 }
 

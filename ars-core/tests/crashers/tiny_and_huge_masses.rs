@@ -20,7 +20,7 @@ fn extreme_masses_and_inertias_are_refused() {
         MassSpec::sphere_total(1e-103, 1.0),
         MassSpec::Custom { mass: 1.0, inertia: Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 1e-300)) },
     ] {
-        let err = world.insert_body(BodyBuilder::new().mass(spec)).unwrap_err();
+        let err = world.insert_body(BodyBuilder::new().mass(spec.clone())).unwrap_err();
         assert!(matches!(err, Error::OutOfRange { .. } | Error::NotPositive { .. }), "{spec:?}: {err}");
     }
     assert_eq!(world.body_count(), 0);

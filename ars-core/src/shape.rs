@@ -1,0 +1,155 @@
+//! Shapes: one vocabulary for geoms ([`GeomBuilder`](crate::GeomBuilder)), masses
+//! ([`MassSpec`](crate::MassSpec)) and a simulation's objects.
+
+use nalgebra::{Point3, Vector3};
+
+use crate::error::{Error, Result};
+use crate::limits;
+use crate::validate;
+
+/// Facets of the triangle mesh a cone collides as.
+pub const CONE_SEGMENTS: u32 = 24;
+
+/// The shape of a geom, of a body's mass and of a simulation's object: one vocabulary
+/// for every layer. Lengths along an axis are local Z (capsules, cylinders, cones, rays,
+/// as in ODE); radii come before lengths; a box is given by its full edge lengths.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Shape {
+    /// Sphere of this radius, m.
+    Sphere {
+        /// Radius, m.
+        radius: f64,
+    },
+    /// Box with these full edge lengths, m (not half-extents).
+    Box {
+        /// Full edge lengths along local X, Y, Z, m.
+        edges: Vector3<f64>,
+    },
+    /// Capsule along local Z; `length` excludes the caps.
+    Capsule {
+        /// Radius, m.
+        radius: f64,
+        /// Length of the cylindrical part, m.
+        length: f64,
+    },
+    /// Cylinder along local Z.
+    Cylinder {
+        /// Radius, m.
+        radius: f64,
+        /// Length, m.
+        length: f64,
+    },
+    /// Solid cone along local +Z, apex up, whose origin is its centre of mass (a
+    /// quarter of the height above the base). ODE has no cone collider: its geom is a
+    /// triangle mesh of [`CONE_SEGMENTS`] facets.
+    Cone {
+        /// Base radius, m.
+        radius: f64,
+        /// Height, m.
+        height: f64,
+    },
+    /// Infinite plane `normal · x = distance` (not placeable: cannot be attached or moved).
+    Plane {
+        /// Plane normal (normalised by ODE).
+        normal: Vector3<f64>,
+        /// Offset along the normal, m.
+        distance: f64,
+    },
+    /// Ray of this length from the geom's origin along its local +Z axis.
+    Ray {
+        /// Length, m.
+        length: f64,
+    },
+    /// Triangle mesh (vertices in the geom's frame; faces wound counter-clockwise seen
+    /// from outside). A mesh of one triangle is handed to ODE with that triangle twice
+    /// (ODE's mesh–mesh collider crashes on a one-triangle tree).
+    TriMesh {
+        /// Vertex positions, m.
+        vertices: Vec<Point3<f64>>,
+        /// Vertex indices, three per triangle.
+        triangles: Vec<[u32; 3]>,
+    },
+}
+
+impl Shape {
+    /// Short name of the shape kind, as used in error messages.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Shape::Sphere { .. } => "sphere",
+            Shape::Box { .. } => "box",
+            Shape::Capsule { .. } => "capsule",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Cone { .. } => "cone",
+            Shape::Plane { .. } => "plane",
+            Shape::Ray { .. } => "ray",
+            Shape::TriMesh { .. } => "trimesh",
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<()> {
+        match self {
+            Shape::Sphere { radius } => limits::size("sphere radius", *radius).map(drop),
+            Shape::Box { edges } => limits::sizes("box edges", edges).map(drop),
+            Shape::Capsule { radius, length } => {
+                limits::size("capsule radius", *radius)?;
+                limits::size("capsule length", *length).map(drop)
+            }
+            Shape::Cylinder { radius, length } => {
+                limits::size("cylinder radius", *radius)?;
+                limits::size("cylinder length", *length).map(drop)
+            }
+            Shape::Cone { radius, height } => {
+                limits::size("cone radius", *radius)?;
+                limits::size("cone height", *height).map(drop)
+            }
+            Shape::Plane { normal, distance } => {
+                validate::direction("plane normal", normal)?;
+                limits::coordinate("plane distance", *distance).map(drop)
+            }
+            Shape::Ray { length } => limits::size("ray length", *length).map(drop),
+            Shape::TriMesh { vertices, triangles } => {
+                if triangles.is_empty() {
+                    return Err(Error::InvalidMesh("it has no triangles".into()));
+                }
+                for (i, v) in vertices.iter().enumerate() {
+                    if let Err(e) = limits::point("trimesh vertex", v) {
+                        return Err(Error::InvalidMesh(format!("vertex {i}: {e}")));
+                    }
+                }
+                for (i, t) in triangles.iter().enumerate() {
+                    if let Some(bad) = t.iter().find(|&&k| k as usize >= vertices.len()) {
+                        return Err(Error::InvalidMesh(format!(
+                            "triangle {i} uses vertex {bad}, but there are only {} vertices",
+                            vertices.len()
+                        )));
+                    }
+                }
+                let limit = i32::MAX as usize / 3;
+                if vertices.len() > limit || triangles.len() > limit {
+                    return Err(Error::InvalidMesh("too many vertices or triangles".into()));
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Vertices and triangles of a cone along +Z with its centre of mass at the origin
+/// (what a [`Shape::Cone`] collides as).
+pub(crate) fn cone_mesh(radius: f64, height: f64) -> (Vec<Point3<f64>>, Vec<[u32; 3]>) {
+    let base_z = -height / 4.0;
+    let n = CONE_SEGMENTS;
+    let mut vertices = vec![Point3::new(0.0, 0.0, base_z + height), Point3::new(0.0, 0.0, base_z)];
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        vertices.push(Point3::new(radius * a.cos(), radius * a.sin(), base_z));
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let (a, b) = (2 + i, 2 + (i + 1) % n);
+        triangles.push([0, a, b]); // side, outward
+        triangles.push([1, b, a]); // base, facing -Z
+    }
+    (vertices, triangles)
+}
