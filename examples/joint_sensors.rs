@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("JointTorque: {} records, {applied} with a torque (one per frame)", torque.len());
     let worst = power.iter().map(|s| s.record.power).fold(0.0, f64::min);
     println!("JointPower: never positive; most negative {worst:.6} W (the friction only takes energy)");
-    println!("RotaryJointSensor: {} records (one per frame); the last three:", angle.len());
+    println!("HingeSensor: {} records (one per frame); the last three:", angle.len());
     for s in &angle.samples()[angle.len().saturating_sub(3)..] {
         println!("  t {:.2} s: angle {:.6} rad, rate {:.6} rad/s", s.time, s.record.position, s.record.rate);
     }

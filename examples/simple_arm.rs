@@ -8,7 +8,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use ars::sensors::RotaryJointSensor;
+use ars::sensors::HingeSensor;
 use ars::{Key, ProgramRunner};
 use ars_programs::SimpleArm;
 use common::plot::{Series, line_chart, over_time};
@@ -23,8 +23,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut runner = ProgramRunner::new(&mut program)?;
     let parts = runner.program().parts.expect("built");
-    let waist = runner.simulation_mut().add_sensor(RotaryJointSensor::new(parts.r1))?;
-    let shoulder = runner.simulation_mut().add_sensor(RotaryJointSensor::new(parts.r2))?;
+    let waist = runner.simulation_mut().add_sensor(HingeSensor::new(parts.r1))?;
+    let shoulder = runner.simulation_mut().add_sensor(HingeSensor::new(parts.r2))?;
     let steps = runner.simulation().steps_in(args.duration)?;
     let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
     let spf = u64::from(runner.simulation().steps_per_frame());

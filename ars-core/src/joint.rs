@@ -286,7 +286,7 @@ impl JointBuilder {
     pub fn universal(anchor: Point3<f64>, axis1: Vector3<f64>, axis2: Vector3<f64>) -> Self {
         Self::new(JointKind::Universal { anchor, axis1, axis2 })
     }
-    /// A ball-and-socket joint.
+    /// A ball joint (ball and socket).
     pub fn ball(anchor: Point3<f64>) -> Self {
         Self::new(JointKind::Ball { anchor })
     }

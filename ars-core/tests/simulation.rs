@@ -27,12 +27,12 @@ fn names_are_unique_deterministic_and_looked_up() {
     assert!(matches!(&err, Error::UnknownName { close_matches, .. } if close_matches == &["arm"]), "{err}");
     assert!(err.to_string().contains("did you mean arm?"));
     assert!(matches!(sim.set_name(a, "arm"), Err(Error::DuplicateName { .. })));
-    let j = sim.add_rotary_joint("", a, c, None, Vector3::z()).unwrap();
-    let k = sim.add_rotary_joint("", c, JointEnd::World, None, Vector3::z()).unwrap();
-    assert_eq!((sim.joint_name(j).unwrap(), sim.joint_name(k).unwrap()), ("rotary", "rotary/1"));
-    assert_eq!(sim.joint("rotary/1").unwrap(), k);
+    let j = sim.add_hinge_joint("", a, c, None, Vector3::z()).unwrap();
+    let k = sim.add_hinge_joint("", c, JointEnd::World, None, Vector3::z()).unwrap();
+    assert_eq!((sim.joint_name(j).unwrap(), sim.joint_name(k).unwrap()), ("hinge", "hinge/1"));
+    assert_eq!(sim.joint("hinge/1").unwrap(), k);
     assert!(matches!(sim.joint("rotery"), Err(Error::UnknownName { kind: "joint", .. })));
-    assert!(matches!(sim.add_rotary_joint("rotary", a, c, None, Vector3::y()), Err(Error::DuplicateName { .. })));
+    assert!(matches!(sim.add_hinge_joint("hinge", a, c, None, Vector3::y()), Err(Error::DuplicateName { .. })));
 }
 
 #[test]
@@ -49,10 +49,10 @@ fn bad_input_is_refused_with_a_clear_error() {
     assert_eq!(sim.world().body_count(), 0);
 
     let a = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
-    let err = sim.add_rotary_joint("self", a, a, None, Vector3::y()).unwrap_err();
+    let err = sim.add_hinge_joint("self", a, a, None, Vector3::y()).unwrap_err();
     assert!(matches!(err, Error::SelfJoint { .. }), "{err}");
     let floor = sim.object("floor").unwrap();
-    assert!(sim.add_rotary_joint("", floor, a, None, Vector3::y()).is_err(), "a static first object");
+    assert!(sim.add_hinge_joint("", floor, a, None, Vector3::y()).is_err(), "a static first object");
     assert!(sim.rotate(a, Vector3::zeros(), 1.0).is_err());
     assert!(sim.rotate(a, Vector3::x(), f64::NAN).is_err());
     assert!(sim.set_color(a, [2.0, 0.0, 0.0]).is_err());
@@ -132,7 +132,7 @@ fn joints_to_the_static_world_friction_and_controllers() {
     let mut sim = Simulation::new().unwrap();
     // A 1 kg ball on a 1 m massless arm, hinged to the world at the origin.
     let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    let hinge = sim.add_rotary_joint("hinge", ball, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    let hinge = sim.add_hinge_joint("hinge", ball, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
     sim.joint_mut(hinge).unwrap().set_viscous_friction(2.0).unwrap();
     let torque = sim.add_sensor(JointTorque::new(hinge)).unwrap();
     let power = sim.add_sensor(JointPower::new(hinge)).unwrap();
@@ -164,10 +164,10 @@ fn joints_to_the_static_world_friction_and_controllers() {
 }
 
 #[test]
-fn rotary_speed_motor_limits_slider_and_reactions() {
+fn hinge_speed_motor_limits_slider_and_reactions() {
     let mut sim = Simulation::new().unwrap();
     let wheel = sim.add_cylinder(0.3, 0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    let axle = sim.add_rotary_joint("axle", wheel, JointEnd::World, None, Vector3::z()).unwrap();
+    let axle = sim.add_hinge_joint("axle", wheel, JointEnd::World, None, Vector3::z()).unwrap();
     sim.joint_mut(axle).unwrap().set_speed(2.0, 50.0).unwrap();
     sim.run_for(0.5).unwrap();
     assert!((sim.joint_state(axle).unwrap().rate - 2.0).abs() < 1e-6);
@@ -187,7 +187,7 @@ fn rotary_speed_motor_limits_slider_and_reactions() {
     assert!((x - 0.1).abs() < 1e-3, "stops at the high limit: {x}");
     assert!(sim.records(force).unwrap().iter().all(|s| s.record.value == 4.0));
     assert!(sim.joint_mut(rail).unwrap().add_torque(1.0).is_err(), "a slider takes forces");
-    assert!(sim.add_sensor(RotaryJointSensor::new(rail)).is_err(), "a rotary sensor on a slider");
+    assert!(sim.add_sensor(HingeSensor::new(rail)).is_err(), "a rotary sensor on a slider");
 }
 
 #[test]
@@ -195,7 +195,7 @@ fn removing_objects_and_joints_between_steps() {
     let mut sim = with_floor();
     let a = sim.add_sphere(0.2, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
     let b = sim.add_sphere(0.2, [1.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
-    let j = sim.add_ball_socket_joint("link", a, b, None).unwrap();
+    let j = sim.add_ball_joint("link", a, b, None).unwrap();
     let gps = sim.add_sensor(Gps::new(a)).unwrap();
     sim.run_for(0.1).unwrap();
     sim.remove_joint(j).unwrap();
@@ -368,7 +368,7 @@ fn pendulum_trajectory() -> Vec<u64> {
     let mut sim = with_floor();
     let a = sim.add_cylinder(0.1, 1.0, [0.5, 1.5, 0.0], Mass::Total(1.0)).unwrap();
     sim.rotate(a, Vector3::y(), FRAC_PI_2).unwrap();
-    sim.add_rotary_joint("", a, JointEnd::World, Some(Point3::new(0.0, 1.5, 0.0)), Vector3::z()).unwrap();
+    sim.add_hinge_joint("", a, JointEnd::World, Some(Point3::new(0.0, 1.5, 0.0)), Vector3::z()).unwrap();
     let gps = sim.add_sensor(Gps::new(a)).unwrap();
     sim.run_for(1.0).unwrap();
     sim.records(gps).unwrap().iter().map(|s| s.record.position.y.to_bits()).collect()

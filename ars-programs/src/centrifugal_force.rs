@@ -4,7 +4,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::sensors::{JointPower, JointTorque, Probe, Record, RotaryJointSensor};
+use ars_core::sensors::{HingeSensor, JointPower, JointTorque, Probe, Record};
 use ars_core::{
     ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Scene, SensorId, Simulation,
     SimulationBuilder,
@@ -41,7 +41,7 @@ pub struct CentrifugalForce {
     /// The waist and the cable hinge.
     pub joints: Option<(JointId, JointId)>,
     /// The sensor demos' sensors on r2: torque, power, angle.
-    pub sensors: Option<(SensorId<JointTorque>, SensorId<JointPower>, SensorId<RotaryJointSensor>)>,
+    pub sensors: Option<(SensorId<JointTorque>, SensorId<JointPower>, SensorId<HingeSensor>)>,
     /// The reading at the start of every frame.
     pub record: Option<SensorId<Probe<CentrifugalRow>>>,
 }
@@ -117,12 +117,12 @@ impl Program for CentrifugalForce {
         sim.offset_by_position(pole, offset)?;
         let density = 1.0 / (4.0 / 3.0 * std::f64::consts::PI * 0.01f64.powi(3));
         let ball = sim.add_sphere(0.01, Point3::new(0.0, 1.0, 1.0) + offset, Mass::Density(density))?;
-        let r1 = sim.add_rotary_joint("r1", base, pole, None, Vector3::y())?;
-        let r2 = sim.add_rotary_joint("r2", pole, ball, Some(Point3::new(0.0, 2.0, 1.0) + offset), Vector3::x())?;
+        let r1 = sim.add_hinge_joint("r1", base, pole, None, Vector3::y())?;
+        let r2 = sim.add_hinge_joint("r2", pole, ball, Some(Point3::new(0.0, 2.0, 1.0) + offset), Vector3::x())?;
         self.sensors = Some((
             sim.add_sensor(JointTorque::new(r2))?,
             sim.add_sensor(JointPower::new(r2))?,
-            sim.add_sensor_every(RotaryJointSensor::new(r2), 1.0 / 50.0)?,
+            sim.add_sensor_every(HingeSensor::new(r2), 1.0 / 50.0)?,
         ));
         let frame = sim.time_step() * f64::from(sim.steps_per_frame());
         let probe = Probe::at_step_start(move |scene: &Scene| {

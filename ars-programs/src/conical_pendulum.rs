@@ -122,9 +122,9 @@ impl Program for ConicalPendulum {
         sim.set_color(base, [0.55, 0.6, 0.65])?;
         sim.set_color(pole, ars_core::colors::YELLOW)?;
         sim.set_color(arm, ars_core::colors::NAVY)?;
-        let waist = sim.add_rotary_joint("r1", base, pole, None, Vector3::y())?;
+        let waist = sim.add_hinge_joint("r1", base, pole, None, Vector3::y())?;
         let shoulder =
-            sim.add_rotary_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
+            sim.add_hinge_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
         (self.base, self.pole, self.arm) = (Some(base), Some(pole), Some(arm));
         (self.waist, self.shoulder) = (Some(waist), Some(shoulder));
         let probe = Probe::at_step_start(move |scene: &Scene| {

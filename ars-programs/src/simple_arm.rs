@@ -36,9 +36,9 @@ pub fn build_simple_arm(sim: &mut Simulation) -> Result<ArmParts> {
         sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
         sim.offset_by_position(link, offset)?;
     }
-    let r1 = sim.add_rotary_joint("r1", base, link1, None, Vector3::y())?;
+    let r1 = sim.add_hinge_joint("r1", base, link1, None, Vector3::y())?;
     let anchor = sim.position(link2)? - Vector3::new(0.0, 0.3, 0.0);
-    let r2 = sim.add_rotary_joint("r2", link1, link2, Some(anchor), Vector3::z())?;
+    let r2 = sim.add_hinge_joint("r2", link1, link2, Some(anchor), Vector3::z())?;
     Ok(ArmParts { base, link1, link2, r1, r2 })
 }
 

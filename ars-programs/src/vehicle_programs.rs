@@ -53,7 +53,7 @@ impl Program for Vehicle1 {
         }
         let chassis = sim.add_box([1.3, 0.2, 0.6], [1.5, 1.0, 1.5], Mass::Density(10.0))?;
         for (i, w) in wheels.iter().enumerate() {
-            let j = sim.add_rotary_joint(&format!("r{}", i + 1), chassis, *w, None, Vector3::z())?;
+            let j = sim.add_hinge_joint(&format!("r{}", i + 1), chassis, *w, None, Vector3::z())?;
             self.wheels.push(j);
         }
         self.chassis = Some(chassis);

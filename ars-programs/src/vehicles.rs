@@ -69,9 +69,9 @@ pub fn build_vehicle(sim: &mut Simulation, spec: &VehicleSpec) -> Result<Vehicle
     let wheel_r = sim.add_body(wheel.clone(), [0.0, 0.0, -0.5], spec.wheel_mass)?;
     let wheel_l = sim.add_body(wheel, [0.0, 0.0, 0.5], spec.wheel_mass)?;
     let p = &spec.prefix;
-    let w1 = sim.add_rotary_joint(&format!("{p}w1"), chassis, wheel_r, None, Vector3::z())?;
-    let w2 = sim.add_rotary_joint(&format!("{p}w2"), chassis, wheel_l, None, Vector3::z())?;
-    let bs = sim.add_ball_socket_joint(&format!("{p}bs"), chassis, ball, None)?;
+    let w1 = sim.add_hinge_joint(&format!("{p}w1"), chassis, wheel_r, None, Vector3::z())?;
+    let w2 = sim.add_hinge_joint(&format!("{p}w2"), chassis, wheel_l, None, Vector3::z())?;
+    let bs = sim.add_ball_joint(&format!("{p}bs"), chassis, ball, None)?;
     for object in [ball, chassis, wheel_r, wheel_l] {
         sim.offset_by_position(object, spec.offset)?;
     }
@@ -103,9 +103,9 @@ pub fn build_vehicle_arm(sim: &mut Simulation, chassis: ObjectId, link_mass: Mas
     sim.offset_by_object(link1, chassis)?;
     sim.offset_by_position(link1, [0.0, 0.5, 0.0])?;
     sim.offset_by_object(link2, link1)?;
-    let r1 = sim.add_rotary_joint(&format!("{prefix}r1"), chassis, link1, None, Vector3::y())?;
+    let r1 = sim.add_hinge_joint(&format!("{prefix}r1"), chassis, link1, None, Vector3::y())?;
     let anchor: Point3<f64> = sim.position(link2)? - Vector3::new(0.0, 0.3, 0.0);
-    let r2 = sim.add_rotary_joint(&format!("{prefix}r2"), link1, link2, Some(anchor), Vector3::z())?;
+    let r2 = sim.add_hinge_joint(&format!("{prefix}r2"), link1, link2, Some(anchor), Vector3::z())?;
     sim.set_color(link1, [1.0, 1.0, 0.0])?;
     sim.set_color(link2, [0.0, 0.0, 0.5])?;
     Ok(VehicleArm { link1, link2, r1, r2 })

@@ -17,14 +17,14 @@ use crate::validate;
 pub enum JointType {
     /// Locks the relative pose.
     Fixed,
-    /// One rotation (ODE hinge).
-    Rotary,
+    /// One rotation about an axis (the original's rotary joint).
+    Hinge,
     /// One translation.
     Slider,
     /// Two rotations about perpendicular axes.
     Universal,
-    /// Three rotations about a point.
-    BallSocket,
+    /// Three rotations about a point (the original's ball-and-socket joint).
+    Ball,
     /// A translation along and a rotation about one axis.
     Piston,
 }
@@ -34,10 +34,10 @@ impl JointType {
     pub fn default_name(self) -> &'static str {
         match self {
             JointType::Fixed => "fixed",
-            JointType::Rotary => "rotary",
+            JointType::Hinge => "hinge",
             JointType::Slider => "slider",
             JointType::Universal => "universal",
-            JointType::BallSocket => "ball_socket",
+            JointType::Ball => "ball",
             JointType::Piston => "piston",
         }
     }
@@ -70,7 +70,7 @@ pub(crate) struct JointData {
     pub(crate) efforts: JointEfforts,
 }
 
-/// The torques (rotary joints) or forces (sliders and pistons) put on a joint during
+/// The torques (hinges) or forces (sliders and pistons) put on a joint during
 /// the step being taken, by where they came from; read them from a sensor or a
 /// [`Probe`](crate::sensors::Probe) (they are zeroed after the sensors sampled).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -158,10 +158,10 @@ impl Scene {
         self.insert_sim_joint(name, JointType::Fixed, object1, object2.into(), JointBuilder::fixed())
     }
 
-    /// A rotary joint (hinge) about the world `axis` through `anchor` (default: the
+    /// A hinge about the world `axis` through `anchor` (default: the
     /// position of `object2`, or of `object1` when attached to the world). An empty
     /// `name` gets the default one.
-    pub fn add_rotary_joint(
+    pub fn add_hinge_joint(
         &mut self,
         name: &str,
         object1: ObjectId,
@@ -174,7 +174,7 @@ impl Scene {
             Some(a) => a,
             None => self.default_anchor(object1, object2)?,
         };
-        self.insert_sim_joint(name, JointType::Rotary, object1, object2, JointBuilder::hinge(anchor, axis.into()))
+        self.insert_sim_joint(name, JointType::Hinge, object1, object2, JointBuilder::hinge(anchor, axis.into()))
     }
 
     /// A slider along the world `axis`.
@@ -203,8 +203,8 @@ impl Scene {
         self.insert_sim_joint(name, JointType::Universal, object1, object2.into(), builder)
     }
 
-    /// A ball-and-socket joint at `anchor` (default: the position of `object2`).
-    pub fn add_ball_socket_joint(
+    /// A ball joint (ball and socket) at `anchor` (default: the position of `object2`).
+    pub fn add_ball_joint(
         &mut self,
         name: &str,
         object1: ObjectId,
@@ -216,7 +216,7 @@ impl Scene {
             Some(a) => a,
             None => self.default_anchor(object1, object2)?,
         };
-        self.insert_sim_joint(name, JointType::BallSocket, object1, object2, JointBuilder::ball(anchor))
+        self.insert_sim_joint(name, JointType::Ball, object1, object2, JointBuilder::ball(anchor))
     }
 
     /// A piston along and about the world `axis` through `anchor`.
@@ -339,7 +339,7 @@ impl Scene {
         Ok(())
     }
 
-    /// Puts a torque (rotary, universal) or force (slider, piston) on a joint for the
+    /// Puts a torque (hinge, universal) or force (slider, piston) on a joint for the
     /// next step and books it.
     fn put_effort(
         &mut self,
@@ -353,7 +353,7 @@ impl Scene {
         // the limits before anything is booked.
         let mut j = self.world.joint_mut(handle)?;
         match kind {
-            JointType::Rotary | JointType::Universal => j.add_torque(effort)?,
+            JointType::Hinge | JointType::Universal => j.add_torque(effort)?,
             _ => j.add_force(effort)?,
         }
         let efforts = &mut self.joints.get_mut(id.0, JointId::KIND, &id)?.efforts;
@@ -393,11 +393,11 @@ impl Scene {
         let d = self.joint_data(id)?;
         let j = self.world.joint(d.handle)?;
         match d.kind {
-            JointType::Rotary | JointType::Universal => Ok(JointState { position: j.angle()?, rate: j.angle_rate()? }),
+            JointType::Hinge | JointType::Universal => Ok(JointState { position: j.angle()?, rate: j.angle_rate()? }),
             JointType::Slider | JointType::Piston => {
                 Ok(JointState { position: j.position()?, rate: j.position_rate()? })
             }
-            JointType::Fixed | JointType::BallSocket => {
+            JointType::Fixed | JointType::Ball => {
                 Err(Error::WrongJointKind { operation: "reading a joint state", kind: d.kind.default_name() })
             }
         }
@@ -422,7 +422,7 @@ impl SimJoint<'_> {
         Error::WrongJointKind { operation, kind: self.kind.default_name() }
     }
 
-    /// Angle of a rotary joint (first angle of a universal), rad; zero at creation.
+    /// Angle of a hinge (first angle of a universal), rad; zero at creation.
     pub fn angle(&self) -> Result<f64> {
         self.sim.joint_ref(self.id)?.angle()
     }
@@ -447,11 +447,11 @@ impl SimJoint<'_> {
         Ok(self.sim.joint_ref(self.id)?.feedback().expect("simulation joints record feedback"))
     }
 
-    /// Adds a torque about a rotary joint's axis for the next step (`+torque` on the
+    /// Adds a torque about a hinge's axis for the next step (`+torque` on the
     /// first object, `−torque` on the second). Joint sensors see it.
     pub fn add_torque(&mut self, torque: f64) -> Result<()> {
         match self.kind {
-            JointType::Rotary | JointType::Universal => {
+            JointType::Hinge | JointType::Universal => {
                 self.sim.put_effort(self.id, self.handle, self.kind, torque, false)
             }
             _ => Err(self.wrong("adding a torque")),
@@ -473,7 +473,7 @@ impl SimJoint<'_> {
     pub fn set_speed(&mut self, speed: f64, max_force: f64) -> Result<()> {
         let handle = self.handle;
         match self.kind {
-            JointType::Rotary | JointType::Slider | JointType::Universal | JointType::Piston => {
+            JointType::Hinge | JointType::Slider | JointType::Universal | JointType::Piston => {
                 self.sim.world.joint_mut(handle)?.set_motor(0, speed, max_force)
             }
             _ => Err(self.wrong("setting a speed")),
@@ -486,7 +486,7 @@ impl SimJoint<'_> {
     pub fn set_limits(&mut self, low: f64, high: f64) -> Result<()> {
         let handle = self.handle;
         match self.kind {
-            JointType::Fixed | JointType::BallSocket => Err(self.wrong("setting limits")),
+            JointType::Fixed | JointType::Ball => Err(self.wrong("setting limits")),
             _ => self.sim.world.joint_mut(handle)?.set_limits(0, low, high),
         }
     }
@@ -502,7 +502,7 @@ impl SimJoint<'_> {
     pub fn set_viscous_friction(&mut self, coefficient: f64) -> Result<()> {
         validate::non_negative("viscous friction coefficient", coefficient)?;
         match self.kind {
-            JointType::Fixed | JointType::BallSocket => return Err(self.wrong("viscous friction")),
+            JointType::Fixed | JointType::Ball => return Err(self.wrong("viscous friction")),
             _ => {}
         }
         self.data_mut().friction = coefficient;
@@ -514,7 +514,7 @@ impl SimJoint<'_> {
     /// after the pre-step hooks. Replaces any previous controller.
     pub fn set_controller(&mut self, controller: impl JointController + 'static) -> Result<()> {
         match self.kind {
-            JointType::Fixed | JointType::BallSocket => return Err(self.wrong("a controller")),
+            JointType::Fixed | JointType::Ball => return Err(self.wrong("a controller")),
             _ => {}
         }
         self.data_mut().controller = Some(Box::new(controller));
@@ -540,10 +540,10 @@ impl JointKind {
     pub fn joint_type(&self) -> Option<JointType> {
         match self {
             JointKind::Fixed => Some(JointType::Fixed),
-            JointKind::Hinge { .. } => Some(JointType::Rotary),
+            JointKind::Hinge { .. } => Some(JointType::Hinge),
             JointKind::Slider { .. } => Some(JointType::Slider),
             JointKind::Universal { .. } => Some(JointType::Universal),
-            JointKind::Ball { .. } => Some(JointType::BallSocket),
+            JointKind::Ball { .. } => Some(JointType::Ball),
             JointKind::Piston { .. } => Some(JointType::Piston),
             _ => None,
         }

@@ -9,21 +9,21 @@ use crate::error::{Error, Result};
 use crate::handle::JointId;
 use crate::scene::{JointType, Scene};
 
-/// Angle and rate of a rotary joint (after the step).
+/// Angle and rate of a hinge (after the step).
 #[derive(Clone, Debug)]
-pub struct RotaryJointSensor {
+pub struct HingeSensor {
     joint: JointId,
 }
 
-impl RotaryJointSensor {
+impl HingeSensor {
     /// On `joint`.
     pub fn new(joint: JointId) -> Self {
-        RotaryJointSensor { joint }
+        HingeSensor { joint }
     }
 }
 
-/// A [`RotaryJointSensor`] measurement.
-pub type RotaryReading = JointState;
+/// A [`HingeSensor`] measurement.
+pub type HingeReading = JointState;
 
 impl Record for JointState {
     fn columns() -> Vec<&'static str> {
@@ -34,10 +34,10 @@ impl Record for JointState {
     }
 }
 
-impl Sensor for RotaryJointSensor {
+impl Sensor for HingeSensor {
     type Record = JointState;
     fn attach(&mut self, sim: &mut Scene) -> Result<()> {
-        expect_type(sim, self.joint, &[JointType::Rotary], "a rotary joint sensor")
+        expect_type(sim, self.joint, &[JointType::Hinge], "a hinge sensor")
     }
     fn measure(&mut self, sim: &Scene) -> Result<JointState> {
         sim.joint_state(self.joint)
@@ -52,14 +52,14 @@ fn expect_type(sim: &Scene, joint: JointId, types: &[JointType], operation: &'st
     if types.contains(&t) { Ok(()) } else { Err(Error::WrongJointKind { operation, kind: t.default_name() }) }
 }
 
-/// Torque (rotary) or force (slider) added through the API during a step.
+/// Torque (hinge) or force (slider) added through the API during a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Effort {
-    /// N·m for a rotary joint, N for a slider.
+    /// N·m for a hinge, N for a slider.
     pub value: f64,
 }
 
-/// The torque added to a rotary joint during each step through
+/// The torque added to a hinge during each step through
 /// [`SimJoint::add_torque`](crate::SimJoint::add_torque), its friction and its
 /// controller, summed (the original recorded each call).
 #[derive(Clone, Debug)]
@@ -77,7 +77,7 @@ impl JointTorque {
 impl Sensor for JointTorque {
     type Record = Effort;
     fn attach(&mut self, sim: &mut Scene) -> Result<()> {
-        expect_type(sim, self.joint, &[JointType::Rotary, JointType::Universal], "a joint torque sensor")
+        expect_type(sim, self.joint, &[JointType::Hinge, JointType::Universal], "a joint torque sensor")
     }
     fn measure(&mut self, sim: &Scene) -> Result<Effort> {
         Ok(Effort { value: sim.joint_efforts(self.joint)?.total() })

@@ -36,7 +36,7 @@ pub use body::{
 };
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};
 pub use joint::{
-    Effort, JointForce, JointPower, JointReaction, JointTorque, Power, Reaction, RotaryJointSensor, RotaryReading,
+    Effort, HingeReading, HingeSensor, JointForce, JointPower, JointReaction, JointTorque, Power, Reaction,
 };
 pub use laser::{Laser, LaserReading};
 pub use noise::{Noisy, Perturb};

@@ -9,8 +9,8 @@
 
 use ars_core::nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use ars_core::sensors::{
-    Accelerometer, ContactSensor, Gps, Imu, Inclinometer, JointForce, JointPower, JointReaction, JointTorque,
-    KineticEnergy, Laser, Noisy, PotentialEnergy, RotaryJointSensor, SystemTotalEnergy, TotalEnergy, Velometer,
+    Accelerometer, ContactSensor, Gps, HingeSensor, Imu, Inclinometer, JointForce, JointPower, JointReaction,
+    JointTorque, KineticEnergy, Laser, Noisy, PotentialEnergy, SystemTotalEnergy, TotalEnergy, Velometer,
 };
 use ars_core::*;
 
@@ -549,10 +549,10 @@ impl Harness {
                 let name = if input.one_in(2) { "" } else { "j" };
                 let r = match input.byte() % 6 {
                     0 => s.sim.add_fixed_joint(name, o1, end),
-                    1 => s.sim.add_rotary_joint(name, o1, end, Some(input.point()), input.vector()),
+                    1 => s.sim.add_hinge_joint(name, o1, end, Some(input.point()), input.vector()),
                     2 => s.sim.add_slider_joint(name, o1, end, input.vector()),
                     3 => s.sim.add_universal_joint(name, o1, end, input.point(), input.vector(), input.vector()),
-                    4 => s.sim.add_ball_socket_joint(name, o1, end, None),
+                    4 => s.sim.add_ball_joint(name, o1, end, None),
                     _ => s.sim.add_piston_joint(name, o1, end, input.point(), input.vector()),
                 };
                 if let Ok(id) = r {
@@ -598,7 +598,7 @@ impl Harness {
                     12 => Noisy::new(Gps::new(o), input.real(), 3).and_then(|n| s.sim.add_sensor(n)).map(drop),
                     _ => match joint {
                         Some(j) => match input.byte() % 5 {
-                            0 => s.sim.add_sensor(RotaryJointSensor::new(j)).map(drop),
+                            0 => s.sim.add_sensor(HingeSensor::new(j)).map(drop),
                             1 => s.sim.add_sensor(JointTorque::new(j)).map(drop),
                             2 => s.sim.add_sensor(JointForce::new(j)).map(drop),
                             3 => s.sim.add_sensor(JointPower::new(j)).map(drop),
