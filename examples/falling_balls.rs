@@ -17,7 +17,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let logs: Vec<_> =
         program.balls.iter().map(|(_, gps)| sim.records(*gps).map(|l| l.samples())).collect::<Result<_, _>>()?;
     for ((ball, _), log) in program.balls.iter().zip(&logs) {
-        let (name, radius) = (sim.name(*ball)?, sim.shape(*ball)?.clone());
+        let object = sim.object(*ball)?;
+        let (name, radius) = (object.name(), object.shape().clone());
         let r = match radius {
             ars::Shape::Sphere { radius } => radius,
             _ => unreachable!("the balls are spheres"),

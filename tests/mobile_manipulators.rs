@@ -114,7 +114,7 @@ fn two_vehicles_share_a_simulation_and_a_box_comes_and_goes() {
     runner.run_for(3.0).unwrap();
     let sim = runner.simulation();
     assert!(sim.joint("left/w1").is_ok() && sim.joint("right/w1").is_ok());
-    let obstacle = sim.object("obstacle").expect("dropped at 2 s");
+    let obstacle = sim.object("obstacle").expect("dropped at 2 s").id();
     assert!(sim.position(obstacle).unwrap().y < 0.25, "it has landed");
     let chassis: Vec<_> = [0, 1].map(|i| runner.program().vehicles[i].chassis).into();
     let sim = runner.simulation();

@@ -63,7 +63,7 @@ fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), Strin
     let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
     let start = renderer.render(runner.simulation()).map_err(|e| e.to_string())?;
     runner.run_for(1.0).map_err(|e| e.to_string())?;
-    let ball = runner.simulation().object("sphere").unwrap();
+    let ball = runner.simulation().object("sphere").unwrap().id();
     let rest_center = runner.simulation().position(ball).unwrap();
     let rest = renderer.render(runner.simulation()).map_err(|e| e.to_string())?;
     let _ = start.save(std::env::temp_dir().join("ars_viewer_test_start.png"));

@@ -24,7 +24,7 @@
 //! }
 //!
 //! let sim = HelloWorld.run_headless(1.0)?;
-//! let y = sim.body(sim.object("sphere")?)?.position().y;
+//! let y = sim.object("sphere")?.position()?.y; // named access returns a view
 //! assert!((y - 0.5).abs() < 1e-3, "the ball rests on the floor, y = {y}");
 //! # Ok::<(), ars_core::Error>(())
 //! ```

@@ -99,7 +99,7 @@ impl SceneMirror {
         }
         if self.show_joints {
             for (_, j) in sim.joints() {
-                let Ok(joint) = sim.joint_ref(j) else { continue };
+                let Ok(joint) = sim.joint(j).and_then(|j| j.ode()) else { continue };
                 if let Ok(anchor) = joint.anchor() {
                     window.draw_point(convert::point(&anchor), Color::new(1.0, 0.0, 1.0, 1.0), 10.0);
                     if let Ok(axis) = joint.axis() {
@@ -124,14 +124,15 @@ fn y_to_z() -> Quat {
 }
 
 fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: usize) -> ars_core::Result<ObjectNode> {
-    let shape = sim.shape(id)?.clone();
-    let dynamic = sim.body_handle(id)?.is_some();
+    let object = sim.object(id)?;
+    let shape = object.shape().clone();
+    let dynamic = object.body_handle().is_some();
     let default = if matches!(shape, Shape::Plane { .. } | Shape::TriMesh { .. }) {
         FLOOR
     } else {
         PALETTE[index % PALETTE.len()]
     };
-    let color = convert::color(sim.color(id)?.unwrap_or(default));
+    let color = convert::color(object.color().unwrap_or(default));
     let mut group = scene.add_group();
     let mut child = match &shape {
         Shape::Sphere { radius } => group.add_sphere(*radius as f32),

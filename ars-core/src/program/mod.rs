@@ -38,8 +38,8 @@ use crate::simulation::{Simulation, SimulationBuilder};
 /// }
 ///
 /// let sim = HelloWorld.run_headless(1.0)?;
-/// let ball = sim.object("sphere")?;
-/// assert!((sim.body(ball)?.position().y - 0.5).abs() < 1e-3);
+/// let ball = sim.object("sphere")?; // named access: a view of the object
+/// assert!((ball.position()?.y - 0.5).abs() < 1e-3);
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 pub trait Program: Hooks {

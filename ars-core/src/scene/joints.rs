@@ -5,10 +5,11 @@
 use nalgebra::{Point3, Vector3};
 
 use super::Scene;
+use super::views::JointKey;
 use crate::control::{JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
-use crate::joint::{JointBuilder, JointFeedback, JointKind, JointParam, JointRef};
+use crate::joint::{JointBuilder, JointKind, JointParam};
 use crate::validate;
 
 /// The kinds of joint a simulation offers.
@@ -103,20 +104,23 @@ impl Scene {
         object2: JointEnd,
         builder: JointBuilder,
     ) -> Result<JointId> {
-        let body1 = self.body_handle(object1)?.ok_or_else(|| Error::OutOfRange {
+        let body1 = self.object_data(object1)?.body.ok_or_else(|| Error::OutOfRange {
             what: "joint object",
             detail: format!(
                 "the first object of a joint must be dynamic; {:?} is static",
-                self.name(object1).unwrap_or("?")
+                self.object_data(object1).map_or("?", |d| d.name.as_str())
             ),
         })?;
         let (object2, body2) = match object2 {
             JointEnd::World => (None, None),
             JointEnd::Object(o) => {
                 if o == object1 {
-                    return Err(Error::SelfJoint { joint: kind.default_name(), body: self.name(o)?.to_string() });
+                    return Err(Error::SelfJoint {
+                        joint: kind.default_name(),
+                        body: self.object_data(o)?.name.clone(),
+                    });
                 }
-                (Some(o), self.body_handle(o)?)
+                (Some(o), self.object_data(o)?.body)
             }
         };
         if !name.is_empty() {
@@ -241,40 +245,14 @@ impl Scene {
         self.joints.get(id.0, JointId::KIND, &id)
     }
 
-    /// The joint named `name`; an unknown name is an error listing close matches.
-    pub fn joint(&self, name: &str) -> Result<JointId> {
-        self.joint_names.get(name)
-    }
-
     /// Every joint, by name in alphabetical order.
     pub fn joints(&self) -> impl Iterator<Item = (&str, JointId)> + '_ {
         self.joint_names.iter()
     }
 
-    /// The name of a joint.
-    pub fn joint_name(&self, id: JointId) -> Result<&str> {
-        Ok(&self.joint_data(id)?.name)
-    }
-
-    /// The type of a joint.
-    pub fn joint_type(&self, id: JointId) -> Result<JointType> {
-        Ok(self.joint_data(id)?.kind)
-    }
-
-    /// The objects a joint connects (`None`: the static world).
-    pub fn joint_objects(&self, id: JointId) -> Result<(ObjectId, Option<ObjectId>)> {
-        let d = self.joint_data(id)?;
-        Ok((d.object1, d.object2))
-    }
-
-    /// Read access to the underlying ODE joint (angle, rates, anchor, axis, feedback).
-    pub fn joint_ref(&self, id: JointId) -> Result<JointRef<'_>> {
-        let h = self.joint_data(id)?.handle;
-        self.world.joint(h)
-    }
-
     /// Actions on a joint: torques, forces, motors, limits, friction, controllers.
-    pub fn joint_mut(&mut self, id: JointId) -> Result<SimJoint<'_>> {
+    pub fn joint_mut(&mut self, key: impl JointKey) -> Result<SimJoint<'_>> {
+        let id = key.joint_id(self)?;
         let data = self.joint_data(id)?;
         let (kind, handle) = (data.kind, data.handle);
         Ok(SimJoint { sim: self, id, kind, handle })
@@ -404,7 +382,8 @@ impl Scene {
     }
 }
 
-/// Actions on one joint of a simulation, from [`Scene::joint_mut`].
+/// Actions on one joint of a simulation, from [`Scene::joint_mut`] (to read it,
+/// [`Scene::joint`]).
 pub struct SimJoint<'s> {
     sim: &'s mut Scene,
     id: JointId,
@@ -422,29 +401,9 @@ impl SimJoint<'_> {
         Error::WrongJointKind { operation, kind: self.kind.default_name() }
     }
 
-    /// Angle of a hinge (first angle of a universal), rad; zero at creation.
-    pub fn angle(&self) -> Result<f64> {
-        self.sim.joint_ref(self.id)?.angle()
-    }
-
-    /// Rate of [`angle`](Self::angle), rad/s.
-    pub fn angle_rate(&self) -> Result<f64> {
-        self.sim.joint_ref(self.id)?.angle_rate()
-    }
-
-    /// Position of a slider or piston, m; zero at creation.
-    pub fn position(&self) -> Result<f64> {
-        self.sim.joint_ref(self.id)?.position()
-    }
-
-    /// Rate of [`position`](Self::position), m/s.
-    pub fn position_rate(&self) -> Result<f64> {
-        self.sim.joint_ref(self.id)?.position_rate()
-    }
-
-    /// Forces and torques the joint applied on its bodies in the last step.
-    pub fn reaction(&self) -> Result<JointFeedback> {
-        Ok(self.sim.joint_ref(self.id)?.feedback().expect("simulation joints record feedback"))
+    /// Its id.
+    pub fn id(&self) -> JointId {
+        self.id
     }
 
     /// Adds a torque about a hinge's axis for the next step (`+torque` on the

@@ -12,12 +12,14 @@ mod floor;
 mod joints;
 mod names;
 mod objects;
+mod views;
 
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
 pub use objects::Color;
+pub use views::{JointKey, JointView, ObjectKey, ObjectView};
 
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};
@@ -143,11 +145,7 @@ impl Scene {
     pub(crate) fn name_diverged_body(&self, error: Error) -> Error {
         match (error, self.world.diverged_body()) {
             (Error::Diverged { body, time, detail }, Some(handle)) => {
-                let name = self
-                    .objects
-                    .iter()
-                    .find(|(_, o)| o.body == Some(handle))
-                    .and_then(|(id, _)| self.name(ObjectId(id)).ok());
+                let name = self.objects.iter().find(|(_, o)| o.body == Some(handle)).map(|(_, o)| o.name.as_str());
                 let body = match name {
                     Some(name) => format!("{name:?} ({body})"),
                     None => body,

@@ -150,19 +150,9 @@ impl Scene {
         self.objects.get(id.0, ObjectId::KIND, &id)
     }
 
-    /// The object named `name`; an unknown name is an error listing close matches.
-    pub fn object(&self, name: &str) -> Result<ObjectId> {
-        self.object_names.get(name)
-    }
-
     /// Every object, by name in alphabetical order.
     pub fn objects(&self) -> impl Iterator<Item = (&str, ObjectId)> + '_ {
         self.object_names.iter()
-    }
-
-    /// The name of an object.
-    pub fn name(&self, id: ObjectId) -> Result<&str> {
-        Ok(&self.object_data(id)?.name)
     }
 
     /// Renames an object; the new name must be free.
@@ -177,16 +167,6 @@ impl Scene {
         Ok(())
     }
 
-    /// The shape of an object.
-    pub fn shape(&self, id: ObjectId) -> Result<&Shape> {
-        Ok(&self.object_data(id)?.shape)
-    }
-
-    /// The colour the viewer draws an object with (`None`: the viewer's default).
-    pub fn color(&self, id: ObjectId) -> Result<Option<Color>> {
-        Ok(self.object_data(id)?.color)
-    }
-
     /// Sets the colour the viewer draws an object with (channels in [0, 1]).
     pub fn set_color(&mut self, id: ObjectId, color: Color) -> Result<()> {
         if !color.iter().all(|c| (0.0..=1.0).contains(c)) {
@@ -199,22 +179,9 @@ impl Scene {
         Ok(())
     }
 
-    /// The body handle of a dynamic object (`None` for static ones).
-    pub fn body_handle(&self, id: ObjectId) -> Result<Option<BodyHandle>> {
-        Ok(self.object_data(id)?.body)
-    }
-
-    /// The geom handle of an object.
-    pub fn geom_handle(&self, id: ObjectId) -> Result<Option<GeomHandle>> {
-        Ok(self.object_data(id)?.geom)
-    }
-
     fn dynamic_body(&self, id: ObjectId) -> Result<BodyHandle> {
         let data = self.object_data(id)?;
-        data.body.ok_or_else(|| Error::OutOfRange {
-            what: "object",
-            detail: format!("{:?} is static and has no body", data.name),
-        })
+        data.body.ok_or_else(|| super::views::static_object(&data.name))
     }
 
     /// Read access to the body of a dynamic object (pose, velocities, mass, inertia...).

@@ -288,7 +288,7 @@ impl Record for ContactReading {
 impl Sensor for ContactSensor {
     type Record = ContactReading;
     fn measure(&mut self, sim: &Scene) -> Result<ContactReading> {
-        let geom = sim.geom_handle(self.object)?;
+        let geom = sim.object(self.object)?.geom_handle();
         let mut reading = ContactReading { contacts: 0, max_depth: 0.0 };
         for c in sim.world().contacts() {
             if Some(c.pair.geom1) == geom || Some(c.pair.geom2) == geom {

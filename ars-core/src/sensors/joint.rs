@@ -48,7 +48,7 @@ impl Sensor for HingeSensor {
 }
 
 fn expect_type(sim: &Scene, joint: JointId, types: &[JointType], operation: &'static str) -> Result<()> {
-    let t = sim.joint_type(joint)?;
+    let t = sim.joint(joint)?.joint_type();
     if types.contains(&t) { Ok(()) } else { Err(Error::WrongJointKind { operation, kind: t.default_name() }) }
 }
 
@@ -204,7 +204,7 @@ impl Record for Reaction {
 impl Sensor for JointReaction {
     type Record = Reaction;
     fn measure(&mut self, sim: &Scene) -> Result<Reaction> {
-        let fb = sim.joint_ref(self.joint)?.feedback().expect("simulation joints record feedback");
+        let fb = sim.joint(self.joint)?.reaction()?;
         Ok(Reaction { force: fb.force1, torque: fb.torque1 })
     }
     fn joints(&self) -> Vec<JointId> {

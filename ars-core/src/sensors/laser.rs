@@ -111,7 +111,7 @@ impl Sensor for Laser {
                 ray
             }
             Mount::Body { object, offset } => {
-                let body = sim.body_handle(*object)?.ok_or(Error::OutOfRange {
+                let body = sim.object(*object)?.body_handle().ok_or(Error::OutOfRange {
                     what: "laser mount",
                     detail: "a laser can only be mounted on a dynamic object".into(),
                 })?;

@@ -408,10 +408,10 @@ impl SensorSet {
         period: Option<f64>,
     ) -> Result<SensorId<S>> {
         for object in sensor.objects() {
-            scene.name(object)?;
+            scene.object(object)?;
         }
         for joint in sensor.joints() {
-            scene.joint_name(joint)?;
+            scene.joint(joint)?;
         }
         sensor.attach(scene)?;
         let at = sensor.sample_at();

@@ -198,7 +198,7 @@ impl SimulationBuilder {
 /// let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
 /// sim.run_for(1.0)?;
 /// assert!((sim.body(ball)?.position().y - 0.5).abs() < 1e-3);
-/// assert_eq!(sim.name(ball)?, "sphere");
+/// assert_eq!(sim.object(ball).map(|o| o.name())?, "sphere");
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 pub struct Simulation {
@@ -341,7 +341,7 @@ impl Simulation {
     /// and sensors reading it stop.
     pub fn remove_object(&mut self, id: ObjectId) -> Result<()> {
         self.scene.world.check_usable()?;
-        self.scene.name(id)?;
+        self.scene.object(id)?;
         for joint in self.scene.joints_of_object(id) {
             self.remove_joint(joint)?;
         }
@@ -352,7 +352,7 @@ impl Simulation {
     /// Removes a joint; sensors reading it stop.
     pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
         self.scene.world.check_usable()?;
-        self.scene.joint_name(id)?;
+        self.scene.joint(id)?;
         self.sensors.forget_joint(id);
         self.scene.remove_joint(id)
     }

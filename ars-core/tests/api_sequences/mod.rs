@@ -661,10 +661,11 @@ impl Harness {
             _ => {
                 let _ = (s.sim.time(), s.sim.objects().count(), s.sim.world().body_count());
                 if let Some(o) = object {
-                    let _ = (s.sim.pose(o), s.sim.name(o), s.sim.body(o).map(|b| b.position()));
+                    let _ =
+                        (s.sim.pose(o), s.sim.object(o).map(|v| v.name().len()), s.sim.body(o).map(|b| b.position()));
                 }
                 if let Some(j) = joint {
-                    let _ = (s.sim.joint_state(j), s.sim.joint_name(j));
+                    let _ = (s.sim.joint_state(j), s.sim.joint(j).map(|v| v.efforts()));
                 }
             }
         }
