@@ -5,7 +5,9 @@
 //! `cargo bench --bench step_cost` prints, for each scene, the instructions per step of
 //! each layer and their ratios to C (it needs `valgrind`). Only the stepping is
 //! counted (`--toggle-collect` on `measured_steps`), not building the scene.
-//! `step_cost --run SCENE LAYER STEPS` runs one case (what callgrind is given).
+//! `step_cost --run SCENE LAYER STEPS` runs one case (what callgrind is given). It
+//! also times creating 10,000 named spheres through the `Simulation` and through the
+//! `World` (median of 5).
 
 use std::hint::black_box;
 use std::path::Path;
@@ -82,6 +84,45 @@ fn count(exe: &Path, scene: &str, layer: &str, steps: usize) -> Result<u64, Stri
         .ok_or_else(|| format!("no totals in {}", out.display()))
 }
 
+/// Seconds to create `n` spheres: named objects of a `Simulation`, or bodies and geoms
+/// of a `World` (median of 5 runs).
+fn creation_seconds(n: usize) -> (f64, f64) {
+    use ars_core::nalgebra::Point3;
+    use ars_core::{BodyBuilder, GeomBuilder, Mass, MassSpec, Simulation, SpaceKind, World};
+    let median = |f: &dyn Fn()| {
+        let mut t: Vec<f64> = (0..5)
+            .map(|_| {
+                let start = std::time::Instant::now();
+                f();
+                start.elapsed().as_secs_f64()
+            })
+            .collect();
+        t.sort_by(f64::total_cmp);
+        t[2]
+    };
+    let sim = median(&|| {
+        let mut sim = Simulation::builder().space(SpaceKind::HASH).build().unwrap();
+        for i in 0..n {
+            sim.add_sphere(0.1, [i as f64, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+        }
+        black_box(sim);
+    });
+    let world = median(&|| {
+        let mut world = World::new();
+        let space = world.create_space(SpaceKind::HASH).unwrap();
+        for i in 0..n {
+            let b = world
+                .insert_body(
+                    BodyBuilder::new().mass(MassSpec::sphere_total(1.0, 0.1)).position(Point3::new(i as f64, 1.0, 0.0)),
+                )
+                .unwrap();
+            world.insert_geom(space, GeomBuilder::sphere(0.1).attached_to(b)).unwrap();
+        }
+        black_box(world);
+    });
+    (sim, world)
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--run") {
@@ -93,6 +134,7 @@ fn main() {
     }
     if args.iter().any(|a| a == "--test") {
         // `cargo test --benches`: every case builds and steps.
+        creation_seconds(100);
         for case in &CASES {
             for layer in LAYERS.into_iter().filter(|l| *l != "world" || case.has_world) {
                 measured_steps(&mut build(case.scene, layer), 10);
@@ -117,4 +159,11 @@ fn main() {
         };
         println!("{:<20} {:>7} {:>12.0} {:>12} {:>8} {:>12.0} {:>8.3}", case.scene, case.steps, c, w, wr, sim, sim / c);
     }
+    let (sim, world) = creation_seconds(10_000);
+    println!(
+        "\n10,000 named spheres: {:.1} ms through the Simulation, {:.1} ms through the World ({:.2}x)",
+        sim * 1e3,
+        world * 1e3,
+        sim / world
+    );
 }
