@@ -85,16 +85,12 @@
 //! step job queue. Each world keeps its own QuickStep random seed, so QuickStep is
 //! deterministic per world even when worlds run concurrently.
 
-pub mod body;
-pub mod contact;
 pub mod control;
 pub mod convert;
 pub mod error;
-pub mod geom;
 pub mod guard;
 pub mod handle;
 mod init;
-pub mod joint;
 pub mod limits;
 mod panic;
 pub mod program;
@@ -105,6 +101,7 @@ pub mod shape;
 pub mod simulation;
 mod validate;
 pub mod world;
+pub use world::{body, contact, geom, joint};
 
 pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, Mass, MassSpec};
 pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit};

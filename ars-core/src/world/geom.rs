@@ -3,6 +3,7 @@
 use nalgebra::{Isometry3, Point3, Rotation3, UnitQuaternion, Vector3};
 use ode_sys as ffi;
 
+use super::World;
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
@@ -10,7 +11,6 @@ use crate::init::ensure_ode_ready;
 use crate::limits;
 use crate::shape::{Shape, cone_mesh};
 use crate::validate;
-use crate::world::World;
 
 /// The buffers ODE's trimesh data points into, freed after the geom.
 struct TriMeshStorage {

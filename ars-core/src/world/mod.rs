@@ -5,17 +5,23 @@ use std::fmt;
 use nalgebra::Vector3;
 use ode_sys as ffi;
 
-use crate::body::BodyData;
-use crate::contact::CollisionState;
+pub mod body;
+pub mod contact;
+pub mod geom;
+pub mod joint;
+
+use body::BodyData;
+use contact::CollisionState;
+use geom::GeomData;
+
 use crate::convert;
 use crate::error::{Error, Result};
-use crate::geom::GeomData;
 use crate::guard;
 use crate::handle::{Arena, BodyHandle, SpaceHandle, WorldId};
 use crate::init::{ensure_ode_ready, lock_ode_global_state};
-use crate::joint::JointData;
 use crate::limits;
 use crate::validate;
+use joint::JointData;
 
 /// The ARS default gravity: 9.81 m/s² down the Y axis (Y is up).
 pub const DEFAULT_GRAVITY: Vector3<f64> = Vector3::new(0.0, -9.81, 0.0);

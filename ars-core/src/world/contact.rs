@@ -21,13 +21,13 @@ use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
 use nalgebra::{Point3, Vector3};
 use ode_sys as ffi;
 
+use super::{Poison, SpaceKind, World};
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::guard::{self, OdeFailure};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
 use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::validate;
-use crate::world::{Poison, SpaceKind, World};
 
 /// Most contact points ODE generates for one pair of geoms (PyODE's fixed limit,
 /// which the original ARS inherited).

@@ -3,13 +3,13 @@
 use nalgebra::{Point3, Vector3};
 use ode_sys as ffi;
 
+use super::World;
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, JointHandle};
 use crate::init::ensure_ode_ready;
 use crate::limits;
 use crate::validate;
-use crate::world::World;
 
 /// The frame an angular- or linear-motor axis is expressed in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
