@@ -136,6 +136,17 @@ pub enum Error {
     /// An error raised by user code inside a program or hook.
     #[error("{0}")]
     User(String),
+    /// A robot description (URDF) that cannot be loaded: the file, the element and what
+    /// is wrong with it.
+    #[error("{file}: {element}: {problem}")]
+    Urdf {
+        /// The file (or `"<string>"`).
+        file: String,
+        /// The element, e.g. `joint "elbow"`.
+        element: String,
+        /// What is wrong.
+        problem: String,
+    },
 }
 
 fn suggestion(close: &[String]) -> String {

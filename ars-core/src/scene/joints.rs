@@ -96,7 +96,7 @@ impl JointEfforts {
 }
 
 impl Scene {
-    fn insert_sim_joint(
+    pub(super) fn insert_sim_joint(
         &mut self,
         name: &str,
         kind: JointType,

@@ -12,6 +12,7 @@ mod floor;
 mod joints;
 mod names;
 mod objects;
+pub mod urdf;
 mod views;
 
 use nalgebra::Vector3;
@@ -19,6 +20,7 @@ use nalgebra::Vector3;
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
 pub use objects::Color;
+pub use urdf::{UpAxis, UrdfOptions, UrdfRobot};
 pub use views::{JointKey, JointView, ObjectKey, ObjectView};
 
 use crate::error::{Error, Result};
@@ -40,6 +42,8 @@ pub struct Scene {
     joint_names: Names<JointId>,
     /// Joints with viscous friction or a controller, in creation order.
     driven_joints: Vec<JointId>,
+    /// Robots loaded so far (each gets its own collision category).
+    robots_loaded: u32,
     pub(crate) time: f64,
     pub(crate) step_count: u64,
     pub(crate) frame_count: u64,
@@ -70,6 +74,7 @@ impl Scene {
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
             driven_joints: Vec::new(),
+            robots_loaded: 0,
             time: 0.0,
             step_count: 0,
             frame_count: 0,

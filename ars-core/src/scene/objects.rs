@@ -31,7 +31,7 @@ impl Scene {
         self.register_as(base, shape, body, geom)
     }
 
-    fn register_as(
+    pub(super) fn register_as(
         &mut self,
         base: &str,
         shape: Shape,
@@ -283,6 +283,14 @@ impl Scene {
 
     /// Removes an object with its body and geom (its joints and the sensors reading
     /// it are the simulation's business: [`Simulation::remove_object`](crate::Simulation::remove_object)).
+    /// Removes an object and its joints (the sensors are the simulation's business).
+    pub(crate) fn remove_object_with_joints(&mut self, id: ObjectId) -> Result<()> {
+        for joint in self.joints_of_object(id) {
+            self.remove_joint(joint)?;
+        }
+        self.remove_object(id)
+    }
+
     pub(crate) fn remove_object(&mut self, id: ObjectId) -> Result<()> {
         let data = self.objects.remove(id.0, ObjectId::KIND, &id)?;
         self.object_names.remove(&data.name);

@@ -1,0 +1,534 @@
+//! Robots from URDF files: one body per link, one joint per URDF joint, with the
+//! file's names.
+//!
+//! - **Up axis.** URDF is Z-up; a simulation is Y-up. The root link's frame is turned
+//!   by one rotation, −90° about X (URDF (x, y, z) → simulation (x, z, −y)), then placed
+//!   at [`UrdfOptions::base_pose`]. A file written Y-up is loaded as is with
+//!   [`UpAxis::Y`].
+//! - **Bodies.** ODE wants a body's frame at its centre of mass: each link's body frame
+//!   is its `<inertial>` frame (origin and `rpy`), where the URDF's inertia tensor is
+//!   given, so the tensor is used as written. Collision geometry is placed relative to
+//!   it (no offset when it shares the inertial frame).
+//! - **Mass.** A root link without mass is static (its geometry collides, nothing moves
+//!   it), as pybullet does. Any other link needs a positive mass.
+//! - **Joints.** `revolute` and `continuous` become hinges, `prismatic` sliders,
+//!   `fixed` fixed joints, at the joint's origin and about its axis, with the URDF's
+//!   sign: a joint's angle (position) is the child's relative to the parent, and a
+//!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
+//!   the parent to the child about the negated axis); `revolute` and
+//!   `prismatic` limits become joint stops; `<dynamics damping>` becomes viscous
+//!   friction. `floating` and `planar` joints, and `<mimic>`, are refused.
+//! - **Collisions.** Linked bodies never collide (ODE's rule). With
+//!   [`UrdfOptions::self_collision`] off (the default) no two links of the robot do.
+//! - Geometry: `box`, `cylinder` (along the link's Z, as in ODE), `sphere`, `capsule`;
+//!   at most one collision element per link. Meshes are not loaded yet.
+//!
+//! Errors name the file, the element and the problem, and nothing is added to the
+//! scene when a file is refused.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
+
+use super::Scene;
+use super::joints::JointEnd;
+use super::objects::multiply;
+use crate::body::{BodyBuilder, MassSpec};
+use crate::convert::rotation_about_axis;
+use crate::error::{Error, Result};
+use crate::geom::GeomBuilder;
+use crate::handle::{JointId, ObjectId};
+use crate::joint::JointBuilder;
+use crate::shape::Shape;
+
+/// The up axis a URDF file is written with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum UpAxis {
+    /// Z up, as URDF specifies: turned −90° about X into the simulation's Y-up frame.
+    #[default]
+    Z,
+    /// Y up, like the simulation: loaded as written.
+    Y,
+}
+
+/// How to load a URDF file.
+#[derive(Clone, Debug, Default)]
+#[non_exhaustive]
+pub struct UrdfOptions {
+    /// Where the root link's frame goes, in the simulation frame (after the up-axis
+    /// rotation).
+    pub base_pose: Isometry3<f64>,
+    /// Fix the root link to the world.
+    pub fixed_base: bool,
+    /// Let links of the robot collide with each other (never a parent and its child).
+    pub self_collision: bool,
+    /// The up axis the file is written with.
+    pub up_axis: UpAxis,
+}
+
+impl UrdfOptions {
+    /// The defaults: floating base at the origin, no self-collision, Z up.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// The root link's pose.
+    pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
+        self.base_pose = pose;
+        self
+    }
+    /// Fix the root link to the world.
+    pub fn fixed_base(mut self, fixed: bool) -> Self {
+        self.fixed_base = fixed;
+        self
+    }
+    /// Let links collide with each other.
+    pub fn self_collision(mut self, on: bool) -> Self {
+        self.self_collision = on;
+        self
+    }
+    /// The file's up axis.
+    pub fn up_axis(mut self, up: UpAxis) -> Self {
+        self.up_axis = up;
+        self
+    }
+}
+
+/// What a URDF file added to a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfRobot {
+    /// The robot's name.
+    pub name: String,
+    /// Each link's object, in file order (named after the link).
+    pub links: Vec<(String, ObjectId)>,
+    /// Each joint, in file order (named after the URDF joint).
+    pub joints: Vec<(String, JointId)>,
+    /// The fixed joint holding the root to the world, with [`UrdfOptions::fixed_base`].
+    pub base_joint: Option<JointId>,
+}
+
+impl UrdfRobot {
+    /// The object of a link.
+    pub fn link(&self, name: &str) -> Option<ObjectId> {
+        self.links.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+    /// A joint by its URDF name.
+    pub fn joint(&self, name: &str) -> Option<JointId> {
+        self.joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+}
+
+/// A rigid frame; `identity` rotations are kept apart so that composing with them does
+/// no arithmetic (a file's frames then give exactly the numbers written).
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    rotation: Option<Matrix3<f64>>,
+    translation: Vector3<f64>,
+}
+
+impl Frame {
+    const IDENTITY: Frame = Frame { rotation: None, translation: Vector3::new(0.0, 0.0, 0.0) };
+
+    fn from_pose(pose: &urdf_rs::Pose) -> Frame {
+        Frame { rotation: rpy_matrix(pose.rpy.0), translation: Vector3::from(pose.xyz.0) }
+    }
+
+    fn from_isometry(pose: &Isometry3<f64>) -> Frame {
+        let identity = pose.rotation == UnitQuaternion::identity();
+        Frame {
+            rotation: (!identity).then(|| *pose.rotation.to_rotation_matrix().matrix()),
+            translation: pose.translation.vector,
+        }
+    }
+
+    fn rotate(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        match &self.rotation {
+            None => *v,
+            Some(r) => Vector3::new(
+                r[(0, 0)] * v.x + r[(0, 1)] * v.y + r[(0, 2)] * v.z,
+                r[(1, 0)] * v.x + r[(1, 1)] * v.y + r[(1, 2)] * v.z,
+                r[(2, 0)] * v.x + r[(2, 1)] * v.y + r[(2, 2)] * v.z,
+            ),
+        }
+    }
+
+    /// `self ∘ child`: the child frame, given relative to this one.
+    fn then(&self, child: &Frame) -> Frame {
+        let rotation = match (&self.rotation, &child.rotation) {
+            (None, r) | (r, None) => *r,
+            (Some(a), Some(b)) => Some(multiply(a, b)),
+        };
+        Frame { rotation, translation: self.translation + self.rotate(&child.translation) }
+    }
+
+    /// `self⁻¹ ∘ other`: `other` relative to this frame.
+    fn relative(&self, other: &Frame) -> Isometry3<f64> {
+        let a = self.isometry();
+        a.inverse() * other.isometry()
+    }
+
+    fn same_as(&self, other: &Frame) -> bool {
+        self.rotation == other.rotation && self.translation == other.translation
+    }
+
+    fn rotation3(&self) -> Rotation3<f64> {
+        Rotation3::from_matrix_unchecked(self.rotation.unwrap_or_else(Matrix3::identity))
+    }
+
+    fn isometry(&self) -> Isometry3<f64> {
+        Isometry3::from_parts(
+            Translation3::from(self.translation),
+            UnitQuaternion::from_rotation_matrix(&self.rotation3()),
+        )
+    }
+}
+
+/// `Rz(yaw) · Ry(pitch) · Rx(roll)`, URDF's fixed-axis convention; `None` for no turn.
+fn rpy_matrix([roll, pitch, yaw]: [f64; 3]) -> Option<Matrix3<f64>> {
+    let turns = [(Vector3::z(), yaw), (Vector3::y(), pitch), (Vector3::x(), roll)];
+    turns.iter().filter(|(_, angle)| *angle != 0.0).fold(None, |acc, (axis, angle)| {
+        let turn = *rotation_about_axis(axis, *angle).matrix();
+        Some(match acc {
+            None => turn,
+            Some(m) => multiply(&m, &turn),
+        })
+    })
+}
+
+/// −90° about X, exactly: URDF (x, y, z) → simulation (x, z, −y).
+fn z_up_to_y_up() -> Frame {
+    Frame { rotation: Some(Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)), translation: Vector3::zeros() }
+}
+
+/// A robot checked before anything is built.
+struct Plan<'r> {
+    robot: &'r urdf_rs::Robot,
+    /// Index of the root link.
+    root: usize,
+    /// World frame of each link (at zero joint positions).
+    link_frames: Vec<Frame>,
+    /// World frame of each joint.
+    joint_frames: Vec<Frame>,
+}
+
+impl Scene {
+    /// Loads the robot of a URDF file (see the [`urdf`](crate::scene::urdf) module).
+    pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
+        let path = path.as_ref();
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Urdf {
+            file: file.clone(),
+            element: "file".into(),
+            problem: format!("cannot be read: {e}"),
+        })?;
+        self.load_urdf_text(&text, &file, options)
+    }
+
+    /// Loads a robot from URDF text; `file` names it in errors.
+    pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
+        let bad = |element: String, problem: String| Error::Urdf { file: file.to_string(), element, problem };
+        // The parser is a dependency: a panic in it must not reach the caller either.
+        let parsed = std::panic::catch_unwind(|| urdf_rs::read_from_string(text))
+            .map_err(|_| bad("robot".into(), "the URDF parser failed on this text".into()))?;
+        let robot = parsed.map_err(|e| bad("robot".into(), format!("not valid URDF: {e}")))?;
+        let plan = plan(&robot, options).map_err(|(element, problem)| bad(element, problem))?;
+        self.build_urdf(&plan, options).map_err(|(element, error)| match error {
+            Error::Urdf { element, problem, .. } => bad(element, problem),
+            other => bad(element, other.to_string()),
+        })
+    }
+
+    fn build_urdf(
+        &mut self,
+        plan: &Plan<'_>,
+        options: &UrdfOptions,
+    ) -> std::result::Result<UrdfRobot, (String, Error)> {
+        let robot = plan.robot;
+        let link_element = |name: &str| format!("link {name:?}");
+        // Self-collision off: the robot's geoms share one category they do not collide with.
+        let bits = if options.self_collision { None } else { Some(self.next_robot_bit()) };
+        let mut links = Vec::new();
+        let mut created: Vec<(ObjectId, Option<crate::handle::BodyHandle>)> = Vec::new();
+        let undo = |scene: &mut Scene, created: &[(ObjectId, Option<crate::handle::BodyHandle>)]| {
+            for (id, _) in created.iter().rev() {
+                let _ = scene.remove_object_with_joints(*id);
+            }
+        };
+        for (i, link) in robot.links.iter().enumerate() {
+            let frame = plan.link_frames[i];
+            let result = self.add_link(link, &frame, i == plan.root, bits);
+            match result {
+                Ok((id, body)) => {
+                    created.push((id, body));
+                    links.push((link.name.clone(), id));
+                }
+                Err(e) => {
+                    undo(self, &created);
+                    return Err((link_element(&link.name), e));
+                }
+            }
+        }
+        let mut joints = Vec::new();
+        for (j, joint) in robot.joints.iter().enumerate() {
+            let parent = robot.links.iter().position(|l| l.name == joint.parent.link).expect("checked");
+            let child = robot.links.iter().position(|l| l.name == joint.child.link).expect("checked");
+            match self.add_urdf_joint(joint, &plan.joint_frames[j], created[child], created[parent]) {
+                Ok(id) => joints.push((joint.name.clone(), id)),
+                Err(e) => {
+                    undo(self, &created);
+                    return Err((format!("joint {:?}", joint.name), e));
+                }
+            }
+        }
+        let base_joint = match (options.fixed_base, created[plan.root]) {
+            (true, (root, Some(_))) => {
+                let name = format!("{}/base", robot.name);
+                match self.insert_sim_joint(
+                    &name,
+                    super::JointType::Fixed,
+                    root,
+                    JointEnd::World,
+                    JointBuilder::fixed(),
+                ) {
+                    Ok(id) => Some(id),
+                    Err(e) => {
+                        undo(self, &created);
+                        return Err(("robot".into(), e));
+                    }
+                }
+            }
+            _ => None,
+        };
+        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint })
+    }
+
+    /// A category bit no other robot of this scene uses (1 to 62; 63 is everything else).
+    fn next_robot_bit(&mut self) -> u64 {
+        self.robots_loaded = (self.robots_loaded % 62) + 1;
+        1u64 << self.robots_loaded
+    }
+
+    fn add_link(
+        &mut self,
+        link: &urdf_rs::Link,
+        frame: &Frame,
+        root: bool,
+        bits: Option<u64>,
+    ) -> Result<(ObjectId, Option<crate::handle::BodyHandle>)> {
+        let urdf_err =
+            |problem: String| Error::Urdf { file: String::new(), element: format!("link {:?}", link.name), problem };
+        if link.collision.len() > 1 {
+            return Err(urdf_err(format!(
+                "{} collision elements: ARS loads one per link so far",
+                link.collision.len()
+            )));
+        }
+        let collision = link
+            .collision
+            .first()
+            .map(|c| {
+                Ok::<_, Error>((shape_of(&c.geometry).map_err(urdf_err)?, frame.then(&Frame::from_pose(&c.origin))))
+            })
+            .transpose()?;
+        let mass = link.inertial.mass.value;
+        let inertial = frame.then(&Frame::from_pose(&link.inertial.origin));
+        let with_bits = |g: GeomBuilder| match bits {
+            Some(b) => g.category_bits(b).collide_bits(!b),
+            None => g,
+        };
+        if mass == 0.0 && root {
+            // A massless root is static: its geometry collides, nothing moves it.
+            let (shape, pose) = match collision {
+                Some((shape, at)) => (shape, at),
+                None => (Shape::Sphere { radius: 1e-3 }, *frame),
+            };
+            let g = self
+                .world
+                .insert_geom(self.space(), with_bits(GeomBuilder::new(shape.clone()).pose(pose.isometry())))?;
+            let id = self.register_as(&link.name, shape, None, Some(g))?;
+            return Ok((id, None));
+        }
+        if mass.is_nan() || mass <= 0.0 {
+            return Err(urdf_err(format!("mass {mass}: a moving link needs a positive mass")));
+        }
+        let i = &link.inertial.inertia;
+        let inertia = Matrix3::new(i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz);
+        let spec = MassSpec::Custom { mass, inertia };
+        let mut builder = BodyBuilder::new().mass(spec).position(Point3::from(inertial.translation));
+        if inertial.rotation.is_some() {
+            builder = builder.rotation(inertial.rotation3());
+        }
+        let body = self.world.insert_body(builder)?;
+        let (shape, geom) = match collision {
+            Some((shape, at)) => {
+                let mut g = GeomBuilder::new(shape.clone()).attached_to(body);
+                if !at.same_as(&inertial) {
+                    g = g.offset(inertial.relative(&at));
+                }
+                match self.world.insert_geom(self.space(), with_bits(g)) {
+                    Ok(g) => (shape, Some(g)),
+                    Err(e) => {
+                        self.world.remove_body(body)?;
+                        return Err(e);
+                    }
+                }
+            }
+            // A link without collision geometry: drawn as a small sphere, collides with nothing.
+            None => (Shape::Sphere { radius: 1e-3 }, None),
+        };
+        let id = self.register_as(&link.name, shape, Some(body), geom)?;
+        Ok((id, Some(body)))
+    }
+
+    fn add_urdf_joint(
+        &mut self,
+        joint: &urdf_rs::Joint,
+        frame: &Frame,
+        child: (ObjectId, Option<crate::handle::BodyHandle>),
+        parent: (ObjectId, Option<crate::handle::BodyHandle>),
+    ) -> Result<JointId> {
+        let anchor = Point3::from(frame.translation);
+        let axis = frame.rotate(&Vector3::from(joint.axis.xyz.0));
+        // ODE measures a hinge's angle (a slider's position) as body 1 relative to body
+        // 2 about (along) the axis; URDF as the child relative to the parent. Between
+        // two bodies: parent first, about the negated axis, so that ODE's angle is the
+        // URDF position and a positive effort turns the child positively.
+        let (object1, object2, axis) = match (child, parent) {
+            ((c, Some(_)), (p, Some(_))) => (p, JointEnd::Object(c), -axis),
+            ((c, Some(_)), (_, None)) => (c, JointEnd::World, axis),
+            ((_, None), _) => {
+                return Err(Error::OutOfRange { what: "joint", detail: "its child link has no mass".into() });
+            }
+        };
+        use urdf_rs::JointType as U;
+        let (kind, builder) = match joint.joint_type {
+            U::Revolute | U::Continuous => (super::JointType::Hinge, JointBuilder::hinge(anchor, axis)),
+            U::Prismatic => (super::JointType::Slider, JointBuilder::slider(axis)),
+            U::Fixed => (super::JointType::Fixed, JointBuilder::fixed()),
+            _ => unreachable!("refused when planned"),
+        };
+        let id = self.insert_sim_joint(&joint.name, kind, object1, object2, builder)?;
+        let limited = matches!(joint.joint_type, U::Revolute | U::Prismatic);
+        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
+        if limited && (lower != 0.0 || upper != 0.0) && lower <= upper {
+            self.joint_mut(id)?.set_limits(lower, upper)?;
+        }
+        if let Some(d) = &joint.dynamics
+            && d.damping > 0.0
+            && kind != super::JointType::Fixed
+        {
+            self.joint_mut(id)?.set_viscous_friction(d.damping)?;
+        }
+        Ok(id)
+    }
+}
+
+/// The shape of a URDF geometry.
+fn shape_of(geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
+    use urdf_rs::Geometry as G;
+    Ok(match geometry {
+        G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
+        G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },
+        G::Capsule { radius, length } => Shape::Capsule { radius: *radius, length: *length },
+        G::Sphere { radius } => Shape::Sphere { radius: *radius },
+        G::Mesh { filename, .. } => return Err(format!("mesh {filename:?}: ARS does not load meshes yet")),
+    })
+}
+
+/// Checks the tree (names, parents, one root, no loop, supported joints) and computes
+/// every frame.
+fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Result<Plan<'r>, (String, String)> {
+    let mut link_index = HashMap::new();
+    for (i, link) in robot.links.iter().enumerate() {
+        if link_index.insert(link.name.as_str(), i).is_some() {
+            return Err((format!("link {:?}", link.name), "two links have this name".into()));
+        }
+    }
+    if robot.links.is_empty() {
+        return Err(("robot".into(), "it has no link".into()));
+    }
+    let mut joint_names = HashMap::new();
+    let mut parent_joint = vec![None; robot.links.len()];
+    for (j, joint) in robot.joints.iter().enumerate() {
+        let element = format!("joint {:?}", joint.name);
+        if joint_names.insert(joint.name.as_str(), j).is_some() {
+            return Err((element, "two joints have this name".into()));
+        }
+        let Some(&parent) = link_index.get(joint.parent.link.as_str()) else {
+            return Err((element, format!("its parent link {:?} is not in the file", joint.parent.link)));
+        };
+        let Some(&child) = link_index.get(joint.child.link.as_str()) else {
+            return Err((element, format!("its child link {:?} is not in the file", joint.child.link)));
+        };
+        if parent == child {
+            return Err((element, format!("link {:?} is both its parent and its child", joint.parent.link)));
+        }
+        if let Some(other) = parent_joint[child] {
+            let other: &urdf_rs::Joint = &robot.joints[other];
+            return Err((
+                element,
+                format!("link {:?} is already the child of joint {:?}: a loop", joint.child.link, other.name),
+            ));
+        }
+        parent_joint[child] = Some(j);
+        use urdf_rs::JointType as U;
+        match joint.joint_type {
+            U::Revolute | U::Continuous | U::Prismatic | U::Fixed => {}
+            ref other => {
+                return Err((
+                    element,
+                    format!("type {other:?}: ARS loads revolute, continuous, prismatic and fixed joints"),
+                ));
+            }
+        }
+        if joint.mimic.is_some() {
+            return Err((element, "<mimic> is not supported yet".into()));
+        }
+        let axis = Vector3::from(joint.axis.xyz.0);
+        let directed = axis.iter().all(|x| x.is_finite()) && axis.norm() > 1e-9;
+        if !matches!(joint.joint_type, U::Fixed) && !directed {
+            return Err((element, format!("axis {:?} has no direction", joint.axis.xyz.0)));
+        }
+    }
+    let roots: Vec<usize> = (0..robot.links.len()).filter(|&i| parent_joint[i].is_none()).collect();
+    let root = match roots[..] {
+        [root] => root,
+        [] => return Err(("robot".into(), "every link has a parent: the joints form a loop".into())),
+        _ => {
+            let names: Vec<&str> = roots.iter().map(|&i| robot.links[i].name.as_str()).collect();
+            return Err(("robot".into(), format!("several root links ({}): one tree is needed", names.join(", "))));
+        }
+    };
+    for link in &robot.links {
+        let element = format!("link {:?}", link.name);
+        let m = link.inertial.mass.value;
+        if !m.is_finite() || m < 0.0 {
+            return Err((element, format!("mass {m}: must be positive")));
+        }
+    }
+    // Frames, from the root outwards.
+    let base = Frame::from_isometry(&options.base_pose);
+    let root_frame = match options.up_axis {
+        UpAxis::Z => base.then(&z_up_to_y_up()),
+        UpAxis::Y => base,
+    };
+    let mut link_frames: Vec<Option<Frame>> = vec![None; robot.links.len()];
+    let mut joint_frames = vec![Frame::IDENTITY; robot.joints.len()];
+    link_frames[root] = Some(root_frame);
+    let mut queue = vec![root];
+    while let Some(parent) = queue.pop() {
+        let parent_frame = link_frames[parent].expect("set before queued");
+        for (j, joint) in robot.joints.iter().enumerate() {
+            if joint.parent.link != robot.links[parent].name {
+                continue;
+            }
+            let child = link_index[joint.child.link.as_str()];
+            let frame = parent_frame.then(&Frame::from_pose(&joint.origin));
+            joint_frames[j] = frame;
+            link_frames[child] = Some(frame);
+            queue.push(child);
+        }
+    }
+    let link_frames = link_frames.into_iter().map(|f| f.expect("a tree reaches every link")).collect();
+    Ok(Plan { robot, root, link_frames, joint_frames })
+}

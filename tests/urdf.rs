@@ -1,0 +1,147 @@
+//! Robots from URDF: the thesis arm loaded from a file steps exactly as the arm built
+//! in code; a Z-up robot lands Y-up; bad files are errors naming the file, the element
+//! and the problem.
+
+use ars::nalgebra::{Isometry3, Vector3};
+use ars::{Error, Program, ProgramRunner, Simulation, UpAxis, UrdfOptions};
+use ars_programs::ConicalPendulum;
+
+const ARM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/conical_pendulum_arm.urdf");
+
+fn body_state(sim: &Simulation, i: usize) -> [u64; 13] {
+    let (_, handle) = sim.bodies().nth(i).unwrap();
+    let b = sim.world().body(handle).unwrap();
+    let (p, q, v, w) = (b.position(), b.quaternion(), b.linear_velocity(), b.angular_velocity());
+    [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z].map(f64::to_bits)
+}
+
+#[test]
+fn the_thesis_arm_from_urdf_steps_bit_for_bit_as_the_arm_built_in_code() {
+    // Built in code: the ConicalPendulum program.
+    let mut code = ConicalPendulum::default();
+    let mut runner = ProgramRunner::new(&mut code).unwrap();
+
+    // Loaded from the file into the same simulation parameters, driven by the same hooks.
+    let mut sim = ConicalPendulum::default().configure(Simulation::builder()).build().unwrap();
+    let options =
+        UrdfOptions::new().up_axis(UpAxis::Y).self_collision(true).base_pose(Isometry3::translation(1.0, -0.25, 2.0));
+    let robot = sim.load_urdf(ARM, &options).unwrap();
+    assert_eq!(robot.links.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), ["base", "pole", "arm"]);
+    let mut driver = ConicalPendulum::default();
+    (driver.waist, driver.shoulder) = (robot.joint("r1"), robot.joint("r2"));
+    sim.add_hooks(driver).unwrap();
+
+    for step in 1..=8000 {
+        runner.step().unwrap();
+        sim.step().unwrap();
+        for i in 0..3 {
+            assert_eq!(body_state(runner.simulation(), i), body_state(&sim, i), "body {i} after step {step}");
+        }
+    }
+    let rate = sim.joint("r1").unwrap().state().unwrap().rate;
+    assert!(rate > 1.0, "the waist spun up: {rate} rad/s");
+}
+
+const TWO_LINKS: &str = r#"<robot name="two">
+  <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <link name="b"><inertial><origin xyz="0 0 0.5"/><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 0.5"/><geometry><cylinder radius="0.05" length="1"/></geometry></collision></link>
+  <joint name="j" type="revolute"><origin xyz="0 0 0.1"/><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>
+    <limit lower="-0.5" upper="0.5" effort="10" velocity="1"/><dynamics damping="0.3" friction="0"/></joint>
+</robot>"#;
+
+#[test]
+fn a_z_up_robot_stands_up_in_the_y_up_simulation_with_its_limits_and_damping() {
+    let mut sim = Simulation::new().unwrap();
+    let options = UrdfOptions::new().fixed_base(true).base_pose(Isometry3::translation(0.0, 1.0, 0.0));
+    let robot = sim.load_urdf_text(TWO_LINKS, "two.urdf", &options).unwrap();
+    // Link b's centre of mass is 0.6 m up the URDF's Z: the simulation's Y.
+    let b = sim.object("b").unwrap().position().unwrap();
+    assert!((b - ars::nalgebra::Point3::new(0.0, 1.6, 0.0)).norm() < 1e-12, "{b}");
+    // The hinge axis, URDF Y, is the simulation's −Z (ODE's joint runs from the parent
+    // to the child about the negated axis, so that its angle is the URDF position).
+    let axis = sim.joint("j").unwrap().ode().unwrap().axis().unwrap();
+    assert!((axis - Vector3::new(0.0, 0.0, 1.0)).norm() < 1e-12, "{axis}");
+    // A positive torque turns the child positively about the URDF axis.
+    let mut probe = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    probe.load_urdf_text(TWO_LINKS, "two.urdf", &UrdfOptions::new().fixed_base(true)).unwrap();
+    probe.joint_mut("j").unwrap().add_torque(1.0).unwrap();
+    probe.step().unwrap();
+    assert!(probe.joint("j").unwrap().state().unwrap().rate > 0.0);
+    let w = probe.object("b").unwrap().body().unwrap().angular_velocity();
+    assert!(w.z < 0.0 && w.x.abs() < 1e-12, "about URDF +Y = simulation -Z: {w}");
+    assert!(robot.base_joint.is_some(), "fixed to the world");
+    // Gravity pulls the free link over to its limit, no further, and the damping slows it.
+    sim.run_for(3.0).unwrap();
+    let q = sim.joint("j").unwrap().state().unwrap().position;
+    assert!(q.abs() < 0.5 + 0.02, "stops at the limit: {q}");
+    assert!(sim.object("a").unwrap().position().unwrap().y > 0.99, "the base stays where it was fixed");
+}
+
+fn load_error(text: &str) -> (String, String) {
+    let mut sim = Simulation::new().unwrap();
+    match sim.load_urdf_text(text, "bad.urdf", &UrdfOptions::new()) {
+        Err(Error::Urdf { file, element, problem }) => {
+            assert_eq!(file, "bad.urdf");
+            assert_eq!(sim.objects().count(), 0, "nothing added: {element}: {problem}");
+            (element, problem)
+        }
+        other => panic!("expected a URDF error, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_urdf_files_are_errors_naming_the_element() {
+    let link = |name: &str, mass: &str| {
+        format!(
+            r#"<link name="{name}"><inertial><mass value="{mass}"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#
+        )
+    };
+    let joint = |name: &str, kind: &str, parent: &str, child: &str| {
+        format!(
+            r#"<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/><axis xyz="0 0 1"/></joint>"#
+        )
+    };
+    let robot = |body: String| format!(r#"<robot name="r">{body}</robot>"#);
+
+    let (element, problem) = load_error(&robot(link("a", "1") + &joint("j", "revolute", "x", "a")));
+    assert_eq!(element, r#"joint "j""#);
+    assert!(problem.contains("parent link \"x\""), "{problem}");
+
+    let (element, problem) = load_error(&robot(link("a", "1") + &link("b", "-2") + &joint("j", "revolute", "a", "b")));
+    assert_eq!(element, r#"link "b""#);
+    assert!(problem.contains("mass -2"), "{problem}");
+
+    let loop_ =
+        link("a", "1") + &link("b", "1") + &joint("j1", "revolute", "a", "b") + &joint("j2", "revolute", "b", "a");
+    let (element, problem) = load_error(&robot(loop_));
+    assert!(element.starts_with("joint") || element == "robot", "{element}");
+    assert!(problem.contains("loop"), "{problem}");
+
+    let (element, problem) = load_error(&robot(link("a", "1") + &link("b", "1") + &joint("j", "planar", "a", "b")));
+    assert_eq!(element, r#"joint "j""#);
+    assert!(problem.contains("Planar"), "{problem}");
+
+    let (element, problem) = load_error(&robot(link("a", "1") + &link("b", "1")));
+    assert_eq!(element, "robot");
+    assert!(problem.contains("several root links (a, b)"), "{problem}");
+
+    // Found while building: an inertia no body has, and a mesh; nothing stays behind.
+    let bad_inertia = r#"<link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#;
+    let (element, problem) = load_error(&robot(link("a", "1") + bad_inertia + &joint("j", "revolute", "a", "b")));
+    assert_eq!(element, r#"link "b""#);
+    assert!(problem.contains("inertia"), "{problem}");
+    let mesh = r#"<link name="b"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><mesh filename="b.stl"/></geometry></collision></link>"#;
+    let (element, problem) = load_error(&robot(link("a", "1") + mesh + &joint("j", "revolute", "a", "b")));
+    assert_eq!(element, r#"link "b""#);
+    assert!(problem.contains("mesh \"b.stl\""), "{problem}");
+
+    let (element, problem) = load_error("<robot name=\"r\"><link name=\"a\">");
+    assert_eq!(element, "robot");
+    assert!(problem.contains("not valid URDF"), "{problem}");
+
+    let mut sim = Simulation::new().unwrap();
+    let err = sim.load_urdf("/no/such/robot.urdf", &UrdfOptions::new()).unwrap_err();
+    assert!(err.to_string().starts_with("/no/such/robot.urdf: file: cannot be read"), "{err}");
+}
