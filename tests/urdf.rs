@@ -145,3 +145,42 @@ fn bad_urdf_files_are_errors_naming_the_element() {
     let err = sim.load_urdf("/no/such/robot.urdf", &UrdfOptions::new()).unwrap_err();
     assert!(err.to_string().starts_with("/no/such/robot.urdf: file: cannot be read"), "{err}");
 }
+
+const THREE_LINK_ARM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ars_test_robot/three_link_arm.urdf");
+
+#[test]
+fn a_robot_with_a_mesh_and_several_collision_elements_loads_and_moves() {
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let robot = sim.load_urdf(THREE_LINK_ARM, &UrdfOptions::new().fixed_base(true)).unwrap();
+    assert_eq!(robot.joints.len(), 3);
+    // The gripper's mesh, found through package://, welded: a box of 8 corners, 12 triangles.
+    let gripper = sim.object("gripper").unwrap();
+    match gripper.shape() {
+        ars::Shape::TriMesh { vertices, triangles } => assert_eq!((vertices.len(), triangles.len()), (8, 12)),
+        other => panic!("the gripper is a mesh, not {other:?}"),
+    }
+    // The upper arm has its cylinder and its sphere, the sphere offset from the body.
+    assert_eq!(sim.object("upper_arm").unwrap().geoms().count(), 2);
+    // Z-up → Y-up: the straight arm stands along +Y, the gripper's centre 1.2 m up.
+    let top = sim.object("gripper").unwrap().position().unwrap();
+    assert!((top - ars::nalgebra::Point3::new(0.0, 1.2, 0.0)).norm() < 1e-12, "{top}");
+    // Tipped over a little, gravity folds it; the shoulder stops at its limit.
+    sim.joint_mut("shoulder").unwrap().add_torque(5.0).unwrap();
+    sim.run_for(2.0).unwrap();
+    let shoulder = sim.joint("shoulder").unwrap().state().unwrap().position;
+    assert!(shoulder > 0.5 && shoulder < 2.0 + 0.05, "fell towards its limit: {shoulder}");
+    assert!(sim.object("base").unwrap().position().unwrap().y.abs() < 1e-6, "the fixed base stays");
+}
+
+#[test]
+fn a_missing_mesh_is_an_error_listing_every_path_tried() {
+    let text = std::fs::read_to_string(THREE_LINK_ARM).unwrap().replace("gripper.stl", "lost.stl");
+    let file = THREE_LINK_ARM.replace("three_link_arm", "copy");
+    let mut sim = Simulation::new().unwrap();
+    let err = sim.load_urdf_text(&text, &file, &UrdfOptions::new()).unwrap_err();
+    let Error::Urdf { element, problem, .. } = err else { panic!("{err}") };
+    assert_eq!(element, r#"link "gripper""#);
+    assert!(problem.contains("package://ars_test_robot/meshes/lost.stl"), "{problem}");
+    assert!(problem.contains("ars_test_robot/meshes/lost.stl,"), "the folder-named-like-the-package rule: {problem}");
+    assert_eq!(sim.objects().count(), 0, "nothing stays behind");
+}

@@ -92,6 +92,7 @@ pub mod guard;
 pub mod handle;
 mod init;
 pub mod limits;
+pub mod mesh;
 mod panic;
 pub mod program;
 pub mod random;

@@ -125,16 +125,44 @@ fn y_to_z() -> Quat {
 
 fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: usize) -> ars_core::Result<ObjectNode> {
     let object = sim.object(id)?;
-    let shape = object.shape().clone();
     let dynamic = object.body_handle().is_some();
-    let default = if matches!(shape, Shape::Plane { .. } | Shape::TriMesh { .. }) {
+    let default = if matches!(object.shape(), Shape::Plane { .. } | Shape::TriMesh { .. }) {
         FLOOR
     } else {
         PALETTE[index % PALETTE.len()]
     };
     let color = convert::color(object.color().unwrap_or(default));
+    let pose = sim.pose(id).unwrap_or(Isometry3::identity());
     let mut group = scene.add_group();
-    let mut child = match &shape {
+    // Each of the object's geoms where it is relative to the object (a robot link may
+    // have several, offset from its body); an object without one is a small sphere.
+    let world = sim.world();
+    let mut parts: Vec<(Shape, Isometry3<f64>)> = object
+        .geoms()
+        .filter_map(|g| world.geom(g).ok())
+        .map(|g| {
+            let local = match g.shape() {
+                Shape::Plane { .. } => Isometry3::identity(),
+                _ => pose.inverse() * g.pose(),
+            };
+            (g.shape().clone(), local)
+        })
+        .collect();
+    if parts.is_empty() {
+        parts.push((object.shape().clone(), Isometry3::identity()));
+    }
+    for (shape, local) in &parts {
+        let mut part = group.add_group();
+        part.set_pose(convert::pose(local));
+        add_shape(&mut part, shape).set_color(color);
+    }
+    group.set_pose(convert::pose(&pose));
+    Ok(ObjectNode { group, dynamic })
+}
+
+/// A node drawing `shape` in its own frame.
+fn add_shape(group: &mut SceneNode3d, shape: &Shape) -> SceneNode3d {
+    match shape {
         Shape::Sphere { radius } => group.add_sphere(*radius as f32),
         Shape::Box { edges } => group.add_cube(edges.x as f32, edges.y as f32, edges.z as f32),
         Shape::Cylinder { length, radius } => group.add_cylinder(*radius as f32, *length as f32).set_rotation(y_to_z()),
@@ -159,10 +187,7 @@ fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: us
             group.add_trimesh(v, triangles.clone(), Vec3::ONE, true)
         }
         _ => group.add_sphere(0.05),
-    };
-    child.set_color(color);
-    group.set_pose(convert::pose(&sim.pose(id).unwrap_or(Isometry3::identity())));
-    Ok(ObjectNode { group, dynamic })
+    }
 }
 
 /// What every viewer draws from: the scene graph (with its lights), the camera of the

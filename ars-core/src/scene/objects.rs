@@ -19,6 +19,8 @@ pub(crate) struct ObjectData {
     pub(crate) shape: Shape,
     pub(crate) body: Option<BodyHandle>,
     pub(crate) geom: Option<GeomHandle>,
+    /// More geoms of the object (a robot link's other collision elements).
+    pub(crate) extra_geoms: Vec<GeomHandle>,
     pub(crate) color: Option<Color>,
 }
 
@@ -39,7 +41,14 @@ impl Scene {
         geom: Option<GeomHandle>,
     ) -> Result<ObjectId> {
         let name = self.object_names.unique(base);
-        let id = ObjectId(self.objects.insert(ObjectData { name: name.clone(), shape, body, geom, color: None }));
+        let id = ObjectId(self.objects.insert(ObjectData {
+            name: name.clone(),
+            shape,
+            body,
+            geom,
+            extra_geoms: Vec::new(),
+            color: None,
+        }));
         self.object_names.insert(name, id)?;
         Ok(id)
     }
@@ -294,6 +303,11 @@ impl Scene {
     pub(crate) fn remove_object(&mut self, id: ObjectId) -> Result<()> {
         let data = self.objects.remove(id.0, ObjectId::KIND, &id)?;
         self.object_names.remove(&data.name);
+        if data.body.is_none() {
+            for g in data.extra_geoms {
+                self.world.remove_geom(g)?;
+            }
+        }
         match (data.body, data.geom) {
             (Some(b), _) => self.world.remove_body(b),
             (None, Some(g)) => self.world.remove_geom(g),

@@ -20,14 +20,21 @@
 //!   friction. `floating` and `planar` joints, and `<mimic>`, are refused.
 //! - **Collisions.** Linked bodies never collide (ODE's rule). With
 //!   [`UrdfOptions::self_collision`] off (the default) no two links of the robot do.
-//! - Geometry: `box`, `cylinder` (along the link's Z, as in ODE), `sphere`, `capsule`;
-//!   at most one collision element per link. Meshes are not loaded yet.
+//! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
+//!   link's Z, as in ODE), `sphere`, `capsule`, and `mesh` (STL, OBJ, COLLADA, with
+//!   `scale`) as a triangle mesh (see [`load_mesh`](crate::mesh::load_mesh)).
+//! - **Mesh paths** (the first that exists; the error lists every path tried):
+//!   `file://` and absolute paths as written; relative ones in the URDF's folder, then
+//!   in [`UrdfOptions::search_paths`]; `package://NAME/REST` in the folder given for
+//!   NAME ([`UrdfOptions::package`]), in `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH`,
+//!   as `NAME/REST` beside the URDF, in a folder named NAME above it, as `REST` beside
+//!   it, then in the search paths.
 //!
 //! Errors name the file, the element and the problem, and nothing is added to the
 //! scene when a file is refused.
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
@@ -65,6 +72,10 @@ pub struct UrdfOptions {
     pub self_collision: bool,
     /// The up axis the file is written with.
     pub up_axis: UpAxis,
+    /// Folders of ROS packages: `package://NAME/...` resolves in the folder given for NAME.
+    pub package_dirs: Vec<(String, PathBuf)>,
+    /// More folders where relative mesh paths (and packages) are looked for.
+    pub search_paths: Vec<PathBuf>,
 }
 
 impl UrdfOptions {
@@ -91,6 +102,101 @@ impl UrdfOptions {
     pub fn up_axis(mut self, up: UpAxis) -> Self {
         self.up_axis = up;
         self
+    }
+    /// Where the ROS package `name` is (for `package://name/...` mesh paths).
+    pub fn package(mut self, name: &str, dir: impl Into<PathBuf>) -> Self {
+        self.package_dirs.push((name.to_string(), dir.into()));
+        self
+    }
+    /// A folder to look for meshes (and packages) in.
+    pub fn search_path(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.search_paths.push(dir.into());
+        self
+    }
+}
+
+/// Finds and loads the meshes a file names (each file once).
+struct Meshes<'o> {
+    options: &'o UrdfOptions,
+    /// The URDF file's folder.
+    base_dir: Option<PathBuf>,
+    loaded: HashMap<(PathBuf, [u64; 3]), Shape>,
+}
+
+impl Meshes<'_> {
+    /// The first existing path for a URDF mesh filename, or every path tried.
+    fn resolve(&self, filename: &str) -> std::result::Result<PathBuf, String> {
+        let name = filename.strip_prefix("file://").unwrap_or(filename);
+        let mut tried = Vec::new();
+        if let Some(rest) = name.strip_prefix("package://") {
+            let (package, rest) = rest.split_once('/').unwrap_or((rest, ""));
+            for (p, dir) in &self.options.package_dirs {
+                if p == package {
+                    tried.push(dir.join(rest));
+                }
+            }
+            for var in ["ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"] {
+                if let Some(paths) = std::env::var_os(var) {
+                    for dir in std::env::split_paths(&paths) {
+                        tried.push(dir.join(package).join(rest));
+                        tried.push(dir.join("share").join(package).join(rest));
+                    }
+                }
+            }
+            if let Some(base) = &self.base_dir {
+                tried.push(base.join(package).join(rest));
+                for ancestor in base.ancestors() {
+                    if ancestor.file_name().is_some_and(|n| n == package) {
+                        tried.push(ancestor.join(rest));
+                    }
+                }
+                tried.push(base.join(rest));
+            }
+            for dir in &self.options.search_paths {
+                tried.push(dir.join(package).join(rest));
+                tried.push(dir.join(rest));
+            }
+        } else if Path::new(name).is_absolute() {
+            tried.push(PathBuf::from(name));
+        } else {
+            if let Some(base) = &self.base_dir {
+                tried.push(base.join(name));
+            }
+            for dir in &self.options.search_paths {
+                tried.push(dir.join(name));
+            }
+        }
+        match tried.iter().find(|p| p.is_file()) {
+            Some(found) => Ok(found.clone()),
+            None => {
+                let list: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
+                Err(format!(
+                    "mesh {filename:?} not found; tried: {}",
+                    if list.is_empty() { "nothing (no folder to look in)".into() } else { list.join(", ") }
+                ))
+            }
+        }
+    }
+
+    fn shape(&mut self, geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
+        use urdf_rs::Geometry as G;
+        Ok(match geometry {
+            G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
+            G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },
+            G::Capsule { radius, length } => Shape::Capsule { radius: *radius, length: *length },
+            G::Sphere { radius } => Shape::Sphere { radius: *radius },
+            G::Mesh { filename, scale } => {
+                let path = self.resolve(filename)?;
+                let scale = Vector3::from(scale.as_ref().map_or([1.0; 3], |s| s.0));
+                let key = (path.clone(), [scale.x, scale.y, scale.z].map(f64::to_bits));
+                if let Some(shape) = self.loaded.get(&key) {
+                    return Ok(shape.clone());
+                }
+                let shape = crate::mesh::load_mesh(&path, scale).map_err(|e| e.to_string())?;
+                self.loaded.insert(key, shape.clone());
+                shape
+            }
+        })
     }
 }
 
@@ -232,7 +338,9 @@ impl Scene {
             .map_err(|_| bad("robot".into(), "the URDF parser failed on this text".into()))?;
         let robot = parsed.map_err(|e| bad("robot".into(), format!("not valid URDF: {e}")))?;
         let plan = plan(&robot, options).map_err(|(element, problem)| bad(element, problem))?;
-        self.build_urdf(&plan, options).map_err(|(element, error)| match error {
+        let base_dir = Path::new(file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
+        let mut meshes = Meshes { options, base_dir, loaded: HashMap::new() };
+        self.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
             Error::Urdf { element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })
@@ -242,6 +350,7 @@ impl Scene {
         &mut self,
         plan: &Plan<'_>,
         options: &UrdfOptions,
+        meshes: &mut Meshes<'_>,
     ) -> std::result::Result<UrdfRobot, (String, Error)> {
         let robot = plan.robot;
         let link_element = |name: &str| format!("link {name:?}");
@@ -256,7 +365,7 @@ impl Scene {
         };
         for (i, link) in robot.links.iter().enumerate() {
             let frame = plan.link_frames[i];
-            let result = self.add_link(link, &frame, i == plan.root, bits);
+            let result = self.add_link(link, &frame, i == plan.root, bits, meshes);
             match result {
                 Ok((id, body)) => {
                     created.push((id, body));
@@ -314,38 +423,38 @@ impl Scene {
         frame: &Frame,
         root: bool,
         bits: Option<u64>,
+        meshes: &mut Meshes<'_>,
     ) -> Result<(ObjectId, Option<crate::handle::BodyHandle>)> {
         let urdf_err =
             |problem: String| Error::Urdf { file: String::new(), element: format!("link {:?}", link.name), problem };
-        if link.collision.len() > 1 {
-            return Err(urdf_err(format!(
-                "{} collision elements: ARS loads one per link so far",
-                link.collision.len()
-            )));
+        let mut collisions = Vec::new();
+        for c in &link.collision {
+            let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
+            collisions.push((shape, frame.then(&Frame::from_pose(&c.origin))));
         }
-        let collision = link
-            .collision
-            .first()
-            .map(|c| {
-                Ok::<_, Error>((shape_of(&c.geometry).map_err(urdf_err)?, frame.then(&Frame::from_pose(&c.origin))))
-            })
-            .transpose()?;
         let mass = link.inertial.mass.value;
         let inertial = frame.then(&Frame::from_pose(&link.inertial.origin));
         let with_bits = |g: GeomBuilder| match bits {
             Some(b) => g.category_bits(b).collide_bits(!b),
             None => g,
         };
+        // A link without collision geometry is drawn as a small sphere and collides with nothing.
+        let drawn = collisions.first().map_or(Shape::Sphere { radius: 1e-3 }, |(shape, _)| shape.clone());
+        let mut geoms = Vec::new();
         if mass == 0.0 && root {
             // A massless root is static: its geometry collides, nothing moves it.
-            let (shape, pose) = match collision {
-                Some((shape, at)) => (shape, at),
-                None => (Shape::Sphere { radius: 1e-3 }, *frame),
-            };
-            let g = self
-                .world
-                .insert_geom(self.space(), with_bits(GeomBuilder::new(shape.clone()).pose(pose.isometry())))?;
-            let id = self.register_as(&link.name, shape, None, Some(g))?;
+            for (shape, at) in collisions {
+                let g = GeomBuilder::new(shape).pose(at.isometry());
+                match self.world.insert_geom(self.space(), with_bits(g)) {
+                    Ok(g) => geoms.push(g),
+                    Err(e) => {
+                        geoms.into_iter().try_for_each(|g| self.world.remove_geom(g))?;
+                        return Err(e);
+                    }
+                }
+            }
+            let id = self.register_as(&link.name, drawn, None, geoms.first().copied())?;
+            self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
             return Ok((id, None));
         }
         if mass.is_nan() || mass <= 0.0 {
@@ -359,24 +468,21 @@ impl Scene {
             builder = builder.rotation(inertial.rotation3());
         }
         let body = self.world.insert_body(builder)?;
-        let (shape, geom) = match collision {
-            Some((shape, at)) => {
-                let mut g = GeomBuilder::new(shape.clone()).attached_to(body);
-                if !at.same_as(&inertial) {
-                    g = g.offset(inertial.relative(&at));
-                }
-                match self.world.insert_geom(self.space(), with_bits(g)) {
-                    Ok(g) => (shape, Some(g)),
-                    Err(e) => {
-                        self.world.remove_body(body)?;
-                        return Err(e);
-                    }
+        for (shape, at) in collisions {
+            let mut g = GeomBuilder::new(shape).attached_to(body);
+            if !at.same_as(&inertial) {
+                g = g.offset(inertial.relative(&at));
+            }
+            match self.world.insert_geom(self.space(), with_bits(g)) {
+                Ok(g) => geoms.push(g),
+                Err(e) => {
+                    self.world.remove_body(body)?;
+                    return Err(e);
                 }
             }
-            // A link without collision geometry: drawn as a small sphere, collides with nothing.
-            None => (Shape::Sphere { radius: 1e-3 }, None),
-        };
-        let id = self.register_as(&link.name, shape, Some(body), geom)?;
+        }
+        let id = self.register_as(&link.name, drawn, Some(body), geoms.first().copied())?;
+        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
         Ok((id, Some(body)))
     }
 
@@ -421,18 +527,6 @@ impl Scene {
         }
         Ok(id)
     }
-}
-
-/// The shape of a URDF geometry.
-fn shape_of(geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
-    use urdf_rs::Geometry as G;
-    Ok(match geometry {
-        G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
-        G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },
-        G::Capsule { radius, length } => Shape::Capsule { radius: *radius, length: *length },
-        G::Sphere { radius } => Shape::Sphere { radius: *radius },
-        G::Mesh { filename, .. } => return Err(format!("mesh {filename:?}: ARS does not load meshes yet")),
-    })
 }
 
 /// Checks the tree (names, parents, one root, no loop, supported joints) and computes

@@ -97,9 +97,14 @@ impl<'s> ObjectView<'s> {
     pub fn body_handle(&self) -> Option<BodyHandle> {
         self.data.body
     }
-    /// Its geom.
+    /// Its (first) geom.
     pub fn geom_handle(&self) -> Option<GeomHandle> {
         self.data.geom
+    }
+    /// All its geoms: the first, then any more (a robot link's other collision
+    /// elements), each placed relative to its body.
+    pub fn geoms(&self) -> impl Iterator<Item = GeomHandle> + 's {
+        self.data.geom.into_iter().chain(self.data.extra_geoms.iter().copied())
     }
     /// Its body (pose, velocities, mass...); an error for a static object.
     pub fn body(&self) -> Result<BodyRef<'s>> {
