@@ -184,3 +184,25 @@ fn a_missing_mesh_is_an_error_listing_every_path_tried() {
     assert!(problem.contains("ars_test_robot/meshes/lost.stl,"), "the folder-named-like-the-package rule: {problem}");
     assert_eq!(sim.objects().count(), 0, "nothing stays behind");
 }
+
+#[test]
+fn initial_positions_pose_the_robot_and_its_joints_read_them() {
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let options = UrdfOptions::new().fixed_base(true).initial_position("shoulder", 0.3).initial_position("elbow", -0.7);
+    sim.load_urdf(THREE_LINK_ARM, &options).unwrap();
+    let q = |name: &str| sim.joint(name).unwrap().state().unwrap().position;
+    assert!(
+        (q("shoulder") - 0.3).abs() < 1e-12 && (q("elbow") + 0.7).abs() < 1e-12,
+        "{} {}",
+        q("shoulder"),
+        q("elbow")
+    );
+    // The forearm's tip, from the planar chain: shoulder at 0.1 m up, 0.5 m upper arm,
+    // the gripper's centre 0.6 m along the forearm direction (URDF Y axis = −Z here).
+    let (a, b) = (0.3f64, 0.3f64 - 0.7);
+    let expected = ars::nalgebra::Point3::new(0.5 * a.sin() + 0.6 * b.sin(), 0.1 + 0.5 * a.cos() + 0.6 * b.cos(), 0.0);
+    let gripper = sim.object("gripper").unwrap().position().unwrap();
+    assert!((gripper - expected).norm() < 1e-12, "{gripper} vs {expected}");
+    let err = Simulation::new().unwrap().load_urdf(THREE_LINK_ARM, &UrdfOptions::new().initial_position("knee", 1.0));
+    assert!(matches!(err, Err(Error::Urdf { ref element, .. }) if element == r#"joint "knee""#), "{err:?}");
+}

@@ -76,6 +76,9 @@ pub struct UrdfOptions {
     pub package_dirs: Vec<(String, PathBuf)>,
     /// More folders where relative mesh paths (and packages) are looked for.
     pub search_paths: Vec<PathBuf>,
+    /// Starting positions of joints, by name (rad or m; the others start at 0). The
+    /// joints read these positions: the robot is built at zero, joined, then posed.
+    pub initial_positions: Vec<(String, f64)>,
 }
 
 impl UrdfOptions {
@@ -106,6 +109,11 @@ impl UrdfOptions {
     /// Where the ROS package `name` is (for `package://name/...` mesh paths).
     pub fn package(mut self, name: &str, dir: impl Into<PathBuf>) -> Self {
         self.package_dirs.push((name.to_string(), dir.into()));
+        self
+    }
+    /// The starting position of joint `name` (rad or m).
+    pub fn initial_position(mut self, name: &str, position: f64) -> Self {
+        self.initial_positions.push((name.to_string(), position));
         self
     }
     /// A folder to look for meshes (and packages) in.
@@ -315,6 +323,8 @@ struct Plan<'r> {
     link_frames: Vec<Frame>,
     /// World frame of each joint.
     joint_frames: Vec<Frame>,
+    /// World frame of each link at the initial joint positions, if any were given.
+    posed_link_frames: Option<Vec<Frame>>,
 }
 
 impl Scene {
@@ -408,6 +418,20 @@ impl Scene {
             }
             _ => None,
         };
+        if let Some(posed) = &plan.posed_link_frames {
+            for (i, link) in robot.links.iter().enumerate() {
+                let Some(body) = created[i].1 else { continue };
+                let at = posed[i].then(&Frame::from_pose(&link.inertial.origin));
+                let result = self.world.body_mut(body).and_then(|mut b| {
+                    b.set_position(Point3::from(at.translation))?;
+                    b.set_rotation(at.rotation3())
+                });
+                if let Err(e) = result {
+                    undo(self, &created);
+                    return Err((link_element(&link.name), e));
+                }
+            }
+        }
         Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint })
     }
 
@@ -623,6 +647,45 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
             queue.push(child);
         }
     }
-    let link_frames = link_frames.into_iter().map(|f| f.expect("a tree reaches every link")).collect();
-    Ok(Plan { robot, root, link_frames, joint_frames })
+    let link_frames: Vec<Frame> = link_frames.into_iter().map(|f| f.expect("a tree reaches every link")).collect();
+    let posed_link_frames = if options.initial_positions.is_empty() {
+        None
+    } else {
+        let mut q = vec![0.0; robot.joints.len()];
+        for (name, value) in &options.initial_positions {
+            let element = format!("joint {name:?}");
+            let Some(&j) = joint_names.get(name.as_str()) else {
+                return Err((element, "an initial position is given, but the file has no such joint".into()));
+            };
+            if matches!(robot.joints[j].joint_type, urdf_rs::JointType::Fixed) || !value.is_finite() {
+                return Err((element, format!("initial position {value}: needs a moving joint and a finite value")));
+            }
+            q[j] = *value;
+        }
+        let mut posed: Vec<Option<Frame>> = vec![None; robot.links.len()];
+        posed[root] = Some(root_frame);
+        let mut queue = vec![root];
+        while let Some(parent) = queue.pop() {
+            let parent_frame = posed[parent].expect("set before queued");
+            for (j, joint) in robot.joints.iter().enumerate() {
+                if joint.parent.link != robot.links[parent].name {
+                    continue;
+                }
+                let child = link_index[joint.child.link.as_str()];
+                let axis = Vector3::from(joint.axis.xyz.0).normalize();
+                let motion = match joint.joint_type {
+                    _ if q[j] == 0.0 => Frame::IDENTITY,
+                    urdf_rs::JointType::Prismatic => Frame { rotation: None, translation: axis * q[j] },
+                    _ => Frame {
+                        rotation: Some(*rotation_about_axis(&axis, q[j]).matrix()),
+                        translation: Vector3::zeros(),
+                    },
+                };
+                posed[child] = Some(parent_frame.then(&Frame::from_pose(&joint.origin)).then(&motion));
+                queue.push(child);
+            }
+        }
+        Some(posed.into_iter().map(|f| f.expect("a tree reaches every link")).collect())
+    };
+    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames })
 }

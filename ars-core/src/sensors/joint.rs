@@ -211,3 +211,66 @@ impl Sensor for JointReaction {
         vec![self.joint]
     }
 }
+
+/// The positions (angles, rad, or slider positions, m) of several joints, one column
+/// per joint named after it: a robot's configuration.
+///
+/// ```
+/// use ars_core::nalgebra::Vector3;
+/// use ars_core::sensors::JointPositions;
+/// use ars_core::{JointEnd, Mass, Simulation};
+///
+/// let mut sim = Simulation::new()?;
+/// let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0))?;
+/// let pivot = sim.add_hinge_joint("pivot", ball, JointEnd::World, Some([0.0, 0.0, 0.0].into()), Vector3::z())?;
+/// let q = sim.add_sensor(JointPositions::new(&sim, &[pivot])?)?;
+/// sim.step_n(100)?;
+/// let mut csv = Vec::new();
+/// sim.records(q)?.write_csv(&mut csv).unwrap();
+/// assert!(String::from_utf8(csv).unwrap().starts_with("time [s],step,pivot\n"));
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct JointPositions {
+    joints: Vec<JointId>,
+    names: std::sync::Arc<[String]>,
+}
+
+impl JointPositions {
+    /// Of `joints`, in this order (hinges, sliders, pistons, universals).
+    pub fn new(scene: &Scene, joints: &[JointId]) -> Result<Self> {
+        let names = joints.iter().map(|j| Ok(scene.joint(*j)?.name().to_string())).collect::<Result<Vec<_>>>()?;
+        Ok(JointPositions { joints: joints.to_vec(), names: names.into() })
+    }
+}
+
+/// A [`JointPositions`] measurement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Positions {
+    /// The positions, in the sensor's joint order.
+    pub values: Vec<f64>,
+    names: std::sync::Arc<[String]>,
+}
+
+impl Record for Positions {
+    fn columns() -> Vec<&'static str> {
+        Vec::new()
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        self.values.iter().copied().map(Some).collect()
+    }
+    fn headers(&self) -> Vec<String> {
+        self.names.to_vec()
+    }
+}
+
+impl Sensor for JointPositions {
+    type Record = Positions;
+    fn measure(&mut self, sim: &Scene) -> Result<Positions> {
+        let values = self.joints.iter().map(|j| Ok(sim.joint_state(*j)?.position)).collect::<Result<Vec<_>>>()?;
+        Ok(Positions { values, names: self.names.clone() })
+    }
+    fn joints(&self) -> Vec<JointId> {
+        self.joints.clone()
+    }
+}

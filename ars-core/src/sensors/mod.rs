@@ -36,7 +36,8 @@ pub use body::{
 };
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};
 pub use joint::{
-    Effort, HingeReading, HingeSensor, JointForce, JointPower, JointReaction, JointTorque, Power, Reaction,
+    Effort, HingeReading, HingeSensor, JointForce, JointPositions, JointPower, JointReaction, JointTorque, Positions,
+    Power, Reaction,
 };
 pub use laser::{Laser, LaserReading};
 pub use noise::{Noisy, Perturb};
@@ -103,6 +104,11 @@ pub trait Record: Clone + Send + 'static {
     fn columns() -> Vec<&'static str>;
     /// The values, in column order (`None`: no value, e.g. a laser that hit nothing).
     fn values(&self) -> Vec<Option<f64>>;
+    /// The headers of this record, for records whose columns are only known when the
+    /// sensor is made (one per joint of a robot, say); by default [`Record::columns`].
+    fn headers(&self) -> Vec<String> {
+        Self::columns().into_iter().map(String::from).collect()
+    }
 }
 
 /// A measurement and when it was taken.
@@ -146,7 +152,11 @@ impl<R: Record> SensorLog<R> {
     /// Writes the samples as CSV: a header `time [s],step,<columns>`, then one row per
     /// sample; numbers in Rust's shortest exact form, empty cells for missing values.
     pub fn write_csv(&self, mut w: impl Write) -> io::Result<()> {
-        writeln!(w, "time [s],step,{}", R::columns().join(","))?;
+        let headers = match self.samples.first() {
+            Some(s) => s.record.headers(),
+            None => R::columns().into_iter().map(String::from).collect(),
+        };
+        writeln!(w, "time [s],step,{}", headers.join(","))?;
         for s in &self.samples {
             write!(w, "{},{}", s.time, s.step)?;
             for v in s.record.values() {
@@ -171,7 +181,7 @@ impl<R> Default for SensorLog<R> {
 /// [`write_csv_table`] joins.
 pub trait CsvColumns {
     /// Column headers of the record.
-    fn headers(&self) -> Vec<&'static str>;
+    fn headers(&self) -> Vec<String>;
     /// The samples' times and step numbers.
     fn stamps(&self) -> Vec<(f64, u64)>;
     /// The values of sample `i`, in column order.
@@ -179,8 +189,11 @@ pub trait CsvColumns {
 }
 
 impl<R: Record> CsvColumns for SensorLog<R> {
-    fn headers(&self) -> Vec<&'static str> {
-        R::columns()
+    fn headers(&self) -> Vec<String> {
+        match self.samples.first() {
+            Some(s) => s.record.headers(),
+            None => R::columns().into_iter().map(String::from).collect(),
+        }
     }
     fn stamps(&self) -> Vec<(f64, u64)> {
         self.samples.iter().map(|s| (s.time, s.step)).collect()
