@@ -83,7 +83,7 @@ impl World {
                 Some(Target { handle, shape: &data.shape, pose, aabb })
             })
             .collect();
-        let cones: Vec<Option<(Vec<Point3<f64>>, Vec<[u32; 3]>)>> = targets
+        let cones: Vec<Option<Mesh>> = targets
             .iter()
             .map(|t| match t.shape {
                 Shape::Cone { radius, height } => Some(cone_mesh(*radius, *height)),
@@ -113,6 +113,9 @@ impl World {
     }
 }
 
+/// Vertices and triangles of a cone's collision mesh.
+type Mesh = (Vec<Point3<f64>>, Vec<[u32; 3]>);
+
 struct Target<'w> {
     handle: GeomHandle,
     shape: &'w Shape,
@@ -126,7 +129,7 @@ impl Target<'_> {
         &self,
         origin: &Point3<f64>,
         dir: &Vector3<f64>,
-        cone: Option<&(Vec<Point3<f64>>, Vec<[u32; 3]>)>,
+        cone: Option<&Mesh>,
     ) -> Option<f64> {
         if let Shape::Plane { normal, distance } = self.shape {
             let n = normal.normalize();
