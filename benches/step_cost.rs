@@ -84,6 +84,25 @@ fn count(exe: &Path, scene: &str, layer: &str, steps: usize) -> Result<u64, Stri
         .ok_or_else(|| format!("no totals in {}", out.display()))
 }
 
+/// Median seconds of one 360-beam lidar scan (full turn, 20 m) in the middle of the
+/// 100-body pile (settled for 0.2 s).
+fn lidar_scan_seconds(scans: usize) -> f64 {
+    use ars_core::nalgebra::Isometry3;
+    use ars_core::sensors::{Lidar, Sensor};
+    let mut pile = SimScene::drop_pile(100);
+    pile.step(500);
+    let mut lidar = Lidar::new(360, std::f64::consts::TAU, 20.0).unwrap().at(Isometry3::translation(4.5, 0.3, 4.5));
+    let mut t: Vec<f64> = (0..scans)
+        .map(|_| {
+            let start = std::time::Instant::now();
+            black_box(lidar.measure(&pile.sim).unwrap());
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
+}
+
 /// Seconds to create `n` spheres: named objects of a `Simulation`, or bodies and geoms
 /// of a `World` (median of 5 runs).
 fn creation_seconds(n: usize) -> (f64, f64) {
@@ -135,6 +154,7 @@ fn main() {
     if args.iter().any(|a| a == "--test") {
         // `cargo test --benches`: every case builds and steps.
         creation_seconds(100);
+        lidar_scan_seconds(1);
         for case in &CASES {
             for layer in LAYERS.into_iter().filter(|l| *l != "world" || case.has_world) {
                 measured_steps(&mut build(case.scene, layer), 10);
@@ -166,4 +186,5 @@ fn main() {
         world * 1e3,
         sim / world
     );
+    println!("a 360-beam lidar scan in the 100-body pile: {:.0} µs (median of 200)", lidar_scan_seconds(200) * 1e6);
 }

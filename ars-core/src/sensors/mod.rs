@@ -23,6 +23,7 @@ mod body;
 mod energy;
 mod joint;
 mod laser;
+mod lidar;
 mod noise;
 mod probe;
 
@@ -40,6 +41,7 @@ pub use joint::{
     Power, Reaction,
 };
 pub use laser::{Laser, LaserReading};
+pub use lidar::{Lidar, Scan};
 pub use noise::{Noisy, Perturb};
 pub use probe::Probe;
 

@@ -125,12 +125,7 @@ struct Target<'w> {
 
 impl Target<'_> {
     /// Distance along the unit `dir` to the shape, if the ray meets it.
-    fn distance(
-        &self,
-        origin: &Point3<f64>,
-        dir: &Vector3<f64>,
-        cone: Option<&Mesh>,
-    ) -> Option<f64> {
+    fn distance(&self, origin: &Point3<f64>, dir: &Vector3<f64>, cone: Option<&Mesh>) -> Option<f64> {
         if let Shape::Plane { normal, distance } = self.shape {
             let n = normal.normalize();
             let above = n.dot(&origin.coords) - distance;
