@@ -13,7 +13,7 @@ pub const CONE_SEGMENTS: u32 = 24;
 /// The shape of a geom, of a body's mass and of a simulation's object: one vocabulary
 /// for every layer. Lengths along an axis are local Z (capsules, cylinders, cones, rays,
 /// as in ODE); radii come before lengths; a box is given by its full edge lengths.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub enum Shape {
     /// Sphere of this radius, m.

@@ -13,7 +13,7 @@ use crate::joint::{JointBuilder, JointKind, JointParam};
 use crate::validate;
 
 /// The kinds of joint a simulation offers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub enum JointType {
     /// Locks the relative pose.
@@ -65,10 +65,14 @@ pub(crate) struct JointData {
     pub(crate) handle: JointHandle,
     pub(crate) object1: ObjectId,
     pub(crate) object2: Option<ObjectId>,
-    friction: f64,
+    pub(crate) friction: f64,
     controller: Option<Box<dyn JointController>>,
     /// Torques (or forces) of the current step.
     pub(crate) efforts: JointEfforts,
+    /// The joint as created (anchors and axes as given, in the world frame then).
+    pub(crate) creation: JointKind,
+    /// Stops set on its first axis, if any.
+    pub(crate) limits: Option<(f64, f64)>,
 }
 
 /// The torques (hinges) or forces (sliders and pistons) put on a joint during
@@ -96,7 +100,7 @@ impl JointEfforts {
 }
 
 impl Scene {
-    pub(super) fn insert_sim_joint(
+    pub(crate) fn insert_sim_joint(
         &mut self,
         name: &str,
         kind: JointType,
@@ -133,6 +137,7 @@ impl Scene {
             Some(b2) => builder.between(body1, b2),
             None => builder.to_world(body1),
         };
+        let creation = builder.kind().clone();
         let handle = self.world.insert_joint(builder.feedback())?;
         let name = if name.is_empty() { self.joint_names.unique(kind.default_name()) } else { name.to_string() };
         let data = JointData {
@@ -144,6 +149,8 @@ impl Scene {
             friction: 0.0,
             controller: None,
             efforts: JointEfforts::default(),
+            creation,
+            limits: None,
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;
@@ -243,6 +250,11 @@ impl Scene {
 
     pub(crate) fn joint_data(&self, id: JointId) -> Result<&JointData> {
         self.joints.get(id.0, JointId::KIND, &id)
+    }
+
+    /// Every joint's data, in slot order (creation order when none was removed).
+    pub(crate) fn joints_in_creation_order(&self) -> impl Iterator<Item = &JointData> + '_ {
+        self.joints.values()
     }
 
     /// Every joint, by name in alphabetical order.
@@ -446,7 +458,11 @@ impl SimJoint<'_> {
         let handle = self.handle;
         match self.kind {
             JointType::Fixed | JointType::Ball => Err(self.wrong("setting limits")),
-            _ => self.sim.world.joint_mut(handle)?.set_limits(0, low, high),
+            _ => {
+                self.sim.world.joint_mut(handle)?.set_limits(0, low, high)?;
+                self.data_mut().limits = Some((low, high));
+                Ok(())
+            }
         }
     }
 

@@ -26,7 +26,7 @@ pub use views::{JointKey, JointView, ObjectKey, ObjectView};
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, SpaceHandle, WorldId};
 use crate::limits;
-use crate::world::World;
+use crate::world::{SpaceKind, World};
 use joints::JointData;
 use names::Names;
 use objects::ObjectData;
@@ -36,6 +36,7 @@ use objects::ObjectData;
 pub struct Scene {
     pub(crate) world: World,
     space: SpaceHandle,
+    space_kind: SpaceKind,
     objects: Arena<ObjectData>,
     object_names: Names<ObjectId>,
     joints: Arena<JointData>,
@@ -64,11 +65,13 @@ impl std::fmt::Debug for Scene {
 
 impl Scene {
     /// A scene on `world` (already configured) colliding in `space`.
-    pub(crate) fn new(world: World, space: SpaceHandle, time_step: f64, steps_per_frame: u32) -> Scene {
+    pub(crate) fn new(world: World, space: (SpaceHandle, SpaceKind), time_step: f64, steps_per_frame: u32) -> Scene {
+        let (space, space_kind) = space;
         let id = world.id();
         Scene {
             world,
             space,
+            space_kind,
             objects: Arena::new(id),
             object_names: Names::new("object"),
             joints: Arena::new(id),
@@ -138,6 +141,17 @@ impl Scene {
     /// Gravity, m/s².
     pub fn gravity(&self) -> Vector3<f64> {
         self.world.gravity()
+    }
+
+    /// Sets the clock (a loaded scene goes on from its saved time).
+    pub(crate) fn set_clock(&mut self, time: f64, steps: u64) {
+        self.time = time;
+        self.step_count = steps;
+    }
+
+    /// The kind of its collision space.
+    pub fn space_kind(&self) -> SpaceKind {
+        self.space_kind
     }
 
     /// Number of whole steps in `duration` seconds (rounded to the nearest).

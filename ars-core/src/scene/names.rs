@@ -57,6 +57,10 @@ impl<Id: Copy + PartialEq> Names<Id> {
         }
     }
 
+    pub(crate) fn contains(&self, name: &str) -> bool {
+        self.by_name.contains_key(name)
+    }
+
     pub(crate) fn get(&self, name: &str) -> Result<Id> {
         self.by_name.get(name).copied().ok_or_else(|| Error::UnknownName {
             kind: self.kind,

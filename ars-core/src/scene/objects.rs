@@ -33,7 +33,7 @@ impl Scene {
         self.register_as(base, shape, body, geom)
     }
 
-    pub(super) fn register_as(
+    pub(crate) fn register_as(
         &mut self,
         base: &str,
         shape: Shape,
@@ -153,6 +153,25 @@ impl Scene {
             .world
             .insert_geom(self.space, GeomBuilder::new(shape.clone()).pose(Isometry3::translation(c.x, c.y, c.z)))?;
         self.register_as("floor", shape, None, Some(g))
+    }
+
+    /// A saved object, under its saved name.
+    pub(crate) fn register_object(
+        &mut self,
+        name: &str,
+        shape: Shape,
+        body: Option<BodyHandle>,
+        geom: Option<GeomHandle>,
+    ) -> Result<ObjectId> {
+        if self.object_names.contains(name) {
+            return Err(Error::DuplicateName { kind: "object", name: name.to_string() });
+        }
+        self.register_as(name, shape, body, geom)
+    }
+
+    /// Every object with its data, in slot order (creation order when none was removed).
+    pub(crate) fn objects_in_creation_order(&self) -> impl Iterator<Item = (ObjectId, &ObjectData)> + '_ {
+        self.objects.iter().map(|(h, d)| (ObjectId(h), d))
     }
 
     pub(crate) fn object_data(&self, id: ObjectId) -> Result<&ObjectData> {

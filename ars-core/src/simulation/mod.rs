@@ -23,6 +23,7 @@
 //! only (ODE clears its accumulators after each step).
 
 pub mod hooks;
+pub mod scene_file;
 
 use std::ops::{Deref, DerefMut};
 
@@ -176,7 +177,7 @@ impl SimulationBuilder {
         let space = world.create_space(self.space)?;
         let id = world.id();
         let mut sim = Simulation {
-            scene: Scene::new(world, space, self.time_step, self.steps_per_frame),
+            scene: Scene::new(world, (space, self.space), self.time_step, self.steps_per_frame),
             sensors: SensorSet::new(id),
             hooks: HookSet::new(id),
         };

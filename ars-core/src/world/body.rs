@@ -54,7 +54,7 @@ impl StatePointers {
 }
 
 /// How the mass of a shape is given: the total mass in kg, or a density in kg/m³.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Mass {
     /// Total mass, kg.
     Total(f64),
@@ -505,6 +505,30 @@ impl BodyMut<'_> {
         let q = convert::quaternion_to_ode(&q);
         // SAFETY: the body is live; `q` is a dQuaternion.
         unsafe { ffi::dBodySetQuaternion(self.raw, q.as_ptr()) };
+        Ok(())
+    }
+
+    /// Restores a saved orientation to the bit: ODE keeps a quaternion and a rotation
+    /// matrix and its setters renormalise, so both are written as saved (after
+    /// [`set_quaternion`](Self::set_quaternion), which tells the body's geoms that it
+    /// moved). The two must describe the same rotation.
+    pub(crate) fn restore_orientation(&mut self, q: &UnitQuaternion<f64>, r: &Rotation3<f64>) -> Result<()> {
+        let r = validate::rotation("body rotation", r)?;
+        if (q.to_rotation_matrix().matrix() - r.matrix()).amax() > 1e-9 {
+            return Err(Error::OutOfRange {
+                what: "body orientation",
+                detail: "the saved quaternion and rotation matrix disagree".into(),
+            });
+        }
+        self.set_quaternion(*q)?;
+        let (q, r) = (convert::quaternion_to_ode(q), convert::rotation_to_ode(&r));
+        // SAFETY: the body is live; dBodyGetQuaternion and dBodyGetRotation point into
+        // the body's own heap-allocated state (4 and 12 reals, which ODE itself writes
+        // at every step); nothing else reads or writes them during these copies.
+        unsafe {
+            std::ptr::copy_nonoverlapping(q.as_ptr(), ffi::dBodyGetQuaternion(self.raw).cast_mut(), 4);
+            std::ptr::copy_nonoverlapping(r.as_ptr(), ffi::dBodyGetRotation(self.raw).cast_mut(), 12);
+        }
         Ok(())
     }
 

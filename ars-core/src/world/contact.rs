@@ -38,7 +38,7 @@ pub const MAX_CONTACTS_LIMIT: usize = 150;
 /// The default is the ARS surface: restitution only (bounce 0.2 above 0 m/s), friction
 /// force limit 500 N per contact point and direction (ODE's box friction, not Coulomb),
 /// no soft ERP/CFM, up to 150 contact points per pair.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactSurface {
     /// Friction limit: the largest friction force per contact point and tangent
     /// direction, N (with `approx1` set it is a Coulomb coefficient instead).

@@ -12,7 +12,7 @@ use crate::limits;
 use crate::validate;
 
 /// The frame an angular- or linear-motor axis is expressed in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum AxisFrame {
     /// Fixed in the world.
     World = 0,
@@ -23,7 +23,7 @@ pub enum AxisFrame {
 }
 
 /// The kind of a joint, with its geometry (world coordinates, at creation time).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub enum JointKind {
     /// Locks the relative pose the bodies have when the joint is created.
@@ -269,6 +269,11 @@ impl JointBuilder {
     /// [`JointBuilder::to_world`].
     pub fn new(kind: JointKind) -> Self {
         JointBuilder { kind, body1: None, body2: None, params: Vec::new(), feedback: false }
+    }
+
+    /// The kind, with the anchors and axes given.
+    pub fn kind(&self) -> &JointKind {
+        &self.kind
     }
     /// A fixed joint.
     pub fn fixed() -> Self {

@@ -32,7 +32,7 @@ pub const DEFAULT_ERP: f64 = 0.2;
 pub const DEFAULT_CFM: f64 = 1e-10;
 
 /// A broad-phase collision space.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub enum SpaceKind {
     /// Tests every pair of geoms (O(n²)); what the original ARS used.
@@ -58,7 +58,7 @@ pub(crate) struct SpaceData {
 }
 
 /// The ODE stepper that advances the world.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub enum Stepper {
     /// `dWorldStep`: the exact ("big matrix", Dantzig LCP) stepper; the ARS default.

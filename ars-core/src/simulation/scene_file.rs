@@ -1,0 +1,309 @@
+//! Saving a simulation's scene to a readable JSON file and loading it back.
+//!
+//! What is saved: the parameters (gravity, time step, steps per frame, ERP, CFM, stepper,
+//! contact surface, space), the clock, every object in creation order (name, shape,
+//! colour, and for a body its mass, inertia, pose and velocities, to the last bit), and
+//! every joint (name, type, its objects, the anchors and axes it was created with, its
+//! stops and viscous friction). Not saved: hooks, sensors and joint controllers (they
+//! are code), contact joints (they live within a step).
+//!
+//! A scene saved before it has stepped loads into a simulation that steps bit for bit
+//! as the original (the joints are created with the same anchors and axes). Saved
+//! later, every body comes back to the bit, and the joints are created anew where their
+//! anchors and axes are then: their angles and positions count from there (universal
+//! and hinge-2 joints can be saved only before the scene steps).
+
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
+
+use super::{Simulation, SimulationBuilder};
+use crate::body::{BodyBuilder, MassSpec};
+use crate::contact::ContactSurface;
+use crate::error::{Error, Result};
+use crate::geom::GeomBuilder;
+use crate::joint::{JointBuilder, JointKind};
+use crate::scene::{Color, JointEnd, JointType};
+use crate::shape::Shape;
+use crate::world::{SpaceKind, Stepper};
+
+/// The format tag of a scene file.
+const FORMAT: &str = "ars-scene/1";
+
+/// A scene as saved (see the [module docs](self)).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SceneFile {
+    /// `"ars-scene/1"`.
+    pub format: String,
+    /// Gravity, m/s².
+    pub gravity: Vector3<f64>,
+    /// Time step, s.
+    pub time_step: f64,
+    /// Steps per frame.
+    pub steps_per_frame: u32,
+    /// Global ERP.
+    pub erp: f64,
+    /// Global CFM.
+    pub cfm: f64,
+    /// The stepper.
+    pub stepper: Stepper,
+    /// The contact surface of every pair.
+    pub surface: ContactSurface,
+    /// The broad-phase space.
+    pub space: SpaceKind,
+    /// Simulated time, s.
+    pub time: f64,
+    /// Steps taken.
+    pub step_count: u64,
+    /// The objects, in creation order.
+    pub objects: Vec<ObjectFile>,
+    /// The joints, in creation order.
+    pub joints: Vec<JointFile>,
+}
+
+/// An object as saved.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ObjectFile {
+    /// Its name.
+    pub name: String,
+    /// Its shape.
+    pub shape: Shape,
+    /// Its colour in the viewer.
+    pub color: Option<Color>,
+    /// Its body (`None`: static).
+    pub body: Option<BodyFile>,
+    /// The pose of a static object's geom.
+    pub pose: Option<Isometry3<f64>>,
+}
+
+/// A body's mass and state, exactly.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BodyFile {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Inertia tensor in the body frame, kg·m².
+    pub inertia: Matrix3<f64>,
+    /// Position of the centre of mass, m.
+    pub position: Point3<f64>,
+    /// Rotation matrix (body to world).
+    pub rotation: Rotation3<f64>,
+    /// Orientation as ODE's quaternion (ODE keeps both).
+    pub quaternion: UnitQuaternion<f64>,
+    /// Linear velocity, m/s.
+    pub linear_velocity: Vector3<f64>,
+    /// Angular velocity, rad/s.
+    pub angular_velocity: Vector3<f64>,
+}
+
+/// A joint as saved.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct JointFile {
+    /// Its name.
+    pub name: String,
+    /// Its type.
+    pub joint_type: JointType,
+    /// The kind with the anchors and axes it was created with.
+    pub kind: JointKind,
+    /// The name of its first object.
+    pub object1: String,
+    /// The name of its second object (`None`: the world).
+    pub object2: Option<String>,
+    /// Its stops.
+    pub limits: Option<(f64, f64)>,
+    /// Viscous friction coefficient.
+    pub friction: f64,
+}
+
+impl Simulation {
+    /// The scene as a [`SceneFile`] (see the [`scene_file`](crate::simulation::scene_file) module).
+    pub fn scene_file(&self) -> Result<SceneFile> {
+        let world = self.world();
+        let mut objects = Vec::new();
+        for (_, data) in self.scene.objects_in_creation_order() {
+            let body = match data.body {
+                Some(b) => {
+                    let b = world.body(b)?;
+                    Some(BodyFile {
+                        mass: b.mass(),
+                        inertia: b.inertia(),
+                        position: b.position(),
+                        rotation: b.rotation(),
+                        quaternion: b.quaternion(),
+                        linear_velocity: b.linear_velocity(),
+                        angular_velocity: b.angular_velocity(),
+                    })
+                }
+                None => None,
+            };
+            let pose = match (&data.body, data.geom, &data.shape) {
+                (None, Some(g), shape) if !matches!(shape, Shape::Plane { .. }) => Some(world.geom(g)?.pose()),
+                _ => None,
+            };
+            objects.push(ObjectFile {
+                name: data.name.clone(),
+                shape: data.shape.clone(),
+                color: data.color,
+                body,
+                pose,
+            });
+        }
+        let mut joints = Vec::new();
+        for data in self.scene.joints_in_creation_order() {
+            let name_of = |o| self.object(o).map(|v| v.name().to_string());
+            // Before any step, the joint as it was created (the same ODE calls again);
+            // after, where its anchor and axis are now.
+            let kind = if self.step_count() == 0 {
+                data.creation.clone()
+            } else {
+                let ode = world.joint(data.handle)?;
+                match &data.creation {
+                    JointKind::Fixed => JointKind::Fixed,
+                    JointKind::Hinge { .. } => JointKind::Hinge { anchor: ode.anchor()?, axis: ode.axis()? },
+                    JointKind::Slider { .. } => JointKind::Slider { axis: ode.axis()? },
+                    JointKind::Ball { .. } => JointKind::Ball { anchor: ode.anchor()? },
+                    JointKind::Piston { .. } => JointKind::Piston { anchor: ode.anchor()?, axis: ode.axis()? },
+                    other => {
+                        return Err(Error::OutOfRange {
+                            what: "scene file",
+                            detail: format!(
+                                "joint {:?}: a {} joint can be saved only before the scene steps",
+                                data.name,
+                                other.name()
+                            ),
+                        });
+                    }
+                }
+            };
+            joints.push(JointFile {
+                name: data.name.clone(),
+                joint_type: data.kind,
+                kind,
+                object1: name_of(data.object1)?,
+                object2: data.object2.map(name_of).transpose()?,
+                limits: data.limits,
+                friction: data.friction,
+            });
+        }
+        Ok(SceneFile {
+            format: FORMAT.into(),
+            gravity: world.gravity(),
+            time_step: self.time_step(),
+            steps_per_frame: self.steps_per_frame(),
+            erp: world.erp(),
+            cfm: world.cfm(),
+            stepper: world.stepper(),
+            surface: world.default_surface(),
+            space: self.space_kind(),
+            time: self.time(),
+            step_count: self.step_count(),
+            objects,
+            joints,
+        })
+    }
+
+    /// The scene as JSON text (see the [`scene_file`](crate::simulation::scene_file) module).
+    pub fn save_scene(&self) -> Result<String> {
+        serde_json::to_string_pretty(&self.scene_file()?)
+            .map_err(|e| Error::OutOfRange { what: "scene file", detail: format!("cannot be written: {e}") })
+    }
+
+    /// A simulation built from JSON text written by [`save_scene`](Self::save_scene).
+    pub fn load_scene(text: &str) -> Result<Simulation> {
+        let file: SceneFile = serde_json::from_str(text)
+            .map_err(|e| Error::OutOfRange { what: "scene file", detail: format!("not a scene: {e}") })?;
+        Simulation::from_scene_file(&file)
+    }
+
+    /// A simulation built from a [`SceneFile`].
+    pub fn from_scene_file(file: &SceneFile) -> Result<Simulation> {
+        if file.format != FORMAT {
+            return Err(Error::OutOfRange {
+                what: "scene file",
+                detail: format!("format {:?}, expected {FORMAT:?}", file.format),
+            });
+        }
+        let mut sim = SimulationBuilder::default()
+            .gravity(file.gravity)
+            .time_step(file.time_step)
+            .steps_per_frame(file.steps_per_frame)
+            .erp(file.erp)
+            .cfm(file.cfm)
+            .stepper(file.stepper)
+            .contact_surface(file.surface)
+            .space(file.space)
+            .build()?;
+        let space = sim.space();
+        for o in &file.objects {
+            let geom = GeomBuilder::new(o.shape.clone());
+            let id = match &o.body {
+                Some(b) => {
+                    let spec = MassSpec::Custom { mass: b.mass, inertia: b.inertia };
+                    let body = sim.scene.world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
+                    let g = sim.scene.world.insert_geom(space, geom.attached_to(body))?;
+                    {
+                        let mut m = sim.scene.world.body_mut(body)?;
+                        // Both ODE's quaternion and its rotation matrix, to the bit.
+                        m.restore_orientation(&b.quaternion, &b.rotation)?;
+                        m.set_linear_velocity(b.linear_velocity)?;
+                        m.set_angular_velocity(b.angular_velocity)?;
+                    }
+                    sim.scene.register_object(&o.name, o.shape.clone(), Some(body), Some(g))?
+                }
+                None => {
+                    let geom = match (&o.shape, o.pose) {
+                        (Shape::Plane { .. }, _) | (_, None) => geom,
+                        (_, Some(pose)) => geom.pose(pose),
+                    };
+                    let g = sim.scene.world.insert_geom(space, geom)?;
+                    sim.scene.register_object(&o.name, o.shape.clone(), None, Some(g))?
+                }
+            };
+            if let Some(c) = o.color {
+                sim.set_color(id, c)?;
+            }
+        }
+        for j in &file.joints {
+            let object1 = sim.object(j.object1.as_str())?.id();
+            let object2 = match &j.object2 {
+                Some(name) => JointEnd::Object(sim.object(name.as_str())?.id()),
+                None => JointEnd::World,
+            };
+            let id = sim.scene.insert_sim_joint(
+                &j.name,
+                j.joint_type,
+                object1,
+                object2,
+                JointBuilder::new(j.kind.clone()),
+            )?;
+            if let Some((low, high)) = j.limits {
+                sim.joint_mut(id)?.set_limits(low, high)?;
+            }
+            if j.friction != 0.0 {
+                sim.joint_mut(id)?.set_viscous_friction(j.friction)?;
+            }
+        }
+        sim.scene.set_clock(file.time, file.step_count);
+        Ok(sim)
+    }
+}
+
+/// Reads and writes scene files at paths.
+impl Simulation {
+    /// Saves the scene as JSON to `path`.
+    pub fn save_scene_to(&self, path: impl AsRef<std::path::Path>) -> Result<()> {
+        let path = path.as_ref();
+        std::fs::write(path, self.save_scene()?).map_err(|e| Error::OutOfRange {
+            what: "scene file",
+            detail: format!("{}: cannot be written: {e}", path.display()),
+        })
+    }
+
+    /// Loads a scene saved with [`save_scene_to`](Self::save_scene_to).
+    pub fn load_scene_from(path: impl AsRef<std::path::Path>) -> Result<Simulation> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::OutOfRange {
+            what: "scene file",
+            detail: format!("{}: cannot be read: {e}", path.display()),
+        })?;
+        Simulation::load_scene(&text)
+    }
+}
