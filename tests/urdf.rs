@@ -206,3 +206,33 @@ fn initial_positions_pose_the_robot_and_its_joints_read_them() {
     let err = Simulation::new().unwrap().load_urdf(THREE_LINK_ARM, &UrdfOptions::new().initial_position("knee", 1.0));
     assert!(matches!(err, Err(Error::Urdf { ref element, .. }) if element == r#"joint "knee""#), "{err:?}");
 }
+
+const VEHICLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/thesis_vehicle.urdf");
+
+#[test]
+fn the_thesis_vehicle_from_urdf_drives_bit_for_bit_as_the_vehicle_built_in_code() {
+    let with_floor = || Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let spec = ars_programs::VehicleSpec::default();
+    let mut code = with_floor();
+    ars_programs::build_vehicle(&mut code, &spec).unwrap();
+    let mut urdf = with_floor();
+    let options =
+        UrdfOptions::new().up_axis(UpAxis::Y).self_collision(true).base_pose(Isometry3::translation(0.5, 0.45, 0.0));
+    let robot = urdf.load_urdf(VEHICLE, &options).unwrap();
+    // As the scene function does: joined where built, then moved by the offset.
+    for (_, object) in &robot.links {
+        urdf.offset_by_position(*object, spec.offset).unwrap();
+    }
+    for step in 1..=2500 {
+        for sim in [&mut code, &mut urdf] {
+            sim.joint_mut("w1").unwrap().add_torque(3.0).unwrap();
+            sim.joint_mut("w2").unwrap().add_torque(3.0).unwrap();
+            sim.step().unwrap();
+        }
+        for i in 0..4 {
+            assert_eq!(body_state(&code, i), body_state(&urdf, i), "body {i} after step {step}");
+        }
+    }
+    let x = urdf.object("chassis").unwrap().position().unwrap().x;
+    assert!((x - 2.5).abs() > 0.1, "it drove: chassis x {x}");
+}

@@ -17,7 +17,8 @@
 //!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
 //!   the parent to the child about the negated axis); `revolute` and
 //!   `prismatic` limits become joint stops; `<dynamics damping>` becomes viscous
-//!   friction. `floating` and `planar` joints, and `<mimic>`, are refused.
+//!   friction; `spherical` (an extension some tools write) becomes a ball joint.
+//!   `floating` and `planar` joints, and `<mimic>`, are refused.
 //! - **Collisions.** Linked bodies never collide (ODE's rule). With
 //!   [`UrdfOptions::self_collision`] off (the default) no two links of the robot do.
 //! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
@@ -535,6 +536,7 @@ impl Scene {
             U::Revolute | U::Continuous => (super::JointType::Hinge, JointBuilder::hinge(anchor, axis)),
             U::Prismatic => (super::JointType::Slider, JointBuilder::slider(axis)),
             U::Fixed => (super::JointType::Fixed, JointBuilder::fixed()),
+            U::Spherical => (super::JointType::Ball, JointBuilder::ball(anchor)),
             _ => unreachable!("refused when planned"),
         };
         let id = self.insert_sim_joint(&joint.name, kind, object1, object2, builder)?;
@@ -591,11 +593,11 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
         parent_joint[child] = Some(j);
         use urdf_rs::JointType as U;
         match joint.joint_type {
-            U::Revolute | U::Continuous | U::Prismatic | U::Fixed => {}
+            U::Revolute | U::Continuous | U::Prismatic | U::Fixed | U::Spherical => {}
             ref other => {
                 return Err((
                     element,
-                    format!("type {other:?}: ARS loads revolute, continuous, prismatic and fixed joints"),
+                    format!("type {other:?}: ARS loads revolute, continuous, prismatic, fixed and spherical joints"),
                 ));
             }
         }
@@ -604,7 +606,7 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
         }
         let axis = Vector3::from(joint.axis.xyz.0);
         let directed = axis.iter().all(|x| x.is_finite()) && axis.norm() > 1e-9;
-        if !matches!(joint.joint_type, U::Fixed) && !directed {
+        if !matches!(joint.joint_type, U::Fixed | U::Spherical) && !directed {
             return Err((element, format!("axis {:?} has no direction", joint.axis.xyz.0)));
         }
     }
@@ -657,7 +659,8 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
             let Some(&j) = joint_names.get(name.as_str()) else {
                 return Err((element, "an initial position is given, but the file has no such joint".into()));
             };
-            if matches!(robot.joints[j].joint_type, urdf_rs::JointType::Fixed) || !value.is_finite() {
+            let fixed = matches!(robot.joints[j].joint_type, urdf_rs::JointType::Fixed | urdf_rs::JointType::Spherical);
+            if fixed || !value.is_finite() {
                 return Err((element, format!("initial position {value}: needs a moving joint and a finite value")));
             }
             q[j] = *value;
@@ -676,6 +679,7 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
                 let motion = match joint.joint_type {
                     _ if q[j] == 0.0 => Frame::IDENTITY,
                     urdf_rs::JointType::Prismatic => Frame { rotation: None, translation: axis * q[j] },
+                    urdf_rs::JointType::Spherical => Frame::IDENTITY,
                     _ => Frame {
                         rotation: Some(*rotation_about_axis(&axis, q[j]).matrix()),
                         translation: Vector3::zeros(),
