@@ -217,4 +217,7 @@ impl Sensor for Lidar {
             Mount::World(_) => Vec::new(),
         }
     }
+    fn measures_every_step(&self) -> bool {
+        false
+    }
 }

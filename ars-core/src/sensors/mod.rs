@@ -20,6 +20,7 @@
 //! ```
 
 mod body;
+mod depth_camera;
 mod energy;
 mod joint;
 mod laser;
@@ -35,6 +36,7 @@ pub use body::{
     Acceleration, Accelerometer, ContactReading, ContactSensor, Gps, Imu, ImuReading, Inclination, Inclinometer,
     Position, Velocity, Velometer,
 };
+pub use depth_camera::{DepthCamera, DepthImage};
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};
 pub use joint::{
     Effort, HingeReading, HingeSensor, JointForce, JointPositions, JointPower, JointReaction, JointTorque, Positions,
@@ -84,6 +86,13 @@ pub trait Sensor: Send + 'static {
     /// When the sensor samples (default: at the end of each step).
     fn sample_at(&self) -> SampleAt {
         SampleAt::EndOfStep
+    }
+
+    /// Whether [`measure`](Sensor::measure) must run every step even when the sensor
+    /// samples at a slower rate (a sensor with state). Costly stateless sensors (a
+    /// lidar, a camera) say `false` and are measured only when a sample is due.
+    fn measures_every_step(&self) -> bool {
+        true
     }
 }
 
@@ -315,7 +324,9 @@ impl<S: Sensor> Slot<S> {
             // Half a step of slack absorbs the drift of the accumulated time.
             if time + 0.5 * sim.time_step() < self.next_sample {
                 // Still measure, so that stateful sensors see every step.
-                self.sensor.measure(sim)?;
+                if self.sensor.measures_every_step() {
+                    self.sensor.measure(sim)?;
+                }
                 return Ok(());
             }
             self.next_sample += period;

@@ -139,4 +139,10 @@ where
     fn joints(&self) -> Vec<JointId> {
         self.inner.joints()
     }
+    fn sample_at(&self) -> super::SampleAt {
+        self.inner.sample_at()
+    }
+    fn measures_every_step(&self) -> bool {
+        self.inner.measures_every_step()
+    }
 }
