@@ -164,8 +164,56 @@ fn a_real_window_under_xvfb_shows_the_ball() -> std::result::Result<bool, String
     Ok(true)
 }
 
+/// A red box with its near face 2.5 m in front of a camera at the origin (looking along
+/// −Z): the depth reads 2.5 m at the centre, the colour image is red there and
+/// background at the corners.
+fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> {
+    use ars::viewer::{Camera, Intrinsics};
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().map_err(|e| e.to_string())?;
+    let cube = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.0, -3.0], Mass::Total(1.0)).map_err(|e| e.to_string())?;
+    sim.set_color(cube, [1.0, 0.0, 0.0]).map_err(|e| e.to_string())?;
+    let intrinsics = Intrinsics { width: 160, height: 120, fov_y: 0.8, near: 0.1, far: 20.0 };
+    let mut camera = Camera::new(intrinsics).map_err(|e| e.to_string())?;
+    let frame = camera.capture(&sim).map_err(|e| e.to_string())?;
+    let centre = frame.depth.depth(80, 60);
+    if (f64::from(centre) - 2.5).abs() > 1e-5 {
+        return Err(format!("centre depth {centre}, expected 2.5 m"));
+    }
+    if !frame.depth.depth(0, 0).is_infinite() || frame.depth_mm().get_pixel(80, 60).0[0] != 2500 {
+        return Err("the corner must see nothing and the centre 2500 mm".into());
+    }
+    if !reddish(&frame.rgb, 80.0, 60.0, 3) || reddish(&frame.rgb, 5.0, 5.0, 3) {
+        return Err("the box must be red at the centre of the colour image, the corner not".into());
+    }
+    let dir = std::env::temp_dir().join(format!("ars-camera-{}", std::process::id()));
+    frame.save(&dir, "box").map_err(|e| e.to_string())?;
+    for name in ["box_rgb.png", "box_depth.png", "box_depth.npy"] {
+        if !dir.join(name).is_file() {
+            return Err(format!("{name} not written"));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    println!("  camera: centre depth {centre} m");
+    Ok(())
+}
+
 fn main() {
     let (mut passed, mut failed, mut skipped) = (0, 0, 0);
+    println!("test a_camera_sees_a_box_in_colour_and_depth ...");
+    match std::thread::spawn(a_camera_sees_a_box_in_colour_and_depth).join() {
+        Ok(Ok(())) => {
+            println!("test a_camera_sees_a_box_in_colour_and_depth ... ok");
+            passed += 1;
+        }
+        Ok(Err(e)) => {
+            println!("test a_camera_sees_a_box_in_colour_and_depth ... FAILED: {e}");
+            failed += 1;
+        }
+        Err(_) => {
+            println!("test a_camera_sees_a_box_in_colour_and_depth ... FAILED (panicked)");
+            failed += 1;
+        }
+    }
     println!("test offscreen_frames_show_the_ball_where_it_is ...");
     // Off screen on a thread of its own: kiss3d's context is per thread.
     match std::thread::spawn(offscreen_frames_show_the_ball_where_it_is).join() {

@@ -27,6 +27,7 @@
 //! Vulkan, through wgpu. On Debian: `apt-get install libvulkan1 mesa-vulkan-drivers
 //! libegl1 libegl-mesa0 libgl1-mesa-dri` (and `xvfb` for a virtual display).
 
+mod camera;
 pub mod convert;
 mod error;
 mod offscreen;
@@ -37,6 +38,7 @@ use std::path::PathBuf;
 
 use ars_core::Program;
 
+pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use error::{Result, ViewerError};
 pub use image;
 pub use offscreen::{OffscreenRenderer, ScreenshotRecorder, init_offscreen_context};

@@ -1,0 +1,139 @@
+//! A camera sensor: colour images rendered off screen (no display, no GPU needed) and
+//! metric depth images computed from the geometry, from a pose in the world or on a
+//! body.
+
+use std::path::Path;
+
+use ars_core::nalgebra::{Isometry3, Point3, Vector3};
+use ars_core::sensors::{DepthCamera, DepthImage, Sensor};
+use ars_core::{ObjectId, Simulation, ViewSettings};
+use kiss3d::camera::FirstPersonCamera3d;
+use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
+
+use crate::convert;
+use crate::error::{Result, ViewerError};
+use crate::offscreen::init_offscreen_context;
+use crate::scene::View;
+
+/// A camera's image size and lens.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Intrinsics {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// Vertical field of view, rad.
+    pub fov_y: f64,
+    /// Nearest distance seen, m.
+    pub near: f64,
+    /// Farthest distance seen, m.
+    pub far: f64,
+}
+
+/// One capture: the colour image and the depth image of the same moment.
+#[derive(Clone, Debug)]
+pub struct CameraFrame {
+    /// Colour, 8 bits per channel.
+    pub rgb: image::RgbImage,
+    /// Depth along the optical axis, m (see [`DepthImage`]).
+    pub depth: DepthImage,
+}
+
+impl CameraFrame {
+    /// The depth in millimetres as a 16-bit grey image (0: nothing seen, or nearer
+    /// than 1 mm; saturates at 65.535 m).
+    pub fn depth_mm(&self) -> image::ImageBuffer<image::Luma<u16>, Vec<u16>> {
+        let mm = self
+            .depth
+            .pixels
+            .iter()
+            .map(|d| if d.is_finite() { (f64::from(*d) * 1000.0).round().clamp(0.0, 65535.0) as u16 } else { 0 })
+            .collect();
+        image::ImageBuffer::from_raw(self.depth.width, self.depth.height, mm).expect("one value per pixel")
+    }
+
+    /// Saves `PREFIX_rgb.png`, `PREFIX_depth.png` (16-bit, millimetres) and
+    /// `PREFIX_depth.npy` (float32, metres) in `dir`.
+    pub fn save(&self, dir: &Path, prefix: &str) -> Result<()> {
+        let failed = |path: &Path, e: &dyn std::fmt::Display| ViewerError::Write {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        };
+        std::fs::create_dir_all(dir).map_err(|e| failed(dir, &e))?;
+        let rgb = dir.join(format!("{prefix}_rgb.png"));
+        self.rgb.save(&rgb).map_err(|e| failed(&rgb, &e))?;
+        let png = dir.join(format!("{prefix}_depth.png"));
+        self.depth_mm().save(&png).map_err(|e| failed(&png, &e))?;
+        let npy = dir.join(format!("{prefix}_depth.npy"));
+        let file = std::fs::File::create(&npy).map_err(|e| failed(&npy, &e))?;
+        self.depth.write_npy(std::io::BufWriter::new(file)).map_err(|e| failed(&npy, &e))
+    }
+}
+
+/// A camera sensor: in its own frame it looks along −Z with +Y up (the depth camera's
+/// convention); the colour image keeps the world's up (no roll). Call
+/// [`capture`](Self::capture) when a frame is due (every N steps, from a hook or a
+/// loop): rendering happens on the calling thread.
+pub struct Camera {
+    intrinsics: Intrinsics,
+    mount: Option<(ObjectId, Isometry3<f64>)>,
+    pose: Isometry3<f64>,
+    surface: OffscreenSurface,
+    view: View,
+    depth: DepthCamera,
+}
+
+impl Camera {
+    /// A camera of these intrinsics at the world origin.
+    pub fn new(intrinsics: Intrinsics) -> Result<Self> {
+        let Intrinsics { width, height, fov_y, near, far } = intrinsics;
+        let depth = DepthCamera::new(width, height, fov_y, near, far).map_err(ViewerError::from)?;
+        init_offscreen_context()?;
+        let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
+        let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
+        let settings = ViewSettings { size: (width, height), ..ViewSettings::default() };
+        surface.set_background_color(convert::color(settings.background));
+        Ok(Camera { intrinsics, mount: None, pose: Isometry3::identity(), surface, view: View::new(&settings), depth })
+    }
+
+    /// Placed in the world at `pose`.
+    pub fn at(mut self, pose: Isometry3<f64>) -> Self {
+        (self.mount, self.pose) = (None, pose);
+        self.depth = self.depth.at(pose);
+        self
+    }
+
+    /// Mounted on `object` at `offset` from its origin (it does not see that object).
+    pub fn on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
+        self.mount = Some((object, offset));
+        self.depth = self.depth.on(object, offset);
+        self
+    }
+
+    /// The camera's intrinsics.
+    pub fn intrinsics(&self) -> Intrinsics {
+        self.intrinsics
+    }
+
+    /// Renders the colour image and computes the depth image of `sim` as it is now.
+    pub fn capture(&mut self, sim: &Simulation) -> Result<CameraFrame> {
+        let pose = match self.mount {
+            Some((object, offset)) => sim.pose(object).map_err(ViewerError::from)? * offset,
+            None => self.pose,
+        };
+        let eye = Point3::from(pose.translation.vector);
+        let at = eye + pose.rotation * -Vector3::z();
+        let Intrinsics { fov_y, near, far, .. } = self.intrinsics;
+        let mut camera = FirstPersonCamera3d::new_with_frustum(
+            fov_y as f32,
+            near as f32,
+            far as f32,
+            convert::point(&eye),
+            convert::point(&at),
+        );
+        self.view.mirror.sync(sim, &mut self.view.scene).map_err(ViewerError::from)?;
+        let rgb = kiss3d::pollster::block_on(self.surface.render_image_3d(&mut self.view.scene, &mut camera));
+        let depth = self.depth.measure(sim.scene()).map_err(ViewerError::from)?;
+        Ok(CameraFrame { rgb, depth })
+    }
+}
