@@ -26,6 +26,10 @@ fn a_lidar_in_a_square_room_sees_the_walls_where_they_are() {
     // Beam 6 points along azimuth π/2: towards −Z.
     let p = scan.points[6].unwrap();
     assert!((p.z + 2.0).abs() < 1e-9 && p.x.abs() < 1e-9, "{p}");
+    // What a viewer draws: each beam from the sensor to its hit.
+    let lines = sim.sensor_lines();
+    assert_eq!(lines.len(), 8);
+    assert!(lines.iter().zip(&scan.points).all(|((a, b), p)| *a == scan.origin && Some(*b) == *p));
 }
 
 #[test]

@@ -97,6 +97,10 @@ impl SceneMirror {
                 }
             }
         }
+        // What sensors draw: a lidar's beams to their hits.
+        for (a, b) in sim.sensor_lines() {
+            window.draw_line(convert::point(&a), convert::point(&b), Color::new(0.1, 0.8, 0.2, 1.0), 1.0, false);
+        }
         if self.show_joints {
             for (_, j) in sim.joints() {
                 let Ok(joint) = sim.joint(j).and_then(|j| j.ode()) else { continue };

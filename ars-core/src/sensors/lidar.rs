@@ -220,4 +220,9 @@ impl Sensor for Lidar {
     fn measures_every_step(&self) -> bool {
         false
     }
+
+    /// Each beam that hit something, from the sensor to the hit.
+    fn lines(scan: &Scan) -> Vec<(Point3<f64>, Point3<f64>)> {
+        scan.points.iter().flatten().map(|p| (scan.origin, *p)).collect()
+    }
 }

@@ -47,6 +47,8 @@ pub use lidar::{Lidar, Scan};
 pub use noise::{Noisy, Perturb};
 pub use probe::Probe;
 
+use nalgebra::Point3;
+
 use crate::error::{Error, Result};
 use crate::handle::{Arena, JointId, ObjectId, RawHandle, WorldId};
 use crate::panic::contain;
@@ -86,6 +88,13 @@ pub trait Sensor: Send + 'static {
     /// When the sensor samples (default: at the end of each step).
     fn sample_at(&self) -> SampleAt {
         SampleAt::EndOfStep
+    }
+
+    /// Line segments (world frame) that show a record in a viewer: a lidar's beams to
+    /// their hits, say. None by default.
+    fn lines(record: &Self::Record) -> Vec<(Point3<f64>, Point3<f64>)> {
+        let _ = record;
+        Vec::new()
     }
 
     /// Whether [`measure`](Sensor::measure) must run every step even when the sensor
@@ -307,6 +316,7 @@ struct Slot<S: Sensor> {
 }
 
 trait ErasedSlot: Send {
+    fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)>;
     fn before_step(&mut self, sim: &Scene) -> Result<()>;
     fn after_step(&mut self, sim: &Scene) -> Result<()>;
     fn forget_object(&mut self, id: ObjectId);
@@ -338,6 +348,12 @@ impl<S: Sensor> Slot<S> {
 }
 
 impl<S: Sensor> ErasedSlot for Slot<S> {
+    fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)> {
+        match (self.detached, self.log.samples.last()) {
+            (false, Some(sample)) => S::lines(&sample.record),
+            _ => Vec::new(),
+        }
+    }
     fn before_step(&mut self, sim: &Scene) -> Result<()> {
         match (self.detached, self.at) {
             (true, _) => Ok(()),
@@ -421,6 +437,11 @@ impl SensorSet {
 }
 
 impl SensorSet {
+    /// The lines of every sensor's latest record.
+    pub(crate) fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)> {
+        self.slots.values().flat_map(|s| s.lines()).collect()
+    }
+
     pub(crate) fn len(&self) -> usize {
         self.slots.len()
     }

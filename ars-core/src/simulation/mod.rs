@@ -391,6 +391,12 @@ impl Simulation {
         self.sensors.sensor(id)
     }
 
+    /// Line segments (world frame) showing the latest record of every sensor that draws
+    /// (see [`Sensor::lines`]): what a viewer overlays.
+    pub fn sensor_lines(&self) -> Vec<(nalgebra::Point3<f64>, nalgebra::Point3<f64>)> {
+        self.sensors.lines()
+    }
+
     /// Whether a sensor stopped sampling because an object or joint it reads was removed.
     pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         self.sensors.is_detached(id)
