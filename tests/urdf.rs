@@ -236,3 +236,28 @@ fn the_thesis_vehicle_from_urdf_drives_bit_for_bit_as_the_vehicle_built_in_code(
     let x = urdf.object("chassis").unwrap().position().unwrap().x;
     assert!((x - 2.5).abs() > 0.1, "it drove: chassis x {x}");
 }
+
+#[test]
+fn links_take_the_colour_of_their_visual_material() {
+    let text = r#"<robot name="painted">
+  <material name="steel"><color rgba="0.5 0.5 0.6 1"/></material>
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><geometry><box size="0.2 0.2 0.2"/></geometry><material name="orange"><color rgba="1 0.5 0 1"/></material></visual>
+  </link>
+  <link name="b">
+    <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><geometry><box size="0.2 0.2 0.2"/></geometry><material name="steel"/></visual>
+  </link>
+  <link name="c">
+    <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>
+</robot>"#;
+    let mut sim = Simulation::new().unwrap();
+    sim.load_urdf_text(text, "painted.urdf", &UrdfOptions::new()).unwrap();
+    assert_eq!(sim.object("a").unwrap().color(), Some([1.0, 0.5, 0.0]), "its own colour");
+    assert_eq!(sim.object("b").unwrap().color(), Some([0.5, 0.5, 0.6]), "the robot-level material it names");
+    assert_eq!(sim.object("c").unwrap().color(), None, "no visual: the viewer's default");
+}

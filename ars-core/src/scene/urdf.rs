@@ -31,6 +31,10 @@
 //!   as `NAME/REST` beside the URDF, in a folder named NAME above it, as `REST` beside
 //!   it, then in the search paths.
 //!
+//! - **Colours.** A link is drawn in the colour of its first visual's material (its own
+//!   `<color>` or the robot-level material it names); visual geometry itself is not
+//!   loaded: the viewer draws the collision geometry.
+//!
 //! Errors name the file, the element and the problem, and nothing is added to the
 //! scene when a file is refused.
 
@@ -377,6 +381,12 @@ impl Scene {
         for (i, link) in robot.links.iter().enumerate() {
             let frame = plan.link_frames[i];
             let result = self.add_link(link, &frame, i == plan.root, bits, meshes);
+            let result = result.and_then(|(id, body)| {
+                if let Some(color) = link_color(robot, link) {
+                    self.set_color(id, color)?;
+                }
+                Ok((id, body))
+            });
             match result {
                 Ok((id, body)) => {
                     created.push((id, body));
@@ -553,6 +563,19 @@ impl Scene {
         }
         Ok(id)
     }
+}
+
+/// The colour of a link's first visual with a material: its own `<color>`, or that of
+/// the robot-level material it names (URDF allows both).
+fn link_color(robot: &urdf_rs::Robot, link: &urdf_rs::Link) -> Option<super::Color> {
+    link.visual.iter().filter_map(|v| v.material.as_ref()).find_map(|m| {
+        let rgba = match &m.color {
+            Some(c) => c.rgba.0,
+            None => robot.materials.iter().find(|r| r.name == m.name)?.color.as_ref()?.rgba.0,
+        };
+        let rgb = [rgba[0], rgba[1], rgba[2]].map(|c| c.clamp(0.0, 1.0) as f32);
+        Some(rgb)
+    })
 }
 
 /// Checks the tree (names, parents, one root, no loop, supported joints) and computes
