@@ -76,8 +76,6 @@ impl CameraFrame {
 /// loop): rendering happens on the calling thread.
 pub struct Camera {
     intrinsics: Intrinsics,
-    mount: Option<(ObjectId, Isometry3<f64>)>,
-    pose: Isometry3<f64>,
     surface: OffscreenSurface,
     view: View,
     depth: DepthCamera,
@@ -93,19 +91,17 @@ impl Camera {
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
         let settings = ViewSettings { size: (width, height), ..ViewSettings::default() };
         surface.set_background_color(convert::color(settings.background));
-        Ok(Camera { intrinsics, mount: None, pose: Isometry3::identity(), surface, view: View::new(&settings), depth })
+        Ok(Camera { intrinsics, surface, view: View::new(&settings), depth })
     }
 
     /// Placed in the world at `pose`.
     pub fn at(mut self, pose: Isometry3<f64>) -> Self {
-        (self.mount, self.pose) = (None, pose);
         self.depth = self.depth.at(pose);
         self
     }
 
     /// Mounted on `object` at `offset` from its origin (it does not see that object).
     pub fn on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
-        self.mount = Some((object, offset));
         self.depth = self.depth.on(object, offset);
         self
     }
@@ -117,10 +113,8 @@ impl Camera {
 
     /// Renders the colour image and computes the depth image of `sim` as it is now.
     pub fn capture(&mut self, sim: &Simulation) -> Result<CameraFrame> {
-        let pose = match self.mount {
-            Some((object, offset)) => sim.pose(object).map_err(ViewerError::from)? * offset,
-            None => self.pose,
-        };
+        // One mount for both images: the depth camera's.
+        let pose = self.depth.mount().pose(sim.scene())?;
         let eye = Point3::from(pose.translation.vector);
         let at = eye + pose.rotation * -Vector3::z();
         let Intrinsics { fov_y, near, far, .. } = self.intrinsics;

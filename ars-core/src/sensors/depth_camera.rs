@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use nalgebra::{Isometry3, Vector3};
 
-use super::{Record, Sensor};
+use super::{Mount, Record, Sensor};
 use crate::error::{Error, Result};
 use crate::handle::ObjectId;
 use crate::limits;
@@ -45,12 +45,6 @@ pub struct DepthCamera {
     directions: Arc<[Vector3<f64>]>,
 }
 
-#[derive(Clone, Debug)]
-enum Mount {
-    World(Isometry3<f64>),
-    Object(ObjectId, Isometry3<f64>),
-}
-
 impl DepthCamera {
     /// `width` × `height` pixels, a vertical field of view `fov_y` (rad), seeing from
     /// `near` to `far` metres; at the world origin.
@@ -76,7 +70,7 @@ impl DepthCamera {
                 })
             })
             .collect();
-        Ok(DepthCamera { width, height, fov_y, near, far, mount: Mount::World(Isometry3::identity()), directions })
+        Ok(DepthCamera { width, height, fov_y, near, far, mount: Mount::default(), directions })
     }
 
     /// Placed in the world at `pose`.
@@ -89,6 +83,11 @@ impl DepthCamera {
     pub fn on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
         self.mount = Mount::Object(object, offset);
         self
+    }
+
+    /// Where it is.
+    pub fn mount(&self) -> Mount {
+        self.mount
     }
 
     /// The vertical field of view, rad.
@@ -148,10 +147,7 @@ impl Sensor for DepthCamera {
     type Record = DepthImage;
 
     fn measure(&mut self, scene: &Scene) -> Result<DepthImage> {
-        let (pose, ignore) = match &self.mount {
-            Mount::World(pose) => (*pose, None),
-            Mount::Object(object, offset) => (scene.pose(*object)? * offset, scene.object(*object)?.body_handle()),
-        };
+        let (pose, ignore) = (self.mount.pose(scene)?, self.mount.own_body(scene)?);
         let origin = nalgebra::Point3::from(pose.translation.vector);
         let rays: Vec<Ray> = self.directions.iter().map(|d| Ray { origin, direction: pose.rotation * d }).collect();
         // The farthest a pixel can see: `far` along the axis is further along its ray.
@@ -169,10 +165,7 @@ impl Sensor for DepthCamera {
     }
 
     fn objects(&self) -> Vec<ObjectId> {
-        match self.mount {
-            Mount::Object(object, _) => vec![object],
-            Mount::World(_) => Vec::new(),
-        }
+        self.mount.objects()
     }
     fn measures_every_step(&self) -> bool {
         false

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use nalgebra::{Isometry3, Point3, Vector3};
 
 use super::noise::Perturb;
-use super::{Record, Sensor};
+use super::{Mount, Record, Sensor};
 use crate::error::{Error, Result};
 use crate::handle::ObjectId;
 use crate::limits;
@@ -48,12 +48,6 @@ pub struct Lidar {
     headers: Arc<[String]>,
 }
 
-#[derive(Clone, Debug)]
-enum Mount {
-    World(Isometry3<f64>),
-    Object(ObjectId, Isometry3<f64>),
-}
-
 impl Lidar {
     /// `beams` beams per plane over `fov` radians (a full turn, 2π, spaces them evenly
     /// without repeating the first), seeing up to `max_range` metres; at the world
@@ -70,7 +64,7 @@ impl Lidar {
             min_range: 0.0,
             max_range,
             elevations: vec![0.0],
-            mount: Mount::World(Isometry3::identity()),
+            mount: Mount::default(),
             directions: Vec::new(),
             headers: Arc::from(Vec::new()),
         };
@@ -141,14 +135,6 @@ impl Lidar {
             })
             .collect();
     }
-
-    /// The sensor's pose in the world now.
-    fn pose(&self, scene: &Scene) -> Result<Isometry3<f64>> {
-        match &self.mount {
-            Mount::World(pose) => Ok(*pose),
-            Mount::Object(object, offset) => Ok(scene.pose(*object)? * offset),
-        }
-    }
 }
 
 /// One [`Lidar`] scan.
@@ -187,12 +173,9 @@ impl Sensor for Lidar {
     type Record = Scan;
 
     fn measure(&mut self, scene: &Scene) -> Result<Scan> {
-        let pose = self.pose(scene)?;
+        let pose = self.mount.pose(scene)?;
         let origin = Point3::from(pose.translation.vector);
-        let ignore = match self.mount {
-            Mount::Object(object, _) => scene.object(object)?.body_handle(),
-            Mount::World(_) => None,
-        };
+        let ignore = self.mount.own_body(scene)?;
         let rays: Vec<Ray> = self.directions.iter().map(|d| Ray { origin, direction: pose.rotation * d }).collect();
         let hits = scene.world().cast_rays(&rays, self.max_range, ignore)?;
         let (mut ranges, mut points) = (Vec::with_capacity(hits.len()), Vec::with_capacity(hits.len()));
@@ -212,10 +195,7 @@ impl Sensor for Lidar {
     }
 
     fn objects(&self) -> Vec<ObjectId> {
-        match self.mount {
-            Mount::Object(object, _) => vec![object],
-            Mount::World(_) => Vec::new(),
-        }
+        self.mount.objects()
     }
     fn measures_every_step(&self) -> bool {
         false

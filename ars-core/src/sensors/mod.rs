@@ -25,6 +25,7 @@ mod energy;
 mod joint;
 mod laser;
 mod lidar;
+mod mount;
 mod noise;
 mod probe;
 
@@ -44,6 +45,7 @@ pub use joint::{
 };
 pub use laser::{Laser, LaserReading};
 pub use lidar::{Lidar, Scan};
+pub use mount::Mount;
 pub use noise::{Noisy, Perturb};
 pub use probe::Probe;
 
