@@ -565,6 +565,46 @@ impl Scene {
     }
 }
 
+/// The world frame of every link and of every joint, from the root outwards, with the
+/// joints at positions `q` (at zero when `None`: then no motion is composed at all, so
+/// the frames are the file's numbers exactly).
+fn frames(
+    robot: &urdf_rs::Robot,
+    link_index: &HashMap<&str, usize>,
+    root: usize,
+    root_frame: Frame,
+    q: Option<&[f64]>,
+) -> (Vec<Frame>, Vec<Frame>) {
+    let mut links: Vec<Option<Frame>> = vec![None; robot.links.len()];
+    let mut joints = vec![Frame::IDENTITY; robot.joints.len()];
+    links[root] = Some(root_frame);
+    let mut queue = vec![root];
+    while let Some(parent) = queue.pop() {
+        let parent_frame = links[parent].expect("set before queued");
+        for (j, joint) in robot.joints.iter().enumerate() {
+            if joint.parent.link != robot.links[parent].name {
+                continue;
+            }
+            let child = link_index[joint.child.link.as_str()];
+            let frame = parent_frame.then(&Frame::from_pose(&joint.origin));
+            joints[j] = frame;
+            let position = q.map_or(0.0, |q| q[j]);
+            let axis = Vector3::from(joint.axis.xyz.0).normalize();
+            links[child] = Some(match joint.joint_type {
+                _ if position == 0.0 => frame,
+                urdf_rs::JointType::Prismatic => frame.then(&Frame { rotation: None, translation: axis * position }),
+                urdf_rs::JointType::Spherical | urdf_rs::JointType::Fixed => frame,
+                _ => frame.then(&Frame {
+                    rotation: Some(*rotation_about_axis(&axis, position).matrix()),
+                    translation: Vector3::zeros(),
+                }),
+            });
+            queue.push(child);
+        }
+    }
+    (links.into_iter().map(|f| f.expect("a tree reaches every link")).collect(), joints)
+}
+
 /// The colour of a link's first visual with a material: its own `<color>`, or that of
 /// the robot-level material it names (URDF allows both).
 fn link_color(robot: &urdf_rs::Robot, link: &urdf_rs::Link) -> Option<super::Color> {
@@ -655,24 +695,7 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
         UpAxis::Z => base.then(&z_up_to_y_up()),
         UpAxis::Y => base,
     };
-    let mut link_frames: Vec<Option<Frame>> = vec![None; robot.links.len()];
-    let mut joint_frames = vec![Frame::IDENTITY; robot.joints.len()];
-    link_frames[root] = Some(root_frame);
-    let mut queue = vec![root];
-    while let Some(parent) = queue.pop() {
-        let parent_frame = link_frames[parent].expect("set before queued");
-        for (j, joint) in robot.joints.iter().enumerate() {
-            if joint.parent.link != robot.links[parent].name {
-                continue;
-            }
-            let child = link_index[joint.child.link.as_str()];
-            let frame = parent_frame.then(&Frame::from_pose(&joint.origin));
-            joint_frames[j] = frame;
-            link_frames[child] = Some(frame);
-            queue.push(child);
-        }
-    }
-    let link_frames: Vec<Frame> = link_frames.into_iter().map(|f| f.expect("a tree reaches every link")).collect();
+    let (link_frames, joint_frames) = frames(robot, &link_index, root, root_frame, None);
     let posed_link_frames = if options.initial_positions.is_empty() {
         None
     } else {
@@ -688,31 +711,7 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
             }
             q[j] = *value;
         }
-        let mut posed: Vec<Option<Frame>> = vec![None; robot.links.len()];
-        posed[root] = Some(root_frame);
-        let mut queue = vec![root];
-        while let Some(parent) = queue.pop() {
-            let parent_frame = posed[parent].expect("set before queued");
-            for (j, joint) in robot.joints.iter().enumerate() {
-                if joint.parent.link != robot.links[parent].name {
-                    continue;
-                }
-                let child = link_index[joint.child.link.as_str()];
-                let axis = Vector3::from(joint.axis.xyz.0).normalize();
-                let motion = match joint.joint_type {
-                    _ if q[j] == 0.0 => Frame::IDENTITY,
-                    urdf_rs::JointType::Prismatic => Frame { rotation: None, translation: axis * q[j] },
-                    urdf_rs::JointType::Spherical => Frame::IDENTITY,
-                    _ => Frame {
-                        rotation: Some(*rotation_about_axis(&axis, q[j]).matrix()),
-                        translation: Vector3::zeros(),
-                    },
-                };
-                posed[child] = Some(parent_frame.then(&Frame::from_pose(&joint.origin)).then(&motion));
-                queue.push(child);
-            }
-        }
-        Some(posed.into_iter().map(|f| f.expect("a tree reaches every link")).collect())
+        Some(frames(robot, &link_index, root, root_frame, Some(&q)).0)
     };
     Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames })
 }
