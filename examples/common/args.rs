@@ -115,15 +115,7 @@ pub fn export_csv<R: ars::Record>(
     log: &ars::SensorLog<R>,
     every: usize,
 ) -> std::io::Result<()> {
-    use std::io::Write;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)?;
-    }
-    let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
-    log.thinned(every).write_csv(&mut out)?;
-    out.flush()?;
-    eprintln!("wrote {}", path.display());
-    Ok(())
+    export_csv_table(path, &[("", log)], every)
 }
 
 /// Writes several sensors' records as one CSV table to `path` (see

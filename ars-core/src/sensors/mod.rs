@@ -173,23 +173,8 @@ impl<R: Record> SensorLog<R> {
     }
     /// Writes the samples as CSV: a header `time [s],step,<columns>`, then one row per
     /// sample; numbers in Rust's shortest exact form, empty cells for missing values.
-    pub fn write_csv(&self, mut w: impl Write) -> io::Result<()> {
-        let headers = match self.samples.first() {
-            Some(s) => s.record.headers(),
-            None => R::columns().into_iter().map(String::from).collect(),
-        };
-        writeln!(w, "time [s],step,{}", headers.join(","))?;
-        for s in &self.samples {
-            write!(w, "{},{}", s.time, s.step)?;
-            for v in s.record.values() {
-                match v {
-                    Some(x) => write!(w, ",{x}")?,
-                    None => write!(w, ",")?,
-                }
-            }
-            writeln!(w)?;
-        }
-        Ok(())
+    pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
+        write_csv_table(w, &[("", self)], 1)
     }
 }
 
@@ -226,8 +211,8 @@ impl<R: Record> CsvColumns for SensorLog<R> {
 }
 
 /// Writes several sensors' logs as one CSV table: `time [s],step`, then each log's
-/// columns prefixed with its name (`"gps: y [m]"`), one row per sample (one in every
-/// `every`). The logs must hold the same samples (same times and steps: sensors added
+/// columns prefixed with its name (`"gps: y [m]"`; no prefix for an empty name), one
+/// row per sample (one in every `every`). The logs must hold the same samples (same times and steps: sensors added
 /// together, sampled at the same points); otherwise nothing is written and the error
 /// says which log differs.
 ///
@@ -256,7 +241,7 @@ pub fn write_csv_table(mut w: impl Write, logs: &[(&str, &dyn CsvColumns)], ever
     }
     let mut header = vec!["time [s]".to_string(), "step".to_string()];
     for (name, log) in logs {
-        header.extend(log.headers().iter().map(|c| format!("{name}: {c}")));
+        header.extend(log.headers().into_iter().map(|c| if name.is_empty() { c } else { format!("{name}: {c}") }));
     }
     writeln!(w, "{}", header.join(","))?;
     for (i, (time, step)) in stamps.iter().enumerate().step_by(every.max(1)) {
@@ -272,14 +257,6 @@ pub fn write_csv_table(mut w: impl Write, logs: &[(&str, &dyn CsvColumns)], ever
         writeln!(w)?;
     }
     Ok(())
-}
-
-impl<R: Clone> SensorLog<R> {
-    /// One sample in every `every` (the first, then every `every`-th), as a new log;
-    /// `every = 0` or `1` keeps them all.
-    pub fn thinned(&self, every: usize) -> SensorLog<R> {
-        SensorLog { samples: self.samples.iter().step_by(every.max(1)).cloned().collect() }
-    }
 }
 
 impl<'a, R> IntoIterator for &'a SensorLog<R> {
