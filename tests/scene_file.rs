@@ -73,3 +73,25 @@ fn a_scene_saved_mid_run_brings_every_body_back_to_the_bit() {
     }
     assert!(Simulation::load_scene("{\"format\": \"other\"}").is_err());
 }
+
+#[test]
+fn motors_friction_actuator_limits_and_mimics_are_saved() {
+    const GRIPPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gripper.urdf");
+    let mut original = Simulation::new().unwrap();
+    original.load_urdf(GRIPPER, &ars::UrdfOptions::new().fixed_base(true)).unwrap();
+    original.joint_mut("left_finger_joint").unwrap().set_speed(0.05, 10.0).unwrap();
+    let text = original.save_scene().unwrap();
+    let mut loaded = Simulation::load_scene(&text).unwrap();
+    for name in ["left_finger_joint", "right_finger_joint"] {
+        let (a, b) = (original.joint(name).unwrap(), loaded.joint(name).unwrap());
+        assert_eq!(a.actuator_limits(), b.actuator_limits(), "{name}");
+        assert_eq!(a.dry_friction(), b.dry_friction(), "{name}");
+        assert_eq!(a.mimic().is_some(), b.mimic().is_some(), "{name}");
+    }
+    for step in 1..=1000 {
+        original.step().unwrap();
+        loaded.step().unwrap();
+        assert_eq!(states(&original), states(&loaded), "after step {step}");
+    }
+    assert!(original.joint("left_finger_joint").unwrap().state().unwrap().position > 0.01, "it moved");
+}

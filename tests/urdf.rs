@@ -261,3 +261,43 @@ fn links_take_the_colour_of_their_visual_material() {
     assert_eq!(sim.object("b").unwrap().color(), Some([0.5, 0.5, 0.6]), "the robot-level material it names");
     assert_eq!(sim.object("c").unwrap().color(), None, "no visual: the viewer's default");
 }
+
+#[test]
+fn joint_limits_friction_and_mimic_come_from_the_file() {
+    const GRIPPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gripper.urdf");
+    let mut sim = Simulation::new().unwrap();
+    sim.load_urdf(GRIPPER, &UrdfOptions::new().fixed_base(true)).unwrap();
+    let left = sim.joint("left_finger_joint").unwrap();
+    assert_eq!(left.actuator_limits(), ars::ActuatorLimits { effort: 20.0, velocity: 0.1 });
+    assert_eq!(left.dry_friction(), 0.5);
+    let left_id = left.id();
+    let mimic = sim.joint("right_finger_joint").unwrap().mimic().unwrap();
+    assert_eq!((mimic.leader, mimic.multiplier, mimic.offset), (left_id, 1.0, 0.0));
+
+    // Held by its friction, the left finger stays shut under a push it cannot beat.
+    sim.joint_mut("left_finger_joint").unwrap().add_force(0.4).unwrap();
+    sim.step().unwrap();
+    assert!(sim.joint("left_finger_joint").unwrap().state().unwrap().position.abs() < 1e-9);
+
+    // Opened at 1 m/s with 100 N, it goes at its 0.1 m/s limit (with at most 20 N),
+    // and the right finger opens with it, the other way in the world.
+    sim.joint_mut("left_finger_joint").unwrap().set_speed(1.0, 100.0).unwrap();
+    sim.run_for(0.3).unwrap();
+    let l = sim.joint("left_finger_joint").unwrap().state().unwrap();
+    let r = sim.joint("right_finger_joint").unwrap().state().unwrap();
+    assert!((l.rate - 0.1).abs() < 1e-9, "{l:?}");
+    assert!((l.position - 0.03).abs() < 1e-3, "{l:?}");
+    assert!((r.position - l.position).abs() < 1e-6, "{r:?} follows {l:?}");
+    let (lx, rx) = (
+        sim.object("left_finger").unwrap().position().unwrap(),
+        sim.object("right_finger").unwrap().position().unwrap(),
+    );
+    assert!((lx.z + rx.z).abs() < 1e-6 && lx.z < -0.05, "apart along the URDF's Y (simulation −Z): {lx} {rx}");
+
+    // A mimic naming no joint of the file is refused.
+    let text = std::fs::read_to_string(GRIPPER)
+        .unwrap()
+        .replace(r#"<mimic joint="left_finger_joint""#, r#"<mimic joint="thumb""#);
+    let err = Simulation::new().unwrap().load_urdf_text(&text, "g.urdf", &UrdfOptions::new()).unwrap_err();
+    assert!(err.to_string().contains("joint \"right_finger_joint\"") && err.to_string().contains("\"thumb\""), "{err}");
+}

@@ -493,3 +493,128 @@ fn hooks_are_added_read_and_removed_by_id_and_run_in_the_order_added() {
     assert_eq!(*seen.lock().unwrap(), "bcbcbcbcbcfffff", "five steps, then five post-frame hooks");
     sim.remove_hooks(selfish).unwrap();
 }
+
+/// A 1 kg ball on a 1 m massless arm, hinged to the world at the origin about Z, in
+/// a world without gravity unless `gravity`.
+fn hinged_ball(gravity: bool) -> (Simulation, JointId) {
+    let g = if gravity { Vector3::new(0.0, -9.81, 0.0) } else { Vector3::zeros() };
+    let mut sim = Simulation::builder().gravity(g).build().unwrap();
+    let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let hinge = sim.add_hinge_joint("hinge", ball, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    (sim, hinge)
+}
+
+#[test]
+fn actuator_limits_hold_controller_output_and_motor_speed() {
+    // A constant 10 N·m torque motor, limited to 2 N·m and 3 rad/s.
+    let (mut sim, hinge) = hinged_ball(false);
+    let mut joint = sim.joint_mut(hinge).unwrap();
+    joint.set_controller(TorqueMotor { torque: Profile::constant(10.0).unwrap() }).unwrap();
+    joint.set_actuator_limits(ActuatorLimits { effort: 2.0, velocity: 3.0 }).unwrap();
+    let torque = sim.add_sensor(JointTorque::new(hinge)).unwrap();
+    sim.run_for(0.5).unwrap();
+    // I = 1 kg·m² (+ the ball's own 0.004): 2 N·m gives about 2 rad/s² while below 3 rad/s.
+    let early = sim.joint_state(hinge).unwrap().rate;
+    assert!((early - 0.5 * 2.0 / 1.004).abs() < 1e-3, "{early}");
+    assert!(sim.records(torque).unwrap().iter().all(|s| s.record.value == 2.0));
+    sim.run_for(3.0).unwrap();
+    let rate = sim.joint_state(hinge).unwrap().rate;
+    // At the velocity limit the actuator stops pushing: the rate stays within one
+    // step's acceleration of it.
+    assert!((3.0..=3.0 + 2.0 * 0.0004).contains(&rate), "{rate}");
+    assert_eq!(sim.joint(hinge).unwrap().efforts().controller, 0.0);
+
+    // The speed motor is held to the limits too.
+    let (mut sim, hinge) = hinged_ball(false);
+    let mut joint = sim.joint_mut(hinge).unwrap();
+    joint.set_actuator_limits(ActuatorLimits { effort: 1.0, velocity: 0.5 }).unwrap();
+    joint.set_speed(10.0, 100.0).unwrap();
+    sim.run_for(0.25).unwrap();
+    // Accelerating at 1 N·m: not yet at 0.5 rad/s after 0.25 s.
+    let rate = sim.joint_state(hinge).unwrap().rate;
+    assert!((rate - 0.25 / 1.004).abs() < 1e-3, "{rate}");
+    sim.run_for(1.0).unwrap();
+    assert!((sim.joint_state(hinge).unwrap().rate - 0.5).abs() < 1e-9);
+    assert_eq!(sim.joint(hinge).unwrap().actuator_limits(), ActuatorLimits { effort: 1.0, velocity: 0.5 });
+
+    let mut joint = sim.joint_mut(hinge).unwrap();
+    for bad in [0.0, -1.0, f64::NAN] {
+        let err = joint.set_actuator_limits(ActuatorLimits { effort: bad, velocity: 1.0 }).unwrap_err();
+        assert!(err.to_string().contains("effort limit"), "{err}");
+    }
+}
+
+#[test]
+fn dry_friction_holds_a_joint_until_the_load_exceeds_it() {
+    // Gravity pulls the horizontal arm with 9.81 N·m.
+    let (mut sim, hinge) = hinged_ball(true);
+    sim.joint_mut(hinge).unwrap().set_dry_friction(10.0).unwrap();
+    sim.run_for(1.0).unwrap();
+    let q = sim.joint_state(hinge).unwrap().position;
+    assert!(q.abs() < 1e-6, "held: {q}");
+    assert_eq!(sim.joint(hinge).unwrap().dry_friction(), 10.0);
+
+    let (mut sim, hinge) = hinged_ball(true);
+    sim.joint_mut(hinge).unwrap().set_dry_friction(9.0).unwrap();
+    sim.run_for(0.2).unwrap();
+    // Net 0.81 N·m on about 1.004 kg·m²: q ≈ −½ · 0.807 · 0.2².
+    let q = sim.joint_state(hinge).unwrap().position;
+    assert!((q + 0.5 * 0.81 / 1.004 * 0.04).abs() < 2e-3, "slips: {q}");
+
+    // A speed replaces it; turning the speed off brings it back.
+    let (mut sim, hinge) = hinged_ball(true);
+    let mut joint = sim.joint_mut(hinge).unwrap();
+    joint.set_dry_friction(10.0).unwrap();
+    joint.set_speed(1.0, 50.0).unwrap();
+    sim.run_for(0.5).unwrap();
+    assert!((sim.joint_state(hinge).unwrap().rate - 1.0).abs() < 1e-6);
+    sim.joint_mut(hinge).unwrap().set_speed(0.0, 0.0).unwrap();
+    sim.run_for(0.5).unwrap();
+    assert!(sim.joint_state(hinge).unwrap().rate.abs() < 1e-9, "held again");
+    assert!(sim.joint_mut(hinge).unwrap().set_dry_friction(-1.0).is_err());
+}
+
+#[test]
+fn a_mimic_joint_follows_its_leader() {
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let a = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let b = sim.add_sphere(0.1, [-1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let leader = sim.add_hinge_joint("leader", a, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    let follower = sim.add_hinge_joint("follower", b, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    sim.joint_mut(follower).unwrap().set_mimic("leader", -0.5, 0.2).unwrap();
+    sim.joint_mut(leader).unwrap().set_controller(TorqueMotor { torque: Profile::constant(1.0).unwrap() }).unwrap();
+    let mut worst: f64 = 0.0;
+    for _ in 0..2500 {
+        sim.step().unwrap();
+        let (l, f) = (sim.joint_state(leader).unwrap(), sim.joint_state(follower).unwrap());
+        if sim.time() > 0.1 {
+            worst = worst.max((f.position - (-0.5 * l.position + 0.2)).abs());
+        }
+    }
+    let l = sim.joint_state(leader).unwrap().position;
+    assert!(l > 0.4, "the leader turned: {l}");
+    // The motor follows the leader's rate and corrects the error at ERP per step: the
+    // error left is one step's change in the leader's acceleration.
+    assert!(worst < 1e-6, "{worst}");
+    assert_eq!(
+        sim.joint(follower).unwrap().mimic().map(|m| (m.leader, m.multiplier, m.offset)),
+        Some((leader, -0.5, 0.2))
+    );
+    // The leader is not held back: it moves bit for bit as it does with no follower.
+    let mut alone = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let a2 = alone.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let lone = alone.add_hinge_joint("leader", a2, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    alone.joint_mut(lone).unwrap().set_controller(TorqueMotor { torque: Profile::constant(1.0).unwrap() }).unwrap();
+    alone.step_n(2500).unwrap();
+    assert_eq!(l.to_bits(), alone.joint_state(lone).unwrap().position.to_bits());
+
+    // Bad pairs are refused; removing the leader frees the follower.
+    let slider = sim.add_slider_joint("rail", b, a, Vector3::x()).unwrap();
+    let err = sim.joint_mut(slider).unwrap().set_mimic(leader, 1.0, 0.0).unwrap_err();
+    assert!(err.to_string().contains("slider joint cannot follow a hinge"), "{err}");
+    assert!(sim.joint_mut(leader).unwrap().set_mimic(leader, 1.0, 0.0).is_err());
+    assert!(sim.joint_mut(follower).unwrap().set_speed(1.0, 1.0).is_err(), "its motor is the mimic's");
+    sim.remove_joint(leader).unwrap();
+    assert_eq!(sim.joint(follower).unwrap().mimic(), None);
+    sim.step().unwrap();
+}

@@ -1,6 +1,7 @@
 //! Joints of a simulation: named, between two objects or an object and the static
-//! world, with torque/force accounting for the joint sensors, viscous friction and
-//! attached controllers.
+//! world, with torque/force accounting for the joint sensors, viscous and dry
+//! friction, attached controllers, actuator limits (effort and velocity) and mimic
+//! joints.
 
 use nalgebra::{Point3, Vector3};
 
@@ -10,7 +11,7 @@ use crate::control::{JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
 use crate::joint::{JointBuilder, JointKind, JointParam};
-use crate::validate;
+use crate::{limits, validate};
 
 /// The kinds of joint a simulation offers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -73,6 +74,62 @@ pub(crate) struct JointData {
     pub(crate) creation: JointKind,
     /// Stops set on its first axis, if any.
     pub(crate) limits: Option<(f64, f64)>,
+    /// What its actuator can put out (±∞: unlimited).
+    pub(crate) actuator: ActuatorLimits,
+    /// The most torque (force) its dry friction holds it with (ODE's velocity motor at
+    /// speed 0 while no speed is set).
+    pub(crate) dry_friction: f64,
+    /// The joint whose position it follows, if any.
+    pub(crate) mimic: Option<Mimic>,
+}
+
+/// What a joint's actuator can put out: its controller's output and its speed motor
+/// are held within these (URDF's `<limit effort velocity>`). Torques added directly
+/// ([`SimJoint::add_torque`]) are the caller's own and are not limited.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ActuatorLimits {
+    /// The largest torque (N·m) or force (N) in either direction; `∞` for none.
+    pub effort: f64,
+    /// The largest rate (rad/s or m/s) the actuator drives at: a speed set is clamped
+    /// to it, and a controller puts no effort that speeds up a joint already moving
+    /// this fast. `∞` for none.
+    pub velocity: f64,
+}
+
+impl Default for ActuatorLimits {
+    fn default() -> Self {
+        ActuatorLimits { effort: f64::INFINITY, velocity: f64::INFINITY }
+    }
+}
+
+impl ActuatorLimits {
+    /// A controller's output as the actuator can put it out at `rate`.
+    #[inline]
+    fn limit(&self, output: f64, rate: f64) -> f64 {
+        if rate.abs() >= self.velocity && output * rate > 0.0 { 0.0 } else { output.clamp(-self.effort, self.effort) }
+    }
+
+    /// The speed motor's largest force, within the effort limit and ODE's range.
+    fn motor_force(&self) -> f64 {
+        self.effort.min(crate::limits::MAX_FORCE)
+    }
+}
+
+/// A joint that follows another's position: `multiplier · leader + offset` (URDF's
+/// `<mimic>`, a gripper's second finger).
+///
+/// The follower's speed motor drives it, every step, at the leader's rate times the
+/// multiplier plus a correction of the position error (at the world's ERP), with at
+/// most its effort limit. It is a constraint on the follower only: the leader does
+/// not feel the follower's load, as it would through a real gear.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mimic {
+    /// The joint followed.
+    pub leader: JointId,
+    /// Follower position per leader position.
+    pub multiplier: f64,
+    /// Follower position when the leader is at 0 (rad or m).
+    pub offset: f64,
 }
 
 /// The torques (hinges) or forces (sliders and pistons) put on a joint during
@@ -151,6 +208,9 @@ impl Scene {
             efforts: JointEfforts::default(),
             creation,
             limits: None,
+            actuator: ActuatorLimits::default(),
+            dry_friction: 0.0,
+            mimic: None,
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;
@@ -295,6 +355,16 @@ impl Scene {
         let data = self.joints.remove(id.0, JointId::KIND, &id)?;
         self.joint_names.remove(&data.name);
         self.driven_joints.retain(|j| *j != id);
+        // Its followers stop following (their motors are left off).
+        let followers: Vec<JointId> = self
+            .joints
+            .iter()
+            .filter(|(_, j)| j.mimic.is_some_and(|m| m.leader == id))
+            .map(|(h, _)| JointId(h))
+            .collect();
+        for follower in followers {
+            self.joint_mut(follower)?.clear_mimic()?;
+        }
         self.world.remove_joint(data.handle)
     }
 
@@ -316,7 +386,7 @@ impl Scene {
             let friction = -data.friction * state.rate;
             let (effort, controller) = match data.controller.as_mut() {
                 Some(c) => {
-                    let output = c.output(time, state, dt);
+                    let output = data.actuator.limit(c.output(time, state, dt), state.rate);
                     // Exactly the controller's output when there is no friction.
                     (if data.friction == 0.0 { output } else { friction + output }, output)
                 }
@@ -324,9 +394,36 @@ impl Scene {
             };
             data.efforts.friction = friction;
             data.efforts.controller = controller;
-            self.put_effort(id, handle, kind, effort, true)?;
+            let mimic = data.mimic;
+            if effort != 0.0 || data.friction != 0.0 || data.controller.is_some() {
+                self.put_effort(id, handle, kind, effort, true)?;
+            }
+            if let Some(mimic) = mimic {
+                self.follow(id, handle, kind, state, mimic)?;
+            }
         }
         Ok(())
+    }
+
+    /// Sets a mimic joint's speed motor for the coming step (see [`Mimic`]).
+    fn follow(
+        &mut self,
+        id: JointId,
+        handle: JointHandle,
+        kind: JointType,
+        state: JointState,
+        mimic: Mimic,
+    ) -> Result<()> {
+        let leader = self.joint_state(mimic.leader)?;
+        let mut error = mimic.multiplier * leader.position + mimic.offset - state.position;
+        if matches!(kind, JointType::Hinge | JointType::Universal) {
+            // ODE's angles wrap at ±π: correct the short way round.
+            error = error.sin().atan2(error.cos());
+        }
+        let speed = mimic.multiplier * leader.rate + self.world.erp() * error / self.time_step;
+        let max_force = self.joint_data(id)?.actuator.motor_force();
+        let speed = speed.clamp(-crate::limits::MAX_SPEED, crate::limits::MAX_SPEED);
+        self.world.joint_mut(handle)?.set_motor(0, speed, max_force)
     }
 
     /// Puts a torque (hinge, universal) or force (slider, piston) on a joint for the
@@ -357,7 +454,8 @@ impl Scene {
 
     /// Keeps the list of joints with friction or a controller.
     fn update_driven(&mut self, id: JointId) {
-        let driven = self.joint_data(id).is_ok_and(|d| d.friction != 0.0 || d.controller.is_some());
+        let driven =
+            self.joint_data(id).is_ok_and(|d| d.friction != 0.0 || d.controller.is_some() || d.mimic.is_some());
         match (driven, self.driven_joints.iter().position(|j| *j == id)) {
             (true, None) => {
                 self.driven_joints.push(id);
@@ -439,16 +537,98 @@ impl SimJoint<'_> {
 
     /// Drives the joint at `speed` (rad/s or m/s) with at most `max_force` (N·m or N),
     /// ODE's built-in velocity motor; it stays on until changed. `max_force = 0` turns
-    /// it off. (The original's `set_speed` without a force did nothing: ODE's default
-    /// limit is 0.)
+    /// it off (back to the dry friction, if any). (The original's `set_speed` without a
+    /// force did nothing: ODE's default limit is 0.) Both are held within the
+    /// joint's [`ActuatorLimits`].
     pub fn set_speed(&mut self, speed: f64, max_force: f64) -> Result<()> {
         let handle = self.handle;
         match self.kind {
-            JointType::Hinge | JointType::Slider | JointType::Universal | JointType::Piston => {
-                self.sim.world.joint_mut(handle)?.set_motor(0, speed, max_force)
-            }
-            _ => Err(self.wrong("setting a speed")),
+            JointType::Hinge | JointType::Slider | JointType::Universal | JointType::Piston => {}
+            _ => return Err(self.wrong("setting a speed")),
         }
+        if self.data_mut().mimic.is_some() {
+            return Err(Error::OutOfRange {
+                what: "joint speed",
+                detail: "the joint mimics another, whose motion drives its speed motor".into(),
+            });
+        }
+        validate::finite("joint speed", speed)?;
+        validate::non_negative("joint motor max force", max_force)?;
+        let data = self.data_mut();
+        let (speed, max_force) = if max_force == 0.0 {
+            (0.0, data.dry_friction)
+        } else {
+            (speed.clamp(-data.actuator.velocity, data.actuator.velocity), max_force.min(data.actuator.effort))
+        };
+        self.sim.world.joint_mut(handle)?.set_motor(0, speed, max_force)
+    }
+
+    /// Dry (Coulomb) friction: the joint is held, against anything that would move it,
+    /// with up to `max_effort` (N·m or N), by ODE's velocity motor at speed 0 (URDF's
+    /// `<dynamics friction>`; the way pybullet and Gazebo model it). A speed set with
+    /// [`set_speed`](Self::set_speed) replaces it until turned off. `0` removes it.
+    pub fn set_dry_friction(&mut self, max_effort: f64) -> Result<()> {
+        match self.kind {
+            JointType::Hinge | JointType::Slider | JointType::Universal | JointType::Piston => {}
+            _ => return Err(self.wrong("dry friction")),
+        }
+        limits::in_range("dry friction", max_effort, 0.0, limits::MAX_FORCE)?;
+        self.data_mut().dry_friction = max_effort;
+        self.set_speed(0.0, 0.0)
+    }
+
+    /// Limits what the joint's actuator puts out (see [`ActuatorLimits`]); each must
+    /// be positive (`f64::INFINITY` for none).
+    pub fn set_actuator_limits(&mut self, limits: ActuatorLimits) -> Result<()> {
+        match self.kind {
+            JointType::Fixed | JointType::Ball => return Err(self.wrong("actuator limits")),
+            _ => {}
+        }
+        for (what, value) in [("effort limit", limits.effort), ("velocity limit", limits.velocity)] {
+            if value.is_nan() || value <= 0.0 {
+                return Err(Error::OutOfRange {
+                    what, detail: format!("must be positive (∞ for none), got {value}")
+                });
+            }
+        }
+        self.data_mut().actuator = limits;
+        Ok(())
+    }
+
+    /// Makes the joint follow `leader` (see [`Mimic`]): a hinge follows a hinge, a
+    /// slider a slider.
+    pub fn set_mimic(&mut self, leader: impl JointKey, multiplier: f64, offset: f64) -> Result<()> {
+        let leader = leader.joint_id(self.sim)?;
+        validate::finite("mimic multiplier", multiplier)?;
+        validate::finite("mimic offset", offset)?;
+        let leader_kind = self.sim.joint_data(leader)?.kind;
+        let rotational = |k| matches!(k, JointType::Hinge | JointType::Universal);
+        let moving = |k| !matches!(k, JointType::Fixed | JointType::Ball);
+        if leader == self.id {
+            return Err(Error::OutOfRange { what: "mimic", detail: "a joint cannot follow itself".into() });
+        }
+        if !moving(self.kind) || !moving(leader_kind) || rotational(self.kind) != rotational(leader_kind) {
+            return Err(Error::OutOfRange {
+                what: "mimic",
+                detail: format!(
+                    "a {} joint cannot follow a {} joint (a rotation follows a rotation, a translation a translation)",
+                    self.kind.default_name(),
+                    leader_kind.default_name()
+                ),
+            });
+        }
+        self.data_mut().mimic = Some(Mimic { leader, multiplier, offset });
+        self.sim.update_driven(self.id);
+        Ok(())
+    }
+
+    /// Stops following (the speed motor goes back to the dry friction, if any).
+    pub fn clear_mimic(&mut self) -> Result<()> {
+        if self.data_mut().mimic.take().is_none() {
+            return Ok(());
+        }
+        self.sim.update_driven(self.id);
+        self.set_speed(0.0, 0.0)
     }
 
     /// Limits of the first degree of freedom (rad or m; ±∞ for none). See

@@ -18,7 +18,7 @@ mod views;
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
-pub use joints::{JointEfforts, JointEnd, JointType, SimJoint};
+pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic, SimJoint};
 pub use objects::Color;
 pub use urdf::{UpAxis, UrdfOptions, UrdfRobot};
 pub use views::{JointKey, JointView, ObjectKey, ObjectView};

@@ -16,9 +16,13 @@
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
 //!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
 //!   the parent to the child about the negated axis); `revolute` and
-//!   `prismatic` limits become joint stops; `<dynamics damping>` becomes viscous
-//!   friction; `spherical` (an extension some tools write) becomes a ball joint.
-//!   `floating` and `planar` joints, and `<mimic>`, are refused.
+//!   `prismatic` limits become joint stops, their `effort` and `velocity` the joint's
+//!   [`ActuatorLimits`](super::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
+//!   becomes viscous friction and `friction` dry friction
+//!   ([`SimJoint::set_dry_friction`](super::SimJoint::set_dry_friction)); `<mimic>` a
+//!   [`Mimic`](super::Mimic) (multiplier 1 and offset 0 unless given); `spherical` (an
+//!   extension some tools write) becomes a ball joint. `floating` and `planar` joints
+//!   are refused.
 //! - **Collisions.** Linked bodies never collide (ODE's rule). With
 //!   [`UrdfOptions::self_collision`] off (the default) no two links of the robot do.
 //! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
@@ -410,6 +414,16 @@ impl Scene {
                 }
             }
         }
+        for joint in &robot.joints {
+            let Some(mimic) = &joint.mimic else { continue };
+            let find = |name: &str| joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id).expect("checked");
+            let (follower, leader) = (find(&joint.name), find(&mimic.joint));
+            let (multiplier, offset) = (mimic.multiplier.unwrap_or(1.0), mimic.offset.unwrap_or(0.0));
+            if let Err(e) = self.joint_mut(follower).and_then(|mut j| j.set_mimic(leader, multiplier, offset)) {
+                undo(self, &created);
+                return Err((format!("joint {:?}", joint.name), e));
+            }
+        }
         let base_joint = match (options.fixed_base, created[plan.root]) {
             (true, (root, Some(_))) => {
                 let name = format!("{}/base", robot.name);
@@ -555,11 +569,23 @@ impl Scene {
         if limited && (lower != 0.0 || upper != 0.0) && lower <= upper {
             self.joint_mut(id)?.set_limits(lower, upper)?;
         }
+        let moving = matches!(joint.joint_type, U::Revolute | U::Continuous | U::Prismatic);
         if let Some(d) = &joint.dynamics
-            && d.damping > 0.0
-            && kind != super::JointType::Fixed
+            && moving
         {
-            self.joint_mut(id)?.set_viscous_friction(d.damping)?;
+            if d.damping > 0.0 {
+                self.joint_mut(id)?.set_viscous_friction(d.damping)?;
+            }
+            if d.friction > 0.0 {
+                self.joint_mut(id)?.set_dry_friction(d.friction)?;
+            }
+        }
+        // URDF requires effort and velocity on revolute and prismatic joints; a 0 (or
+        // an absent <limit>, for continuous joints) reads as no limit, as in pybullet.
+        let positive_or_none = |x: f64| if x > 0.0 { x } else { f64::INFINITY };
+        let (effort, velocity) = (positive_or_none(joint.limit.effort), positive_or_none(joint.limit.velocity));
+        if moving && (effort.is_finite() || velocity.is_finite()) {
+            self.joint_mut(id)?.set_actuator_limits(super::ActuatorLimits { effort, velocity })?;
         }
         Ok(id)
     }
@@ -664,8 +690,10 @@ fn plan<'r>(robot: &'r urdf_rs::Robot, options: &UrdfOptions) -> std::result::Re
                 ));
             }
         }
-        if joint.mimic.is_some() {
-            return Err((element, "<mimic> is not supported yet".into()));
+        if let Some(mimic) = &joint.mimic
+            && !robot.joints.iter().any(|j| j.name == mimic.joint)
+        {
+            return Err((element, format!("<mimic> names joint {:?}, which is not in the file", mimic.joint)));
         }
         let axis = Vector3::from(joint.axis.xyz.0);
         let directed = axis.iter().all(|x| x.is_finite()) && axis.norm() > 1e-9;

@@ -5,7 +5,7 @@
 use nalgebra::{Isometry3, Point3, Rotation3};
 
 use super::Scene;
-use super::joints::{JointData, JointEfforts, JointType};
+use super::joints::{ActuatorLimits, JointData, JointEfforts, JointType, Mimic};
 use super::objects::{Color, ObjectData};
 use crate::body::BodyRef;
 use crate::control::JointState;
@@ -167,6 +167,18 @@ impl<'s> JointView<'s> {
     /// Forces and torques it applied on its objects in the last step.
     pub fn reaction(&self) -> Result<JointFeedback> {
         Ok(self.ode()?.feedback().expect("simulation joints record feedback"))
+    }
+    /// What its actuator can put out.
+    pub fn actuator_limits(&self) -> ActuatorLimits {
+        self.data.actuator
+    }
+    /// The most torque (force) its dry friction holds it with (0: none).
+    pub fn dry_friction(&self) -> f64 {
+        self.data.dry_friction
+    }
+    /// The joint it follows, if any.
+    pub fn mimic(&self) -> Option<Mimic> {
+        self.data.mimic
     }
     /// The underlying ODE joint (anchors, axes, angles, parameters).
     pub fn ode(&self) -> Result<JointRef<'s>> {

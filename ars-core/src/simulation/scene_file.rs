@@ -4,7 +4,8 @@
 //! contact surface, space), the clock, every object in creation order (name, shape,
 //! colour, and for a body its mass, inertia, pose and velocities, to the last bit), and
 //! every joint (name, type, its objects, the anchors and axes it was created with, its
-//! stops and viscous friction). Not saved: hooks, sensors and joint controllers (they
+//! stops, speed motor, viscous and dry friction, actuator limits and the joint it
+//! mimics). Not saved: hooks, sensors and joint controllers (they
 //! are code), contact joints (they live within a step).
 //!
 //! A scene saved before it has stepped loads into a simulation that steps bit for bit
@@ -21,8 +22,8 @@ use crate::body::{BodyBuilder, MassSpec};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
-use crate::joint::{JointBuilder, JointKind};
-use crate::scene::{Color, JointEnd, JointType};
+use crate::joint::{JointBuilder, JointKind, JointParam};
+use crate::scene::{ActuatorLimits, Color, JointEnd, JointType};
 use crate::shape::Shape;
 use crate::world::{SpaceKind, Stepper};
 
@@ -111,6 +112,32 @@ pub struct JointFile {
     pub limits: Option<(f64, f64)>,
     /// Viscous friction coefficient.
     pub friction: f64,
+    /// Dry friction, N·m or N (0: none).
+    #[serde(default)]
+    pub dry_friction: f64,
+    /// Effort limit of its actuator (`None`: unlimited).
+    #[serde(default)]
+    pub effort_limit: Option<f64>,
+    /// Velocity limit of its actuator (`None`: unlimited).
+    #[serde(default)]
+    pub velocity_limit: Option<f64>,
+    /// The joint it follows, if any.
+    #[serde(default)]
+    pub mimic: Option<MimicFile>,
+    /// Its speed motor, when on: speed (rad/s or m/s) and largest force (N·m or N).
+    #[serde(default)]
+    pub motor: Option<(f64, f64)>,
+}
+
+/// A mimic joint's leader, by name, and its coefficients.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MimicFile {
+    /// The name of the joint followed.
+    pub leader: String,
+    /// Follower position per leader position.
+    pub multiplier: f64,
+    /// Follower position when the leader is at 0.
+    pub offset: f64,
 }
 
 impl Simulation {
@@ -173,6 +200,14 @@ impl Simulation {
                     }
                 }
             };
+            let motor = match data.kind {
+                JointType::Fixed | JointType::Ball => None,
+                _ => {
+                    let ode = world.joint(data.handle)?;
+                    let max_force = ode.param(JointParam::MaxForce, 0)?;
+                    (max_force > 0.0).then_some((ode.param(JointParam::Velocity, 0)?, max_force))
+                }
+            };
             joints.push(JointFile {
                 name: data.name.clone(),
                 joint_type: data.kind,
@@ -181,6 +216,17 @@ impl Simulation {
                 object2: data.object2.map(name_of).transpose()?,
                 limits: data.limits,
                 friction: data.friction,
+                dry_friction: data.dry_friction,
+                effort_limit: Some(data.actuator.effort).filter(|e| e.is_finite()),
+                velocity_limit: Some(data.actuator.velocity).filter(|v| v.is_finite()),
+                mimic: data
+                    .mimic
+                    .map(|m| -> Result<MimicFile> {
+                        let leader = self.joint(m.leader)?.name().to_string();
+                        Ok(MimicFile { leader, multiplier: m.multiplier, offset: m.offset })
+                    })
+                    .transpose()?,
+                motor,
             });
         }
         Ok(SceneFile {
@@ -277,8 +323,30 @@ impl Simulation {
             if let Some((low, high)) = j.limits {
                 sim.joint_mut(id)?.set_limits(low, high)?;
             }
+            let mut joint = sim.joint_mut(id)?;
             if j.friction != 0.0 {
-                sim.joint_mut(id)?.set_viscous_friction(j.friction)?;
+                joint.set_viscous_friction(j.friction)?;
+            }
+            if j.effort_limit.is_some() || j.velocity_limit.is_some() {
+                let unlimited = f64::INFINITY;
+                joint.set_actuator_limits(ActuatorLimits {
+                    effort: j.effort_limit.unwrap_or(unlimited),
+                    velocity: j.velocity_limit.unwrap_or(unlimited),
+                })?;
+            }
+            if j.dry_friction != 0.0 {
+                joint.set_dry_friction(j.dry_friction)?;
+            }
+            if let Some((speed, max_force)) = j.motor {
+                // As it was, whatever the limits (the speed was held to them when set).
+                let handle = sim.scene.joint_data(id)?.handle;
+                sim.scene.world.joint_mut(handle)?.set_motor(0, speed, max_force)?;
+            }
+        }
+        // Leaders may come later in creation order than their followers.
+        for j in &file.joints {
+            if let Some(m) = &j.mimic {
+                sim.joint_mut(j.name.as_str())?.set_mimic(m.leader.as_str(), m.multiplier, m.offset)?;
             }
         }
         sim.scene.set_clock(file.time, file.step_count);

@@ -561,13 +561,21 @@ impl Harness {
             }
             4 => {
                 let Some(j) = joint else { return };
+                let leader = if s.joints.is_empty() { None } else { Some(s.joints[input.index(s.joints.len())]) };
                 let Ok(mut jm) = s.sim.joint_mut(j) else { return };
-                let _ = match input.byte() % 6 {
+                let _ = match input.byte() % 10 {
                     0 => jm.add_torque(input.real()),
                     1 => jm.add_force(input.real()),
                     2 => jm.set_speed(input.real(), input.real()),
                     3 => jm.set_limits(input.real(), input.real()),
                     4 => jm.set_viscous_friction(input.real()),
+                    5 => jm.set_dry_friction(input.real()),
+                    6 => jm.set_actuator_limits(ActuatorLimits { effort: input.real(), velocity: input.real() }),
+                    7 => match leader {
+                        Some(l) => jm.set_mimic(l, input.real(), input.real()),
+                        None => jm.clear_mimic(),
+                    },
+                    8 => jm.clear_mimic(),
                     _ => {
                         let (target, kp, kd) = (input.real(), input.real(), input.real());
                         Profile::new(vec![(0.0, target)]).and_then(|p| jm.set_controller(PositionServo::pd(p, kp, kd)))
