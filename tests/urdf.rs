@@ -238,12 +238,14 @@ fn the_thesis_vehicle_from_urdf_drives_bit_for_bit_as_the_vehicle_built_in_code(
 }
 
 #[test]
-fn links_take_the_colour_of_their_visual_material() {
+fn links_are_drawn_as_their_visuals_in_their_materials_colours() {
     let text = r#"<robot name="painted">
   <material name="steel"><color rgba="0.5 0.5 0.6 1"/></material>
   <link name="a">
-    <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <inertial><origin xyz="0 0 0.1"/><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
     <visual><geometry><box size="0.2 0.2 0.2"/></geometry><material name="orange"><color rgba="1 0.5 0 1"/></material></visual>
+    <visual><origin xyz="0 0 0.3"/><geometry><sphere radius="0.05"/></geometry><material name="steel"/></visual>
+    <collision><geometry><box size="0.3 0.3 0.3"/></geometry></collision>
   </link>
   <link name="b">
     <inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
@@ -260,6 +262,21 @@ fn links_take_the_colour_of_their_visual_material() {
     assert_eq!(sim.object("a").unwrap().color(), Some([1.0, 0.5, 0.0]), "its own colour");
     assert_eq!(sim.object("b").unwrap().color(), Some([0.5, 0.5, 0.6]), "the robot-level material it names");
     assert_eq!(sim.object("c").unwrap().color(), None, "no visual: the viewer's default");
+    // Each visual, relative to the body (the inertial frame, 0.1 m up the link's Z).
+    let visuals = sim.object("a").unwrap().visuals().to_vec();
+    assert_eq!(visuals.len(), 2);
+    assert_eq!((&visuals[0].shape, visuals[0].color), (&ars::Shape::Box { edges: Vector3::new(0.2, 0.2, 0.2) }, Some([1.0, 0.5, 0.0])));
+    assert_eq!((&visuals[1].shape, visuals[1].color), (&ars::Shape::Sphere { radius: 0.05 }, Some([0.5, 0.5, 0.6])));
+    assert!((visuals[0].offset.translation.vector - Vector3::new(0.0, 0.0, -0.1)).norm() < 1e-12, "{}", visuals[0].offset);
+    assert!((visuals[1].offset.translation.vector - Vector3::new(0.0, 0.0, 0.2)).norm() < 1e-12, "{}", visuals[1].offset);
+    assert!(visuals[1].offset.rotation.angle() < 1e-12);
+    assert!(sim.object("c").unwrap().visuals().is_empty(), "drawn as its collision geometry");
+    // Ignored on request; and saved in scene files.
+    let mut plain = Simulation::new().unwrap();
+    plain.load_urdf_text(text, "painted.urdf", &UrdfOptions::new().ignore_visuals(true)).unwrap();
+    assert!(plain.object("a").unwrap().visuals().is_empty());
+    let loaded = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    assert_eq!(loaded.object("a").unwrap().visuals(), &visuals[..]);
 }
 
 #[test]

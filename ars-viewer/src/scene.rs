@@ -138,27 +138,32 @@ fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: us
     let color = convert::color(object.color().unwrap_or(default));
     let pose = sim.pose(id).unwrap_or(Isometry3::identity());
     let mut group = scene.add_group();
-    // Each of the object's geoms where it is relative to the object (a robot link may
-    // have several, offset from its body); an object without one is a small sphere.
+    // Its visuals if it has any (a robot link's <visual>s), else each of its geoms
+    // where it is relative to the object (a robot link may have several, offset from
+    // its body); an object without either is drawn as its shape.
     let world = sim.world();
-    let mut parts: Vec<(Shape, Isometry3<f64>)> = object
-        .geoms()
-        .filter_map(|g| world.geom(g).ok())
-        .map(|g| {
-            let local = match g.shape() {
-                Shape::Plane { .. } => Isometry3::identity(),
-                _ => pose.inverse() * g.pose(),
-            };
-            (g.shape().clone(), local)
-        })
-        .collect();
+    let mut parts: Vec<(Shape, Isometry3<f64>, Option<ars_core::Color>)> = if object.visuals().is_empty() {
+        object
+            .geoms()
+            .filter_map(|g| world.geom(g).ok())
+            .map(|g| {
+                let local = match g.shape() {
+                    Shape::Plane { .. } => Isometry3::identity(),
+                    _ => pose.inverse() * g.pose(),
+                };
+                (g.shape().clone(), local, None)
+            })
+            .collect()
+    } else {
+        object.visuals().iter().map(|v| (v.shape.clone(), v.offset, v.color)).collect()
+    };
     if parts.is_empty() {
-        parts.push((object.shape().clone(), Isometry3::identity()));
+        parts.push((object.shape().clone(), Isometry3::identity(), None));
     }
-    for (shape, local) in &parts {
+    for (shape, local, own) in &parts {
         let mut part = group.add_group();
         part.set_pose(convert::pose(local));
-        add_shape(&mut part, shape).set_color(color);
+        add_shape(&mut part, shape).set_color(own.map_or(color, convert::color));
     }
     group.set_pose(convert::pose(&pose));
     Ok(ObjectNode { group, dynamic })

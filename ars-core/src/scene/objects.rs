@@ -22,6 +22,21 @@ pub(crate) struct ObjectData {
     /// More geoms of the object (a robot link's other collision elements).
     pub(crate) extra_geoms: Vec<GeomHandle>,
     pub(crate) color: Option<Color>,
+    /// What the viewer draws instead of the geoms, when not empty.
+    pub(crate) visuals: Vec<Visual>,
+}
+
+/// A shape the viewer draws for an object, apart from what collides (a robot link's
+/// `<visual>`): where it is relative to the object's pose, in its own colour or the
+/// object's.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Visual {
+    /// The shape drawn.
+    pub shape: Shape,
+    /// Its pose relative to the object's.
+    pub offset: Isometry3<f64>,
+    /// Its colour (`None`: the object's).
+    pub color: Option<Color>,
 }
 
 impl Scene {
@@ -47,6 +62,7 @@ impl Scene {
             body,
             geom,
             extra_geoms: Vec::new(),
+            visuals: Vec::new(),
             color: None,
         }));
         self.object_names.insert(name, id)?;
@@ -197,13 +213,22 @@ impl Scene {
 
     /// Sets the colour the viewer draws an object with (channels in [0, 1]).
     pub fn set_color(&mut self, id: ObjectId, color: Color) -> Result<()> {
-        if !color.iter().all(|c| (0.0..=1.0).contains(c)) {
-            return Err(Error::OutOfRange {
-                what: "colour",
-                detail: format!("channels must be in [0, 1], got {color:?}"),
-            });
-        }
+        valid_color(color)?;
         self.objects.get_mut(id.0, ObjectId::KIND, &id)?.color = Some(color);
+        Ok(())
+    }
+
+    /// Sets what the viewer draws for an object instead of its collision shapes (an
+    /// empty list: the collision shapes again).
+    pub fn set_visuals(&mut self, id: ObjectId, visuals: Vec<Visual>) -> Result<()> {
+        for v in &visuals {
+            v.shape.validate()?;
+            if let Some(c) = v.color {
+                valid_color(c)?;
+            }
+            crate::geom::check_isometry("visual offset", &v.offset)?;
+        }
+        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.visuals = visuals;
         Ok(())
     }
 
@@ -339,4 +364,11 @@ impl Scene {
 /// a[i][2] b[2][j]`), the order the C reference scenes use, so results are bit-identical.
 pub(crate) fn multiply(a: &Matrix3<f64>, b: &Matrix3<f64>) -> Matrix3<f64> {
     Matrix3::from_fn(|i, j| a[(i, 0)] * b[(0, j)] + a[(i, 1)] * b[(1, j)] + a[(i, 2)] * b[(2, j)])
+}
+
+fn valid_color(color: Color) -> Result<()> {
+    if !color.iter().all(|c| (0.0..=1.0).contains(c)) {
+        return Err(Error::OutOfRange { what: "colour", detail: format!("channels must be in [0, 1], got {color:?}") });
+    }
+    Ok(())
 }

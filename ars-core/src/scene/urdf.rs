@@ -35,9 +35,12 @@
 //!   as `NAME/REST` beside the URDF, in a folder named NAME above it, as `REST` beside
 //!   it, then in the search paths.
 //!
-//! - **Colours.** A link is drawn in the colour of its first visual's material (its own
-//!   `<color>` or the robot-level material it names); visual geometry itself is not
-//!   loaded: the viewer draws the collision geometry.
+//! - **Looks.** The viewer draws a link's `<visual>` elements (any geometry, meshes
+//!   found as above, each in its material's colour: its own `<color>` or the
+//!   robot-level material it names) as its [`Visual`](super::Visual)s; the link's
+//!   colour is its first visual's. A link without visuals, or every link with
+//!   [`UrdfOptions::ignore_visuals`] (for files whose visual meshes ARS cannot read),
+//!   is drawn as its collision geometry.
 //!
 //! Errors name the file, the element and the problem, and nothing is added to the
 //! scene when a file is refused.
@@ -88,6 +91,9 @@ pub struct UrdfOptions {
     /// Starting positions of joints, by name (rad or m; the others start at 0). The
     /// joints read these positions: the robot is built at zero, joined, then posed.
     pub initial_positions: Vec<(String, f64)>,
+    /// Draw the collision geometry rather than the `<visual>` elements (whose meshes
+    /// are then not loaded at all).
+    pub ignore_visuals: bool,
 }
 
 impl UrdfOptions {
@@ -123,6 +129,11 @@ impl UrdfOptions {
     /// The starting position of joint `name` (rad or m).
     pub fn initial_position(mut self, name: &str, position: f64) -> Self {
         self.initial_positions.push((name.to_string(), position));
+        self
+    }
+    /// Draw the collision geometry, not the `<visual>` elements.
+    pub fn ignore_visuals(mut self, ignore: bool) -> Self {
+        self.ignore_visuals = ignore;
         self
     }
     /// A folder to look for meshes (and packages) in.
@@ -384,7 +395,7 @@ impl Scene {
         };
         for (i, link) in robot.links.iter().enumerate() {
             let frame = plan.link_frames[i];
-            let result = self.add_link(link, &frame, i == plan.root, bits, meshes);
+            let result = self.add_link(robot, link, &frame, i == plan.root, bits, meshes);
             let result = result.and_then(|(id, body)| {
                 if let Some(color) = link_color(robot, link) {
                     self.set_color(id, color)?;
@@ -468,6 +479,7 @@ impl Scene {
 
     fn add_link(
         &mut self,
+        robot: &urdf_rs::Robot,
         link: &urdf_rs::Link,
         frame: &Frame,
         root: bool,
@@ -481,6 +493,23 @@ impl Scene {
             let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
             collisions.push((shape, frame.then(&Frame::from_pose(&c.origin))));
         }
+        let mut looks = Vec::new();
+        if !meshes.options.ignore_visuals {
+            for v in &link.visual {
+                let shape = meshes.shape(&v.geometry).map_err(|problem| {
+                    urdf_err(format!("{problem} (a <visual>: UrdfOptions::ignore_visuals draws the collision geometry instead)"))
+                })?;
+                // Checked before anything is created, so that setting them cannot fail.
+                shape.validate().map_err(|e| urdf_err(format!("a <visual>: {e}")))?;
+                let color = v.material.as_ref().and_then(|m| material_color(robot, m));
+                looks.push((shape, frame.then(&Frame::from_pose(&v.origin)).isometry(), color));
+            }
+        }
+        // The visuals relative to the object's pose.
+        let visuals = |object_pose: Isometry3<f64>| -> Vec<super::Visual> {
+            let to_object = object_pose.inverse();
+            looks.iter().map(|(shape, at, color)| super::Visual { shape: shape.clone(), offset: to_object * at, color: *color }).collect()
+        };
         let mass = link.inertial.mass.value;
         let inertial = frame.then(&Frame::from_pose(&link.inertial.origin));
         let with_bits = |g: GeomBuilder| match bits {
@@ -504,6 +533,8 @@ impl Scene {
             }
             let id = self.register_as(&link.name, drawn, None, geoms.first().copied())?;
             self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
+            let object_pose = self.pose(id).unwrap_or_else(|_| Isometry3::identity());
+            self.set_visuals(id, visuals(object_pose))?;
             return Ok((id, None));
         }
         if mass.is_nan() || mass <= 0.0 {
@@ -532,6 +563,7 @@ impl Scene {
         }
         let id = self.register_as(&link.name, drawn, Some(body), geoms.first().copied())?;
         self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
+        self.set_visuals(id, visuals(inertial.isometry()))?;
         Ok((id, Some(body)))
     }
 
@@ -634,14 +666,16 @@ fn frames(
 /// The colour of a link's first visual with a material: its own `<color>`, or that of
 /// the robot-level material it names (URDF allows both).
 fn link_color(robot: &urdf_rs::Robot, link: &urdf_rs::Link) -> Option<super::Color> {
-    link.visual.iter().filter_map(|v| v.material.as_ref()).find_map(|m| {
-        let rgba = match &m.color {
-            Some(c) => c.rgba.0,
-            None => robot.materials.iter().find(|r| r.name == m.name)?.color.as_ref()?.rgba.0,
-        };
-        let rgb = [rgba[0], rgba[1], rgba[2]].map(|c| c.clamp(0.0, 1.0) as f32);
-        Some(rgb)
-    })
+    link.visual.iter().filter_map(|v| v.material.as_ref()).find_map(|m| material_color(robot, m))
+}
+
+/// A material's colour: its own `<color>`, or that of the robot-level material it names.
+fn material_color(robot: &urdf_rs::Robot, m: &urdf_rs::Material) -> Option<super::Color> {
+    let rgba = match &m.color {
+        Some(c) => c.rgba.0,
+        None => robot.materials.iter().find(|r| r.name == m.name)?.color.as_ref()?.rgba.0,
+    };
+    Some([rgba[0], rgba[1], rgba[2]].map(|c| c.clamp(0.0, 1.0) as f32))
 }
 
 /// Checks the tree (names, parents, one root, no loop, supported joints) and computes

@@ -6,7 +6,7 @@ use nalgebra::{Isometry3, Point3, Rotation3};
 
 use super::Scene;
 use super::joints::{ActuatorLimits, JointData, JointEfforts, JointType, Mimic};
-use super::objects::{Color, ObjectData};
+use super::objects::{Color, ObjectData, Visual};
 use crate::body::BodyRef;
 use crate::control::JointState;
 use crate::error::{Error, Result};
@@ -92,6 +92,10 @@ impl<'s> ObjectView<'s> {
     /// The colour the viewer draws it with (`None`: the viewer's default).
     pub fn color(&self) -> Option<Color> {
         self.data.color
+    }
+    /// What the viewer draws for it instead of its geoms (empty: the geoms).
+    pub fn visuals(&self) -> &'s [Visual] {
+        &self.data.visuals
     }
     /// Its body, if it is dynamic (`None` for a static object).
     pub fn body_handle(&self) -> Option<BodyHandle> {

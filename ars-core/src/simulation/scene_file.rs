@@ -2,7 +2,7 @@
 //!
 //! What is saved: the parameters (gravity, time step, steps per frame, ERP, CFM, stepper,
 //! contact surface, space), the clock, every object in creation order (name, shape,
-//! colour, and for a body its mass, inertia, pose and velocities, to the last bit), and
+//! colour, visuals, and for a body its mass, inertia, pose and velocities, to the last bit), and
 //! every joint (name, type, its objects, the anchors and axes it was created with, its
 //! stops, speed motor, viscous and dry friction, actuator limits and the joint it
 //! mimics). Not saved: hooks, sensors and joint controllers (they
@@ -23,7 +23,7 @@ use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::joint::{JointBuilder, JointKind, JointParam};
-use crate::scene::{ActuatorLimits, Color, JointEnd, JointType};
+use crate::scene::{ActuatorLimits, Color, JointEnd, JointType, Visual};
 use crate::shape::Shape;
 use crate::world::{SpaceKind, Stepper};
 
@@ -74,6 +74,9 @@ pub struct ObjectFile {
     pub body: Option<BodyFile>,
     /// The pose of a static object's geom.
     pub pose: Option<Isometry3<f64>>,
+    /// What the viewer draws instead of its geom.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub visuals: Vec<Visual>,
 }
 
 /// A body's mass and state, exactly.
@@ -171,6 +174,7 @@ impl Simulation {
                 color: data.color,
                 body,
                 pose,
+                visuals: data.visuals.clone(),
             });
         }
         let mut joints = Vec::new();
@@ -305,6 +309,9 @@ impl Simulation {
             };
             if let Some(c) = o.color {
                 sim.set_color(id, c)?;
+            }
+            if !o.visuals.is_empty() {
+                sim.set_visuals(id, o.visuals.clone())?;
             }
         }
         for j in &file.joints {

@@ -314,7 +314,7 @@ impl World {
     }
 }
 
-fn check_isometry(what: &'static str, iso: &Isometry3<f64>) -> Result<Isometry3<f64>> {
+pub(crate) fn check_isometry(what: &'static str, iso: &Isometry3<f64>) -> Result<Isometry3<f64>> {
     limits::vector_within(what, &iso.translation.vector, limits::MAX_COORDINATE, "m")?;
     validate::quaternion(what, &iso.rotation)?;
     Ok(*iso)
