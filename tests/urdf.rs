@@ -265,10 +265,21 @@ fn links_are_drawn_as_their_visuals_in_their_materials_colours() {
     // Each visual, relative to the body (the inertial frame, 0.1 m up the link's Z).
     let visuals = sim.object("a").unwrap().visuals().to_vec();
     assert_eq!(visuals.len(), 2);
-    assert_eq!((&visuals[0].shape, visuals[0].color), (&ars::Shape::Box { edges: Vector3::new(0.2, 0.2, 0.2) }, Some([1.0, 0.5, 0.0])));
+    assert_eq!(
+        (&visuals[0].shape, visuals[0].color),
+        (&ars::Shape::Box { edges: Vector3::new(0.2, 0.2, 0.2) }, Some([1.0, 0.5, 0.0]))
+    );
     assert_eq!((&visuals[1].shape, visuals[1].color), (&ars::Shape::Sphere { radius: 0.05 }, Some([0.5, 0.5, 0.6])));
-    assert!((visuals[0].offset.translation.vector - Vector3::new(0.0, 0.0, -0.1)).norm() < 1e-12, "{}", visuals[0].offset);
-    assert!((visuals[1].offset.translation.vector - Vector3::new(0.0, 0.0, 0.2)).norm() < 1e-12, "{}", visuals[1].offset);
+    assert!(
+        (visuals[0].offset.translation.vector - Vector3::new(0.0, 0.0, -0.1)).norm() < 1e-12,
+        "{}",
+        visuals[0].offset
+    );
+    assert!(
+        (visuals[1].offset.translation.vector - Vector3::new(0.0, 0.0, 0.2)).norm() < 1e-12,
+        "{}",
+        visuals[1].offset
+    );
     assert!(visuals[1].offset.rotation.angle() < 1e-12);
     assert!(sim.object("c").unwrap().visuals().is_empty(), "drawn as its collision geometry");
     // Ignored on request; and saved in scene files.

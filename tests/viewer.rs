@@ -193,7 +193,27 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
-    println!("  camera: centre depth {centre} m");
+
+    // At a rate: the box moving away at 1 m/s, a frame every 20 ms for 50 ms.
+    let mut camera = camera.every(0.02).map_err(|e| e.to_string())?;
+    sim.body_mut(cube)
+        .and_then(|mut b| b.set_linear_velocity(Vector3::new(0.0, 0.0, -1.0)))
+        .map_err(|e| e.to_string())?;
+    let mut seen = Vec::new();
+    camera
+        .run(&mut sim, 0.05, |t, frame| {
+            seen.push((t, frame.depth.depth(80, 60)));
+            Ok(())
+        })
+        .map_err(|e| e.to_string())?;
+    let times: Vec<f64> = seen.iter().map(|(t, _)| (t * 1e4).round() / 1e4).collect();
+    if times != [0.0, 0.02, 0.04] {
+        return Err(format!("frames at {times:?}, expected 0, 20 and 40 ms"));
+    }
+    if let Some((t, d)) = seen.iter().find(|(t, d)| (f64::from(*d) - (2.5 + t)).abs() > 1e-5) {
+        return Err(format!("at {t} s the centre depth is {d}, expected {}", 2.5 + t));
+    }
+    println!("  camera: centre depth {centre} m; at a rate: {seen:?}");
     Ok(())
 }
 

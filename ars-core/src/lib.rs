@@ -114,8 +114,8 @@ pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
 pub use scene::{
-    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, Visual, SimJoint, UpAxis, UrdfOptions,
-    UrdfRobot, heightfield_triangles,
+    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, UpAxis, UrdfOptions,
+    UrdfRobot, Visual, heightfield_triangles,
 };
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};

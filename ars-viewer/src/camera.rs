@@ -71,14 +71,20 @@ impl CameraFrame {
 }
 
 /// A camera sensor: in its own frame it looks along −Z with +Y up (the depth camera's
-/// convention); the colour image keeps the world's up (no roll). Call
-/// [`capture`](Self::capture) when a frame is due (every N steps, from a hook or a
-/// loop): rendering happens on the calling thread.
+/// convention); the colour image keeps the world's up (no roll). Rendering happens on
+/// the calling thread: call [`capture`](Self::capture) for a frame now, or give the
+/// camera a rate ([`every`](Self::every)) and let [`run`](Self::run) step a simulation
+/// and capture each frame when it is due (or call
+/// [`capture_if_due`](Self::capture_if_due) from your own loop).
 pub struct Camera {
     intrinsics: Intrinsics,
     surface: OffscreenSurface,
     view: View,
     depth: DepthCamera,
+    /// Seconds between frames (`None`: every call).
+    period: Option<f64>,
+    /// Simulated time of the next frame due.
+    next_frame: Option<f64>,
 }
 
 impl Camera {
@@ -91,7 +97,7 @@ impl Camera {
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
         let settings = ViewSettings { size: (width, height), ..ViewSettings::default() };
         surface.set_background_color(convert::color(settings.background));
-        Ok(Camera { intrinsics, surface, view: View::new(&settings), depth })
+        Ok(Camera { intrinsics, surface, view: View::new(&settings), depth, period: None, next_frame: None })
     }
 
     /// Placed in the world at `pose`.
@@ -104,6 +110,54 @@ impl Camera {
     pub fn on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
         self.depth = self.depth.on(object, offset);
         self
+    }
+
+    /// Captures a frame every `period` seconds of simulated time (a rate of
+    /// `1 / period` frames per second), the first at the first call.
+    pub fn every(mut self, period: f64) -> Result<Self> {
+        if !(period.is_finite() && period > 0.0) {
+            return Err(ViewerError::Settings(format!("a camera period must be positive, got {period}")));
+        }
+        self.period = Some(period);
+        Ok(self)
+    }
+
+    /// A frame of `sim` as it is now if one is due (always, without a period), with its
+    /// simulated time.
+    pub fn capture_if_due(&mut self, sim: &Simulation) -> Result<Option<(f64, CameraFrame)>> {
+        let time = sim.time();
+        if let (Some(period), Some(next)) = (self.period, self.next_frame) {
+            // Half a step of slack absorbs the drift of the accumulated time, as for
+            // the simulation's sensors.
+            if time + 0.5 * sim.time_step() < next {
+                return Ok(None);
+            }
+            self.next_frame = Some(next + period);
+        } else if let Some(period) = self.period {
+            self.next_frame = Some(time + period);
+        }
+        Ok(Some((time, self.capture(sim)?)))
+    }
+
+    /// Steps `sim` for `duration` seconds, handing every frame due (one now, then at the
+    /// camera's rate; see [`every`](Self::every)) to `on_frame` with its time.
+    pub fn run(
+        &mut self,
+        sim: &mut Simulation,
+        duration: f64,
+        mut on_frame: impl FnMut(f64, CameraFrame) -> Result<()>,
+    ) -> Result<()> {
+        let steps = sim.steps_in(duration).map_err(ViewerError::from)?;
+        if let Some((t, frame)) = self.capture_if_due(sim)? {
+            on_frame(t, frame)?;
+        }
+        for _ in 0..steps {
+            sim.step().map_err(ViewerError::from)?;
+            if let Some((t, frame)) = self.capture_if_due(sim)? {
+                on_frame(t, frame)?;
+            }
+        }
+        Ok(())
     }
 
     /// The camera's intrinsics.

@@ -497,7 +497,9 @@ impl Scene {
         if !meshes.options.ignore_visuals {
             for v in &link.visual {
                 let shape = meshes.shape(&v.geometry).map_err(|problem| {
-                    urdf_err(format!("{problem} (a <visual>: UrdfOptions::ignore_visuals draws the collision geometry instead)"))
+                    urdf_err(format!(
+                        "{problem} (a <visual>: UrdfOptions::ignore_visuals draws the collision geometry instead)"
+                    ))
                 })?;
                 // Checked before anything is created, so that setting them cannot fail.
                 shape.validate().map_err(|e| urdf_err(format!("a <visual>: {e}")))?;
@@ -508,7 +510,10 @@ impl Scene {
         // The visuals relative to the object's pose.
         let visuals = |object_pose: Isometry3<f64>| -> Vec<super::Visual> {
             let to_object = object_pose.inverse();
-            looks.iter().map(|(shape, at, color)| super::Visual { shape: shape.clone(), offset: to_object * at, color: *color }).collect()
+            looks
+                .iter()
+                .map(|(shape, at, color)| super::Visual { shape: shape.clone(), offset: to_object * at, color: *color })
+                .collect()
         };
         let mass = link.inertial.mass.value;
         let inertial = frame.then(&Frame::from_pose(&link.inertial.origin));
