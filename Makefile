@@ -1,17 +1,24 @@
 # ARS: one entry point for newcomers, developers and CI.
 #   make demo   install what is missing (Debian packages), show the conical pendulum
 #               (a window where there is a display; frames, CSV and plots otherwise)
-#   make test   install what is missing, run the whole test suite
+#   make test   install what is missing, run the whole test suite (Rust, then the
+#               Python package's, in the virtual environment .venv it creates)
+#   make python install the Python package `ars` into .venv (pip install ./python)
 #   make check  everything CI checks: fmt, clippy, tests, docs, benchmarks compile
 #   make bench  the Rust-against-native-ODE benchmark (prints Rust/C ratios)
 #   make figures       the thesis' figures (PNG) and their CSVs, into figures/
 #   make readme-table  regenerate the README's table of thesis numbers
 
 DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make libfontconfig1-dev libfreetype-dev fonts-dejavu-core \
-	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb
+	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb \
+	python3 python3-venv
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps demo test check bench figures readme-table
+.PHONY: deps demo test check bench figures readme-table python python-test
+
+# The Python package is built by pip (maturin, release profile) into this environment.
+VENV := .venv
+PYTHON := $(VENV)/bin/python
 
 deps:
 	@missing=""; \
@@ -37,6 +44,20 @@ demo: deps
 
 test: deps
 	cargo test --workspace --locked
+	$(MAKE) python-test
+
+$(PYTHON):
+	python3 -m venv $(VENV)
+	$(PYTHON) -m pip install --quiet --upgrade pip
+
+python: deps $(PYTHON)
+	$(PYTHON) -m pip install --quiet numpy pytest ruff
+	$(PYTHON) -m pip install --quiet --force-reinstall --no-deps ./python
+
+python-test: python
+	$(VENV)/bin/ruff check python
+	$(VENV)/bin/ruff format --check python
+	$(VENV)/bin/pytest -q python/tests
 
 check: deps
 	cargo fmt --all -- --check

@@ -73,7 +73,18 @@ impl Scene {
     /// its mass given as a total or a density. ODE calls: create the body, set its mass
     /// and position, create the geom and attach it.
     pub fn add_body(&mut self, shape: Shape, center: impl Into<Point3<f64>>, mass: Mass) -> Result<ObjectId> {
-        let spec = MassSpec::solid(shape.clone(), mass);
+        self.add_body_with_mass(shape.clone(), center, MassSpec::solid(shape, mass))
+    }
+
+    /// Adds a dynamic body of `shape` centred at `center`, with any mass distribution
+    /// (a custom mass and inertia, say: ODE's default body is 1 kg with the identity
+    /// inertia).
+    pub fn add_body_with_mass(
+        &mut self,
+        shape: Shape,
+        center: impl Into<Point3<f64>>,
+        spec: MassSpec,
+    ) -> Result<ObjectId> {
         let geom = GeomBuilder::new(shape.clone());
         let center = center.into();
         // Check the geom before creating the body, so that bad input leaves nothing.

@@ -1,0 +1,35 @@
+"""The exceptions ARS raises, importable as ``ars.ArsError`` and so on.
+
+They live in an importable module (not in the extension) so that pickling (Ray,
+multiprocessing) rebuilds them as the same classes in other processes.
+"""
+
+__all__ = ["ArsError", "InputError", "InternalError", "SimulationError", "UnknownNameError"]
+
+
+class ArsError(Exception):
+    """Base class of every error ARS raises."""
+
+
+class InputError(ArsError, ValueError):
+    """Bad input: a negative radius, a NaN pose, a joint between a body and itself..."""
+
+
+class UnknownNameError(ArsError, KeyError):
+    """No object or joint has this name; the message lists names spelled almost the same."""
+
+    def __str__(self):
+        # KeyError quotes its argument; show the message as written.
+        return str(self.args[0]) if self.args else ""
+
+
+class SimulationError(ArsError):
+    """The simulation cannot go on (a body diverged, ODE reported an error)."""
+
+
+class InternalError(ArsError):
+    """A bug in ARS (a Rust panic), caught before it reached Python: please report it."""
+
+
+for _cls in (ArsError, InputError, UnknownNameError, SimulationError, InternalError):
+    _cls.__module__ = "ars"

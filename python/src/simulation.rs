@@ -1,0 +1,544 @@
+//! `ars.Simulation`: a simulation usable from any Python thread, stepped with the GIL
+//! released, with Python callables as hooks.
+//!
+//! The simulation sits in a mutex. While it steps, the thread stepping holds the lock
+//! and runs without the GIL; a Python hook takes the GIL back and may call this same
+//! object (to read a body or push a joint): such calls, on the stepping thread, reach
+//! the simulation through the reference the hook was handed (see [`HookContext`]).
+//! Other threads wait for the step to end, without holding the GIL.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::thread::ThreadId;
+
+use ars_core::body::MassSpec;
+use ars_core::nalgebra::{Matrix3, Point3, Vector3};
+use ars_core::{Error, HookId, Hooks, JointEnd, Mass, ObjectId, Shape, Simulation};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+
+use crate::errors::{guarded, outcome, raise};
+use crate::views::{Body, Joint};
+
+/// A vector given as any sequence of three numbers.
+pub(crate) type Vec3 = [f64; 3];
+
+/// Where a running hook's simulation can be reached from Python calls on the same
+/// thread.
+#[derive(Default)]
+pub(crate) struct HookContext {
+    /// The thread running a Python hook and the simulation it was handed (its address).
+    active: Mutex<Option<(ThreadId, usize)>>,
+    /// The exception a Python hook raised, to re-raise unchanged from `step`/`run`.
+    raised: Mutex<Option<PyErr>>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    // A panic is caught where it happens and reported; the data stays usable.
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+impl HookContext {
+    /// The simulation handed to the hook running on this thread, if any.
+    fn current(&self) -> Option<*mut Simulation> {
+        let active = *lock(&self.active);
+        active.and_then(|(thread, addr)| (thread == std::thread::current().id()).then_some(addr as *mut Simulation))
+    }
+}
+
+/// A Python callable run before or after every step.
+struct PyHook {
+    callable: Py<PyAny>,
+    after_step: bool,
+    context: Arc<HookContext>,
+}
+
+impl PyHook {
+    fn call(&self, sim: &mut Simulation) -> ars_core::Result<()> {
+        let context = &self.context;
+        *lock(&context.active) = Some((std::thread::current().id(), sim as *mut Simulation as usize));
+        // Cleared however the call ends.
+        struct Clear<'a>(&'a HookContext);
+        impl Drop for Clear<'_> {
+            fn drop(&mut self) {
+                *lock(&self.0.active) = None;
+            }
+        }
+        let _clear = Clear(context);
+        // While Python runs, `sim` is reached only through the address published above
+        // (by calls on this thread); it is not used here until the call returns.
+        Python::attach(|py| match self.callable.call0(py) {
+            Ok(_) => Ok(()),
+            Err(e) => {
+                let message = format!("a Python hook raised {e}");
+                *lock(&context.raised) = Some(e);
+                Err(Error::User(message))
+            }
+        })
+    }
+}
+
+impl Hooks for PyHook {
+    fn pre_step(&mut self, sim: &mut Simulation) -> ars_core::Result<()> {
+        if self.after_step { Ok(()) } else { self.call(sim) }
+    }
+    fn post_step(&mut self, sim: &mut Simulation) -> ars_core::Result<()> {
+        if self.after_step { self.call(sim) } else { Ok(()) }
+    }
+}
+
+/// A physics simulation: objects and joints by name, stepped in native code.
+///
+/// Usable from any thread; not picklable (build simulations inside workers: see
+/// `ars.sweep`).
+#[pyclass(name = "Simulation", module = "ars", frozen)]
+pub struct PySimulation {
+    sim: Mutex<Simulation>,
+    context: Arc<HookContext>,
+    hooks: Mutex<HashMap<u64, HookId<PyHook>>>,
+    next_hook: Mutex<u64>,
+}
+
+impl PySimulation {
+    /// Runs `f` on the simulation: the one a hook on this thread was handed, else the
+    /// locked one (waiting without the GIL). ARS errors and panics become exceptions.
+    pub(crate) fn with<R: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&mut Simulation) -> ars_core::Result<R> + Send,
+    ) -> PyResult<R> {
+        if let Some(sim) = self.context.current() {
+            // SAFETY: `sim` is the `&mut Simulation` a hook running on this thread was
+            // handed (PyHook::call); that hook does not use it until its Python call
+            // returns, and this call finishes before it does, so this is the only
+            // access. Stepping is refused here (see `step`), so the borrow does not nest.
+            let sim = unsafe { &mut *sim };
+            return guarded(py, || f(sim));
+        }
+        // Without the GIL: a step on another thread may need it for its hooks.
+        let caught = py.detach(|| {
+            let mut sim = lock(&self.sim);
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(&mut sim)))
+        });
+        outcome(py, caught)
+    }
+
+    /// Steps with the GIL released; a Python hook's exception comes back unchanged.
+    fn advance(&self, py: Python<'_>, f: impl FnOnce(&mut Simulation) -> ars_core::Result<()> + Send) -> PyResult<()> {
+        if self.context.current().is_some() {
+            return Err(raise(py, "InputError", "a hook cannot step the simulation it runs in".into()));
+        }
+        let result = self.with(py, f);
+        match lock(&self.context.raised).take() {
+            Some(e) => Err(e),
+            None => result,
+        }
+    }
+
+    fn add_body(
+        &self,
+        py: Python<'_>,
+        shape: Shape,
+        center: Vec3,
+        mass: Option<f64>,
+        density: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        let spec = match (mass, density) {
+            (Some(_), Some(_)) => {
+                return Err(raise(py, "InputError", "both mass and density were given: give one".into()));
+            }
+            (Some(m), None) => MassSpec::solid(shape.clone(), Mass::Total(m)),
+            (None, Some(d)) => MassSpec::solid(shape.clone(), Mass::Density(d)),
+            // ODE's default body, as the original made it.
+            (None, None) => MassSpec::Custom { mass: 1.0, inertia: Matrix3::identity() },
+        };
+        self.with(py, move |sim| {
+            let id = sim.add_body_with_mass(shape, Point3::from(center), spec)?;
+            name_object(sim, id, name)
+        })
+    }
+
+    fn object_id(sim: &Simulation, name: &str) -> ars_core::Result<ObjectId> {
+        Ok(sim.object(name)?.id())
+    }
+
+    fn end(sim: &Simulation, name: Option<&str>) -> ars_core::Result<JointEnd> {
+        Ok(match name {
+            Some(n) => JointEnd::Object(Self::object_id(sim, n)?),
+            None => JointEnd::World,
+        })
+    }
+}
+
+/// Renames a new object if a name is given; returns its name.
+fn name_object(sim: &mut Simulation, id: ObjectId, name: Option<String>) -> ars_core::Result<String> {
+    if let Some(name) = name
+        && let Err(e) = sim.set_name(id, &name)
+    {
+        sim.remove_object(id)?;
+        return Err(e);
+    }
+    Ok(sim.object(id)?.name().to_string())
+}
+
+#[pymethods]
+impl PySimulation {
+    /// A simulation with the ARS defaults (Y up, g = 9.81 m/s², time step 0.4 ms, ERP
+    /// 0.2, CFM 1e-10), any of which can be given.
+    #[new]
+    #[pyo3(signature = (*, time_step=None, gravity=None, erp=None, cfm=None, steps_per_frame=None))]
+    fn new(
+        py: Python<'_>,
+        time_step: Option<f64>,
+        gravity: Option<Vec3>,
+        erp: Option<f64>,
+        cfm: Option<f64>,
+        steps_per_frame: Option<u32>,
+    ) -> PyResult<Self> {
+        let sim = guarded(py, || {
+            let mut b = Simulation::builder();
+            if let Some(dt) = time_step {
+                b = b.time_step(dt);
+            }
+            if let Some(g) = gravity {
+                b = b.gravity(Vector3::from(g));
+            }
+            if let Some(e) = erp {
+                b = b.erp(e);
+            }
+            if let Some(c) = cfm {
+                b = b.cfm(c);
+            }
+            if let Some(n) = steps_per_frame {
+                b = b.steps_per_frame(n);
+            }
+            b.build()
+        })?;
+        Ok(PySimulation {
+            sim: Mutex::new(sim),
+            context: Arc::default(),
+            hooks: Mutex::default(),
+            next_hook: Mutex::new(1),
+        })
+    }
+
+    fn __reduce__(&self) -> PyResult<()> {
+        Err(PyTypeError::new_err(
+            "an ars.Simulation cannot be pickled: send parameters and build the simulation where it runs \
+             (ars.sweep does this for parameter sweeps)",
+        ))
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        self.with(py, |sim| {
+            Ok(format!(
+                "<ars.Simulation t={} s, {} objects, {} joints>",
+                sim.time(),
+                sim.objects().count(),
+                sim.joints().count()
+            ))
+        })
+    }
+
+    /// Simulated time, s.
+    #[getter]
+    fn time(&self, py: Python<'_>) -> PyResult<f64> {
+        self.with(py, |sim| Ok(sim.time()))
+    }
+
+    /// Steps taken.
+    #[getter]
+    fn step_count(&self, py: Python<'_>) -> PyResult<u64> {
+        self.with(py, |sim| Ok(sim.step_count()))
+    }
+
+    /// The time step, s.
+    #[getter]
+    fn time_step(&self, py: Python<'_>) -> PyResult<f64> {
+        self.with(py, |sim| Ok(sim.time_step()))
+    }
+
+    /// Gravity, m/s², as a tuple.
+    #[getter]
+    fn gravity(&self, py: Python<'_>) -> PyResult<(f64, f64, f64)> {
+        self.with(py, |sim| {
+            let g = sim.world().gravity();
+            Ok((g.x, g.y, g.z))
+        })
+    }
+
+    /// Takes `n` steps (in native code, without the GIL unless a Python hook runs).
+    #[pyo3(signature = (n=1))]
+    fn step(&self, py: Python<'_>, n: u64) -> PyResult<()> {
+        self.advance(py, |sim| sim.step_n(n))
+    }
+
+    /// Runs for `duration` seconds of simulated time (whole steps).
+    fn run(&self, py: Python<'_>, duration: f64) -> PyResult<()> {
+        self.advance(py, |sim| sim.run_for(duration))
+    }
+
+    /// A sphere of `radius` (m) centred at `center`, of total `mass` (kg) or
+    /// `density` (kg/m³) (neither: ODE's default body, 1 kg with unit inertia); returns
+    /// its name.
+    #[pyo3(signature = (radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    fn add_sphere(
+        &self,
+        py: Python<'_>,
+        radius: f64,
+        center: Vec3,
+        mass: Option<f64>,
+        density: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        self.add_body(py, Shape::Sphere { radius }, center, mass, density, name)
+    }
+
+    /// A box of full edge lengths `size` (m); see `add_sphere`.
+    #[pyo3(signature = (size, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    fn add_box(
+        &self,
+        py: Python<'_>,
+        size: Vec3,
+        center: Vec3,
+        mass: Option<f64>,
+        density: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        self.add_body(py, Shape::Box { edges: Vector3::from(size) }, center, mass, density, name)
+    }
+
+    /// A cylinder of `length` and `radius` (m) along its local Z; see `add_sphere`.
+    #[pyo3(signature = (length, radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    fn add_cylinder(
+        &self,
+        py: Python<'_>,
+        length: f64,
+        radius: f64,
+        center: Vec3,
+        mass: Option<f64>,
+        density: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        self.add_body(py, Shape::Cylinder { radius, length }, center, mass, density, name)
+    }
+
+    /// A capsule: a cylinder of `length` (without its caps) and `radius` (m) along its
+    /// local Z, capped by hemispheres; see `add_sphere`.
+    #[pyo3(signature = (length, radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    fn add_capsule(
+        &self,
+        py: Python<'_>,
+        length: f64,
+        radius: f64,
+        center: Vec3,
+        mass: Option<f64>,
+        density: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        self.add_body(py, Shape::Capsule { radius, length }, center, mass, density, name)
+    }
+
+    /// A cone of `height` and base `radius` (m) along its local Z, `center` its centre
+    /// of mass; see `add_sphere`.
+    #[pyo3(signature = (height, radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    fn add_cone(
+        &self,
+        py: Python<'_>,
+        height: f64,
+        radius: f64,
+        center: Vec3,
+        mass: Option<f64>,
+        density: Option<f64>,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        self.add_body(py, Shape::Cone { radius, height }, center, mass, density, name)
+    }
+
+    /// A static plane `normal · x = dist` (the floor); returns its name.
+    #[pyo3(signature = (normal=[0.0, 1.0, 0.0], dist=0.0, *, name=None))]
+    fn add_floor(&self, py: Python<'_>, normal: Vec3, dist: f64, name: Option<String>) -> PyResult<String> {
+        self.with(py, move |sim| {
+            let id = sim.add_floor_plane(Vector3::from(normal), dist)?;
+            name_object(sim, id, name)
+        })
+    }
+
+    /// A static triangle mesh (`vertices`: points; `faces`: index triples) at `center`.
+    #[pyo3(signature = (vertices, faces, center=[0.0; 3], *, name=None))]
+    fn add_trimesh(
+        &self,
+        py: Python<'_>,
+        vertices: Vec<Vec3>,
+        faces: Vec<[u32; 3]>,
+        center: Vec3,
+        name: Option<String>,
+    ) -> PyResult<String> {
+        self.with(py, move |sim| {
+            let shape = Shape::TriMesh { vertices: vertices.into_iter().map(Point3::from).collect(), triangles: faces };
+            let pose = ars_core::nalgebra::Isometry3::translation(center[0], center[1], center[2]);
+            let id = sim.add_static(shape, pose)?;
+            name_object(sim, id, name)
+        })
+    }
+
+    /// A rotary joint (hinge) named `name` between objects `obj1` and `obj2` (`None`:
+    /// the world) about the world `axis` through `anchor` (default: `obj2`'s position,
+    /// or `obj1`'s when joined to the world).
+    #[pyo3(signature = (name, obj1, obj2, anchor=None, axis=[0.0, 0.0, 1.0]))]
+    fn add_rotary_joint(
+        &self,
+        py: Python<'_>,
+        name: &str,
+        obj1: &str,
+        obj2: Option<&str>,
+        anchor: Option<Vec3>,
+        axis: Vec3,
+    ) -> PyResult<String> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let id = sim.add_hinge_joint(name, a, b, anchor.map(Point3::from), Vector3::from(axis))?;
+            Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// A slider along the world `axis`.
+    fn add_slider_joint(
+        &self,
+        py: Python<'_>,
+        name: &str,
+        obj1: &str,
+        obj2: Option<&str>,
+        axis: Vec3,
+    ) -> PyResult<String> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let id = sim.add_slider_joint(name, a, b, Vector3::from(axis))?;
+            Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// A ball-and-socket joint at `anchor` (default: `obj2`'s position).
+    #[pyo3(signature = (name, obj1, obj2, anchor=None))]
+    fn add_ball_socket_joint(
+        &self,
+        py: Python<'_>,
+        name: &str,
+        obj1: &str,
+        obj2: Option<&str>,
+        anchor: Option<Vec3>,
+    ) -> PyResult<String> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let id = sim.add_ball_joint(name, a, b, anchor.map(Point3::from))?;
+            Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// A universal joint at `anchor` with perpendicular world axes `axis1` (on `obj1`)
+    /// and `axis2` (on `obj2`).
+    fn add_universal_joint(
+        &self,
+        py: Python<'_>,
+        name: &str,
+        obj1: &str,
+        obj2: Option<&str>,
+        anchor: Vec3,
+        axis1: Vec3,
+        axis2: Vec3,
+    ) -> PyResult<String> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let id =
+                sim.add_universal_joint(name, a, b, Point3::from(anchor), Vector3::from(axis1), Vector3::from(axis2))?;
+            Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// A fixed joint: locks `obj1`'s pose relative to `obj2` (or the world) as it is.
+    fn add_fixed_joint(&self, py: Python<'_>, name: &str, obj1: &str, obj2: Option<&str>) -> PyResult<String> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let id = sim.add_fixed_joint(name, a, b)?;
+            Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// The names of the objects, in alphabetical order.
+    #[getter]
+    fn objects(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        self.with(py, |sim| Ok(sim.objects().map(|(n, _)| n.to_string()).collect()))
+    }
+
+    /// The names of the joints, in alphabetical order.
+    #[getter]
+    fn joints(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        self.with(py, |sim| Ok(sim.joints().map(|(n, _)| n.to_string()).collect()))
+    }
+
+    /// The object named `name` (an unknown name raises `ars.UnknownNameError`, with the
+    /// names spelled almost the same). Its attributes are copies, read when asked.
+    fn body(slf: Bound<'_, Self>, name: &str) -> PyResult<Body> {
+        slf.get().with(slf.py(), |sim| Self::object_id(sim, name))?;
+        Ok(Body::new(slf.unbind(), name.to_string()))
+    }
+
+    /// The joint named `name`; see `body`.
+    fn joint(slf: Bound<'_, Self>, name: &str) -> PyResult<Joint> {
+        slf.get().with(slf.py(), |sim| sim.joint(name).map(|_| ()))?;
+        Ok(Joint::new(slf.unbind(), name.to_string()))
+    }
+
+    /// Calls `function()` before every step (after the earlier hooks); returns an id
+    /// for `remove_hook`. An exception it raises stops the step and comes out of
+    /// `step`/`run` unchanged.
+    fn add_pre_step(&self, py: Python<'_>, function: Py<PyAny>) -> PyResult<u64> {
+        self.add_hook(py, function, false)
+    }
+
+    /// Calls `function()` after every step; see `add_pre_step`.
+    fn add_post_step(&self, py: Python<'_>, function: Py<PyAny>) -> PyResult<u64> {
+        self.add_hook(py, function, true)
+    }
+
+    /// Removes a hook added with `add_pre_step` or `add_post_step`.
+    fn remove_hook(&self, py: Python<'_>, hook: u64) -> PyResult<()> {
+        let Some(id) = lock(&self.hooks).remove(&hook) else {
+            return Err(raise(py, "InputError", format!("no hook {hook} in this simulation")));
+        };
+        self.with(py, move |sim| sim.remove_hooks(id).map(drop))
+    }
+
+    /// The scene as JSON text (objects, joints, parameters, state).
+    fn save_scene(&self, py: Python<'_>) -> PyResult<String> {
+        self.with(py, |sim| sim.save_scene())
+    }
+
+    /// A simulation from JSON text written by `save_scene`.
+    #[staticmethod]
+    fn load_scene(py: Python<'_>, text: &str) -> PyResult<Self> {
+        let sim = guarded(py, || Simulation::load_scene(text))?;
+        Ok(PySimulation {
+            sim: Mutex::new(sim),
+            context: Arc::default(),
+            hooks: Mutex::default(),
+            next_hook: Mutex::new(1),
+        })
+    }
+}
+
+impl PySimulation {
+    fn add_hook(&self, py: Python<'_>, function: Py<PyAny>, after_step: bool) -> PyResult<u64> {
+        if !function.bind(py).is_callable() {
+            return Err(raise(py, "InputError", "a hook must be callable".into()));
+        }
+        let hook = PyHook { callable: function, after_step, context: self.context.clone() };
+        let id = self.with(py, move |sim| sim.add_hooks(hook))?;
+        let mut next = lock(&self.next_hook);
+        let key = *next;
+        *next += 1;
+        lock(&self.hooks).insert(key, id);
+        Ok(key)
+    }
+}

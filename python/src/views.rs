@@ -1,0 +1,199 @@
+//! Named access: `sim.body("arm")` and `sim.joint("r1")`. Every attribute is read when
+//! asked and returned as a copy (numpy arrays the caller owns), never a live view.
+
+use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::{ObjectId, Simulation};
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+
+use crate::simulation::{PySimulation, Vec3};
+
+/// An object of a simulation, by name.
+#[pyclass(module = "ars", frozen)]
+pub struct Body {
+    sim: Py<PySimulation>,
+    name: String,
+}
+
+impl Body {
+    pub(crate) fn new(sim: Py<PySimulation>, name: String) -> Self {
+        Body { sim, name }
+    }
+
+    fn read<R: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&mut Simulation, ObjectId) -> ars_core::Result<R> + Send,
+    ) -> PyResult<R> {
+        let name = self.name.as_str();
+        self.sim.get().with(py, |sim| {
+            let id = sim.object(name)?.id();
+            f(sim, id)
+        })
+    }
+}
+
+fn array3<'py>(py: Python<'py>, v: &Vector3<f64>) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_slice(py, v.as_slice())
+}
+
+#[pymethods]
+impl Body {
+    /// Its name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Position of its centre (of mass), m: a new array.
+    #[getter]
+    fn position<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let p = self.read(py, |sim, id| sim.position(id))?;
+        Ok(array3(py, &p.coords))
+    }
+
+    /// Rotation matrix (body to world), 3×3: a new array.
+    #[getter]
+    fn rotation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let r = self.read(py, |sim, id| sim.rotation(id))?;
+        let rows: Vec<Vec<f64>> = (0..3).map(|i| (0..3).map(|j| r[(i, j)]).collect()).collect();
+        Ok(PyArray2::from_vec2(py, &rows).expect("3 rows of 3"))
+    }
+
+    /// Linear velocity, m/s: a new array.
+    #[getter]
+    fn linear_velocity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let v = self.read(py, |sim, id| Ok(sim.body(id)?.linear_velocity()))?;
+        Ok(array3(py, &v))
+    }
+
+    /// Angular velocity, rad/s: a new array.
+    #[getter]
+    fn angular_velocity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let w = self.read(py, |sim, id| Ok(sim.body(id)?.angular_velocity()))?;
+        Ok(array3(py, &w))
+    }
+
+    /// Mass, kg.
+    #[getter]
+    fn mass(&self, py: Python<'_>) -> PyResult<f64> {
+        self.read(py, |sim, id| Ok(sim.body(id)?.mass()))
+    }
+
+    /// Moves it to `position` (m).
+    fn set_position(&self, py: Python<'_>, position: Vec3) -> PyResult<()> {
+        self.read(py, |sim, id| sim.set_position(id, Point3::from(position)))
+    }
+
+    /// Sets its linear velocity (m/s).
+    fn set_linear_velocity(&self, py: Python<'_>, velocity: Vec3) -> PyResult<()> {
+        self.read(py, |sim, id| sim.body_mut(id)?.set_linear_velocity(Vector3::from(velocity)))
+    }
+
+    /// Sets its angular velocity (rad/s).
+    fn set_angular_velocity(&self, py: Python<'_>, velocity: Vec3) -> PyResult<()> {
+        self.read(py, |sim, id| sim.body_mut(id)?.set_angular_velocity(Vector3::from(velocity)))
+    }
+
+    /// Adds a force (N, world frame) at its centre of mass for the next step.
+    fn add_force(&self, py: Python<'_>, force: Vec3) -> PyResult<()> {
+        self.read(py, |sim, id| sim.body_mut(id)?.add_force(Vector3::from(force)))
+    }
+
+    /// Turns it by `angle` (rad) about the world `axis`, about its centre.
+    fn rotate(&self, py: Python<'_>, axis: Vec3, angle: f64) -> PyResult<()> {
+        self.read(py, |sim, id| sim.rotate(id, Vector3::from(axis), angle))
+    }
+
+    /// Moves it by `offset` (m).
+    fn offset_by_position(&self, py: Python<'_>, offset: Vec3) -> PyResult<()> {
+        self.read(py, |sim, id| sim.offset_by_position(id, Vector3::from(offset)))
+    }
+
+    /// The colour the viewer draws it with (RGB, each in [0, 1]).
+    fn set_color(&self, py: Python<'_>, color: [f32; 3]) -> PyResult<()> {
+        self.read(py, |sim, id| sim.set_color(id, color))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<ars.Body {:?}>", self.name)
+    }
+}
+
+/// A joint of a simulation, by name.
+#[pyclass(module = "ars", frozen)]
+pub struct Joint {
+    sim: Py<PySimulation>,
+    name: String,
+}
+
+impl Joint {
+    pub(crate) fn new(sim: Py<PySimulation>, name: String) -> Self {
+        Joint { sim, name }
+    }
+
+    fn act<R: Send>(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&mut Simulation, ars_core::JointId) -> ars_core::Result<R> + Send,
+    ) -> PyResult<R> {
+        let name = self.name.as_str();
+        self.sim.get().with(py, |sim| {
+            let id = sim.joint(name)?.id();
+            f(sim, id)
+        })
+    }
+}
+
+#[pymethods]
+impl Joint {
+    /// Its name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Angle (rad) of a rotary joint, or position (m) of a slider: its first degree of
+    /// freedom.
+    #[getter]
+    fn angle(&self, py: Python<'_>) -> PyResult<f64> {
+        self.act(py, |sim, id| Ok(sim.joint_state(id)?.position))
+    }
+
+    /// Same as `angle` (the word for sliders).
+    #[getter]
+    fn position(&self, py: Python<'_>) -> PyResult<f64> {
+        self.angle(py)
+    }
+
+    /// Rate of `angle`, rad/s (or m/s).
+    #[getter]
+    fn rate(&self, py: Python<'_>) -> PyResult<f64> {
+        self.act(py, |sim, id| Ok(sim.joint_state(id)?.rate))
+    }
+
+    /// Adds a torque (N·m) about a rotary joint's axis for the next step.
+    fn add_torque(&self, py: Python<'_>, torque: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.add_torque(torque))
+    }
+
+    /// Adds a force (N) along a slider's axis for the next step.
+    fn add_force(&self, py: Python<'_>, force: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.add_force(force))
+    }
+
+    /// Drives the joint at `speed` (rad/s or m/s) with at most `max_force` (N·m or N);
+    /// `max_force = 0` turns the motor off.
+    fn set_speed(&self, py: Python<'_>, speed: f64, max_force: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_speed(speed, max_force))
+    }
+
+    /// Stops (limits) of its first degree of freedom (±inf: none).
+    fn set_limits(&self, py: Python<'_>, low: f64, high: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_limits(low, high))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<ars.Joint {:?}>", self.name)
+    }
+}

@@ -1,0 +1,213 @@
+"""The Python API: construction, named access returning copies, hooks, threads, and
+every failure as an exception under ars.ArsError."""
+
+import pickle
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import ars
+
+
+def falling_ball():
+    sim = ars.Simulation()
+    sim.add_floor()
+    ball = sim.add_sphere(0.1, (0.0, 1.0, 0.0), mass=2.0)
+    return sim, ball
+
+
+def test_defaults_and_keywords():
+    sim = ars.Simulation()
+    assert sim.time_step == 0.0004
+    assert sim.gravity == (0.0, -9.81, 0.0)
+    sim = ars.Simulation(time_step=0.001, gravity=(0, 0, -9.81))
+    assert (sim.time_step, sim.gravity) == (0.001, (0.0, 0.0, -9.81))
+    assert sim.add_box((1, 2, 3), (0, 5, 0), density=10.0) == "box"
+    assert sim.body("box").mass == pytest.approx(60.0)
+    assert sim.add_sphere(0.5, name="ball") == "ball"
+    assert sim.body("ball").mass == 1.0, "neither mass nor density: ODE's default body"
+    assert sim.objects == ["ball", "box"]
+
+
+def test_a_ball_falls_and_rests_on_the_floor():
+    sim, ball = falling_ball()
+    sim.run(2.0)
+    assert sim.time == pytest.approx(2.0)
+    assert sim.step_count == 5000
+    y = sim.body(ball).position[1]
+    assert abs(y - 0.1) < 1e-3
+
+
+def test_attributes_are_copies_not_live_views():
+    sim, ball = falling_ball()
+    body = sim.body(ball)
+    before = body.position
+    before[1] = 42.0  # the caller owns it
+    sim.step(100)
+    after = body.position
+    assert after[1] < 1.0 and before[1] == 42.0
+    assert isinstance(after, np.ndarray) and after.flags.writeable
+    assert body.rotation.shape == (3, 3)
+    np.testing.assert_array_equal(body.rotation, np.eye(3))
+
+
+def test_joints_by_name_read_and_act():
+    sim = ars.Simulation(gravity=(0, 0, 0))
+    wheel = sim.add_cylinder(0.1, 0.3, (0, 0, 0), mass=1.0)
+    sim.add_rotary_joint("axle", wheel, None, None, (0, 0, 1))
+    axle = sim.joint("axle")
+    axle.set_speed(2.0, 50.0)
+    sim.run(0.5)
+    assert axle.rate == pytest.approx(2.0)
+    assert axle.angle == pytest.approx(1.0, abs=0.01)
+    assert sim.joints == ["axle"]
+
+
+def test_bad_input_is_an_input_error_and_a_value_error():
+    sim = ars.Simulation()
+    with pytest.raises(ars.InputError, match="radius"):
+        sim.add_sphere(-1.0)
+    with pytest.raises(ValueError):
+        sim.add_sphere(float("nan"))
+    with pytest.raises(ars.InputError, match="both mass and density"):
+        sim.add_sphere(1.0, mass=1.0, density=1.0)
+    ball = sim.add_sphere(0.1, (0, 1, 0), mass=1.0)
+    with pytest.raises(ars.ArsError, match="itself"):
+        sim.add_rotary_joint("j", ball, ball, None, (0, 0, 1))
+    with pytest.raises(TypeError):
+        sim.add_sphere("big")
+    sim.step()  # still usable
+
+
+def test_an_unknown_name_says_what_was_meant():
+    sim, _ball = falling_ball()
+    with pytest.raises(ars.UnknownNameError, match="did you mean sphere") as caught:
+        sim.body("sphre")
+    assert isinstance(caught.value, KeyError) and isinstance(caught.value, ars.ArsError)
+    with pytest.raises(ars.UnknownNameError):
+        sim.joint("r1")
+
+
+def test_a_panic_is_an_internal_error_and_the_interpreter_lives_on():
+    with pytest.raises(ars.InternalError, match="on purpose"):
+        ars._native._panic_for_tests("on purpose")
+    assert issubclass(ars.InternalError, Exception)
+    sim, _ball = falling_ball()
+    sim.step()
+
+
+def test_an_exception_in_a_hook_comes_out_unchanged_and_the_simulation_goes_on():
+    sim, _ball = falling_ball()
+
+    class Stop(Exception):
+        pass
+
+    calls = []
+
+    def hook():
+        calls.append(sim.time)
+        if len(calls) == 3:
+            raise Stop("third step")
+
+    hook_id = sim.add_pre_step(hook)
+    with pytest.raises(Stop, match="third step"):
+        sim.step(10)
+    assert sim.step_count == 2, "the raising step was not taken"
+    sim.remove_hook(hook_id)
+    sim.step(10)
+    assert sim.step_count == 12
+
+
+def test_hooks_act_on_the_simulation_they_run_in():
+    sim = ars.Simulation(gravity=(0, 0, 0))
+    ball = sim.add_sphere(0.1, (0, 0, 0), mass=1.0)
+    body = sim.body(ball)
+    seen = []
+    sim.add_pre_step(lambda: body.add_force((1.0, 0.0, 0.0)))
+    sim.add_post_step(lambda: seen.append(body.linear_velocity[0]))
+    sim.step(4)
+    # 1 N on 1 kg for 4 steps of 0.4 ms.
+    assert seen == pytest.approx([0.0004, 0.0008, 0.0012, 0.0016])
+
+    def steps_inside():
+        sim.step()
+
+    sim.add_pre_step(steps_inside)
+    with pytest.raises(ars.InputError, match="cannot step"):
+        sim.step()
+
+
+def test_usable_from_other_threads_and_steps_without_the_gil():
+    sim, ball = falling_ball()
+    results = []
+
+    def worker():
+        sim.run(1.0)
+        results.append(sim.body(ball).position[1])
+
+    ticks = []
+    thread = threading.Thread(target=worker)
+    thread.start()
+    while thread.is_alive():
+        ticks.append(time.perf_counter())
+        time.sleep(0.0005)
+    thread.join()
+    assert len(results) == 1 and results[0] < 1.0
+    # The main thread ran while the other stepped (the GIL was released).
+    assert len(ticks) >= 2
+
+
+def test_simulations_are_not_picklable_and_say_where_to_go():
+    sim, _ = falling_ball()
+    with pytest.raises(TypeError, match="ars.sweep"):
+        pickle.dumps(sim)
+
+
+def test_exceptions_pickle_as_the_same_classes():
+    for cls in (
+        ars.ArsError,
+        ars.InputError,
+        ars.UnknownNameError,
+        ars.SimulationError,
+        ars.InternalError,
+    ):
+        again = pickle.loads(pickle.dumps(cls("message")))
+        assert type(again) is cls and str(again) == "message"
+
+
+def test_scenes_save_and_load():
+    sim, ball = falling_ball()
+    sim.step(10)
+    loaded = ars.Simulation.load_scene(sim.save_scene())
+    np.testing.assert_array_equal(loaded.body(ball).position, sim.body(ball).position)
+    sim.step(100)
+    loaded.step(100)
+    np.testing.assert_array_equal(loaded.body(ball).position, sim.body(ball).position)
+
+
+def test_a_thread_reads_while_another_steps_with_python_hooks():
+    sim, ball = falling_ball()
+    body = sim.body(ball)
+    sim.add_pre_step(lambda: body.add_force((0.0, 1.0, 0.0)))
+    reads = []
+    done = threading.Event()
+
+    def reader():
+        while not done.is_set():
+            reads.append(sim.time)
+
+    thread = threading.Thread(target=reader)
+    thread.start()
+    sim.run(0.5)
+    done.set()
+    thread.join(timeout=10)
+    assert not thread.is_alive()
+    assert reads == sorted(reads) and reads
+
+
+def test_the_package_docs_example_runs():
+    import doctest
+
+    assert doctest.testmod(ars).failed == 0
