@@ -8,7 +8,12 @@ __all__ = ["ArsError", "InputError", "InternalError", "SimulationError", "Unknow
 
 
 class ArsError(Exception):
-    """Base class of every error ARS raises."""
+    """Base class of every error ARS raises. ``msg`` is its message (the original's
+    attribute)."""
+
+    @property
+    def msg(self):
+        return self.args[0] if self.args else None
 
 
 class InputError(ArsError, ValueError):

@@ -23,6 +23,9 @@ use crate::views::{Body, Joint};
 /// A vector given as any sequence of three numbers.
 pub(crate) type Vec3 = [f64; 3];
 
+/// A ray's hit: distance (m) and point.
+type RayHit = (f64, (f64, f64, f64));
+
 /// Where a running hook's simulation can be reached from Python calls on the same
 /// thread.
 #[derive(Default)]
@@ -462,6 +465,25 @@ impl PySimulation {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
             let id = sim.add_fixed_joint(name, a, b)?;
             Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// The first thing a ray from `origin` along `direction` meets within `length`
+    /// (m): `(distance, point)`, or `None`.
+    fn cast_ray(
+        &self,
+        py: Python<'_>,
+        origin: Vec3,
+        direction: Vec3,
+        length: f64,
+    ) -> PyResult<Option<RayHit>> {
+        self.with(py, move |sim| {
+            let direction = Vector3::from(direction);
+            let norm = direction.norm();
+            let direction = if norm > 0.0 { direction / norm } else { direction };
+            let ray = ars_core::world::raycast::Ray { origin: Point3::from(origin), direction };
+            let hit = sim.world().cast_ray(ray, length, None)?;
+            Ok(hit.map(|h| (h.distance, (h.position.x, h.position.y, h.position.z))))
         })
     }
 

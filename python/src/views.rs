@@ -80,6 +80,15 @@ impl Body {
         self.read(py, |sim, id| Ok(sim.body(id)?.mass()))
     }
 
+    /// Inertia tensor about its centre of mass in its own frame, kg·m²: a new 3×3
+    /// array.
+    #[getter]
+    fn inertia<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let i = self.read(py, |sim, id| Ok(sim.body(id)?.inertia()))?;
+        let rows: Vec<Vec<f64>> = (0..3).map(|r| (0..3).map(|c| i[(r, c)]).collect()).collect();
+        Ok(PyArray2::from_vec2(py, &rows).expect("3 rows of 3"))
+    }
+
     /// Moves it to `position` (m).
     fn set_position(&self, py: Python<'_>, position: Vec3) -> PyResult<()> {
         self.read(py, |sim, id| sim.set_position(id, Point3::from(position)))
@@ -186,6 +195,28 @@ impl Joint {
     /// `max_force = 0` turns the motor off.
     fn set_speed(&self, py: Python<'_>, speed: f64, max_force: f64) -> PyResult<()> {
         self.act(py, |sim, id| sim.joint_mut(id)?.set_speed(speed, max_force))
+    }
+
+    /// Sets one of ODE's parameters of its first axis, by name: `"lo_stop"`,
+    /// `"hi_stop"`, `"velocity"`, `"max_force"`, `"fudge_factor"`, `"bounce"`, `"cfm"`,
+    /// `"stop_erp"`, `"stop_cfm"`.
+    fn set_param(&self, py: Python<'_>, name: &str, value: f64) -> PyResult<()> {
+        use ars_core::JointParam as P;
+        let param = match name {
+            "lo_stop" => P::LoStop,
+            "hi_stop" => P::HiStop,
+            "velocity" => P::Velocity,
+            "max_force" => P::MaxForce,
+            "fudge_factor" => P::FudgeFactor,
+            "bounce" => P::Bounce,
+            "cfm" => P::Cfm,
+            "stop_erp" => P::StopErp,
+            "stop_cfm" => P::StopCfm,
+            other => {
+                return Err(crate::errors::raise(py, "InputError", format!("no joint parameter {other:?}")));
+            }
+        };
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_param(param, value))
     }
 
     /// Stops (limits) of its first degree of freedom (±inf: none).

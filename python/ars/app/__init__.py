@@ -1,0 +1,198 @@
+"""Programs in the original ARS style (``from ars.app import Program``): subclass
+:class:`Program`, build the scene in ``create_sim_objects``, connect handlers to the
+simulation's signals, and run it.
+
+``Program()`` builds the simulation (``create_simulation`` calls
+``create_sim_objects``). ``run(duration)`` runs it headless for ``duration`` seconds of
+simulated time, frame by frame, and returns the simulation; ``start()`` is the
+original's entry point: it runs the program for ``ARS_DURATION`` seconds (default 10)
+headless, saying so on stderr (the viewer for these programs is still to come).
+
+Module names, as the original: ``Program``, ``ActionMap``, ``Simulation``,
+``dispatcher``, ``signals``, ``gp`` (graphics), ``exc`` (exceptions), ``logger``.
+"""
+
+import logging
+import math
+import os
+import sys
+import weakref
+
+from ars import dispatch as dispatcher
+from ars import exceptions as exc
+from ars import graphics as gp
+from ars.model.simulator import Simulation, signals
+
+__all__ = ["ActionMap", "Program", "Simulation", "dispatcher", "exc", "gp", "logger", "signals"]
+
+logger = logging.getLogger("ars.app")
+
+
+class ActionMap:
+    """Keys and what they do: ``add(key, function, repeat=False)``; a repeated key acts
+    in every step of the next frame, the others once, at once."""
+
+    def __init__(self):
+        self._actions = {}
+
+    def add(self, key, value, repeat=False):
+        self._actions[key] = (value, repeat)
+
+    def has_key(self, key):
+        return key in self._actions
+
+    def get(self, key, default=None):
+        return self._actions.get(key, default)
+
+    def get_function(self, key):
+        return self._actions[key][0]
+
+    def call(self, key):
+        try:
+            self._actions[key][0]()
+        except Exception:
+            logger.exception("Exception when calling the action of key %r", key)
+
+    def is_repeat(self, key):
+        return self._actions[key][1]
+
+    def __str__(self):
+        return ", ".join(f"{k}{' (held)' if r else ''}" for k, (_, r) in self._actions.items())
+
+
+class Program:
+    """A simulation program: override ``create_sim_objects`` (and the class constants)."""
+
+    WINDOW_TITLE = "Autonomous Robot Simulator"
+    WINDOW_POSITION = (0, 0)
+    WINDOW_SIZE = (1024, 768)
+    WINDOW_ZOOM = 1.0
+    CAMERA_POSITION = (10, 8, 10)
+    BACKGROUND_COLOR = (1, 1, 1)
+    FPS = 50
+    STEPS_PER_FRAME = 50
+    FLOOR_BOX_SIZE = (10, 0.01, 10)
+
+    def __init__(self):
+        self.do_create_window = True
+        self.key_press_functions = None
+        self.sim = None
+        self._screenshot_recorder = None
+        self.set_key_2_action_mapping()
+        self.gAdapter = gp.Engine(
+            self.WINDOW_TITLE,
+            self.WINDOW_POSITION,
+            self.WINDOW_SIZE,
+            zoom=self.WINDOW_ZOOM,
+            background_color=self.BACKGROUND_COLOR,
+            cam_position=self.CAMERA_POSITION,
+        )
+        self.create_simulation()
+
+    def __setattr__(self, name, value):
+        # A simulation knows its program: the program's handlers then hear it alone.
+        if name == "sim" and isinstance(value, Simulation):
+            value._program = weakref.ref(self)
+        object.__setattr__(self, name, value)
+
+    # -- building -------------------------------------------------------------------
+
+    def create_simulation(self, add_axes=True, add_floor=True):
+        """Builds the simulation: world, axes, floor, then ``create_sim_objects``."""
+        self.sim = Simulation(self.FPS, self.STEPS_PER_FRAME)
+        self.sim.graph_adapter = gp
+        self.sim.add_basic_simulation_objects()
+        if add_axes:
+            self.sim.add_axes()
+        if add_floor:
+            self.sim.add_floor(
+                normal=(0, 1, 0), box_size=self.FLOOR_BOX_SIZE, color=(0.7, 0.7, 0.7)
+            )
+        self.create_sim_objects()
+        self.gAdapter.add_objects_list(self.sim.actors.values())
+        self.sim.update_actors()
+
+    def create_sim_objects(self):
+        """Adds the program's objects and joints to ``self.sim``: override it."""
+
+    def set_key_2_action_mapping(self):
+        self.key_press_functions = ActionMap()
+        self.key_press_functions.add("r", self.reset_simulation)
+
+    # -- running --------------------------------------------------------------------
+
+    def run(self, duration):
+        """Runs headless for ``duration`` seconds of simulated time (whole frames of
+        ``1/FPS`` s) and returns the simulation."""
+        frames = max(0, math.ceil(duration * self.FPS - 1e-9))
+        for _ in range(frames):
+            self.sim.on_idle()
+        return self.sim
+
+    def start(self):
+        """Runs the program: headless for ``ARS_DURATION`` seconds (default 10)."""
+        duration = float(os.environ.get("ARS_DURATION", "10"))
+        print(
+            f"ars: running {type(self).__name__} headless for {duration:g} s (set ARS_DURATION to change)",
+            file=sys.stderr,
+        )
+        self.do_create_window = False
+        self.run(duration)
+
+    def finalize(self):
+        if self.gAdapter is not None:
+            self.gAdapter.finalize_window()
+        self.do_create_window = False
+        self.key_press_functions = None
+        self.sim = None
+        self._screenshot_recorder = None
+        self.gAdapter = None
+
+    def reset_simulation(self):
+        """Builds the simulation anew (the handlers stay connected)."""
+        logger.info("reset simulation")
+        self.do_create_window = True
+        self.gAdapter.reset()
+        self.create_simulation()
+
+    def on_action_selection(self, key):
+        """What a key press does: a held key's action runs in every step of the next
+        frame, the others' at once."""
+        logger.info("key: %s", key)
+        try:
+            if self.key_press_functions.has_key(key):
+                if self.key_press_functions.is_repeat(key):
+                    self.sim.all_frame_steps_callbacks.append(
+                        self.key_press_functions.get_function(key)
+                    )
+                else:
+                    self.key_press_functions.call(key)
+            else:
+                logger.info("unregistered key: %s", key)
+        except Exception:
+            logger.exception("Exception when handling key %r", key)
+
+    def on_pre_step(self):
+        raise NotImplementedError
+
+    def on_pre_frame(self):
+        raise NotImplementedError
+
+    # -- screenshots ----------------------------------------------------------------
+
+    def create_screenshot_recorder(self, base_filename, periodically=False):
+        self._screenshot_recorder = gp.ScreenshotRecorder(base_filename, self.gAdapter)
+        if periodically:
+            self._screenshot_recorder.period = 1.0 / self.FPS
+        dispatcher.connect(self.record_frame, signals.SIM_PRE_FRAME)
+
+    def record_frame(self):
+        if self._screenshot_recorder is None:
+            raise exc.ArsError("Screenshot recorder is not initialized")
+        try:
+            if self._screenshot_recorder.period is None:
+                self._screenshot_recorder.write(self.sim.num_frame)
+            else:
+                self._screenshot_recorder.write(self.sim.num_frame, self.sim.sim_time)
+        except Exception as e:
+            raise exc.ArsError("Could not record frame") from e

@@ -1,0 +1,1 @@
+"""Collision helpers of the original ARS API."""

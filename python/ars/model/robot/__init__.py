@@ -1,0 +1,1 @@
+"""Robot parts of the original ARS API: joints and sensors."""

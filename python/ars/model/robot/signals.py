@@ -1,0 +1,10 @@
+"""Signals joints and sensors send."""
+
+JOINT_PRE_ADD_TORQUE = "robot joint pre add torque"
+JOINT_POST_ADD_TORQUE = "robot joint post add torque"
+JOINT_PRE_ADD_FORCE = "robot joint pre add force"
+JOINT_POST_ADD_FORCE = "robot joint post add force"
+JOINT_PRE_SET_SPEED = "robot joint pre set speed"
+JOINT_POST_SET_SPEED = "robot joint post set speed"
+SENSOR_PRE_ON_CHANGE = "sensor pre on change"
+SENSOR_POST_ON_CHANGE = "sensor post on change"
