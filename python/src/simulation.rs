@@ -470,13 +470,7 @@ impl PySimulation {
 
     /// The first thing a ray from `origin` along `direction` meets within `length`
     /// (m): `(distance, point)`, or `None`.
-    fn cast_ray(
-        &self,
-        py: Python<'_>,
-        origin: Vec3,
-        direction: Vec3,
-        length: f64,
-    ) -> PyResult<Option<RayHit>> {
+    fn cast_ray(&self, py: Python<'_>, origin: Vec3, direction: Vec3, length: f64) -> PyResult<Option<RayHit>> {
         self.with(py, move |sim| {
             let direction = Vector3::from(direction);
             let norm = direction.norm();
