@@ -12,6 +12,7 @@ True
 
 from ars._errors import ArsError, InputError, InternalError, SimulationError, UnknownNameError
 from ars._native import Body, Joint, Simulation, __version__
+from ars.sweeps import RunResult, SweepResults, sweep
 
 __all__ = [
     "ArsError",
@@ -19,8 +20,11 @@ __all__ = [
     "InputError",
     "InternalError",
     "Joint",
+    "RunResult",
     "Simulation",
     "SimulationError",
+    "SweepResults",
     "UnknownNameError",
     "__version__",
+    "sweep",
 ]

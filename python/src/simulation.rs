@@ -271,6 +271,15 @@ impl PySimulation {
         })
     }
 
+    /// Seeds the world's own random generator (used by ODE's QuickStep; each world
+    /// keeps its own, so a run steps the same in any process).
+    fn set_seed(&self, py: Python<'_>, seed: u32) -> PyResult<()> {
+        self.with(py, move |sim| {
+            sim.world_mut().set_random_seed(seed);
+            Ok(())
+        })
+    }
+
     /// Takes `n` steps (in native code, without the GIL unless a Python hook runs).
     #[pyo3(signature = (n=1))]
     fn step(&self, py: Python<'_>, n: u64) -> PyResult<()> {

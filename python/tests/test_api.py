@@ -207,7 +207,10 @@ def test_a_thread_reads_while_another_steps_with_python_hooks():
     assert reads == sorted(reads) and reads
 
 
-def test_the_package_docs_example_runs():
+def test_the_package_docs_examples_run():
     import doctest
 
+    import ars.sweeps
+
     assert doctest.testmod(ars).failed == 0
+    assert doctest.testmod(ars.sweeps).failed == 0

@@ -1,0 +1,296 @@
+"""Parameter sweeps: many runs of one model, one after the other, over local processes,
+or on a Ray cluster, with the same results to the bit whichever way they run.
+
+>>> import ars
+>>> def falling(params):
+...     sim = ars.Simulation()
+...     sim.add_floor()
+...     sim.add_sphere(0.1, (0.0, params["height"], 0.0), mass=1.0, name="ball")
+...     return sim
+>>> runs = ars.sweep(falling, [{"height": 1.0}, {"height": 2.0}], duration=0.1,
+...                  record=["ball.position"], every=50)
+>>> [len(r.table) for r in runs], runs[1].table["ball.position"][0][1]
+([6, 6], 2.0)
+
+Only the parameters cross process boundaries: each run is built inside its worker by
+``build(params)``, which returns an ``ars.Simulation`` or an original-style
+``ars.app.Program``; or ``build`` is a ``Program`` subclass whose class attributes the
+parameters override (``ars.sweep(Example2, [{"MAX_TORQUE": 10.0}], ...)``).
+"""
+
+import dataclasses
+import multiprocessing
+import os
+import pickle
+import sys
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+__all__ = ["RunResult", "SweepResults", "sweep"]
+
+
+@dataclasses.dataclass
+class RunResult:
+    """One run: its parameters, its table (``time`` then one field per recorded
+    ``"NAME.ATTRIBUTE"``; what was sampled before a failure), and the exception that
+    stopped it (``None`` if it ran to the end)."""
+
+    params: dict
+    table: np.ndarray
+    error: BaseException = None
+
+
+class SweepResults(list):
+    """The runs, in the order of the parameters given."""
+
+    @property
+    def table(self):
+        """Every run's table stacked, with a first field ``run`` (its index)."""
+        tables = [(i, r.table) for i, r in enumerate(self) if r.table is not None and len(r.table)]
+        if not tables:
+            return np.zeros(0, dtype=[("run", "i8")])
+        fields = tables[0][1].dtype.descr
+        stacked = np.zeros(sum(len(t) for _, t in tables), dtype=[("run", "i8"), *fields])
+        at = 0
+        for i, t in tables:
+            part = stacked[at : at + len(t)]
+            part["run"] = i
+            for name in t.dtype.names:
+                part[name] = t[name]
+            at += len(t)
+        return stacked
+
+    @property
+    def errors(self):
+        """``[(index, exception), ...]`` of the runs that failed."""
+        return [(i, r.error) for i, r in enumerate(self) if r.error is not None]
+
+
+def _build(build, params):
+    from ars.app import Program
+
+    if isinstance(build, type) and issubclass(build, Program):
+        return type(build.__name__, (build,), dict(params))()
+    return build(params)
+
+
+def _native_of(target):
+    from ars import _native
+    from ars.app import Program
+    from ars.model.simulator import Simulation as OriginalSimulation
+
+    if isinstance(target, _native.Simulation):
+        return target, lambda duration: target.run(duration)
+    if isinstance(target, Program):
+        return target.sim.native, target.run
+    if isinstance(target, OriginalSimulation):
+
+        def frames(duration):
+            for _ in range(round(duration * target._FPS)):
+                target.on_idle()
+
+        return target.native, frames
+    raise TypeError(
+        f"build must return an ars.Simulation or an ars.app.Program, got {type(target).__name__}"
+    )
+
+
+def _reader(sim, entry):
+    name, sep, attribute = entry.rpartition(".")
+    if not sep or not name or not attribute:
+        from ars import InputError
+
+        raise InputError(f"record entries are 'NAME.ATTRIBUTE' (\"r1.angle\"), got {entry!r}")
+    from ars import UnknownNameError
+
+    try:
+        view = sim.body(name)
+    except UnknownNameError:
+        view = sim.joint(name)
+    getattr(view, attribute)  # fails now, with the attribute's name, if it has none
+    return lambda: getattr(view, attribute)
+
+
+def _table(record, rows):
+    if not rows:
+        return np.zeros(0, dtype=[("time", "f8")] + [(r, "f8") for r in record])
+    fields = [("time", "f8")]
+    for name, value in zip(record, rows[0][1:]):
+        shape = np.shape(value)
+        fields.append((name, "f8", shape) if shape else (name, "f8"))
+    table = np.zeros(len(rows), dtype=fields)
+    for i, row in enumerate(rows):
+        table[i] = tuple(row)
+    return table
+
+
+def _portable(error):
+    """The error itself if it survives pickling, else an ``ars.ArsError`` saying what
+    it was."""
+    try:
+        pickle.loads(pickle.dumps(error))
+        return error
+    except Exception:  # noqa: BLE001  (whatever stops pickling, say what it was instead)
+        from ars import ArsError
+
+        return ArsError(f"{type(error).__module__}.{type(error).__qualname__}: {error}")
+
+
+def run_one(build, params, duration, record, every, seed):
+    """One run, where it runs (a worker): returns ``(table, error)``."""
+    rows = []
+    try:
+        target = _build(build, params)
+        sim, advance = _native_of(target)
+        if seed is not None:
+            sim.set_seed(seed)
+        readers = [_reader(sim, entry) for entry in record]
+
+        def sample():
+            rows.append([sim.time] + [read() for read in readers])
+
+        def maybe_sample():
+            if sim.step_count % every == 0:
+                sample()
+
+        sample()
+        sim.add_post_step(maybe_sample)
+        advance(duration)
+        return _table(record, rows), None
+    except Exception as e:  # noqa: BLE001  (a failing run is a result, not a crash)
+        return _table(record, rows), _portable(e)
+
+
+class _Progress:
+    def __init__(self, total, show):
+        self.total, self.done, self.show = total, 0, show
+
+    def step(self):
+        self.done += 1
+        if self.show:
+            filled = 30 * self.done // max(self.total, 1)
+            sys.stderr.write(
+                f"\rars.sweep [{'#' * filled}{' ' * (30 - filled)}] {self.done}/{self.total}"
+            )
+            if self.done == self.total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def sweep(
+    build,
+    params,
+    duration,
+    record=(),
+    every=1,
+    backend="serial",
+    seed=0,
+    workers=None,
+    address=None,
+    progress=None,
+):
+    """Runs ``build(p)`` for ``duration`` seconds for every ``p`` in ``params``,
+    sampling ``time`` and each ``"NAME.ATTRIBUTE"`` of ``record`` (named access:
+    ``"r1.angle"``, ``"pole.position"``) at the start and every ``every`` steps.
+
+    ``backend``: ``"serial"`` (here), ``"processes"`` (``workers`` local processes;
+    ``build`` must be importable, and a script needs an ``if __name__ ==
+    "__main__":`` guard), or ``"ray"`` (the cluster at ``address`` or ``RAY_ADDRESS``
+    if given, else a quiet local one of ``workers`` CPUs, started and shut down here).
+    ``seed`` seeds each run's world (``None``: leave it). ``progress``: a progress bar on
+    stderr (default: when it is a terminal).
+
+    Returns a :class:`SweepResults`: one :class:`RunResult` per parameter set, in
+    order; a run that fails has its ``error`` and the others run on.
+    """
+    params = [dict(p) for p in params]
+    record = list(record)
+    if not isinstance(every, int) or every < 1:
+        from ars import InputError
+
+        raise InputError(f"every must be a whole number of steps ≥ 1, got {every!r}")
+    show = sys.stderr.isatty() if progress is None else progress
+    bar = _Progress(len(params), show)
+    args = (duration, record, every, seed)
+    if backend == "serial":
+        outcomes = []
+        for p in params:
+            outcomes.append(run_one(build, p, *args))
+            bar.step()
+    elif backend == "processes":
+        outcomes = _on_processes(build, params, args, workers, bar)
+    elif backend == "ray":
+        outcomes = _on_ray(build, params, args, workers, address, bar)
+    else:
+        from ars import InputError
+
+        raise InputError(f"backend must be 'serial', 'processes' or 'ray', got {backend!r}")
+    return SweepResults(RunResult(p, table, error) for p, (table, error) in zip(params, outcomes))
+
+
+def _check_portable(build, backend):
+    try:
+        pickle.dumps(build)
+    except Exception as e:
+        raise TypeError(
+            f"the {backend} backend sends build to other processes by name: define it at the top "
+            f"level of an importable module (not a lambda or a local function) ({e})"
+        ) from e
+
+
+def _on_processes(build, params, args, workers, bar):
+    _check_portable(build, "processes")
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=workers or os.cpu_count(), mp_context=context) as pool:
+        futures = [pool.submit(run_one, build, p, *args) for p in params]
+        outcomes = []
+        for f in futures:
+            try:
+                outcomes.append(f.result())
+            except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
+                outcomes.append((None, e))
+            bar.step()
+    return outcomes
+
+
+def _on_ray(build, params, args, workers, address, bar):
+    try:
+        import ray
+    except ImportError as e:
+        raise ImportError("the ray backend needs Ray: pip install ray") from e
+    started = False
+    if not ray.is_initialized():
+        address = address or os.environ.get("RAY_ADDRESS")
+        quiet = {"log_to_driver": False, "logging_level": "ERROR"}
+        if address:
+            ray.init(address=address, **quiet)
+        else:
+            os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
+            os.environ.setdefault("RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER", "0")
+            # Workers import what this process imports: give them its module path.
+            path = os.pathsep.join(p for p in sys.path if p and os.path.isdir(p))
+            previous = os.environ.get("PYTHONPATH")
+            os.environ["PYTHONPATH"] = path
+            try:
+                ray.init(num_cpus=workers or os.cpu_count(), include_dashboard=False, **quiet)
+            finally:
+                if previous is None:
+                    del os.environ["PYTHONPATH"]
+                else:
+                    os.environ["PYTHONPATH"] = previous
+        started = True
+    try:
+        remote = ray.remote(num_cpus=1)(run_one)
+        refs = [remote.remote(build, p, *args) for p in params]
+        outcomes = []
+        for ref in refs:
+            try:
+                outcomes.append(ray.get(ref))
+            except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
+                outcomes.append((None, e))
+            bar.step()
+        return outcomes
+    finally:
+        if started:
+            ray.shutdown()
