@@ -9,7 +9,7 @@ or on a Ray cluster, with the same results to the bit whichever way they run.
 ...     return sim
 >>> runs = ars.sweep(falling, [{"height": 1.0}, {"height": 2.0}], duration=0.1,
 ...                  record=["ball.position"], every=50)
->>> [len(r.table) for r in runs], runs[1].table["ball.position"][0][1]
+>>> [len(r.table) for r in runs], float(runs[1].table["ball.position"][0][1])
 ([6, 6], 2.0)
 
 Only the parameters cross process boundaries: each run is built inside its worker by
