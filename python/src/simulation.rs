@@ -490,6 +490,58 @@ impl PySimulation {
         })
     }
 
+    /// Loads a robot from a URDF file (Z up unless `y_up`; see the Rust
+    /// `Scene::load_urdf` for the rules). Returns `{"name", "links", "joints",
+    /// "base_joint"}`, links and joints by their URDF names in file order.
+    #[pyo3(signature = (path, *, fixed_base=false, base_position=[0.0; 3], self_collision=false, y_up=false,
+                        initial_positions=None, packages=None, search_paths=None, ignore_visuals=false))]
+    fn load_urdf<'py>(
+        &self,
+        py: Python<'py>,
+        path: std::path::PathBuf,
+        fixed_base: bool,
+        base_position: Vec3,
+        self_collision: bool,
+        y_up: bool,
+        initial_positions: Option<HashMap<String, f64>>,
+        packages: Option<HashMap<String, std::path::PathBuf>>,
+        search_paths: Option<Vec<std::path::PathBuf>>,
+        ignore_visuals: bool,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let mut options = ars_core::UrdfOptions::new()
+            .fixed_base(fixed_base)
+            .self_collision(self_collision)
+            .ignore_visuals(ignore_visuals)
+            .base_pose(ars_core::nalgebra::Isometry3::translation(base_position[0], base_position[1], base_position[2]));
+        if y_up {
+            options = options.up_axis(ars_core::UpAxis::Y);
+        }
+        let mut positions: Vec<(String, f64)> = initial_positions.unwrap_or_default().into_iter().collect();
+        positions.sort_by(|a, b| a.0.cmp(&b.0));
+        for (name, q) in positions {
+            options = options.initial_position(&name, q);
+        }
+        for (name, dir) in packages.unwrap_or_default() {
+            options = options.package(&name, dir);
+        }
+        for dir in search_paths.unwrap_or_default() {
+            options = options.search_path(dir);
+        }
+        let (name, links, joints, base) = self.with(py, move |sim| {
+            let robot = sim.load_urdf(&path, &options)?;
+            let base = robot.base_joint.map(|id| sim.joint(id).map(|j| j.name().to_string())).transpose()?;
+            let links: Vec<String> = robot.links.into_iter().map(|(n, _)| n).collect();
+            let joints: Vec<String> = robot.joints.into_iter().map(|(n, _)| n).collect();
+            Ok((robot.name, links, joints, base))
+        })?;
+        let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("name", name)?;
+        dict.set_item("links", links)?;
+        dict.set_item("joints", joints)?;
+        dict.set_item("base_joint", base)?;
+        Ok(dict)
+    }
+
     /// The names of the objects, in alphabetical order.
     #[getter]
     fn objects(&self, py: Python<'_>) -> PyResult<Vec<String>> {

@@ -8,6 +8,13 @@ use pyo3::prelude::*;
 
 use crate::simulation::{PySimulation, Vec3};
 
+/// A set-point: a constant, or `(time, value)` breakpoints.
+#[derive(FromPyObject)]
+pub(crate) enum Setpoint {
+    Constant(f64),
+    Points(Vec<(f64, f64)>),
+}
+
 /// An object of a simulation, by name.
 #[pyclass(module = "ars", frozen)]
 pub struct Body {
@@ -217,6 +224,44 @@ impl Joint {
             }
         };
         self.act(py, |sim, id| sim.joint_mut(id)?.set_param(param, value))
+    }
+
+    /// Viscous friction: `-coefficient · rate` every step (N·m·s/rad or N·s/m; 0: off).
+    fn set_viscous_friction(&self, py: Python<'_>, coefficient: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_viscous_friction(coefficient))
+    }
+
+    /// Drives the joint in native code every step: `kind` is `"torque"` (the torque
+    /// follows `setpoint`), `"position"` (a PD servo to `setpoint` with gains `kp`,
+    /// `kd`) or `"velocity"` (a P servo to `setpoint` with gain `kp`). `setpoint` is a
+    /// number or `(time, value)` breakpoints, linear between them. `None` removes it.
+    #[pyo3(signature = (kind, setpoint=None, kp=0.0, kd=0.0))]
+    fn set_controller(&self, py: Python<'_>, kind: Option<&str>, setpoint: Option<Setpoint>, kp: f64, kd: f64) -> PyResult<()> {
+        use ars_core::{PositionServo, Profile, TorqueMotor, VelocityServo};
+        let profile = |s: Option<Setpoint>| -> ars_core::Result<Profile> {
+            match s {
+                None => Err(ars_core::Error::OutOfRange { what: "controller", detail: "needs a setpoint".into() }),
+                Some(Setpoint::Constant(v)) => Profile::constant(v),
+                Some(Setpoint::Points(p)) => Profile::new(p),
+            }
+        };
+        let kind = kind.map(str::to_string);
+        self.act(py, move |sim, id| {
+            let mut joint = sim.joint_mut(id)?;
+            match kind.as_deref() {
+                None => {
+                    joint.clear_controller();
+                    Ok(())
+                }
+                Some("torque") => joint.set_controller(TorqueMotor { torque: profile(setpoint)? }),
+                Some("position") => joint.set_controller(PositionServo::pd(profile(setpoint)?, kp, kd)),
+                Some("velocity") => joint.set_controller(VelocityServo { setpoint: profile(setpoint)?, gain: kp }),
+                Some(other) => Err(ars_core::Error::OutOfRange {
+                    what: "controller",
+                    detail: format!("kind {other:?}: \"torque\", \"position\" or \"velocity\""),
+                }),
+            }
+        })
     }
 
     /// Stops (limits) of its first degree of freedom (±inf: none).

@@ -214,3 +214,23 @@ def test_the_package_docs_examples_run():
 
     assert doctest.testmod(ars).failed == 0
     assert doctest.testmod(ars.sweeps).failed == 0
+
+
+def test_urdf_robots_load_with_their_names(tmp_path):
+    import pathlib
+
+    data = pathlib.Path(__file__).parents[2] / "tests" / "data"
+    sim = ars.Simulation()
+    robot = sim.load_urdf(data / "gripper.urdf", fixed_base=True, base_position=(0, 1, 0))
+    assert robot["name"] == "gripper"
+    assert robot["joints"] == ["left_finger_joint", "right_finger_joint"]
+    assert robot["base_joint"] == "gripper/base"
+    sim.joint("left_finger_joint").set_speed(0.05, 10.0)
+    sim.run(0.2)
+    left, right = sim.joint("left_finger_joint").position, sim.joint("right_finger_joint").position
+    assert left > 0.005 and abs(left - right) < 1e-6, "the right finger mimics the left"
+    text = (data / "gripper.urdf").read_text()
+    bad = tmp_path / "bad.urdf"
+    bad.write_text(text.replace('<child link="left_finger"/>', '<child link="nowhere"/>'))
+    with pytest.raises(ars.InputError, match='link "nowhere"'):
+        ars.Simulation().load_urdf(bad)
