@@ -11,7 +11,7 @@ True
 """
 
 from ars._errors import ArsError, InputError, InternalError, SimulationError, UnknownNameError
-from ars._native import Body, Joint, Simulation, __version__
+from ars._native import Body, Joint, Sensor, Simulation, __version__
 from ars.sweeps import RunResult, SweepResults, sweep
 
 __all__ = [
@@ -21,6 +21,7 @@ __all__ = [
     "InternalError",
     "Joint",
     "RunResult",
+    "Sensor",
     "Simulation",
     "SimulationError",
     "SweepResults",

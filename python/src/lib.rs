@@ -9,6 +9,7 @@
 #![allow(clippy::too_many_arguments)]
 
 mod errors;
+mod sensors;
 mod simulation;
 mod views;
 
@@ -20,6 +21,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::PySimulation>()?;
     m.add_class::<views::Body>()?;
     m.add_class::<views::Joint>()?;
+    m.add_class::<sensors::PySensor>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(panic_for_tests, m)?)?;
     Ok(())

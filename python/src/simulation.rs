@@ -512,7 +512,11 @@ impl PySimulation {
             .fixed_base(fixed_base)
             .self_collision(self_collision)
             .ignore_visuals(ignore_visuals)
-            .base_pose(ars_core::nalgebra::Isometry3::translation(base_position[0], base_position[1], base_position[2]));
+            .base_pose(ars_core::nalgebra::Isometry3::translation(
+                base_position[0],
+                base_position[1],
+                base_position[2],
+            ));
         if y_up {
             options = options.up_axis(ars_core::UpAxis::Y);
         }
@@ -565,6 +569,28 @@ impl PySimulation {
     fn joint(slf: Bound<'_, Self>, name: &str) -> PyResult<Joint> {
         slf.get().with(slf.py(), |sim| sim.joint(name).map(|_| ()))?;
         Ok(Joint::new(slf.unbind(), name.to_string()))
+    }
+
+    /// Declares a sensor of `kind` reading `target` (an object or joint name; a list of
+    /// joint names for `"joint_positions"`; nothing for `"system_total_energy"`),
+    /// sampled after every step or every `every` seconds; see `Sensor.records`.
+    #[pyo3(signature = (kind, target=None, *, every=None))]
+    fn add_sensor(
+        slf: Bound<'_, Self>,
+        kind: &str,
+        target: Option<Bound<'_, PyAny>>,
+        every: Option<f64>,
+    ) -> PyResult<crate::sensors::PySensor> {
+        let targets: Vec<String> = match target {
+            None => Vec::new(),
+            Some(t) => match t.extract::<String>() {
+                Ok(name) => vec![name],
+                Err(_) => t.extract::<Vec<String>>()?,
+            },
+        };
+        let kind_owned = kind.to_string();
+        let log = slf.get().with(slf.py(), move |sim| crate::sensors::declare(sim, &kind_owned, &targets, every))?;
+        Ok(crate::sensors::PySensor::new(slf.unbind(), kind.to_string(), log))
     }
 
     /// Calls `function()` before every step (after the earlier hooks); returns an id

@@ -236,7 +236,14 @@ impl Joint {
     /// `kd`) or `"velocity"` (a P servo to `setpoint` with gain `kp`). `setpoint` is a
     /// number or `(time, value)` breakpoints, linear between them. `None` removes it.
     #[pyo3(signature = (kind, setpoint=None, kp=0.0, kd=0.0))]
-    fn set_controller(&self, py: Python<'_>, kind: Option<&str>, setpoint: Option<Setpoint>, kp: f64, kd: f64) -> PyResult<()> {
+    fn set_controller(
+        &self,
+        py: Python<'_>,
+        kind: Option<&str>,
+        setpoint: Option<Setpoint>,
+        kp: f64,
+        kd: f64,
+    ) -> PyResult<()> {
         use ars_core::{PositionServo, Profile, TorqueMotor, VelocityServo};
         let profile = |s: Option<Setpoint>| -> ars_core::Result<Profile> {
             match s {

@@ -234,3 +234,24 @@ def test_urdf_robots_load_with_their_names(tmp_path):
     bad.write_text(text.replace('<child link="left_finger"/>', '<child link="nowhere"/>'))
     with pytest.raises(ars.InputError, match='link "nowhere"'):
         ars.Simulation().load_urdf(bad)
+
+
+def test_sensors_record_as_numpy_tables_and_csv(tmp_path):
+    sim, ball = falling_ball()
+    gps = sim.add_sensor("gps", ball)
+    energy = sim.add_sensor("total_energy", ball, every=0.01)
+    sim.run(0.1)
+    table = gps.records()
+    assert table.dtype.names == ("time", "step", "x [m]", "y [m]", "z [m]")
+    assert len(table) == len(gps) == 250 and table["step"][0] == 1
+    assert table["time"][0] == pytest.approx(0.0004)
+    assert table["y [m]"][-1] < table["y [m]"][0] < 1.0
+    assert len(energy) == 10
+    gps.to_csv(tmp_path / "gps.csv")
+    lines = (tmp_path / "gps.csv").read_text().splitlines()
+    assert lines[0] == "time [s],step,x [m],y [m],z [m]" and len(lines) == 251
+    assert float(lines[-1].split(",")[3]) == table["y [m]"][-1], "the CSV holds the exact values"
+    with pytest.raises(ars.InputError, match="the kinds"):
+        sim.add_sensor("sonar", ball)
+    with pytest.raises(ars.UnknownNameError):
+        sim.add_sensor("gps", "nothing")
