@@ -112,7 +112,9 @@ pub use geom::{GeomBuilder, GeomMut, GeomRef};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
-pub use program::{Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, Repeat, ViewSettings};
+pub use program::{
+    Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, ViewSettings,
+};
 pub use scene::{
     ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, UpAxis, UrdfOptions,
     UrdfRobot, Visual, heightfield_triangles,

@@ -97,7 +97,8 @@ impl Camera {
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
         let settings = ViewSettings { size: (width, height), ..ViewSettings::default() };
         surface.set_background_color(convert::color(settings.background));
-        Ok(Camera { intrinsics, surface, view: View::new(&settings), depth, period: None, next_frame: None })
+        let view = View::new(&settings, surface.window_mut());
+        Ok(Camera { intrinsics, surface, view, depth, period: None, next_frame: None })
     }
 
     /// Placed in the world at `pose`.

@@ -30,6 +30,7 @@
 mod camera;
 pub mod convert;
 mod error;
+mod material;
 mod offscreen;
 mod scene;
 mod window;

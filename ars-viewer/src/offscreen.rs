@@ -84,7 +84,8 @@ impl OffscreenRenderer {
         let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(w, h, setup));
         surface.set_background_color(convert::color(view.background));
-        Ok(OffscreenRenderer { surface, view: View::new(view) })
+        let shown = View::new(view, surface.window_mut());
+        Ok(OffscreenRenderer { surface, view: shown })
     }
 
     /// Renders the simulation as it is now.

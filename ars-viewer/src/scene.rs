@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use ars_core::nalgebra::Isometry3;
-use ars_core::{ObjectId, Shape, Simulation, ViewSettings};
+use ars_core::{ObjectId, RenderQuality, Shape, Simulation, ViewSettings};
 use kiss3d::camera::OrbitCamera3d;
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
@@ -13,6 +13,7 @@ use kiss3d::scene::SceneNode3d;
 use kiss3d::window::Window;
 
 use crate::convert;
+use crate::material::{FlatMaterial, SharedMaterial};
 
 /// Colours given to objects that have none, in creation order.
 const PALETTE: [[f32; 3]; 6] =
@@ -33,12 +34,20 @@ pub struct SceneMirror {
     nodes: HashMap<ObjectId, ObjectNode>,
     /// Draw joint anchors and axes.
     pub show_joints: bool,
+    /// The fast materials (objects, floors), when drawing fast.
+    fast: Option<(SharedMaterial, SharedMaterial)>,
 }
 
 impl SceneMirror {
     /// An empty mirror.
     pub fn new() -> Self {
         SceneMirror::default()
+    }
+
+    /// Draws with the fast materials (flat shading, checkered floors) from now on.
+    /// Needs the rendering context of this thread.
+    pub(crate) fn draw_fast(&mut self) {
+        self.fast = Some((FlatMaterial::shared(None), FlatMaterial::shared(Some(1.0))));
     }
 
     /// Forgets every node (after the simulation was rebuilt).
@@ -62,7 +71,7 @@ impl SceneMirror {
         for (_, id) in &live {
             if !self.nodes.contains_key(id) {
                 let n = self.nodes.len();
-                let node = build_node(sim, *id, scene, n)?;
+                let node = build_node(sim, *id, scene, n, self.fast.as_ref())?;
                 self.nodes.insert(*id, node);
             }
         }
@@ -127,7 +136,13 @@ fn y_to_z() -> Quat {
     Quat::from_rotation_arc(Vec3::Y, Vec3::Z)
 }
 
-fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: usize) -> ars_core::Result<ObjectNode> {
+fn build_node(
+    sim: &Simulation,
+    id: ObjectId,
+    scene: &mut SceneNode3d,
+    index: usize,
+    fast: Option<&(SharedMaterial, SharedMaterial)>,
+) -> ars_core::Result<ObjectNode> {
     let object = sim.object(id)?;
     let dynamic = object.body_handle().is_some();
     let default = if matches!(object.shape(), Shape::Plane { .. } | Shape::TriMesh { .. }) {
@@ -160,10 +175,16 @@ fn build_node(sim: &Simulation, id: ObjectId, scene: &mut SceneNode3d, index: us
     if parts.is_empty() {
         parts.push((object.shape().clone(), Isometry3::identity(), None));
     }
+    // Floors (planes, static meshes) are checkered when drawn fast.
+    let floor = !dynamic && matches!(object.shape(), Shape::Plane { .. } | Shape::TriMesh { .. });
     for (shape, local, own) in &parts {
         let mut part = group.add_group();
         part.set_pose(convert::pose(local));
-        add_shape(&mut part, shape).set_color(own.map_or(color, convert::color));
+        let mut node = add_shape(&mut part, shape);
+        node.set_color(own.map_or(color, convert::color));
+        if let Some((object_material, floor_material)) = fast {
+            node.set_material(if floor { floor_material.clone() } else { object_material.clone() });
+        }
     }
     group.set_pose(convert::pose(&pose));
     Ok(ObjectNode { group, dynamic })
@@ -208,12 +229,23 @@ pub(crate) struct View {
 }
 
 impl View {
-    pub(crate) fn new(settings: &ViewSettings) -> Self {
+    /// The view of `settings`, drawn into `window` (whose shadows it sets). Needs the
+    /// rendering context of this thread.
+    pub(crate) fn new(settings: &ViewSettings, window: &mut Window) -> Self {
         let mut scene = SceneNode3d::empty();
         add_lights(&mut scene, settings);
         let camera =
             OrbitCamera3d::new(convert::point(&settings.camera_position), convert::point(&settings.camera_target));
-        View { scene, camera, mirror: SceneMirror::new() }
+        let mut mirror = SceneMirror::new();
+        if draws_fast(settings.quality) {
+            mirror.draw_fast();
+            // No shadows, and the smallest shadow atlas (2048² × 16 layers otherwise:
+            // about 500 MB of memory without a GPU).
+            window.set_shadows_enabled(false);
+            window.set_shadow_atlas_layers(1);
+            window.set_shadow_resolution(64);
+        }
+        View { scene, camera, mirror }
     }
 
     /// Brings the scene up to date with `sim` and queues this frame's lines.
@@ -221,6 +253,16 @@ impl View {
         self.mirror.sync(sim, &mut self.scene)?;
         self.mirror.draw_overlays(sim, window);
         Ok(())
+    }
+}
+
+/// Whether to draw fast: asked for, or left to the machine and it has no GPU (the
+/// adapter is a software rasteriser).
+pub(crate) fn draws_fast(quality: RenderQuality) -> bool {
+    match quality {
+        RenderQuality::Fast => true,
+        RenderQuality::Fine => false,
+        _ => kiss3d::context::Context::get().adapter.get_info().device_type == wgpu::DeviceType::Cpu,
     }
 }
 

@@ -95,7 +95,7 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
         let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
-        let mut shown = View::new(&view);
+        let mut shown = View::new(&view, &mut window);
         let font = Font::default();
         let mut runner = ProgramRunner::new(program)?;
         let mut paused = false;
@@ -178,7 +178,7 @@ pub(crate) fn snapshot_window<P: Program>(program: &mut P, frames: u32) -> Resul
     kiss3d::pollster::block_on(async move {
         let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
         window.set_background_color(convert::color(view.background));
-        let mut shown = View::new(&view);
+        let mut shown = View::new(&view, &mut window);
         let mut runner = ProgramRunner::new(program)?;
         for frame in 0..frames.max(1) {
             if frame > 0 {

@@ -14,7 +14,7 @@ use nalgebra::Vector3;
 
 pub use input::{Action, ActionMap, Key, KeyEvent, KeyScript, Repeat};
 pub use runner::ProgramRunner;
-pub use view::ViewSettings;
+pub use view::{RenderQuality, ViewSettings};
 
 use crate::error::Result;
 use crate::simulation::hooks::Hooks;

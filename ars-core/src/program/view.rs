@@ -15,6 +15,22 @@ pub struct ViewSettings {
     pub camera_target: nalgebra::Point3<f64>,
     /// Background colour (RGB in [0, 1]).
     pub background: [f32; 3],
+    /// How finely to draw.
+    pub quality: RenderQuality,
+}
+
+/// How the viewer draws.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum RenderQuality {
+    /// Fast on a software rasteriser (no GPU), fine otherwise.
+    #[default]
+    Auto,
+    /// Flat (Lambert) shading and a checkered floor, no shadows, no anti-aliasing:
+    /// real time without a GPU.
+    Fast,
+    /// kiss3d's physically based materials and shadows.
+    Fine,
 }
 
 impl Default for ViewSettings {
@@ -25,6 +41,7 @@ impl Default for ViewSettings {
             camera_position: nalgebra::Point3::new(10.0, 8.0, 10.0),
             camera_target: nalgebra::Point3::origin(),
             background: [1.0, 1.0, 1.0],
+            quality: RenderQuality::Auto,
         }
     }
 }

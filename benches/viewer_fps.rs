@@ -1,0 +1,73 @@
+//! Frames per second of the viewer without a GPU (Mesa's software rasteriser), and
+//! the memory the process holds: `cargo bench --bench viewer_fps`.
+//!
+//! For the conical pendulum and the mobile manipulator on the sinusoidal terrain, off
+//! screen at 800×600: the rendering alone (one frame of the simulation, then one image)
+//! and the recorder's whole path (rendering, PNG encoding and writing). Targets (issue
+//! 9): at least 20 frames/s, under 250 MB resident.
+
+use std::time::Instant;
+
+use ars::viewer::{OffscreenRenderer, ScreenshotRecorder};
+use ars::{Program, ProgramRunner, ViewSettings};
+use ars_programs::{ConicalPendulum, SinusoidalTerrain};
+
+const FRAMES: u32 = 30;
+
+/// Resident and peak resident memory of this process, MB.
+fn memory_mb() -> (f64, f64) {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let field = |name: &str| {
+        status
+            .lines()
+            .find(|l| l.starts_with(name))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|kb| kb.parse::<f64>().ok())
+            .map_or(f64::NAN, |kb| kb / 1024.0)
+    };
+    (field("VmRSS:"), field("VmHWM:"))
+}
+
+fn render_only<P: Program>(name: &str, mut program: P) {
+    let view = ViewSettings { size: (800, 600), ..program.view_settings() };
+    let mut renderer = OffscreenRenderer::new(&view).expect("an off-screen context");
+    let mut runner = ProgramRunner::new(&mut program).expect("the program builds");
+    renderer.render(runner.simulation()).expect("a first frame");
+    let start = Instant::now();
+    for _ in 0..FRAMES {
+        runner.step_frame().expect("a frame");
+        renderer.render(runner.simulation()).expect("an image");
+    }
+    let fps = f64::from(FRAMES) / start.elapsed().as_secs_f64();
+    let (rss, peak) = memory_mb();
+    println!("{name}: render off screen 800x600: {fps:.1} frames/s, {rss:.0} MB resident (peak {peak:.0} MB)");
+}
+
+fn recorder<P: Program>(name: &str, mut program: P) {
+    let dir = std::env::temp_dir().join(format!("ars-viewer-fps-{}", std::process::id()));
+    let recorder = ScreenshotRecorder::new(&dir).size(800, 600);
+    let frames_duration = f64::from(FRAMES) / 50.0;
+    let start = Instant::now();
+    let (_, written) = recorder.record(&mut program, frames_duration).expect("recorded");
+    let fps = written.len() as f64 / start.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    println!(
+        "{name}: record PNG frames 800x600: {fps:.1} frames/s ({} frames, context set-up included)",
+        written.len()
+    );
+}
+
+/// Runs `f` on a thread of its own (kiss3d's rendering context is per thread).
+fn on_thread(f: impl FnOnce() + Send + 'static) {
+    std::thread::spawn(f).join().expect("the measurement ran");
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; nothing to parse.
+    on_thread(|| render_only("conical pendulum", ConicalPendulum::default()));
+    on_thread(|| render_only("mobile manipulator on terrain", SinusoidalTerrain::default()));
+    on_thread(|| recorder("conical pendulum", ConicalPendulum::default()));
+    on_thread(|| recorder("mobile manipulator on terrain", SinusoidalTerrain::default()));
+    let (rss, peak) = memory_mb();
+    println!("process: {rss:.0} MB resident, peak {peak:.0} MB");
+}
