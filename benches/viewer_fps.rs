@@ -13,6 +13,8 @@ use ars::{Program, ProgramRunner, ViewSettings};
 use ars_programs::{ConicalPendulum, SinusoidalTerrain};
 
 const FRAMES: u32 = 30;
+/// Wall-clock seconds each window runs.
+const WINDOW_SECONDS: f64 = 10.0;
 
 /// Resident and peak resident memory of this process, MB.
 fn memory_mb() -> (f64, f64) {
@@ -63,11 +65,43 @@ fn on_thread(f: impl FnOnce() + Send + 'static) {
 }
 
 fn main() {
-    // `cargo bench` passes `--bench`; nothing to parse.
+    // `cargo bench` passes `--bench`; nothing to parse. A window measurement runs in
+    // a process of its own (kiss3d 0.47 makes one context per thread).
+    match std::env::var("ARS_VIEWER_FPS_WINDOW").as_deref() {
+        Ok("pendulum") => return window("conical pendulum", ConicalPendulum::default()),
+        Ok("terrain") => return window("mobile manipulator on terrain", SinusoidalTerrain::default()),
+        _ => {}
+    }
     on_thread(|| render_only("conical pendulum", ConicalPendulum::default()));
     on_thread(|| render_only("mobile manipulator on terrain", SinusoidalTerrain::default()));
     on_thread(|| recorder("conical pendulum", ConicalPendulum::default()));
     on_thread(|| recorder("mobile manipulator on terrain", SinusoidalTerrain::default()));
     let (rss, peak) = memory_mb();
     println!("process: {rss:.0} MB resident, peak {peak:.0} MB");
+    // The window where there is a display: run the bench under `xvfb-run -a` to
+    // measure it without one.
+    if ars::viewer::has_display() {
+        for scene in ["pendulum", "terrain"] {
+            let exe = std::env::current_exe().expect("this program");
+            let status = std::process::Command::new(exe).env("ARS_VIEWER_FPS_WINDOW", scene).status();
+            assert!(status.is_ok_and(|s| s.success()), "the {scene} window ran");
+        }
+    } else {
+        println!("window: no display (run under xvfb-run -a to measure it)");
+    }
+}
+
+fn window<P: Program>(name: &str, mut program: P) {
+    use ars::viewer::ProgramViewer;
+    let (_, report) = program.show_for(WINDOW_SECONDS).expect("a window");
+    let mb = |i: usize| report.resident_mb.get(i).map_or(f64::NAN, |s| s.1);
+    println!(
+        "{name}: window {}x{}: {:.1} frames/s, {:.2}x real time, {:.0} MB resident after 1 s, {:.0} MB at the end",
+        program.view_settings().size.0,
+        program.view_settings().size.1,
+        report.frames_per_second(),
+        report.real_time_factor(),
+        mb(1),
+        mb(report.resident_mb.len() - 1),
+    );
 }

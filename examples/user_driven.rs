@@ -40,13 +40,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut program = UserDriven { paper_friction: paper, ..Default::default() };
     if args.window {
         // Live: the arrow keys drive it, as in the original.
+        let start = {
+            let mut probe = UserDriven { paper_friction: paper, ..Default::default() };
+            let sim = ars::Program::create_simulation(&mut probe)?;
+            sim.position(probe.vehicle.expect("built").chassis)?
+        };
         let sim = common::args::run(&mut program, &args)?;
         let chassis = program.vehicle.expect("built").chassis;
         let x = sim.rotation(chassis)? * ars::nalgebra::Vector3::x();
         let p = sim.position(chassis)?;
         println!(
-            "after {:.1} s: chassis at ({:.2}, {:.2}) m, heading {:.1} deg",
+            "after {:.1} s: chassis from ({:.2}, {:.2}) to ({:.2}, {:.2}) m, heading {:.1} deg",
             sim.time(),
+            start.x,
+            start.z,
             p.x,
             p.z,
             (-x.z).atan2(x.x).to_degrees()

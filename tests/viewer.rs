@@ -87,7 +87,21 @@ fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), Strin
         return Err(format!("the frame at rest differs from the first in only {changed} pixels"));
     }
     println!("  ball at ({x0:.0}, {y0:.0}) then ({x1:.0}, {y1:.0}); {changed} pixels changed");
-    Ok(())
+
+    // A second renderer while the first lives shares its context; after the first is
+    // gone, kiss3d 0.47 cannot make another on this thread (it panicked inside
+    // kiss3d): a clear error instead.
+    let mut second = OffscreenRenderer::new(&view).map_err(|e| e.to_string())?;
+    let image = second.render(runner.simulation()).map_err(|e| e.to_string())?;
+    if !reddish(&image, x1, y1, 3) {
+        return Err("no red ball in the second renderer's frame".into());
+    }
+    drop((renderer, second));
+    match OffscreenRenderer::new(&view) {
+        Err(e) if e.to_string().contains("one rendering context per thread") => Ok(()),
+        Err(e) => Err(format!("a renderer after the last one closed: unexpected error {e}")),
+        Ok(_) => Err("a renderer after the last one closed was made; kiss3d 0.47 fails to draw with it".into()),
+    }
 }
 
 /// Starts Xvfb on a display it picks itself (`-displayfd`: the first free one, past
@@ -164,6 +178,109 @@ fn a_real_window_under_xvfb_shows_the_ball() -> std::result::Result<bool, String
     Ok(true)
 }
 
+/// Xvfb for a window test, or why not: `Ok(None)` to skip when
+/// `ARS_SKIP_WINDOW_TEST=1` says so.
+fn xvfb_for_test() -> std::result::Result<Option<(Child, String)>, String> {
+    match start_xvfb() {
+        Some(x) => Ok(Some(x)),
+        None if std::env::var_os("ARS_SKIP_WINDOW_TEST").is_some_and(|v| v == "1") => {
+            println!("  skipped: Xvfb could not start, and ARS_SKIP_WINDOW_TEST=1");
+            Ok(None)
+        }
+        None => Err("Xvfb could not start: install it (make deps), or set ARS_SKIP_WINDOW_TEST=1 to skip".into()),
+    }
+}
+
+/// A window drawing for a minute holds the same memory (it once grew 25 MB/s).
+fn window_memory_stays_flat_over_a_minute() -> std::result::Result<bool, String> {
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: no other thread runs now (the threaded tests were joined).
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    let result = RedBall.show_for(60.0);
+    stop_xvfb(xvfb);
+    let (_, report) = result.map_err(|e| e.to_string())?;
+    let settled: Vec<f64> = report.resident_mb.iter().filter(|(t, _)| *t >= 5.0).map(|(_, mb)| *mb).collect();
+    let (low, high) = settled.iter().fold((f64::MAX, f64::MIN), |(l, h), &m| (l.min(m), h.max(m)));
+    println!(
+        "  {} frames in {:.0} s ({:.1} frames/s, {:.2}x real time); resident {low:.0} to {high:.0} MB from 5 s on",
+        report.frames,
+        report.wall_seconds,
+        report.frames_per_second(),
+        report.real_time_factor()
+    );
+    if settled.len() < 50 {
+        return Err(format!("only {} memory samples over the minute", settled.len()));
+    }
+    if high - low > 16.0 {
+        return Err(format!("resident memory grew from {low:.0} to {high:.0} MB over the minute"));
+    }
+    Ok(true)
+}
+
+/// The teleoperated example (IROS example 5) in a real window, driven by a person's
+/// keys through xdotool: holding Up drives the vehicle forward; Escape ends the
+/// process within 2 s.
+fn the_arrow_keys_drive_the_vehicle_and_escape_quits() -> std::result::Result<bool, String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let example = exe.parent().and_then(|deps| deps.parent()).map(|d| d.join("examples").join("user_driven"));
+    let Some(example) = example.filter(|e| e.is_file()) else {
+        return Err("the user_driven example is not built (cargo test builds the examples)".into());
+    };
+    if Command::new("xdotool").arg("version").output().is_err() {
+        return Err("xdotool is missing: install it (make deps)".into());
+    }
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    let xdotool =
+        |args: &[&str]| Command::new("xdotool").args(args).env("DISPLAY", &display).output().map_err(|e| e.to_string());
+    let mut child = Command::new(&example)
+        .arg("--window")
+        .env("DISPLAY", &display)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .map_err(|e| e.to_string())?;
+    let outcome = (|| {
+        let found = xdotool(&["search", "--sync", "--name", "user-driven"])?;
+        let window = String::from_utf8_lossy(&found.stdout).lines().next().unwrap_or_default().to_string();
+        if window.is_empty() {
+            return Err("the window did not appear".to_string());
+        }
+        xdotool(&["windowfocus", "--sync", &window])?;
+        std::thread::sleep(Duration::from_millis(500));
+        xdotool(&["keydown", "--window", &window, "Up"])?;
+        std::thread::sleep(Duration::from_secs(2));
+        xdotool(&["keyup", "--window", &window, "Up"])?;
+        std::thread::sleep(Duration::from_millis(300));
+        xdotool(&["key", "--window", &window, "Escape"])?;
+        let pressed = Instant::now();
+        while pressed.elapsed() < Duration::from_secs(2) {
+            if let Ok(Some(_)) = child.try_wait() {
+                return Ok(pressed.elapsed());
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        Err("the process was still running 2 s after Escape".to_string())
+    })();
+    if outcome.is_err() {
+        let _ = child.kill();
+    }
+    let _ = child.wait();
+    stop_xvfb(xvfb);
+    let quit_after = outcome?;
+    let mut out = String::new();
+    child.stdout.take().map(|mut o| std::io::Read::read_to_string(&mut o, &mut out));
+    // "after 4.0 s: chassis from (2.50, 4.00) to (9.50, 4.00) m, heading -0.0 deg"
+    let numbers: Vec<f64> =
+        out.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-')).filter_map(|w| w.parse().ok()).collect();
+    let [_, x0, z0, x1, z1, ..] = numbers[..] else { return Err(format!("unexpected output: {out:?}")) };
+    if x1 - x0 < 1.0 || (z1 - z0).abs() > 0.3 {
+        return Err(format!("holding Up for 2 s moved the chassis from ({x0}, {z0}) to ({x1}, {z1})"));
+    }
+    println!("  Up held 2 s: chassis from ({x0}, {z0}) to ({x1}, {z1}); Escape ended it in {quit_after:.2?}");
+    Ok(true)
+}
+
 /// A red box with its near face 2.5 m in front of a camera at the origin (looking along
 /// −Z): the depth reads 2.5 m at the centre, the colour image is red there and
 /// background at the corners.
@@ -217,55 +334,96 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
     Ok(())
 }
 
+/// Runs one test and counts it (`threaded`: on a thread of its own, as off-screen
+/// rendering wants; windows stay on the main thread).
+fn run<T: Send + 'static>(
+    name: &str,
+    test: fn() -> std::result::Result<T, String>,
+    threaded: bool,
+    ran: impl Fn(&T) -> bool,
+    tally: &mut (u32, u32, u32),
+) {
+    println!("test {name} ...");
+    let outcome = if threaded {
+        std::thread::spawn(test).join().map_err(drop)
+    } else {
+        std::panic::catch_unwind(test).map_err(drop)
+    };
+    match outcome {
+        Ok(Ok(value)) if ran(&value) => {
+            println!("test {name} ... ok");
+            tally.0 += 1;
+        }
+        Ok(Ok(_)) => tally.2 += 1,
+        Ok(Err(e)) => {
+            println!("test {name} ... FAILED: {e}");
+            tally.1 += 1;
+        }
+        Err(()) => {
+            println!("test {name} ... FAILED (panicked)");
+            tally.1 += 1;
+        }
+    }
+}
+
+/// Runs `test` in a new process of this program: kiss3d 0.47 makes one rendering
+/// context per thread, and windows live on the main thread.
+fn in_own_process(name: &str) -> std::result::Result<bool, String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let out = Command::new(exe).env("ARS_VIEWER_TEST_ONLY", name).output().map_err(|e| e.to_string())?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    print!("{}", stdout.lines().filter(|l| l.starts_with("  ")).map(|l| format!("{l}\n")).collect::<String>());
+    match out.status.code() {
+        Some(0) => Ok(true),
+        Some(3) => Ok(false),
+        _ => {
+            Err(stdout.lines().find_map(|l| l.strip_prefix("error: ")).unwrap_or("the test process failed").to_string())
+        }
+    }
+}
+
 fn main() {
-    let (mut passed, mut failed, mut skipped) = (0, 0, 0);
-    println!("test a_camera_sees_a_box_in_colour_and_depth ...");
-    match std::thread::spawn(a_camera_sees_a_box_in_colour_and_depth).join() {
-        Ok(Ok(())) => {
-            println!("test a_camera_sees_a_box_in_colour_and_depth ... ok");
-            passed += 1;
-        }
-        Ok(Err(e)) => {
-            println!("test a_camera_sees_a_box_in_colour_and_depth ... FAILED: {e}");
-            failed += 1;
-        }
-        Err(_) => {
-            println!("test a_camera_sees_a_box_in_colour_and_depth ... FAILED (panicked)");
-            failed += 1;
+    if let Ok(name) = std::env::var("ARS_VIEWER_TEST_ONLY") {
+        let test = match name.as_str() {
+            "window_memory_stays_flat_over_a_minute" => window_memory_stays_flat_over_a_minute,
+            other => panic!("no test {other}"),
+        };
+        match test() {
+            Ok(true) => std::process::exit(0),
+            Ok(false) => std::process::exit(3),
+            Err(e) => {
+                println!("error: {e}");
+                std::process::exit(1);
+            }
         }
     }
-    println!("test offscreen_frames_show_the_ball_where_it_is ...");
-    // Off screen on a thread of its own: kiss3d's context is per thread.
-    match std::thread::spawn(offscreen_frames_show_the_ball_where_it_is).join() {
-        Ok(Ok(())) => {
-            println!("test offscreen_frames_show_the_ball_where_it_is ... ok");
-            passed += 1;
-        }
-        Ok(Err(e)) => {
-            println!("test offscreen_frames_show_the_ball_where_it_is ... FAILED: {e}");
-            failed += 1;
-        }
-        Err(_) => {
-            println!("test offscreen_frames_show_the_ball_where_it_is ... FAILED (panicked)");
-            failed += 1;
-        }
-    }
-    println!("test a_real_window_under_xvfb_shows_the_ball ...");
-    match std::panic::catch_unwind(a_real_window_under_xvfb_shows_the_ball) {
-        Ok(Ok(true)) => {
-            println!("test a_real_window_under_xvfb_shows_the_ball ... ok");
-            passed += 1;
-        }
-        Ok(Ok(false)) => skipped += 1,
-        Ok(Err(e)) => {
-            println!("test a_real_window_under_xvfb_shows_the_ball ... FAILED: {e}");
-            failed += 1;
-        }
-        Err(_) => {
-            println!("test a_real_window_under_xvfb_shows_the_ball ... FAILED (panicked)");
-            failed += 1;
-        }
-    }
+    let mut tally = (0, 0, 0);
+    let always = |_: &()| true;
+    run("a_camera_sees_a_box_in_colour_and_depth", a_camera_sees_a_box_in_colour_and_depth, true, always, &mut tally);
+    run(
+        "offscreen_frames_show_the_ball_where_it_is",
+        offscreen_frames_show_the_ball_where_it_is,
+        true,
+        always,
+        &mut tally,
+    );
+    let shown = |ran: &bool| *ran;
+    run("a_real_window_under_xvfb_shows_the_ball", a_real_window_under_xvfb_shows_the_ball, false, shown, &mut tally);
+    run(
+        "the_arrow_keys_drive_the_vehicle_and_escape_quits",
+        the_arrow_keys_drive_the_vehicle_and_escape_quits,
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "window_memory_stays_flat_over_a_minute",
+        || in_own_process("window_memory_stays_flat_over_a_minute"),
+        false,
+        shown,
+        &mut tally,
+    );
+    let (passed, failed, skipped) = tally;
     println!("{passed} passed, {failed} failed, {skipped} skipped");
     if failed > 0 {
         std::process::exit(1);

@@ -44,7 +44,7 @@ pub use error::{Result, ViewerError};
 pub use image;
 pub use offscreen::{OffscreenRenderer, ScreenshotRecorder, init_offscreen_context};
 pub use scene::SceneMirror;
-pub use window::VIEWER_KEYS;
+pub use window::{VIEWER_KEYS, WindowReport};
 
 /// Whether a display server is reachable (an X11 or Wayland display is named).
 pub fn has_display() -> bool {
@@ -79,6 +79,20 @@ pub trait ProgramViewer: Program + Sized {
         let (sim, written) = ScreenshotRecorder::new(&dir).every(5).record(self, HEADLESS_FALLBACK_SECONDS)?;
         eprintln!("wrote {} frames into {}", written.len(), dir.display());
         Ok(sim)
+    }
+
+    /// Opens the program's window for `seconds` of wall time (or until it is closed)
+    /// and returns the simulation and what the run measured: frames drawn, the
+    /// real-time factor, the process's memory once a second. Needs a display.
+    fn show_for(&mut self, seconds: f64) -> Result<(ars_core::Simulation, WindowReport)> {
+        if !has_display() {
+            return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
+        }
+        if !(seconds.is_finite() && seconds > 0.0) {
+            return Err(ViewerError::Settings(format!("a window run needs a positive duration, got {seconds}")));
+        }
+        let limit = std::time::Duration::from_secs_f64(seconds);
+        catch_window_panic(|| window::run_window_until(self, Some(limit)))
     }
 
     /// Opens the program's window for `frames` frames and returns the last one as

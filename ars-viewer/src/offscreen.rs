@@ -14,6 +14,31 @@ use crate::convert;
 use crate::error::{Result, ViewerError};
 use crate::scene::View;
 
+thread_local! {
+    /// Whether a kiss3d context was made on this thread.
+    static CONTEXT_MADE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Refuses a second kiss3d context on a thread whose first one is gone (with the
+/// last window or renderer that used it). kiss3d 0.47 keeps some GPU objects of the
+/// first context per thread (its deform bind-group layout), so a second one fails
+/// inside kiss3d ("non-existent resource"). A new thread gets a fresh start.
+pub(crate) fn check_context_reuse() -> Result<()> {
+    if !kiss3d::context::Context::is_initialized() && CONTEXT_MADE.with(|m| m.get()) {
+        return Err(ViewerError::Settings(
+            "this thread already had a window or renderer, now closed: kiss3d 0.47 can make only one rendering \
+             context per thread; keep the first renderer, or render on a new thread (std::thread::spawn)"
+                .into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Notes that this thread made its kiss3d context.
+pub(crate) fn context_made() {
+    CONTEXT_MADE.with(|m| m.set(true));
+}
+
 /// Creates kiss3d's wgpu context on this thread with a software-friendly adapter:
 /// OpenGL ES through EGL (Mesa llvmpipe, the faster software path) first, then any
 /// other backend (lavapipe Vulkan). Does nothing if a context already exists.
@@ -21,6 +46,7 @@ pub fn init_offscreen_context() -> Result<()> {
     if kiss3d::context::Context::is_initialized() {
         return Ok(());
     }
+    check_context_reuse()?;
     kiss3d::pollster::block_on(async {
         let mut reasons = Vec::new();
         for backends in [wgpu::Backends::GL, wgpu::Backends::all()] {
@@ -57,6 +83,7 @@ pub fn init_offscreen_context() -> Result<()> {
                 Ok((device, queue)) => {
                     log::info!("off-screen rendering on {:?}", adapter.get_info());
                     kiss3d::context::Context::init(instance, device, queue, adapter, wgpu::TextureFormat::Rgba8Unorm);
+                    context_made();
                     return Ok(());
                 }
                 Err(e) => reasons.push(format!("{backends:?}: {e}")),

@@ -7,7 +7,7 @@ use ars_core::{Key, Program, ProgramRunner};
 use kiss3d::event::{Action, Key as WindowKey, WindowEvent};
 use kiss3d::glamx::Vec2;
 use kiss3d::text::Font;
-use kiss3d::window::Window;
+use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::convert;
 use crate::error::Result;
@@ -87,12 +87,87 @@ impl Pacer {
     }
 }
 
+/// A window for `view`: without multisampling when it will be drawn fast (4× MSAA costs
+/// a software rasteriser more than half its frame rate).
+async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
+    crate::offscreen::check_context_reuse()?;
+    let fast = match view.quality {
+        ars_core::RenderQuality::Fast => true,
+        ars_core::RenderQuality::Fine => false,
+        _ => software_adapter().await,
+    };
+    let (w, h) = view.size;
+    let window = if fast {
+        let setup = CanvasSetup { samples: NumSamples::One, ..CanvasSetup::default() };
+        Window::new_with_setup(&view.title, w, h, setup).await
+    } else {
+        Window::new_with_size(&view.title, w, h).await
+    };
+    crate::offscreen::context_made();
+    Ok(window)
+}
+
+/// Whether the adapter a window would get is a software rasteriser (no GPU).
+async fn software_adapter() -> bool {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
+    let options = wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::default(),
+        compatible_surface: None,
+        force_fallback_adapter: false,
+        apply_limit_buckets: false,
+    };
+    instance.request_adapter(&options).await.is_ok_and(|a| a.get_info().device_type == wgpu::DeviceType::Cpu)
+}
+
 /// Opens the program's window and runs it until the window is closed; returns the
 /// simulation as it was then.
 pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simulation> {
+    run_window_until(program, None).map(|(sim, _)| sim)
+}
+
+/// What a window run measured ([`ProgramViewer::show_for`](crate::ProgramViewer::show_for)).
+#[derive(Clone, Debug, Default)]
+pub struct WindowReport {
+    /// Frames drawn.
+    pub frames: u64,
+    /// Wall-clock seconds the window ran.
+    pub wall_seconds: f64,
+    /// Simulated seconds.
+    pub simulated_seconds: f64,
+    /// Resident memory of the process (MB), once a second: `(wall seconds, MB)`.
+    pub resident_mb: Vec<(f64, f64)>,
+}
+
+impl WindowReport {
+    /// Frames drawn per wall-clock second.
+    pub fn frames_per_second(&self) -> f64 {
+        self.frames as f64 / self.wall_seconds
+    }
+    /// Simulated seconds per wall-clock second.
+    pub fn real_time_factor(&self) -> f64 {
+        self.simulated_seconds / self.wall_seconds
+    }
+}
+
+/// Resident memory of this process, MB (NaN where /proc is missing).
+pub(crate) fn resident_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            let line = s.lines().find(|l| l.starts_with("VmRSS:"))?.to_string();
+            line.split_whitespace().nth(1)?.parse::<f64>().ok()
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+/// The window loop, until the window closes or `limit` of wall time has passed.
+pub(crate) fn run_window_until<P: Program>(
+    program: &mut P,
+    limit: Option<Duration>,
+) -> Result<(ars_core::Simulation, WindowReport)> {
     let view = program.view_settings();
     kiss3d::pollster::block_on(async move {
-        let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
+        let mut window = open_window(&view).await?;
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
         let mut shown = View::new(&view, &mut window);
@@ -100,7 +175,17 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
         let mut runner = ProgramRunner::new(program)?;
         let mut paused = false;
         let mut pacer = Pacer::new(0.0);
+        let started = Instant::now();
+        let mut report = WindowReport::default();
         while window.render_3d(&mut shown.scene, &mut shown.camera).await {
+            let wall = started.elapsed();
+            report.frames += 1;
+            if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
+                report.resident_mb.push((wall.as_secs_f64(), resident_mb()));
+            }
+            if limit.is_some_and(|l| wall >= l) {
+                break;
+            }
             for mut event in window.events().iter() {
                 let WindowEvent::Key(key, action, _) = event.value else { continue };
                 if key == WindowKey::Escape {
@@ -166,7 +251,9 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
                 kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
             );
         }
-        Ok(runner.into_simulation())
+        report.wall_seconds = started.elapsed().as_secs_f64();
+        report.simulated_seconds = runner.simulation().time();
+        Ok((runner.into_simulation(), report))
     })
 }
 
@@ -176,7 +263,7 @@ pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simula
 pub(crate) fn snapshot_window<P: Program>(program: &mut P, frames: u32) -> Result<image::RgbImage> {
     let view = program.view_settings();
     kiss3d::pollster::block_on(async move {
-        let mut window = Window::new_with_size(&view.title, view.size.0, view.size.1).await;
+        let mut window = open_window(&view).await?;
         window.set_background_color(convert::color(view.background));
         let mut shown = View::new(&view, &mut window);
         let mut runner = ProgramRunner::new(program)?;
