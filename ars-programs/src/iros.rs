@@ -158,6 +158,7 @@ impl Program for SpeedProfile {
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
             title: "ARS: speed profile (IROS example 3)".into(),
+            follow: Some("chassis".into()),
             camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 25.0),
             ..Default::default()
         }
@@ -300,6 +301,7 @@ impl Program for SinusoidalTerrain {
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
             title: "ARS: sinusoidal terrain (IROS example 4)".into(),
+            follow: Some("chassis".into()),
             camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 30.0),
             camera_target: ars_core::nalgebra::Point3::new(5.0, 0.0, 5.0),
             ..Default::default()
@@ -418,6 +420,7 @@ impl Program for UserDriven {
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
             title: "ARS: user-driven vehicle (IROS example 5)".into(),
+            follow: Some("chassis".into()),
             camera_position: ars_core::nalgebra::Point3::new(15.0, 10.0, 15.0),
             ..Default::default()
         }

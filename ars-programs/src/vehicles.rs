@@ -61,6 +61,15 @@ pub struct VehicleParts {
 pub fn build_vehicle(sim: &mut Simulation, spec: &VehicleSpec) -> Result<VehicleParts> {
     let ball = sim.add_sphere(0.3, [1.0, 0.0, 0.0], Mass::Density(1.0))?;
     let chassis = sim.add_box([2.0, 0.2, 1.5], [0.5, 0.45, 0.0], spec.chassis_mass)?;
+    // Named, for the viewer's camera to follow ("chassis", then "chassis/1"...).
+    let mut name = "chassis".to_string();
+    for i in 1.. {
+        if sim.object(name.as_str()).is_err() {
+            break;
+        }
+        name = format!("chassis/{i}");
+    }
+    sim.set_name(chassis, &name)?;
     let wheel = if spec.capsule_wheels {
         Shape::Capsule { length: 0.4, radius: 0.3 }
     } else {

@@ -100,6 +100,9 @@ impl SceneMirror {
                     window.draw_line(convert::point(&start), convert::point(&hit.position), red, 2.0, false);
                     window.draw_point(convert::point(&hit.position), Color::new(1.0, 1.0, 0.0, 1.0), 8.0);
                 }
+                // Before the first step no hit has been computed yet: draw nothing
+                // rather than a ray through what it will hit.
+                None if sim.step_count() == 0 => {}
                 None => {
                     let end = start + dir * length.min(50.0);
                     window.draw_line(convert::point(&start), convert::point(&end), red, 1.0, false);
@@ -114,16 +117,12 @@ impl SceneMirror {
             for (_, j) in sim.joints() {
                 let Ok(joint) = sim.joint(j).and_then(|j| j.ode()) else { continue };
                 if let Ok(anchor) = joint.anchor() {
-                    window.draw_point(convert::point(&anchor), Color::new(1.0, 0.0, 1.0, 1.0), 10.0);
+                    // A big magenta dot at the anchor and the axis through it, both ways.
+                    window.draw_point(convert::point(&anchor), Color::new(1.0, 0.0, 1.0, 1.0), 16.0);
                     if let Ok(axis) = joint.axis() {
-                        let tip = anchor + axis * 0.4;
-                        window.draw_line(
-                            convert::point(&anchor),
-                            convert::point(&tip),
-                            Color::new(1.0, 0.0, 1.0, 1.0),
-                            3.0,
-                            false,
-                        );
+                        let (a, b) = (anchor - axis * 0.5, anchor + axis * 0.5);
+                        let magenta = Color::new(1.0, 0.0, 1.0, 1.0);
+                        window.draw_line(convert::point(&a), convert::point(&b), magenta, 5.0, false);
                     }
                 }
             }
@@ -226,6 +225,10 @@ pub(crate) struct View {
     pub(crate) scene: SceneNode3d,
     pub(crate) camera: OrbitCamera3d,
     pub(crate) mirror: SceneMirror,
+    /// The object the camera follows, by name (the view settings', or chosen with `f`).
+    pub(crate) follow: Option<String>,
+    /// Whether it follows now.
+    pub(crate) following: bool,
 }
 
 impl View {
@@ -245,14 +248,32 @@ impl View {
             window.set_shadow_atlas_layers(1);
             window.set_shadow_resolution(64);
         }
-        View { scene, camera, mirror }
+        let follow = settings.follow.clone();
+        View { scene, camera, mirror, following: follow.is_some(), follow }
     }
 
-    /// Brings the scene up to date with `sim` and queues this frame's lines.
+    /// Brings the scene up to date with `sim`, moves the camera with the object it
+    /// follows, and queues this frame's lines.
     pub(crate) fn update(&mut self, sim: &Simulation, window: &mut Window) -> ars_core::Result<()> {
         self.mirror.sync(sim, &mut self.scene)?;
+        if self.following
+            && let Some(name) = &self.follow
+            && let Ok(p) = sim.object(name.as_str()).and_then(|o| o.position())
+        {
+            self.camera.set_at(convert::point(&p));
+        }
         self.mirror.draw_overlays(sim, window);
         Ok(())
+    }
+
+    /// Starts or stops following: the object of the view settings, or else the first
+    /// moving object.
+    pub(crate) fn toggle_follow(&mut self, sim: &Simulation) {
+        if self.follow.is_none() {
+            let first = sim.bodies().next().and_then(|(id, _)| sim.object(id).ok());
+            self.follow = first.map(|o| o.name().to_string());
+        }
+        self.following = !self.following && self.follow.is_some();
     }
 }
 

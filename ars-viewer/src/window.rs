@@ -14,7 +14,8 @@ use crate::error::Result;
 use crate::scene::View;
 
 /// The viewer's own keys (they are not passed to the program).
-pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: show joints, escape: quit";
+pub const VIEWER_KEYS: &str =
+    "space: pause/resume, n: one step while paused, r: reset, j: show joints, f: follow, escape: quit";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -206,6 +207,7 @@ pub(crate) fn run_window_until<P: Program>(
                         pacer = Pacer::new(0.0);
                     }
                     (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
+                    (WindowKey::F, Action::Press) => shown.toggle_follow(runner.simulation()),
                     (k, Action::Press) => {
                         if let Some(k) = program_key(k) {
                             runner.key_down(k)?;

@@ -17,6 +17,8 @@ pub struct ViewSettings {
     pub background: [f32; 3],
     /// How finely to draw.
     pub quality: RenderQuality,
+    /// The object the camera follows (by name; the window's `f` key toggles it).
+    pub follow: Option<String>,
 }
 
 /// How the viewer draws.
@@ -42,6 +44,7 @@ impl Default for ViewSettings {
             camera_target: nalgebra::Point3::origin(),
             background: [1.0, 1.0, 1.0],
             quality: RenderQuality::Auto,
+            follow: None,
         }
     }
 }
