@@ -30,6 +30,7 @@
 mod camera;
 pub mod convert;
 mod error;
+mod gui;
 mod material;
 mod offscreen;
 mod scene;

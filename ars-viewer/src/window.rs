@@ -11,11 +11,12 @@ use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::convert;
 use crate::error::Result;
+use crate::gui;
 use crate::scene::View;
 
 /// The viewer's own keys (they are not passed to the program).
-pub const VIEWER_KEYS: &str =
-    "space: pause/resume, n: one step while paused, r: reset, j: show joints, f: follow, escape: quit";
+pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: show joints, f: follow, \
+     g: panel, p: screenshot, escape: quit";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -62,6 +63,8 @@ fn program_key(key: WindowKey) -> Option<Key> {
 struct Pacer {
     wall_origin: Instant,
     sim_origin: f64,
+    /// Simulated seconds per wall-clock second.
+    speed: f64,
     /// (wall, sim) a second ago, for the real-time factor.
     window: (Instant, f64),
     factor: f64,
@@ -70,13 +73,17 @@ struct Pacer {
 
 impl Pacer {
     fn new(sim_time: f64) -> Self {
+        Pacer::with_speed(sim_time, 1.0)
+    }
+
+    fn with_speed(sim_time: f64, speed: f64) -> Self {
         let now = Instant::now();
-        Pacer { wall_origin: now, sim_origin: sim_time, window: (now, sim_time), factor: 0.0, behind: false }
+        Pacer { wall_origin: now, sim_origin: sim_time, speed, window: (now, sim_time), factor: 0.0, behind: false }
     }
 
     /// Simulated time to reach now.
     fn target(&self) -> f64 {
-        self.sim_origin + self.wall_origin.elapsed().as_secs_f64()
+        self.sim_origin + self.speed * self.wall_origin.elapsed().as_secs_f64()
     }
 
     fn measure(&mut self, sim_time: f64) {
@@ -85,6 +92,19 @@ impl Pacer {
             self.factor = (sim_time - self.window.1) / elapsed.as_secs_f64();
             self.window = (Instant::now(), sim_time);
         }
+    }
+}
+
+/// Writes what the window shows to `ars-<title>-<n>.png` in the current folder.
+fn screenshot(window: &Window, title: &str) {
+    let stem = title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
+    let path = (1..)
+        .map(|n| std::path::PathBuf::from(format!("ars-{stem}-{n:03}.png")))
+        .find(|p| !p.exists())
+        .expect("a free name");
+    match window.snap_image().save(&path) {
+        Ok(()) => eprintln!("screenshot: {}", path.display()),
+        Err(e) => eprintln!("screenshot not written ({}): {e}", path.display()),
     }
 }
 
@@ -176,6 +196,7 @@ pub(crate) fn run_window_until<P: Program>(
         let mut runner = ProgramRunner::new(program)?;
         let mut paused = false;
         let mut pacer = Pacer::new(0.0);
+        let mut panel = gui::Panel::default();
         let started = Instant::now();
         let mut report = WindowReport::default();
         while window.render_3d(&mut shown.scene, &mut shown.camera).await {
@@ -208,6 +229,8 @@ pub(crate) fn run_window_until<P: Program>(
                     }
                     (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
                     (WindowKey::F, Action::Press) => shown.toggle_follow(runner.simulation()),
+                    (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
+                    (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
                     (k, Action::Press) => {
                         if let Some(k) = program_key(k) {
                             runner.key_down(k)?;
@@ -220,13 +243,23 @@ pub(crate) fn run_window_until<P: Program>(
                     }
                 }
             }
-            if !paused {
+            if panel.speed != pacer.speed {
+                pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+            }
+            if !paused && panel.fastest {
+                // As fast as the machine can: frames for about 30 ms, then draw.
+                let budget = Instant::now();
+                while budget.elapsed() < Duration::from_millis(30) {
+                    runner.step_frame()?;
+                }
+                pacer.measure(runner.simulation().time());
+            } else if !paused {
                 let mut frames = 0;
                 while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
                     runner.step_frame()?;
                     frames += 1;
                 }
-                pacer.behind = runner.simulation().time() < pacer.target() - 0.1;
+                pacer.behind = runner.simulation().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
                 if pacer.behind {
                     // Give up on the lost time rather than spiral: keep pacing from now.
                     pacer.wall_origin = Instant::now();
@@ -234,8 +267,35 @@ pub(crate) fn run_window_until<P: Program>(
                 }
                 pacer.measure(runner.simulation().time());
             }
+            let status = gui::Status { paused, real_time_factor: pacer.factor, following: shown.following };
+            let mut commands = Vec::new();
+            window.draw_ui(|ctx| commands = panel.draw(ctx, runner.simulation(), &status));
+            for command in commands {
+                match command {
+                    gui::Command::TogglePause => {
+                        paused = !paused;
+                        pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                    }
+                    gui::Command::StepFrame => runner.step_frame()?,
+                    gui::Command::StepPhysics => runner.step()?,
+                    gui::Command::Reset => {
+                        runner.reset()?;
+                        shown.mirror.clear();
+                        pacer = Pacer::with_speed(0.0, panel.speed);
+                    }
+                    gui::Command::Screenshot => screenshot(&window, &view.title),
+                    gui::Command::ToggleFollow => shown.toggle_follow(runner.simulation()),
+                    gui::Command::Setpoint(joint, value) => {
+                        gui::set_setpoint(runner.simulation_mut(), joint, value)?;
+                    }
+                }
+            }
             let sim = runner.simulation();
             shown.update(sim, &mut window)?;
+            if panel.shown {
+                // The panel says the same.
+                continue;
+            }
             let status = if paused {
                 "paused".to_string()
             } else if pacer.behind {

@@ -294,8 +294,31 @@ struct Slot<S: Sensor> {
     log: SensorLog<S::Record>,
 }
 
+/// A type's name without module paths: `Noisy<Gps>` for
+/// `ars_core::sensors::noise::Noisy<ars_core::sensors::body::Gps>`.
+fn short_type_name(full: &str) -> String {
+    let mut out = String::new();
+    let mut segment = String::new();
+    let mut chars = full.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == ':' && chars.peek() == Some(&':') {
+            chars.next();
+            segment.clear();
+        } else if c.is_alphanumeric() || c == '_' {
+            segment.push(c);
+        } else {
+            out.push_str(&segment);
+            segment.clear();
+            out.push(c);
+        }
+    }
+    out.push_str(&segment);
+    out
+}
+
 trait ErasedSlot: Send {
     fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)>;
+    fn table(&self) -> (String, &dyn CsvColumns);
     fn before_step(&mut self, sim: &Scene) -> Result<()>;
     fn after_step(&mut self, sim: &Scene) -> Result<()>;
     fn forget_object(&mut self, id: ObjectId);
@@ -327,6 +350,9 @@ impl<S: Sensor> Slot<S> {
 }
 
 impl<S: Sensor> ErasedSlot for Slot<S> {
+    fn table(&self) -> (String, &dyn CsvColumns) {
+        (short_type_name(std::any::type_name::<S>()), &self.log)
+    }
     fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)> {
         match (self.detached, self.log.samples.last()) {
             (false, Some(sample)) => S::lines(&sample.record),
@@ -417,6 +443,12 @@ impl SensorSet {
 
 impl SensorSet {
     /// The lines of every sensor's latest record.
+    /// Every sensor's log as CSV columns, with the sensor's type name, in the order
+    /// the sensors were added.
+    pub(crate) fn tables(&self) -> Vec<(String, &dyn CsvColumns)> {
+        self.slots.values().map(|s| s.table()).collect()
+    }
+
     pub(crate) fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)> {
         self.slots.values().flat_map(|s| s.lines()).collect()
     }
@@ -491,5 +523,18 @@ impl SensorSet {
 
     pub(crate) fn is_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         Ok(self.slot(id)?.detached)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn type_names_lose_their_module_paths() {
+        assert_eq!(super::short_type_name("ars_core::sensors::body::Gps"), "Gps");
+        assert_eq!(
+            super::short_type_name("ars_core::sensors::noise::Noisy<ars_core::sensors::body::Gps>"),
+            "Noisy<Gps>"
+        );
+        assert_eq!(super::short_type_name("a::Probe<b::c::Row, u32>"), "Probe<Row, u32>");
     }
 }

@@ -397,6 +397,13 @@ impl Simulation {
         self.sensors.lines()
     }
 
+    /// Every sensor's records, whatever their type: the sensor's type name (`"Gps"`)
+    /// and its log seen through its CSV columns, in the order the sensors were added.
+    /// What a viewer plots.
+    pub fn sensor_tables(&self) -> Vec<(String, &dyn crate::sensors::CsvColumns)> {
+        self.sensors.tables()
+    }
+
     /// Whether a sensor stopped sampling because an object or joint it reads was removed.
     pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         self.sensors.is_detached(id)
