@@ -21,6 +21,10 @@ pub(crate) enum Command {
     Screenshot,
     /// Follow an object with the camera, or stop.
     ToggleFollow,
+    /// Draw the contact points, or stop.
+    ToggleContacts,
+    /// Draw the joints' anchors and axes, or stop.
+    ToggleJoints,
     /// Set a joint's position set-point (rad or m).
     Setpoint(JointId, f64),
 }
@@ -50,6 +54,8 @@ pub(crate) struct Status {
     pub(crate) paused: bool,
     pub(crate) real_time_factor: f64,
     pub(crate) following: bool,
+    pub(crate) contacts: bool,
+    pub(crate) joints: bool,
 }
 
 impl Panel {
@@ -92,6 +98,12 @@ impl Panel {
             ui.horizontal(|ui| {
                 if ui.selectable_label(status.following, "Follow").clicked() {
                     commands.push(Command::ToggleFollow);
+                }
+                if ui.selectable_label(status.contacts, "Contacts").clicked() {
+                    commands.push(Command::ToggleContacts);
+                }
+                if ui.selectable_label(status.joints, "Joints").clicked() {
+                    commands.push(Command::ToggleJoints);
                 }
                 if ui.button("Screenshot (p)").clicked() {
                     commands.push(Command::Screenshot);

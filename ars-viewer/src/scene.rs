@@ -34,6 +34,8 @@ pub struct SceneMirror {
     nodes: HashMap<ObjectId, ObjectNode>,
     /// Draw joint anchors and axes.
     pub show_joints: bool,
+    /// Draw the contact points of the last step, with their normals.
+    pub show_contacts: bool,
     /// The fast materials (objects, floors), when drawing fast.
     fast: Option<(SharedMaterial, SharedMaterial)>,
 }
@@ -112,6 +114,14 @@ impl SceneMirror {
         // What sensors draw: a lidar's beams to their hits.
         for (a, b) in sim.sensor_lines() {
             window.draw_line(convert::point(&a), convert::point(&b), Color::new(0.1, 0.8, 0.2, 1.0), 1.0, false);
+        }
+        if self.show_contacts {
+            let orange = Color::new(1.0, 0.5, 0.0, 1.0);
+            for c in world.contacts() {
+                let tip = c.position + c.normal * 0.2;
+                window.draw_point(convert::point(&c.position), orange, 10.0);
+                window.draw_line(convert::point(&c.position), convert::point(&tip), orange, 2.0, false);
+            }
         }
         if self.show_joints {
             for (_, j) in sim.joints() {

@@ -15,8 +15,8 @@ use crate::gui;
 use crate::scene::View;
 
 /// The viewer's own keys (they are not passed to the program).
-pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: show joints, f: follow, \
-     g: panel, p: screenshot, escape: quit";
+pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
+     f: follow, g: panel, p: screenshot, escape: quit";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -230,6 +230,7 @@ pub(crate) fn run_window_until<P: Program>(
                     (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
                     (WindowKey::F, Action::Press) => shown.toggle_follow(runner.simulation()),
                     (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
+                    (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
                     (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
                     (k, Action::Press) => {
                         if let Some(k) = program_key(k) {
@@ -267,7 +268,13 @@ pub(crate) fn run_window_until<P: Program>(
                 }
                 pacer.measure(runner.simulation().time());
             }
-            let status = gui::Status { paused, real_time_factor: pacer.factor, following: shown.following };
+            let status = gui::Status {
+                paused,
+                real_time_factor: pacer.factor,
+                following: shown.following,
+                contacts: shown.mirror.show_contacts,
+                joints: shown.mirror.show_joints,
+            };
             let mut commands = Vec::new();
             window.draw_ui(|ctx| commands = panel.draw(ctx, runner.simulation(), &status));
             for command in commands {
@@ -285,6 +292,8 @@ pub(crate) fn run_window_until<P: Program>(
                     }
                     gui::Command::Screenshot => screenshot(&window, &view.title),
                     gui::Command::ToggleFollow => shown.toggle_follow(runner.simulation()),
+                    gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                    gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
                     gui::Command::Setpoint(joint, value) => {
                         gui::set_setpoint(runner.simulation_mut(), joint, value)?;
                     }
