@@ -316,7 +316,16 @@ fn short_type_name(full: &str) -> String {
     out
 }
 
+/// What a sensor is, for a scene file: its type's name, what it reads, its period.
+pub(crate) struct SensorDescription {
+    pub(crate) kind: String,
+    pub(crate) objects: Vec<ObjectId>,
+    pub(crate) joints: Vec<JointId>,
+    pub(crate) period: Option<f64>,
+}
+
 trait ErasedSlot: Send {
+    fn describe(&self) -> SensorDescription;
     fn lines(&self) -> Vec<(Point3<f64>, Point3<f64>)>;
     fn table(&self) -> (String, &dyn CsvColumns);
     fn before_step(&mut self, sim: &Scene) -> Result<()>;
@@ -350,6 +359,14 @@ impl<S: Sensor> Slot<S> {
 }
 
 impl<S: Sensor> ErasedSlot for Slot<S> {
+    fn describe(&self) -> SensorDescription {
+        SensorDescription {
+            kind: short_type_name(std::any::type_name::<S>()),
+            objects: self.sensor.objects(),
+            joints: self.sensor.joints(),
+            period: self.period,
+        }
+    }
     fn table(&self) -> (String, &dyn CsvColumns) {
         (short_type_name(std::any::type_name::<S>()), &self.log)
     }
@@ -445,6 +462,10 @@ impl SensorSet {
     /// The lines of every sensor's latest record.
     /// Every sensor's log as CSV columns, with the sensor's type name, in the order
     /// the sensors were added.
+    pub(crate) fn descriptions(&self) -> Vec<SensorDescription> {
+        self.slots.values().map(|s| s.describe()).collect()
+    }
+
     pub(crate) fn tables(&self) -> Vec<(String, &dyn CsvColumns)> {
         self.slots.values().map(|s| s.table()).collect()
     }

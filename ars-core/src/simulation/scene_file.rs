@@ -1,12 +1,15 @@
 //! Saving a simulation's scene to a readable JSON file and loading it back.
 //!
-//! What is saved: the parameters (gravity, time step, steps per frame, ERP, CFM, stepper,
-//! contact surface, space), the clock, every object in creation order (name, shape,
-//! colour, visuals, and for a body its mass, inertia, pose and velocities, to the last bit), and
-//! every joint (name, type, its objects, the anchors and axes it was created with, its
-//! stops, speed motor, viscous and dry friction, actuator limits and the joint it
-//! mimics). Not saved: hooks, sensors and joint controllers (they
-//! are code), contact joints (they live within a step).
+//! What is saved: the parameters (gravity, time step, steps per frame, ERP, CFM,
+//! stepper, contact surface, space), the clock, every object in creation order (name,
+//! shape, colour, visuals, and for a body its mass, inertia, pose and velocities, to the
+//! last bit), every joint (name, type, its objects, the anchors and axes it was created
+//! with, its stops, speed motor, viscous and dry friction, actuator limits and the
+//! joint it mimics), and the sensors ARS builds from a kind and what they read (GPS,
+//! velometer, accelerometer, inclinometer, IMU, contact, energies, joint sensors,
+//! joint positions) with their periods; the other sensors are named in
+//! `unsaved_sensors`. Not saved: hooks, joint controllers and closure sensors (they
+//! are code), sensor records, contact joints (they live within a step).
 //!
 //! A scene saved before it has stepped loads into a simulation that steps bit for bit
 //! as the original (the joints are created with the same anchors and axes). Saved
@@ -59,6 +62,105 @@ pub struct SceneFile {
     pub objects: Vec<ObjectFile>,
     /// The joints, in creation order.
     pub joints: Vec<JointFile>,
+    /// The sensors ARS builds from a name and what they read, in the order added.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorFile>,
+    /// The other sensors (closures, noise wrappers, scanners, your own types): named
+    /// here, not saved.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unsaved_sensors: Vec<String>,
+}
+
+/// A sensor as saved: its kind (`"Gps"`, `"JointPositions"`...), the objects or joints
+/// it reads, by name, and its period (`None`: every step). Its records are not saved.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SensorFile {
+    /// The sensor's type.
+    pub kind: String,
+    /// The objects it reads.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<String>,
+    /// The joints it reads.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<String>,
+    /// Seconds between samples (`None`: every step).
+    pub period: Option<f64>,
+}
+
+/// The sensors a scene file saves: built from their kind and what they read alone.
+const SAVED_SENSORS: [&str; 16] = [
+    "Gps",
+    "Velometer",
+    "Accelerometer",
+    "Inclinometer",
+    "Imu",
+    "ContactSensor",
+    "KineticEnergy",
+    "PotentialEnergy",
+    "TotalEnergy",
+    "SystemTotalEnergy",
+    "HingeSensor",
+    "JointTorque",
+    "JointForce",
+    "JointPower",
+    "JointReaction",
+    "JointPositions",
+];
+
+impl SensorFile {
+    /// Adds the sensor to `sim` (its objects and joints looked up by name).
+    fn add_to(&self, sim: &mut Simulation) -> Result<()> {
+        use crate::sensors::*;
+        let objects = self.objects.iter().map(|n| Ok(sim.object(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
+        let joints = self.joints.iter().map(|n| Ok(sim.joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
+        let wrong = || Error::OutOfRange {
+            what: "scene file",
+            detail: format!(
+                "sensor {:?} reads objects {:?} and joints {:?}: not what it takes",
+                self.kind, self.objects, self.joints
+            ),
+        };
+        let object = || match objects[..] {
+            [o] => Ok(o),
+            _ => Err(wrong()),
+        };
+        let joint = || match joints[..] {
+            [j] => Ok(j),
+            _ => Err(wrong()),
+        };
+        fn add<S: Sensor>(sim: &mut Simulation, sensor: S, period: Option<f64>) -> Result<()> {
+            match period {
+                Some(p) => sim.add_sensor_every(sensor, p).map(drop),
+                None => sim.add_sensor(sensor).map(drop),
+            }
+        }
+        let p = self.period;
+        match self.kind.as_str() {
+            "Gps" => add(sim, Gps::new(object()?), p),
+            "Velometer" => add(sim, Velometer::new(object()?), p),
+            "Accelerometer" => add(sim, Accelerometer::new(object()?), p),
+            "Inclinometer" => add(sim, Inclinometer::new(object()?), p),
+            "Imu" => add(sim, Imu::new(object()?), p),
+            "ContactSensor" => add(sim, ContactSensor::new(object()?), p),
+            "KineticEnergy" => add(sim, KineticEnergy::new(object()?), p),
+            "PotentialEnergy" => add(sim, PotentialEnergy::new(object()?), p),
+            "TotalEnergy" => add(sim, TotalEnergy::new(object()?), p),
+            "SystemTotalEnergy" => add(sim, SystemTotalEnergy::new(), p),
+            "HingeSensor" => add(sim, HingeSensor::new(joint()?), p),
+            "JointTorque" => add(sim, JointTorque::new(joint()?), p),
+            "JointForce" => add(sim, JointForce::new(joint()?), p),
+            "JointPower" => add(sim, JointPower::new(joint()?), p),
+            "JointReaction" => add(sim, JointReaction::new(joint()?), p),
+            "JointPositions" => {
+                let sensor = JointPositions::new(sim, &joints)?;
+                add(sim, sensor, p)
+            }
+            other => Err(Error::OutOfRange {
+                what: "scene file",
+                detail: format!("sensor kind {other:?}; a scene file holds: {}", SAVED_SENSORS.join(", ")),
+            }),
+        }
+    }
 }
 
 /// An object as saved.
@@ -233,8 +335,20 @@ impl Simulation {
                 motor,
             });
         }
+        let (mut sensors, mut unsaved_sensors) = (Vec::new(), Vec::new());
+        for d in self.sensors.descriptions() {
+            if !SAVED_SENSORS.contains(&d.kind.as_str()) {
+                unsaved_sensors.push(d.kind);
+                continue;
+            }
+            let objects = d.objects.iter().map(|o| Ok(self.object(*o)?.name().to_string())).collect::<Result<_>>()?;
+            let joints = d.joints.iter().map(|j| Ok(self.joint(*j)?.name().to_string())).collect::<Result<_>>()?;
+            sensors.push(SensorFile { kind: d.kind, objects, joints, period: d.period });
+        }
         Ok(SceneFile {
             format: FORMAT.into(),
+            sensors,
+            unsaved_sensors,
             gravity: world.gravity(),
             time_step: self.time_step(),
             steps_per_frame: self.steps_per_frame(),
@@ -357,6 +471,10 @@ impl Simulation {
             }
         }
         sim.scene.set_clock(file.time, file.step_count);
+        // After the clock: periodic sensors count their periods from the saved time.
+        for sensor in &file.sensors {
+            sensor.add_to(&mut sim)?;
+        }
         Ok(sim)
     }
 }
