@@ -11,7 +11,6 @@ Run from the repository root after ``make python`` (and ``cargo build --release
 --example conical_pendulum``): ``.venv/bin/python python/bench/bench.py``.
 """
 
-import math
 import pathlib
 import subprocess
 import sys
@@ -22,7 +21,9 @@ import ars
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "python" / "tests"))
+sys.path.insert(0, str(REPO / "python" / "examples"))
 import original_ars
+from sweep_conical_pendulum import conical_pendulum
 
 
 def best_of(n, fn):
@@ -35,23 +36,8 @@ def best_of(n, fn):
 
 
 def pendulum(params=None):
-    """The thesis' conical pendulum with its drives in native code: a torque ramping to
-    ``torque`` N·m in 1 s and viscous friction 5 N·m·s/rad on both joints."""
-    torque = (params or {}).get("torque", 20.0)
-    sim = ars.Simulation(time_step=1.0 / 50 / 80, steps_per_frame=80)
-    sim.add_floor((0.0, 1.0, 0.0), -0.5)
-    base = sim.add_box((10.0, 0.5, 10.0), (1.0, -0.25, 2.0), density=100.0)
-    pole = sim.add_cylinder(1.0, 0.141421, (0.0, 0.51, 0.0), mass=10.0)
-    arm = sim.add_cylinder(1.0, 0.141421, (0.0, 0.51, 0.1), mass=10.0)
-    for link in (pole, arm):
-        sim.body(link).rotate((1.0, 0.0, 0.0), math.pi / 2)
-        sim.body(link).offset_by_position((1.0, 0.0, 2.0))
-    sim.add_rotary_joint("r1", base, pole, None, (0.0, 1.0, 0.0))
-    sim.add_rotary_joint("r2", pole, arm, (1.0, 1.01, 2.1), (1.0, 0.0, 0.0))
-    sim.joint("r1").set_controller("torque", [(0.0, 0.0), (1.0, torque)])
-    for joint in ("r1", "r2"):
-        sim.joint(joint).set_viscous_friction(5.0)
-    return sim
+    """The thesis' conical pendulum with its drives in native code (the sweep example's)."""
+    return conical_pendulum(params or {"torque": 20.0})
 
 
 def rust_against_python(seconds=60.0):
