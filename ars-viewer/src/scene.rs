@@ -46,6 +46,11 @@ impl SceneMirror {
         SceneMirror::default()
     }
 
+    /// Whether it draws with the fast materials.
+    pub(crate) fn draws_fast(&self) -> bool {
+        self.fast.is_some()
+    }
+
     /// Draws with the fast materials (flat shading, checkered floors) from now on.
     /// Needs the rendering context of this thread.
     pub(crate) fn draw_fast(&mut self) {

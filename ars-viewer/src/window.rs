@@ -199,7 +199,19 @@ pub(crate) fn run_window_until<P: Program>(
         let mut panel = gui::Panel::default();
         let started = Instant::now();
         let mut report = WindowReport::default();
-        while window.render_3d(&mut shown.scene, &mut shown.camera).await {
+        // Without multisampling (drawing fast), FXAA smooths the edges for a few
+        // milliseconds a frame.
+        let mut fxaa = kiss3d::post_processing::Fxaa::new();
+        let smooth = shown.mirror.draws_fast();
+        loop {
+            let open = if smooth {
+                window.render_3d_with_chain(&mut shown.scene, &mut shown.camera, &mut [&mut fxaa]).await
+            } else {
+                window.render_3d(&mut shown.scene, &mut shown.camera).await
+            };
+            if !open {
+                break;
+            }
             let wall = started.elapsed();
             report.frames += 1;
             if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
@@ -317,7 +329,7 @@ pub(crate) fn run_window_until<P: Program>(
             window.draw_text(
                 VIEWER_KEYS,
                 Vec2::new(10.0, 44.0),
-                20.0,
+                16.0,
                 &font,
                 kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
             );
