@@ -121,11 +121,13 @@ impl SceneMirror {
             window.draw_line(convert::point(&a), convert::point(&b), Color::new(0.1, 0.8, 0.2, 1.0), 1.0, false);
         }
         if self.show_contacts {
+            // The normal, 1 m both ways from the point: the point itself is usually
+            // hidden inside the bodies that touch, the line shows outside them.
             let orange = Color::new(1.0, 0.5, 0.0, 1.0);
             for c in world.contacts() {
-                let tip = c.position + c.normal * 0.2;
-                window.draw_point(convert::point(&c.position), orange, 10.0);
-                window.draw_line(convert::point(&c.position), convert::point(&tip), orange, 2.0, false);
+                let (a, b) = (c.position - c.normal * 1.0, c.position + c.normal * 1.0);
+                window.draw_point(convert::point(&c.position), orange, 12.0);
+                window.draw_line(convert::point(&a), convert::point(&b), orange, 3.0, false);
             }
         }
         if self.show_joints {
