@@ -114,7 +114,7 @@ impl Panel {
             ui.separator();
             setpoints(ui, sim, &mut commands);
             ui.separator();
-            egui::ScrollArea::vertical().show(ui, |ui| state_table(ui, sim));
+            egui::ScrollArea::vertical().min_scrolled_height(260.0).show(ui, |ui| state_table(ui, sim));
         });
         commands
     }
