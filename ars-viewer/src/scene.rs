@@ -297,10 +297,16 @@ impl View {
 /// Whether to draw fast: asked for, or left to the machine and it has no GPU (the
 /// adapter is a software rasteriser).
 pub(crate) fn draws_fast(quality: RenderQuality) -> bool {
+    fast_for(quality, || kiss3d::context::Context::get().adapter.get_info().device_type == wgpu::DeviceType::Cpu)
+}
+
+/// Whether `quality` means drawing fast, `software` telling (when asked) whether the
+/// adapter is a software rasteriser.
+pub(crate) fn fast_for(quality: RenderQuality, software: impl FnOnce() -> bool) -> bool {
     match quality {
         RenderQuality::Fast => true,
         RenderQuality::Fine => false,
-        _ => kiss3d::context::Context::get().adapter.get_info().device_type == wgpu::DeviceType::Cpu,
+        _ => software(),
     }
 }
 

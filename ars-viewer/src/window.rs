@@ -112,11 +112,10 @@ fn screenshot(window: &Window, title: &str) {
 /// a software rasteriser more than half its frame rate).
 async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
     crate::offscreen::check_context_reuse()?;
-    let fast = match view.quality {
-        ars_core::RenderQuality::Fast => true,
-        ars_core::RenderQuality::Fine => false,
-        _ => software_adapter().await,
-    };
+    // The window's context does not exist yet: ask wgpu for the adapter it will get,
+    // when the quality leaves it to the machine.
+    let software = view.quality == ars_core::RenderQuality::Auto && software_adapter().await;
+    let fast = crate::scene::fast_for(view.quality, || software);
     let (w, h) = view.size;
     let window = if fast {
         let setup = CanvasSetup { samples: NumSamples::One, ..CanvasSetup::default() };

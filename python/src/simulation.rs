@@ -103,6 +103,15 @@ pub struct PySimulation {
 }
 
 impl PySimulation {
+    fn wrap(sim: Simulation) -> Self {
+        PySimulation {
+            sim: Mutex::new(sim),
+            context: Arc::default(),
+            hooks: Mutex::default(),
+            next_hook: Mutex::new(1),
+        }
+    }
+
     /// Runs `f` on the simulation: the one a hook on this thread was handed, else the
     /// locked one (waiting without the GIL). ARS errors and panics become exceptions.
     pub(crate) fn with<R: Send>(
@@ -218,12 +227,7 @@ impl PySimulation {
             }
             b.build()
         })?;
-        Ok(PySimulation {
-            sim: Mutex::new(sim),
-            context: Arc::default(),
-            hooks: Mutex::default(),
-            next_hook: Mutex::new(1),
-        })
+        Ok(PySimulation::wrap(sim))
     }
 
     fn __reduce__(&self) -> PyResult<()> {
@@ -622,12 +626,7 @@ impl PySimulation {
     #[staticmethod]
     fn load_scene(py: Python<'_>, text: &str) -> PyResult<Self> {
         let sim = guarded(py, || Simulation::load_scene(text))?;
-        Ok(PySimulation {
-            sim: Mutex::new(sim),
-            context: Arc::default(),
-            hooks: Mutex::default(),
-            next_hook: Mutex::new(1),
-        })
+        Ok(PySimulation::wrap(sim))
     }
 }
 

@@ -285,6 +285,29 @@ impl<S> std::fmt::Debug for SensorId<S> {
     }
 }
 
+/// A handle to a sensor of any type: what [`Simulation::add_sensor_of_kind`]
+/// returns, and what any [`SensorId`] converts to. Its records are read through
+/// [`Simulation::sensor_table`].
+///
+/// [`Simulation::add_sensor_of_kind`]: crate::Simulation::add_sensor_of_kind
+/// [`Simulation::sensor_table`]: crate::Simulation::sensor_table
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub struct AnySensorId {
+    handle: RawHandle,
+}
+
+impl<S> From<SensorId<S>> for AnySensorId {
+    fn from(id: SensorId<S>) -> Self {
+        AnySensorId { handle: id.handle }
+    }
+}
+
+impl std::fmt::Debug for AnySensorId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "sensor#{}v{}@{:?}", self.handle.index, self.handle.generation, self.handle.world)
+    }
+}
+
 struct Slot<S: Sensor> {
     sensor: S,
     at: SampleAt,
@@ -464,6 +487,11 @@ impl SensorSet {
     /// the sensors were added.
     pub(crate) fn descriptions(&self) -> Vec<SensorDescription> {
         self.slots.values().map(|s| s.describe()).collect()
+    }
+
+    /// One sensor's log, whatever its type, with the type's name.
+    pub(crate) fn table(&self, id: AnySensorId) -> Result<(String, &dyn CsvColumns)> {
+        Ok(self.slots.get(id.handle, "sensor", &format!("{id:?}"))?.table())
     }
 
     pub(crate) fn tables(&self) -> Vec<(String, &dyn CsvColumns)> {

@@ -24,6 +24,9 @@
 
 pub mod hooks;
 pub mod scene_file;
+mod sensor_kinds;
+
+pub use sensor_kinds::SENSOR_KINDS;
 
 use std::ops::{Deref, DerefMut};
 

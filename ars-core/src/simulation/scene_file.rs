@@ -20,7 +20,7 @@
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use super::{Simulation, SimulationBuilder};
+use super::{SENSOR_KINDS, Simulation, SimulationBuilder};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
@@ -87,79 +87,12 @@ pub struct SensorFile {
     pub period: Option<f64>,
 }
 
-/// The sensors a scene file saves: built from their kind and what they read alone.
-const SAVED_SENSORS: [&str; 16] = [
-    "Gps",
-    "Velometer",
-    "Accelerometer",
-    "Inclinometer",
-    "Imu",
-    "ContactSensor",
-    "KineticEnergy",
-    "PotentialEnergy",
-    "TotalEnergy",
-    "SystemTotalEnergy",
-    "HingeSensor",
-    "JointTorque",
-    "JointForce",
-    "JointPower",
-    "JointReaction",
-    "JointPositions",
-];
-
 impl SensorFile {
     /// Adds the sensor to `sim` (its objects and joints looked up by name).
     fn add_to(&self, sim: &mut Simulation) -> Result<()> {
-        use crate::sensors::*;
         let objects = self.objects.iter().map(|n| Ok(sim.object(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
         let joints = self.joints.iter().map(|n| Ok(sim.joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
-        let wrong = || Error::OutOfRange {
-            what: "scene file",
-            detail: format!(
-                "sensor {:?} reads objects {:?} and joints {:?}: not what it takes",
-                self.kind, self.objects, self.joints
-            ),
-        };
-        let object = || match objects[..] {
-            [o] => Ok(o),
-            _ => Err(wrong()),
-        };
-        let joint = || match joints[..] {
-            [j] => Ok(j),
-            _ => Err(wrong()),
-        };
-        fn add<S: Sensor>(sim: &mut Simulation, sensor: S, period: Option<f64>) -> Result<()> {
-            match period {
-                Some(p) => sim.add_sensor_every(sensor, p).map(drop),
-                None => sim.add_sensor(sensor).map(drop),
-            }
-        }
-        let p = self.period;
-        match self.kind.as_str() {
-            "Gps" => add(sim, Gps::new(object()?), p),
-            "Velometer" => add(sim, Velometer::new(object()?), p),
-            "Accelerometer" => add(sim, Accelerometer::new(object()?), p),
-            "Inclinometer" => add(sim, Inclinometer::new(object()?), p),
-            "Imu" => add(sim, Imu::new(object()?), p),
-            "ContactSensor" => add(sim, ContactSensor::new(object()?), p),
-            "KineticEnergy" => add(sim, KineticEnergy::new(object()?), p),
-            "PotentialEnergy" => add(sim, PotentialEnergy::new(object()?), p),
-            "TotalEnergy" => add(sim, TotalEnergy::new(object()?), p),
-            "SystemTotalEnergy" => add(sim, SystemTotalEnergy::new(), p),
-            "HingeSensor" => add(sim, HingeSensor::new(joint()?), p),
-            "JointTorque" => add(sim, JointTorque::new(joint()?), p),
-            "JointForce" => add(sim, JointForce::new(joint()?), p),
-            "JointPower" => add(sim, JointPower::new(joint()?), p),
-            "JointReaction" => add(sim, JointReaction::new(joint()?), p),
-            "JointPositions" => {
-                let sensor = JointPositions::new(sim, &joints)?;
-                add(sim, sensor, p)
-            }
-            other => Err(Error::OutOfRange {
-                what: "scene file",
-                detail: format!("sensor kind {other:?}; a scene file holds: {}", SAVED_SENSORS.join(", ")),
-            }),
-        }
+        sim.add_sensor_of_kind(&self.kind, &objects, &joints, self.period).map(drop)
     }
 }
 
@@ -337,7 +270,7 @@ impl Simulation {
         }
         let (mut sensors, mut unsaved_sensors) = (Vec::new(), Vec::new());
         for d in self.sensors.descriptions() {
-            if !SAVED_SENSORS.contains(&d.kind.as_str()) {
+            if !SENSOR_KINDS.contains(&d.kind.as_str()) {
                 unsaved_sensors.push(d.kind);
                 continue;
             }
