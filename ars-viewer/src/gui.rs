@@ -147,14 +147,18 @@ impl Panel {
                 });
         });
         ui.add(egui::Slider::new(&mut self.span, 1.0..=60.0).text("s shown"));
-        let stamps = log.stamps();
+        // The samples of the last `span` seconds (found by bisection: the log is
+        // not copied), at most about 2,000 of them.
         let from = sim.time() - self.span;
-        let first = stamps.partition_point(|(t, _)| *t < from);
-        // At most about 2,000 points: every k-th sample.
-        let every = ((stamps.len() - first) / 2000).max(1);
-        let points: Vec<[f64; 2]> = (first..stamps.len())
+        let (mut first, mut end) = (0, log.len());
+        while first < end {
+            let mid = (first + end) / 2;
+            if log.stamp(mid).0 < from { first = mid + 1 } else { end = mid }
+        }
+        let every = ((log.len() - first) / 2000).max(1);
+        let points: Vec<[f64; 2]> = (first..log.len())
             .step_by(every)
-            .filter_map(|i| Some([stamps[i].0, log.cells(i).get(self.column).copied().flatten()?]))
+            .filter_map(|i| Some([log.stamp(i).0, log.cells(i).get(self.column).copied().flatten()?]))
             .collect();
         let label = headers.get(self.column).cloned().unwrap_or_default();
         Plot::new("ars-plot").height(180.0).allow_scroll(false).show(ui, |plot| {

@@ -128,7 +128,7 @@ impl PySensor {
     /// Number of records.
     fn __len__(&self, py: Python<'_>) -> PyResult<usize> {
         let id = self.id;
-        self.sim.get().with(py, move |sim| Ok(sim.sensor_table(id)?.1.stamps().len()))
+        self.sim.get().with(py, move |sim| Ok(sim.sensor_table(id)?.1.len()))
     }
 
     fn __repr__(&self) -> String {

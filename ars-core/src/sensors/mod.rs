@@ -191,6 +191,18 @@ pub trait CsvColumns {
     fn headers(&self) -> Vec<String>;
     /// The samples' times and step numbers.
     fn stamps(&self) -> Vec<(f64, u64)>;
+    /// Number of samples.
+    fn len(&self) -> usize {
+        self.stamps().len()
+    }
+    /// Whether there is no sample.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Time and step number of sample `i`.
+    fn stamp(&self, i: usize) -> (f64, u64) {
+        self.stamps()[i]
+    }
     /// The values of sample `i`, in column order.
     fn cells(&self, i: usize) -> Vec<Option<f64>>;
 }
@@ -204,6 +216,12 @@ impl<R: Record> CsvColumns for SensorLog<R> {
     }
     fn stamps(&self) -> Vec<(f64, u64)> {
         self.samples.iter().map(|s| (s.time, s.step)).collect()
+    }
+    fn len(&self) -> usize {
+        self.samples.len()
+    }
+    fn stamp(&self, i: usize) -> (f64, u64) {
+        (self.samples[i].time, self.samples[i].step)
     }
     fn cells(&self, i: usize) -> Vec<Option<f64>> {
         self.samples[i].record.values()
