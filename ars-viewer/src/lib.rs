@@ -29,6 +29,7 @@
 
 mod camera;
 pub mod convert;
+mod driver;
 mod error;
 mod gui;
 mod material;
@@ -37,10 +38,12 @@ mod scene;
 mod window;
 
 use std::path::PathBuf;
+use std::time::Duration;
 
-use ars_core::Program;
+use ars_core::{Program, ViewSettings};
 
 pub use camera::{Camera, CameraFrame, Intrinsics};
+pub use driver::Driver;
 pub use error::{Result, ViewerError};
 pub use image;
 pub use offscreen::{OffscreenRenderer, ScreenshotRecorder, init_offscreen_context};
@@ -113,6 +116,21 @@ pub trait ProgramViewer: Program + Sized {
 }
 
 impl<P: Program> ProgramViewer for P {}
+
+/// Opens a window on what `driver` drives, seen as `view` says, until it is closed (or
+/// `limit` of wall time has passed); returns what the run measured. For front ends
+/// with programs of their own (the Python package); Rust programs use
+/// [`ProgramViewer::start`]. Needs a display and the main thread; one window per
+/// thread (see [`ViewerError::Settings`]).
+pub fn run_window<D: Driver>(driver: &mut D, view: &ViewSettings, limit: Option<Duration>) -> Result<WindowReport> {
+    if !has_display() {
+        return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
+    }
+    if limit.is_some_and(|l| l.is_zero()) {
+        return Err(ViewerError::Settings("a window run needs a positive duration".into()));
+    }
+    catch_window_panic(|| window::drive_window(driver, view, limit))
+}
 
 /// The windowing stack panics when it cannot open a window or find a graphics
 /// adapter; turn that into an error that says what to install or check.

@@ -11,6 +11,7 @@ use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::convert;
+use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
 use crate::scene::View;
 
@@ -169,27 +170,37 @@ impl ScreenshotRecorder {
     /// Runs `program` for `duration` seconds of simulated time, off screen, writing
     /// frames; returns the simulation (for its records) and the files written.
     pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, Vec<PathBuf>)> {
+        let view = program.view_settings();
+        let mut runner = ProgramRunner::new(program)?;
+        let written = self.record_driven(&mut runner, &view, duration)?;
+        Ok((runner.into_simulation(), written))
+    }
+
+    /// Runs what `driver` drives for `duration` seconds of simulated time (whole
+    /// frames), off screen, seen as `view` says; returns the files written.
+    pub fn record_driven<D: Driver>(&self, driver: &mut D, view: &ViewSettings, duration: f64) -> Result<Vec<PathBuf>> {
         if self.every == 0 {
             return Err(ViewerError::Settings("the screenshot period must be at least one frame".into()));
         }
+        let frames = {
+            let sim = driver.simulation();
+            sim.steps_in(duration)?.div_ceil(u64::from(sim.steps_per_frame()))
+        };
         std::fs::create_dir_all(&self.dir)
             .map_err(|e| ViewerError::Write { path: self.dir.display().to_string(), message: e.to_string() })?;
-        let mut view = program.view_settings();
+        let mut view = view.clone();
         if let Some(size) = self.size {
             view.size = size;
         }
         let mut renderer = OffscreenRenderer::new(&view)?;
-        let mut runner = ProgramRunner::new(program)?;
-        let mut written = vec![self.write(1, &renderer.render(runner.simulation())?)?];
-        let spf = u64::from(runner.simulation().steps_per_frame());
-        let frames = runner.simulation().steps_in(duration)?.div_ceil(spf);
+        let mut written = vec![self.write(1, &renderer.render(&driver.simulation())?)?];
         for frame in 1..=frames {
-            runner.step_frame()?;
+            driver.step_frame()?;
             if frame % u64::from(self.every) == 0 {
                 let index = written.len() as u32 + 1;
-                written.push(self.write(index, &renderer.render(runner.simulation())?)?);
+                written.push(self.write(index, &renderer.render(&driver.simulation())?)?);
             }
         }
-        Ok((runner.into_simulation(), written))
+        Ok(written)
     }
 }

@@ -3,13 +3,14 @@
 
 use std::time::{Duration, Instant};
 
-use ars_core::{Key, Program, ProgramRunner};
+use ars_core::{Key, Program, ProgramRunner, ViewSettings};
 use kiss3d::event::{Action, Key as WindowKey, WindowEvent};
 use kiss3d::glamx::Vec2;
 use kiss3d::text::Font;
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::convert;
+use crate::driver::Driver;
 use crate::error::Result;
 use crate::gui;
 use crate::scene::View;
@@ -180,19 +181,31 @@ pub(crate) fn resident_mb() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
-/// The window loop, until the window closes or `limit` of wall time has passed.
+/// The window loop of a program, until the window closes or `limit` of wall time has
+/// passed.
 pub(crate) fn run_window_until<P: Program>(
     program: &mut P,
     limit: Option<Duration>,
 ) -> Result<(ars_core::Simulation, WindowReport)> {
     let view = program.view_settings();
+    let mut runner = ProgramRunner::new(program)?;
+    let report = drive_window(&mut runner, &view, limit)?;
+    Ok((runner.into_simulation(), report))
+}
+
+/// The window loop: shows what `runner` drives until the window closes or `limit` of
+/// wall time has passed.
+pub(crate) fn drive_window<D: Driver>(
+    runner: &mut D,
+    view: &ViewSettings,
+    limit: Option<Duration>,
+) -> Result<WindowReport> {
     kiss3d::pollster::block_on(async move {
-        let mut window = open_window(&view).await?;
+        let mut window = open_window(view).await?;
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
-        let mut shown = View::new(&view, &mut window);
+        let mut shown = View::new(view, &mut window);
         let font = Font::default();
-        let mut runner = ProgramRunner::new(program)?;
         let mut paused = false;
         let mut pacer = Pacer::new(0.0);
         let mut panel = gui::Panel::default();
@@ -239,7 +252,7 @@ pub(crate) fn run_window_until<P: Program>(
                         pacer = Pacer::new(0.0);
                     }
                     (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
-                    (WindowKey::F, Action::Press) => shown.toggle_follow(runner.simulation()),
+                    (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
                     (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
                     (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
                     (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
@@ -250,7 +263,7 @@ pub(crate) fn run_window_until<P: Program>(
                     }
                     (k, Action::Release) => {
                         if let Some(k) = program_key(k) {
-                            runner.key_up(k);
+                            runner.key_up(k)?;
                         }
                     }
                 }
@@ -287,7 +300,7 @@ pub(crate) fn run_window_until<P: Program>(
                 joints: shown.mirror.show_joints,
             };
             let mut commands = Vec::new();
-            window.draw_ui(|ctx| commands = panel.draw(ctx, runner.simulation(), &status));
+            window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
             for command in commands {
                 match command {
                     gui::Command::TogglePause => {
@@ -302,16 +315,16 @@ pub(crate) fn run_window_until<P: Program>(
                         pacer = Pacer::with_speed(0.0, panel.speed);
                     }
                     gui::Command::Screenshot => screenshot(&window, &view.title),
-                    gui::Command::ToggleFollow => shown.toggle_follow(runner.simulation()),
+                    gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
                     gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
                     gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
                     gui::Command::Setpoint(joint, value) => {
-                        gui::set_setpoint(runner.simulation_mut(), joint, value)?;
+                        gui::set_setpoint(&mut runner.simulation(), joint, value)?;
                     }
                 }
             }
             let sim = runner.simulation();
-            shown.update(sim, &mut window)?;
+            shown.update(&sim, &mut window)?;
             if panel.shown {
                 // The panel says the same.
                 continue;
@@ -335,7 +348,7 @@ pub(crate) fn run_window_until<P: Program>(
         }
         report.wall_seconds = started.elapsed().as_secs_f64();
         report.simulated_seconds = runner.simulation().time();
-        Ok((runner.into_simulation(), report))
+        Ok(report)
     })
 }
 

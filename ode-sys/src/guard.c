@@ -46,9 +46,11 @@ struct guard_frame {
     struct odesys_failure *failure;
 };
 
-/* initial-exec: one direct TLS access on the hot path instead of a __tls_get_addr
- * call (this file is linked into the program, or into a module loaded early). */
-static _Thread_local struct guard_frame *armed __attribute__((tls_model("initial-exec"))) = NULL;
+/* The default TLS model, not initial-exec: in a program the linker makes the access
+ * direct anyway, and a module loaded with dlopen (the Python extension) must not ask
+ * for static TLS, which glibc may have no room left for ("cannot allocate memory in
+ * static TLS block"). */
+static _Thread_local struct guard_frame *armed = NULL;
 static odesys_sink sink = NULL;
 
 static void record(struct odesys_failure *f, int kind, int num, const char *fmt, va_list ap) {

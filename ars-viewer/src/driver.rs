@@ -1,0 +1,47 @@
+//! What the window and the recorder run: a simulation advanced frame by frame, which
+//! the viewer's keys and panel can step, rebuild and send keys to. A Rust
+//! [`Program`](ars_core::Program) is driven by its [`ProgramRunner`]; other front ends
+//! (the Python package) implement [`Driver`] themselves.
+
+use std::ops::DerefMut;
+
+use ars_core::{Key, Program, ProgramRunner, Result, Simulation};
+
+/// A simulation the viewer shows and drives.
+pub trait Driver {
+    /// The simulation as it is now (after [`reset`](Self::reset), the new one).
+    fn simulation(&mut self) -> impl DerefMut<Target = Simulation> + '_;
+    /// One frame: the simulation's `steps_per_frame` steps, with whatever the program
+    /// does around them.
+    fn step_frame(&mut self) -> Result<()>;
+    /// One physics step.
+    fn step(&mut self) -> Result<()>;
+    /// Rebuilds the simulation from scratch (the `r` key).
+    fn reset(&mut self) -> Result<()>;
+    /// A key the viewer does not use went down.
+    fn key_down(&mut self, key: Key) -> Result<()>;
+    /// That key went up.
+    fn key_up(&mut self, key: Key) -> Result<()>;
+}
+
+impl<P: Program> Driver for ProgramRunner<'_, P> {
+    fn simulation(&mut self) -> impl DerefMut<Target = Simulation> + '_ {
+        self.simulation_mut()
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        ProgramRunner::step_frame(self)
+    }
+    fn step(&mut self) -> Result<()> {
+        ProgramRunner::step(self)
+    }
+    fn reset(&mut self) -> Result<()> {
+        ProgramRunner::reset(self)
+    }
+    fn key_down(&mut self, key: Key) -> Result<()> {
+        ProgramRunner::key_down(self, key).map(drop)
+    }
+    fn key_up(&mut self, key: Key) -> Result<()> {
+        ProgramRunner::key_up(self, key);
+        Ok(())
+    }
+}
