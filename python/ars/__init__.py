@@ -11,7 +11,7 @@ True
 """
 
 from ars._errors import ArsError, InputError, InternalError, SimulationError, UnknownNameError
-from ars._native import Body, Joint, Sensor, Simulation, __version__
+from ars._native import Body, Joint, Renderer, Sensor, Simulation, __version__, has_display
 from ars.sweeps import RunResult, SweepResults, sweep
 
 __all__ = [
@@ -20,6 +20,7 @@ __all__ = [
     "InputError",
     "InternalError",
     "Joint",
+    "Renderer",
     "RunResult",
     "Sensor",
     "Simulation",
@@ -27,5 +28,6 @@ __all__ = [
     "SweepResults",
     "UnknownNameError",
     "__version__",
+    "has_display",
     "sweep",
 ]

@@ -97,6 +97,9 @@ class Engine:
         self.title, self.size, self.zoom = title, size, zoom
         self.cam_position, self.background_color = cam_position, background_color
         self.objects = []
+        # Set while ARS's viewer shows or records the program: writes the scene to a
+        # PNG file (what the screenshot recorder uses).
+        self.snapshot = None
 
     def add_object(self, obj):
         self.objects.append(obj)
@@ -117,8 +120,9 @@ class Engine:
 
 
 class ScreenshotRecorder:
-    """Names screenshot files ``BASE<index>.png``; without a viewer attached nothing is
-    written."""
+    """Writes screenshots ``BASE<index>.png`` (every frame, or once a ``period`` of
+    simulated time) while ARS's viewer shows or records the program; in a headless
+    ``run`` nothing is written."""
 
     file_extension = "png"
 
@@ -136,3 +140,6 @@ class ScreenshotRecorder:
         if known and time - self.last_write_time < self.period:
             return
         self.last_write_time = time
+        snapshot = getattr(self.gAdapter, "snapshot", None)
+        if snapshot is not None:
+            snapshot(self.calc_filename(index))

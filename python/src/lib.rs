@@ -11,6 +11,7 @@
 mod errors;
 mod sensors;
 mod simulation;
+mod viewer;
 mod views;
 
 use pyo3::prelude::*;
@@ -22,6 +23,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<views::Body>()?;
     m.add_class::<views::Joint>()?;
     m.add_class::<sensors::PySensor>()?;
+    m.add_class::<viewer::PyRenderer>()?;
+    m.add_function(wrap_pyfunction!(viewer::show_program, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::has_display, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(panic_for_tests, m)?)?;
     Ok(())

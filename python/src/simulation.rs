@@ -135,8 +135,24 @@ impl PySimulation {
         outcome(py, caught)
     }
 
+    /// Whether a Python hook of this simulation is running on this thread (the
+    /// simulation is then locked by this thread's step).
+    pub(crate) fn in_own_hook(&self) -> bool {
+        self.context.current().is_some()
+    }
+
+    /// The simulation, locked (call it without the GIL, and never from one of its own
+    /// hooks: see [`in_own_hook`](Self::in_own_hook)).
+    pub(crate) fn locked(&self) -> MutexGuard<'_, Simulation> {
+        lock(&self.sim)
+    }
+
     /// Steps with the GIL released; a Python hook's exception comes back unchanged.
-    fn advance(&self, py: Python<'_>, f: impl FnOnce(&mut Simulation) -> ars_core::Result<()> + Send) -> PyResult<()> {
+    pub(crate) fn advance(
+        &self,
+        py: Python<'_>,
+        f: impl FnOnce(&mut Simulation) -> ars_core::Result<()> + Send,
+    ) -> PyResult<()> {
         if self.context.current().is_some() {
             return Err(raise(py, "InputError", "a hook cannot step the simulation it runs in".into()));
         }
@@ -293,6 +309,27 @@ impl PySimulation {
     /// Runs for `duration` seconds of simulated time (whole steps).
     fn run(&self, py: Python<'_>, duration: f64) -> PyResult<()> {
         self.advance(py, |sim| sim.run_for(duration))
+    }
+
+    /// Opens a window on the simulation and runs it in real time until the window is
+    /// closed (or for `duration` wall seconds): mouse to turn the camera, space to
+    /// pause, `g` for the panel (speed, plots of the sensors, joints), escape to quit.
+    /// Needs a display; returns what the run measured (frames, seconds, real-time
+    /// factor). Off screen, use `ars.Renderer`.
+    #[pyo3(signature = (duration=None, *, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string()))]
+    fn show(
+        slf: &Bound<'_, Self>,
+        duration: Option<f64>,
+        title: String,
+        size: (u32, u32),
+        camera: Vec3,
+        look_at: Vec3,
+        background: Vec3,
+        follow: Option<String>,
+        quality: String,
+    ) -> PyResult<Py<pyo3::types::PyDict>> {
+        let view = crate::viewer::ViewArgs { title, size, camera, look_at, background, follow, quality };
+        crate::viewer::show(slf.py(), slf.clone().unbind(), None, duration, view)
     }
 
     /// A sphere of `radius` (m) centred at `center`, of total `mass` (kg) or

@@ -3,10 +3,13 @@
 simulation's signals, and run it.
 
 ``Program()`` builds the simulation (``create_simulation`` calls
-``create_sim_objects``). ``run(duration)`` runs it headless for ``duration`` seconds of
-simulated time, frame by frame, and returns the simulation; ``start()`` is the
-original's entry point: it runs the program for ``ARS_DURATION`` seconds (default 10)
-headless, saying so on stderr (the viewer for these programs is still to come).
+``create_sim_objects``). ``start()`` is the original's entry point: it opens ARS's
+viewer on the program where there is a display, until the window is closed (the
+program's keys act as in the original; ``r`` rebuilds it); with no display it records
+``ARS_DURATION`` seconds (default 10) off screen, a PNG every 5 frames, into a folder
+it names on stderr. ``run(duration)`` runs it headless for ``duration`` seconds of
+simulated time, frame by frame, and returns the simulation; ``show(duration)`` opens the
+window for ``duration`` wall seconds; ``record(folder, duration)`` records off screen.
 
 Module names, as the original: ``Program``, ``ActionMap``, ``Simulation``,
 ``dispatcher``, ``signals``, ``gp`` (graphics), ``exc`` (exceptions), ``logger``.
@@ -16,8 +19,10 @@ import logging
 import math
 import os
 import sys
+import tempfile
 import weakref
 
+from ars import _native
 from ars import dispatch as dispatcher
 from ars import exceptions as exc
 from ars import graphics as gp
@@ -130,14 +135,74 @@ class Program:
         return self.sim
 
     def start(self):
-        """Runs the program: headless for ``ARS_DURATION`` seconds (default 10)."""
+        """Opens the viewer on the program until its window is closed; with no display,
+        records ``ARS_DURATION`` seconds (default 10) off screen instead."""
+        self.do_create_window = False
+        if _native.has_display():
+            self.show()
+            return
         duration = float(os.environ.get("ARS_DURATION", "10"))
+        stem = "".join(c if c.isalnum() else "_" for c in self.WINDOW_TITLE.lower())
+        folder = os.path.join(tempfile.gettempdir(), f"ars-frames-{stem}")
         print(
-            f"ars: running {type(self).__name__} headless for {duration:g} s (set ARS_DURATION to change)",
+            f"ars: no display (DISPLAY and WAYLAND_DISPLAY are unset): recording {duration:g} s "
+            f"of {type(self).__name__} off screen, frames into {folder} (set ARS_DURATION to change)",
             file=sys.stderr,
         )
-        self.do_create_window = False
-        self.run(duration)
+        written = self.record(folder, duration)
+        print(f"ars: wrote {len(written)} frames into {folder}", file=sys.stderr)
+
+    def _view(self):
+        """The viewer's settings: the window's title, size, colour and camera (the
+        original's zoom brings the camera nearer the origin)."""
+        zoom = self.WINDOW_ZOOM if self.WINDOW_ZOOM and self.WINDOW_ZOOM > 0 else 1.0
+        return {
+            "size": tuple(int(v) for v in self.WINDOW_SIZE),
+            "camera": tuple(float(c) / zoom for c in self.CAMERA_POSITION),
+            "look_at": (0.0, 0.0, 0.0),
+            "background": tuple(float(c) for c in self.BACKGROUND_COLOR),
+        }
+
+    def show(self, duration=None):
+        """Opens the viewer's window on the program (needs a display) until it is
+        closed, or for ``duration`` seconds of wall time; returns what the run measured
+        (frames, seconds, real-time factor)."""
+        driver = _ViewerDriver(self)
+        self.gAdapter.snapshot = driver.snapshot
+        try:
+            return _native.show_program(
+                driver, duration=duration, title=self.WINDOW_TITLE, **self._view()
+            )
+        finally:
+            self.do_create_window = False
+            if self.gAdapter is not None:
+                self.gAdapter.snapshot = None
+
+    def record(self, folder, duration, every=5):
+        """Runs ``duration`` seconds of simulated time off screen, writing
+        ``frame_00001.png`` (before any step), then one image every ``every`` frames,
+        into ``folder``; returns the paths written."""
+        if every < 1:
+            raise exc.ArsError(f"every must be at least one frame, got {every}")
+        os.makedirs(folder, exist_ok=True)
+        driver = _ViewerDriver(self)
+        self.gAdapter.snapshot = driver.snapshot
+        written = []
+
+        def write():
+            path = os.path.join(folder, f"frame_{len(written) + 1:05d}.png")
+            driver.snapshot(path)
+            written.append(path)
+
+        try:
+            write()
+            for frame in range(1, max(0, math.ceil(duration * self.FPS - 1e-9)) + 1):
+                driver.frame()
+                if frame % every == 0:
+                    write()
+        finally:
+            self.gAdapter.snapshot = None
+        return written
 
     def finalize(self):
         if self.gAdapter is not None:
@@ -196,3 +261,52 @@ class Program:
                 self._screenshot_recorder.write(self.sim.num_frame, self.sim.sim_time)
         except Exception as e:
             raise exc.ArsError("Could not record frame") from e
+
+
+class _ViewerDriver:
+    """What the viewer calls to run a program: its frames, its reset, its keys. A key
+    held down whose action repeats acts in every step while it is held; a one-shot key
+    acts at every press (and the system's auto-repeat), as in the original."""
+
+    def __init__(self, program):
+        self.program = program
+        self.held = set()
+        self._renderer = None
+
+    def native(self):
+        self.program.sim._sync_colors()
+        return self.program.sim.native
+
+    def frame(self):
+        keys = self.program.key_press_functions
+        for key in sorted(self.held):
+            if keys is not None and keys.has_key(key) and keys.is_repeat(key):
+                self.program.on_action_selection(key)
+        self.program.sim.on_idle()
+
+    def step(self):
+        self.program.sim.native.step(1)
+
+    def reset(self):
+        self.held.clear()
+        self.program.on_action_selection("r")
+        self.program.do_create_window = False
+
+    def key(self, name, down):
+        keys = self.program.key_press_functions
+        repeats = keys is not None and keys.has_key(name) and keys.is_repeat(name)
+        if not down:
+            self.held.discard(name)
+            return
+        if name in self.held and repeats:
+            return  # auto-repeat of a held key: frame() acts for it
+        self.held.add(name)
+        self.program.on_action_selection(name)
+
+    def snapshot(self, path):
+        """Writes the simulation as it is now to a PNG (the screenshot recorder's)."""
+        if self._renderer is None:
+            view = self.program._view()
+            width, height = view.pop("size")
+            self._renderer = _native.Renderer(width, height, **view)
+        self._renderer.save(self.native(), path)

@@ -225,6 +225,7 @@ class Simulation:
         self._joints = {}
         self.all_frame_steps_callbacks = []
         self.graph_adapter = None
+        self._shown_colors = {}  # the colours given to the viewer, by object
 
     # -- set-up -------------------------------------------------------------------
 
@@ -293,6 +294,20 @@ class Simulation:
 
     def perform_sim_steps_per_frame(self):
         self.native.step(self._STEPS_PF)
+
+    def _sync_colors(self):
+        """Gives the viewer the colours the program set on its objects' actors."""
+        shown = self._shown_colors
+        for key, obj in self._objects.items():
+            actor = obj.actor
+            color = getattr(actor, "color", None) if actor is not None else None
+            if color is None or shown.get(key) == color:
+                continue
+            shown[key] = color
+            try:
+                self.native.body(key).set_color(tuple(float(c) for c in color[:3]))
+            except (KeyError, ValueError):
+                pass  # drawn only (the axes), or not a colour the viewer takes
 
     def update_actors(self):
         """Moves every drawn body's actor to its pose."""

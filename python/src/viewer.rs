@@ -1,0 +1,356 @@
+//! The viewer from Python: a window on a simulation (or on a program in the original's
+//! style, which steps its own frames), and off-screen images.
+//!
+//! The window runs on the calling thread (the main thread: the windowing system wants
+//! it there) with the GIL released; it takes the GIL back only to call the program's
+//! Python code. Off-screen images are drawn by a thread each [`PyRenderer`] owns: the
+//! 3D engine keeps one rendering context per thread, so a renderer of its own thread
+//! can be made again and again in one interpreter.
+
+use std::ops::DerefMut;
+use std::sync::{Mutex, mpsc};
+
+use ars_core::nalgebra::Point3;
+use ars_core::{Error, Key, RenderQuality, Simulation, ViewSettings};
+use ars_viewer::{Driver, OffscreenRenderer, ViewerError, image};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::{panic_message, raise, to_py};
+use crate::simulation::{PySimulation, Vec3};
+
+/// The Python exception for a viewer error.
+fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
+    match error {
+        ViewerError::Simulation(e) => to_py(py, e),
+        ViewerError::Settings(message) => raise(py, "InputError", message),
+        other => raise(py, "ArsError", other.to_string()),
+    }
+}
+
+/// How the viewer sees a simulation, from the keywords `show` and `Renderer` take.
+pub(crate) struct ViewArgs {
+    pub title: String,
+    pub size: (u32, u32),
+    pub camera: Vec3,
+    pub look_at: Vec3,
+    pub background: Vec3,
+    pub follow: Option<String>,
+    pub quality: String,
+}
+
+impl ViewArgs {
+    fn settings(self) -> Result<ViewSettings, String> {
+        let (w, h) = self.size;
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            return Err(format!("the image size {w}×{h} must be between 1 and 8192 pixels each way"));
+        }
+        let camera = Point3::from(self.camera);
+        let look_at = Point3::from(self.look_at);
+        if camera.iter().chain(look_at.iter()).any(|c| !c.is_finite()) {
+            return Err(format!("the camera {:?} and what it looks at {:?} must be finite", self.camera, self.look_at));
+        }
+        if (camera - look_at).norm() == 0.0 {
+            return Err(format!("the camera {:?} cannot look at the point it is at", self.camera));
+        }
+        if self.background.iter().any(|c| !(0.0..=1.0).contains(c)) {
+            return Err(format!("the background colour {:?} must be RGB in [0, 1]", self.background));
+        }
+        let quality = match self.quality.as_str() {
+            "auto" => RenderQuality::Auto,
+            "fast" => RenderQuality::Fast,
+            "fine" => RenderQuality::Fine,
+            other => return Err(format!("quality {other:?}: use \"auto\", \"fast\" or \"fine\"")),
+        };
+        Ok(ViewSettings {
+            title: self.title,
+            size: self.size,
+            camera_position: camera,
+            camera_target: look_at,
+            background: self.background.map(|c| c as f32),
+            quality,
+            follow: self.follow,
+        })
+    }
+}
+
+/// Drives the window from Python: a bare simulation steps its frames itself; a program
+/// (an object with `native()`, `frame()`, `step()`, `reset()` and `key(name, down)`)
+/// runs its own Python frames.
+struct PythonDriver {
+    sim: Py<PySimulation>,
+    program: Option<Py<PyAny>>,
+    /// The exception a Python call raised, to re-raise unchanged.
+    raised: Option<PyErr>,
+}
+
+impl PythonDriver {
+    /// Keeps a Python exception and stops the window with an error naming it.
+    fn keep(&mut self, e: PyErr) -> Error {
+        let message = format!("a Python call from the viewer raised {e}");
+        self.raised = Some(e);
+        Error::User(message)
+    }
+
+    /// Calls a method of the program (and takes its simulation anew, which a reset
+    /// replaces).
+    fn call_program(&mut self, method: &str, key: Option<(Key, bool)>) -> ars_core::Result<()> {
+        let Some(program) = &self.program else { return Ok(()) };
+        let outcome = Python::attach(|py| -> PyResult<Py<PySimulation>> {
+            match key {
+                Some((key, down)) => program.bind(py).call_method1(method, (key.to_string(), down))?,
+                None => program.bind(py).call_method0(method)?,
+            };
+            Ok(program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind())
+        });
+        match outcome {
+            Ok(sim) => {
+                self.sim = sim;
+                Ok(())
+            }
+            Err(e) => Err(self.keep(e)),
+        }
+    }
+
+    /// Steps the bare simulation.
+    fn advance(&mut self, f: impl FnOnce(&mut Simulation) -> ars_core::Result<()> + Send) -> ars_core::Result<()> {
+        let outcome = Python::attach(|py| self.sim.get().advance(py, f));
+        outcome.map_err(|e| self.keep(e))
+    }
+}
+
+impl Driver for PythonDriver {
+    fn simulation(&mut self) -> impl DerefMut<Target = Simulation> + '_ {
+        self.sim.get().locked()
+    }
+    fn step_frame(&mut self) -> ars_core::Result<()> {
+        if self.program.is_some() { self.call_program("frame", None) } else { self.advance(|sim| sim.step_frame()) }
+    }
+    fn step(&mut self) -> ars_core::Result<()> {
+        if self.program.is_some() { self.call_program("step", None) } else { self.advance(|sim| sim.step()) }
+    }
+    fn reset(&mut self) -> ars_core::Result<()> {
+        if self.program.is_some() {
+            self.call_program("reset", None)
+        } else {
+            eprintln!("ars: a bare simulation cannot be rebuilt (write a Program to have the r key rebuild it)");
+            Ok(())
+        }
+    }
+    fn key_down(&mut self, key: Key) -> ars_core::Result<()> {
+        self.call_program("key", Some((key, true)))
+    }
+    fn key_up(&mut self, key: Key) -> ars_core::Result<()> {
+        self.call_program("key", Some((key, false)))
+    }
+}
+
+/// Opens a window on `sim` (driven by `program` if given) until it is closed or
+/// `duration` wall seconds have passed; returns what the run measured.
+pub(crate) fn show(
+    py: Python<'_>,
+    sim: Py<PySimulation>,
+    program: Option<Py<PyAny>>,
+    duration: Option<f64>,
+    view: ViewArgs,
+) -> PyResult<Py<PyDict>> {
+    if sim.get().in_own_hook() {
+        return Err(raise(py, "InputError", "a hook cannot show the simulation it runs in".into()));
+    }
+    let limit = match duration {
+        None => None,
+        Some(d) if d.is_finite() && d > 0.0 => Some(std::time::Duration::from_secs_f64(d)),
+        Some(d) => return Err(raise(py, "InputError", format!("the window's duration {d} s must be positive"))),
+    };
+    let view = view.settings().map_err(|m| raise(py, "InputError", m))?;
+    let mut driver = PythonDriver { sim, program, raised: None };
+    let outcome = py.detach(|| {
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| ars_viewer::run_window(&mut driver, &view, limit)))
+    });
+    if let Some(e) = driver.raised.take() {
+        return Err(e);
+    }
+    let report = match outcome {
+        Ok(Ok(report)) => report,
+        Ok(Err(e)) => return Err(to_py_error(py, e)),
+        Err(panic) => return Err(raise(py, "InternalError", format!("ARS panicked: {}", panic_message(&panic)))),
+    };
+    let dict = PyDict::new(py);
+    dict.set_item("frames", report.frames)?;
+    dict.set_item("wall_seconds", report.wall_seconds)?;
+    dict.set_item("simulated_seconds", report.simulated_seconds)?;
+    dict.set_item("frames_per_second", report.frames_per_second())?;
+    dict.set_item("real_time_factor", report.real_time_factor())?;
+    Ok(dict.unbind())
+}
+
+/// Opens a window on a program in the original's style: `program` has `native()`
+/// (its `ars.Simulation` now), `frame()`, `step()`, `reset()` and `key(name, down)`.
+#[pyfunction]
+#[pyo3(signature = (program, *, duration=None, title, size, camera, look_at, background, follow=None, quality="auto".to_string()))]
+pub(crate) fn show_program(
+    py: Python<'_>,
+    program: Py<PyAny>,
+    duration: Option<f64>,
+    title: String,
+    size: (u32, u32),
+    camera: Vec3,
+    look_at: Vec3,
+    background: Vec3,
+    follow: Option<String>,
+    quality: String,
+) -> PyResult<Py<PyDict>> {
+    let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
+    let view = ViewArgs { title, size, camera, look_at, background, follow, quality };
+    show(py, sim, Some(program), duration, view)
+}
+
+/// Whether a display is reachable (`DISPLAY` or `WAYLAND_DISPLAY` is set).
+#[pyfunction]
+pub(crate) fn has_display() -> bool {
+    ars_viewer::has_display()
+}
+
+/// What the renderer's thread is asked: draw this simulation.
+struct Request {
+    sim: Py<PySimulation>,
+    reply: mpsc::SyncSender<Result<image::RgbImage, Failure>>,
+}
+
+/// Why an image was not drawn.
+enum Failure {
+    Viewer(ViewerError),
+    Panic(String),
+}
+
+impl Failure {
+    fn into_py(self, py: Python<'_>) -> PyErr {
+        match self {
+            Failure::Viewer(e) => to_py_error(py, e),
+            Failure::Panic(m) => raise(py, "InternalError", format!("ARS panicked: {m}")),
+        }
+    }
+}
+
+fn caught<T>(f: impl FnOnce() -> Result<T, ViewerError>) -> Result<T, Failure> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
+        Ok(r) => r.map_err(Failure::Viewer),
+        Err(panic) => Err(Failure::Panic(panic_message(&panic))),
+    }
+}
+
+/// The renderer's thread: makes the renderer, then draws what it is asked until the
+/// renderer is dropped.
+fn serve(view: ViewSettings, ready: mpsc::SyncSender<Result<(), Failure>>, requests: mpsc::Receiver<Request>) {
+    let mut renderer = match caught(|| OffscreenRenderer::new(&view)) {
+        Ok(r) => r,
+        Err(e) => {
+            let _ = ready.send(Err(e));
+            return;
+        }
+    };
+    if ready.send(Ok(())).is_err() {
+        return;
+    }
+    // The simulation drawn last, kept alive so that its address means it alone.
+    let mut last: Option<Py<PySimulation>> = None;
+    for Request { sim, reply } in requests {
+        if last.as_ref().is_none_or(|l| l.as_ptr() != sim.as_ptr()) {
+            renderer.reset();
+        }
+        let image = caught(|| renderer.render(&sim.get().locked()));
+        last = Some(sim);
+        let _ = reply.send(image);
+    }
+}
+
+/// Draws simulations into images, off screen (no display and no GPU needed: Mesa's
+/// software rasteriser). Each renderer draws on a thread of its own.
+///
+/// `Renderer(width=640, height=480, *, camera=(10, 8, 10), look_at=(0, 0, 0),
+/// background=(1, 1, 1), follow=None, quality="auto")`; `render(sim)` returns the image
+/// as a numpy array of shape (height, width, 3), `uint8`; `save(sim, path)` writes a PNG.
+#[pyclass(name = "Renderer", module = "ars", frozen)]
+pub struct PyRenderer {
+    requests: Mutex<mpsc::Sender<Request>>,
+    size: (u32, u32),
+}
+
+#[pymethods]
+impl PyRenderer {
+    #[new]
+    #[pyo3(signature = (width=640, height=480, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string()))]
+    fn new(
+        py: Python<'_>,
+        width: u32,
+        height: u32,
+        camera: Vec3,
+        look_at: Vec3,
+        background: Vec3,
+        follow: Option<String>,
+        quality: String,
+    ) -> PyResult<Self> {
+        let args =
+            ViewArgs { title: "ARS".into(), size: (width, height), camera, look_at, background, follow, quality };
+        let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
+        let (ready_tx, ready_rx) = mpsc::sync_channel(1);
+        let (requests, requests_rx) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("ars-renderer".into())
+            .spawn(move || serve(view, ready_tx, requests_rx))
+            .map_err(|e| raise(py, "ArsError", format!("could not start the renderer's thread: {e}")))?;
+        let ready = py.detach(move || ready_rx.recv());
+        match ready {
+            Ok(Ok(())) => Ok(PyRenderer { requests: Mutex::new(requests), size: (width, height) }),
+            Ok(Err(failure)) => Err(failure.into_py(py)),
+            Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended before it was ready".into())),
+        }
+    }
+
+    /// The image size, (width, height).
+    #[getter]
+    fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// The simulation as it is now, as a numpy array of shape (height, width, 3).
+    fn render<'py>(&self, py: Python<'py>, sim: Py<PySimulation>) -> PyResult<Bound<'py, PyAny>> {
+        let image = self.draw(py, sim)?;
+        let (w, h) = image.dimensions();
+        let array = PyArray1::from_vec(py, image.into_raw());
+        Ok(array.reshape([h as usize, w as usize, 3])?.into_any())
+    }
+
+    /// Writes the simulation as it is now to a PNG file.
+    fn save(&self, py: Python<'_>, sim: Py<PySimulation>, path: std::path::PathBuf) -> PyResult<()> {
+        let image = self.draw(py, sim)?;
+        image.save(&path).map_err(|e| raise(py, "ArsError", format!("could not write {}: {e}", path.display())))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<ars.Renderer {}×{}>", self.size.0, self.size.1)
+    }
+}
+
+impl PyRenderer {
+    fn draw(&self, py: Python<'_>, sim: Py<PySimulation>) -> PyResult<image::RgbImage> {
+        if sim.get().in_own_hook() {
+            return Err(raise(
+                py,
+                "InputError",
+                "a hook cannot render the simulation it runs in: render between steps".into(),
+            ));
+        }
+        let (reply, answer) = mpsc::sync_channel(1);
+        let sent = self.requests.lock().unwrap_or_else(std::sync::PoisonError::into_inner).send(Request { sim, reply });
+        if sent.is_err() {
+            return Err(raise(py, "InternalError", "the renderer's thread has ended".into()));
+        }
+        match py.detach(move || answer.recv()) {
+            Ok(Ok(image)) => Ok(image),
+            Ok(Err(failure)) => Err(failure.into_py(py)),
+            Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended while drawing".into())),
+        }
+    }
+}
