@@ -217,6 +217,38 @@ fn window_memory_stays_flat_over_a_minute() -> std::result::Result<bool, String>
     Ok(true)
 }
 
+/// Window after window on one thread once it keeps its rendering context; after the
+/// context is given back, another window is refused with an error that says why, and
+/// the process ends cleanly (its exit code is checked).
+fn windows_one_after_another_when_the_context_is_kept() -> std::result::Result<bool, String> {
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: this process runs this test alone, on its main thread.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    ars::viewer::keep_rendering_context();
+    let mut frames = Vec::new();
+    for _ in 0..3 {
+        match RedBall.show_for(0.5) {
+            Ok((_, report)) => frames.push(report.frames),
+            Err(e) => {
+                stop_xvfb(xvfb);
+                return Err(format!("window {} failed: {e}", frames.len() + 1));
+            }
+        }
+    }
+    ars::viewer::release_rendering_context();
+    let refused = RedBall.show_for(0.5);
+    stop_xvfb(xvfb);
+    println!("  three windows on one thread drew {frames:?} frames");
+    if frames.iter().any(|&f| f < 3) {
+        return Err(format!("a window drew too few frames: {frames:?}"));
+    }
+    match refused {
+        Err(e) if e.to_string().contains("one rendering context per thread") => Ok(true),
+        Err(e) => Err(format!("the window after the release failed otherwise: {e}")),
+        Ok(_) => Err("a window opened after the context was given back (kiss3d would fail in it)".into()),
+    }
+}
+
 /// The teleoperated example (IROS example 5) in a real window, driven by a person's
 /// keys through xdotool: holding Up drives the vehicle forward; Escape ends the
 /// process within 2 s.
@@ -386,6 +418,7 @@ fn main() {
     if let Ok(name) = std::env::var("ARS_VIEWER_TEST_ONLY") {
         let test = match name.as_str() {
             "window_memory_stays_flat_over_a_minute" => window_memory_stays_flat_over_a_minute,
+            "windows_one_after_another_when_the_context_is_kept" => windows_one_after_another_when_the_context_is_kept,
             other => panic!("no test {other}"),
         };
         match test() {
@@ -419,6 +452,13 @@ fn main() {
     run(
         "window_memory_stays_flat_over_a_minute",
         || in_own_process("window_memory_stays_flat_over_a_minute"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "windows_one_after_another_when_the_context_is_kept",
+        || in_own_process("windows_one_after_another_when_the_context_is_kept"),
         false,
         shown,
         &mut tally,

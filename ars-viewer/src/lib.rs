@@ -46,7 +46,9 @@ pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use driver::Driver;
 pub use error::{Result, ViewerError};
 pub use image;
-pub use offscreen::{OffscreenRenderer, ScreenshotRecorder, init_offscreen_context};
+pub use offscreen::{
+    OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
+};
 pub use scene::SceneMirror;
 pub use window::{VIEWER_KEYS, WindowReport};
 
@@ -121,7 +123,7 @@ impl<P: Program> ProgramViewer for P {}
 /// `limit` of wall time has passed); returns what the run measured. For front ends
 /// with programs of their own (the Python package); Rust programs use
 /// [`ProgramViewer::start`]. Needs a display and the main thread; one window per
-/// thread (see [`ViewerError::Settings`]).
+/// thread, unless the thread keeps its context ([`keep_rendering_context`]).
 pub fn run_window<D: Driver>(driver: &mut D, view: &ViewSettings, limit: Option<Duration>) -> Result<WindowReport> {
     if !has_display() {
         return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));

@@ -18,6 +18,47 @@ use crate::scene::View;
 thread_local! {
     /// Whether a kiss3d context was made on this thread.
     static CONTEXT_MADE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Whether this thread keeps its context after its last window (see
+    /// [`keep_rendering_context`]).
+    static KEEP: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// What keeps it: a 1×1 off-screen surface sharing the context, so that kiss3d does
+    /// not drop the context when the window closes.
+    static KEEPER: std::cell::RefCell<Option<OffscreenSurface>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Lets this thread open window after window. kiss3d 0.47 can make one rendering
+/// context per thread (see [`ViewerError::Settings`]), and drops it with the thread's
+/// last window; from now on this thread keeps the context of its next window after
+/// that window closes, and its later windows use it.
+///
+/// The kept context must be given back with [`release_rendering_context`] before the
+/// thread ends: wgpu may panic if it is still there while the thread's locals are
+/// destroyed. (The Python package releases it when the interpreter exits.)
+pub fn keep_rendering_context() {
+    KEEP.with(|k| k.set(true));
+}
+
+/// Gives back the context [`keep_rendering_context`] kept (it is dropped now if no
+/// window uses it), and stops keeping it. Does nothing if none is kept.
+pub fn release_rendering_context() {
+    KEEP.with(|k| k.set(false));
+    let keeper = KEEPER.with(|k| k.borrow_mut().take());
+    drop(keeper);
+}
+
+/// After a window opened: keeps its context if this thread asked to.
+pub(crate) fn keep_context_if_asked() {
+    if !KEEP.with(|k| k.get()) || KEEPER.with(|k| k.borrow().is_some()) {
+        return;
+    }
+    // The context exists (the window made or used it): the surface shares it.
+    let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
+    let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(1, 1, setup));
+    let window = surface.window_mut();
+    window.set_shadows_enabled(false);
+    window.set_shadow_atlas_layers(1);
+    window.set_shadow_resolution(64);
+    KEEPER.with(|k| *k.borrow_mut() = Some(surface));
 }
 
 /// Refuses a second kiss3d context on a thread whose first one is gone (with the
@@ -28,7 +69,8 @@ pub(crate) fn check_context_reuse() -> Result<()> {
     if !kiss3d::context::Context::is_initialized() && CONTEXT_MADE.with(|m| m.get()) {
         return Err(ViewerError::Settings(
             "this thread already had a window or renderer, now closed: kiss3d 0.47 can make only one rendering \
-             context per thread; keep the first renderer, or render on a new thread (std::thread::spawn)"
+             context per thread; keep the first renderer, render on a new thread (std::thread::spawn), or call \
+             ars_viewer::keep_rendering_context() before the first window"
                 .into(),
         ));
     }

@@ -125,6 +125,7 @@ async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
         Window::new_with_size(&view.title, w, h).await
     };
     crate::offscreen::context_made();
+    crate::offscreen::keep_context_if_asked();
     Ok(window)
 }
 
@@ -207,7 +208,7 @@ pub(crate) fn drive_window<D: Driver>(
         let mut shown = View::new(view, &mut window);
         let font = Font::default();
         let mut paused = false;
-        let mut pacer = Pacer::new(0.0);
+        let mut pacer = Pacer::new(runner.simulation().time());
         let mut panel = gui::Panel::default();
         let started = Instant::now();
         let mut report = WindowReport::default();
@@ -232,6 +233,10 @@ pub(crate) fn drive_window<D: Driver>(
             if limit.is_some_and(|l| wall >= l) {
                 break;
             }
+            // Keys pressed in this frame's events: under X11 a press sometimes arrives
+            // twice in one frame (seen with xdotool); a press of a key already down in
+            // the same frame is that copy, not a new press.
+            let mut pressed: Vec<WindowKey> = Vec::new();
             for mut event in window.events().iter() {
                 let WindowEvent::Key(key, action, _) = event.value else { continue };
                 if key == WindowKey::Escape {
@@ -240,6 +245,11 @@ pub(crate) fn drive_window<D: Driver>(
                 }
                 // Every other key is the viewer's or the program's, not the camera's.
                 event.inhibited = true;
+                match action {
+                    Action::Press if pressed.contains(&key) => continue,
+                    Action::Press => pressed.push(key),
+                    Action::Release => pressed.retain(|k| *k != key),
+                }
                 match (key, action) {
                     (WindowKey::Space, Action::Press) => {
                         paused = !paused;
@@ -249,7 +259,7 @@ pub(crate) fn drive_window<D: Driver>(
                     (WindowKey::R, Action::Press) => {
                         runner.reset()?;
                         shown.mirror.clear();
-                        pacer = Pacer::new(0.0);
+                        pacer = Pacer::new(runner.simulation().time());
                     }
                     (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
                     (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
@@ -312,7 +322,7 @@ pub(crate) fn drive_window<D: Driver>(
                     gui::Command::Reset => {
                         runner.reset()?;
                         shown.mirror.clear();
-                        pacer = Pacer::with_speed(0.0, panel.speed);
+                        pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
                     }
                     gui::Command::Screenshot => screenshot(&window, &view.title),
                     gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),

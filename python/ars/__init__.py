@@ -10,9 +10,16 @@
 True
 """
 
+import atexit
+
+from ars import _native
 from ars._errors import ArsError, InputError, InternalError, SimulationError, UnknownNameError
 from ars._native import Body, Joint, Renderer, Sensor, Simulation, __version__, has_display
 from ars.sweeps import RunResult, SweepResults, sweep
+
+# The viewer keeps the rendering context of its windows for the next one; it is given
+# back before the interpreter's threads end.
+atexit.register(_native._release_viewer)
 
 __all__ = [
     "ArsError",

@@ -26,6 +26,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<viewer::PyRenderer>()?;
     m.add_function(wrap_pyfunction!(viewer::show_program, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::has_display, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::release_viewer, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(panic_for_tests, m)?)?;
     Ok(())

@@ -166,7 +166,12 @@ pub(crate) fn show(
     let view = view.settings().map_err(|m| raise(py, "InputError", m))?;
     let mut driver = PythonDriver { sim, program, raised: None };
     let outcome = py.detach(|| {
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| ars_viewer::run_window(&mut driver, &view, limit)))
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            // Window after window on this thread: its rendering context is kept (and
+            // given back when the interpreter exits: `release_viewer`).
+            ars_viewer::keep_rendering_context();
+            ars_viewer::run_window(&mut driver, &view, limit)
+        }))
     });
     if let Some(e) = driver.raised.take() {
         return Err(e);
@@ -204,6 +209,17 @@ pub(crate) fn show_program(
     let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
     let view = ViewArgs { title, size, camera, look_at, background, follow, quality };
     show(py, sim, Some(program), duration, view)
+}
+
+/// Gives back the rendering context the windows of this thread kept: the package
+/// calls it when the interpreter exits, before the thread's locals are destroyed.
+#[pyfunction]
+#[pyo3(name = "_release_viewer")]
+pub(crate) fn release_viewer(py: Python<'_>) -> PyResult<()> {
+    crate::errors::guarded(py, || {
+        ars_viewer::release_rendering_context();
+        Ok(())
+    })
 }
 
 /// Whether a display is reachable (`DISPLAY` or `WAYLAND_DISPLAY` is set).

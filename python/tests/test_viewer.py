@@ -278,13 +278,10 @@ def test_a_simulation_window_runs_in_real_time_and_a_hooks_exception_comes_out(d
         stopped_at = sim.step_count
         sim.remove_hook(hook)
         sim.step(10)
-        try:
-            sim.show(1.0)
-            second = None
-        except ars.InputError as e:
-            second = str(e)
+        second = sim.show(1.0)
+        third = ars.Simulation().show(0.5, title="another")
         print(json.dumps({"raised": raised, "wall": wall, "stopped_at": stopped_at,
-                          "steps": sim.step_count, "second": second}))
+                          "steps": sim.step_count, "second": second, "third": third}))
         """
     ).replace("import json", "import json, time")
     run = run_python(code, window_env(display, tmp_path))
@@ -295,7 +292,8 @@ def test_a_simulation_window_runs_in_real_time_and_a_hooks_exception_comes_out(d
     assert result["raised"] == "from the hook"
     assert result["stopped_at"] == 5000
     assert 1.5 < result["wall"] < 10.0, result
-    # The simulation goes on (the step whose hook raised was not taken).
-    assert result["steps"] == 5010
-    # A window is made once per thread (kiss3d 0.47): the second is refused, clearly.
-    assert "one rendering context per thread" in result["second"], result
+    # The simulation goes on (the step whose hook raised was not taken), in another
+    # window, and another simulation in a third: window after window in one
+    # interpreter, which then exits cleanly (the return code above).
+    assert result["second"]["frames"] > 5 and result["third"]["frames"] > 2, result
+    assert result["steps"] > 5010
