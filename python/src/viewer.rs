@@ -158,6 +158,16 @@ pub(crate) fn show(
     if sim.get().in_own_hook() {
         return Err(raise(py, "InputError", "a hook cannot show the simulation it runs in".into()));
     }
+    let threading = py.import("threading")?;
+    if !threading.call_method0("current_thread")?.is(&threading.call_method0("main_thread")?) {
+        return Err(raise(
+            py,
+            "InputError",
+            "a window opens on the main thread only (the windowing system's rule); from other threads, draw off \
+             screen with ars.Renderer"
+                .into(),
+        ));
+    }
     let limit = match duration {
         None => None,
         Some(d) if d.is_finite() && d > 0.0 => Some(std::time::Duration::from_secs_f64(d)),

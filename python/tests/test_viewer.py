@@ -7,6 +7,7 @@ import shutil
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 
 import numpy as np
@@ -85,6 +86,23 @@ def test_show_without_a_display_is_an_input_error(monkeypatch):
     assert not ars.has_display()
     with pytest.raises(ars.InputError, match="no display"):
         sim.show(1.0)
+
+
+def test_a_window_from_another_thread_is_an_input_error(monkeypatch):
+    monkeypatch.setenv("DISPLAY", ":12345")  # never reached: refused before
+    sim, _ = ball_scene()
+    caught = []
+
+    def show():
+        try:
+            sim.show(1.0)
+        except ars.InputError as e:
+            caught.append(str(e))
+
+    thread = threading.Thread(target=show)
+    thread.start()
+    thread.join()
+    assert caught and "main thread only" in caught[0]
 
 
 # A program in the original's style: a ball on an arm hinged about the vertical (gravity
