@@ -11,8 +11,8 @@ replaces the earlier registration.
 
 One difference from the original, on purpose: a method of a program (an
 ``ars.app.Program``) connected with ``sender=Any`` hears the signals of that program's
-own simulation only, never those of another program's simulation created later in the
-same process.
+own simulation only (sent by the simulation, or by a sensor of its bodies, joints or
+space), never those of another program's simulation created later in the same process.
 """
 
 import inspect
@@ -161,8 +161,18 @@ def _live(key):
 
 
 def _program_of(sender):
-    owner = getattr(sender, "_program", None)
-    return owner() if owner is not None else None
+    """The program whose simulation a signal comes from: the sender's own (a
+    simulation's ``_program``), else that of the simulation the sender is part of (a
+    body's or joint's ``_sim``), or of its source (a sensor's ``_source``)."""
+    for _ in range(4):
+        if sender is None:
+            return None
+        owner = getattr(sender, "_program", None)
+        if owner is not None:
+            return owner()
+        sim = getattr(sender, "_sim", None)
+        sender = sim() if sim is not None else getattr(sender, "_source", None)
+    return None
 
 
 def send(signal, sender=Anonymous, *args, **named):

@@ -85,6 +85,36 @@ def test_a_programs_handlers_hear_its_own_simulation_only():
     assert len(first.heard) == 100 and all(s is first.sim for s in first.heard)
 
 
+class Listening(Pendulum):
+    """Hears every sensor's records (connected with any sender), as the original's
+    laser demo does, and records with a sensor of each kind of source."""
+
+    def __init__(self):
+        Pendulum.__init__(self)
+        self.records = []
+        dispatcher.connect(self.on_record, sensors.signals.SENSOR_POST_ON_CHANGE)
+        self.gps = sensors.GPS(self.sim.get_object(self.ball))
+        self.laser = sensors.Laser(self.sim.collision_space, 5.0)
+        self.energy = sensors.SystemTotalEnergy(self.sim)
+
+    def on_record(self, sender, data):
+        self.records.append(sender)
+
+    def measure(self):
+        for sensor in (self.gps, self.angle, self.laser, self.energy):
+            sensor.on_change(self.sim.sim_time)
+
+
+def test_a_programs_handlers_hear_the_sensors_of_its_own_simulation_only():
+    first = Listening()
+    second = Listening()
+    second.measure()
+    first.measure()
+    own = [first.gps, first.angle, first.laser, first.energy]
+    assert first.records == own
+    assert second.records == [second.gps, second.angle, second.laser, second.energy]
+
+
 def test_connecting_the_same_handler_twice_calls_it_once():
     program = Pendulum()
     dispatcher.connect(program.on_pre_step, signals.SIM_PRE_STEP)

@@ -5,10 +5,14 @@ demo the original can run there prints what it prints once two bugs of that PyOD
 fixed (see ``original_ars.BINDING_FIXES``; without them spheres given by mass weigh
 what a density would, and motors have no force)."""
 
+import json
+import subprocess
+import sys
 import time
 
 import original_ars
 import pytest
+from conftest import window_env
 
 DEMOS = original_ars.demos()
 
@@ -27,6 +31,41 @@ def test_every_demo_runs_headless_unedited(module, name, workdir):
     # No handler failed (the demos log their handlers' exceptions with a traceback).
     assert "Traceback" not in run.stderr, run.stderr[-3000:]
     print(f"{module}.{name}: 1 s simulated in {elapsed:.2f} s, {run.stdout.count(chr(10))} lines")
+
+
+# Every demo in ARS's window, one after the other in one interpreter (as the original's
+# demo runner opens them), each for WINDOW_SECONDS of wall time.
+WINDOW_SECONDS = 0.5
+IN_WINDOWS = """
+import importlib, json, sys
+shown = []
+for module, name in json.loads(sys.argv[1]):
+    program = getattr(importlib.import_module("demos." + module), name)()
+    report = program.show(float(sys.argv[2]))
+    shown.append([module, report["frames"], program.sim.sim_time])
+print(json.dumps(shown))
+"""
+
+
+def test_every_demo_shows_in_a_window_unedited(display, workdir, tmp_path):
+    run = subprocess.run(
+        [sys.executable, "-c", IN_WINDOWS, json.dumps(DEMOS), str(WINDOW_SECONDS)],
+        cwd=original_ars.demos_only(workdir),
+        env=window_env(display, tmp_path),
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert "Traceback" not in run.stderr, run.stderr[-3000:]
+    shown = json.loads(run.stdout.splitlines()[-1])
+    assert [m for m, _, _ in shown] == [m for m, _ in DEMOS]
+    for module, frames, simulated in shown:
+        # Each drew frames and ran its simulation (not necessarily in real time: the
+        # demos that print every step slow down).
+        assert frames >= 2 and simulated > 0.0, (module, frames, simulated)
+        print(f"{module}: {frames} frames, {simulated:.2f} s simulated in {WINDOW_SECONDS} s")
 
 
 @pytest.mark.parametrize(

@@ -281,6 +281,7 @@ class Ray:
 
     def __init__(self, space, length):
         self._space = space
+        self._sim = space._sim  # the simulation it is part of (for the dispatcher)
         self.length = length
         self._position = (0.0, 0.0, 0.0)
         self._rotation = calc_rotation_matrix((1.0, 0.0, 0.0), 0.0)

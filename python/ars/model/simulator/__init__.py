@@ -36,6 +36,10 @@ def _floats(values):
 class SimulatedObject:
     """An object of the simulation: a name and, with a graphics adapter, an actor."""
 
+    # The simulation it is part of (a weak reference), set when it is added: the
+    # dispatcher finds a signal's program through it.
+    _sim = None
+
     def __init__(self, name, actor=None):
         self._name = name
         self._actor = actor
@@ -368,6 +372,7 @@ class Simulation:
         obj._native = self.native.body(name)
         obj._body = PhysicsBody(obj._native)
         obj.set_name(key)
+        obj._sim = weakref.ref(self)
         self._objects[key] = obj
         return key
 
@@ -376,6 +381,7 @@ class Simulation:
         obj = SimulatedObject("axes", self._graphics("Axes"))
         key = self._key("axes", obj)
         obj.set_name(key)
+        obj._sim = weakref.ref(self)
         self._objects[key] = obj
         return key
 
@@ -395,6 +401,7 @@ class Simulation:
         key = self._key("floor", obj)
         self.native.add_floor(tuple(normal), dist, name=key)
         obj.set_name(key)
+        obj._sim = weakref.ref(self)
         self._objects[key] = obj
         return key
 
@@ -408,6 +415,7 @@ class Simulation:
         self.native.add_trimesh(vertices, faces, tuple(center), name=key)
         obj._native = self.native.body(key)
         obj.set_name(key)
+        obj._sim = weakref.ref(self)
         self._objects[key] = obj
         return key
 
@@ -469,7 +477,9 @@ class Simulation:
         key = f"{name}/{joint!r}" if name in self._joints else name
         native_name = create(key)
         joint._native = self.native.joint(native_name)
+        joint._sim = weakref.ref(self)
         self._joints[key] = SimulatedJoint(key, joint)
+        self._joints[key]._sim = joint._sim
         return key
 
     @staticmethod
