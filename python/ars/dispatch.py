@@ -179,19 +179,24 @@ def send(signal, sender=Anonymous, *args, **named):
     """Sends ``signal`` from ``sender``; returns ``[(receiver, response), ...]``. An
     exception raised by a receiver stops the sending and propagates."""
     sender_key = _sender_key(sender)
-    seen = set()
-    responses = []
-    program = _program_of(sender)
     keys = [(sender_key, signal), (sender_key, Any)]
     if sender_key is not Any:
         keys += [(Any, signal), (Any, Any)]
+    seen = set()
+    responses = []
+    program = _unknown = object()  # the sender's program, found when a receiver needs it
     for key in keys:
+        if key not in _registry:
+            continue
         for entry, fn in _live(key):
             if entry.key in seen:
                 continue
             seen.add(entry.key)
-            if entry.owner is not None and program is not None and entry.owner() is not program:
-                continue
+            if entry.owner is not None:
+                if program is _unknown:
+                    program = _program_of(sender)
+                if program is not None and entry.owner() is not program:
+                    continue
             if entry.accepts_all:
                 values = dict(named, signal=signal, sender=sender)
             else:

@@ -5,12 +5,15 @@
 2. the cost of a Python pre-step hook, per step;
 3. the original ARS 0.5b1 on Debian's PyODE against ours, on its IROS examples 2
    and 3 (the same printed output, checked here too);
-4. a sweep of 8 pendulum runs on a local Ray with 2 CPUs against the serial sweep.
+4. a sweep of 8 pendulum runs on a local Ray with 2 CPUs against the serial sweep;
+5. off-screen images from Python (``ars.Renderer``, 800×600) of the running pendulum,
+   in frames per second, and the share of that time spent drawing.
 
 Run from the repository root after ``make python`` (and ``cargo build --release
 --example conical_pendulum``): ``.venv/bin/python python/bench/bench.py``.
 """
 
+import os
 import pathlib
 import subprocess
 import sys
@@ -106,19 +109,55 @@ def original_against_ours():
 
 
 def sweep_on_ray(seconds=20.0):
+    import ray
+
     params = [{"torque": 5.0 * (i + 1)} for i in range(8)]
-    start = time.perf_counter()
-    serial = ars.sweep(pendulum, params, duration=seconds, record=["r1.rate"], every=400)
-    serial_s = time.perf_counter() - start
-    start = time.perf_counter()
-    on_ray = ars.sweep(
-        pendulum, params, duration=seconds, record=["r1.rate"], every=400, backend="ray", workers=2
-    )
-    ray_s = time.perf_counter() - start
+
+    def timed(**backend):
+        start = time.perf_counter()
+        results = ars.sweep(
+            pendulum, params, duration=seconds, record=["r1.rate"], every=400, **backend
+        )
+        return results, time.perf_counter() - start
+
+    serial, serial_s = timed()
+    on_ray, ray_s = timed(backend="ray", workers=2)
     same = all(a.table.tobytes() == b.table.tobytes() for a, b in zip(serial, on_ray))
     print(
         f"4. sweep of 8 × {seconds:g} s: serial {serial_s:.2f} s, Ray on 2 CPUs {ray_s:.2f} s "
         f"(with its start and stop), ratio {ray_s / serial_s:.2f}, {'bit-identical' if same else 'DIFFERENT'}"
+    )
+    # On a Ray already running, whose workers have run a sweep: what a cluster user sees.
+    # (Its workers import this file's module: they get this process's module path.)
+    os.environ["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p and os.path.isdir(p))
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    try:
+        timed(backend="ray")
+        warm, warm_s = timed(backend="ray")
+    finally:
+        ray.shutdown()
+    same = all(a.table.tobytes() == b.table.tobytes() for a, b in zip(serial, warm))
+    print(
+        f"4. the same on a running Ray with 2 CPUs: {warm_s:.2f} s, ratio {warm_s / serial_s:.2f}, "
+        f"{'bit-identical' if same else 'DIFFERENT'}"
+    )
+
+
+def renderer_frames(frames=200):
+    sim = pendulum()
+    renderer = ars.Renderer(800, 600, camera=(3.0, 2.0, 3.0), look_at=(0.0, 1.0, 0.0))
+    renderer.render(sim)  # the scene's meshes are made on the first image
+    drawing = 0.0
+    start = time.perf_counter()
+    for _ in range(frames):
+        sim.step(50)
+        begin = time.perf_counter()
+        renderer.render(sim)
+        drawing += time.perf_counter() - begin
+    total = time.perf_counter() - start
+    print(
+        f"5. ars.Renderer 800×600 while the pendulum runs: {frames / total:.1f} frames/s "
+        f"({100 * drawing / total:.0f}% of the time drawing and copying the image to numpy)"
     )
 
 
@@ -127,3 +166,4 @@ if __name__ == "__main__":
     hook_cost()
     original_against_ours()
     sweep_on_ray()
+    renderer_frames()
