@@ -119,6 +119,13 @@ fn bad_urdf_files_are_errors_naming_the_element() {
     assert!(element.starts_with("joint") || element == "robot", "{element}");
     assert!(problem.contains("loop"), "{problem}");
 
+    let (element, problem) = load_error(&robot(link("a", "1") + &link("b", "0") + &joint("j", "revolute", "a", "b")));
+    assert_eq!(element, r#"link "b""#);
+    assert!(
+        problem.contains("a massless link is merged into its parent only when a fixed joint holds it"),
+        "{problem}"
+    );
+
     let (element, problem) = load_error(&robot(link("a", "1") + &link("b", "1") + &joint("j", "planar", "a", "b")));
     assert_eq!(element, r#"joint "j""#);
     assert!(problem.contains("Planar"), "{problem}");
@@ -328,4 +335,62 @@ fn joint_limits_friction_and_mimic_come_from_the_file() {
         .replace(r#"<mimic joint="left_finger_joint""#, r#"<mimic joint="thumb""#);
     let err = Simulation::new().unwrap().load_urdf_text(&text, "g.urdf", &UrdfOptions::new()).unwrap_err();
     assert!(err.to_string().contains("joint \"right_finger_joint\"") && err.to_string().contains("\"thumb\""), "{err}");
+}
+
+/// A flange and a tool frame, massless and fixed (as the Panda's `panda_link8` and
+/// `panda_grasptarget`), are merged into the arm link they hang from: the robot loads,
+/// their names find that link's object, the flange's ball is a geom of the arm's body,
+/// and a finger jointed to the tool frame hangs from the arm.
+#[test]
+fn massless_links_fixed_to_their_parent_are_merged_into_it() {
+    let inertia = r#"<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/>"#;
+    let text = format!(
+        r#"<robot name="merged">
+          <link name="base"><inertial><mass value="0"/>{inertia}</inertial></link>
+          <link name="arm"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>{inertia}</inertial>
+            <collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/></geometry></collision></link>
+          <link name="flange"><inertial><mass value="0"/>{inertia}</inertial>
+            <collision><geometry><sphere radius="0.05"/></geometry></collision>
+            <visual><geometry><sphere radius="0.05"/></geometry><material name="red"><color rgba="1 0 0 1"/></material></visual></link>
+          <link name="tool"/>
+          <link name="finger"><inertial><origin xyz="0 0 -0.1"/><mass value="0.1"/>{inertia}</inertial></link>
+          <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 1"/>
+            <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="0" velocity="0"/></joint>
+          <joint name="flange_mount" type="fixed"><parent link="arm"/><child link="flange"/><origin xyz="1 0 0"/></joint>
+          <joint name="tool_mount" type="fixed"><parent link="flange"/><child link="tool"/><origin xyz="0 0 -0.1"/></joint>
+          <joint name="knuckle" type="revolute"><parent link="tool"/><child link="finger"/>
+            <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="0" velocity="0"/></joint>
+        </robot>"#
+    );
+    let mut sim = Simulation::new().unwrap();
+    let robot = sim.scene_mut().load_urdf_text(&text, "merged.urdf", &UrdfOptions::new()).unwrap();
+    let arm = robot.link("arm").unwrap();
+    assert_eq!(robot.link("flange"), Some(arm));
+    assert_eq!(robot.link("tool"), Some(arm));
+    assert_eq!(robot.links.len(), 5);
+    assert!(robot.joint("flange_mount").is_none() && robot.joint("tool_mount").is_none());
+    let knuckle = robot.joint("knuckle").unwrap();
+    // The arm's object: its box and the flange's ball; the flange's look, in red.
+    let view = sim.object(arm).unwrap();
+    assert_eq!(view.geoms().count(), 2);
+    assert_eq!(view.body().unwrap().mass(), 1.0);
+    assert_eq!(view.visuals().len(), 1);
+    assert_eq!(view.visuals()[0].color, Some([1.0, 0.0, 0.0]));
+    // URDF (x, y, z) is (x, z, -y) here: the flange at (1, 1, 0), the ball on it.
+    let ball = view.geoms().nth(1).unwrap();
+    assert_eq!(sim.world().geom(ball).unwrap().body(), view.body_handle());
+    let at = ars::nalgebra::Point3::from(sim.world().geom(ball).unwrap().pose().translation.vector);
+    assert!((at - ars::nalgebra::Point3::new(1.0, 1.0, 0.0)).norm() < 1e-12, "{at}");
+    // The finger hangs from the tool frame, 0.1 m below the flange, on the arm's body.
+    let finger = robot.link("finger").unwrap();
+    let finger_at = sim.object(finger).unwrap().position().unwrap();
+    assert!((finger_at - ars::nalgebra::Point3::new(1.0, 0.8, 0.0)).norm() < 1e-12, "{finger_at}");
+    let joint = sim.joint(knuckle).unwrap();
+    assert_eq!(joint.objects().0, arm);
+    // Hanging straight down from the knuckle, the finger stays (gravity has no arm
+    // about the knuckle's axis), and the whole arm does not fall: its base is static.
+    sim.run_for(0.2).unwrap();
+    assert!(sim.joint(knuckle).unwrap().state().unwrap().position.abs() < 1e-6);
+    let finger_after = sim.object(finger).unwrap().position().unwrap();
+    assert!((finger_after - finger_at).norm() < 1e-3, "{finger_after}");
 }

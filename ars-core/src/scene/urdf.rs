@@ -10,7 +10,11 @@
 //!   given, so the tensor is used as written. Collision geometry is placed relative to
 //!   it (no offset when it shares the inertial frame).
 //! - **Mass.** A root link without mass is static (its geometry collides, nothing moves
-//!   it), as pybullet does. Any other link needs a positive mass.
+//!   it), as pybullet does. A massless link fixed to its parent (a tool frame, a
+//!   flange: the Panda's `panda_link8`) is merged into the nearest ancestor that is not
+//!   one: its geometry and looks join that link's object, [`UrdfRobot::link`] gives that
+//!   object for its name, and its fixed joint is not made. Any other link needs a
+//!   positive mass.
 //! - **Joints.** `revolute` and `continuous` become hinges, `prismatic` sliders,
 //!   `fixed` fixed joints, at the joint's origin and about its axis, with the URDF's
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
@@ -393,7 +397,12 @@ impl Scene {
                 let _ = scene.remove_object_with_joints(*id);
             }
         };
+        let hosts = merge_hosts(robot, plan.root);
+        let mut made: Vec<Option<(ObjectId, Option<crate::handle::BodyHandle>)>> = vec![None; robot.links.len()];
         for (i, link) in robot.links.iter().enumerate() {
+            if hosts[i].is_some() {
+                continue;
+            }
             let frame = plan.link_frames[i];
             let result = self.add_link(robot, link, &frame, i == plan.root, bits, meshes);
             let result = result.and_then(|(id, body)| {
@@ -403,9 +412,9 @@ impl Scene {
                 Ok((id, body))
             });
             match result {
-                Ok((id, body)) => {
-                    created.push((id, body));
-                    links.push((link.name.clone(), id));
+                Ok(made_link) => {
+                    created.push(made_link);
+                    made[i] = Some(made_link);
                 }
                 Err(e) => {
                     undo(self, &created);
@@ -413,11 +422,33 @@ impl Scene {
                 }
             }
         }
+        for (i, link) in robot.links.iter().enumerate() {
+            let Some(host) = hosts[i] else { continue };
+            let host_made = made[host].expect("a host is made in the first pass");
+            let host_frame = match host_made.1 {
+                Some(_) => plan.link_frames[host].then(&Frame::from_pose(&robot.links[host].inertial.origin)),
+                None => plan.link_frames[host],
+            };
+            let result = self.merge_link(robot, link, &plan.link_frames[i], host_made, &host_frame, bits, meshes);
+            if let Err(e) = result {
+                undo(self, &created);
+                return Err((link_element(&link.name), e));
+            }
+            made[i] = Some(host_made);
+        }
+        let made: Vec<(ObjectId, Option<crate::handle::BodyHandle>)> =
+            made.into_iter().map(|m| m.expect("every link is made or merged")).collect();
+        for (link, (id, _)) in robot.links.iter().zip(&made) {
+            links.push((link.name.clone(), *id));
+        }
         let mut joints = Vec::new();
         for (j, joint) in robot.joints.iter().enumerate() {
             let parent = robot.links.iter().position(|l| l.name == joint.parent.link).expect("checked");
             let child = robot.links.iter().position(|l| l.name == joint.child.link).expect("checked");
-            match self.add_urdf_joint(joint, &plan.joint_frames[j], created[child], created[parent]) {
+            if hosts[child].is_some() {
+                continue; // merged: its link is part of its parent's body
+            }
+            match self.add_urdf_joint(joint, &plan.joint_frames[j], made[child], made[parent]) {
                 Ok(id) => joints.push((joint.name.clone(), id)),
                 Err(e) => {
                     undo(self, &created);
@@ -435,7 +466,7 @@ impl Scene {
                 return Err((format!("joint {:?}", joint.name), e));
             }
         }
-        let base_joint = match (options.fixed_base, created[plan.root]) {
+        let base_joint = match (options.fixed_base, made[plan.root]) {
             (true, (root, Some(_))) => {
                 let name = format!("{}/base", robot.name);
                 match self.insert_sim_joint(
@@ -456,7 +487,7 @@ impl Scene {
         };
         if let Some(posed) = &plan.posed_link_frames {
             for (i, link) in robot.links.iter().enumerate() {
-                let Some(body) = created[i].1 else { continue };
+                let Some(body) = made[i].1.filter(|_| hosts[i].is_none()) else { continue };
                 let at = posed[i].then(&Frame::from_pose(&link.inertial.origin));
                 let result = self.world.body_mut(body).and_then(|mut b| {
                     b.set_position(Point3::from(at.translation))?;
@@ -486,27 +517,9 @@ impl Scene {
         bits: Option<u64>,
         meshes: &mut Meshes<'_>,
     ) -> Result<(ObjectId, Option<crate::handle::BodyHandle>)> {
+        let (collisions, looks) = link_geometry(robot, link, frame, meshes)?;
         let urdf_err =
             |problem: String| Error::Urdf { file: String::new(), element: format!("link {:?}", link.name), problem };
-        let mut collisions = Vec::new();
-        for c in &link.collision {
-            let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
-            collisions.push((shape, frame.then(&Frame::from_pose(&c.origin))));
-        }
-        let mut looks = Vec::new();
-        if !meshes.options.ignore_visuals {
-            for v in &link.visual {
-                let shape = meshes.shape(&v.geometry).map_err(|problem| {
-                    urdf_err(format!(
-                        "{problem} (a <visual>: UrdfOptions::ignore_visuals draws the collision geometry instead)"
-                    ))
-                })?;
-                // Checked before anything is created, so that setting them cannot fail.
-                shape.validate().map_err(|e| urdf_err(format!("a <visual>: {e}")))?;
-                let color = v.material.as_ref().and_then(|m| material_color(robot, m));
-                looks.push((shape, frame.then(&Frame::from_pose(&v.origin)).isometry(), color));
-            }
-        }
         // The visuals relative to the object's pose.
         let visuals = |object_pose: Isometry3<f64>| -> Vec<super::Visual> {
             let to_object = object_pose.inverse();
@@ -543,7 +556,10 @@ impl Scene {
             return Ok((id, None));
         }
         if mass.is_nan() || mass <= 0.0 {
-            return Err(urdf_err(format!("mass {mass}: a moving link needs a positive mass")));
+            return Err(urdf_err(format!(
+                "mass {mass}: a moving link needs a positive mass (a massless link is merged into its parent \
+                 only when a fixed joint holds it)"
+            )));
         }
         let i = &link.inertial.inertia;
         let inertia = Matrix3::new(i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz);
@@ -570,6 +586,58 @@ impl Scene {
         self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
         self.set_visuals(id, visuals(inertial.isometry()))?;
         Ok((id, Some(body)))
+    }
+
+    /// Adds a merged link's geometry and looks to its host's object: geoms on the host's
+    /// body (static with a static host), visuals relative to the host object's pose.
+    /// `host_frame` is the host body's frame (its inertial frame), or the static host
+    /// link's frame.
+    #[allow(clippy::too_many_arguments)]
+    fn merge_link(
+        &mut self,
+        robot: &urdf_rs::Robot,
+        link: &urdf_rs::Link,
+        frame: &Frame,
+        (host, body): (ObjectId, Option<crate::handle::BodyHandle>),
+        host_frame: &Frame,
+        bits: Option<u64>,
+        meshes: &mut Meshes<'_>,
+    ) -> Result<()> {
+        let (collisions, looks) = link_geometry(robot, link, frame, meshes)?;
+        let mut geoms = Vec::new();
+        for (shape, at) in collisions {
+            let mut g = GeomBuilder::new(shape);
+            g = match body {
+                Some(body) => g.attached_to(body).offset(host_frame.relative(&at)),
+                None => g.pose(at.isometry()),
+            };
+            if let Some(b) = bits {
+                g = g.category_bits(b).collide_bits(!b);
+            }
+            match self.world.insert_geom(self.space(), g) {
+                Ok(g) => geoms.push(g),
+                Err(e) => {
+                    geoms.into_iter().try_for_each(|g| self.world.remove_geom(g))?;
+                    return Err(e);
+                }
+            }
+        }
+        self.objects.get_mut(host.0, ObjectId::KIND, &host)?.extra_geoms.extend(geoms);
+        if !looks.is_empty() {
+            let host_pose = match body {
+                Some(_) => host_frame.isometry(),
+                None => self.pose(host).unwrap_or_else(|_| Isometry3::identity()),
+            };
+            let to_host = host_pose.inverse();
+            let mut visuals = self.object(host)?.visuals().to_vec();
+            visuals.extend(looks.into_iter().map(|(shape, at, color)| super::Visual {
+                shape,
+                offset: to_host * at,
+                color,
+            }));
+            self.set_visuals(host, visuals)?;
+        }
+        Ok(())
     }
 
     fn add_urdf_joint(
@@ -626,6 +694,61 @@ impl Scene {
         }
         Ok(id)
     }
+}
+
+/// A link's collision shapes with their world frames, and its looks (shape, world
+/// pose, colour) unless visuals are ignored.
+#[allow(clippy::type_complexity)]
+fn link_geometry(
+    robot: &urdf_rs::Robot,
+    link: &urdf_rs::Link,
+    frame: &Frame,
+    meshes: &mut Meshes<'_>,
+) -> Result<(Vec<(Shape, Frame)>, Vec<(Shape, Isometry3<f64>, Option<super::Color>)>)> {
+    let urdf_err =
+        |problem: String| Error::Urdf { file: String::new(), element: format!("link {:?}", link.name), problem };
+    let mut collisions = Vec::new();
+    for c in &link.collision {
+        let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
+        collisions.push((shape, frame.then(&Frame::from_pose(&c.origin))));
+    }
+    let mut looks = Vec::new();
+    if !meshes.options.ignore_visuals {
+        for v in &link.visual {
+            let shape = meshes.shape(&v.geometry).map_err(|problem| {
+                urdf_err(format!(
+                    "{problem} (a <visual>: UrdfOptions::ignore_visuals draws the collision geometry instead)"
+                ))
+            })?;
+            // Checked before anything is created, so that setting them cannot fail.
+            shape.validate().map_err(|e| urdf_err(format!("a <visual>: {e}")))?;
+            let color = v.material.as_ref().and_then(|m| material_color(robot, m));
+            looks.push((shape, frame.then(&Frame::from_pose(&v.origin)).isometry(), color));
+        }
+    }
+    Ok((collisions, looks))
+}
+
+/// For each link, the link it is merged into: a massless link fixed to its parent goes
+/// into the nearest ancestor that is not such a link (`None`: it is made itself).
+fn merge_hosts(robot: &urdf_rs::Robot, root: usize) -> Vec<Option<usize>> {
+    let index: HashMap<&str, usize> = robot.links.iter().enumerate().map(|(i, l)| (l.name.as_str(), i)).collect();
+    let mut parent: Vec<Option<(usize, bool)>> = vec![None; robot.links.len()];
+    for joint in &robot.joints {
+        let fixed = matches!(joint.joint_type, urdf_rs::JointType::Fixed);
+        parent[index[joint.child.link.as_str()]] = Some((index[joint.parent.link.as_str()], fixed));
+    }
+    let merged = |i: usize| i != root && robot.links[i].inertial.mass.value == 0.0 && parent[i].is_some_and(|p| p.1);
+    (0..robot.links.len())
+        .map(|i| {
+            let mut host = i;
+            // The tree has no loop (checked): this walk ends at the root at the latest.
+            while merged(host) {
+                host = parent[host].expect("merged links have a parent").0;
+            }
+            (host != i).then_some(host)
+        })
+        .collect()
 }
 
 /// The world frame of every link and of every joint, from the root outwards, with the
