@@ -139,6 +139,10 @@ WHEEL = textwrap.dedent(
 
         def press(self):
             self.presses += 1
+
+        def reset_simulation(self):
+            self.rate_before_reset = self.sim.get_joint("hinge").joint.angle_rate
+            Program.reset_simulation(self)
     """
 )
 
@@ -195,12 +199,14 @@ def test_start_opens_a_window_that_takes_the_programs_keys_and_escape_closes(dis
         """
         import time
         wheel = Wheel()
+        first = wheel.sim
         started = time.perf_counter()
         wheel.start()  # until the window is closed
         wall = time.perf_counter() - started
         joint = wheel.sim.get_joint("hinge").joint
         print(json.dumps({"wall": wall, "time": wheel.sim.sim_time, "rate": joint.angle_rate,
-                          "presses": wheel.presses}))
+                          "rate_before_reset": wheel.rate_before_reset,
+                          "rebuilt": wheel.sim is not first, "presses": wheel.presses}))
         """
     )
     window = subprocess.Popen(
@@ -223,17 +229,21 @@ def test_start_opens_a_window_that_takes_the_programs_keys_and_escape_closes(dis
         time.sleep(1.5)
         xdotool(display, "keyup", "Up")
         time.sleep(0.5)
+        xdotool(display, "key", "r")  # the original's reset: the program rebuilt
+        time.sleep(1.0)
         xdotool(display, "key", "Escape")
         out, err = window.communicate(timeout=30)
     finally:
         window.kill()
     assert window.returncode == 0, err[-3000:]
     result = json.loads(out.splitlines()[-1])
-    # The program ran in the window, in real time, until Escape closed it.
-    assert 2.0 < result["time"] < result["wall"] < 30.0, result
     assert result["presses"] == 1
-    # Held for 1.5 s at 2 N·m: the arm turns (it is still, untouched).
-    assert result["rate"] > 0.5, result
+    # Held for 1.5 s at 2 N·m: the arm turned (it is still, untouched).
+    assert result["rate_before_reset"] > 0.5, result
+    # `r` rebuilt the program in the same window: a new simulation, from rest, which
+    # ran about a second (in real time) until Escape closed the window.
+    assert result["rebuilt"] and result["rate"] == 0.0, result
+    assert 0.5 < result["time"] < result["wall"] - 2.0, result
 
 
 def test_a_simulation_window_runs_in_real_time_and_a_hooks_exception_comes_out(display, tmp_path):
