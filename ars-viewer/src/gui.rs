@@ -50,7 +50,9 @@ impl Default for Panel {
 }
 
 /// What the window tells the panel about itself.
-pub(crate) struct Status {
+pub(crate) struct Status<'a> {
+    /// The window's title (the program's), the panel's heading.
+    pub(crate) title: &'a str,
     pub(crate) paused: bool,
     pub(crate) real_time_factor: f64,
     pub(crate) following: bool,
@@ -60,13 +62,13 @@ pub(crate) struct Status {
 
 impl Panel {
     /// Draws the panel for `sim` and returns what was asked.
-    pub(crate) fn draw(&mut self, ctx: &egui::Context, sim: &Simulation, status: &Status) -> Vec<Command> {
+    pub(crate) fn draw(&mut self, ctx: &egui::Context, sim: &Simulation, status: &Status<'_>) -> Vec<Command> {
         let mut commands = Vec::new();
         if !self.shown {
             return commands;
         }
         egui::Window::new("ARS").default_pos([8.0, 8.0]).default_width(340.0).resizable(true).show(ctx, |ui| {
-            ui.heading("ARS");
+            ui.heading(status.title);
             ui.label(format!(
                 "t = {:.3} s, step {}   ×{:.2} real time",
                 sim.time(),

@@ -303,6 +303,7 @@ pub(crate) fn drive_window<D: Driver>(
                 pacer.measure(runner.simulation().time());
             }
             let status = gui::Status {
+                title: &view.title,
                 paused,
                 real_time_factor: pacer.factor,
                 following: shown.following,
