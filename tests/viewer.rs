@@ -343,6 +343,24 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
     }
     let _ = std::fs::remove_dir_all(&dir);
 
+    // Rolled 90° about its optical axis (its up is the world's −X): a box to the world's
+    // right (+X) is below the middle of both images, and nothing is above it.
+    let mut side = Simulation::builder().gravity(Vector3::zeros()).build().map_err(|e| e.to_string())?;
+    let right = side.add_box([1.0, 1.0, 1.0], [1.2, 0.0, -3.0], Mass::Total(1.0)).map_err(|e| e.to_string())?;
+    side.set_color(right, [1.0, 0.0, 0.0]).map_err(|e| e.to_string())?;
+    let roll = ars::nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_2);
+    let mut rolled = Camera::new(intrinsics)
+        .map_err(|e| e.to_string())?
+        .at(ars::nalgebra::Isometry3::from_parts(Vector3::zeros().into(), roll));
+    let frame = rolled.capture(&side).map_err(|e| e.to_string())?;
+    let (below, above) = (frame.depth.depth(80, 110), frame.depth.depth(80, 10));
+    if (f64::from(below) - 2.5).abs() > 1e-5 || !above.is_infinite() {
+        return Err(format!("rolled depth: {below} m below the middle (2.5 expected), {above} above (nothing)"));
+    }
+    if !reddish(&frame.rgb, 80.0, 110.0, 2) || reddish(&frame.rgb, 80.0, 10.0, 2) {
+        return Err("rolled colour: the red box must be below the middle, as in the depth image".into());
+    }
+
     // At a rate: the box moving away at 1 m/s, a frame every 20 ms for 50 ms.
     let mut camera = camera.every(0.02).map_err(|e| e.to_string())?;
     sim.body_mut(cube)

@@ -71,7 +71,8 @@ impl CameraFrame {
 }
 
 /// A camera sensor: in its own frame it looks along −Z with +Y up (the depth camera's
-/// convention); the colour image keeps the world's up (no roll). Rendering happens on
+/// convention), in both images: a camera rolled about its optical axis sees the world
+/// rolled the other way. Rendering happens on
 /// the calling thread: call [`capture`](Self::capture) for a frame now, or give the
 /// camera a rate ([`every`](Self::every)) and let [`run`](Self::run) step a simulation
 /// and capture each frame when it is due (or call
@@ -180,6 +181,9 @@ impl Camera {
             convert::point(&eye),
             convert::point(&at),
         );
+        // The camera's own up (its +Y), not the world's: the colour image rolls with it,
+        // as the depth image does.
+        camera.set_up_axis(convert::vector(&(pose.rotation * Vector3::y())));
         self.view.mirror.sync(sim, &mut self.view.scene).map_err(ViewerError::from)?;
         let rgb = kiss3d::pollster::block_on(self.surface.render_image_3d(&mut self.view.scene, &mut camera));
         let depth = self.depth.measure(sim.scene()).map_err(ViewerError::from)?;
