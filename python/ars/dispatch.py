@@ -175,6 +175,9 @@ def _program_of(sender):
     return None
 
 
+_UNKNOWN = object()
+
+
 def send(signal, sender=Anonymous, *args, **named):
     """Sends ``signal`` from ``sender``; returns ``[(receiver, response), ...]``. An
     exception raised by a receiver stops the sending and propagates."""
@@ -184,7 +187,7 @@ def send(signal, sender=Anonymous, *args, **named):
         keys += [(Any, signal), (Any, Any)]
     seen = set()
     responses = []
-    program = _unknown = object()  # the sender's program, found when a receiver needs it
+    program = _UNKNOWN  # the sender's program, found when a receiver needs it
     for key in keys:
         if key not in _registry:
             continue
@@ -193,7 +196,7 @@ def send(signal, sender=Anonymous, *args, **named):
                 continue
             seen.add(entry.key)
             if entry.owner is not None:
-                if program is _unknown:
+                if program is _UNKNOWN:
                     program = _program_of(sender)
                 if program is not None and entry.owner() is not program:
                     continue

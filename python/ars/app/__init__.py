@@ -15,6 +15,7 @@ Module names, as the original: ``Program``, ``ActionMap``, ``Simulation``,
 ``dispatcher``, ``signals``, ``gp`` (graphics), ``exc`` (exceptions), ``logger``.
 """
 
+import contextlib
 import logging
 import math
 import os
@@ -167,16 +168,10 @@ class Program:
         """Opens the viewer's window on the program (needs a display) until it is
         closed, or for ``duration`` seconds of wall time; returns what the run measured
         (frames, seconds, real-time factor)."""
-        driver = _ViewerDriver(self)
-        self.gAdapter.snapshot = driver.snapshot
-        try:
+        with self._viewed() as driver:
             return _native.show_program(
                 driver, duration=duration, title=self.WINDOW_TITLE, **self._view()
             )
-        finally:
-            self.do_create_window = False
-            if self.gAdapter is not None:
-                self.gAdapter.snapshot = None
 
     def record(self, folder, duration, every=5):
         """Runs ``duration`` seconds of simulated time off screen, writing
@@ -185,24 +180,33 @@ class Program:
         if every < 1:
             raise exc.ArsError(f"every must be at least one frame, got {every}")
         os.makedirs(folder, exist_ok=True)
-        driver = _ViewerDriver(self)
-        self.gAdapter.snapshot = driver.snapshot
         written = []
+        with self._viewed() as driver:
 
-        def write():
-            path = os.path.join(folder, f"frame_{len(written) + 1:05d}.png")
-            driver.snapshot(path)
-            written.append(path)
+            def write():
+                path = os.path.join(folder, f"frame_{len(written) + 1:05d}.png")
+                driver.snapshot(path)
+                written.append(path)
 
-        try:
             write()
             for frame in range(1, max(0, math.ceil(duration * self.FPS - 1e-9)) + 1):
                 driver.frame()
                 if frame % every == 0:
                     write()
-        finally:
-            self.gAdapter.snapshot = None
         return written
+
+    @contextlib.contextmanager
+    def _viewed(self):
+        """The viewer's driver of this program; while it is in use, the screenshot
+        recorder writes through it."""
+        driver = _ViewerDriver(self)
+        self.gAdapter.snapshot = driver.snapshot
+        try:
+            yield driver
+        finally:
+            self.do_create_window = False
+            if self.gAdapter is not None:
+                self.gAdapter.snapshot = None
 
     def finalize(self):
         if self.gAdapter is not None:
@@ -290,7 +294,6 @@ class _ViewerDriver:
     def reset(self):
         self.held.clear()
         self.program.on_action_selection("r")
-        self.program.do_create_window = False
 
     def key(self, name, down):
         keys = self.program.key_press_functions

@@ -364,6 +364,13 @@ class Simulation:
     def _key(self, name, obj):
         return f"{name}/{obj!r}" if name in self._objects else name
 
+    def _register(self, key, obj):
+        """Adds ``obj`` under ``key`` (its name), as part of this simulation."""
+        obj.set_name(key)
+        obj._sim = weakref.ref(self)
+        self._objects[key] = obj
+        return key
+
     def _add_body(self, base, native_add, actor, *args, mass=None, density=None):
         # The key is chosen before the native object exists, so that both share it.
         obj = SimulatedBody(base, None, actor)
@@ -371,19 +378,13 @@ class Simulation:
         name = native_add(*args, mass, density, name=key)
         obj._native = self.native.body(name)
         obj._body = PhysicsBody(obj._native)
-        obj.set_name(key)
-        obj._sim = weakref.ref(self)
-        self._objects[key] = obj
-        return key
+        return self._register(key, obj)
 
     def add_axes(self):
         """The axes (drawn only)."""
         obj = SimulatedObject("axes", self._graphics("Axes"))
         key = self._key("axes", obj)
-        obj.set_name(key)
-        obj._sim = weakref.ref(self)
-        self._objects[key] = obj
-        return key
+        return self._register(key, obj)
 
     def add_floor(
         self,
@@ -400,10 +401,7 @@ class Simulation:
         obj = SimulatedObject("floor", actor)
         key = self._key("floor", obj)
         self.native.add_floor(tuple(normal), dist, name=key)
-        obj.set_name(key)
-        obj._sim = weakref.ref(self)
-        self._objects[key] = obj
-        return key
+        return self._register(key, obj)
 
     def add_trimesh_floor(self, vertices, faces, center=(0, 0, 0), color=(0.2, 0.5, 0.5)):
         """A static triangle-mesh floor at ``center``."""
@@ -414,10 +412,7 @@ class Simulation:
         key = self._key("floor", obj)
         self.native.add_trimesh(vertices, faces, tuple(center), name=key)
         obj._native = self.native.body(key)
-        obj.set_name(key)
-        obj._sim = weakref.ref(self)
-        self._objects[key] = obj
-        return key
+        return self._register(key, obj)
 
     def add_sphere(self, radius, center, mass=None, density=None):
         actor = self._graphics("Sphere", radius, center)
