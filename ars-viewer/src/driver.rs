@@ -22,6 +22,12 @@ pub trait Driver {
     fn key_down(&mut self, key: Key) -> Result<()>;
     /// That key went up.
     fn key_up(&mut self, key: Key) -> Result<()>;
+    /// Whether the program asked for its window to close (the original's `e` and `q`
+    /// keys do in the Python package); checked after every frame's keys. By default
+    /// only the window's own close (Escape, the close button) closes it.
+    fn wants_to_close(&mut self) -> bool {
+        false
+    }
 }
 
 impl<P: Program> Driver for ProgramRunner<'_, P> {

@@ -134,10 +134,10 @@ impl Panel {
         self.column = self.column.min(headers.len().saturating_sub(1));
         ui.horizontal(|ui| {
             egui::ComboBox::from_id_salt("ars-plot-sensor")
-                .selected_text(format!("{}: {name}", self.sensor + 1))
+                .selected_text(format!("{}: {}", self.sensor + 1, elided(name)))
                 .show_ui(ui, |ui| {
                     for (i, (n, _)) in tables.iter().enumerate() {
-                        ui.selectable_value(&mut self.sensor, i, format!("{}: {n}", i + 1));
+                        ui.selectable_value(&mut self.sensor, i, format!("{}: {}", i + 1, elided(n)));
                     }
                 });
             egui::ComboBox::from_id_salt("ars-plot-column")
@@ -176,8 +176,8 @@ fn setpoints(ui: &mut egui::Ui, sim: &Simulation, commands: &mut Vec<Command>) {
         let Ok(Some(servo)) = sim.joint_controller::<PositionServo>(id) else { continue };
         any = true;
         let mut value = servo.setpoint.value(sim.time());
-        let slider = egui::Slider::new(&mut value, -std::f64::consts::PI..=std::f64::consts::PI).text(name);
-        if ui.add(slider).changed() {
+        let slider = egui::Slider::new(&mut value, -std::f64::consts::PI..=std::f64::consts::PI).text(elided(name));
+        if ui.add(slider).on_hover_text(name).changed() {
             commands.push(Command::Setpoint(id, value));
         }
     }
@@ -198,7 +198,7 @@ fn state_table(ui: &mut egui::Ui, sim: &Simulation) {
                 let Ok(object) = sim.object(id) else { continue };
                 let Ok(body) = object.body() else { continue };
                 let p = body.position();
-                ui.label(name);
+                name_label(ui, name);
                 ui.monospace(format!("{:7.3} {:7.3} {:7.3}", p.x, p.y, p.z));
                 ui.monospace(format!("{:7.3}", body.linear_velocity().norm()));
                 ui.end_row();
@@ -214,7 +214,7 @@ fn state_table(ui: &mut egui::Ui, sim: &Simulation) {
             ui.end_row();
             for (name, id) in sim.joints() {
                 let Ok(joint) = sim.joint(id) else { continue };
-                ui.label(name);
+                name_label(ui, name);
                 ui.label(joint.joint_type().default_name());
                 match joint.state() {
                     Ok(s) => {
@@ -232,6 +232,30 @@ fn state_table(ui: &mut egui::Ui, sim: &Simulation) {
     });
 }
 
+/// The longest name the panel shows whole, in characters.
+const SHOWN_NAME_CHARS: usize = 24;
+
+/// `name`, or its start and end around an ellipsis when it is longer than
+/// [`SHOWN_NAME_CHARS`] (the original's default names, such as
+/// `sphere/<ars.model.simulator.SimulatedBody object at 0x7f…>`, would widen the
+/// panel over the scene).
+fn elided(name: &str) -> String {
+    let count = name.chars().count();
+    if count <= SHOWN_NAME_CHARS {
+        return name.to_owned();
+    }
+    let tail = SHOWN_NAME_CHARS / 2;
+    let head = SHOWN_NAME_CHARS - tail - 1;
+    let start: String = name.chars().take(head).collect();
+    let end: String = name.chars().skip(count - tail).collect();
+    format!("{start}…{end}")
+}
+
+/// A name in the state table: elided when long, whole on hover.
+fn name_label(ui: &mut egui::Ui, name: &str) {
+    ui.label(elided(name)).on_hover_text(name);
+}
+
 /// Applies a set-point from the panel to the joint's position servo.
 pub(crate) fn set_setpoint(sim: &mut Simulation, joint: JointId, value: f64) -> ars_core::Result<()> {
     let profile = Profile::constant(value)?;
@@ -239,4 +263,22 @@ pub(crate) fn set_setpoint(sim: &mut Simulation, joint: JointId, value: f64) -> 
         servo.setpoint = profile;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_names_keep_their_start_and_end_around_an_ellipsis() {
+        assert_eq!(elided("arm"), "arm");
+        let exact = "a".repeat(SHOWN_NAME_CHARS);
+        assert_eq!(elided(&exact), exact);
+        let long = "sphere/<ars.model.simulator.SimulatedBody object at 0x7f3a2c1d>";
+        let short = elided(long);
+        assert_eq!(short.chars().count(), SHOWN_NAME_CHARS);
+        assert_eq!(short, "sphere/<ars… 0x7f3a2c1d>");
+        // Characters, not bytes: a name in Greek is cut between letters.
+        assert_eq!(elided(&"αβγδ".repeat(10)).chars().count(), SHOWN_NAME_CHARS);
+    }
 }

@@ -278,6 +278,9 @@ pub(crate) fn drive_window<D: Driver>(
                     }
                 }
             }
+            if runner.wants_to_close() {
+                break;
+            }
             if panel.speed != pacer.speed {
                 pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
             }
