@@ -312,14 +312,16 @@ impl PySimulation {
     }
 
     /// Opens a window on the simulation and runs it in real time until the window is
-    /// closed (or for `duration` wall seconds): mouse to turn the camera, space to
-    /// pause, `g` for the panel (speed, plots of the sensors, joints), escape to quit.
+    /// closed (or for `duration` wall seconds, or until it has run `frames` frames, the
+    /// last one drawn): mouse to turn the camera, space to pause, `g` for the panel
+    /// (speed, plots of the sensors, joints), escape to quit.
     /// Needs a display; returns what the run measured (frames, seconds, real-time
     /// factor). Off screen, use `ars.Renderer`.
-    #[pyo3(signature = (duration=None, *, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string()))]
+    #[pyo3(signature = (duration=None, *, frames=None, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string()))]
     fn show(
         slf: &Bound<'_, Self>,
         duration: Option<f64>,
+        frames: Option<i64>,
         title: String,
         size: (u32, u32),
         camera: Vec3,
@@ -329,7 +331,7 @@ impl PySimulation {
         quality: String,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
         let view = crate::viewer::ViewArgs { title, size, camera, look_at, background, follow, quality };
-        crate::viewer::show(slf.py(), slf.clone().unbind(), None, duration, view)
+        crate::viewer::show(slf.py(), slf.clone().unbind(), None, duration, frames, view)
     }
 
     /// A sphere of `radius` (m) centred at `center`, of total `mass` (kg) or

@@ -77,12 +77,17 @@ impl ViewArgs {
 
 /// Drives the window from Python: a bare simulation steps its frames itself; a program
 /// (an object with `native()`, `frame()`, `step()`, `reset()` and `key(name, down)`)
-/// runs its own Python frames.
+/// runs its own Python frames. A true result of `key` closes the window.
 struct PythonDriver {
     sim: Py<PySimulation>,
     program: Option<Py<PyAny>>,
     /// The exception a Python call raised, to re-raise unchanged.
     raised: Option<PyErr>,
+    /// Whether the program asked for the window to close.
+    closing: bool,
+    /// How many more frames to run before the window closes, if `show` was given a
+    /// number of frames.
+    frames_left: Option<u64>,
 }
 
 impl PythonDriver {
@@ -94,19 +99,21 @@ impl PythonDriver {
     }
 
     /// Calls a method of the program (and takes its simulation anew, which a reset
-    /// replaces).
+    /// replaces); a true result asks for the window to close.
     fn call_program(&mut self, method: &str, key: Option<(Key, bool)>) -> ars_core::Result<()> {
         let Some(program) = &self.program else { return Ok(()) };
-        let outcome = Python::attach(|py| -> PyResult<Py<PySimulation>> {
-            match key {
+        let outcome = Python::attach(|py| -> PyResult<(Py<PySimulation>, bool)> {
+            let result = match key {
                 Some((key, down)) => program.bind(py).call_method1(method, (key.to_string(), down))?,
                 None => program.bind(py).call_method0(method)?,
             };
-            Ok(program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind())
+            let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
+            Ok((sim, result.is_truthy()?))
         });
         match outcome {
-            Ok(sim) => {
+            Ok((sim, close)) => {
                 self.sim = sim;
+                self.closing |= close;
                 Ok(())
             }
             Err(e) => Err(self.keep(e)),
@@ -125,6 +132,11 @@ impl Driver for PythonDriver {
         self.sim.get().locked()
     }
     fn step_frame(&mut self) -> ars_core::Result<()> {
+        match &mut self.frames_left {
+            Some(0) => return Ok(()),
+            Some(left) => *left -= 1,
+            None => {}
+        }
         if self.program.is_some() { self.call_program("frame", None) } else { self.advance(|sim| sim.step_frame()) }
     }
     fn step(&mut self) -> ars_core::Result<()> {
@@ -144,15 +156,20 @@ impl Driver for PythonDriver {
     fn key_up(&mut self, key: Key) -> ars_core::Result<()> {
         self.call_program("key", Some((key, false)))
     }
+    fn wants_to_close(&mut self) -> bool {
+        self.closing || self.frames_left == Some(0)
+    }
 }
 
-/// Opens a window on `sim` (driven by `program` if given) until it is closed or
-/// `duration` wall seconds have passed; returns what the run measured.
+/// Opens a window on `sim` (driven by `program` if given) until it is closed,
+/// `duration` wall seconds have passed or the simulation has run `frames` frames (the
+/// last one drawn); returns what the run measured.
 pub(crate) fn show(
     py: Python<'_>,
     sim: Py<PySimulation>,
     program: Option<Py<PyAny>>,
     duration: Option<f64>,
+    frames: Option<i64>,
     view: ViewArgs,
 ) -> PyResult<Py<PyDict>> {
     if sim.get().in_own_hook() {
@@ -173,8 +190,15 @@ pub(crate) fn show(
         Some(d) if d.is_finite() && d > 0.0 => Some(std::time::Duration::from_secs_f64(d)),
         Some(d) => return Err(raise(py, "InputError", format!("the window's duration {d} s must be positive"))),
     };
+    let frames_left = match frames {
+        None => None,
+        Some(n) => Some(
+            u64::try_from(n)
+                .map_err(|_| raise(py, "InputError", format!("the window's number of frames {n} must be 0 or more")))?,
+        ),
+    };
     let view = view.settings().map_err(|m| raise(py, "InputError", m))?;
-    let mut driver = PythonDriver { sim, program, raised: None };
+    let mut driver = PythonDriver { sim, program, raised: None, closing: false, frames_left };
     let outcome = py.detach(|| {
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             // Window after window on this thread: its rendering context is kept (and
@@ -203,11 +227,12 @@ pub(crate) fn show(
 /// Opens a window on a program in the original's style: `program` has `native()`
 /// (its `ars.Simulation` now), `frame()`, `step()`, `reset()` and `key(name, down)`.
 #[pyfunction]
-#[pyo3(signature = (program, *, duration=None, title, size, camera, look_at, background, follow=None, quality="auto".to_string()))]
+#[pyo3(signature = (program, *, duration=None, frames=None, title, size, camera, look_at, background, follow=None, quality="auto".to_string()))]
 pub(crate) fn show_program(
     py: Python<'_>,
     program: Py<PyAny>,
     duration: Option<f64>,
+    frames: Option<i64>,
     title: String,
     size: (u32, u32),
     camera: Vec3,
@@ -218,7 +243,7 @@ pub(crate) fn show_program(
 ) -> PyResult<Py<PyDict>> {
     let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
     let view = ViewArgs { title, size, camera, look_at, background, follow, quality };
-    show(py, sim, Some(program), duration, view)
+    show(py, sim, Some(program), duration, frames, view)
 }
 
 /// Gives back the rendering context the windows of this thread kept: the package

@@ -5,7 +5,8 @@ simulation's signals, and run it.
 ``Program()`` builds the simulation (``create_simulation`` calls
 ``create_sim_objects``). ``start()`` is the original's entry point: it opens ARS's
 viewer on the program where there is a display, until the window is closed (the
-program's keys act as in the original; ``r`` rebuilds it); with no display it records
+program's keys act as in the original; ``r`` rebuilds it, ``e`` and ``q`` close the
+window); with no display it records
 ``ARS_DURATION`` seconds (default 10) off screen, a PNG every 5 frames, into a folder
 it names on stderr. ``run(duration)`` runs it headless for ``duration`` seconds of
 simulated time, frame by frame, and returns the simulation; ``show(duration)`` opens the
@@ -164,13 +165,14 @@ class Program:
             "background": tuple(float(c) for c in self.BACKGROUND_COLOR),
         }
 
-    def show(self, duration=None):
+    def show(self, duration=None, frames=None):
         """Opens the viewer's window on the program (needs a display) until it is
-        closed, or for ``duration`` seconds of wall time; returns what the run measured
-        (frames, seconds, real-time factor)."""
+        closed, for ``duration`` seconds of wall time, or until it has run ``frames``
+        frames (the last one drawn); returns what the run measured (frames, seconds,
+        real-time factor)."""
         with self._viewed() as driver:
             return _native.show_program(
-                driver, duration=duration, title=self.WINDOW_TITLE, **self._view()
+                driver, duration=duration, frames=frames, title=self.WINDOW_TITLE, **self._view()
             )
 
     def record(self, folder, duration, every=5):
@@ -267,6 +269,10 @@ class Program:
             raise exc.ArsError("Could not record frame") from e
 
 
+# The keys that close the window, as VTK's interactor closed the original's.
+_QUIT_KEYS = ("e", "q")
+
+
 class _ViewerDriver:
     """What the viewer calls to run a program: its frames, its reset, its keys. A key
     held down whose action repeats acts in every step while it is held; a one-shot key
@@ -296,15 +302,19 @@ class _ViewerDriver:
         self.program.on_action_selection("r")
 
     def key(self, name, down):
+        """Acts for a key going down or up; true when the window should close: ``e``
+        and ``q`` quit, as VTK's keys did in the original (after the program's own
+        action for them, if it has one)."""
         keys = self.program.key_press_functions
         repeats = keys is not None and keys.has_key(name) and keys.is_repeat(name)
         if not down:
             self.held.discard(name)
-            return
+            return False
         if name in self.held and repeats:
-            return  # auto-repeat of a held key: frame() acts for it
+            return False  # auto-repeat of a held key: frame() acts for it
         self.held.add(name)
         self.program.on_action_selection(name)
+        return name in _QUIT_KEYS
 
     def snapshot(self, path):
         """Writes the simulation as it is now to a PNG (the screenshot recorder's)."""
