@@ -103,6 +103,48 @@ fn lidar_scan_seconds(scans: usize) -> f64 {
     t[t.len() / 2]
 }
 
+/// Median seconds of one 360-beam lidar scan (full turn, 20 m) from inside a closed
+/// sphere of 5 m radius made of 20,000 triangles (a scanned room), where every beam
+/// hits the mesh.
+fn mesh_lidar_scan_seconds(scans: usize) -> f64 {
+    use ars_core::nalgebra::Point3;
+    use ars_core::sensors::{Lidar, Sensor};
+    use ars_core::{Simulation, SpaceKind};
+    let (rings, segments) = (100u32, 100u32);
+    let mut vertices = Vec::new();
+    for i in 0..=rings {
+        let polar = std::f64::consts::PI * f64::from(i) / f64::from(rings);
+        for j in 0..segments {
+            let azimuth = std::f64::consts::TAU * f64::from(j) / f64::from(segments);
+            vertices.push(Point3::new(
+                5.0 * polar.sin() * azimuth.cos(),
+                5.0 * polar.cos(),
+                5.0 * polar.sin() * azimuth.sin(),
+            ));
+        }
+    }
+    let mut triangles = Vec::new();
+    for i in 0..rings {
+        for j in 0..segments {
+            let k = |i: u32, j: u32| i * segments + j % segments;
+            triangles.push([k(i, j), k(i + 1, j), k(i + 1, j + 1)]);
+            triangles.push([k(i, j), k(i + 1, j + 1), k(i, j + 1)]);
+        }
+    }
+    let mut sim = Simulation::builder().space(SpaceKind::HASH).build().unwrap();
+    sim.add_trimesh_floor(vertices, triangles, [0.0, 0.0, 0.0]).unwrap();
+    let mut lidar = Lidar::new(360, std::f64::consts::TAU, 20.0).unwrap();
+    let mut t: Vec<f64> = (0..scans)
+        .map(|_| {
+            let start = std::time::Instant::now();
+            black_box(lidar.measure(&sim).unwrap());
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
+}
+
 /// Seconds to create `n` spheres: named objects of a `Simulation`, or bodies and geoms
 /// of a `World` (median of 5 runs).
 fn creation_seconds(n: usize) -> (f64, f64) {
@@ -155,6 +197,7 @@ fn main() {
         // `cargo test --benches`: every case builds and steps.
         creation_seconds(100);
         lidar_scan_seconds(1);
+        mesh_lidar_scan_seconds(1);
         for case in &CASES {
             for layer in LAYERS.into_iter().filter(|l| *l != "world" || case.has_world) {
                 measured_steps(&mut build(case.scene, layer), 10);
@@ -187,4 +230,8 @@ fn main() {
         sim / world
     );
     println!("a 360-beam lidar scan in the 100-body pile: {:.0} µs (median of 200)", lidar_scan_seconds(200) * 1e6);
+    println!(
+        "a 360-beam lidar scan inside a 20,000-triangle mesh: {:.0} µs (median of 200)",
+        mesh_lidar_scan_seconds(200) * 1e6
+    );
 }

@@ -135,9 +135,12 @@ impl Shape {
     }
 }
 
+/// A mesh's vertices and triangles (three vertex indices each).
+pub(crate) type Triangles = (Vec<Point3<f64>>, Vec<[u32; 3]>);
+
 /// Vertices and triangles of a cone along +Z with its centre of mass at the origin
 /// (what a [`Shape::Cone`] collides as).
-pub(crate) fn cone_mesh(radius: f64, height: f64) -> (Vec<Point3<f64>>, Vec<[u32; 3]>) {
+pub(crate) fn cone_mesh(radius: f64, height: f64) -> Triangles {
     let base_z = -height / 4.0;
     let n = CONE_SEGMENTS;
     let mut vertices = vec![Point3::new(0.0, 0.0, base_z + height), Point3::new(0.0, 0.0, base_z)];

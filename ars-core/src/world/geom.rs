@@ -4,12 +4,13 @@ use nalgebra::{Isometry3, Point3, Rotation3, UnitQuaternion, Vector3};
 use ode_sys as ffi;
 
 use super::World;
+use super::mesh_tree::{MeshTree, TreeMesh};
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
 use crate::init::ensure_ode_ready;
 use crate::limits;
-use crate::shape::{Shape, cone_mesh};
+use crate::shape::{Shape, Triangles, cone_mesh};
 use crate::validate;
 
 /// The buffers ODE's trimesh data points into, freed after the geom.
@@ -36,6 +37,23 @@ pub(crate) struct GeomData {
     pub(crate) body_raw: ffi::dBodyID,
     pub(crate) space: SpaceHandle,
     _mesh: Option<TriMeshStorage>,
+    /// A cone's collision mesh (vertices, triangles): what ODE collides and rays hit.
+    pub(crate) cone_mesh: Option<Triangles>,
+    /// The ray casts' tree of a mesh or a cone's mesh.
+    pub(crate) mesh_tree: Option<MeshTree>,
+}
+
+impl GeomData {
+    /// The triangles a ray cast tests, with their tree: a mesh's, or a cone's.
+    pub(crate) fn ray_mesh(&self) -> Option<TreeMesh<'_>> {
+        let tree = self.mesh_tree.as_ref()?;
+        match (&self.shape, &self.cone_mesh) {
+            (Shape::TriMesh { vertices, triangles }, _) | (_, Some((vertices, triangles))) => {
+                Some(TreeMesh { vertices, triangles, tree })
+            }
+            _ => None,
+        }
+    }
 }
 
 /// Description of a geom to insert with [`World::insert_geom`].
@@ -174,6 +192,7 @@ impl World {
         let pose = builder.pose.map(|p| check_isometry("geom pose", &p)).transpose()?;
 
         let mut mesh = None;
+        let mut mesh_tree = None;
         let cone = match &shape {
             Shape::Cone { radius, height } => Some(cone_mesh(*radius, *height)),
             _ => None,
@@ -184,6 +203,7 @@ impl World {
             _ => None,
         };
         if let Some((vertices, triangles)) = triangle_mesh {
+            mesh_tree = Some(MeshTree::new(vertices, triangles));
             let flat_v: Vec<f64> = vertices.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
             let mut flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
             if triangles.len() == 1 {
@@ -239,6 +259,8 @@ impl World {
             body_raw: body_raw.unwrap_or(std::ptr::null_mut()),
             space,
             _mesh: mesh,
+            cone_mesh: cone,
+            mesh_tree,
         }));
         // SAFETY: the geom was just created; the data is the slot index, never dereferenced.
         unsafe { ffi::dGeomSetData(raw, handle.0.index as usize as *mut _) };

@@ -9,6 +9,7 @@ pub mod body;
 pub mod contact;
 pub mod geom;
 pub mod joint;
+pub(crate) mod mesh_tree;
 pub mod raycast;
 
 use body::BodyData;

@@ -5,10 +5,11 @@
 use nalgebra::{Point3, Vector3};
 
 use super::World;
+use super::mesh_tree::{TreeMesh, box_entry};
 use crate::error::Result;
 use crate::handle::{BodyHandle, GeomHandle};
 use crate::limits;
-use crate::shape::{Shape, cone_mesh};
+use crate::shape::Shape;
 use crate::validate;
 
 /// Where a cast ray first meets a geom.
@@ -80,14 +81,7 @@ impl World {
                     Shape::Plane { .. } => None,
                     _ => Some(geom.aabb()),
                 };
-                Some(Target { handle, shape: &data.shape, pose, aabb })
-            })
-            .collect();
-        let cones: Vec<Option<Mesh>> = targets
-            .iter()
-            .map(|t| match t.shape {
-                Shape::Cone { radius, height } => Some(cone_mesh(*radius, *height)),
-                _ => None,
+                Some(Target { handle, shape: &data.shape, mesh: data.ray_mesh(), pose, aabb })
             })
             .collect();
         Ok(rays
@@ -95,14 +89,14 @@ impl World {
             .map(|r| {
                 let direction = r.direction.normalize();
                 let mut best: Option<CastHit> = None;
-                for (t, cone) in targets.iter().zip(&cones) {
+                for t in &targets {
                     let reach = best.map_or(max, |b| b.distance);
                     if let Some((lo, hi)) = t.aabb
-                        && !segment_meets_box(&r.origin, &direction, reach, &lo, &hi)
+                        && box_entry(&r.origin, &direction, reach, &lo, &hi).is_none()
                     {
                         continue;
                     }
-                    let Some(d) = t.distance(&r.origin, &direction, cone.as_ref()) else { continue };
+                    let Some(d) = t.distance(&r.origin, &direction, reach) else { continue };
                     if d <= reach {
                         best = Some(CastHit { geom: t.handle, distance: d, position: r.origin + direction * d });
                     }
@@ -113,19 +107,19 @@ impl World {
     }
 }
 
-/// Vertices and triangles of a cone's collision mesh.
-type Mesh = (Vec<Point3<f64>>, Vec<[u32; 3]>);
-
 struct Target<'w> {
     handle: GeomHandle,
     shape: &'w Shape,
+    /// A mesh's or a cone's triangles, and their tree.
+    mesh: Option<TreeMesh<'w>>,
     pose: nalgebra::Isometry3<f64>,
     aabb: Option<(Point3<f64>, Point3<f64>)>,
 }
 
 impl Target<'_> {
-    /// Distance along the unit `dir` to the shape, if the ray meets it.
-    fn distance(&self, origin: &Point3<f64>, dir: &Vector3<f64>, cone: Option<&Mesh>) -> Option<f64> {
+    /// Distance along the unit `dir` to the shape, if the ray meets it (a mesh's only
+    /// within `reach`).
+    fn distance(&self, origin: &Point3<f64>, dir: &Vector3<f64>, reach: f64) -> Option<f64> {
         if let Shape::Plane { normal, distance } = self.shape {
             let n = normal.normalize();
             let above = n.dot(&origin.coords) - distance;
@@ -149,31 +143,10 @@ impl Target<'_> {
                 let side = cylinder_side(&o, &d, *radius, h);
                 [side, caps[0], caps[1]].into_iter().flatten().reduce(f64::min)
             }
-            Shape::TriMesh { vertices, triangles } => mesh(&o, &d, vertices, triangles),
-            Shape::Cone { .. } => cone.and_then(|(v, t)| mesh(&o, &d, v, t)),
+            Shape::TriMesh { .. } | Shape::Cone { .. } => self.mesh.and_then(|mesh| mesh.nearest(&o, &d, reach)),
             Shape::Plane { .. } | Shape::Ray { .. } => None,
         }
     }
-}
-
-/// Whether the segment from `o` along the unit `d` for `len` meets the box [lo, hi].
-fn segment_meets_box(o: &Point3<f64>, d: &Vector3<f64>, len: f64, lo: &Point3<f64>, hi: &Point3<f64>) -> bool {
-    let (mut t0, mut t1) = (0.0f64, len);
-    for i in 0..3 {
-        if d[i].abs() < 1e-300 {
-            if o[i] < lo[i] || o[i] > hi[i] {
-                return false;
-            }
-            continue;
-        }
-        let (a, b) = ((lo[i] - o[i]) / d[i], (hi[i] - o[i]) / d[i]);
-        t0 = t0.max(a.min(b));
-        t1 = t1.min(a.max(b));
-        if t0 > t1 {
-            return false;
-        }
-    }
-    true
 }
 
 fn sphere(o: &Vector3<f64>, d: &Vector3<f64>, r: f64) -> Option<f64> {
@@ -234,33 +207,4 @@ fn cylinder(o: &Point3<f64>, d: &Vector3<f64>, r: f64, h: f64) -> Option<f64> {
         (t >= 0.0 && x * x + y * y <= r * r).then_some(t)
     });
     [side, caps[0], caps[1]].into_iter().flatten().reduce(f64::min)
-}
-
-/// The nearest triangle of a mesh (both sides), Möller–Trumbore.
-fn mesh(o: &Point3<f64>, d: &Vector3<f64>, vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Option<f64> {
-    let mut best: Option<f64> = None;
-    for t in triangles {
-        let [a, b, c] = t.map(|k| vertices[k as usize]);
-        let (e1, e2) = (b - a, c - a);
-        let p = d.cross(&e2);
-        let det = e1.dot(&p);
-        if det.abs() < 1e-300 {
-            continue;
-        }
-        let s = o - a;
-        let u = s.dot(&p) / det;
-        if !(0.0..=1.0).contains(&u) {
-            continue;
-        }
-        let q = s.cross(&e1);
-        let v = d.dot(&q) / det;
-        if v < 0.0 || u + v > 1.0 {
-            continue;
-        }
-        let dist = e2.dot(&q) / det;
-        if dist >= 0.0 && best.is_none_or(|b| dist < b) {
-            best = Some(dist);
-        }
-    }
-    best
 }
