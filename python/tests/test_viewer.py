@@ -208,6 +208,31 @@ def test_the_screenshot_recorder_of_a_recorded_program_writes_its_images(tmp_pat
     )
 
 
+def run_in_window(code, display, tmp_path, drive):
+    """Runs ``code``, which opens the Wheel's window, in another interpreter; calls
+    ``drive()`` once the window is up and focused, waits for the program to end, and
+    returns the JSON it printed last."""
+    window = subprocess.Popen(
+        [sys.executable, "-c", code],
+        env=window_env(display, tmp_path),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        found = xdotool(display, "search", "--sync", "--onlyvisible", "--name", "Autonomous")
+        assert found.returncode == 0, found.stderr
+        # Keys go to the focused window (with --window, xdotool also sends each event
+        # to the window itself, and it arrives twice).
+        xdotool(display, "windowfocus", "--sync", found.stdout.split()[0])
+        drive()
+        out, err = window.communicate(timeout=30)
+    finally:
+        window.kill()
+    assert window.returncode == 0, err[-3000:]
+    return json.loads(out.splitlines()[-1])
+
+
 def test_start_opens_a_window_that_takes_the_programs_keys_and_escape_closes(display, tmp_path):
     code = WHEEL + textwrap.dedent(
         """
@@ -223,21 +248,9 @@ def test_start_opens_a_window_that_takes_the_programs_keys_and_escape_closes(dis
                           "rebuilt": wheel.sim is not first, "presses": wheel.presses}))
         """
     )
-    window = subprocess.Popen(
-        [sys.executable, "-c", code],
-        env=window_env(display, tmp_path),
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    try:
-        found = xdotool(display, "search", "--sync", "--onlyvisible", "--name", "Autonomous")
-        assert found.returncode == 0, found.stderr
-        wid = found.stdout.split()[0]
+
+    def drive():
         time.sleep(1.0)
-        # Keys go to the focused window (with --window, xdotool also sends each event
-        # to the window itself, and it arrives twice).
-        xdotool(display, "windowfocus", "--sync", wid)
         xdotool(display, "key", "a")
         xdotool(display, "keydown", "Up")
         time.sleep(1.5)
@@ -246,11 +259,8 @@ def test_start_opens_a_window_that_takes_the_programs_keys_and_escape_closes(dis
         xdotool(display, "key", "r")  # the original's reset: the program rebuilt
         time.sleep(1.0)
         xdotool(display, "key", "Escape")
-        out, err = window.communicate(timeout=30)
-    finally:
-        window.kill()
-    assert window.returncode == 0, err[-3000:]
-    result = json.loads(out.splitlines()[-1])
+
+    result = run_in_window(code, display, tmp_path, drive)
     assert result["presses"] == 1
     # Held for 1.5 s at 2 N·m: the arm turned (it is still, untouched).
     assert result["rate_before_reset"] > 0.5, result
@@ -264,32 +274,18 @@ def test_start_opens_a_window_that_takes_the_programs_keys_and_escape_closes(dis
 def test_e_and_q_close_a_programs_window_as_in_the_original(display, tmp_path, key):
     code = WHEEL + textwrap.dedent(
         """
-        import time
         wheel = Wheel()
         wheel.key_press_functions.add("q", wheel.press)
-        started = time.perf_counter()
         wheel.start()  # until the window is closed
-        print(json.dumps({"wall": time.perf_counter() - started, "presses": wheel.presses}))
+        print(json.dumps({"presses": wheel.presses}))
         """
     )
-    window = subprocess.Popen(
-        [sys.executable, "-c", code],
-        env=window_env(display, tmp_path),
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    try:
-        found = xdotool(display, "search", "--sync", "--onlyvisible", "--name", "Autonomous")
-        assert found.returncode == 0, found.stderr
-        xdotool(display, "windowfocus", "--sync", found.stdout.split()[0])
+
+    def drive():
         time.sleep(0.5)
         xdotool(display, "key", key)
-        out, err = window.communicate(timeout=30)
-    finally:
-        window.kill()
-    assert window.returncode == 0, err[-3000:]
-    result = json.loads(out.splitlines()[-1])
+
+    result = run_in_window(code, display, tmp_path, drive)
     # The program's own action for q ran before the window closed; e has none.
     assert result["presses"] == (1 if key == "q" else 0), result
 
