@@ -44,7 +44,8 @@ def pendulum(params=None):
 
 
 def rust_against_python(seconds=60.0):
-    binary = REPO / "target" / "release" / "examples" / "conical_pendulum"
+    target = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", REPO / "target"))
+    binary = target / "release" / "examples" / "conical_pendulum"
     if not binary.is_file():
         subprocess.run(
             ["cargo", "build", "--release", "--quiet", "--example", "conical_pendulum"],
