@@ -181,15 +181,25 @@ _UNKNOWN = object()
 def send(signal, sender=Anonymous, *args, **named):
     """Sends ``signal`` from ``sender``; returns ``[(receiver, response), ...]``. An
     exception raised by a receiver stops the sending and propagates."""
-    sender_key = _sender_key(sender)
-    keys = [(sender_key, signal), (sender_key, Any)]
-    if sender_key is not Any:
-        keys += [(Any, signal), (Any, Any)]
+    # Most signals (a joint's torque, every step's) have no receiver at all: that
+    # costs four dictionary lookups and nothing else.
+    sender_key = sender if sender is Any or sender is Anonymous else id(sender)
+    registry = _registry
+    mine, mine_any = (sender_key, signal), (sender_key, Any)
+    everyones, everyones_any = (Any, signal), (Any, Any)
+    if (
+        mine not in registry
+        and mine_any not in registry
+        and everyones not in registry
+        and everyones_any not in registry
+    ):
+        return []
+    keys = (mine, mine_any) if sender_key is Any else (mine, mine_any, everyones, everyones_any)
     seen = set()
     responses = []
     program = _UNKNOWN  # the sender's program, found when a receiver needs it
     for key in keys:
-        if key not in _registry:
+        if key not in registry:
             continue
         for entry, fn in _live(key):
             if entry.key in seen:
