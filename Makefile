@@ -64,7 +64,7 @@ check: deps
 	cargo clippy --workspace --all-targets --locked -- -D warnings
 	cargo test --workspace --locked
 	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
-	cargo bench --workspace --no-run --locked
+	cargo build --workspace --benches --locked
 
 bench: deps
 	cargo bench --bench native_comparison
