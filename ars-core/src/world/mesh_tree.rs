@@ -42,10 +42,11 @@ impl MeshTree {
                 (a.inf(&b).inf(&c), a.sup(&b).sup(&c))
             })
             .collect();
-        // Pad every box by a billionth of the mesh's size (and at least 1 nm): far more
-        // than the rounding of a hit point, far less than anything a sensor resolves.
-        let size = boxes.iter().fold(0.0f64, |m, (lo, hi)| m.max(lo.coords.amax()).max(hi.coords.amax()));
-        let pad = Vector3::repeat(1e-9 * size.max(1.0));
+        // Pad every box by a billionth of the mesh's largest coordinate (and at least
+        // 1 nm): far more than the rounding of a hit point, far less than anything a
+        // sensor resolves.
+        let largest = boxes.iter().fold(0.0f64, |m, (lo, hi)| m.max(lo.coords.amax()).max(hi.coords.amax()));
+        let pad = Vector3::repeat(1e-9 * largest.max(1.0));
         for (lo, hi) in &mut boxes {
             *lo -= pad;
             *hi += pad;
@@ -92,54 +93,6 @@ impl MeshTree {
         self.split(left, from, from + half, boxes, centres);
         self.split(left + 1, from + half, to, boxes, centres);
     }
-
-    /// The distance along the unit `d` from `o` to the nearest triangle (either side)
-    /// within `reach`, as [`triangle_distance`] measures it.
-    pub(crate) fn nearest(
-        &self,
-        o: &Point3<f64>,
-        d: &Vector3<f64>,
-        reach: f64,
-        vertices: &[Point3<f64>],
-        triangles: &[[u32; 3]],
-    ) -> Option<f64> {
-        if triangles.is_empty() {
-            return None;
-        }
-        let mut best: Option<f64> = None;
-        let mut stack = [0u32; 2 * MAX_DEPTH];
-        let mut len = 1;
-        while len > 0 {
-            len -= 1;
-            let node = self.nodes[stack[len] as usize];
-            let limit = best.unwrap_or(reach);
-            if box_entry(o, d, limit, &node.lo, &node.hi).is_none() {
-                continue;
-            }
-            if node.count == 0 {
-                // The nearer child is searched first: its hits shorten the reach.
-                let (a, b) = (node.first, node.first + 1);
-                let entry = |n: u32| {
-                    let n = &self.nodes[n as usize];
-                    box_entry(o, d, limit, &n.lo, &n.hi).unwrap_or(f64::INFINITY)
-                };
-                let (near, far) = if entry(a) <= entry(b) { (a, b) } else { (b, a) };
-                stack[len] = far;
-                stack[len + 1] = near;
-                len += 2;
-                continue;
-            }
-            for &t in &self.order[node.first as usize..(node.first + node.count) as usize] {
-                let [a, b, c] = triangles[t as usize].map(|k| vertices[k as usize]);
-                if let Some(dist) = triangle_distance(o, d, &a, &b, &c)
-                    && best.is_none_or(|b| dist < b)
-                {
-                    best = Some(dist);
-                }
-            }
-        }
-        best.filter(|b| *b <= reach)
-    }
 }
 
 /// A mesh with its tree, as a ray cast reads it.
@@ -151,9 +104,52 @@ pub(crate) struct TreeMesh<'a> {
 }
 
 impl TreeMesh<'_> {
-    /// See [`MeshTree::nearest`].
+    /// The distance along the unit `d` from `o` to the nearest triangle (either side)
+    /// within `reach`, as [`triangle_distance`] measures it.
     pub(crate) fn nearest(&self, o: &Point3<f64>, d: &Vector3<f64>, reach: f64) -> Option<f64> {
-        self.tree.nearest(o, d, reach, self.vertices, self.triangles)
+        if self.triangles.is_empty() {
+            return None;
+        }
+        let nodes = &self.tree.nodes;
+        let enter = |n: u32, limit: f64| box_entry(o, d, limit, &nodes[n as usize].lo, &nodes[n as usize].hi);
+        let mut best: Option<f64> = None;
+        // Boxes still to search, with where the ray enters each (each box is tested once).
+        let mut stack = [(0u32, 0.0f64); 2 * MAX_DEPTH];
+        let mut len = 0;
+        if let Some(t) = enter(0, reach) {
+            stack[0] = (0, t);
+            len = 1;
+        }
+        while len > 0 {
+            len -= 1;
+            let (index, entry) = stack[len];
+            let limit = best.unwrap_or(reach);
+            if entry > limit {
+                continue; // entered beyond a hit found since it was pushed
+            }
+            let node = nodes[index as usize];
+            if node.count == 0 {
+                // The nearer child is searched first (pushed last): its hits shorten the reach.
+                let [a, b] = [node.first, node.first + 1].map(|n| (n, enter(n, limit)));
+                let nearer_first = a.1.unwrap_or(f64::INFINITY) <= b.1.unwrap_or(f64::INFINITY);
+                for (n, t) in if nearer_first { [b, a] } else { [a, b] } {
+                    if let Some(t) = t {
+                        stack[len] = (n, t);
+                        len += 1;
+                    }
+                }
+                continue;
+            }
+            for &t in &self.tree.order[node.first as usize..(node.first + node.count) as usize] {
+                let [a, b, c] = self.triangles[t as usize].map(|k| self.vertices[k as usize]);
+                if let Some(dist) = triangle_distance(o, d, &a, &b, &c)
+                    && best.is_none_or(|b| dist < b)
+                {
+                    best = Some(dist);
+                }
+            }
+        }
+        best.filter(|b| *b <= reach)
     }
 }
 
@@ -265,6 +261,7 @@ mod tests {
         let mut random = SplitMix64::new(7);
         let (vertices, triangles) = bumpy_sphere(16, 24, 0.8, &mut random);
         let tree = MeshTree::new(&vertices, &triangles);
+        let mesh = TreeMesh { vertices: &vertices, triangles: &triangles, tree: &tree };
         let mut point = || Vector3::new(random.uniform() - 0.5, random.uniform() - 0.5, random.uniform() - 0.5);
         let mut hits = 0;
         for i in 0..1500 {
@@ -273,7 +270,7 @@ mod tests {
             let o = Point3::from(point() * 4.0);
             let d = if i % 2 == 0 { point() * 1.8 - o.coords } else { point() }.normalize();
             let expected = every_triangle(&o, &d, &vertices, &triangles).filter(|t| *t <= 3.0);
-            let found = tree.nearest(&o, &d, 3.0, &vertices, &triangles);
+            let found = mesh.nearest(&o, &d, 3.0);
             assert_eq!(found.map(f64::to_bits), expected.map(f64::to_bits), "ray from {o} along {d}");
             hits += usize::from(found.is_some());
         }
@@ -284,7 +281,7 @@ mod tests {
         let d = at.coords.normalize();
         let expected = every_triangle(&o, &d, &vertices, &triangles);
         assert!(expected.is_some());
-        assert_eq!(tree.nearest(&o, &d, 5.0, &vertices, &triangles), expected);
+        assert_eq!(mesh.nearest(&o, &d, 5.0), expected);
     }
 
     #[test]
@@ -296,16 +293,16 @@ mod tests {
             Point3::new(1.0, 0.0, 1.0),
             Point3::new(-1.0, 0.0, 1.0),
         ];
-        let two = [[0, 1, 2], [0, 2, 3]];
-        let tree = MeshTree::new(&square, &two);
         let down = Vector3::new(0.0, -1.0, 0.0);
-        assert_eq!(tree.nearest(&Point3::new(0.3, 2.0, 0.4), &down, 10.0, &square, &two), Some(2.0));
-        assert_eq!(tree.nearest(&Point3::new(0.3, 2.0, 0.4), &down, 1.5, &square, &two), None);
-        assert_eq!(tree.nearest(&Point3::new(3.0, 2.0, 0.4), &down, 10.0, &square, &two), None);
-        let one = [[0, 1, 2]];
-        let tree = MeshTree::new(&square, &one);
-        assert_eq!(tree.nearest(&Point3::new(0.9, 1.0, 0.0), &down, 10.0, &square, &one), Some(1.0));
-        let none: [[u32; 3]; 0] = [];
-        assert_eq!(MeshTree::new(&square, &none).nearest(&Point3::origin(), &down, 10.0, &square, &none), None);
+        let cast = |triangles: &[[u32; 3]], from: Point3<f64>, reach: f64| {
+            let tree = MeshTree::new(&square, triangles);
+            TreeMesh { vertices: &square, triangles, tree: &tree }.nearest(&from, &down, reach)
+        };
+        let two = [[0, 1, 2], [0, 2, 3]];
+        assert_eq!(cast(&two, Point3::new(0.3, 2.0, 0.4), 10.0), Some(2.0));
+        assert_eq!(cast(&two, Point3::new(0.3, 2.0, 0.4), 1.5), None);
+        assert_eq!(cast(&two, Point3::new(3.0, 2.0, 0.4), 10.0), None);
+        assert_eq!(cast(&[[0, 1, 2]], Point3::new(0.9, 1.0, 0.0), 10.0), Some(1.0));
+        assert_eq!(cast(&[], Point3::origin(), 10.0), None);
     }
 }
