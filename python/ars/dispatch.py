@@ -183,7 +183,7 @@ def send(signal, sender=Anonymous, *args, **named):
     exception raised by a receiver stops the sending and propagates."""
     # Most signals (a joint's torque, every step's) have no receiver at all: that
     # costs four dictionary lookups and nothing else.
-    sender_key = sender if sender is Any or sender is Anonymous else id(sender)
+    sender_key = _sender_key(sender)
     registry = _registry
     mine, mine_any = (sender_key, signal), (sender_key, Any)
     everyones, everyones_any = (Any, signal), (Any, Any)
