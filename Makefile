@@ -5,11 +5,12 @@
 #               Python package's, in the virtual environment .venv it creates)
 #   make python install the Python package `ars` into .venv (pip install ./python)
 #   make check  everything CI checks: fmt, clippy, tests, docs, benchmarks compile
-#   make bench  the Rust-against-native-ODE benchmark (prints Rust/C ratios)
+#   make bench  the Rust-against-native-ODE benchmarks: times (criterion) and
+#               instructions per step (callgrind), each printing Rust/C ratios
 #   make figures       the thesis' figures (PNG) and their CSVs, into figures/
 #   make readme-table  regenerate the README's table of thesis numbers
 
-DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make libfontconfig1-dev libfreetype-dev fonts-dejavu-core \
+DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
 	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb \
 	python3 python3-venv python3-pyode python3-numpy xdotool
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
@@ -67,7 +68,8 @@ check: deps
 	cargo build --workspace --benches --locked
 
 bench: deps
-	cargo bench --bench native_comparison
+	cargo bench -p ars-benches --bench native_comparison
+	cargo bench -p ars-benches --bench step_cost
 
 figures: deps
 	cargo build --release --examples

@@ -1,9 +1,42 @@
 //! Line charts as 800×600 PNG files, with axis labels (quantity and unit) and a legend.
+//!
+//! plotters draws into a buffer with the DejaVu Sans font read from the system
+//! (Debian's `fonts-dejavu-core`); the `image` crate writes the PNG. (plotters' own
+//! PNG encoder and font lookup built a second `image` crate and font-kit with
+//! FreeType and Fontconfig: a cold build's time for nothing the viewer lacks.)
 
 use std::error::Error;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use plotters::prelude::*;
+
+/// Where Debian and other Linux systems keep DejaVu Sans.
+const FONT_PATHS: [&str; 3] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+];
+
+const SIZE: (u32, u32) = (800, 600);
+
+/// Registers DejaVu Sans as plotters' "sans-serif" (once).
+fn register_font() -> Result<(), Box<dyn Error>> {
+    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+    let registered = REGISTERED.get_or_init(|| {
+        let bytes = FONT_PATHS.iter().find_map(|p| std::fs::read(p).ok()).ok_or_else(|| {
+            format!(
+                "no DejaVu Sans font for the plots (looked in {}): install fonts-dejavu-core",
+                FONT_PATHS.join(", ")
+            )
+        })?;
+        // plotters keeps the font for the whole process.
+        let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+        plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
+            .map_err(|_| "DejaVu Sans could not be read as a font".to_string())
+    });
+    registered.clone().map_err(Into::into)
+}
 
 /// One curve.
 pub struct Series {
@@ -47,9 +80,11 @@ pub fn line_chart(
     series: &[Series],
 ) -> Result<PathBuf, Box<dyn Error>> {
     std::fs::create_dir_all(dir)?;
+    register_font()?;
     let path = dir.join(file);
+    let mut pixels = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
     {
-        let root = BitMapBackend::new(&path, (800, 600)).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
         root.fill(&WHITE)?;
         let all = series.iter().flat_map(|s| s.points.iter());
         let (x0, x1) = range(all.clone().map(|p| p.0));
@@ -82,6 +117,7 @@ pub fn line_chart(
             .draw()?;
         root.present()?;
     }
+    image::save_buffer(&path, &pixels, SIZE.0, SIZE.1, image::ExtendedColorType::Rgb8)?;
     eprintln!("wrote {}", path.display());
     Ok(path)
 }

@@ -2,7 +2,7 @@
 //! through `ars-core`'s `World` and through its `Simulation`, counted by valgrind's
 //! callgrind (instruction counts are repeatable on a noisy machine, unlike times).
 //!
-//! `cargo bench --bench step_cost` prints, for each scene, the instructions per step of
+//! `cargo bench -p ars-benches --bench step_cost` prints, for each scene, the instructions per step of
 //! each layer and their ratios to C (it needs `valgrind`). Only the stepping is
 //! counted (`--toggle-collect` on `measured_steps`), not building the scene.
 //! `step_cost --run SCENE LAYER STEPS` runs one case (what callgrind is given). It

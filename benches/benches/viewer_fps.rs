@@ -1,5 +1,5 @@
 //! Frames per second of the viewer without a GPU (Mesa's software rasteriser), and
-//! the memory the process holds: `cargo bench --bench viewer_fps`.
+//! the memory the process holds: `cargo bench -p ars-benches --bench viewer_fps`.
 //!
 //! For the conical pendulum and the mobile manipulator on the sinusoidal terrain, off
 //! screen at 800×600: the rendering alone (one frame of the simulation, then one image)

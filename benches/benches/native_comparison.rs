@@ -5,7 +5,7 @@
 //! so the difference is the cost of the safe layer. Criterion measures both; then an
 //! interleaved run (C, Rust, C, Rust...) prints the median ratio Rust / C per scene.
 //!
-//! `cargo bench --bench native_comparison`
+//! `cargo bench -p ars-benches --bench native_comparison`
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
