@@ -133,6 +133,15 @@ pub enum Error {
         /// The panic message.
         message: String,
     },
+    /// A run was stopped on request (Ctrl-C, see [`interrupt`](crate::interrupt), or
+    /// its stop condition) between two steps: the simulation is whole and can go on.
+    #[error("interrupted at t = {time} s, after {steps} steps")]
+    Interrupted {
+        /// Simulated time when the run stopped, s.
+        time: f64,
+        /// Steps taken by then (since the start of the simulation).
+        steps: u64,
+    },
     /// An error raised by user code inside a program or hook.
     #[error("{0}")]
     User(String),

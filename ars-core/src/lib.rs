@@ -91,6 +91,7 @@ pub mod error;
 pub mod guard;
 pub mod handle;
 mod init;
+pub mod interrupt;
 pub mod limits;
 pub mod mesh;
 mod panic;

@@ -138,13 +138,32 @@ pub fn export_csv_table(
 
 /// Runs `program` for the requested duration: headless, or recording off-screen
 /// frames when `--screenshots` was given. Returns the simulation for its records.
+/// Ctrl-C stops the run between two frames and what was recorded until then is
+/// returned (and written by the example); a second Ctrl-C ends the process at once.
 pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    ars::interrupt::stop_on_ctrl_c()?;
     if args.window {
         return show(program);
     }
     match &args.screenshots {
-        None => Ok(program.run_headless(args.duration)?),
+        None => {
+            let mut runner = ars::ProgramRunner::new(program)?;
+            stopped_early(runner.run_for(args.duration))?;
+            Ok(runner.into_simulation())
+        }
         Some(dir) => record(program, args, dir),
+    }
+}
+
+/// A run's outcome, where Ctrl-C is not an error: it is said, and the example goes on
+/// to write what was recorded.
+pub fn stopped_early(run: ars::Result<()>) -> ars::Result<()> {
+    match run {
+        Err(ars::Error::Interrupted { time, .. }) => {
+            eprintln!("interrupted (Ctrl-C) at t = {time} s: writing what was recorded until then");
+            Ok(())
+        }
+        other => other,
     }
 }
 
@@ -171,6 +190,9 @@ fn record<P: ars::Program>(
         recorder = recorder.size(w, h);
     }
     let (sim, written) = recorder.record(program, args.duration)?;
+    if ars::interrupt::requested() {
+        eprintln!("interrupted (Ctrl-C) at t = {} s", sim.time());
+    }
     eprintln!("wrote {} frames into {}", written.len(), dir.display());
     Ok(sim)
 }

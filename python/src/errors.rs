@@ -29,6 +29,7 @@ pub(crate) fn raise(py: Python<'_>, name: &str, message: String) -> PyErr {
 /// `ars.InternalError`; all are `ars.ArsError`s.
 pub(crate) fn to_py(py: Python<'_>, error: Error) -> PyErr {
     let class = match &error {
+        Error::Interrupted { .. } => return pyo3::exceptions::PyKeyboardInterrupt::new_err(error.to_string()),
         Error::UnknownName { .. } => "UnknownNameError",
         Error::Diverged { .. } | Error::OdeInternal { .. } | Error::Ode(_) => "SimulationError",
         Error::Panicked { .. } | Error::Poisoned(_) => "InternalError",

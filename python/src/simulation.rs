@@ -10,6 +10,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::thread::ThreadId;
+use std::time::{Duration, Instant};
 
 use ars_core::body::MassSpec;
 use ars_core::nalgebra::{Matrix3, Point3, Vector3};
@@ -46,6 +47,33 @@ impl HookContext {
     fn current(&self) -> Option<*mut Simulation> {
         let active = *lock(&self.active);
         active.and_then(|(thread, addr)| (thread == std::thread::current().id()).then_some(addr as *mut Simulation))
+    }
+}
+
+/// How often a long `step`/`run` takes the GIL back to let Python handle its signals.
+const SIGNAL_CHECK_PERIOD: Duration = Duration::from_millis(5);
+
+/// The stop condition of a long `step`/`run` (called between steps or frames): every
+/// [`SIGNAL_CHECK_PERIOD`] it runs Python's signal handlers; if one raises (Ctrl-C's
+/// `KeyboardInterrupt`), the exception is kept for `advance` to raise and the run
+/// stops, the simulation whole between two steps.
+fn python_signals(context: &HookContext) -> impl FnMut() -> bool + Send + '_ {
+    let mut last = Instant::now();
+    let mut calls = 0u32;
+    move || {
+        // The clock is read every 16th call: a step can take under a microsecond.
+        calls = calls.wrapping_add(1);
+        if !calls.is_multiple_of(16) || last.elapsed() < SIGNAL_CHECK_PERIOD {
+            return false;
+        }
+        last = Instant::now();
+        match Python::attach(|py| py.check_signals()) {
+            Ok(()) => false,
+            Err(e) => {
+                *lock(&context.raised) = Some(e);
+                true
+            }
+        }
     }
 }
 
@@ -301,14 +329,19 @@ impl PySimulation {
     }
 
     /// Takes `n` steps (in native code, without the GIL unless a Python hook runs).
+    /// Ctrl-C stops it between two steps with `KeyboardInterrupt`; the simulation can
+    /// be stepped on.
     #[pyo3(signature = (n=1))]
     fn step(&self, py: Python<'_>, n: u64) -> PyResult<()> {
-        self.advance(py, |sim| sim.step_n(n))
+        let context = Arc::clone(&self.context);
+        self.advance(py, move |sim| sim.step_n_until(n, python_signals(&context)))
     }
 
-    /// Runs for `duration` seconds of simulated time (whole steps).
+    /// Runs for `duration` seconds of simulated time (whole steps). Ctrl-C stops it
+    /// between two frames with `KeyboardInterrupt`; the simulation can be run on.
     fn run(&self, py: Python<'_>, duration: f64) -> PyResult<()> {
-        self.advance(py, |sim| sim.run_for(duration))
+        let context = Arc::clone(&self.context);
+        self.advance(py, move |sim| sim.run_for_until(duration, python_signals(&context)))
     }
 
     /// Opens a window on the simulation and runs it in real time until the window is

@@ -117,9 +117,10 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
         (HeldKeys { program: &mut *self.program, held: &self.held }, &mut self.sim)
     }
 
-    fn run_steps(&mut self, steps: u64) -> Result<()> {
+    /// `steps` steps in frames, asking `stop` before each frame.
+    fn run_steps(&mut self, steps: u64, stop: &mut dyn FnMut() -> bool) -> Result<()> {
         let (mut program, sim) = self.driven();
-        sim.run_driven(Some(&mut program), steps)
+        sim.run_driven(Some(&mut program), steps, stop)
     }
 
     /// One step with the program's step hooks (no frame hooks).
@@ -131,18 +132,20 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     /// One frame of `steps_per_frame` steps.
     pub fn step_frame(&mut self) -> Result<()> {
         let n = u64::from(self.sim.steps_per_frame());
-        self.run_steps(n)
+        self.run_steps(n, &mut || false)
     }
 
     /// Runs for `duration` seconds of simulated time in frames, pressing and releasing
     /// keys as `script` says. As in the original, keys are handled between frames: an
-    /// event takes effect before the first frame that starts at or after its time.
+    /// event takes effect before the first frame that starts at or after its time. A
+    /// stop requested through [`interrupt`](crate::interrupt) (Ctrl-C) ends it between
+    /// two frames with [`Error::Interrupted`](crate::Error::Interrupted).
     pub fn run_script(&mut self, script: &KeyScript, duration: f64) -> Result<()> {
         let mut steps = self.sim.steps_in(duration)?;
         while steps > 0 {
             self.apply_due_events(script)?;
             let n = steps.min(u64::from(self.sim.steps_per_frame()));
-            self.run_steps(n)?;
+            self.run_steps(n, &mut crate::interrupt::requested)?;
             steps -= n;
         }
         Ok(())
@@ -168,9 +171,11 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
         Ok(())
     }
 
-    /// Runs for `duration` seconds of simulated time, in frames.
+    /// Runs for `duration` seconds of simulated time, in frames. A stop requested
+    /// through [`interrupt`](crate::interrupt) (Ctrl-C) ends it between two frames with
+    /// [`Error::Interrupted`](crate::Error::Interrupted); the runner can go on.
     pub fn run_for(&mut self, duration: f64) -> Result<()> {
         let steps = self.sim.steps_in(duration)?;
-        self.run_steps(steps)
+        self.run_steps(steps, &mut crate::interrupt::requested)
     }
 }

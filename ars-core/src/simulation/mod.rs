@@ -273,6 +273,24 @@ impl Simulation {
         (0..n).try_for_each(|_| self.step())
     }
 
+    /// `n` steps, asking `stop` before each one: when it says yes, the steps end there
+    /// with [`Error::Interrupted`] (an interpreter's Ctrl-C check, a wall-clock
+    /// budget...).
+    pub fn step_n_until(&mut self, n: u64, mut stop: impl FnMut() -> bool) -> Result<()> {
+        for _ in 0..n {
+            if stop() {
+                return Err(self.interrupted());
+            }
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// The error of a run stopped now.
+    fn interrupted(&self) -> Error {
+        Error::Interrupted { time: self.time(), steps: self.step_count() }
+    }
+
     /// One frame: pre-frame hooks, `steps_per_frame` steps, post-frame hooks.
     pub fn step_frame(&mut self) -> Result<()> {
         let steps = self.scene.steps_per_frame();
@@ -280,10 +298,19 @@ impl Simulation {
     }
 
     /// Runs for `duration` seconds of simulated time (rounded to whole steps), in
-    /// frames of `steps_per_frame` steps (the last frame may be shorter).
+    /// frames of `steps_per_frame` steps (the last frame may be shorter). A stop
+    /// requested through [`interrupt`](crate::interrupt) (Ctrl-C) ends it between two
+    /// frames with [`Error::Interrupted`].
     pub fn run_for(&mut self, duration: f64) -> Result<()> {
+        self.run_for_until(duration, crate::interrupt::requested)
+    }
+
+    /// As [`run_for`](Self::run_for), asking `stop` (instead of the Ctrl-C request)
+    /// before each frame: when it says yes, the run ends there with
+    /// [`Error::Interrupted`].
+    pub fn run_for_until(&mut self, duration: f64, mut stop: impl FnMut() -> bool) -> Result<()> {
         let steps = self.scene.steps_in(duration)?;
-        self.run_driven(None::<&mut ()>, steps)
+        self.run_driven(None::<&mut ()>, steps, &mut stop)
     }
 
     /// One step driven by `program` (a [`Program`](crate::Program) with its held keys),
@@ -330,10 +357,19 @@ impl Simulation {
         self.run_added_hooks(HookPoint::PostFrame)
     }
 
-    /// `steps` steps in frames of `steps_per_frame` (the last may be shorter), driven by `program`.
-    pub(crate) fn run_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>, mut steps: u64) -> Result<()> {
+    /// `steps` steps in frames of `steps_per_frame` (the last may be shorter), driven by
+    /// `program`, asking `stop` before each frame.
+    pub(crate) fn run_driven<H: Hooks + ?Sized>(
+        &mut self,
+        mut program: Option<&mut H>,
+        mut steps: u64,
+        stop: &mut dyn FnMut() -> bool,
+    ) -> Result<()> {
         let per_frame = u64::from(self.scene.steps_per_frame());
         while steps > 0 {
+            if stop() {
+                return Err(self.interrupted());
+            }
             let n = steps.min(per_frame);
             self.frame_driven(program.as_deref_mut(), n as u32)?;
             steps -= n;
