@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use ars::nalgebra::{Matrix4, Point3, Vector3};
 use ars::viewer::image::RgbImage;
-use ars::viewer::{OffscreenRenderer, ProgramViewer};
+use ars::viewer::{OffscreenRenderer, ProgramViewer, ScreenshotRecorder};
 use ars::{Hooks, Mass, Program, ProgramRunner, Result, Simulation, ViewSettings};
 
 /// The thesis' falling ball, painted red, seen from the original's camera.
@@ -102,6 +102,43 @@ fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), Strin
         Err(e) => Err(format!("a renderer after the last one closed: unexpected error {e}")),
         Ok(_) => Err("a renderer after the last one closed was made; kiss3d 0.47 fails to draw with it".into()),
     }
+}
+
+/// The recorder encodes and writes on worker threads: every frame is there, numbered
+/// in order, each the same bytes as the image the renderer draws of the same state
+/// saved with `RgbImage::save` (what the recorder wrote itself before).
+fn the_recorder_writes_every_frame_as_drawn() -> std::result::Result<(), String> {
+    let view = RedBall.view_settings();
+    // Kept alive across the recording: the recorder's renderer shares its context.
+    let mut renderer = OffscreenRenderer::new(&view).map_err(|e| e.to_string())?;
+    let dir = std::env::temp_dir().join(format!("ars_viewer_test_recorder_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let frames = 12;
+    let (_, written) =
+        ScreenshotRecorder::new(&dir).record(&mut RedBall, f64::from(frames) / 50.0).map_err(|e| e.to_string())?;
+    if written.len() != frames as usize + 1 {
+        return Err(format!("{} files for {frames} frames and the first", written.len()));
+    }
+    let mut program = RedBall;
+    let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
+    let drawn = dir.join("drawn.png");
+    for (i, path) in written.iter().enumerate() {
+        if path.file_name().and_then(|n| n.to_str()) != Some(&format!("frame_{:05}.png", i + 1)) {
+            return Err(format!("frame {} written as {}", i + 1, path.display()));
+        }
+        if i > 0 {
+            runner.step_frame().map_err(|e| e.to_string())?;
+        }
+        renderer.render(runner.simulation()).map_err(|e| e.to_string())?.save(&drawn).map_err(|e| e.to_string())?;
+        let (a, b) =
+            (std::fs::read(path).map_err(|e| e.to_string())?, std::fs::read(&drawn).map_err(|e| e.to_string())?);
+        if a != b {
+            return Err(format!("{} differs from the image drawn of the same state", path.display()));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    println!("  {} frames, each the bytes of the image drawn of its state", written.len());
+    Ok(())
 }
 
 /// Starts Xvfb on a display it picks itself (`-displayfd`: the first free one, past
@@ -458,6 +495,7 @@ fn main() {
         always,
         &mut tally,
     );
+    run("the_recorder_writes_every_frame_as_drawn", the_recorder_writes_every_frame_as_drawn, true, always, &mut tally);
     let shown = |ran: &bool| *ran;
     run("a_real_window_under_xvfb_shows_the_ball", a_real_window_under_xvfb_shows_the_ball, false, shown, &mut tally);
     run(

@@ -1,7 +1,7 @@
 //! The viewer's errors.
 
 /// What can go wrong in the viewer.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 #[non_exhaustive]
 pub enum ViewerError {
     /// No GPU adapter (not even Mesa's software rasterisers) could be found.

@@ -31,6 +31,7 @@ mod camera;
 pub mod convert;
 mod driver;
 mod error;
+mod frames;
 mod gui;
 mod material;
 mod offscreen;
@@ -45,6 +46,7 @@ use ars_core::{Program, ViewSettings};
 pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use driver::Driver;
 pub use error::{Result, ViewerError};
+pub use frames::FrameWriter;
 pub use image;
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,

@@ -13,6 +13,7 @@ use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 use crate::convert;
 use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
+use crate::frames::{FrameWriter, RawFrame};
 use crate::scene::View;
 
 thread_local! {
@@ -160,9 +161,19 @@ impl OffscreenRenderer {
 
     /// Renders the simulation as it is now.
     pub fn render(&mut self, sim: &Simulation) -> Result<image::RgbImage> {
+        Ok(self.render_raw(sim)?.into_image())
+    }
+
+    /// Renders the simulation as it is now, the rows as read back (bottom row first):
+    /// the recorder flips them on its writer threads.
+    pub(crate) fn render_raw(&mut self, sim: &Simulation) -> Result<RawFrame> {
         self.view.update(sim, self.surface.window_mut())?;
         let View { scene, camera, .. } = &mut self.view;
-        Ok(kiss3d::pollster::block_on(self.surface.render_image_3d(scene, camera)))
+        kiss3d::pollster::block_on(self.surface.render_3d(scene, camera));
+        let mut bottom_up = Vec::new();
+        self.surface.snap(&mut bottom_up);
+        let size = self.surface.size();
+        Ok(RawFrame { width: size.x, height: size.y, bottom_up })
     }
 
     /// Forgets the scene (after the simulation was rebuilt).
@@ -201,11 +212,16 @@ impl ScreenshotRecorder {
         &self.dir
     }
 
-    fn write(&self, index: u32, image: &image::RgbImage) -> Result<PathBuf> {
+    /// Renders the simulation and queues the frame numbered `index` (from 1).
+    fn write(
+        &self,
+        writer: &mut FrameWriter,
+        renderer: &mut OffscreenRenderer,
+        sim: &Simulation,
+        index: u32,
+    ) -> Result<PathBuf> {
         let path = self.dir.join(format!("frame_{index:05}.png"));
-        image
-            .save(&path)
-            .map_err(|e| ViewerError::Write { path: path.display().to_string(), message: e.to_string() })?;
+        writer.write_raw(path.clone(), renderer.render_raw(sim)?)?;
         Ok(path)
     }
 
@@ -219,7 +235,11 @@ impl ScreenshotRecorder {
     }
 
     /// Runs what `driver` drives for `duration` seconds of simulated time (whole
-    /// frames), off screen, seen as `view` says; returns the files written.
+    /// frames), off screen, seen as `view` says; returns the files written. The PNG
+    /// files are encoded and written by a [`FrameWriter`] while the next frames are
+    /// drawn; every one is written when this returns. A stop requested through
+    /// [`ars_core::interrupt`] (Ctrl-C) ends the recording after the frame being
+    /// drawn, with the frames so far.
     pub fn record_driven<D: Driver>(&self, driver: &mut D, view: &ViewSettings, duration: f64) -> Result<Vec<PathBuf>> {
         if self.every == 0 {
             return Err(ViewerError::Settings("the screenshot period must be at least one frame".into()));
@@ -235,14 +255,19 @@ impl ScreenshotRecorder {
             view.size = size;
         }
         let mut renderer = OffscreenRenderer::new(&view)?;
-        let mut written = vec![self.write(1, &renderer.render(&driver.simulation())?)?];
+        let mut writer = FrameWriter::new();
+        let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
         for frame in 1..=frames {
+            if ars_core::interrupt::requested() {
+                break;
+            }
             driver.step_frame()?;
             if frame % u64::from(self.every) == 0 {
                 let index = written.len() as u32 + 1;
-                written.push(self.write(index, &renderer.render(&driver.simulation())?)?);
+                written.push(self.write(&mut writer, &mut renderer, &driver.simulation(), index)?);
             }
         }
+        writer.finish()?;
         Ok(written)
     }
 }
