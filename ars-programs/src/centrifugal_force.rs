@@ -89,7 +89,7 @@ impl Hooks for CentrifugalForce {
     fn pre_frame(&mut self, sim: &mut Simulation) -> Result<()> {
         let (r1, r2) = self.joints.expect("built");
         sim.joint_mut(r1)?.set_speed(self.speed, 100.0)?;
-        let rate = sim.joint_state(r2)?.rate;
+        let rate = sim.joint_rate(r2)?;
         sim.joint_mut(r2)?.add_torque(-500.0 * rate)
     }
 }

@@ -87,7 +87,7 @@ impl Hooks for ConicalPendulum {
             r1.add_torque(-Self::FRICTION * q1_prev)?;
         }
         sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
-        self.previous_rates = (sim.joint_state(waist)?.rate, sim.joint_state(shoulder)?.rate);
+        self.previous_rates = (sim.joint_rate(waist)?, sim.joint_rate(shoulder)?);
         Ok(())
     }
 }

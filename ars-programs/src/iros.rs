@@ -148,9 +148,9 @@ impl Hooks for SpeedProfile {
         self.previous_error = error;
         sim.joint_mut(v.w1)?.add_torque(torque)?;
         sim.joint_mut(v.w2)?.add_torque(torque)?;
-        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
-        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * s1.rate)?;
-        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)
+        let (rate1, rate2) = (sim.joint_rate(a.r1)?, sim.joint_rate(a.r2)?);
+        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
+        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
     }
 }
 
@@ -290,10 +290,10 @@ impl Hooks for SinusoidalTerrain {
         let wheel_torque = if speed < Self::MAX_SPEED { Self::WHEEL_TORQUE } else { 0.0 };
         sim.joint_mut(v.w1)?.add_torque(wheel_torque)?;
         sim.joint_mut(v.w2)?.add_torque(wheel_torque)?;
-        let (s1, s2) = (sim.joint_state(a.r1)?, sim.joint_state(a.r2)?);
-        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * s1.rate)?;
+        let (rate1, rate2) = (sim.joint_rate(a.r1)?, sim.joint_rate(a.r2)?);
+        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
         // The servos add their PD torques after this hook.
-        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * s2.rate)
+        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
     }
 }
 

@@ -120,7 +120,7 @@ impl Hooks for ControlledSimpleArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let p = self.parts.expect("built");
         sim.joint_mut(p.r1)?.add_torque(0.0)?;
-        let (q1, q2) = (sim.joint_state(p.r1)?.rate, sim.joint_state(p.r2)?.rate);
+        let (q1, q2) = (sim.joint_rate(p.r1)?, sim.joint_rate(p.r2)?);
         sim.joint_mut(p.r1)?.add_torque(-Self::FRICTION * q1)?;
         sim.joint_mut(p.r2)?.add_torque(-Self::FRICTION * q2)
     }

@@ -209,7 +209,7 @@ pub(crate) use arm_vehicle_bindings;
 impl Hooks for VehicleWithArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let a = self.arm.expect("built");
-        let (q1, q2) = (sim.joint_state(a.r1)?.rate, sim.joint_state(a.r2)?.rate);
+        let (q1, q2) = (sim.joint_rate(a.r1)?, sim.joint_rate(a.r2)?);
         if self.arm_friction {
             torques(sim, &[(a.r1, -0.01 * q1), (a.r2, -0.01 * q2)])?;
         }
@@ -227,7 +227,7 @@ impl Program for VehicleWithArm {
         let (vehicle, arm) = build_mobile_manipulator(sim, &spec, Mass::Density(1.0))?;
         let (r1, r2) = (arm.r1, arm.r2);
         let probe = Probe::at_step_start(move |scene: &Scene| {
-            Ok(ArmRates { q1_rate: scene.joint_state(r1)?.rate, q2_rate: scene.joint_state(r2)?.rate })
+            Ok(ArmRates { q1_rate: scene.joint_rate(r1)?, q2_rate: scene.joint_rate(r2)? })
         });
         self.record = Some(sim.add_sensor(probe.reads_joints([r1, r2]))?);
         (self.vehicle, self.arm) = (Some(vehicle), Some(arm));

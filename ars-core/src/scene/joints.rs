@@ -475,6 +475,21 @@ impl Scene {
         }
     }
 
+    /// Rate (rad/s or m/s) of the joint's first degree of freedom: the `rate` of
+    /// [`joint_state`](Self::joint_state), without computing the position (a hinge's
+    /// angle costs an `atan2` and a quaternion product in ODE).
+    pub fn joint_rate(&self, id: JointId) -> Result<f64> {
+        let d = self.joint_data(id)?;
+        let j = self.world.joint(d.handle)?;
+        match d.kind {
+            JointType::Hinge | JointType::Universal => j.angle_rate(),
+            JointType::Slider | JointType::Piston => j.position_rate(),
+            JointType::Fixed | JointType::Ball => {
+                Err(Error::WrongJointKind { operation: "reading a joint rate", kind: d.kind.default_name() })
+            }
+        }
+    }
+
     /// Position (angle, rad, or slider position, m) and its rate of the joint's first
     /// degree of freedom.
     pub fn joint_state(&self, id: JointId) -> Result<JointState> {
