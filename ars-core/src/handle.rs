@@ -90,6 +90,18 @@ enum Slot<T> {
     Vacant { generation: u32 },
 }
 
+/// Why `h` does not reach a value of the arena of `world` (out of the hot path: it
+/// formats).
+#[cold]
+#[inline(never)]
+fn refusal(world: WorldId, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Error {
+    if h.world != world {
+        Error::ForeignHandle { kind, handle: shown.to_string() }
+    } else {
+        Error::StaleHandle { kind, handle: shown.to_string() }
+    }
+}
+
 /// Slots of `T`, reused after removal with a new generation.
 pub(crate) struct Arena<T> {
     world: WorldId,
@@ -128,15 +140,10 @@ impl<T> Arena<T> {
         }
     }
 
-    /// Why `h` does not reach a value (out of the hot path: it formats).
-    #[cold]
-    #[inline(never)]
+    /// Why `h` does not reach a value.
+    #[inline]
     fn refusal(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Error {
-        if h.world != self.world {
-            Error::ForeignHandle { kind, handle: shown.to_string() }
-        } else {
-            Error::StaleHandle { kind, handle: shown.to_string() }
-        }
+        refusal(self.world, h, kind, shown)
     }
 
     #[inline]
@@ -151,10 +158,12 @@ impl<T> Arena<T> {
 
     #[inline]
     pub(crate) fn get_mut(&mut self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&mut T> {
-        let i = self.check(h, kind, shown)?;
-        match &mut self.slots[i] {
-            Slot::Occupied { value, .. } => Ok(value),
-            Slot::Vacant { .. } => unreachable!("checked above"),
+        // One bounds and occupancy check (the refusal needs only the world id, so the
+        // slot's borrow ends in the other arm).
+        let world = self.world;
+        match self.slots.get_mut(h.index as usize) {
+            Some(Slot::Occupied { generation, value }) if *generation == h.generation && h.world == world => Ok(value),
+            _ => Err(refusal(world, h, kind, shown)),
         }
     }
 

@@ -323,6 +323,7 @@ impl Scene {
     }
 
     /// Actions on a joint: torques, forces, motors, limits, friction, controllers.
+    #[inline]
     pub fn joint_mut(&mut self, key: impl JointKey) -> Result<SimJoint<'_>> {
         let id = key.joint_id(self)?;
         let data = self.joint_data(id)?;
@@ -428,6 +429,7 @@ impl Scene {
 
     /// Puts a torque (hinge, universal) or force (slider, piston) on a joint for the
     /// next step and books it.
+    #[inline]
     fn put_effort(
         &mut self,
         id: JointId,
@@ -436,6 +438,9 @@ impl Scene {
         effort: f64,
         driven: bool,
     ) -> Result<()> {
+        // One look-up in each arena (the scene's joint, then the world's, which checks
+        // that the world is usable and that the joint was not removed through it).
+        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND, &id)?.efforts;
         // The world's add_torque / add_force refuse NaN, infinities and values beyond
         // the limits before anything is booked.
         let mut j = self.world.joint_mut(handle)?;
@@ -443,7 +448,6 @@ impl Scene {
             JointType::Hinge | JointType::Universal => j.add_torque(effort)?,
             _ => j.add_force(effort)?,
         }
-        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND, &id)?.efforts;
         if driven {
             efforts.driven += effort;
         } else {
@@ -533,6 +537,7 @@ impl SimJoint<'_> {
 
     /// Adds a torque about a hinge's axis for the next step (`+torque` on the
     /// first object, `−torque` on the second). Joint sensors see it.
+    #[inline]
     pub fn add_torque(&mut self, torque: f64) -> Result<()> {
         match self.kind {
             JointType::Hinge | JointType::Universal => {
@@ -543,6 +548,7 @@ impl SimJoint<'_> {
     }
 
     /// Adds a force along a slider's or piston's axis for the next step.
+    #[inline]
     pub fn add_force(&mut self, force: f64) -> Result<()> {
         match self.kind {
             JointType::Slider | JointType::Piston => self.sim.put_effort(self.id, self.handle, self.kind, force, false),

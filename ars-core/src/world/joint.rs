@@ -809,6 +809,7 @@ impl JointMut<'_> {
     /// Adds a torque about the axis of a hinge (about the first axis of a universal or
     /// hinge-2, about a piston's axis), for the next step: `+torque·axis` on body 1,
     /// `−torque·axis` on body 2.
+    #[inline]
     pub fn add_torque(&mut self, torque: f64) -> Result<()> {
         limits::in_range("joint torque", torque, -limits::MAX_TORQUE, limits::MAX_TORQUE)?;
         *self.forces_added = true;
@@ -845,6 +846,7 @@ impl JointMut<'_> {
 
     /// Adds a force along the axis of a slider or piston, for the next step:
     /// `+force·axis` on body 1, `−force·axis` on body 2.
+    #[inline]
     pub fn add_force(&mut self, force: f64) -> Result<()> {
         limits::in_range("joint force", force, -limits::MAX_FORCE, limits::MAX_FORCE)?;
         *self.forces_added = true;
