@@ -118,6 +118,7 @@ unsafe extern "C" fn report(kind: c_int, number: c_int, message: *const c_char) 
 /// # Safety
 /// `world` must be a live world whose step threading implementation is
 /// self-threaded (or unset).
+#[inline]
 pub(crate) unsafe fn world_step(world: ffi::dWorldID, dt: f64, quick: bool) -> Result<bool, OdeFailure> {
     let mut failure = FailureSlot::uninit();
     // SAFETY: the caller's contract; `failure` outlives the call.
@@ -134,6 +135,7 @@ pub(crate) unsafe fn world_step(world: ffi::dWorldID, dt: f64, quick: bool) -> R
 /// # Safety
 /// `space` must be live, and `callback` must accept `data` for the duration of the call;
 /// the callback must not unwind.
+#[inline]
 pub(crate) unsafe fn space_collide(
     space: ffi::dSpaceID,
     data: *mut c_void,
@@ -150,6 +152,7 @@ pub(crate) unsafe fn space_collide(
 ///
 /// # Safety
 /// Both geoms must be live; `contacts` must have room for `max` entries.
+#[inline]
 pub(crate) unsafe fn collide(
     o1: ffi::dGeomID,
     o2: ffi::dGeomID,

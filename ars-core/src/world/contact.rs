@@ -502,10 +502,13 @@ impl World {
                 }
             }
             Some((_, surface)) => {
+                // The pair's surface is written once; each point only changes the geometry
+                // (ODE copies the whole dContact into the joint it creates).
+                let mut contact = ffi::dContact { surface, geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] };
                 // Colliders given degenerate geometry (a deep overlap of tiny shapes) can
                 // return a NaN normal, which would turn the whole step into NaN.
                 for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
-                    let contact = ffi::dContact { surface, geom: *c, fdir1: [0.0; 4] };
+                    contact.geom = *c;
                     // SAFETY: world and contact group are live; `contact` is fully
                     // initialised; the bodies are live or null (static environment).
                     unsafe {
