@@ -371,6 +371,10 @@ trait ErasedSlot: Send {
     fn table(&self) -> (String, &dyn CsvColumns);
     fn before_step(&mut self, sim: &Scene) -> Result<()>;
     fn after_step(&mut self, sim: &Scene) -> Result<()>;
+    /// Whether `after_step` does anything (it samples a sensor that is not detached
+    /// and samples at the end of the step); otherwise it is `Ok(())` without running
+    /// any sensor code.
+    fn acts_after_step(&self) -> bool;
     fn forget_object(&mut self, id: ObjectId);
     fn forget_joint(&mut self, id: JointId);
     fn as_any(&self) -> &dyn Any;
@@ -433,6 +437,9 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
             _ => Ok(()),
         }
     }
+    fn acts_after_step(&self) -> bool {
+        !self.detached && matches!(self.at, SampleAt::EndOfStep)
+    }
     fn forget_object(&mut self, id: ObjectId) {
         if self.sensor.objects().contains(&id) {
             self.detached = true;
@@ -470,7 +477,7 @@ impl SensorSet {
         if self.slots.len() == 0 {
             return Ok(());
         }
-        self.each(|s| s.before_step(scene))
+        self.each(|_| true, |s| s.before_step(scene))
     }
     /// Every sensor samples; as [`SensorSet::before_step`].
     #[inline]
@@ -478,12 +485,21 @@ impl SensorSet {
         if self.slots.len() == 0 {
             return Ok(());
         }
-        self.each(|s| s.after_step(scene))
+        // A sensor sampled at the start of the step has nothing to do after it: skip
+        // it without the panic containment around its (empty) call.
+        self.each(|s| s.acts_after_step(), |s| s.after_step(scene))
     }
     #[inline(never)]
-    fn each(&mut self, mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>) -> Result<()> {
+    fn each(
+        &mut self,
+        acts: impl Fn(&dyn ErasedSlot) -> bool,
+        mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>,
+    ) -> Result<()> {
         let mut first = Ok(());
         for (h, slot) in self.slots.iter_mut() {
+            if !acts(&**slot) {
+                continue;
+            }
             let result = contain(|| format!("sensor#{}v{}", h.index, h.generation), || f(&mut **slot));
             if first.is_ok() {
                 first = result;

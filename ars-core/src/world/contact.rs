@@ -211,8 +211,9 @@ pub struct RayHit {
 #[derive(Default)]
 pub(crate) struct CollisionState {
     pub(crate) default_surface: ContactSurface,
-    /// `default_surface` as ODE takes it, computed once.
-    default_ode: DefaultOdeSurface,
+    /// A contact joint's parameters with `default_surface` as ODE takes it (computed
+    /// once); each contact point of a default pair writes its geometry into it.
+    default_contact: DefaultContact,
     contacts: Vec<ContactPoint>,
     ray_hits: Vec<RayHit>,
     scratch: Vec<ffi::dContactGeom>,
@@ -226,12 +227,28 @@ impl CollisionState {
     }
 }
 
-struct DefaultOdeSurface(ffi::dSurfaceParameters);
+struct DefaultContact(ffi::dContact);
 
-impl Default for DefaultOdeSurface {
-    fn default() -> Self {
-        DefaultOdeSurface(ContactSurface::default().to_ode())
+impl DefaultContact {
+    fn new(surface: &ContactSurface) -> Self {
+        DefaultContact(ffi::dContact { surface: surface.to_ode(), geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] })
     }
+}
+
+impl Default for DefaultContact {
+    fn default() -> Self {
+        DefaultContact::new(&ContactSurface::default())
+    }
+}
+
+/// The surface of a pair's contacts.
+enum PairSurface {
+    /// A ray: hits are recorded, no contact joint.
+    Ray,
+    /// The world's default surface.
+    Default,
+    /// A surface chosen by the hooks, as ODE takes it, with its most contacts.
+    Chosen(ffi::dSurfaceParameters, usize),
 }
 
 /// The largest absolute coordinate a hash space with this `min_level` holds: ODE puts
@@ -287,7 +304,7 @@ impl World {
     pub fn set_default_surface(&mut self, surface: ContactSurface) -> Result<()> {
         surface.validate()?;
         self.collision.default_surface = surface;
-        self.collision.default_ode = DefaultOdeSurface(surface.to_ode());
+        self.collision.default_contact = DefaultContact::new(&surface);
         Ok(())
     }
 
@@ -464,14 +481,13 @@ impl World {
             return Err(PairFailure::Refused(g1, g2, ratio));
         }
         let pair = GeomPair { geom1: g1, geom2: g2, body1, body2 };
-        // (max contacts, ODE surface); `None` for a ray pair.
         let surface = if ray1 || ray2 {
-            None
+            PairSurface::Ray
         } else if hooks.always_default() {
-            Some((self.collision.default_surface.max_contacts, self.collision.default_ode.0))
+            PairSurface::Default
         } else {
             match hooks.contact_surface(&pair, &self.collision.default_surface) {
-                Some(s) if s.validate().is_ok() => Some((s.max_contacts, s.to_ode())),
+                Some(s) if s.validate().is_ok() => PairSurface::Chosen(s.to_ode(), s.max_contacts),
                 Some(s) => {
                     log::error!("contact hooks returned an invalid surface {s:?}; pair skipped");
                     return Ok(());
@@ -479,7 +495,11 @@ impl World {
                 None => return Ok(()),
             }
         };
-        let max = surface.map_or(MAX_CONTACTS_LIMIT, |(max, _)| max);
+        let max = match surface {
+            PairSurface::Ray => MAX_CONTACTS_LIMIT,
+            PairSurface::Default => self.collision.default_surface.max_contacts,
+            PairSurface::Chosen(_, max) => max,
+        };
         let scratch = &mut self.collision.scratch;
         // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `max`
         // entries of dContactGeom.
@@ -488,7 +508,7 @@ impl World {
             Err(failure) => return Err(PairFailure::Ode(g1, g2, failure)),
         };
         match surface {
-            None => {
+            PairSurface::Ray => {
                 let (ray, other, flip) = if ray1 { (g1, g2, false) } else { (g2, g1, true) };
                 for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
                     let normal = convert::vector_from_ode(&c.normal);
@@ -501,30 +521,78 @@ impl World {
                     });
                 }
             }
-            Some((_, surface)) => {
+            PairSurface::Default => {
+                let state = &mut self.collision;
+                // SAFETY: world and contact group are live; the bodies are those of the
+                // pair's geoms, live or null (static environment).
+                unsafe {
+                    create_contacts(
+                        self.raw,
+                        self.contact_group,
+                        pair,
+                        (b1, b2),
+                        &mut state.default_contact.0,
+                        &state.scratch[..n],
+                        &mut state.contacts,
+                    )
+                };
+            }
+            PairSurface::Chosen(surface, _) => {
                 // The pair's surface is written once; each point only changes the geometry
                 // (ODE copies the whole dContact into the joint it creates).
                 let mut contact = ffi::dContact { surface, geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] };
-                // Colliders given degenerate geometry (a deep overlap of tiny shapes) can
-                // return a NaN normal, which would turn the whole step into NaN.
-                for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
-                    contact.geom = *c;
-                    // SAFETY: world and contact group are live; `contact` is fully
-                    // initialised; the bodies are live or null (static environment).
-                    unsafe {
-                        let j = ffi::dJointCreateContact(self.raw, self.contact_group, &contact);
-                        ffi::dJointAttach(j, b1, b2);
-                    }
-                    self.collision.contacts.push(ContactPoint {
+                let state = &mut self.collision;
+                // SAFETY: world and contact group are live; the bodies are those of the
+                // pair's geoms, live or null (static environment).
+                unsafe {
+                    create_contacts(
+                        self.raw,
+                        self.contact_group,
                         pair,
-                        position: convert::point_from_ode(&c.pos),
-                        normal: convert::vector_from_ode(&c.normal),
-                        depth: c.depth,
-                    });
-                }
+                        (b1, b2),
+                        &mut contact,
+                        &state.scratch[..n],
+                        &mut state.contacts,
+                    )
+                };
             }
         }
         Ok(())
+    }
+}
+
+/// One contact joint per finite contact point, with `contact`'s surface, attached to
+/// `bodies`; each point is recorded in `out`.
+///
+/// # Safety
+/// `world` and `group` are live; the bodies are live or null.
+#[inline]
+unsafe fn create_contacts(
+    world: ffi::dWorldID,
+    group: ffi::dJointGroupID,
+    pair: GeomPair,
+    bodies: (ffi::dBodyID, ffi::dBodyID),
+    contact: &mut ffi::dContact,
+    points: &[ffi::dContactGeom],
+    out: &mut Vec<ContactPoint>,
+) {
+    // Colliders given degenerate geometry (a deep overlap of tiny shapes) can return a
+    // NaN normal, which would turn the whole step into NaN.
+    for c in points.iter().filter(|c| contact_is_finite(c)) {
+        // ODE copies the whole dContact into the joint it creates: only the geometry
+        // changes from one point to the next.
+        contact.geom = *c;
+        // SAFETY: the caller's contract; `contact` is fully initialised.
+        unsafe {
+            let j = ffi::dJointCreateContact(world, group, contact);
+            ffi::dJointAttach(j, bodies.0, bodies.1);
+        }
+        out.push(ContactPoint {
+            pair,
+            position: convert::point_from_ode(&c.pos),
+            normal: convert::vector_from_ode(&c.normal),
+            depth: c.depth,
+        });
     }
 }
 
