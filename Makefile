@@ -68,8 +68,8 @@ check: deps
 	cargo build --workspace --benches --locked
 
 bench: deps
-	cargo bench -p ars-benches --bench native_comparison
-	cargo bench -p ars-benches --bench step_cost
+	cargo bench -p ars-benches --no-default-features --bench native_comparison
+	cargo bench -p ars-benches --no-default-features --bench step_cost
 
 figures: deps
 	cargo build --release --examples
