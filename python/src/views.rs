@@ -185,7 +185,7 @@ impl Joint {
     /// Rate of `angle`, rad/s (or m/s).
     #[getter]
     fn rate(&self, py: Python<'_>) -> PyResult<f64> {
-        self.act(py, |sim, id| Ok(sim.joint_state(id)?.rate))
+        self.act(py, |sim, id| sim.joint_rate(id))
     }
 
     /// Adds a torque (N·m) about a rotary joint's axis for the next step.

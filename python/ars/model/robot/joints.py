@@ -1,7 +1,7 @@
 """Joints of the original ARS API, reached as ``sim.get_joint(name).joint``: each sends
 its signals around the torques, forces and speeds put on it."""
 
-from ars.dispatch import send
+from ars.dispatch import heard, send
 from ars.exceptions import JointError
 from ars.model.robot import signals
 
@@ -35,8 +35,11 @@ class _Actuated(Joint):
         try:
             action()
         except Exception as e:
-            raise JointError(self, f"could not {key} {value!r}: {e}") from e
+            raise self._failed(key, value, e) from e
         send(post, sender=self, **{key: value})
+
+    def _failed(self, key, value, e):
+        return JointError(self, f"could not {key} {value!r}: {e}")
 
 
 class Rotary(_Actuated):
@@ -54,6 +57,12 @@ class Rotary(_Actuated):
 
     def add_torque(self, torque):
         """Adds ``torque`` (N·m) about the axis for the next step."""
+        if not (heard(signals.JOINT_PRE_ADD_TORQUE) or heard(signals.JOINT_POST_ADD_TORQUE)):
+            # What a program does every step, with nobody listening: straight on.
+            try:
+                return self._native.add_torque(torque)
+            except Exception as e:
+                raise self._failed("torque", torque, e) from e
         self._act(
             signals.JOINT_PRE_ADD_TORQUE,
             signals.JOINT_POST_ADD_TORQUE,
@@ -89,6 +98,11 @@ class Slider(_Actuated):
 
     def add_force(self, force):
         """Adds ``force`` (N) along the axis for the next step."""
+        if not (heard(signals.JOINT_PRE_ADD_FORCE) or heard(signals.JOINT_POST_ADD_FORCE)):
+            try:
+                return self._native.add_force(force)
+            except Exception as e:
+                raise self._failed("force", force, e) from e
         self._act(
             signals.JOINT_PRE_ADD_FORCE,
             signals.JOINT_POST_ADD_FORCE,

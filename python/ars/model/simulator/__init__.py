@@ -30,7 +30,8 @@ logger = logging.getLogger("ars.app")
 
 
 def _floats(values):
-    return tuple(float(x) for x in values)
+    """A numpy array's values as a tuple of Python floats (``tolist`` converts in C)."""
+    return tuple(values.tolist())
 
 
 class SimulatedObject:
@@ -89,7 +90,7 @@ class PhysicsBody:
         return float(self._native.mass)
 
     def get_inertia_tensor(self):
-        return tuple(_floats(row) for row in self._native.inertia)
+        return tuple(map(tuple, self._native.inertia.tolist()))
 
     def set_position(self, pos):
         self._native.set_position(pos)
