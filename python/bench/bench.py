@@ -86,30 +86,92 @@ def hook_cost(steps=200_000):
     )
 
 
+# Where a step of an original program goes in our package, measured inside one process:
+# the program's own pre-step method (its Python, with the calls it makes into ours), the
+# native steps (physics and the way into the hooks), and the rest (our dispatcher and
+# hooks between them). Printed as one line of seconds.
+_BREAKDOWN = """
+import importlib, os, sys, time
+start = time.perf_counter()
+import ars  # noqa: F401
+from ars.model.simulator import Simulation
+imported = time.perf_counter() - start
+module, name, seconds = sys.argv[1], sys.argv[2], float(sys.argv[3])
+cls = getattr(importlib.import_module("demos." + module), name)
+spent = {"program": 0.0, "hooks": 0.0}
+
+def timed(f, key):
+    def wrapper(self):
+        begin = time.perf_counter()
+        f(self)
+        spent[key] += time.perf_counter() - begin
+    return wrapper
+
+cls.on_pre_step = timed(cls.on_pre_step, "program")
+Simulation._pre_step = timed(Simulation._pre_step, "hooks")
+Simulation._post_step = timed(Simulation._post_step, "hooks")
+program = cls()
+stdout, sys.stdout = sys.stdout, open(os.devnull, "w")
+begin = time.perf_counter()
+program.run(seconds)
+run = time.perf_counter() - begin
+sys.stdout = stdout
+steps = program.sim.native.step_count
+print(imported, run, spent["program"], spent["hooks"] - spent["program"], run - spent["hooks"], steps)
+"""
+
+
+def breakdown(module, name, seconds, work):
+    out = subprocess.run(
+        [sys.executable, "-c", _BREAKDOWN, module, name, str(seconds)],
+        cwd=original_ars.demos_only(work),
+        env=dict(os.environ, PYTHONPATH=str(original_ars.demos_only(work))),
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    imported, run, program, ours, native, steps = map(float, out.stdout.split())
+    per = 1e6 / steps
+    return (
+        f"   in one process: importing ars {imported:.2f} s; the run {run:.2f} s = native steps "
+        f"{native:.2f} s ({native * per:.1f} µs/step: physics, the same ODE calls as the original's) + "
+        f"the program's own on_pre_step {program:.2f} s ({program * per:.1f} µs/step: its Python and "
+        f"the calls it makes) + our dispatcher and hooks {ours:.2f} s ({ours * per:.1f} µs/step)"
+    )
+
+
 def original_against_ours():
+    # As a user runs them: Python's default output buffering (PYTHONUNBUFFERED, set in
+    # some shells, makes every print two system calls in both, about 0.4 s here).
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}
     with tempfile.TemporaryDirectory() as work:
         for module, name, seconds in [
             ("IROS.example2_conical_pendulum", "Example2", 20.0),
             ("IROS.example3_speed_profile", "Example3", 15.0),
         ]:
-            runs = {}
+            runs, times = {}, {}
             for who, run in [
                 ("original", original_ars.run_original),
                 ("ours", original_ars.run_ours),
             ]:
-                run(module, name, 0.02, work)  # warm the caches (imports, sdist)
-                # The best of three (a 2-core machine is noisy), each in a new process.
-                for _ in range(3):
+                run(module, name, 0.02, work, env=env)  # warm the caches (imports, sdist)
+            # Three runs each, interleaved, each in a new process; the medians.
+            for _ in range(3):
+                for who, run in [
+                    ("original", original_ars.run_original),
+                    ("ours", original_ars.run_ours),
+                ]:
                     start = time.perf_counter()
-                    runs[who] = run(module, name, seconds, work)
-                    elapsed = time.perf_counter() - start
-                    runs[who + " s"] = min(elapsed, runs.get(who + " s", elapsed))
+                    runs[who] = run(module, name, seconds, work, env=env)
+                    times.setdefault(who, []).append(time.perf_counter() - start)
+            original, ours = (sorted(times[w])[1] for w in ("original", "ours"))
             same = runs["original"].stdout == runs["ours"].stdout
             print(
                 f"3. {name}, {seconds:g} s simulated ({runs['ours'].stdout.count(chr(10))} lines, "
-                f"{'the same' if same else 'DIFFERENT'} output): original on PyODE {runs['original s']:.2f} s, "
-                f"ours {runs['ours s']:.2f} s, {runs['original s'] / runs['ours s']:.1f}× faster"
+                f"{'the same' if same else 'DIFFERENT'} output): original on PyODE {original:.2f} s, "
+                f"ours {ours:.2f} s, original/ours {original / ours:.2f} (medians of three)"
             )
+            print(breakdown(module, name, seconds, work))
 
 
 def sweep_on_ray(seconds=20.0):

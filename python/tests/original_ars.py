@@ -150,7 +150,7 @@ def original_tree(workdir):
     return target
 
 
-def run_ours(module, name, seconds, workdir):
+def run_ours(module, name, seconds, workdir, env=None):
     return subprocess.run(
         [sys.executable, "-c", OURS, module, name, str(seconds)],
         cwd=demos_only(workdir),
@@ -158,6 +158,7 @@ def run_ours(module, name, seconds, workdir):
         text=True,
         timeout=600,
         check=False,
+        env=env,
     )
 
 
@@ -176,7 +177,7 @@ ode.ParamFMax = 5
 """
 
 
-def run_original(module, name, seconds, workdir, fixed_bindings=False):
+def run_original(module, name, seconds, workdir, fixed_bindings=False, env=None):
     """The original on Debian's PyODE (``fixed_bindings``: with its two bugs fixed)."""
     prelude = ORIGINAL_PRELUDE + (BINDING_FIXES if fixed_bindings else "")
     return subprocess.run(
@@ -186,4 +187,5 @@ def run_original(module, name, seconds, workdir, fixed_bindings=False):
         text=True,
         timeout=600,
         check=False,
+        env=env,
     )
