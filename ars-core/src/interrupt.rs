@@ -4,7 +4,7 @@
 //! asks every run to stop: [`Simulation::run_for`](crate::Simulation::run_for),
 //! [`ProgramRunner::run_for`](crate::ProgramRunner::run_for) and
 //! [`run_script`](crate::ProgramRunner::run_script) end at the next frame boundary
-//! with [`Error::Interrupted`](crate::Error::Interrupted), the simulation whole and
+//! with [`Error::Interrupted`], the simulation whole and
 //! usable (its records so far are there to be written), and the viewer's recorder
 //! stops after the frame it is writing. The request stays until [`clear`]: later runs
 //! stop at once. A second Ctrl-C ends the process at once (exit status 130), as Ctrl-C
