@@ -6,7 +6,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId};
-use ars_core::{Hooks, JointId, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder};
+use ars_core::{HookPoint, Hooks, JointId, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder};
 
 /// One record of the pendulum: the state the pre-step hook reads at the start of a
 /// step, and the waist torque it applies (without friction).
@@ -89,6 +89,10 @@ impl Hooks for ConicalPendulum {
         sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
         self.previous_rates = (sim.joint_rate(waist)?, sim.joint_rate(shoulder)?);
         Ok(())
+    }
+    /// Only the pre-step hook does something (added hooks are not called elsewhere).
+    fn runs_at(&self, point: HookPoint) -> bool {
+        point == HookPoint::PreStep
     }
 }
 

@@ -6,7 +6,8 @@ use crate::{SetpointKeys, ShoulderSetpoint, servo_reading};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
 use ars_core::{
-    ActionMap, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Scene, Simulation, SimulationBuilder,
+    ActionMap, HookPoint, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Scene, Simulation,
+    SimulationBuilder,
 };
 
 use crate::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
@@ -152,6 +153,10 @@ impl Hooks for SpeedProfile {
         sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
         sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
     }
+    /// Only the pre-step hook does something (added hooks are not called elsewhere).
+    fn runs_at(&self, point: HookPoint) -> bool {
+        point == HookPoint::PreStep
+    }
 }
 
 impl Program for SpeedProfile {
@@ -294,6 +299,10 @@ impl Hooks for SinusoidalTerrain {
         sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
         // The servos add their PD torques after this hook.
         sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
+    }
+    /// Only the pre-step hook does something (added hooks are not called elsewhere).
+    fn runs_at(&self, point: HookPoint) -> bool {
+        point == HookPoint::PreStep
     }
 }
 

@@ -52,6 +52,37 @@ pub trait Hooks {
         let _ = sim;
         Ok(())
     }
+    /// Whether these hooks do something at `point` (by default: at every point).
+    ///
+    /// Asked once, when the hooks are added with [`Simulation::add_hooks`]: they are
+    /// not called at the points where they say `false`, which spares the call (and its
+    /// panic containment) at every step for a method left at its default. Say `false`
+    /// only for a method that does nothing. A program run by its runner is called at
+    /// every point whatever it says.
+    ///
+    /// ```
+    /// use ars_core::{HookPoint, Hooks, Result, Simulation};
+    ///
+    /// struct Counter(u64);
+    /// impl Hooks for Counter {
+    ///     fn pre_step(&mut self, _: &mut Simulation) -> Result<()> {
+    ///         self.0 += 1;
+    ///         Ok(())
+    ///     }
+    ///     fn runs_at(&self, point: HookPoint) -> bool {
+    ///         point == HookPoint::PreStep
+    ///     }
+    /// }
+    /// let mut sim = Simulation::new()?;
+    /// let counter = sim.add_hooks(Counter(0))?;
+    /// sim.step_n(3)?;
+    /// assert_eq!(sim.hooks(counter)?.0, 3);
+    /// # Ok::<(), ars_core::Error>(())
+    /// ```
+    fn runs_at(&self, point: HookPoint) -> bool {
+        let _ = point;
+        true
+    }
 }
 
 /// No hooks.
@@ -65,6 +96,9 @@ macro_rules! closure_hook {
         impl<F: FnMut(&mut Simulation) -> Result<()>> Hooks for $name<F> {
             fn $method(&mut self, sim: &mut Simulation) -> Result<()> {
                 (self.0)(sim)
+            }
+            fn runs_at(&self, point: HookPoint) -> bool {
+                point == HookPoint::$name
             }
         }
 
@@ -97,16 +131,24 @@ closure_hook!(
     post_frame
 );
 
-/// The points of the step loop where hooks run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum HookPoint {
+/// The points of the step loop where hooks run (see [`Hooks::runs_at`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum HookPoint {
+    /// [`Hooks::pre_step`].
     PreStep,
+    /// [`Hooks::post_step`].
     PostStep,
+    /// [`Hooks::pre_frame`].
     PreFrame,
+    /// [`Hooks::post_frame`].
     PostFrame,
 }
 
 impl HookPoint {
+    /// Every point, in the order of `HookSet::at`.
+    const ALL: [HookPoint; 4] = [HookPoint::PreStep, HookPoint::PostStep, HookPoint::PreFrame, HookPoint::PostFrame];
+
     fn name(self) -> &'static str {
         match self {
             HookPoint::PreStep => "pre-step",
@@ -180,29 +222,36 @@ impl<H: Hooks + Send + 'static> AnyHooks for H {
 /// simulation mutably, so they cannot stay inside it).
 pub(crate) struct HookSet {
     slots: Arena<Option<Box<dyn AnyHooks>>>,
-    /// The handles in the order the hooks were added (slots are reused, so slot order
+    /// For each point (in the order of [`HookPoint::ALL`]), the handles of the hooks
+    /// that run there, in the order they were added (slots are reused, so slot order
     /// is not that order).
-    order: Vec<RawHandle>,
-    /// Changes to `order` so far (a running hook may add or remove others).
+    at: [Vec<RawHandle>; 4],
+    /// Changes to `at` so far (a running hook may add or remove others).
     edits: u64,
 }
 
 impl HookSet {
     pub(crate) fn new(world: WorldId) -> Self {
-        HookSet { slots: Arena::new(world), order: Vec::new(), edits: 0 }
+        HookSet { slots: Arena::new(world), at: Default::default(), edits: 0 }
     }
 
     pub(crate) fn len(&self) -> usize {
-        self.order.len()
+        self.slots.len()
     }
 }
 
 impl Simulation {
     /// Adds hooks that run at every step and frame after the program's, in the order
     /// added. Hooks added by a hook run from the next point of the step loop on.
+    /// They are called only at the points where [`Hooks::runs_at`] says they run.
     pub fn add_hooks<H: Hooks + Send + 'static>(&mut self, hooks: H) -> Result<HookId<H>> {
+        let points = HookPoint::ALL.map(|p| hooks.runs_at(p));
         let handle = self.hooks.slots.insert(Some(Box::new(hooks)));
-        self.hooks.order.push(handle);
+        for (list, runs) in self.hooks.at.iter_mut().zip(points) {
+            if runs {
+                list.push(handle);
+            }
+        }
         self.hooks.edits += 1;
         Ok(HookId { handle, _hooks: PhantomData })
     }
@@ -211,7 +260,9 @@ impl Simulation {
     pub fn remove_hooks<H: Hooks + Send + 'static>(&mut self, id: HookId<H>) -> Result<H> {
         self.hook_slot(id)?;
         let slot = self.hooks.slots.remove(id.handle, "hooks", &id)?;
-        self.hooks.order.retain(|h| *h != id.handle);
+        for list in &mut self.hooks.at {
+            list.retain(|h| *h != id.handle);
+        }
         self.hooks.edits += 1;
         let boxed = slot.expect("checked above: not running");
         match boxed.into_any().downcast::<H>() {
@@ -246,13 +297,13 @@ impl Simulation {
     /// Runs the added hooks of one point in the order added, up to the first error.
     #[inline]
     pub(crate) fn run_added_hooks(&mut self, at: HookPoint) -> Result<()> {
-        if self.hooks.order.is_empty() { Ok(()) } else { self.run_each_added_hook(at) }
+        if self.hooks.at[at as usize].is_empty() { Ok(()) } else { self.run_each_added_hook(at) }
     }
 
     #[inline(never)]
     fn run_each_added_hook(&mut self, at: HookPoint) -> Result<()> {
         let mut i = 0;
-        while let Some(&handle) = self.hooks.order.get(i) {
+        while let Some(&handle) = self.hooks.at[at as usize].get(i) {
             // Take the hooks out of their slot while they run (they get the simulation
             // mutably), then put them back: a running slot cannot be removed.
             let Ok(Some(mut hooks)) = self.hooks.slots.get_mut(handle, "hooks", &"").map(Option::take) else {
@@ -268,7 +319,7 @@ impl Simulation {
             i = if self.hooks.edits == edits {
                 i + 1
             } else {
-                self.hooks.order.iter().position(|h| *h == handle).map_or(i, |p| p + 1)
+                self.hooks.at[at as usize].iter().position(|h| *h == handle).map_or(i, |p| p + 1)
             };
         }
         Ok(())
