@@ -464,11 +464,14 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
 /// The sensors of a simulation.
 pub(crate) struct SensorSet {
     slots: Arena<Box<dyn ErasedSlot>>,
+    /// How many of the sensors sample at the end of the step (detached or not): when
+    /// none does, there is nothing to do after a step.
+    end_of_step: usize,
 }
 
 impl SensorSet {
     pub(crate) fn new(world: WorldId) -> Self {
-        SensorSet { slots: Arena::new(world) }
+        SensorSet { slots: Arena::new(world), end_of_step: 0 }
     }
     /// Every sensor notes the state before the step; a failing or panicking sensor
     /// does not keep the others from it. The first error is returned.
@@ -482,7 +485,7 @@ impl SensorSet {
     /// Every sensor samples; as [`SensorSet::before_step`].
     #[inline]
     pub(crate) fn after_step(&mut self, scene: &Scene) -> Result<()> {
-        if self.slots.len() == 0 {
+        if self.end_of_step == 0 {
             return Ok(());
         }
         // A sensor sampled at the start of the step has nothing to do after it: skip
@@ -561,6 +564,9 @@ impl SensorSet {
         let next_sample = scene.time() + if at == SampleAt::EndOfStep { period.unwrap_or(0.0) } else { 0.0 };
         let slot = Slot { sensor, at, period, next_sample, detached: false, log: SensorLog { samples: Vec::new() } };
         let handle = self.slots.insert(Box::new(slot));
+        if at == SampleAt::EndOfStep {
+            self.end_of_step += 1;
+        }
         Ok(SensorId { handle, _sensor: PhantomData })
     }
 
@@ -568,7 +574,12 @@ impl SensorSet {
         self.slot(id)?;
         let slot = self.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
         match slot.into_any().downcast::<Slot<S>>() {
-            Ok(slot) => Ok(slot.log),
+            Ok(slot) => {
+                if slot.at == SampleAt::EndOfStep {
+                    self.end_of_step -= 1;
+                }
+                Ok(slot.log)
+            }
             Err(_) => unreachable!("the slot's type was checked above"),
         }
     }
