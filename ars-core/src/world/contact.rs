@@ -431,10 +431,11 @@ impl World {
             .copied()
     }
 
-    fn geom_info(
-        &self,
-        raw: ffi::dGeomID,
-    ) -> Option<(GeomHandle, &crate::shape::Shape, Option<BodyHandle>, ffi::dBodyID)> {
+    /// The handle and data of a geom that ODE reports (`None`: not this world's). The
+    /// data is read where it is needed, not copied out up front: most pairs stop at
+    /// the first checks.
+    #[inline]
+    fn geom_slot(&self, raw: ffi::dGeomID) -> Option<(GeomHandle, &super::geom::GeomData)> {
         // SAFETY: ODE hands the callback live geoms of the collided space; their user
         // data is the arena index set at creation.
         let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
@@ -442,7 +443,7 @@ impl World {
         if data.raw != raw {
             return None;
         }
-        Some((GeomHandle(h), &data.shape, data.body, data.body_raw))
+        Some((GeomHandle(h), data))
     }
 
     /// One candidate pair: everything the near callback does, in Rust. `Err` when the
@@ -453,11 +454,11 @@ impl World {
         o1: ffi::dGeomID,
         o2: ffi::dGeomID,
     ) -> Result<(), PairFailure> {
-        let (Some((g1, shape1, body1, b1)), Some((g2, shape2, body2, b2))) = (self.geom_info(o1), self.geom_info(o2))
-        else {
+        let (Some((g1, d1)), Some((g2, d2))) = (self.geom_slot(o1), self.geom_slot(o2)) else {
             log::error!("collision reported a geom that this world does not own; pair skipped");
             return Ok(());
         };
+        let (shape1, shape2, b1, b2) = (&d1.shape, &d2.shape, d1.body_raw, d2.body_raw);
         let ray1 = matches!(shape1, crate::shape::Shape::Ray { .. });
         let ray2 = matches!(shape2, crate::shape::Shape::Ray { .. });
         if b1.is_null() && b2.is_null() && !ray1 && !ray2 {
@@ -480,7 +481,7 @@ impl World {
         {
             return Err(PairFailure::Refused(g1, g2, ratio));
         }
-        let pair = GeomPair { geom1: g1, geom2: g2, body1, body2 };
+        let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
         let surface = if ray1 || ray2 {
             PairSurface::Ray
         } else if hooks.always_default() {
@@ -529,7 +530,7 @@ impl World {
                     create_contacts(
                         self.raw,
                         self.contact_group,
-                        pair,
+                        &pair,
                         (b1, b2),
                         &mut state.default_contact.0,
                         &state.scratch[..n],
@@ -548,7 +549,7 @@ impl World {
                     create_contacts(
                         self.raw,
                         self.contact_group,
-                        pair,
+                        &pair,
                         (b1, b2),
                         &mut contact,
                         &state.scratch[..n],
@@ -570,7 +571,7 @@ impl World {
 unsafe fn create_contacts(
     world: ffi::dWorldID,
     group: ffi::dJointGroupID,
-    pair: GeomPair,
+    pair: &GeomPair,
     bodies: (ffi::dBodyID, ffi::dBodyID),
     contact: &mut ffi::dContact,
     points: &[ffi::dContactGeom],
@@ -588,7 +589,7 @@ unsafe fn create_contacts(
             ffi::dJointAttach(j, bodies.0, bodies.1);
         }
         out.push(ContactPoint {
-            pair,
+            pair: *pair,
             position: convert::point_from_ode(&c.pos),
             normal: convert::vector_from_ode(&c.normal),
             depth: c.depth,
