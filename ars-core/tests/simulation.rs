@@ -618,3 +618,67 @@ fn a_mimic_joint_follows_its_leader() {
     assert_eq!(sim.joint(follower).unwrap().mimic(), None);
     sim.step().unwrap();
 }
+
+#[test]
+fn hooks_run_only_at_the_points_they_say_and_leave_every_list_when_removed() {
+    let seen = Arc::new(Mutex::new(String::new()));
+    struct Tagged {
+        tag: char,
+        at: HookPoint,
+        seen: Arc<Mutex<String>>,
+    }
+    impl Tagged {
+        fn note(&self, point: char) -> Result<()> {
+            self.seen.lock().unwrap().push_str(&format!("{}{point} ", self.tag));
+            Ok(())
+        }
+    }
+    impl Hooks for Tagged {
+        fn pre_step(&mut self, _: &mut Simulation) -> Result<()> {
+            self.note('<')
+        }
+        fn post_step(&mut self, _: &mut Simulation) -> Result<()> {
+            self.note('>')
+        }
+        fn pre_frame(&mut self, _: &mut Simulation) -> Result<()> {
+            self.note('[')
+        }
+        fn post_frame(&mut self, _: &mut Simulation) -> Result<()> {
+            self.note(']')
+        }
+        fn runs_at(&self, point: HookPoint) -> bool {
+            point == self.at
+        }
+    }
+    let mut sim = Simulation::builder().steps_per_frame(1).build().unwrap();
+    let tagged = |tag, at| Tagged { tag, at, seen: seen.clone() };
+    // Every method is written, but each hook is called only where it says it runs.
+    sim.add_hooks(tagged('a', HookPoint::PostStep)).unwrap();
+    let b = sim.add_hooks(tagged('b', HookPoint::PreFrame)).unwrap();
+    sim.add_hooks(tagged('c', HookPoint::PreStep)).unwrap();
+    sim.step_frame().unwrap();
+    assert_eq!(std::mem::take(&mut *seen.lock().unwrap()), "b[ c< a> ");
+    sim.remove_hooks(b).unwrap();
+    sim.step_frame().unwrap();
+    assert_eq!(*seen.lock().unwrap(), "c< a> ");
+}
+
+#[test]
+fn sensors_sampled_at_the_end_of_the_step_sample_again_after_others_come_and_go() {
+    let mut sim = with_floor();
+    let ball = sim.add_sphere(0.5, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+    let start = sim
+        .add_sensor(Probe::at_step_start(move |s: &Scene| Ok(Position { position: s.body(ball)?.position() })))
+        .unwrap();
+    let gps = sim.add_sensor(Gps::new(ball)).unwrap();
+    sim.step().unwrap();
+    sim.remove_sensor(gps).unwrap();
+    sim.step().unwrap();
+    let gps = sim.add_sensor(Gps::new(ball)).unwrap();
+    let other = sim.add_sensor(Gps::new(ball)).unwrap();
+    sim.remove_sensor(other).unwrap();
+    sim.step().unwrap();
+    assert_eq!(sim.records(start).unwrap().len(), 3);
+    let log = sim.records(gps).unwrap();
+    assert_eq!((log.len(), log.last().unwrap().step), (1, 3));
+}
