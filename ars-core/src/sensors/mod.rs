@@ -498,17 +498,20 @@ impl SensorSet {
         acts: impl Fn(&dyn ErasedSlot) -> bool,
         mut f: impl FnMut(&mut dyn ErasedSlot) -> Result<()>,
     ) -> Result<()> {
-        let mut first = Ok(());
+        // The first error only: a sensor that succeeds leaves nothing to keep or drop.
+        let mut first = None;
         for (h, slot) in self.slots.iter_mut() {
             if !acts(&**slot) {
                 continue;
             }
             let result = contain(|| format!("sensor#{}v{}", h.index, h.generation), || f(&mut **slot));
-            if first.is_ok() {
-                first = result;
+            if let Err(e) = result
+                && first.is_none()
+            {
+                first = Some(e);
             }
         }
-        first
+        first.map_or(Ok(()), Err)
     }
     pub(crate) fn forget_object(&mut self, id: ObjectId) {
         self.slots.values_mut().for_each(|s| s.forget_object(id));
