@@ -277,7 +277,12 @@ impl Scene {
 
     /// World position of an object.
     pub fn position(&self, id: ObjectId) -> Result<Point3<f64>> {
-        Ok(Point3::from(self.pose(id)?.translation.vector))
+        let data = self.object_data(id)?;
+        match data.body {
+            // What `pose` would translate by, without reading the orientation.
+            Some(b) => Ok(self.world.body(b)?.position()),
+            None => Ok(Point3::from(self.pose(id)?.translation.vector)),
+        }
     }
 
     /// Rotation matrix of an object (body to world).
