@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use ars_core::body::MassSpec;
 use ars_core::nalgebra::{Matrix3, Point3, Vector3};
-use ars_core::{Error, HookId, Hooks, JointEnd, Mass, ObjectId, Shape, Simulation};
+use ars_core::{Error, HookId, HookPoint, Hooks, JointEnd, Mass, ObjectId, Shape, Simulation};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
@@ -115,6 +115,9 @@ impl Hooks for PyHook {
     }
     fn post_step(&mut self, sim: &mut Simulation) -> ars_core::Result<()> {
         if self.after_step { self.call(sim) } else { Ok(()) }
+    }
+    fn runs_at(&self, point: HookPoint) -> bool {
+        point == if self.after_step { HookPoint::PostStep } else { HookPoint::PreStep }
     }
 }
 
