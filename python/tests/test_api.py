@@ -144,7 +144,9 @@ def test_usable_from_other_threads_and_steps_without_the_gil():
     results = []
 
     def worker():
-        sim.run(1.0)
+        # Long enough (50,000 steps) for the main thread to wake up during it: one
+        # second of a ball (2,500 steps) could end before the main thread's first look.
+        sim.run(20.0)
         results.append(sim.body(ball).position[1])
 
     ticks = []
