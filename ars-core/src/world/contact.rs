@@ -522,27 +522,18 @@ impl World {
                     });
                 }
             }
-            PairSurface::Default => {
+            PairSurface::Default | PairSurface::Chosen(..) => {
                 let state = &mut self.collision;
-                // SAFETY: world and contact group are live; the bodies are those of the
-                // pair's geoms, live or null (static environment).
-                unsafe {
-                    create_contacts(
-                        self.raw,
-                        self.contact_group,
-                        &pair,
-                        (b1, b2),
-                        &mut state.default_contact.0,
-                        &state.scratch[..n],
-                        &mut state.contacts,
-                    )
+                // A chosen surface is written once for the pair; each point only changes
+                // the geometry (ODE copies the whole dContact into the joint it creates).
+                let mut chosen;
+                let contact = match surface {
+                    PairSurface::Chosen(surface, _) => {
+                        chosen = ffi::dContact { surface, geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] };
+                        &mut chosen
+                    }
+                    _ => &mut state.default_contact.0,
                 };
-            }
-            PairSurface::Chosen(surface, _) => {
-                // The pair's surface is written once; each point only changes the geometry
-                // (ODE copies the whole dContact into the joint it creates).
-                let mut contact = ffi::dContact { surface, geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] };
-                let state = &mut self.collision;
                 // SAFETY: world and contact group are live; the bodies are those of the
                 // pair's geoms, live or null (static environment).
                 unsafe {
@@ -551,7 +542,7 @@ impl World {
                         self.contact_group,
                         &pair,
                         (b1, b2),
-                        &mut contact,
+                        contact,
                         &state.scratch[..n],
                         &mut state.contacts,
                     )
