@@ -324,8 +324,26 @@ fn serve(view: ViewSettings, ready: mpsc::SyncSender<Result<(), Failure>>, reque
 /// as a numpy array of shape (height, width, 3), `uint8`; `save(sim, path)` writes a PNG.
 #[pyclass(name = "Renderer", module = "ars", frozen)]
 pub struct PyRenderer {
-    requests: Mutex<mpsc::Sender<Request>>,
+    /// `None` once dropped: the thread's loop then ends.
+    requests: Mutex<Option<mpsc::Sender<Request>>>,
+    /// The drawing thread, joined when the renderer goes.
+    thread: Mutex<Option<std::thread::JoinHandle<()>>>,
     size: (u32, u32),
+}
+
+impl Drop for PyRenderer {
+    /// Ends the drawing thread and waits for it: its rendering context (Mesa's threads
+    /// with it) is gone before the renderer is. A thread still tearing down while the
+    /// interpreter exits raced the process's own teardown of Mesa's libraries (a double
+    /// free about once in 25 runs of a script whose renderer was collected at exit).
+    fn drop(&mut self) {
+        drop(self.requests.get_mut().unwrap_or_else(std::sync::PoisonError::into_inner).take());
+        if let Some(thread) = self.thread.get_mut().unwrap_or_else(std::sync::PoisonError::into_inner).take() {
+            // The thread needs no GIL to end (a simulation it still holds is released
+            // through PyO3's pending decrements).
+            let _ = thread.join();
+        }
+    }
 }
 
 #[pymethods]
@@ -347,13 +365,17 @@ impl PyRenderer {
         let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
         let (ready_tx, ready_rx) = mpsc::sync_channel(1);
         let (requests, requests_rx) = mpsc::channel();
-        std::thread::Builder::new()
+        let thread = std::thread::Builder::new()
             .name("ars-renderer".into())
             .spawn(move || serve(view, ready_tx, requests_rx))
             .map_err(|e| raise(py, "ArsError", format!("could not start the renderer's thread: {e}")))?;
         let ready = py.detach(move || ready_rx.recv());
         match ready {
-            Ok(Ok(())) => Ok(PyRenderer { requests: Mutex::new(requests), size: (width, height) }),
+            Ok(Ok(())) => Ok(PyRenderer {
+                requests: Mutex::new(Some(requests)),
+                thread: Mutex::new(Some(thread)),
+                size: (width, height),
+            }),
             Ok(Err(failure)) => Err(failure.into_py(py)),
             Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended before it was ready".into())),
         }
@@ -394,7 +416,10 @@ impl PyRenderer {
             ));
         }
         let (reply, answer) = mpsc::sync_channel(1);
-        let sent = self.requests.lock().unwrap_or_else(std::sync::PoisonError::into_inner).send(Request { sim, reply });
+        let sent = match &*self.requests.lock().unwrap_or_else(std::sync::PoisonError::into_inner) {
+            Some(requests) => requests.send(Request { sim, reply }).map_err(drop),
+            None => Err(()),
+        };
         if sent.is_err() {
             return Err(raise(py, "InternalError", "the renderer's thread has ended".into()));
         }
