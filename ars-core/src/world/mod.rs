@@ -128,8 +128,13 @@ pub struct World {
     pub(crate) diverged: Option<BodyHandle>,
     pub(crate) poison: Option<Poison>,
     /// A bound on every body's largest absolute coordinate (exact after each step,
-    /// raised by every position set in between).
+    /// raised by every position set in between), for the hash spaces' check: while
+    /// the world has no hash space, steps do not measure it and leave it infinite
+    /// (unknown), so that a hash space created later checks exactly until a step has
+    /// measured it.
     max_body_coordinate: f64,
+    /// Whether the world has a hash space (spaces are never removed).
+    has_hash_space: bool,
     /// Whether a force or torque was added through the API since the last step (ODE
     /// clears the accumulators after each step; nothing else fills them).
     pub(crate) forces_added: bool,
@@ -217,6 +222,7 @@ impl World {
             diverged: None,
             poison: None,
             max_body_coordinate: 0.0,
+            has_hash_space: false,
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
             forces_added: false,
             geom_reach: 0.0,
@@ -407,19 +413,28 @@ impl World {
     /// Position, orientation and velocities of every body: finite and within limits.
     #[inline(always)]
     fn check_after_step(&mut self) -> Result<()> {
-        let (mut fine, mut far) = (true, 0.0_f64);
-        for b in self.bodies.values() {
-            // SAFETY: every body in the arena is live, so are its state pointers.
-            fine &= unsafe { state_fine(&b.state) };
-            // The bound for the hash spaces' cheap check (NaN never counts: `fine` fails).
-            // SAFETY: as above.
-            for c in unsafe { &*b.state.position } {
-                if c.abs() > far {
-                    far = c.abs();
+        let mut fine = true;
+        if self.has_hash_space {
+            let mut far = 0.0_f64;
+            for b in self.bodies.values() {
+                // SAFETY: every body in the arena is live, so are its state pointers.
+                fine &= unsafe { state_fine(&b.state) };
+                // The bound for the hash spaces' cheap check (NaN never counts: `fine`
+                // fails). SAFETY: as above.
+                for c in unsafe { &*b.state.position } {
+                    if c.abs() > far {
+                        far = c.abs();
+                    }
                 }
             }
+            self.max_body_coordinate = far;
+        } else {
+            for b in self.bodies.values() {
+                // SAFETY: every body in the arena is live, so are its state pointers.
+                fine &= unsafe { state_fine(&b.state) };
+            }
+            self.max_body_coordinate = f64::INFINITY;
         }
-        self.max_body_coordinate = far;
         if fine {
             self.diverged = None;
             Ok(())
@@ -545,6 +560,7 @@ impl World {
             ffi::dSpaceSetCleanup(s, 0);
             s
         };
+        self.has_hash_space |= matches!(kind, SpaceKind::Hash { .. });
         Ok(SpaceHandle(self.spaces.insert(SpaceData { raw, kind })))
     }
 

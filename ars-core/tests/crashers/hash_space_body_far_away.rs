@@ -39,3 +39,26 @@ fn a_geom_beyond_the_hash_cells_is_an_err_and_the_world_goes_on() {
     world.insert_geom(simple, GeomBuilder::box_edges(Vector3::new(1.0, 1.0, 1.0)).pose(pose)).unwrap();
     world.collide(simple).unwrap();
 }
+
+/// Steps in a world without a hash space do not measure how far the bodies are (only
+/// hash spaces need it); a hash space made afterwards must still refuse a body beyond
+/// its cells on its first collision, not hand it to ODE.
+#[test]
+fn a_hash_space_made_after_steps_still_refuses_a_far_body() {
+    let mut world = World::new();
+    let simple = world.create_space(SpaceKind::Simple).unwrap();
+    let body = world
+        .insert_body(BodyBuilder::new().position(Point3::new(5e8, 0.0, 0.0)).mass(MassSpec::sphere_total(1.0, 0.5)))
+        .unwrap();
+    world.insert_geom(simple, GeomBuilder::sphere(0.5).attached_to(body)).unwrap();
+    for _ in 0..3 {
+        world.collide(simple).unwrap();
+        world.step(0.0004).unwrap();
+        world.clear_contacts();
+    }
+    let hash = world.create_space(SpaceKind::HASH).unwrap();
+    let geom = world.insert_geom(hash, GeomBuilder::sphere(0.5).attached_to(body)).unwrap();
+    let err = world.collide(hash).unwrap_err();
+    assert!(err.to_string().contains(&geom.to_string()), "the geom is named: {err}");
+    assert!(!world.is_poisoned());
+}
