@@ -278,7 +278,9 @@ pub(crate) fn drive_window<D: Driver>(
                     }
                 }
             }
-            if runner.wants_to_close() {
+            // Ctrl-C in the terminal closes the window too, once the program asked for
+            // it (`ars_core::interrupt::stop_on_ctrl_c`: the examples do).
+            if runner.wants_to_close() || ars_core::interrupt::requested() {
                 break;
             }
             if panel.speed != pacer.speed {
