@@ -31,15 +31,18 @@ class Universal(Joint):
 
 class _Actuated(Joint):
     def _act(self, pre, post, key, value, action):
-        send(pre, sender=self, **{key: value})
+        """``action(value)``, between the signals ``pre`` and ``post`` (sent with
+        ``key=value``) when someone hears either: a torque put every step with nobody
+        listening costs the native call alone."""
+        listened = heard(pre) or heard(post)
+        if listened:
+            send(pre, sender=self, **{key: value})
         try:
-            action()
+            action(value)
         except Exception as e:
-            raise self._failed(key, value, e) from e
-        send(post, sender=self, **{key: value})
-
-    def _failed(self, key, value, e):
-        return JointError(self, f"could not {key} {value!r}: {e}")
+            raise JointError(self, f"could not {key} {value!r}: {e}") from e
+        if listened:
+            send(post, sender=self, **{key: value})
 
 
 class Rotary(_Actuated):
@@ -57,25 +60,19 @@ class Rotary(_Actuated):
 
     def add_torque(self, torque):
         """Adds ``torque`` (N·m) about the axis for the next step."""
-        if not (heard(signals.JOINT_PRE_ADD_TORQUE) or heard(signals.JOINT_POST_ADD_TORQUE)):
-            # What a program does every step, with nobody listening: straight on.
-            try:
-                return self._native.add_torque(torque)
-            except Exception as e:
-                raise self._failed("torque", torque, e) from e
         self._act(
             signals.JOINT_PRE_ADD_TORQUE,
             signals.JOINT_POST_ADD_TORQUE,
             "torque",
             torque,
-            lambda: self._native.add_torque(torque),
+            self._native.add_torque,
         )
 
     def set_speed(self, speed, max_force=None):
         """Drives the joint at ``speed`` (rad/s), with at most ``max_force`` (N·m; left
         as it was when ``None``)."""
 
-        def drive():
+        def drive(speed):
             if max_force is not None:
                 self._native.set_param("max_force", max_force)
             self._native.set_param("velocity", speed)
@@ -98,15 +95,10 @@ class Slider(_Actuated):
 
     def add_force(self, force):
         """Adds ``force`` (N) along the axis for the next step."""
-        if not (heard(signals.JOINT_PRE_ADD_FORCE) or heard(signals.JOINT_POST_ADD_FORCE)):
-            try:
-                return self._native.add_force(force)
-            except Exception as e:
-                raise self._failed("force", force, e) from e
         self._act(
             signals.JOINT_PRE_ADD_FORCE,
             signals.JOINT_POST_ADD_FORCE,
             "force",
             force,
-            lambda: self._native.add_force(force),
+            self._native.add_force,
         )
