@@ -324,10 +324,9 @@ fn serve(view: ViewSettings, ready: mpsc::SyncSender<Result<(), Failure>>, reque
 /// as a numpy array of shape (height, width, 3), `uint8`; `save(sim, path)` writes a PNG.
 #[pyclass(name = "Renderer", module = "ars", frozen)]
 pub struct PyRenderer {
-    /// `None` once dropped: the thread's loop then ends.
-    requests: Mutex<Option<mpsc::Sender<Request>>>,
+    requests: Mutex<mpsc::Sender<Request>>,
     /// The drawing thread, joined when the renderer goes.
-    thread: Mutex<Option<std::thread::JoinHandle<()>>>,
+    thread: Option<std::thread::JoinHandle<()>>,
     size: (u32, u32),
 }
 
@@ -337,8 +336,10 @@ impl Drop for PyRenderer {
     /// interpreter exits raced the process's own teardown of Mesa's libraries (a double
     /// free about once in 25 runs of a script whose renderer was collected at exit).
     fn drop(&mut self) {
-        drop(self.requests.get_mut().unwrap_or_else(std::sync::PoisonError::into_inner).take());
-        if let Some(thread) = self.thread.get_mut().unwrap_or_else(std::sync::PoisonError::into_inner).take() {
+        // The thread's loop ends with its channel: replace the sender by one of a
+        // channel of its own.
+        *self.requests.get_mut().unwrap_or_else(std::sync::PoisonError::into_inner) = mpsc::channel().0;
+        if let Some(thread) = self.thread.take() {
             // The thread needs no GIL to end (a simulation it still holds is released
             // through PyO3's pending decrements).
             let _ = thread.join();
@@ -371,11 +372,9 @@ impl PyRenderer {
             .map_err(|e| raise(py, "ArsError", format!("could not start the renderer's thread: {e}")))?;
         let ready = py.detach(move || ready_rx.recv());
         match ready {
-            Ok(Ok(())) => Ok(PyRenderer {
-                requests: Mutex::new(Some(requests)),
-                thread: Mutex::new(Some(thread)),
-                size: (width, height),
-            }),
+            Ok(Ok(())) => {
+                Ok(PyRenderer { requests: Mutex::new(requests), thread: Some(thread), size: (width, height) })
+            }
             Ok(Err(failure)) => Err(failure.into_py(py)),
             Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended before it was ready".into())),
         }
@@ -416,10 +415,7 @@ impl PyRenderer {
             ));
         }
         let (reply, answer) = mpsc::sync_channel(1);
-        let sent = match &*self.requests.lock().unwrap_or_else(std::sync::PoisonError::into_inner) {
-            Some(requests) => requests.send(Request { sim, reply }).map_err(drop),
-            None => Err(()),
-        };
+        let sent = self.requests.lock().unwrap_or_else(std::sync::PoisonError::into_inner).send(Request { sim, reply });
         if sent.is_err() {
             return Err(raise(py, "InternalError", "the renderer's thread has ended".into()));
         }
