@@ -136,14 +136,8 @@ impl<T> Arena<T> {
             Some(Slot::Occupied { generation, .. }) if *generation == h.generation && h.world == self.world => {
                 Ok(h.index as usize)
             }
-            _ => Err(self.refusal(h, kind, shown)),
+            _ => Err(refusal(self.world, h, kind, shown)),
         }
-    }
-
-    /// Why `h` does not reach a value.
-    #[inline]
-    fn refusal(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Error {
-        refusal(self.world, h, kind, shown)
     }
 
     #[inline]
@@ -152,7 +146,7 @@ impl<T> Arena<T> {
             Some(Slot::Occupied { generation, value }) if *generation == h.generation && h.world == self.world => {
                 Ok(value)
             }
-            _ => Err(self.refusal(h, kind, shown)),
+            _ => Err(refusal(self.world, h, kind, shown)),
         }
     }
 

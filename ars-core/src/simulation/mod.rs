@@ -270,7 +270,7 @@ impl Simulation {
 
     /// `n` steps (no frame hooks).
     pub fn step_n(&mut self, n: u64) -> Result<()> {
-        (0..n).try_for_each(|_| self.step())
+        self.step_n_until(n, || false)
     }
 
     /// `n` steps, asking `stop` before each one: when it says yes, the steps end there
