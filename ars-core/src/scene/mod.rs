@@ -12,6 +12,7 @@ mod floor;
 mod joints;
 mod names;
 mod objects;
+mod surfaces;
 pub mod urdf;
 mod views;
 
@@ -30,6 +31,7 @@ use crate::world::{SpaceKind, World};
 use joints::JointData;
 use names::Names;
 use objects::ObjectData;
+use surfaces::PairSurfaces;
 
 /// The objects, joints and world of a simulation, and its clock: everything a sensor
 /// reads. Built by [`SimulationBuilder::build`](crate::SimulationBuilder::build).
@@ -45,6 +47,7 @@ pub struct Scene {
     driven_joints: Vec<JointId>,
     /// Robots loaded so far (each gets its own collision category).
     robots_loaded: u32,
+    pair_surfaces: PairSurfaces,
     pub(crate) time: f64,
     pub(crate) step_count: u64,
     pub(crate) frame_count: u64,
@@ -78,6 +81,7 @@ impl Scene {
             joint_names: Names::new("joint"),
             driven_joints: Vec::new(),
             robots_loaded: 0,
+            pair_surfaces: PairSurfaces::default(),
             time: 0.0,
             step_count: 0,
             frame_count: 0,

@@ -363,6 +363,7 @@ impl Scene {
     pub(crate) fn remove_object(&mut self, id: ObjectId) -> Result<()> {
         let data = self.objects.remove(id.0, ObjectId::KIND, &id)?;
         self.object_names.remove(&data.name);
+        self.pair_surfaces.forget(id);
         if data.body.is_none() {
             for g in data.extra_geoms {
                 self.world.remove_geom(g)?;

@@ -322,8 +322,8 @@ impl Simulation {
         self.run_added_hooks(HookPoint::PreStep)?;
         self.scene.apply_joint_drives()?;
         self.sensors.before_step(&self.scene)?;
+        self.scene.collide()?;
         let scene = &mut self.scene;
-        scene.world.collide(scene.space())?;
         let time_before = scene.world.time();
         let stepped = scene.world.step(scene.time_step());
         scene.world.clear_contacts();

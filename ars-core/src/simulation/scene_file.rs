@@ -1,7 +1,7 @@
 //! Saving a simulation's scene to a readable JSON file and loading it back.
 //!
 //! What is saved: the parameters (gravity, time step, steps per frame, ERP, CFM,
-//! stepper, contact surface, space), the clock, every object in creation order (name,
+//! stepper, contact surface and the surfaces of pairs of objects, space), the clock, every object in creation order (name,
 //! shape, colour, visuals, and for a body its mass, inertia, pose and velocities, to the
 //! last bit), every joint (name, type, its objects, the anchors and axes it was created
 //! with, its stops, speed motor, viscous and dry friction, actuator limits and the
@@ -52,6 +52,9 @@ pub struct SceneFile {
     pub stepper: Stepper,
     /// The contact surface of every pair.
     pub surface: ContactSurface,
+    /// The contact surfaces of pairs of objects (by name) that have their own.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pair_surfaces: Vec<PairSurfaceFile>,
     /// The broad-phase space.
     pub space: SpaceKind,
     /// Simulated time, s.
@@ -94,6 +97,17 @@ impl SensorFile {
         let joints = self.joints.iter().map(|n| Ok(sim.joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
         sim.add_sensor_of_kind(&self.kind, &objects, &joints, self.period).map(drop)
     }
+}
+
+/// The contact surface of a pair of objects, by name.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PairSurfaceFile {
+    /// One object.
+    pub a: String,
+    /// The other.
+    pub b: String,
+    /// Their surface.
+    pub surface: ContactSurface,
 }
 
 /// An object as saved.
@@ -289,6 +303,13 @@ impl Simulation {
             cfm: world.cfm(),
             stepper: world.stepper(),
             surface: world.default_surface(),
+            pair_surfaces: self
+                .contact_surfaces()
+                .into_iter()
+                .map(|(a, b, surface)| {
+                    Ok(PairSurfaceFile { a: self.object(a)?.name().into(), b: self.object(b)?.name().into(), surface })
+                })
+                .collect::<Result<_>>()?,
             space: self.space_kind(),
             time: self.time(),
             step_count: self.step_count(),
@@ -405,6 +426,10 @@ impl Simulation {
         }
         sim.scene.set_clock(file.time, file.step_count);
         // After the clock: periodic sensors count their periods from the saved time.
+        for pair in &file.pair_surfaces {
+            let (a, b) = (sim.object(pair.a.as_str())?.id(), sim.object(pair.b.as_str())?.id());
+            sim.set_contact_surface(a, b, pair.surface)?;
+        }
         for sensor in &file.sensors {
             sensor.add_to(&mut sim)?;
         }

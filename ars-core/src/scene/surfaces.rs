@@ -1,0 +1,127 @@
+//! Contact surfaces between two named objects: a wheel's grip on the floor, a gripper's
+//! pads, a ball that bounces off one wall only. Every other pair touches with the
+//! world's default surface ([`World::set_default_surface`](crate::World::set_default_surface)).
+
+use std::collections::HashMap;
+
+use super::Scene;
+use crate::contact::{CollisionHooks, ContactSurface, GeomPair};
+use crate::error::Result;
+use crate::handle::{GeomHandle, ObjectId};
+
+/// The surfaces chosen for pairs of objects, and which object each of their geoms
+/// belongs to (only the geoms of those objects: the lookup during collision).
+#[derive(Debug, Default)]
+pub(crate) struct PairSurfaces {
+    /// Both orders of each pair.
+    by_pair: HashMap<(ObjectId, ObjectId), ContactSurface>,
+    owner: HashMap<GeomHandle, ObjectId>,
+}
+
+impl PairSurfaces {
+    pub(crate) fn is_empty(&self) -> bool {
+        self.by_pair.is_empty()
+    }
+
+    /// Forgets every pair with `object` (it is being removed).
+    pub(crate) fn forget(&mut self, object: ObjectId) {
+        self.by_pair.retain(|(a, b), _| *a != object && *b != object);
+        self.owner.retain(|_, o| *o != object);
+    }
+}
+
+impl CollisionHooks for PairSurfaces {
+    fn contact_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
+        let owners = (self.owner.get(&pair.geom1), self.owner.get(&pair.geom2));
+        let surface = match owners {
+            (Some(a), Some(b)) => self.by_pair.get(&(*a, *b)),
+            _ => None,
+        };
+        Some(*surface.unwrap_or(default))
+    }
+}
+
+impl Scene {
+    /// Gives the contacts between objects `a` and `b` their own surface (friction,
+    /// bounce, softness, most contact points), in place of the world's default surface.
+    /// Setting it again replaces it; [`clear_contact_surface`](Self::clear_contact_surface)
+    /// goes back to the default. A pair that includes a removed object is forgotten.
+    ///
+    /// ```
+    /// use ars_core::{ContactSurface, Mass, Simulation};
+    ///
+    /// let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
+    /// let floor = sim.object("floor")?.id();
+    /// let puck = sim.add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
+    /// sim.set_contact_surface(floor, puck, ContactSurface { mu: 0.0, bounce: None, ..Default::default() })?;
+    /// sim.body_mut(puck)?.set_linear_velocity([1.0, 0.0, 0.0].into())?;
+    /// sim.run_for(1.0)?;
+    /// assert!(sim.position(puck)?.x > 0.99, "no friction: it slides on");
+    /// # Ok::<(), ars_core::Error>(())
+    /// ```
+    pub fn set_contact_surface(&mut self, a: ObjectId, b: ObjectId, surface: ContactSurface) -> Result<()> {
+        surface.validate()?;
+        let geoms = |scene: &Scene, id: ObjectId| -> Result<Vec<GeomHandle>> {
+            let data = scene.objects.get(id.0, ObjectId::KIND, &id)?;
+            Ok(data.geom.iter().chain(&data.extra_geoms).copied().collect())
+        };
+        let (geoms_a, geoms_b) = (geoms(self, a)?, geoms(self, b)?);
+        for g in geoms_a {
+            self.pair_surfaces.owner.insert(g, a);
+        }
+        for g in geoms_b {
+            self.pair_surfaces.owner.insert(g, b);
+        }
+        self.pair_surfaces.by_pair.insert((a, b), surface);
+        self.pair_surfaces.by_pair.insert((b, a), surface);
+        Ok(())
+    }
+
+    /// The surface of the contacts between `a` and `b`: their own, or the world's
+    /// default.
+    pub fn contact_surface(&self, a: ObjectId, b: ObjectId) -> Result<ContactSurface> {
+        self.object(a)?;
+        self.object(b)?;
+        Ok(self.pair_surfaces.by_pair.get(&(a, b)).copied().unwrap_or_else(|| self.world.default_surface()))
+    }
+
+    /// Gives the contacts between `a` and `b` the world's default surface again.
+    pub fn clear_contact_surface(&mut self, a: ObjectId, b: ObjectId) -> Result<()> {
+        self.object(a)?;
+        self.object(b)?;
+        self.pair_surfaces.by_pair.remove(&(a, b));
+        self.pair_surfaces.by_pair.remove(&(b, a));
+        for object in [a, b] {
+            if !self.pair_surfaces.by_pair.keys().any(|(x, _)| *x == object) {
+                self.pair_surfaces.owner.retain(|_, o| *o != object);
+            }
+        }
+        Ok(())
+    }
+
+    /// Every pair of objects with a surface of its own, once each, by the objects' names
+    /// in alphabetical order.
+    pub fn contact_surfaces(&self) -> Vec<(ObjectId, ObjectId, ContactSurface)> {
+        let name = |id: &ObjectId| self.object(*id).map(|o| o.name()).unwrap_or_default();
+        let mut pairs: Vec<_> = self
+            .pair_surfaces
+            .by_pair
+            .iter()
+            .filter(|((a, b), _)| name(a) <= name(b))
+            .map(|(&(a, b), s)| (a, b, *s))
+            .collect();
+        pairs.sort_by(|x, y| (name(&x.0), name(&x.1)).cmp(&(name(&y.0), name(&y.1))));
+        pairs
+    }
+
+    /// Collides the scene's space: the pairs with a surface of their own get it, every
+    /// other pair the world's default.
+    pub(crate) fn collide(&mut self) -> Result<()> {
+        let space = self.space;
+        if self.pair_surfaces.is_empty() {
+            self.world.collide(space)
+        } else {
+            self.world.collide_with(space, &mut self.pair_surfaces)
+        }
+    }
+}
