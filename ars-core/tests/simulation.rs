@@ -682,3 +682,24 @@ fn sensors_sampled_at_the_end_of_the_step_sample_again_after_others_come_and_go(
     let log = sim.records(gps).unwrap();
     assert_eq!((log.len(), log.last().unwrap().step), (1, 3));
 }
+
+#[test]
+fn sensors_are_removed_and_cleared_whatever_their_type() -> Result<()> {
+    let mut sim = with_floor();
+    let ball = sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
+    let gps = sim.add_sensor_of_kind("Gps", &[ball], &[], None)?;
+    let energy = sim.add_sensor_of_kind("KineticEnergy", &[ball], &[], None)?;
+    sim.step_n(3)?;
+    sim.clear_any_records(gps)?;
+    assert_eq!(sim.sensor_table(gps)?.1.len(), 0);
+    assert_eq!(sim.sensor_table(energy)?.1.len(), 3, "the other sensor keeps its records");
+    sim.remove_any_sensor(energy)?;
+    assert!(sim.sensor_table(energy).is_err(), "a removed sensor is gone");
+    assert!(sim.remove_any_sensor(energy).is_err(), "and cannot be removed twice");
+    assert!(!sim.is_any_sensor_detached(gps)?);
+    sim.remove_object(ball)?;
+    assert!(sim.is_any_sensor_detached(gps)?);
+    sim.step()?;
+    assert_eq!(sim.sensor_table(gps)?.1.len(), 0, "a detached sensor samples no more");
+    Ok(())
+}

@@ -377,6 +377,10 @@ trait ErasedSlot: Send {
     fn acts_after_step(&self) -> bool;
     fn forget_object(&mut self, id: ObjectId);
     fn forget_joint(&mut self, id: JointId);
+    /// Whether it samples at the end of the step (detached or not).
+    fn at_end_of_step(&self) -> bool;
+    fn is_detached(&self) -> bool;
+    fn clear_log(&mut self);
     fn as_any(&self) -> &dyn Any;
     fn as_any_mut(&mut self) -> &mut dyn Any;
     fn into_any(self: Box<Self>) -> Box<dyn Any>;
@@ -449,6 +453,15 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
         if self.sensor.joints().contains(&id) {
             self.detached = true;
         }
+    }
+    fn at_end_of_step(&self) -> bool {
+        matches!(self.at, SampleAt::EndOfStep)
+    }
+    fn is_detached(&self) -> bool {
+        self.detached
+    }
+    fn clear_log(&mut self) {
+        self.log.samples.clear();
     }
     fn as_any(&self) -> &dyn Any {
         self
@@ -532,6 +545,27 @@ impl SensorSet {
     /// One sensor's log, whatever its type, with the type's name.
     pub(crate) fn table(&self, id: AnySensorId) -> Result<(String, &dyn CsvColumns)> {
         Ok(self.slots.get(id.handle, "sensor", &format!("{id:?}"))?.table())
+    }
+
+    /// Removes a sensor whatever its type (its records go with it).
+    pub(crate) fn remove_any(&mut self, id: AnySensorId) -> Result<()> {
+        let slot = self.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
+        if slot.at_end_of_step() {
+            self.end_of_step -= 1;
+        }
+        Ok(())
+    }
+
+    /// Forgets a sensor's records, whatever its type.
+    pub(crate) fn clear_any(&mut self, id: AnySensorId) -> Result<()> {
+        self.slots.get_mut(id.handle, "sensor", &format!("{id:?}"))?.clear_log();
+        Ok(())
+    }
+
+    /// Whether a sensor, whatever its type, stopped sampling (see
+    /// [`Simulation::is_sensor_detached`](crate::Simulation::is_sensor_detached)).
+    pub(crate) fn is_detached_any(&self, id: AnySensorId) -> Result<bool> {
+        Ok(self.slots.get(id.handle, "sensor", &format!("{id:?}"))?.is_detached())
     }
 
     pub(crate) fn tables(&self) -> Vec<(String, &dyn CsvColumns)> {

@@ -102,4 +102,21 @@ impl Simulation {
     pub fn sensor_table(&self, id: impl Into<AnySensorId>) -> Result<(String, &dyn CsvColumns)> {
         self.sensors.table(id.into())
     }
+
+    /// Removes a sensor, whatever its type, with its records (a typed id's records
+    /// come back from [`remove_sensor`](Self::remove_sensor)).
+    pub fn remove_any_sensor(&mut self, id: impl Into<AnySensorId>) -> Result<()> {
+        self.sensors.remove_any(id.into())
+    }
+
+    /// Forgets a sensor's records so far, whatever its type.
+    pub fn clear_any_records(&mut self, id: impl Into<AnySensorId>) -> Result<()> {
+        self.sensors.clear_any(id.into())
+    }
+
+    /// Whether a sensor, whatever its type, stopped sampling because an object or
+    /// joint it reads was removed.
+    pub fn is_any_sensor_detached(&self, id: impl Into<AnySensorId>) -> Result<bool> {
+        self.sensors.is_detached_any(id.into())
+    }
 }
