@@ -9,6 +9,7 @@
 #![allow(clippy::too_many_arguments)]
 
 mod errors;
+mod kinds;
 mod sensors;
 mod simulation;
 mod viewer;

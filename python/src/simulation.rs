@@ -246,7 +246,8 @@ impl PySimulation {
     /// A simulation with the ARS defaults (Y up, g = 9.81 m/s², time step 0.4 ms, ERP
     /// 0.2, CFM 1e-10), any of which can be given.
     #[new]
-    #[pyo3(signature = (*, time_step=None, gravity=None, erp=None, cfm=None, steps_per_frame=None))]
+    #[pyo3(signature = (*, time_step=None, gravity=None, erp=None, cfm=None, steps_per_frame=None, space=None,
+                        stepper=None, quick_iterations=None, seed=None))]
     fn new(
         py: Python<'_>,
         time_step: Option<f64>,
@@ -254,9 +255,21 @@ impl PySimulation {
         erp: Option<f64>,
         cfm: Option<f64>,
         steps_per_frame: Option<u32>,
+        space: Option<&str>,
+        stepper: Option<&str>,
+        quick_iterations: Option<u32>,
+        seed: Option<u32>,
     ) -> PyResult<Self> {
+        let space = space.map(crate::kinds::space).transpose().map_err(|e| raise(py, "InputError", e))?;
+        let stepper = crate::kinds::stepper(stepper, quick_iterations).map_err(|e| raise(py, "InputError", e))?;
         let sim = guarded(py, || {
-            let mut b = Simulation::builder();
+            let mut b = Simulation::builder().stepper(stepper);
+            if let Some(space) = space {
+                b = b.space(space);
+            }
+            if let Some(seed) = seed {
+                b = b.seed(seed);
+            }
             if let Some(dt) = time_step {
                 b = b.time_step(dt);
             }
@@ -320,6 +333,75 @@ impl PySimulation {
             let g = sim.world().gravity();
             Ok((g.x, g.y, g.z))
         })
+    }
+
+    /// Sets gravity, m/s².
+    #[setter]
+    fn set_gravity(&self, py: Python<'_>, gravity: Vec3) -> PyResult<()> {
+        self.with(py, move |sim| sim.world_mut().set_gravity(Vector3::from(gravity)))
+    }
+
+    /// Changes the time step for the next steps, s.
+    #[setter]
+    fn set_time_step(&self, py: Python<'_>, dt: f64) -> PyResult<()> {
+        self.with(py, move |sim| sim.set_time_step(dt))
+    }
+
+    /// Steps per frame (of `show`, of the original's programs and of hooks per frame).
+    #[getter]
+    fn steps_per_frame(&self, py: Python<'_>) -> PyResult<u32> {
+        self.with(py, |sim| Ok(sim.steps_per_frame()))
+    }
+
+    /// Frames started so far.
+    #[getter]
+    fn frame_count(&self, py: Python<'_>) -> PyResult<u64> {
+        self.with(py, |sim| Ok(sim.frame_count()))
+    }
+
+    /// The global error reduction parameter (ERP), in [0, 1].
+    #[getter]
+    fn erp(&self, py: Python<'_>) -> PyResult<f64> {
+        self.with(py, |sim| Ok(sim.world().erp()))
+    }
+
+    #[setter]
+    fn set_erp(&self, py: Python<'_>, erp: f64) -> PyResult<()> {
+        self.with(py, move |sim| sim.world_mut().set_erp(erp))
+    }
+
+    /// The global constraint force mixing (CFM), ≥ 0.
+    #[getter]
+    fn cfm(&self, py: Python<'_>) -> PyResult<f64> {
+        self.with(py, |sim| Ok(sim.world().cfm()))
+    }
+
+    #[setter]
+    fn set_cfm(&self, py: Python<'_>, cfm: f64) -> PyResult<()> {
+        self.with(py, move |sim| sim.world_mut().set_cfm(cfm))
+    }
+
+    /// The broad phase that finds the pairs of geoms that may touch: `"simple"` (every
+    /// pair, as the original ARS) or `"hash"` (a hash grid: cost linear in the number of
+    /// bodies). Chosen when the simulation is made (`Simulation(space=...)`).
+    #[getter]
+    fn space(&self, py: Python<'_>) -> PyResult<String> {
+        self.with(py, |sim| Ok(crate::kinds::space_name(sim.space_kind())))
+    }
+
+    /// The stepper: `"exact"` (`dWorldStep`, the ARS default) or `"quick"`
+    /// (`dWorldQuickStep`, iterative, faster on large scenes, approximate).
+    #[getter]
+    fn stepper(&self, py: Python<'_>) -> PyResult<String> {
+        self.with(py, |sim| Ok(crate::kinds::stepper_name(sim.world().stepper())))
+    }
+
+    /// Chooses the stepper for the next steps: `"exact"` or `"quick"` with
+    /// `quick_iterations` iterations per step (default 20).
+    #[pyo3(signature = (stepper, quick_iterations=None))]
+    fn set_stepper(&self, py: Python<'_>, stepper: &str, quick_iterations: Option<u32>) -> PyResult<()> {
+        let stepper = crate::kinds::stepper(Some(stepper), quick_iterations).map_err(|e| raise(py, "InputError", e))?;
+        self.with(py, move |sim| sim.world_mut().set_stepper(stepper))
     }
 
     /// Seeds the world's own random generator (used by ODE's QuickStep; each world
@@ -625,6 +707,196 @@ impl PySimulation {
         Ok(dict)
     }
 
+    /// A piston: slides along and turns about the world `axis` through `anchor`.
+    #[pyo3(signature = (name, obj1, obj2, anchor, axis))]
+    fn add_piston_joint(
+        &self,
+        py: Python<'_>,
+        name: &str,
+        obj1: &str,
+        obj2: Option<&str>,
+        anchor: Vec3,
+        axis: Vec3,
+    ) -> PyResult<String> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let id = sim.add_piston_joint(name, a, b, Point3::from(anchor), Vector3::from(axis))?;
+            Ok(sim.joint(id)?.name().to_string())
+        })
+    }
+
+    /// Removes the object `name` with its body and geoms; the joints attached to it go
+    /// too, and the sensors reading it stop sampling (`Sensor.detached`). Its name can
+    /// be used again.
+    fn remove_object(&self, py: Python<'_>, name: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let id = Self::object_id(sim, name)?;
+            sim.remove_object(id)
+        })
+    }
+
+    /// Removes the joint `name`; the sensors reading it stop sampling.
+    fn remove_joint(&self, py: Python<'_>, name: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let id = sim.joint(name)?.id();
+            sim.remove_joint(id)
+        })
+    }
+
+    /// Sets the contact surface: of every pair of objects (`between=None`, the world's
+    /// default), or of the contacts between the two objects `between=("a", "b")` only.
+    /// The fields not given take the ARS defaults (not their current values):
+    /// `mu=500` (N per contact point and direction, ODE's box friction; with
+    /// `approx1=True` a Coulomb coefficient; `math.inf`: never slips), `mu2` (another
+    /// limit for the second direction), `bounce=0.2` above `bounce_velocity=0` m/s,
+    /// `soft_erp`/`soft_cfm` (soft contacts; else the world's), `max_contacts=150`
+    /// points per pair.
+    #[pyo3(signature = (between=None, *, mu=500.0, mu2=None, bounce=0.2, bounce_velocity=0.0, soft_erp=None,
+                        soft_cfm=None, approx1=false, max_contacts=ars_core::MAX_CONTACTS_LIMIT))]
+    fn set_contact_surface(
+        &self,
+        py: Python<'_>,
+        between: Option<(String, String)>,
+        mu: f64,
+        mu2: Option<f64>,
+        bounce: f64,
+        bounce_velocity: f64,
+        soft_erp: Option<f64>,
+        soft_cfm: Option<f64>,
+        approx1: bool,
+        max_contacts: usize,
+    ) -> PyResult<()> {
+        let surface = ars_core::ContactSurface {
+            mu,
+            mu2,
+            bounce: Some((bounce, bounce_velocity)),
+            soft_erp,
+            soft_cfm,
+            approx1,
+            max_contacts,
+        };
+        self.with(py, move |sim| match between {
+            None => sim.world_mut().set_default_surface(surface),
+            Some((a, b)) => {
+                let (a, b) = (Self::object_id(sim, &a)?, Self::object_id(sim, &b)?);
+                sim.set_contact_surface(a, b, surface)
+            }
+        })
+    }
+
+    /// The contact surface of every pair (`between=None`) or of the pair `between`, as
+    /// a dict of the keywords of `set_contact_surface`.
+    #[pyo3(signature = (between=None))]
+    fn contact_surface<'py>(
+        &self,
+        py: Python<'py>,
+        between: Option<(String, String)>,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let s = self.with(py, move |sim| match between {
+            None => Ok(sim.world().default_surface()),
+            Some((a, b)) => {
+                let (a, b) = (Self::object_id(sim, &a)?, Self::object_id(sim, &b)?);
+                sim.contact_surface(a, b)
+            }
+        })?;
+        let dict = pyo3::types::PyDict::new(py);
+        let (bounce, bounce_velocity) = s.bounce.unwrap_or((0.0, 0.0));
+        dict.set_item("mu", s.mu)?;
+        dict.set_item("mu2", s.mu2)?;
+        dict.set_item("bounce", bounce)?;
+        dict.set_item("bounce_velocity", bounce_velocity)?;
+        dict.set_item("soft_erp", s.soft_erp)?;
+        dict.set_item("soft_cfm", s.soft_cfm)?;
+        dict.set_item("approx1", s.approx1)?;
+        dict.set_item("max_contacts", s.max_contacts)?;
+        Ok(dict)
+    }
+
+    /// Gives the contacts between objects `a` and `b` the default surface again.
+    fn clear_contact_surface(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
+            sim.clear_contact_surface(a, b)
+        })
+    }
+
+    /// Runs one frame: `steps_per_frame` steps, with the hooks per frame.
+    fn step_frame(&self, py: Python<'_>) -> PyResult<()> {
+        self.advance(py, |sim| sim.step_frame())
+    }
+
+    /// Writes the scene (see `save_scene`) to the file `path`.
+    fn save_scene_to(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+        self.with(py, move |sim| sim.save_scene_to(&path))
+    }
+
+    /// A simulation from a file written by `save_scene_to`.
+    #[staticmethod]
+    fn load_scene_from(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let sim = guarded(py, || Simulation::load_scene_from(&path))?;
+        Ok(PySimulation::wrap(sim))
+    }
+
+    /// A lidar: `beams` beams per plane fanned over `fov` radians, seeing from
+    /// `min_range` to `max_range` m, in its own X–Z plane (horizontal when upright in
+    /// the Y-up world, azimuth from +X towards −Z) and the planes tilted by
+    /// `planes` (elevations, rad). Mounted on the object `on` at `position` with
+    /// `rotation` (3×3) relative to it (it does not see that object), or in the world.
+    /// Scans after every step or every `every` seconds; `noise` adds seeded Gaussian
+    /// noise of that standard deviation (m) to the ranges. `Sensor.ranges()` gives the
+    /// scans as an array.
+    #[pyo3(signature = (beams, fov, max_range, *, min_range=0.0, planes=None, on=None, position=[0.0; 3],
+                        rotation=None, every=None, noise=None, seed=0))]
+    fn add_lidar(
+        slf: Bound<'_, Self>,
+        beams: u32,
+        fov: f64,
+        max_range: f64,
+        min_range: f64,
+        planes: Option<Vec<f64>>,
+        on: Option<String>,
+        position: Vec3,
+        rotation: Option<[[f64; 3]; 3]>,
+        every: Option<f64>,
+        noise: Option<f64>,
+        seed: u64,
+    ) -> PyResult<crate::sensors::PySensor> {
+        let offset = crate::views::pose(position, rotation).map_err(|e| raise(slf.py(), "InputError", e))?;
+        let spec =
+            crate::sensors::LidarSpec { beams, fov, max_range, min_range, planes, on, offset, every, noise, seed };
+        let id = slf.get().with(slf.py(), move |sim| spec.add_to(sim))?;
+        Ok(crate::sensors::PySensor::new(slf.unbind(), "lidar".into(), id))
+    }
+
+    /// A depth camera: `width` × `height` pixels over the vertical field of view `fov_y`
+    /// (rad), depths from `near` to `far` m along its optical axis (its −Z, +Y up in the
+    /// image). Mounted as `add_lidar`'s lidar. `Sensor.images()` gives the images as an
+    /// array.
+    #[pyo3(signature = (width, height, fov_y, near, far, *, on=None, position=[0.0; 3], rotation=None, every=None))]
+    fn add_depth_camera(
+        slf: Bound<'_, Self>,
+        width: u32,
+        height: u32,
+        fov_y: f64,
+        near: f64,
+        far: f64,
+        on: Option<String>,
+        position: Vec3,
+        rotation: Option<[[f64; 3]; 3]>,
+        every: Option<f64>,
+    ) -> PyResult<crate::sensors::PySensor> {
+        let offset = crate::views::pose(position, rotation).map_err(|e| raise(slf.py(), "InputError", e))?;
+        let id = slf.get().with(slf.py(), move |sim| {
+            let camera = ars_core::sensors::DepthCamera::new(width, height, fov_y, near, far)?;
+            let camera = match on {
+                Some(name) => camera.on(sim.object(name.as_str())?.id(), offset),
+                None => camera.at(offset),
+            };
+            crate::sensors::Typed::add(sim, camera, every, crate::sensors::Typed::Depth)
+        })?;
+        Ok(crate::sensors::PySensor::new(slf.unbind(), "depth_camera".into(), id))
+    }
+
     /// The names of the objects, in alphabetical order.
     #[getter]
     fn objects(&self, py: Python<'_>) -> PyResult<Vec<String>> {
@@ -669,7 +941,7 @@ impl PySimulation {
         };
         let kind_owned = kind.to_string();
         let log = slf.get().with(slf.py(), move |sim| crate::sensors::declare(sim, &kind_owned, &targets, every))?;
-        Ok(crate::sensors::PySensor::new(slf.unbind(), kind.to_string(), log))
+        Ok(crate::sensors::PySensor::new(slf.unbind(), kind.to_string(), crate::sensors::Typed::Table(log)))
     }
 
     /// Calls `function()` before every step (after the earlier hooks); returns an id

@@ -1,7 +1,7 @@
 //! Named access: `sim.body("arm")` and `sim.joint("r1")`. Every attribute is read when
 //! asked and returned as a copy (numpy arrays the caller owns), never a live view.
 
-use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use ars_core::{ObjectId, Simulation};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -38,6 +38,29 @@ impl Body {
             f(sim, id)
         })
     }
+}
+
+/// A rotation from a 3×3 matrix given in Python: refused unless it is one
+/// (orthonormal within 1e-6, determinant +1), so that ODE never gets a shear.
+pub(crate) fn rotation(m: [[f64; 3]; 3]) -> Result<Rotation3<f64>, String> {
+    let m = Matrix3::from_fn(|i, j| m[i][j]);
+    if m.iter().any(|v| !v.is_finite()) {
+        return Err(format!("a rotation must be finite, got {m}"));
+    }
+    let error = (m.transpose() * m - Matrix3::identity()).abs().max();
+    if error > 1e-6 || m.determinant() < 0.0 {
+        return Err(format!(
+            "a rotation must be a rotation matrix (orthonormal, determinant +1); this one is off by {error:e}, determinant {}",
+            m.determinant()
+        ));
+    }
+    Ok(Rotation3::from_matrix(&m))
+}
+
+/// A pose from a position and an optional 3×3 rotation (identity when `None`).
+pub(crate) fn pose(position: Vec3, rot: Option<[[f64; 3]; 3]>) -> Result<Isometry3<f64>, String> {
+    let r = rot.map(rotation).transpose()?.unwrap_or_else(Rotation3::identity);
+    Ok(Isometry3::from_parts(Translation3::from(Vector3::from(position)), UnitQuaternion::from_rotation_matrix(&r)))
 }
 
 fn array3<'py>(py: Python<'py>, v: &Vector3<f64>) -> Bound<'py, PyArray1<f64>> {
@@ -114,6 +137,30 @@ impl Body {
     /// Adds a force (N, world frame) at its centre of mass for the next step.
     fn add_force(&self, py: Python<'_>, force: Vec3) -> PyResult<()> {
         self.read(py, |sim, id| sim.body_mut(id)?.add_force(Vector3::from(force)))
+    }
+
+    /// Sets its orientation to `rotation` (a 3×3 rotation matrix, world frame), about
+    /// its centre; refused (`ars.InputError`) if it is not a rotation.
+    fn set_rotation(&self, py: Python<'_>, rotation: [[f64; 3]; 3]) -> PyResult<()> {
+        let r = self::rotation(rotation).map_err(|e| crate::errors::raise(py, "InputError", e))?;
+        self.read(py, move |sim, id| sim.set_rotation(id, r))
+    }
+
+    /// Moves and turns it at once: its centre to `position`, its orientation to
+    /// `rotation` (3×3, identity if not given); velocities are kept.
+    #[pyo3(signature = (position, rotation=None))]
+    fn set_pose(&self, py: Python<'_>, position: Vec3, rotation: Option<[[f64; 3]; 3]>) -> PyResult<()> {
+        let p = pose(position, rotation).map_err(|e| crate::errors::raise(py, "InputError", e))?;
+        self.read(py, move |sim, id| sim.set_pose(id, p))
+    }
+
+    /// Moves it by the position of the object `other` (the original's
+    /// `offset_by_object`).
+    fn offset_by_object(&self, py: Python<'_>, other: &str) -> PyResult<()> {
+        self.read(py, move |sim, id| {
+            let other = sim.object(other)?.id();
+            sim.offset_by_object(id, other)
+        })
     }
 
     /// Turns it by `angle` (rad) about the world `axis`, about its centre.
@@ -269,6 +316,52 @@ impl Joint {
                 }),
             }
         })
+    }
+
+    /// Its kind: `"hinge"`, `"slider"`, `"universal"`, `"ball"`, `"piston"` or
+    /// `"fixed"`.
+    #[getter]
+    fn kind(&self, py: Python<'_>) -> PyResult<String> {
+        self.act(py, |sim, id| Ok(format!("{:?}", sim.joint(id)?.joint_type()).to_lowercase()))
+    }
+
+    /// Dry (Coulomb) friction: the joint resists motion with up to `max_effort` (N·m
+    /// or N; 0: off).
+    fn set_dry_friction(&self, py: Python<'_>, max_effort: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_dry_friction(max_effort))
+    }
+
+    /// Limits of its actuator: the largest `effort` (N·m or N) and `velocity` (rad/s
+    /// or m/s) its motor and controller may use (`math.inf`: none).
+    #[pyo3(signature = (effort=f64::INFINITY, velocity=f64::INFINITY))]
+    fn set_actuator_limits(&self, py: Python<'_>, effort: f64, velocity: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_actuator_limits(ars_core::ActuatorLimits { effort, velocity }))
+    }
+
+    /// Makes it follow the joint `leader`: its position is held at `multiplier ·
+    /// leader + offset` (URDF's `<mimic>`).
+    #[pyo3(signature = (leader, multiplier=1.0, offset=0.0))]
+    fn set_mimic(&self, py: Python<'_>, leader: &str, multiplier: f64, offset: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_mimic(leader, multiplier, offset))
+    }
+
+    /// Stops following a leader (see `set_mimic`).
+    fn clear_mimic(&self, py: Python<'_>) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.clear_mimic())
+    }
+
+    /// The torques (N·m) or forces (N) put on it this step so far, by where they
+    /// came from: a dict with `"added"` (`add_torque`/`add_force`), `"controller"`,
+    /// `"friction"` (viscous) and `"total"`.
+    #[getter]
+    fn efforts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let e = self.act(py, |sim, id| sim.joint_efforts(id))?;
+        let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("added", e.added)?;
+        dict.set_item("controller", e.controller)?;
+        dict.set_item("friction", e.friction)?;
+        dict.set_item("total", e.total())?;
+        Ok(dict)
     }
 
     /// Stops (limits) of its first degree of freedom (±inf: none).

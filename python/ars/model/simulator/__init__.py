@@ -237,8 +237,13 @@ class Simulation:
     def add_basic_simulation_objects(self, gravity=G_VECTOR):
         """Creates the world (``gravity``, ERP 0.2, CFM 1e-10) and the collision space;
         before any ``add_*``."""
+        # The original's simple space (every pair tested), in the original's order, so
+        # that its programs print the same numbers as on PyODE.
         self._native = _native.Simulation(
-            time_step=self.time_step, gravity=tuple(gravity), steps_per_frame=self._STEPS_PF
+            time_step=self.time_step,
+            gravity=tuple(gravity),
+            steps_per_frame=self._STEPS_PF,
+            space="simple",
         )
         self._space = Space(self)
         me = weakref.ref(self)  # the native hooks must not keep this object alive

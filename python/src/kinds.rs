@@ -1,0 +1,41 @@
+//! The names Python gives ARS's choices (spaces, steppers), in one place: parsed from
+//! keyword arguments and given back by the properties.
+
+use ars_core::world::{SpaceKind, Stepper};
+
+/// The space called `name`.
+pub(crate) fn space(name: &str) -> Result<SpaceKind, String> {
+    match name {
+        "simple" => Ok(SpaceKind::Simple),
+        "hash" => Ok(SpaceKind::HASH),
+        other => Err(format!("there is no space {other:?}; the spaces are \"simple\" and \"hash\"")),
+    }
+}
+
+/// The name of a space kind.
+pub(crate) fn space_name(kind: SpaceKind) -> String {
+    match kind {
+        SpaceKind::Simple => "simple".into(),
+        SpaceKind::Hash { .. } => "hash".into(),
+        other => format!("{other:?}"),
+    }
+}
+
+/// The stepper called `name` (`None`: the exact one), with `iterations` for the quick one.
+pub(crate) fn stepper(name: Option<&str>, iterations: Option<u32>) -> Result<Stepper, String> {
+    match (name.unwrap_or("exact"), iterations) {
+        ("exact", None) => Ok(Stepper::Exact),
+        ("exact", Some(_)) => Err("quick_iterations is for the \"quick\" stepper only".into()),
+        ("quick", n) => Ok(Stepper::Quick { iterations: n.unwrap_or(20) }),
+        (other, _) => Err(format!("there is no stepper {other:?}; the steppers are \"exact\" and \"quick\"")),
+    }
+}
+
+/// The name of a stepper.
+pub(crate) fn stepper_name(stepper: Stepper) -> String {
+    match stepper {
+        Stepper::Exact => "exact".into(),
+        Stepper::Quick { .. } => "quick".into(),
+        other => format!("{other:?}"),
+    }
+}
