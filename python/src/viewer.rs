@@ -216,7 +216,8 @@ pub(crate) fn show(
         Err(panic) => return Err(raise(py, "InternalError", format!("ARS panicked: {}", panic_message(&panic)))),
     };
     let dict = PyDict::new(py);
-    dict.set_item("frames", report.frames)?;
+    // "frames_drawn": `show(frames=N)` counts simulation frames, this counts images.
+    dict.set_item("frames_drawn", report.frames)?;
     dict.set_item("wall_seconds", report.wall_seconds)?;
     dict.set_item("simulated_seconds", report.simulated_seconds)?;
     dict.set_item("frames_per_second", report.frames_per_second())?;

@@ -43,7 +43,7 @@ shown = []
 for module, name in json.loads(sys.argv[1]):
     program = getattr(importlib.import_module("demos." + module), name)()
     report = program.show(frames=int(sys.argv[2]))
-    shown.append([module, report["frames"], program.sim.sim_time, program.FPS, report["wall_seconds"]])
+    shown.append([module, report["frames_drawn"], program.sim.sim_time, program.FPS, report["wall_seconds"]])
 print(json.dumps(shown))
 """
 

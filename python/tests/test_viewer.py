@@ -351,6 +351,6 @@ def test_a_simulation_window_runs_in_real_time_and_a_hooks_exception_comes_out(d
     # The simulation goes on (the step whose hook raised was not taken), in another
     # window, and another simulation in a third: window after window in one
     # interpreter, which then exits cleanly (the return code above).
-    assert result["second"]["frames"] >= 2 and result["third"]["frames"] >= 2, result
+    assert result["second"]["frames_drawn"] >= 2 and result["third"]["frames_drawn"] >= 2, result
     # 10 frames of 50 steps each (the default 20 ms frame of 0.4 ms steps).
     assert result["steps"] == 5000 + 10 + 10 * 50, result
