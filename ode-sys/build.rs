@@ -31,6 +31,9 @@ fn main() {
         Err(err) => fail(&format!("could not read ODE's precision from pkg-config ({err})")),
     }
 
+    // The version built against, for reports of what a result was computed with.
+    println!("cargo:rustc-env=ODESYS_LIBODE_VERSION={}", ode.version);
+
     // For the build scripts of crates that compile C against ODE (DEP_ODE_INCLUDE).
     let includes = env::join_paths(&ode.include_paths).expect("include paths without separators");
     println!("cargo:include={}", includes.to_string_lossy());

@@ -95,6 +95,7 @@ pub mod interrupt;
 pub mod limits;
 pub mod mesh;
 mod panic;
+pub mod platform;
 pub mod program;
 pub mod random;
 pub mod scene;

@@ -8,6 +8,7 @@ mod conical_pendulum;
 mod convoy;
 mod falling_ball;
 mod falling_balls;
+pub mod golden;
 mod iros;
 mod simple_arm;
 mod thesis_table;

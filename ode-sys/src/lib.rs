@@ -12,6 +12,10 @@
 
 include!(concat!(env!("OUT_DIR"), "/bindings.rs"));
 
+/// The version of libode these bindings were built against (pkg-config's
+/// `modversion`, e.g. `"0.16.2"`).
+pub const LIBODE_VERSION: &str = env!("ODESYS_LIBODE_VERSION");
+
 // ARS is built for double precision only; the build script checks pkg-config, this
 // checks the headers that were actually bound.
 const _: () = assert!(core::mem::size_of::<dReal>() == 8);
