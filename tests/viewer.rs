@@ -104,6 +104,80 @@ fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), Strin
     }
 }
 
+/// Whether a pixel within `radius` of (x, y) is mostly `channel` (0 red, 1 green, 2
+/// blue): the world axes' colours.
+fn coloured_near(image: &RgbImage, x: f64, y: f64, radius: i64, channel: usize) -> bool {
+    (-radius..=radius).flat_map(|dx| (-radius..=radius).map(move |dy| (x as i64 + dx, y as i64 + dy))).any(
+        |(px, py)| {
+            if px < 0 || py < 0 || px >= image.width() as i64 || py >= image.height() as i64 {
+                return false;
+            }
+            let p = image.get_pixel(px as u32, py as u32).0;
+            let others = (0..3).filter(|c| *c != channel).map(|c| u32::from(p[c])).max().unwrap_or(0);
+            p[channel] > 100 && u32::from(p[channel]) > 2 * others
+        },
+    )
+}
+
+/// The world axes are drawn off screen only when asked (`ViewerOptions::axes`): the
+/// same empty world, once without and once with them, seen from the original's camera.
+fn offscreen_axes_are_drawn_only_when_asked() -> std::result::Result<(), String> {
+    use ars::viewer::ViewerOptions;
+    let view = ViewSettings { size: (320, 240), ..ViewSettings::default() };
+    let sim = Simulation::builder().gravity(Vector3::zeros()).build().map_err(|e| e.to_string())?;
+    // Both renderers (and the recorder's below) share the first one's context: it
+    // lives to the end.
+    let mut default = OffscreenRenderer::new(&view).map_err(|e| e.to_string())?;
+    let plain = default.render(&sim).map_err(|e| e.to_string())?;
+    let options = ViewerOptions::default().with_axes(true);
+    let mut renderer = OffscreenRenderer::with_options(&view, &options).map_err(|e| e.to_string())?;
+    let axes = renderer.render(&sim).map_err(|e| e.to_string())?;
+    let _ = plain.save(std::env::temp_dir().join("ars_viewer_test_no_axes.png"));
+    let _ = axes.save(std::env::temp_dir().join("ars_viewer_test_axes.png"));
+    // Along each axis, from a fifth to four fifths of its metre.
+    for (channel, name, along) in
+        [(0, "X (red)", Vector3::x()), (1, "Y (green)", Vector3::y()), (2, "Z (blue)", Vector3::z())]
+    {
+        for t in [0.2, 0.5, 0.8] {
+            let (x, y) = project(&view, Point3::from(along * t));
+            if coloured_near(&plain, x, y, 3, channel) {
+                return Err(format!("the {name} axis is drawn at ({x:.0}, {y:.0}) by default"));
+            }
+            if !coloured_near(&axes, x, y, 2, channel) {
+                return Err(format!("no {name} axis at ({x:.0}, {y:.0}) when asked for"));
+            }
+        }
+    }
+    // The recorder draws them when asked, too: the Y axis, over a program's floor.
+    struct Floor;
+    impl Hooks for Floor {}
+    impl Program for Floor {
+        fn create_sim_objects(&mut self, _: &mut Simulation) -> Result<()> {
+            Ok(())
+        }
+        fn view_settings(&self) -> ViewSettings {
+            ViewSettings { size: (320, 240), ..ViewSettings::default() }
+        }
+    }
+    let dir = std::env::temp_dir().join(format!("ars_viewer_test_axes_{}", std::process::id()));
+    let recorded = |options: ViewerOptions| -> std::result::Result<RgbImage, String> {
+        let (_, written) =
+            ScreenshotRecorder::new(&dir).options(options).record(&mut Floor, 0.02).map_err(|e| e.to_string())?;
+        Ok(ars::viewer::image::open(&written[0]).map_err(|e| e.to_string())?.to_rgb8())
+    };
+    let (without, with) = (recorded(ViewerOptions::default())?, recorded(options)?);
+    let _ = std::fs::remove_dir_all(&dir);
+    for t in [0.5, 0.8] {
+        let (x, y) = project(&view, Point3::new(0.0, t, 0.0));
+        if coloured_near(&without, x, y, 3, 1) || !coloured_near(&with, x, y, 2, 1) {
+            return Err(format!("the recorder's Y axis at ({x:.0}, {y:.0}): drawn by default, or not when asked"));
+        }
+    }
+    println!("  axes: none by default, X, Y and Z where they project when asked");
+    drop((default, renderer));
+    Ok(())
+}
+
 /// The recorder encodes and writes on worker threads: every frame is there, numbered
 /// in order, each the same bytes as the image the renderer draws of the same state
 /// saved with `RgbImage::save` (what the recorder wrote itself before).
@@ -496,6 +570,7 @@ fn main() {
         &mut tally,
     );
     run("the_recorder_writes_every_frame_as_drawn", the_recorder_writes_every_frame_as_drawn, true, always, &mut tally);
+    run("offscreen_axes_are_drawn_only_when_asked", offscreen_axes_are_drawn_only_when_asked, true, always, &mut tally);
     let shown = |ran: &bool| *ran;
     run("a_real_window_under_xvfb_shows_the_ball", a_real_window_under_xvfb_shows_the_ball, false, shown, &mut tally);
     run(

@@ -25,6 +25,8 @@ pub(crate) enum Command {
     ToggleContacts,
     /// Draw the joints' anchors and axes, or stop.
     ToggleJoints,
+    /// Draw the world axes, or stop.
+    ToggleAxes,
     /// Set a joint's position set-point (rad or m).
     Setpoint(JointId, f64),
 }
@@ -58,6 +60,7 @@ pub(crate) struct Status<'a> {
     pub(crate) following: bool,
     pub(crate) contacts: bool,
     pub(crate) joints: bool,
+    pub(crate) axes: bool,
 }
 
 impl Panel {
@@ -106,6 +109,9 @@ impl Panel {
                 }
                 if ui.selectable_label(status.joints, "Joints").clicked() {
                     commands.push(Command::ToggleJoints);
+                }
+                if ui.selectable_label(status.axes, "Axes").clicked() {
+                    commands.push(Command::ToggleAxes);
                 }
                 if ui.button("Screenshot (p)").clicked() {
                     commands.push(Command::Screenshot);

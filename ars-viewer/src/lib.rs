@@ -54,6 +54,30 @@ pub use offscreen::{
 pub use scene::SceneMirror;
 pub use window::{VIEWER_KEYS, WindowReport};
 
+/// What the viewer draws besides the simulation, where the program's
+/// [`ViewSettings`] do not say: for [`ProgramViewer::show_with`], [`run_window_with`],
+/// [`OffscreenRenderer::with_options`] and [`ScreenshotRecorder::options`].
+///
+/// ```
+/// let options = ars_viewer::ViewerOptions::default().with_axes(true);
+/// assert!(options.axes);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ViewerOptions {
+    /// Draw the world axes at the origin, 1 m long: X red, Y green, Z blue. Off by
+    /// default; the window's `x` key (and the panel's Axes button) toggles them.
+    pub axes: bool,
+}
+
+impl ViewerOptions {
+    /// With the world axes drawn or not.
+    pub fn with_axes(mut self, axes: bool) -> Self {
+        self.axes = axes;
+        self
+    }
+}
+
 /// Whether a display server is reachable (an X11 or Wayland display is named).
 pub fn has_display() -> bool {
     ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
@@ -74,8 +98,14 @@ pub trait ProgramViewer: Program + Sized {
     /// As [`start`](Self::start), and returns the simulation as it was when the window
     /// closed (or when the off-screen recording ended), for its records.
     fn show(&mut self) -> Result<ars_core::Simulation> {
+        self.show_with(&ViewerOptions::default())
+    }
+
+    /// As [`show`](Self::show), drawing what `options` say (in the window, or in the
+    /// frames recorded without a display).
+    fn show_with(&mut self, options: &ViewerOptions) -> Result<ars_core::Simulation> {
         if has_display() {
-            return catch_window_panic(|| window::run_window(self));
+            return catch_window_panic(|| window::run_window(self, options));
         }
         let title = self.view_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
         let dir = std::env::temp_dir().join(format!("ars-frames-{title}"));
@@ -84,7 +114,8 @@ pub trait ProgramViewer: Program + Sized {
              frames into {}",
             dir.display()
         );
-        let (sim, written) = ScreenshotRecorder::new(&dir).every(5).record(self, HEADLESS_FALLBACK_SECONDS)?;
+        let (sim, written) =
+            ScreenshotRecorder::new(&dir).every(5).options(*options).record(self, HEADLESS_FALLBACK_SECONDS)?;
         eprintln!("wrote {} frames into {}", written.len(), dir.display());
         Ok(sim)
     }
@@ -100,7 +131,7 @@ pub trait ProgramViewer: Program + Sized {
             return Err(ViewerError::Settings(format!("a window run needs a positive duration, got {seconds}")));
         }
         let limit = std::time::Duration::from_secs_f64(seconds);
-        catch_window_panic(|| window::run_window_until(self, Some(limit)))
+        catch_window_panic(|| window::run_window_until(self, &ViewerOptions::default(), Some(limit)))
     }
 
     /// Opens the program's window for `frames` frames and returns the last one as
@@ -127,13 +158,23 @@ impl<P: Program> ProgramViewer for P {}
 /// [`ProgramViewer::start`]. Needs a display and the main thread; one window per
 /// thread, unless the thread keeps its context ([`keep_rendering_context`]).
 pub fn run_window<D: Driver>(driver: &mut D, view: &ViewSettings, limit: Option<Duration>) -> Result<WindowReport> {
+    run_window_with(driver, view, &ViewerOptions::default(), limit)
+}
+
+/// As [`run_window`], drawing what `options` say.
+pub fn run_window_with<D: Driver>(
+    driver: &mut D,
+    view: &ViewSettings,
+    options: &ViewerOptions,
+    limit: Option<Duration>,
+) -> Result<WindowReport> {
     if !has_display() {
         return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
     }
     if limit.is_some_and(|l| l.is_zero()) {
         return Err(ViewerError::Settings("a window run needs a positive duration".into()));
     }
-    catch_window_panic(|| window::drive_window(driver, view, limit))
+    catch_window_panic(|| window::drive_window(driver, view, options, limit))
 }
 
 /// The windowing stack panics when it cannot open a window or find a graphics

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
+use crate::ViewerOptions;
 use crate::convert;
 use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
@@ -146,6 +147,11 @@ pub struct OffscreenRenderer {
 impl OffscreenRenderer {
     /// A renderer of `view.size` pixels with the view's camera and background.
     pub fn new(view: &ViewSettings) -> Result<Self> {
+        OffscreenRenderer::with_options(view, &ViewerOptions::default())
+    }
+
+    /// As [`new`](Self::new), drawing what `options` say.
+    pub fn with_options(view: &ViewSettings, options: &ViewerOptions) -> Result<Self> {
         let (w, h) = view.size;
         if w == 0 || h == 0 || w > 8192 || h > 8192 {
             return Err(ViewerError::Settings(format!("image size {w}×{h} must be between 1 and 8192 pixels")));
@@ -155,7 +161,8 @@ impl OffscreenRenderer {
         let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(w, h, setup));
         surface.set_background_color(convert::color(view.background));
-        let shown = View::new(view, surface.window_mut());
+        let mut shown = View::new(view, surface.window_mut());
+        shown.mirror.show_axes = options.axes;
         Ok(OffscreenRenderer { surface, view: shown })
     }
 
@@ -190,12 +197,13 @@ pub struct ScreenshotRecorder {
     dir: PathBuf,
     every: u32,
     size: Option<(u32, u32)>,
+    options: ViewerOptions,
 }
 
 impl ScreenshotRecorder {
     /// Frames into `dir` (created if missing), one every frame.
     pub fn new(dir: impl Into<PathBuf>) -> Self {
-        ScreenshotRecorder { dir: dir.into(), every: 1, size: None }
+        ScreenshotRecorder { dir: dir.into(), every: 1, size: None, options: ViewerOptions::default() }
     }
     /// One image every `frames` frames.
     pub fn every(mut self, frames: u32) -> Self {
@@ -205,6 +213,11 @@ impl ScreenshotRecorder {
     /// Images of `width × height` pixels (default: the program's window size).
     pub fn size(mut self, width: u32, height: u32) -> Self {
         self.size = Some((width, height));
+        self
+    }
+    /// Frames drawn as `options` say (the world axes...).
+    pub fn options(mut self, options: ViewerOptions) -> Self {
+        self.options = options;
         self
     }
     /// The folder.
@@ -254,7 +267,7 @@ impl ScreenshotRecorder {
         if let Some(size) = self.size {
             view.size = size;
         }
-        let mut renderer = OffscreenRenderer::new(&view)?;
+        let mut renderer = OffscreenRenderer::with_options(&view, &self.options)?;
         let mut writer = FrameWriter::new();
         let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
         for frame in 1..=frames {

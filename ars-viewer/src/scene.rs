@@ -1,5 +1,6 @@
 //! Mirrors a simulation into a kiss3d scene: one node per object, posed every frame,
-//! added and removed as objects come and go; plus lines for axes, joints and lasers.
+//! added and removed as objects come and go; plus lines for lasers, and on request
+//! the world axes, contacts and joints.
 
 use std::collections::HashMap;
 
@@ -32,6 +33,8 @@ struct ObjectNode {
 #[derive(Default)]
 pub struct SceneMirror {
     nodes: HashMap<ObjectId, ObjectNode>,
+    /// Draw the world axes at the origin (X red, Y green, Z blue, 1 m long).
+    pub show_axes: bool,
     /// Draw joint anchors and axes.
     pub show_joints: bool,
     /// Draw the contact points of the last step, with their normals.
@@ -90,13 +93,16 @@ impl SceneMirror {
         Ok(())
     }
 
-    /// Queues the lines of this frame: world axes, laser beams with their hit points,
-    /// and (when `show_joints`) joint anchors and axes.
+    /// Queues the lines of this frame: laser beams with their hit points, what sensors
+    /// draw, and when asked the world axes (`show_axes`), contacts (`show_contacts`)
+    /// and joint anchors and axes (`show_joints`).
     pub fn draw_overlays(&self, sim: &Simulation, window: &mut Window) {
-        let o = Vec3::ZERO;
-        window.draw_line(o, Vec3::X, Color::new(1.0, 0.0, 0.0, 1.0), 3.0, false);
-        window.draw_line(o, Vec3::Y, Color::new(0.0, 0.7, 0.0, 1.0), 3.0, false);
-        window.draw_line(o, Vec3::Z, Color::new(0.0, 0.0, 1.0, 1.0), 3.0, false);
+        if self.show_axes {
+            let o = Vec3::ZERO;
+            window.draw_line(o, Vec3::X, Color::new(1.0, 0.0, 0.0, 1.0), 3.0, false);
+            window.draw_line(o, Vec3::Y, Color::new(0.0, 0.7, 0.0, 1.0), 3.0, false);
+            window.draw_line(o, Vec3::Z, Color::new(0.0, 0.0, 1.0, 1.0), 3.0, false);
+        }
         let world = sim.world();
         for g in world.geoms() {
             let Ok(geom) = world.geom(g) else { continue };

@@ -9,15 +9,16 @@ use kiss3d::glamx::Vec2;
 use kiss3d::text::Font;
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
+use crate::ViewerOptions;
 use crate::convert;
 use crate::driver::Driver;
 use crate::error::Result;
 use crate::gui;
 use crate::scene::View;
 
-/// The viewer's own keys (they are not passed to the program).
+/// The viewer's own keys (they are not passed to the program), separated by `", "`.
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
-     f: follow, g: panel, p: screenshot, escape: quit";
+     x: axes, f: follow, g: panel, p: screenshot, escape: quit";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -143,8 +144,8 @@ async fn software_adapter() -> bool {
 
 /// Opens the program's window and runs it until the window is closed; returns the
 /// simulation as it was then.
-pub(crate) fn run_window<P: Program>(program: &mut P) -> Result<ars_core::Simulation> {
-    run_window_until(program, None).map(|(sim, _)| sim)
+pub(crate) fn run_window<P: Program>(program: &mut P, options: &ViewerOptions) -> Result<ars_core::Simulation> {
+    run_window_until(program, options, None).map(|(sim, _)| sim)
 }
 
 /// What a window run measured ([`ProgramViewer::show_for`](crate::ProgramViewer::show_for)).
@@ -186,11 +187,12 @@ pub(crate) fn resident_mb() -> f64 {
 /// passed.
 pub(crate) fn run_window_until<P: Program>(
     program: &mut P,
+    options: &ViewerOptions,
     limit: Option<Duration>,
 ) -> Result<(ars_core::Simulation, WindowReport)> {
     let view = program.view_settings();
     let mut runner = ProgramRunner::new(program)?;
-    let report = drive_window(&mut runner, &view, limit)?;
+    let report = drive_window(&mut runner, &view, options, limit)?;
     Ok((runner.into_simulation(), report))
 }
 
@@ -199,6 +201,7 @@ pub(crate) fn run_window_until<P: Program>(
 pub(crate) fn drive_window<D: Driver>(
     runner: &mut D,
     view: &ViewSettings,
+    options: &ViewerOptions,
     limit: Option<Duration>,
 ) -> Result<WindowReport> {
     kiss3d::pollster::block_on(async move {
@@ -206,6 +209,7 @@ pub(crate) fn drive_window<D: Driver>(
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
         let mut shown = View::new(view, &mut window);
+        shown.mirror.show_axes = options.axes;
         let font = Font::default();
         let mut paused = false;
         let mut pacer = Pacer::new(runner.simulation().time());
@@ -265,6 +269,7 @@ pub(crate) fn drive_window<D: Driver>(
                     (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
                     (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
                     (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                    (WindowKey::X, Action::Press) => shown.mirror.show_axes = !shown.mirror.show_axes,
                     (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
                     (k, Action::Press) => {
                         if let Some(k) = program_key(k) {
@@ -314,6 +319,7 @@ pub(crate) fn drive_window<D: Driver>(
                 following: shown.following,
                 contacts: shown.mirror.show_contacts,
                 joints: shown.mirror.show_joints,
+                axes: shown.mirror.show_axes,
             };
             let mut commands = Vec::new();
             window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
@@ -334,6 +340,7 @@ pub(crate) fn drive_window<D: Driver>(
                     gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
                     gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
                     gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
+                    gui::Command::ToggleAxes => shown.mirror.show_axes = !shown.mirror.show_axes,
                     gui::Command::Setpoint(joint, value) => {
                         gui::set_setpoint(&mut runner.simulation(), joint, value)?;
                     }
