@@ -1,4 +1,5 @@
-//! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`.
+//! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
+//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes]`.
 
 use std::path::PathBuf;
 use std::process::exit;
@@ -18,23 +19,26 @@ pub struct Args {
     pub screenshots: Option<PathBuf>,
     /// One frame every N frames.
     pub frame_every: u32,
-    /// Frame size, pixels.
+    /// Frame (or window) size, pixels.
     pub size: Option<(u32, u32)>,
     /// Show the program in a window (until it is closed) instead of running headless.
     pub window: bool,
+    /// Draw the world axes (in the window, or in the frames).
+    pub axes: bool,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--screenshots DIR [--frame-every N] [--size WxH]]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
          \x20 --every N          keep one CSV row every N steps (default 1)\n\
          \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
          \x20 --frame-every N    one screenshot every N frames (default 5)\n\
-         \x20 --size WxH         screenshot size in pixels (default: the program's window size)\n\
-         \x20 --window           show the program in a window instead (records off screen if there is no display)"
+         \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
+         \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
+         \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)"
     )
 }
 
@@ -56,6 +60,7 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         frame_every: 5,
         size: None,
         window: false,
+        axes: false,
     };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
@@ -81,6 +86,7 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
                 };
             }
             "--window" => args.window = true,
+            "--axes" => args.axes = true,
             "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
             "--frame-every" => {
                 let v = value("--frame-every");
@@ -143,7 +149,7 @@ pub fn export_csv_table(
 pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
     ars::interrupt::stop_on_ctrl_c()?;
     if args.window {
-        return show(program);
+        return show(program, args);
     }
     match &args.screenshots {
         None => {
@@ -167,15 +173,31 @@ pub fn stopped_early(run: ars::Result<()>) -> ars::Result<()> {
     }
 }
 
+/// What the viewer draws, from `--axes`.
 #[cfg(feature = "viewer")]
-fn show<P: ars::Program>(program: &mut P) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+pub fn viewer_options(args: &Args) -> ars::viewer::ViewerOptions {
+    ars::viewer::ViewerOptions::default().with_axes(args.axes)
+}
+
+#[cfg(feature = "viewer")]
+fn show<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
     use ars::viewer::ProgramViewer;
     eprintln!("{}", ars::viewer::VIEWER_KEYS);
-    Ok(program.show()?)
+    let options = viewer_options(args);
+    match args.size {
+        // The program's view at the size asked for.
+        Some(size) if ars::viewer::has_display() => {
+            let view = ars::ViewSettings { size, ..program.view_settings() };
+            let mut runner = ars::ProgramRunner::new(program)?;
+            ars::viewer::run_window_with(&mut runner, &view, &options, None)?;
+            Ok(runner.into_simulation())
+        }
+        _ => Ok(program.show_with(&options)?),
+    }
 }
 
 #[cfg(not(feature = "viewer"))]
-fn show<P: ars::Program>(_: &mut P) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+fn show<P: ars::Program>(_: &mut P, _: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
     Err("--window needs the viewer: build with the default features".into())
 }
 
@@ -185,7 +207,7 @@ fn record<P: ars::Program>(
     args: &Args,
     dir: &std::path::Path,
 ) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
-    let mut recorder = ars::viewer::ScreenshotRecorder::new(dir).every(args.frame_every);
+    let mut recorder = ars::viewer::ScreenshotRecorder::new(dir).every(args.frame_every).options(viewer_options(args));
     if let Some((w, h)) = args.size {
         recorder = recorder.size(w, h);
     }
@@ -224,7 +246,7 @@ impl Capture {
             if let Some(size) = args.size {
                 view.size = size;
             }
-            let renderer = ars::viewer::OffscreenRenderer::new(&view)?;
+            let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
             Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)) })
         }
         #[cfg(not(feature = "viewer"))]
