@@ -362,7 +362,8 @@ fn windows_one_after_another_when_the_context_is_kept() -> std::result::Result<b
 
 /// The teleoperated example (IROS example 5) in a real window, driven by a person's
 /// keys through xdotool: holding Up drives the vehicle forward; Escape ends the
-/// process within 2 s.
+/// process within 2 s. Run as under CI (no `XDG_RUNTIME_DIR`, no Wayland), its stderr
+/// holds the key line it prints and nothing else: no line from the graphics stack.
 fn the_arrow_keys_drive_the_vehicle_and_escape_quits() -> std::result::Result<bool, String> {
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let example = exe.parent().and_then(|deps| deps.parent()).map(|d| d.join("examples").join("user_driven"));
@@ -378,9 +379,11 @@ fn the_arrow_keys_drive_the_vehicle_and_escape_quits() -> std::result::Result<bo
     let mut child = Command::new(&example)
         .arg("--window")
         .env("DISPLAY", &display)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("NODEVICE_SELECT")
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| e.to_string())?;
     let outcome = (|| {
@@ -413,6 +416,12 @@ fn the_arrow_keys_drive_the_vehicle_and_escape_quits() -> std::result::Result<bo
     let quit_after = outcome?;
     let mut out = String::new();
     child.stdout.take().map(|mut o| std::io::Read::read_to_string(&mut o, &mut out));
+    let mut err = String::new();
+    child.stderr.take().map(|mut e| std::io::Read::read_to_string(&mut e, &mut err));
+    let stray: Vec<&str> = err.lines().filter(|l| *l != ars::viewer::VIEWER_KEYS).collect();
+    if !stray.is_empty() || !err.contains(ars::viewer::VIEWER_KEYS) {
+        return Err(format!("stderr holds more (or less) than the key line: {err:?}"));
+    }
     // "after 4.0 s: chassis from (2.50, 4.00) to (9.50, 4.00) m, heading -0.0 deg"
     let numbers: Vec<f64> =
         out.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-')).filter_map(|w| w.parse().ok()).collect();

@@ -114,6 +114,7 @@ fn screenshot(window: &Window, title: &str) {
 /// a software rasteriser more than half its frame rate).
 async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
     crate::offscreen::check_context_reuse()?;
+    quiet_wayland_probe();
     // The window's context does not exist yet: ask wgpu for the adapter it will get,
     // when the quality leaves it to the machine.
     let software = view.quality == ars_core::RenderQuality::Auto && software_adapter().await;
@@ -128,6 +129,45 @@ async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
     crate::offscreen::context_made();
     crate::offscreen::keep_context_if_asked();
     Ok(window)
+}
+
+/// Keeps Mesa's Vulkan device-selection layer from printing
+/// `error: XDG_RUNTIME_DIR is invalid or not set in the environment.` on stderr.
+///
+/// That implicit layer (`VK_LAYER_MESA_device_select`, installed with
+/// mesa-vulkan-drivers; seen with Mesa 22.3) calls libwayland's `wl_display_connect`
+/// whenever Vulkan lists its devices, whether or not a Wayland display is named, and
+/// libwayland prints that line when `XDG_RUNTIME_DIR` is unset (Xvfb, CI, ssh,
+/// containers): four lines per window. With no Wayland display named and no
+/// `XDG_RUNTIME_DIR`, the layer's question can only fail, so this turns the layer off
+/// with its own switch, `NODEVICE_SELECT=1`, in this process's environment (wgpu still
+/// chooses among the same devices). It does nothing when the environment already
+/// says how to select a device (`NODEVICE_SELECT`, `MESA_VK_DEVICE_SELECT`,
+/// `DRI_PRIME`), and nothing unless the process runs a single thread, the one case
+/// where changing the environment is sound (another thread could be reading it).
+fn quiet_wayland_probe() {
+    if !cfg!(target_os = "linux") || !needs_quiet_wayland_probe(|name| std::env::var_os(name)) {
+        return;
+    }
+    let threads = std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| s.lines().find_map(|l| l.strip_prefix("Threads:").and_then(|n| n.trim().parse::<u32>().ok())));
+    if threads == Some(1) {
+        // SAFETY: this process runs one thread, this one (checked just above; only
+        // this thread could have started another since), so no other thread reads or
+        // writes the environment while it changes.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
+}
+
+/// Whether the environment (`var`) is one where Mesa's device-selection layer would
+/// print about `XDG_RUNTIME_DIR`, and where nobody asked for the layer: see
+/// [`quiet_wayland_probe`].
+fn needs_quiet_wayland_probe(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> bool {
+    let set = |name: &str| var(name).is_some_and(|v| !v.is_empty());
+    let wayland = set("WAYLAND_DISPLAY") || set("WAYLAND_SOCKET");
+    let chosen = set("NODEVICE_SELECT") || set("MESA_VK_DEVICE_SELECT") || set("DRI_PRIME");
+    !wayland && !set("XDG_RUNTIME_DIR") && !chosen
 }
 
 /// Whether the adapter a window would get is a software rasteriser (no GPU).
@@ -398,4 +438,27 @@ pub(crate) fn snapshot_window<P: Program>(program: &mut P, frames: u32) -> Resul
         window.close();
         Ok(image)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_device_selection_layer_is_turned_off_only_where_it_would_print() {
+        let env = |vars: &'static [(&'static str, &'static str)]| {
+            move |name: &str| vars.iter().find(|(n, _)| *n == name).map(|(_, v)| std::ffi::OsString::from(v))
+        };
+        // Xvfb in CI: X11, no XDG_RUNTIME_DIR.
+        assert!(needs_quiet_wayland_probe(env(&[("DISPLAY", ":99")])));
+        assert!(needs_quiet_wayland_probe(env(&[("DISPLAY", ":99"), ("XDG_RUNTIME_DIR", "")])));
+        // A desktop session: libwayland finds no socket and says nothing.
+        assert!(!needs_quiet_wayland_probe(env(&[("DISPLAY", ":0"), ("XDG_RUNTIME_DIR", "/run/user/1000")])));
+        // Wayland: the layer asks the compositor which device it uses.
+        assert!(!needs_quiet_wayland_probe(env(&[("WAYLAND_DISPLAY", "wayland-0")])));
+        // The user chose a device, or turned the layer off already.
+        assert!(!needs_quiet_wayland_probe(env(&[("DISPLAY", ":99"), ("MESA_VK_DEVICE_SELECT", "10005:0")])));
+        assert!(!needs_quiet_wayland_probe(env(&[("DISPLAY", ":99"), ("DRI_PRIME", "1")])));
+        assert!(!needs_quiet_wayland_probe(env(&[("DISPLAY", ":99"), ("NODEVICE_SELECT", "0")])));
+    }
 }
