@@ -33,6 +33,7 @@ mod driver;
 mod error;
 mod frames;
 mod gui;
+mod layout;
 mod material;
 mod offscreen;
 mod scene;

@@ -14,6 +14,7 @@ use crate::convert;
 use crate::driver::Driver;
 use crate::error::Result;
 use crate::gui;
+use crate::layout;
 use crate::scene::View;
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
@@ -59,6 +60,33 @@ fn program_key(key: WindowKey) -> Option<Key> {
         K::Z => Key::Char('z'),
         _ => return None,
     })
+}
+
+/// The text overlay's sizes, pixels: the status line, the key line.
+const STATUS_SIZE: f32 = 28.0;
+const KEYS_SIZE: f32 = 16.0;
+
+/// How wide `text` is drawn in `font` at `size` pixels.
+fn text_width(font: &Font, size: f32, text: &str) -> f32 {
+    let scale = rusttype::Scale::uniform(size);
+    font.font()
+        .layout(text, scale, rusttype::point(0.0, 0.0))
+        .last()
+        .map_or(0.0, |g| g.position().x + g.unpositioned().h_metrics().advance_width)
+}
+
+/// The height of a line of `font` at `size` pixels, as kiss3d draws lines.
+fn line_height(font: &Font, size: f32) -> f32 {
+    let v = font.font().v_metrics(rusttype::Scale::uniform(size));
+    v.ascent - v.descent
+}
+
+/// `text`, a list of items joined by `separator`, in lines no wider than `width`
+/// pixels in `font` at `size`; with the number of lines.
+fn wrapped(font: &Font, size: f32, text: &str, separator: &str, width: f32) -> (String, usize) {
+    let items: Vec<&str> = text.split(separator).collect();
+    let lines = layout::wrap_items(&items, separator, width, |s| text_width(font, size, s));
+    (lines.join("\n"), lines.len())
 }
 
 /// Real-time pacing: simulated time follows wall time while the machine keeps up.
@@ -399,12 +427,22 @@ pub(crate) fn drive_window<D: Driver>(
             } else {
                 format!("x{:.2} real time", pacer.factor)
             };
+            // Both lines wrap to the window's width (10 px margins).
+            let width = window.width() as f32 - 20.0;
             let text = format!("t = {:.3} s   {status}", sim.time());
-            window.draw_text(&text, Vec2::new(10.0, 10.0), 28.0, &font, kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0));
+            let (text, lines) = wrapped(&font, STATUS_SIZE, &text, "   ", width);
             window.draw_text(
-                VIEWER_KEYS,
-                Vec2::new(10.0, 44.0),
-                16.0,
+                &text,
+                Vec2::new(10.0, 10.0),
+                STATUS_SIZE,
+                &font,
+                kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0),
+            );
+            let (keys, _) = wrapped(&font, KEYS_SIZE, VIEWER_KEYS, ", ", width);
+            window.draw_text(
+                &keys,
+                Vec2::new(10.0, 16.0 + lines as f32 * line_height(&font, STATUS_SIZE)),
+                KEYS_SIZE,
                 &font,
                 kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
             );
