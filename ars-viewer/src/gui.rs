@@ -43,11 +43,14 @@ pub(crate) struct Panel {
     column: usize,
     /// Seconds of simulated time the plot shows.
     span: f64,
+    /// Where the panel was drawn last, `[left, top, right, bottom]`, with the size of
+    /// the window, in egui's points (`None` while hidden).
+    pub(crate) covers: Option<([f32; 4], (f32, f32))>,
 }
 
 impl Default for Panel {
     fn default() -> Self {
-        Panel { shown: true, speed: 1.0, fastest: false, sensor: 0, column: 0, span: 10.0 }
+        Panel { shown: true, speed: 1.0, fastest: false, sensor: 0, column: 0, span: 10.0, covers: None }
     }
 }
 
@@ -67,10 +70,12 @@ impl Panel {
     /// Draws the panel for `sim` and returns what was asked.
     pub(crate) fn draw(&mut self, ctx: &egui::Context, sim: &Simulation, status: &Status<'_>) -> Vec<Command> {
         let mut commands = Vec::new();
+        self.covers = None;
         if !self.shown {
             return commands;
         }
-        egui::Window::new("ARS").default_pos([8.0, 8.0]).default_width(340.0).resizable(true).show(ctx, |ui| {
+        let window = egui::Window::new("ARS").default_pos([8.0, 8.0]).default_width(340.0).resizable(true);
+        let shown = window.show(ctx, |ui| {
             ui.heading(status.title);
             ui.label(format!(
                 "t = {:.3} s, step {}   ×{:.2} real time",
@@ -124,6 +129,12 @@ impl Panel {
             ui.separator();
             egui::ScrollArea::vertical().min_scrolled_height(260.0).show(ui, |ui| state_table(ui, sim));
         });
+        if let Some(shown) = shown {
+            let (r, screen) = (shown.response.rect, ctx.viewport_rect());
+            let o = screen.min;
+            let rect = [r.min.x - o.x, r.min.y - o.y, r.max.x - o.x, r.max.y - o.y];
+            self.covers = Some((rect, (screen.width(), screen.height())));
+        }
         commands
     }
 

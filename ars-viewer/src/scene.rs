@@ -6,7 +6,6 @@ use std::collections::HashMap;
 
 use ars_core::nalgebra::Isometry3;
 use ars_core::{ObjectId, RenderQuality, Shape, Simulation, ViewSettings};
-use kiss3d::camera::OrbitCamera3d;
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
 use kiss3d::light::Light;
@@ -14,6 +13,7 @@ use kiss3d::scene::SceneNode3d;
 use kiss3d::window::Window;
 
 use crate::convert;
+use crate::layout::FramedCamera;
 use crate::material::{FlatMaterial, SharedMaterial};
 
 /// Colours given to objects that have none, in creation order.
@@ -246,7 +246,8 @@ fn add_shape(group: &mut SceneNode3d, shape: &Shape) -> SceneNode3d {
 /// program's view settings, and the mirror of the simulation's objects.
 pub(crate) struct View {
     pub(crate) scene: SceneNode3d,
-    pub(crate) camera: OrbitCamera3d,
+    /// The orbit camera, its image shifted off the panel in a window.
+    pub(crate) camera: FramedCamera,
     pub(crate) mirror: SceneMirror,
     /// The object the camera follows, by name (the view settings', or chosen with `f`).
     pub(crate) follow: Option<String>,
@@ -261,7 +262,7 @@ impl View {
         let mut scene = SceneNode3d::empty();
         add_lights(&mut scene, settings);
         let camera =
-            OrbitCamera3d::new(convert::point(&settings.camera_position), convert::point(&settings.camera_target));
+            FramedCamera::new(convert::point(&settings.camera_position), convert::point(&settings.camera_target));
         let mut mirror = SceneMirror::new();
         if draws_fast(settings.quality) {
             mirror.draw_fast();
@@ -283,7 +284,7 @@ impl View {
             && let Some(name) = &self.follow
             && let Ok(p) = sim.object(name.as_str()).and_then(|o| o.position())
         {
-            self.camera.set_at(convert::point(&p));
+            self.camera.orbit.set_at(convert::point(&p));
         }
         self.mirror.draw_overlays(sim, window);
         Ok(())

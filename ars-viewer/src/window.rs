@@ -391,6 +391,12 @@ pub(crate) fn drive_window<D: Driver>(
             };
             let mut commands = Vec::new();
             window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
+            // What the camera looks at appears in the middle of what the panel leaves
+            // free (from the next frame on).
+            shown.camera.shift = match panel.covers {
+                Some((panel_rect, (w, h))) => layout::ndc_shift(w, h, layout::free_centre(w, h, Some(panel_rect))),
+                None => Vec2::ZERO,
+            };
             for command in commands {
                 match command {
                     gui::Command::TogglePause => {
