@@ -64,6 +64,12 @@ pub const MAX_TORQUE: f64 = 1e9;
 /// beyond it libccd's portal search can loop forever (measured: no hang in 100,000
 /// random pairs up to 1e8; hangs from about 6e9).
 pub const MAX_CONVEX_PAIR_RATIO: f64 = 1e8;
+/// Most geoms a hash space collides ([`SpaceKind::Hash`](crate::SpaceKind::Hash)).
+/// ODE's hash space allocates and clears a table of one bit per pair of geoms at
+/// every collision (n²/8 bytes: 1.25 GB and 0.7 s at 100,000 geoms) and indexes it
+/// with a C `int`, which overflows beyond about 131,000 geoms (writes outside the
+/// table). More geoms: sweep and prune, which has no such table.
+pub const MAX_HASH_SPACE_GEOMS: usize = 100_000;
 /// Smallest time step, s.
 pub const MIN_TIME_STEP: f64 = 1e-9;
 /// Largest time step, s.

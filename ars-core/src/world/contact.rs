@@ -258,6 +258,18 @@ fn hash_limit(min_level: i32) -> f64 {
     f64::from(i32::MAX) * 2f64.powi(min_level)
 }
 
+/// The refusal of a hash space holding more than [`crate::limits::MAX_HASH_SPACE_GEOMS`].
+#[cold]
+fn too_many_hash_geoms(geoms: std::ffi::c_int) -> Error {
+    Error::OutOfRange {
+        what: "geoms in a hash space",
+        detail: format!(
+            "{geoms} geoms; a hash space collides at most {} (ODE clears a table of one bit per pair at every collision, and its index overflows beyond about 131,000): use SpaceKind::SWEEP_AND_PRUNE",
+            crate::limits::MAX_HASH_SPACE_GEOMS
+        ),
+    }
+}
+
 /// Why a pair stopped the collision pass.
 enum PairFailure {
     /// Its collider failed inside ODE (caught by the guard).
@@ -318,18 +330,25 @@ impl World {
     ///
     /// A panic in `hooks` is re-raised once ODE has returned (the remaining pairs are
     /// skipped). An `Err` leaves no contact joint behind: a hash space whose geoms
-    /// reach beyond what its integer cells hold is refused before ODE is called; a
-    /// pair whose collider fails inside ODE is reported ([`Error::OdeInternal`], the
-    /// world stays usable); a failure of the space itself poisons the world.
+    /// reach beyond what its integer cells hold, or that holds more than
+    /// [`limits::MAX_HASH_SPACE_GEOMS`](crate::limits::MAX_HASH_SPACE_GEOMS) geoms, is
+    /// refused before ODE is called; a pair whose collider fails inside ODE is
+    /// reported ([`Error::OdeInternal`], the world stays usable); a failure of the
+    /// space itself poisons the world.
     pub fn collide_with<H: CollisionHooks + ?Sized>(&mut self, space: SpaceHandle, hooks: &mut H) -> Result<()> {
         self.check_usable()?;
         ensure_ode_ready();
         let data = self.space_data(space)?;
         let raw_space = data.raw;
-        if let SpaceKind::Hash { min_level, .. } = data.kind
-            && self.coordinate_bound() >= 0.5 * hash_limit(min_level)
-        {
-            self.check_hash_bounds(space, min_level)?;
+        if let SpaceKind::Hash { min_level, .. } = data.kind {
+            // SAFETY: the space is live.
+            let geoms = unsafe { ffi::dSpaceGetNumGeoms(raw_space) };
+            if usize::try_from(geoms).unwrap_or(usize::MAX) > crate::limits::MAX_HASH_SPACE_GEOMS {
+                return Err(too_many_hash_geoms(geoms));
+            }
+            if self.coordinate_bound() >= 0.5 * hash_limit(min_level) {
+                self.check_hash_bounds(space, min_level)?;
+            }
         }
         self.collision.contacts.clear();
         self.collision.ray_hits.clear();

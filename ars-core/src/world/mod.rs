@@ -32,25 +32,96 @@ pub const DEFAULT_ERP: f64 = 0.2;
 /// The ARS (and ODE double-precision) default global constraint force mixing.
 pub const DEFAULT_CFM: f64 = 1e-10;
 
-/// A broad-phase collision space.
+/// A broad-phase collision space: how ODE finds the pairs of geoms whose bounding
+/// boxes overlap before it calls their colliders.
+///
+/// The kinds find the same pairs (up to the sweep and prune's rounding, below); they
+/// differ in cost and in the order they report them, and that order is the order of the contact joints, so the same scene steps
+/// to different last bits in different spaces. Programs that must reproduce the
+/// original ARS bit for bit use [`SpaceKind::Simple`].
+///
+/// ODE's quadtree space is not offered: it is built for Z up (it splits X and Y,
+/// while ARS's ground is the X–Z plane), needs the scene's extent in advance, and
+/// cannot list its geoms (`dSpaceGetGeom` is not implemented for it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[non_exhaustive]
 pub enum SpaceKind {
     /// Tests every pair of geoms (O(n²)); what the original ARS used.
     Simple,
     /// A multi-resolution hash table; the cell sizes are powers of two between
-    /// `2^min_level` and `2^max_level` metres.
+    /// `2^min_level` and `2^max_level` metres. Coordinates are limited to what its
+    /// integer cells hold (checked when it collides; see [`World::collide`]).
     Hash {
         /// Smallest cell size exponent (ODE's default is -3).
         min_level: i32,
         /// Largest cell size exponent (ODE's default is 10).
         max_level: i32,
     },
+    /// Sweep and prune (`dSweepAndPruneSpaceCreate`): every collision sorts the
+    /// geoms' bounding boxes along the first axis of `axes` (a radix sort, linear in
+    /// the geoms) and tests the boxes that overlap along it on the other two axes.
+    /// Geoms with an infinite extent along the first axis (planes) are tested against
+    /// all the others. The sort is on single-precision (`f32`) coordinates: a pair
+    /// whose boxes overlap along the first axis by less than about 6e-8 of their
+    /// coordinate (60 µm at 1 km from the origin) may be found a step late.
+    SweepAndPrune {
+        /// The axis to sort on first, then the other two in the order tested.
+        axes: AxisOrder,
+    },
 }
 
 impl SpaceKind {
     /// A hash space with ODE's default levels (cells from 1/8 m to 1024 m).
     pub const HASH: SpaceKind = SpaceKind::Hash { min_level: -3, max_level: 10 };
+    /// Sweep and prune sorting along X, then Z, then Y: Y is up, so scenes spread
+    /// over the ground are sorted along a horizontal axis. The default space of a new
+    /// [`Simulation`](crate::Simulation).
+    pub const SWEEP_AND_PRUNE: SpaceKind = SpaceKind::SweepAndPrune { axes: AxisOrder::Xzy };
+}
+
+/// The order of the axes of a [`SpaceKind::SweepAndPrune`] space: the first is the
+/// one it sorts along (best the one along which the scene spreads most), the other
+/// two are tested in this order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum AxisOrder {
+    /// X, Y, Z.
+    Xyz,
+    /// X, Z, Y (ODE's advice, and ARS's default: Y is up).
+    Xzy,
+    /// Y, X, Z.
+    Yxz,
+    /// Y, Z, X.
+    Yzx,
+    /// Z, X, Y.
+    Zxy,
+    /// Z, Y, X.
+    Zyx,
+}
+
+impl AxisOrder {
+    /// The three axes (0 = X, 1 = Y, 2 = Z), first to last.
+    pub const fn axes(self) -> [u8; 3] {
+        match self {
+            AxisOrder::Xyz => [0, 1, 2],
+            AxisOrder::Xzy => [0, 2, 1],
+            AxisOrder::Yxz => [1, 0, 2],
+            AxisOrder::Yzx => [1, 2, 0],
+            AxisOrder::Zxy => [2, 0, 1],
+            AxisOrder::Zyx => [2, 1, 0],
+        }
+    }
+
+    /// ODE's code for the order (`dSAP_AXES_XZY`...).
+    const fn ode_code(self) -> i32 {
+        (match self {
+            AxisOrder::Xyz => ffi::dSAP_AXES_XYZ,
+            AxisOrder::Xzy => ffi::dSAP_AXES_XZY,
+            AxisOrder::Yxz => ffi::dSAP_AXES_YXZ,
+            AxisOrder::Yzx => ffi::dSAP_AXES_YZX,
+            AxisOrder::Zxy => ffi::dSAP_AXES_ZXY,
+            AxisOrder::Zyx => ffi::dSAP_AXES_ZYX,
+        }) as i32
+    }
 }
 
 pub(crate) struct SpaceData {
@@ -534,7 +605,8 @@ impl World {
     }
 
     /// Creates a collision space. A hash space needs
-    /// `-30 ≤ min_level ≤ max_level ≤ 30` (cells from about 1 nm to 1e9 m).
+    /// `-30 ≤ min_level ≤ max_level ≤ 30` (cells from about 1 nm to 1e9 m); a simple
+    /// or sweep-and-prune space takes no numbers that could be wrong.
     pub fn create_space(&mut self, kind: SpaceKind) -> Result<SpaceHandle> {
         self.check_usable()?;
         if let SpaceKind::Hash { min_level, max_level } = kind
@@ -555,6 +627,9 @@ impl World {
                     let s = ffi::dHashSpaceCreate(std::ptr::null_mut());
                     ffi::dHashSpaceSetLevels(s, min_level, max_level);
                     s
+                }
+                SpaceKind::SweepAndPrune { axes } => {
+                    ffi::dSweepAndPruneSpaceCreate(std::ptr::null_mut(), axes.ode_code())
                 }
             };
             ffi::dSpaceSetCleanup(s, 0);

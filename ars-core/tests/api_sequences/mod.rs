@@ -411,13 +411,13 @@ impl Harness {
                 w.world.set_random_seed(u32::from(input.byte()));
             }
             17 => {
-                let kind = if input.one_in(2) {
-                    SpaceKind::Simple
-                } else {
-                    SpaceKind::Hash {
+                let kind = match input.byte() % 3 {
+                    0 => SpaceKind::Simple,
+                    1 => SpaceKind::Hash {
                         min_level: i32::from(input.byte() as i8),
                         max_level: i32::from(input.byte() as i8),
-                    }
+                    },
+                    _ => sweep_and_prune(input.byte()),
                 };
                 if let Ok(s) = w.world.create_space(kind) {
                     w.spaces.push(s);
@@ -500,6 +500,10 @@ impl Harness {
                     min_level: i32::from(input.byte() as i8),
                     max_level: i32::from(input.byte() as i8),
                 });
+            } else if input.one_in(4) {
+                b = b.space(SpaceKind::Simple);
+            } else if input.one_in(2) {
+                b = b.space(sweep_and_prune(input.byte()));
             }
             if input.one_in(4) {
                 b = b.stepper(Stepper::Quick { iterations: 1 + u32::from(input.byte()) }).seed(7);
@@ -678,4 +682,10 @@ impl Harness {
             }
         }
     }
+}
+
+/// A sweep-and-prune space in one of the six axis orders.
+fn sweep_and_prune(byte: u8) -> SpaceKind {
+    let orders = [AxisOrder::Xyz, AxisOrder::Xzy, AxisOrder::Yxz, AxisOrder::Yzx, AxisOrder::Zxy, AxisOrder::Zyx];
+    SpaceKind::SweepAndPrune { axes: orders[usize::from(byte) % 6] }
 }

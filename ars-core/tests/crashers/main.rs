@@ -11,6 +11,7 @@ mod diverging_velocity;
 mod force_accumulated_every_step;
 mod hash_space_body_far_away;
 mod hash_space_inverted_levels;
+mod hash_space_of_too_many_geoms;
 mod heightfield_of_billions_of_vertices;
 mod hinge2_attached_to_the_world;
 mod huge_capsule_next_to_cone;
