@@ -8,8 +8,9 @@
 #[path = "common/mod.rs"]
 mod common;
 
+use ars::nalgebra::Vector3;
 use ars::sensors::{Gps, Velometer};
-use ars::{Hooks, Mass, Program, Result, SensorId, Simulation};
+use ars::{Hooks, Mass, Program, Result, SensorId, Simulation, SimulationBuilder, SpaceKind};
 use common::plot::{Series, line_chart, over_time};
 
 #[derive(Default)]
@@ -20,6 +21,11 @@ struct HelloWorld {
 impl Hooks for HelloWorld {}
 
 impl Program for HelloWorld {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
         self.sensors = Some((sim.add_sensor(Gps::new(ball))?, sim.add_sensor(Velometer::new(ball))?));

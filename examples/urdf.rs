@@ -15,9 +15,12 @@ mod common;
 
 use std::path::PathBuf;
 
-use ars::nalgebra::Point3;
+use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::JointPositions;
-use ars::{Hooks, JointType, Program, Result, SensorId, Simulation, UpAxis, UrdfOptions, ViewSettings};
+use ars::{
+    Hooks, JointType, Program, Result, SensorId, Simulation, SimulationBuilder, SpaceKind, UpAxis, UrdfOptions,
+    ViewSettings,
+};
 
 /// A URDF robot as a program: the file's robot on the floor, recording its joint positions.
 struct UrdfProgram {
@@ -30,6 +33,11 @@ struct UrdfProgram {
 impl Hooks for UrdfProgram {}
 
 impl Program for UrdfProgram {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space, as every example (a robot has few geoms).
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn view_settings(&self) -> ViewSettings {
         ViewSettings {
             title: format!("ARS: {}", self.path.display()),

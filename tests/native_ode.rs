@@ -202,3 +202,36 @@ fn example_4_sinusoidal_terrain_csv_is_bit_identical_to_native_ode_for_three_sec
         },
     );
 }
+
+/// The thesis programs choose the original's simple space themselves, whatever builder
+/// they are given (a new simulation's default is sweep and prune, whose pair order
+/// differs): this is what keeps the programs above bit for bit with their C twins.
+#[test]
+fn every_thesis_program_builds_the_simple_space_from_any_builder() {
+    use ars::{Program, Simulation, SpaceKind};
+    use ars_programs::*;
+    fn check<P: Program>(name: &str, mut program: P) {
+        for builder in [Simulation::builder(), Simulation::builder().space(SpaceKind::SWEEP_AND_PRUNE)] {
+            let sim = program.configure(builder).build().unwrap();
+            assert_eq!(sim.space_kind(), SpaceKind::Simple, "{name}");
+        }
+        assert_eq!(program.create_simulation().unwrap().space_kind(), SpaceKind::Simple, "{name}");
+    }
+    check("HelloWorld", HelloWorld::default());
+    check("FallingBallSensors", FallingBallSensors::default());
+    check("FallingBalls", FallingBalls::default());
+    check("TwoBallLaser", TwoBallLaser::default());
+    check("SimpleArm", SimpleArm::default());
+    check("ControlledSimpleArm", ControlledSimpleArm::default());
+    check("CentrifugalForce", CentrifugalForce::default());
+    check("ConicalPendulum", ConicalPendulum::default());
+    check("BouncingBall", BouncingBall::default());
+    check("Vehicle1", Vehicle1::default());
+    check("Vehicle2", Vehicle2::default());
+    check("VehicleWithArm", VehicleWithArm::default());
+    check("VehicleWithControlledArm", VehicleWithControlledArm::default());
+    check("SpeedProfile", SpeedProfile::default());
+    check("SinusoidalTerrain", SinusoidalTerrain::default());
+    check("UserDriven", UserDriven::default());
+    check("Convoy", Convoy::default());
+}

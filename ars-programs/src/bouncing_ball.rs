@@ -2,7 +2,7 @@
 
 use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
-use ars_core::{Hooks, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder, SpaceKind};
 
 /// The ball's height and vertical velocity at the start of a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,7 +47,12 @@ impl Hooks for BouncingBall {}
 
 impl Program for BouncingBall {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
-        let b = builder.time_step(1.0 / 50.0 / 80.0).steps_per_frame(80).floor_plane(Vector3::y(), 0.0);
+        // The original's simple space: the thesis' results, bit for bit.
+        let b = builder
+            .space(SpaceKind::Simple)
+            .time_step(1.0 / 50.0 / 80.0)
+            .steps_per_frame(80)
+            .floor_plane(Vector3::y(), 0.0);
         if self.paper_bounce { b.bounce(0.9, 0.0) } else { b }
     }
 

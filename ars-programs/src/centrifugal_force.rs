@@ -7,7 +7,7 @@ use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{HingeSensor, JointPower, JointTorque, Probe, Record};
 use ars_core::{
     ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Scene, SensorId, Simulation,
-    SimulationBuilder,
+    SimulationBuilder, SpaceKind,
 };
 
 /// One frame's reading (at its start): ball position, velocity and angular velocity,
@@ -106,7 +106,8 @@ impl Program for CentrifugalForce {
     }
 
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
-        builder.time_step(1.0 / 50.0 / 20.0).steps_per_frame(20).floor_plane(Vector3::y(), 0.0)
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).time_step(1.0 / 50.0 / 20.0).steps_per_frame(20).floor_plane(Vector3::y(), 0.0)
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {

@@ -6,7 +6,9 @@ use std::f64::consts::FRAC_PI_2;
 
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId};
-use ars_core::{HookPoint, Hooks, JointId, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder};
+use ars_core::{
+    HookPoint, Hooks, JointId, Mass, ObjectId, Program, Result, Scene, Simulation, SimulationBuilder, SpaceKind,
+};
 
 /// One record of the pendulum: the state the pre-step hook reads at the start of a
 /// step, and the waist torque it applies (without friction).
@@ -107,7 +109,9 @@ impl Program for ConicalPendulum {
     }
 
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
         builder
+            .space(SpaceKind::Simple)
             .time_step(1.0 / Self::FPS / f64::from(Self::STEPS_PER_FRAME))
             .steps_per_frame(Self::STEPS_PER_FRAME)
             .floor_plane(Vector3::y(), -0.5)

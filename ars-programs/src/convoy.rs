@@ -3,7 +3,9 @@
 //! simulation, controllers attached to joints, objects added and removed at run time.
 
 use ars_core::nalgebra::Vector3;
-use ars_core::{Hooks, Mass, ObjectId, Profile, Program, Result, Simulation, VelocityServo};
+use ars_core::{
+    Hooks, Mass, ObjectId, Profile, Program, Result, Simulation, SimulationBuilder, SpaceKind, VelocityServo,
+};
 
 use crate::vehicles::{VehicleParts, VehicleSpec, build_vehicle};
 
@@ -61,6 +63,11 @@ impl Hooks for Convoy {
 }
 
 impl Program for Convoy {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         for (prefix, z) in [("left/", 0.0), ("right/", 3.0)] {
             let spec = VehicleSpec { offset: Vector3::new(0.0, 0.31, z), prefix: prefix.into(), ..Default::default() };

@@ -1,7 +1,8 @@
 //! The thesis' falling ball: a 1 kg sphere of radius 0.5 m dropped from (1, 1, 1).
 
+use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{Accelerometer, Gps, KineticEnergy, PotentialEnergy, SystemTotalEnergy, Velometer};
-use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation, SimulationBuilder, SpaceKind};
 
 /// The thesis' hello world: one ball, nothing else.
 #[derive(Clone, Debug, Default)]
@@ -13,6 +14,11 @@ pub struct HelloWorld {
 impl Hooks for HelloWorld {}
 
 impl Program for HelloWorld {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         self.ball = Some(sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?);
         Ok(())
@@ -42,6 +48,11 @@ pub struct FallingBallSensors {
 impl Hooks for FallingBallSensors {}
 
 impl Program for FallingBallSensors {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
             title: "ARS: falling ball with sensors".into(),

@@ -1,7 +1,8 @@
 //! The original's `FallingBalls` demo: three balls of different sizes and masses.
 
+use ars_core::nalgebra::Vector3;
 use ars_core::sensors::Gps;
-use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation, SimulationBuilder, SpaceKind};
 
 /// Three spheres: radius 0.3 m at (1, 6, 1) with density 1; radius 0.5 m at (2, 4, 2)
 /// with density 0.5; radius 0.2 m at (3, 2, 3) with mass 5 kg; floor y = 0.
@@ -14,6 +15,11 @@ pub struct FallingBalls {
 impl Hooks for FallingBalls {}
 
 impl Program for FallingBalls {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let specs = [
             (0.3, [1.0, 6.0, 1.0], Mass::Density(1.0)),

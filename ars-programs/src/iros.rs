@@ -7,15 +7,16 @@ use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId, SensorLog};
 use ars_core::{
     ActionMap, HookPoint, Hooks, Key, Mass, PositionServo, Profile, Program, Repeat, Result, Scene, Simulation,
-    SimulationBuilder,
+    SimulationBuilder, SpaceKind,
 };
 
 use crate::vehicle_programs::{WHEEL_TORQUE, arm_vehicle_bindings, push_waist};
 use crate::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, signed_ground_speed};
 
-/// 50 frames/s × 80 steps: dt = 0.25 ms.
+/// The original's simple space (the papers' results, bit for bit) and its timing:
+/// 50 frames/s × 80 steps, dt = 0.25 ms.
 fn iros_timing(builder: SimulationBuilder) -> SimulationBuilder {
-    builder.time_step(1.0 / 50.0 / 80.0).steps_per_frame(80)
+    builder.space(SpaceKind::Simple).time_step(1.0 / 50.0 / 80.0).steps_per_frame(80)
 }
 
 /// One step of example 3, at its start.

@@ -7,7 +7,9 @@ use std::f64::consts::FRAC_PI_2;
 use crate::{SetpointKeys, ShoulderSetpoint, hold_shoulder};
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Probe, Record, SensorId};
-use ars_core::{ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation};
+use ars_core::{
+    ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Simulation, SimulationBuilder, SpaceKind,
+};
 
 /// The arm's bodies and joints.
 #[derive(Clone, Copy, Debug)]
@@ -62,6 +64,11 @@ fn push_waist(parts: Option<ArmParts>, sim: &mut Simulation, torque: f64) -> Res
 impl Hooks for SimpleArm {}
 
 impl Program for SimpleArm {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         self.parts = Some(build_simple_arm(sim)?);
         Ok(())
@@ -133,6 +140,11 @@ impl ShoulderSetpoint for ControlledSimpleArm {
 }
 
 impl Program for ControlledSimpleArm {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let parts = build_simple_arm(sim)?;
         let (kp, kd) = Self::GAINS;

@@ -5,7 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 use ars_core::convert::rotation_about_axis;
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::{Gps, Laser, SystemTotalEnergy, Velometer};
-use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation};
+use ars_core::{Hooks, Mass, ObjectId, Program, Result, SensorId, Simulation, SimulationBuilder, SpaceKind};
 
 /// Two balls (radius 1 m, 1 kg, at (3, 4, 1) then (5, 3, 1)) and a laser at
 /// (1.5, 1.5, 1) pointing +X (local +Z turned π/2 about Y), 1000 m long, floor y = 0.
@@ -33,6 +33,11 @@ impl TwoBallLaser {
 impl Hooks for TwoBallLaser {}
 
 impl Program for TwoBallLaser {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn view_settings(&self) -> ars_core::ViewSettings {
         ars_core::ViewSettings {
             title: "ARS: two balls and a laser".into(),

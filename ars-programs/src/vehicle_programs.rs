@@ -6,6 +6,7 @@ use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{Probe, Record, SensorId};
 use ars_core::{
     ActionMap, Hooks, JointId, Key, Mass, ObjectId, Program, Repeat, Result, Scene, Simulation, SimulationBuilder,
+    SpaceKind,
 };
 
 use crate::simple_arm::ControlRow;
@@ -39,6 +40,11 @@ impl Vehicle1 {
 impl Hooks for Vehicle1 {}
 
 impl Program for Vehicle1 {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let first = Vector3::new(1.0, 1.0, 1.0);
         let offsets = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
@@ -97,6 +103,11 @@ pub(crate) fn drive(vehicle: Option<VehicleParts>, sim: &mut Simulation, right: 
 impl Hooks for Vehicle2 {}
 
 impl Program for Vehicle2 {
+    fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
+        // The original's simple space: the thesis' results, bit for bit.
+        builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
+    }
+
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let spec = VehicleSpec {
             offset: Vector3::new(3.0, 1.0, 3.0),
@@ -219,7 +230,12 @@ impl Hooks for VehicleWithArm {
 
 impl Program for VehicleWithArm {
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
-        builder.time_step(1.0 / 50.0 / 200.0).steps_per_frame(200).floor_plane(Vector3::y(), 0.0)
+        // The original's simple space: the thesis' results, bit for bit.
+        builder
+            .space(SpaceKind::Simple)
+            .time_step(1.0 / 50.0 / 200.0)
+            .steps_per_frame(200)
+            .floor_plane(Vector3::y(), 0.0)
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
