@@ -124,7 +124,9 @@ pub use scene::{
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, HookPoint, Hooks, PostFrame, PostStep, PreFrame, PreStep};
-pub use simulation::{DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, SENSOR_KINDS, Simulation, SimulationBuilder};
+pub use simulation::{
+    DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, SENSOR_KINDS, Simulation, SimulationBuilder,
+};
 pub use world::{AxisOrder, DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 
 pub use nalgebra;

@@ -19,6 +19,7 @@ pub use view::{RenderQuality, ViewSettings};
 use crate::error::Result;
 use crate::simulation::hooks::Hooks;
 use crate::simulation::{Simulation, SimulationBuilder};
+use crate::world::SpaceKind;
 
 /// A simulation program: a scene ([`create_sim_objects`](Program::create_sim_objects),
 /// the one required method) and the [`Hooks`] that run it (all optional, so
@@ -43,8 +44,12 @@ use crate::simulation::{Simulation, SimulationBuilder};
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 pub trait Program: Hooks {
-    /// Simulation parameters. The default is the original's: ARS defaults and the floor
-    /// plane y = 0.
+    /// Simulation parameters. The builder given is the original's model: the ARS
+    /// defaults with the original's simple space ([`SpaceKind::Simple`], every pair
+    /// tested), so that a program steps bit for bit as it did in the original; a
+    /// program with many geoms chooses a space that scales
+    /// (`.space(SpaceKind::SWEEP_AND_PRUNE)`, the default of
+    /// [`Simulation::new`]). The default adds the floor plane y = 0.
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         builder.floor_plane(Vector3::y(), 0.0)
     }
@@ -65,12 +70,13 @@ pub trait Program: Hooks {
         ActionMap::new()
     }
 
-    /// Builds the simulation: `configure`, then `create_sim_objects`.
+    /// Builds the simulation: `configure` (given the ARS defaults with a simple
+    /// space), then `create_sim_objects`.
     fn create_simulation(&mut self) -> Result<Simulation>
     where
         Self: Sized,
     {
-        let mut sim = self.configure(Simulation::builder()).build()?;
+        let mut sim = self.configure(Simulation::builder().space(SpaceKind::Simple)).build()?;
         self.create_sim_objects(&mut sim)?;
         Ok(sim)
     }

@@ -45,6 +45,11 @@ use hooks::{HookPoint, HookSet, Hooks};
 pub const DEFAULT_TIME_STEP: f64 = 0.0004;
 /// The ARS default number of steps per frame.
 pub const DEFAULT_STEPS_PER_FRAME: u32 = 50;
+/// The broad-phase space of a new [`Simulation`]: sweep and prune
+/// ([`SpaceKind::SWEEP_AND_PRUNE`]), whose cost grows linearly with the geoms (the
+/// original's simple space tests every pair). [`Program`](crate::Program)s start from
+/// [`SpaceKind::Simple`], the original's, so that they step bit for bit as it did.
+pub const DEFAULT_SPACE: SpaceKind = SpaceKind::SWEEP_AND_PRUNE;
 
 /// The floor a simulation starts with.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,7 +66,9 @@ pub enum Floor {
     },
 }
 
-/// Parameters of a new [`Simulation`]; the defaults are the original ARS'.
+/// Parameters of a new [`Simulation`]; the defaults are the original ARS', except the
+/// broad-phase space ([`DEFAULT_SPACE`], sweep and prune, where the original tested
+/// every pair: `.space(SpaceKind::Simple)` gives the original's).
 #[derive(Clone, Debug)]
 #[must_use]
 pub struct SimulationBuilder {
@@ -87,7 +94,7 @@ impl Default for SimulationBuilder {
             cfm: DEFAULT_CFM,
             stepper: Stepper::Exact,
             surface: ContactSurface::default(),
-            space: SpaceKind::Simple,
+            space: DEFAULT_SPACE,
             floor: Floor::None,
             seed: None,
         }
@@ -140,7 +147,8 @@ impl SimulationBuilder {
         self.surface.mu = mu;
         self
     }
-    /// The broad-phase space (default simple, as the original).
+    /// The broad-phase space (default [`DEFAULT_SPACE`], sweep and prune;
+    /// [`SpaceKind::Simple`] is the original's, and steps bit for bit as it).
     pub fn space(mut self, kind: SpaceKind) -> Self {
         self.space = kind;
         self
@@ -235,7 +243,8 @@ impl DerefMut for Simulation {
 }
 
 impl Simulation {
-    /// A simulation with the ARS defaults and no floor.
+    /// A simulation with the ARS defaults, no floor, and the default broad-phase
+    /// space ([`DEFAULT_SPACE`]).
     pub fn new() -> Result<Simulation> {
         SimulationBuilder::default().build()
     }

@@ -55,7 +55,10 @@ pub struct SceneFile {
     /// The contact surfaces of pairs of objects (by name) that have their own.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pair_surfaces: Vec<PairSurfaceFile>,
-    /// The broad-phase space.
+    /// The broad-phase space. A file that names none (written by hand, say) loads
+    /// with [`SpaceKind::Simple`], the original's (and, before sweep and prune was the
+    /// default, every simulation's).
+    #[serde(default = "original_space")]
     pub space: SpaceKind,
     /// Simulated time, s.
     pub time: f64,
@@ -72,6 +75,11 @@ pub struct SceneFile {
     /// here, not saved.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unsaved_sensors: Vec<String>,
+}
+
+/// The space of a file that names none: the original's simple space.
+fn original_space() -> SpaceKind {
+    SpaceKind::Simple
 }
 
 /// A sensor as saved: its kind (`"Gps"`, `"JointPositions"`...), the objects or joints
