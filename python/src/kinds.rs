@@ -8,7 +8,10 @@ pub(crate) fn space(name: &str) -> Result<SpaceKind, String> {
     match name {
         "simple" => Ok(SpaceKind::Simple),
         "hash" => Ok(SpaceKind::HASH),
-        other => Err(format!("there is no space {other:?}; the spaces are \"simple\" and \"hash\"")),
+        "sweep_and_prune" => Ok(SpaceKind::SWEEP_AND_PRUNE),
+        other => Err(format!(
+            "there is no space {other:?}; the spaces are \"sweep_and_prune\" (the default), \"hash\" and \"simple\""
+        )),
     }
 }
 
@@ -17,6 +20,7 @@ pub(crate) fn space_name(kind: SpaceKind) -> String {
     match kind {
         SpaceKind::Simple => "simple".into(),
         SpaceKind::Hash { .. } => "hash".into(),
+        SpaceKind::SweepAndPrune { .. } => "sweep_and_prune".into(),
         other => format!("{other:?}"),
     }
 }

@@ -381,9 +381,11 @@ impl PySimulation {
         self.with(py, move |sim| sim.world_mut().set_cfm(cfm))
     }
 
-    /// The broad phase that finds the pairs of geoms that may touch: `"simple"` (every
-    /// pair, as the original ARS) or `"hash"` (a hash grid: cost linear in the number of
-    /// bodies). Chosen when the simulation is made (`Simulation(space=...)`).
+    /// The broad phase that finds the pairs of geoms that may touch, chosen when the
+    /// simulation is made (`Simulation(space=...)`): `"sweep_and_prune"` (the default:
+    /// 10,000 spheres 2.5 ms a step, 100,000 92 ms), `"hash"` (a hash grid; up to
+    /// 100,000 geoms) or `"simple"` (every pair, as the original ARS: its programs keep
+    /// it, to give the original's numbers bit for bit).
     #[getter]
     fn space(&self, py: Python<'_>) -> PyResult<String> {
         self.with(py, |sim| Ok(crate::kinds::space_name(sim.space_kind())))

@@ -163,6 +163,7 @@ def test_the_stepper_space_and_world_parameters_are_chosen_and_read():
     sim.set_stepper("exact")
     assert sim.stepper == "exact"
     assert ars.Simulation(space="simple").space == "simple"
+    assert ars.Simulation().space == "sweep_and_prune", "new simulations scale"
     sim.erp, sim.cfm, sim.time_step, sim.gravity = 0.5, 1e-5, 0.001, (0.0, -1.0, 0.0)
     assert (sim.erp, sim.cfm, sim.time_step, sim.gravity) == (0.5, 1e-5, 0.001, (0.0, -1.0, 0.0))
     assert sim.frame_count == 0
