@@ -1,0 +1,422 @@
+"""Types of the native module `ars._native` (built from `python/src/*.rs`).
+
+Every name the module and its classes have is here (`python/tests/test_docs.py`
+checks it); the docstrings are in the module itself (`help(ars.Simulation)`).
+"""
+
+import os
+from collections.abc import Mapping, Sequence
+from typing import Any, Callable, Literal, TypedDict, final
+
+import numpy as np
+import numpy.typing as npt
+from typing_extensions import TypeAlias
+
+__all__ = [
+    "Body",
+    "Joint",
+    "Renderer",
+    "Sensor",
+    "Simulation",
+    "__version__",
+    "_panic_for_tests",
+    "_release_viewer",
+    "has_display",
+    "show_program",
+]
+
+__version__: str
+
+_Path: TypeAlias = str | os.PathLike[str]
+# Any sequence of three numbers (a tuple, a list, a numpy array).
+_Vec3: TypeAlias = Sequence[float] | npt.NDArray[np.floating[Any]]
+# A 3×3 rotation matrix, rows first.
+_Mat3: TypeAlias = Sequence[Sequence[float]] | npt.NDArray[np.floating[Any]]
+_Quality: TypeAlias = Literal["auto", "fast", "fine"]
+
+class _ShowReport(TypedDict):
+    frames_drawn: int
+    wall_seconds: float
+    simulated_seconds: float
+    frames_per_second: float
+    real_time_factor: float
+
+class _UrdfRobot(TypedDict):
+    name: str
+    links: list[str]
+    joints: list[str]
+    base_joint: str | None
+
+class _ContactSurface(TypedDict):
+    mu: float
+    mu2: float | None
+    bounce: float
+    bounce_velocity: float
+    soft_erp: float | None
+    soft_cfm: float | None
+    approx1: bool
+    max_contacts: int
+
+class _Efforts(TypedDict):
+    added: float
+    controller: float
+    friction: float
+    total: float
+
+@final
+class Simulation:
+    def __new__(
+        cls,
+        *,
+        time_step: float | None = None,
+        gravity: _Vec3 | None = None,
+        erp: float | None = None,
+        cfm: float | None = None,
+        steps_per_frame: int | None = None,
+        space: Literal["simple", "hash"] | None = None,
+        stepper: Literal["exact", "quick"] | None = None,
+        quick_iterations: int | None = None,
+        seed: int | None = None,
+    ) -> Simulation: ...
+    # Time and stepping.
+    @property
+    def time(self) -> float: ...
+    @property
+    def step_count(self) -> int: ...
+    @property
+    def frame_count(self) -> int: ...
+    @property
+    def time_step(self) -> float: ...
+    @time_step.setter
+    def time_step(self, value: float) -> None: ...
+    @property
+    def steps_per_frame(self) -> int: ...
+    def step(self, n: int = 1) -> None: ...
+    def step_frame(self) -> None: ...
+    def run(self, duration: float) -> None: ...
+    # The world.
+    @property
+    def gravity(self) -> tuple[float, float, float]: ...
+    @gravity.setter
+    def gravity(self, value: _Vec3) -> None: ...
+    @property
+    def erp(self) -> float: ...
+    @erp.setter
+    def erp(self, value: float) -> None: ...
+    @property
+    def cfm(self) -> float: ...
+    @cfm.setter
+    def cfm(self, value: float) -> None: ...
+    @property
+    def space(self) -> str: ...
+    @property
+    def stepper(self) -> str: ...
+    def set_stepper(
+        self, stepper: Literal["exact", "quick"], quick_iterations: int | None = None
+    ) -> None: ...
+    def set_seed(self, seed: int) -> None: ...
+    def set_contact_surface(
+        self,
+        between: tuple[str, str] | None = None,
+        *,
+        mu: float = 500.0,
+        mu2: float | None = None,
+        bounce: float = 0.2,
+        bounce_velocity: float = 0.0,
+        soft_erp: float | None = None,
+        soft_cfm: float | None = None,
+        approx1: bool = False,
+        max_contacts: int = ...,
+    ) -> None: ...
+    def contact_surface(self, between: tuple[str, str] | None = None) -> _ContactSurface: ...
+    def clear_contact_surface(self, a: str, b: str) -> None: ...
+    def cast_ray(
+        self, origin: _Vec3, direction: _Vec3, length: float
+    ) -> tuple[float, tuple[float, float, float]] | None: ...
+    # Objects.
+    def add_sphere(
+        self,
+        radius: float,
+        center: _Vec3 = ...,
+        mass: float | None = None,
+        density: float | None = None,
+        *,
+        name: str | None = None,
+    ) -> str: ...
+    def add_box(
+        self,
+        size: _Vec3,
+        center: _Vec3 = ...,
+        mass: float | None = None,
+        density: float | None = None,
+        *,
+        name: str | None = None,
+    ) -> str: ...
+    def add_cylinder(
+        self,
+        length: float,
+        radius: float,
+        center: _Vec3 = ...,
+        mass: float | None = None,
+        density: float | None = None,
+        *,
+        name: str | None = None,
+    ) -> str: ...
+    def add_capsule(
+        self,
+        length: float,
+        radius: float,
+        center: _Vec3 = ...,
+        mass: float | None = None,
+        density: float | None = None,
+        *,
+        name: str | None = None,
+    ) -> str: ...
+    def add_cone(
+        self,
+        height: float,
+        radius: float,
+        center: _Vec3 = ...,
+        mass: float | None = None,
+        density: float | None = None,
+        *,
+        name: str | None = None,
+    ) -> str: ...
+    def add_floor(
+        self, normal: _Vec3 = ..., dist: float = 0.0, *, name: str | None = None
+    ) -> str: ...
+    def add_trimesh(
+        self,
+        vertices: Sequence[_Vec3] | npt.NDArray[np.floating[Any]],
+        faces: Sequence[Sequence[int]] | npt.NDArray[np.integer[Any]],
+        center: _Vec3 = ...,
+        *,
+        name: str | None = None,
+    ) -> str: ...
+    def load_urdf(
+        self,
+        path: _Path,
+        *,
+        fixed_base: bool = False,
+        base_position: _Vec3 = ...,
+        self_collision: bool = False,
+        y_up: bool = False,
+        initial_positions: Mapping[str, float] | None = None,
+        packages: Mapping[str, _Path] | None = None,
+        search_paths: Sequence[_Path] | None = None,
+        ignore_visuals: bool = False,
+    ) -> _UrdfRobot: ...
+    def remove_object(self, name: str) -> None: ...
+    @property
+    def objects(self) -> list[str]: ...
+    def body(self, name: str) -> Body: ...
+    # Joints.
+    def add_rotary_joint(
+        self,
+        name: str,
+        obj1: str,
+        obj2: str | None,
+        anchor: _Vec3 | None = None,
+        axis: _Vec3 = ...,
+    ) -> str: ...
+    def add_slider_joint(self, name: str, obj1: str, obj2: str | None, axis: _Vec3) -> str: ...
+    def add_ball_socket_joint(
+        self, name: str, obj1: str, obj2: str | None, anchor: _Vec3 | None = None
+    ) -> str: ...
+    def add_universal_joint(
+        self,
+        name: str,
+        obj1: str,
+        obj2: str | None,
+        anchor: _Vec3,
+        axis1: _Vec3,
+        axis2: _Vec3,
+    ) -> str: ...
+    def add_piston_joint(
+        self, name: str, obj1: str, obj2: str | None, anchor: _Vec3, axis: _Vec3
+    ) -> str: ...
+    def add_fixed_joint(self, name: str, obj1: str, obj2: str | None) -> str: ...
+    def remove_joint(self, name: str) -> None: ...
+    @property
+    def joints(self) -> list[str]: ...
+    def joint(self, name: str) -> Joint: ...
+    # Sensors.
+    def add_sensor(
+        self, kind: str, target: str | Sequence[str] | None = None, *, every: float | None = None
+    ) -> Sensor: ...
+    def add_lidar(
+        self,
+        beams: int,
+        fov: float,
+        max_range: float,
+        *,
+        min_range: float = 0.0,
+        planes: Sequence[float] | None = None,
+        on: str | None = None,
+        position: _Vec3 = ...,
+        rotation: _Mat3 | None = None,
+        every: float | None = None,
+        noise: float | None = None,
+        seed: int = 0,
+    ) -> Sensor: ...
+    def add_depth_camera(
+        self,
+        width: int,
+        height: int,
+        fov_y: float,
+        near: float,
+        far: float,
+        *,
+        on: str | None = None,
+        position: _Vec3 = ...,
+        rotation: _Mat3 | None = None,
+        every: float | None = None,
+    ) -> Sensor: ...
+    # Hooks.
+    def add_pre_step(self, function: Callable[[], object]) -> int: ...
+    def add_post_step(self, function: Callable[[], object]) -> int: ...
+    def remove_hook(self, hook: int) -> None: ...
+    # Scene files.
+    def save_scene(self) -> str: ...
+    def save_scene_to(self, path: _Path) -> None: ...
+    @staticmethod
+    def load_scene(text: str) -> Simulation: ...
+    @staticmethod
+    def load_scene_from(path: _Path) -> Simulation: ...
+    # The window.
+    def show(
+        self,
+        duration: float | None = None,
+        *,
+        frames: int | None = None,
+        title: str = ...,
+        size: tuple[int, int] = ...,
+        camera: _Vec3 = ...,
+        look_at: _Vec3 = ...,
+        background: _Vec3 = ...,
+        follow: str | None = None,
+        quality: _Quality = ...,
+    ) -> _ShowReport: ...
+
+@final
+class Body:
+    @property
+    def name(self) -> str: ...
+    @property
+    def position(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def rotation(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def linear_velocity(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def angular_velocity(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def inertia(self) -> npt.NDArray[np.float64]: ...
+    def set_position(self, position: _Vec3) -> None: ...
+    def set_rotation(self, rotation: _Mat3) -> None: ...
+    def set_pose(self, position: _Vec3, rotation: _Mat3 | None = None) -> None: ...
+    def set_linear_velocity(self, velocity: _Vec3) -> None: ...
+    def set_angular_velocity(self, velocity: _Vec3) -> None: ...
+    def add_force(self, force: _Vec3) -> None: ...
+    def rotate(self, axis: _Vec3, angle: float) -> None: ...
+    def offset_by_position(self, offset: _Vec3) -> None: ...
+    def offset_by_object(self, other: str) -> None: ...
+    def set_color(self, color: _Vec3) -> None: ...
+
+@final
+class Joint:
+    @property
+    def name(self) -> str: ...
+    @property
+    def kind(self) -> Literal["hinge", "slider", "universal", "ball", "piston", "fixed"]: ...
+    @property
+    def angle(self) -> float: ...
+    @property
+    def position(self) -> float: ...
+    @property
+    def rate(self) -> float: ...
+    @property
+    def efforts(self) -> _Efforts: ...
+    def add_torque(self, torque: float) -> None: ...
+    def add_force(self, force: float) -> None: ...
+    def set_speed(self, speed: float, max_force: float) -> None: ...
+    def set_limits(self, low: float, high: float) -> None: ...
+    def set_param(
+        self,
+        name: Literal[
+            "lo_stop",
+            "hi_stop",
+            "velocity",
+            "max_force",
+            "fudge_factor",
+            "bounce",
+            "cfm",
+            "stop_erp",
+            "stop_cfm",
+        ],
+        value: float,
+    ) -> None: ...
+    def set_viscous_friction(self, coefficient: float) -> None: ...
+    def set_dry_friction(self, max_effort: float) -> None: ...
+    def set_actuator_limits(self, effort: float = ..., velocity: float = ...) -> None: ...
+    def set_controller(
+        self,
+        kind: Literal["torque", "position", "velocity"] | None,
+        setpoint: float | Sequence[tuple[float, float]] | None = None,
+        kp: float = 0.0,
+        kd: float = 0.0,
+    ) -> None: ...
+    def set_mimic(self, leader: str, multiplier: float = 1.0, offset: float = 0.0) -> None: ...
+    def clear_mimic(self) -> None: ...
+
+@final
+class Sensor:
+    @property
+    def kind(self) -> str: ...
+    @property
+    def detached(self) -> bool: ...
+    def __len__(self) -> int: ...
+    def records(self) -> npt.NDArray[np.void]: ...
+    def to_csv(self, path: _Path) -> None: ...
+    def ranges(self) -> npt.NDArray[np.float64]: ...
+    def points(self) -> npt.NDArray[np.float64]: ...
+    def images(self) -> npt.NDArray[np.float32]: ...
+    def clear(self) -> None: ...
+    def remove(self) -> None: ...
+
+@final
+class Renderer:
+    def __new__(
+        cls,
+        width: int = 640,
+        height: int = 480,
+        *,
+        camera: _Vec3 = ...,
+        look_at: _Vec3 = ...,
+        background: _Vec3 = ...,
+        follow: str | None = None,
+        quality: _Quality = ...,
+    ) -> Renderer: ...
+    @property
+    def size(self) -> tuple[int, int]: ...
+    def render(self, sim: Simulation) -> npt.NDArray[np.uint8]: ...
+    def save(self, sim: Simulation, path: _Path) -> None: ...
+
+def has_display() -> bool: ...
+def show_program(
+    program: object,
+    *,
+    duration: float | None = None,
+    frames: int | None = None,
+    title: str,
+    size: tuple[int, int],
+    camera: _Vec3,
+    look_at: _Vec3,
+    background: _Vec3,
+    follow: str | None = None,
+    quality: _Quality = ...,
+) -> _ShowReport: ...
+def _release_viewer() -> None: ...
+def _panic_for_tests(message: str) -> None: ...
