@@ -18,14 +18,33 @@ Only the parameters cross process boundaries: each run is built inside its worke
 parameters override (``ars.sweep(Example2, [{"MAX_TORQUE": 10.0}], ...)``).
 """
 
+from __future__ import annotations
+
 import dataclasses
+import logging
 import multiprocessing
 import os
 import pickle
 import sys
+from collections.abc import Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
+import numpy.typing as npt
+
+# What ``sweep`` runs: ``build(params)`` returning an ``ars.Simulation`` or an
+# ``ars.app.Program``, or a ``Program`` subclass.
+Build = Union[Callable[[dict[str, Any]], Any], type]
+# One run's samples: ``time`` then one field per recorded ``"NAME.ATTRIBUTE"``.
+Table = npt.NDArray[np.void]
+# What a run gives back: its table and the exception that stopped it, if any.
+Outcome = tuple[Table, Optional[BaseException]]
+# What every run is given besides its parameters: duration, record, every, seed.
+Args = tuple[float, list[str], int, Optional[int]]
+
+if TYPE_CHECKING:
+    from ars._native import Body, Joint, Simulation
 
 __all__ = ["RunResult", "SweepResults", "sweep"]
 
@@ -33,21 +52,21 @@ __all__ = ["RunResult", "SweepResults", "sweep"]
 @dataclasses.dataclass
 class RunResult:
     """One run: its parameters, its table (``time`` then one field per recorded
-    ``"NAME.ATTRIBUTE"``; what was sampled before a failure), and the exception that
-    stopped it (``None`` if it ran to the end)."""
+    ``"NAME.ATTRIBUTE"``; what was sampled before a failure, empty if the worker running
+    it died), and the exception that stopped it (``None`` if it ran to the end)."""
 
-    params: dict
-    table: np.ndarray
-    error: BaseException = None
+    params: dict[str, Any]
+    table: Table
+    error: BaseException | None = None
 
 
-class SweepResults(list):
+class SweepResults(list[RunResult]):
     """The runs, in the order of the parameters given."""
 
     @property
-    def table(self):
+    def table(self) -> Table:
         """Every run's table stacked, with a first field ``run`` (its index)."""
-        tables = [(i, r.table) for i, r in enumerate(self) if r.table is not None and len(r.table)]
+        tables = [(i, r.table) for i, r in enumerate(self) if len(r.table)]
         if not tables:
             return np.zeros(0, dtype=[("run", "i8")])
         fields = tables[0][1].dtype.descr
@@ -56,18 +75,18 @@ class SweepResults(list):
         for i, t in tables:
             part = stacked[at : at + len(t)]
             part["run"] = i
-            for name in t.dtype.names:
+            for name in t.dtype.names or ():
                 part[name] = t[name]
             at += len(t)
         return stacked
 
     @property
-    def errors(self):
+    def errors(self) -> list[tuple[int, BaseException]]:
         """``[(index, exception), ...]`` of the runs that failed."""
         return [(i, r.error) for i, r in enumerate(self) if r.error is not None]
 
 
-def _build(build, params):
+def _build(build: Any, params: dict[str, Any]) -> Any:
     from ars.app import Program
 
     if isinstance(build, type) and issubclass(build, Program):
@@ -75,7 +94,7 @@ def _build(build, params):
     return build(params)
 
 
-def _native_of(target):
+def _native_of(target: Any) -> tuple[Simulation, Callable[[float], Any]]:
     from ars import _native
     from ars.app import Program
     from ars.model.simulator import Simulation as OriginalSimulation
@@ -83,20 +102,22 @@ def _native_of(target):
     if isinstance(target, _native.Simulation):
         return target, lambda duration: target.run(duration)
     if isinstance(target, Program):
-        return target.sim.native, target.run
+        program: Any = target
+        return program.sim.native, program.run
     if isinstance(target, OriginalSimulation):
+        original: Any = target
 
-        def frames(duration):
-            for _ in range(round(duration * target._FPS)):
-                target.on_idle()
+        def frames(duration: float) -> None:
+            for _ in range(round(duration * original._FPS)):
+                original.on_idle()
 
-        return target.native, frames
+        return original.native, frames
     raise TypeError(
         f"build must return an ars.Simulation or an ars.app.Program, got {type(target).__name__}"
     )
 
 
-def _reader(sim, entry):
+def _reader(sim: Simulation, entry: str) -> Callable[[], Any]:
     name, sep, attribute = entry.rpartition(".")
     if not sep or not name or not attribute:
         from ars import InputError
@@ -104,6 +125,7 @@ def _reader(sim, entry):
         raise InputError(f"record entries are 'NAME.ATTRIBUTE' (\"r1.angle\"), got {entry!r}")
     from ars import UnknownNameError
 
+    view: Body | Joint
     try:
         view = sim.body(name)
     except UnknownNameError:
@@ -112,10 +134,10 @@ def _reader(sim, entry):
     return lambda: getattr(view, attribute)
 
 
-def _table(record, rows):
+def _table(record: list[str], rows: list[list[Any]]) -> Table:
     if not rows:
         return np.zeros(0, dtype=[("time", "f8")] + [(r, "f8") for r in record])
-    fields = [("time", "f8")]
+    fields: list[Any] = [("time", "f8")]
     for name, value in zip(record, rows[0][1:]):
         shape = np.shape(value)
         fields.append((name, "f8", shape) if shape else (name, "f8"))
@@ -125,7 +147,7 @@ def _table(record, rows):
     return table
 
 
-def _portable(error):
+def _portable(error: BaseException) -> BaseException:
     """The error itself if it survives pickling, else an ``ars.ArsError`` saying what
     it was."""
     try:
@@ -137,9 +159,16 @@ def _portable(error):
         return ArsError(f"{type(error).__module__}.{type(error).__qualname__}: {error}")
 
 
-def run_one(build, params, duration, record, every, seed):
+def run_one(
+    build: Build,
+    params: dict[str, Any],
+    duration: float,
+    record: list[str],
+    every: int,
+    seed: int | None,
+) -> Outcome:
     """One run, where it runs (a worker): returns ``(table, error)``."""
-    rows = []
+    rows: list[list[Any]] = []
     try:
         target = _build(build, params)
         sim, advance = _native_of(target)
@@ -147,10 +176,10 @@ def run_one(build, params, duration, record, every, seed):
             sim.set_seed(seed)
         readers = [_reader(sim, entry) for entry in record]
 
-        def sample():
+        def sample() -> None:
             rows.append([sim.time] + [read() for read in readers])
 
-        def maybe_sample():
+        def maybe_sample() -> None:
             if sim.step_count % every == 0:
                 sample()
 
@@ -163,10 +192,10 @@ def run_one(build, params, duration, record, every, seed):
 
 
 class _Progress:
-    def __init__(self, total, show):
+    def __init__(self, total: int, show: bool) -> None:
         self.total, self.done, self.show = total, 0, show
 
-    def step(self):
+    def step(self) -> None:
         self.done += 1
         if self.show:
             filled = 30 * self.done // max(self.total, 1)
@@ -179,17 +208,17 @@ class _Progress:
 
 
 def sweep(
-    build,
-    params,
-    duration,
-    record=(),
-    every=1,
-    backend="serial",
-    seed=0,
-    workers=None,
-    address=None,
-    progress=None,
-):
+    build: Build,
+    params: Iterable[Mapping[str, Any]],
+    duration: float,
+    record: Iterable[str] = (),
+    every: int = 1,
+    backend: str = "serial",
+    seed: int | None = 0,
+    workers: int | None = None,
+    address: str | None = None,
+    progress: bool | None = None,
+) -> SweepResults:
     """Runs ``build(p)`` for ``duration`` seconds for every ``p`` in ``params``,
     sampling ``time`` and each ``"NAME.ATTRIBUTE"`` of ``record`` (named access:
     ``"r1.angle"``, ``"pole.position"``) at the start and every ``every`` steps.
@@ -204,32 +233,32 @@ def sweep(
     Returns a :class:`SweepResults`: one :class:`RunResult` per parameter set, in
     order; a run that fails has its ``error`` and the others run on.
     """
-    params = [dict(p) for p in params]
-    record = list(record)
+    sets = [dict(p) for p in params]
+    fields = list(record)
     if not isinstance(every, int) or every < 1:
         from ars import InputError
 
         raise InputError(f"every must be a whole number of steps ≥ 1, got {every!r}")
     show = sys.stderr.isatty() if progress is None else progress
-    bar = _Progress(len(params), show)
-    args = (duration, record, every, seed)
+    bar = _Progress(len(sets), show)
+    args = (duration, fields, every, seed)
     if backend == "serial":
-        outcomes = []
-        for p in params:
+        outcomes: list[Outcome] = []
+        for p in sets:
             outcomes.append(run_one(build, p, *args))
             bar.step()
     elif backend == "processes":
-        outcomes = _on_processes(build, params, args, workers, bar)
+        outcomes = _on_processes(build, sets, args, workers, bar)
     elif backend == "ray":
-        outcomes = _on_ray(build, params, args, workers, address, bar)
+        outcomes = _on_ray(build, sets, args, workers, address, bar)
     else:
         from ars import InputError
 
         raise InputError(f"backend must be 'serial', 'processes' or 'ray', got {backend!r}")
-    return SweepResults(RunResult(p, table, error) for p, (table, error) in zip(params, outcomes))
+    return SweepResults(RunResult(p, table, error) for p, (table, error) in zip(sets, outcomes))
 
 
-def _check_portable(build, backend):
+def _check_portable(build: Build, backend: str) -> None:
     try:
         pickle.dumps(build)
     except Exception as e:
@@ -239,32 +268,40 @@ def _check_portable(build, backend):
         ) from e
 
 
-def _on_processes(build, params, args, workers, bar):
+def _on_processes(
+    build: Build, params: list[dict[str, Any]], args: Args, workers: int | None, bar: _Progress
+) -> list[Outcome]:
     _check_portable(build, "processes")
     context = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=workers or os.cpu_count(), mp_context=context) as pool:
         futures = [pool.submit(run_one, build, p, *args) for p in params]
-        outcomes = []
+        outcomes: list[Outcome] = []
         for f in futures:
             try:
                 outcomes.append(f.result())
             except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
-                outcomes.append((None, e))
+                outcomes.append((_table(args[1], []), e))
             bar.step()
     return outcomes
 
 
-def _on_ray(build, params, args, workers, address, bar):
+def _on_ray(
+    build: Build,
+    params: list[dict[str, Any]],
+    args: Args,
+    workers: int | None,
+    address: str | None,
+    bar: _Progress,
+) -> list[Outcome]:
     try:
-        import ray
+        import ray  # type: ignore[import-not-found, unused-ignore]
     except ImportError as e:
         raise ImportError("the ray backend needs Ray: pip install ray") from e
     started = False
     if not ray.is_initialized():
         address = address or os.environ.get("RAY_ADDRESS")
-        quiet = {"log_to_driver": False, "logging_level": "ERROR"}
         if address:
-            ray.init(address=address, **quiet)
+            ray.init(address=address, log_to_driver=False, logging_level=logging.ERROR)
         else:
             os.environ.setdefault("RAY_USAGE_STATS_ENABLED", "0")
             os.environ.setdefault("RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER", "0")
@@ -273,7 +310,12 @@ def _on_ray(build, params, args, workers, address, bar):
             previous = os.environ.get("PYTHONPATH")
             os.environ["PYTHONPATH"] = path
             try:
-                ray.init(num_cpus=workers or os.cpu_count(), include_dashboard=False, **quiet)
+                ray.init(
+                    num_cpus=workers or os.cpu_count(),
+                    include_dashboard=False,
+                    log_to_driver=False,
+                    logging_level=logging.ERROR,
+                )
             finally:
                 if previous is None:
                     del os.environ["PYTHONPATH"]
@@ -283,12 +325,12 @@ def _on_ray(build, params, args, workers, address, bar):
     try:
         remote = ray.remote(num_cpus=1)(run_one)
         refs = [remote.remote(build, p, *args) for p in params]
-        outcomes = []
+        outcomes: list[Outcome] = []
         for ref in refs:
             try:
                 outcomes.append(ray.get(ref))
             except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
-                outcomes.append((None, e))
+                outcomes.append((_table(args[1], []), e))
             bar.step()
         return outcomes
     finally:

@@ -13,6 +13,7 @@ here, ``ray start --address=HEAD:6379`` on the other machines) and run with ``ra
 
 import math
 import sys
+from typing import Any
 
 import numpy as np
 
@@ -22,7 +23,7 @@ TORQUES = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 35.0, 40.0]
 DURATION = 20.0
 
 
-def conical_pendulum(params):
+def conical_pendulum(params: dict[str, Any]) -> ars.Simulation:
     """IROS example 2 with the waist torque ramping to ``params["torque"]`` in 1 s and
     viscous friction 5 N·m·s/rad on both joints, all driven in native code."""
     sim = ars.Simulation(time_step=1.0 / 50 / 80, steps_per_frame=80)
@@ -41,9 +42,10 @@ def conical_pendulum(params):
     return sim
 
 
-def steady(runs):
+def steady(runs: ars.SweepResults) -> tuple[list[float], list[float]]:
     """The means over the last second: waist rate (rad/s) and cone angle (rad)."""
-    rates, angles = [], []
+    rates: list[float] = []
+    angles: list[float] = []
     for run in runs:
         last = run.table[run.table["time"] > DURATION - 1.0]
         rates.append(float(np.mean(last["r1.rate"])))
@@ -51,7 +53,7 @@ def steady(runs):
     return rates, angles
 
 
-def main():
+def main() -> None:
     backend = sys.argv[1] if len(sys.argv) > 1 else "serial"
     output = sys.argv[2] if len(sys.argv) > 2 else "conical_pendulum_sweep.png"
     runs = ars.sweep(
@@ -69,10 +71,10 @@ def main():
     for t, w, q in zip(TORQUES, rates, angles):
         print(f"{t:12.1f}  {w:18.5f}  {q:16.5f}")
     try:
-        import matplotlib
+        import matplotlib  # type: ignore[import-not-found, unused-ignore]
 
         matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        import matplotlib.pyplot as plt  # type: ignore[import-not-found, unused-ignore]
     except ImportError:
         print("matplotlib is not installed: no plot (pip install matplotlib)")
         return
