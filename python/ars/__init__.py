@@ -11,6 +11,26 @@ True
 """
 
 import atexit
+import os
+import sys
+
+# Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
+# lists its devices; with no Wayland display and no XDG_RUNTIME_DIR (Xvfb, CI, ssh -X)
+# libwayland prints "error: XDG_RUNTIME_DIR is invalid..." four times per renderer or
+# window. The layer's own switch turns it off; nobody who chose a device is overridden.
+# (The Rust viewer does the same in a single-threaded program; a Python process may run
+# threads, so the package sets it here, at import, before any rendering starts.)
+if sys.platform.startswith("linux") and not any(
+    os.environ.get(v)
+    for v in (
+        "WAYLAND_DISPLAY",
+        "XDG_RUNTIME_DIR",
+        "NODEVICE_SELECT",
+        "MESA_VK_DEVICE_SELECT",
+        "DRI_PRIME",
+    )
+):
+    os.environ["NODEVICE_SELECT"] = "1"
 
 from ars import _native
 from ars._errors import ArsError, InputError, InternalError, SimulationError, UnknownNameError

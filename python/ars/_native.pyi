@@ -296,6 +296,7 @@ class Simulation:
         background: _Vec3 = ...,
         follow: str | None = None,
         quality: _Quality = ...,
+        axes: bool = ...,
     ) -> _ShowReport: ...
 
 @final
@@ -398,6 +399,7 @@ class Renderer:
         background: _Vec3 = ...,
         follow: str | None = None,
         quality: _Quality = ...,
+        axes: bool = ...,
     ) -> Renderer: ...
     @property
     def size(self) -> tuple[int, int]: ...
@@ -417,6 +419,7 @@ def show_program(
     background: _Vec3,
     follow: str | None = None,
     quality: _Quality = ...,
+    axes: bool = ...,
 ) -> _ShowReport: ...
 def _release_viewer() -> None: ...
 def _panic_for_tests(message: str) -> None: ...

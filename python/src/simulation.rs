@@ -437,7 +437,7 @@ impl PySimulation {
     /// (speed, plots of the sensors, joints), escape to quit.
     /// Needs a display; returns what the run measured (frames, seconds, real-time
     /// factor). Off screen, use `ars.Renderer`.
-    #[pyo3(signature = (duration=None, *, frames=None, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string()))]
+    #[pyo3(signature = (duration=None, *, frames=None, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
     fn show(
         slf: &Bound<'_, Self>,
         duration: Option<f64>,
@@ -449,8 +449,9 @@ impl PySimulation {
         background: Vec3,
         follow: Option<String>,
         quality: String,
+        axes: bool,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = crate::viewer::ViewArgs { title, size, camera, look_at, background, follow, quality };
+        let view = crate::viewer::ViewArgs { title, size, camera, look_at, background, follow, quality, axes };
         crate::viewer::show(slf.py(), slf.clone().unbind(), None, duration, frames, view)
     }
 

@@ -38,9 +38,16 @@ pub(crate) struct ViewArgs {
     pub background: Vec3,
     pub follow: Option<String>,
     pub quality: String,
+    /// Draw the world axes (the window's `x` key toggles them).
+    pub axes: bool,
 }
 
 impl ViewArgs {
+    /// The viewer's options these keywords ask for.
+    fn options(&self) -> ars_viewer::ViewerOptions {
+        ars_viewer::ViewerOptions::default().with_axes(self.axes)
+    }
+
     fn settings(self) -> Result<ViewSettings, String> {
         let (w, h) = self.size;
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
@@ -197,6 +204,7 @@ pub(crate) fn show(
                 .map_err(|_| raise(py, "InputError", format!("the window's number of frames {n} must be 0 or more")))?,
         ),
     };
+    let options = view.options();
     let view = view.settings().map_err(|m| raise(py, "InputError", m))?;
     let mut driver = PythonDriver { sim, program, raised: None, closing: false, frames_left };
     let outcome = py.detach(|| {
@@ -204,7 +212,7 @@ pub(crate) fn show(
             // Window after window on this thread: its rendering context is kept (and
             // given back when the interpreter exits: `release_viewer`).
             ars_viewer::keep_rendering_context();
-            ars_viewer::run_window(&mut driver, &view, limit)
+            ars_viewer::run_window_with(&mut driver, &view, &options, limit)
         }))
     });
     if let Some(e) = driver.raised.take() {
@@ -228,7 +236,7 @@ pub(crate) fn show(
 /// Opens a window on a program in the original's style: `program` has `native()`
 /// (its `ars.Simulation` now), `frame()`, `step()`, `reset()` and `key(name, down)`.
 #[pyfunction]
-#[pyo3(signature = (program, *, duration=None, frames=None, title, size, camera, look_at, background, follow=None, quality="auto".to_string()))]
+#[pyo3(signature = (program, *, duration=None, frames=None, title, size, camera, look_at, background, follow=None, quality="auto".to_string(), axes=false))]
 pub(crate) fn show_program(
     py: Python<'_>,
     program: Py<PyAny>,
@@ -241,9 +249,10 @@ pub(crate) fn show_program(
     background: Vec3,
     follow: Option<String>,
     quality: String,
+    axes: bool,
 ) -> PyResult<Py<PyDict>> {
     let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
-    let view = ViewArgs { title, size, camera, look_at, background, follow, quality };
+    let view = ViewArgs { title, size, camera, look_at, background, follow, quality, axes };
     show(py, sim, Some(program), duration, frames, view)
 }
 
@@ -294,8 +303,13 @@ fn caught<T>(f: impl FnOnce() -> Result<T, ViewerError>) -> Result<T, Failure> {
 
 /// The renderer's thread: makes the renderer, then draws what it is asked until the
 /// renderer is dropped.
-fn serve(view: ViewSettings, ready: mpsc::SyncSender<Result<(), Failure>>, requests: mpsc::Receiver<Request>) {
-    let mut renderer = match caught(|| OffscreenRenderer::new(&view)) {
+fn serve(
+    view: ViewSettings,
+    options: ars_viewer::ViewerOptions,
+    ready: mpsc::SyncSender<Result<(), Failure>>,
+    requests: mpsc::Receiver<Request>,
+) {
+    let mut renderer = match caught(|| OffscreenRenderer::with_options(&view, &options)) {
         Ok(r) => r,
         Err(e) => {
             let _ = ready.send(Err(e));
@@ -351,7 +365,7 @@ impl Drop for PyRenderer {
 #[pymethods]
 impl PyRenderer {
     #[new]
-    #[pyo3(signature = (width=640, height=480, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string()))]
+    #[pyo3(signature = (width=640, height=480, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
     fn new(
         py: Python<'_>,
         width: u32,
@@ -361,15 +375,17 @@ impl PyRenderer {
         background: Vec3,
         follow: Option<String>,
         quality: String,
+        axes: bool,
     ) -> PyResult<Self> {
         let args =
-            ViewArgs { title: "ARS".into(), size: (width, height), camera, look_at, background, follow, quality };
+            ViewArgs { title: "ARS".into(), size: (width, height), camera, look_at, background, follow, quality, axes };
+        let options = args.options();
         let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
         let (ready_tx, ready_rx) = mpsc::sync_channel(1);
         let (requests, requests_rx) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("ars-renderer".into())
-            .spawn(move || serve(view, ready_tx, requests_rx))
+            .spawn(move || serve(view, options, ready_tx, requests_rx))
             .map_err(|e| raise(py, "ArsError", format!("could not start the renderer's thread: {e}")))?;
         let ready = py.detach(move || ready_rx.recv());
         match ready {
