@@ -33,9 +33,16 @@ if sys.platform.startswith("linux") and not any(
     os.environ["NODEVICE_SELECT"] = "1"
 
 from ars import _native
-from ars._errors import ArsError, InputError, InternalError, SimulationError, UnknownNameError
+from ars._errors import (
+    ArsError,
+    InputError,
+    InternalError,
+    ReproductionError,
+    SimulationError,
+    UnknownNameError,
+)
 from ars._native import Body, Joint, Renderer, Sensor, Simulation, __version__, has_display
-from ars.sweeps import RunResult, SweepResults, sweep
+from ars.sweeps import RunResult, SweepResults, load_sweep, rerun, sweep
 
 # The viewer keeps the rendering context of its windows for the next one; it is given
 # back before the interpreter's threads end.
@@ -48,6 +55,7 @@ __all__ = [
     "InternalError",
     "Joint",
     "Renderer",
+    "ReproductionError",
     "RunResult",
     "Sensor",
     "Simulation",
@@ -56,5 +64,7 @@ __all__ = [
     "UnknownNameError",
     "__version__",
     "has_display",
+    "load_sweep",
+    "rerun",
     "sweep",
 ]

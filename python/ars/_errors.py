@@ -4,7 +4,14 @@ They live in an importable module (not in the extension) so that pickling (Ray,
 multiprocessing) rebuilds them as the same classes in other processes.
 """
 
-__all__ = ["ArsError", "InputError", "InternalError", "SimulationError", "UnknownNameError"]
+__all__ = [
+    "ArsError",
+    "InputError",
+    "InternalError",
+    "ReproductionError",
+    "SimulationError",
+    "UnknownNameError",
+]
 
 
 class ArsError(Exception):
@@ -36,5 +43,17 @@ class InternalError(ArsError):
     """A bug in ARS (a Rust panic), caught before it reached Python: please report it."""
 
 
-for _cls in (ArsError, InputError, UnknownNameError, SimulationError, InternalError):
+class ReproductionError(ArsError):
+    """A run computed other bits than the ones recorded (``ars.rerun``): another
+    platform, library or version of ARS; the message names both."""
+
+
+for _cls in (
+    ArsError,
+    InputError,
+    UnknownNameError,
+    SimulationError,
+    InternalError,
+    ReproductionError,
+):
     _cls.__module__ = "ars"

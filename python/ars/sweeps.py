@@ -21,6 +21,9 @@ parameters override (``ars.sweep(Example2, [{"MAX_TORQUE": 10.0}], ...)``).
 from __future__ import annotations
 
 import dataclasses
+import hashlib
+import importlib
+import json
 import logging
 import multiprocessing
 import os
@@ -38,26 +41,39 @@ import numpy.typing as npt
 Build = Union[Callable[[dict[str, Any]], Any], type]
 # One run's samples: ``time`` then one field per recorded ``"NAME.ATTRIBUTE"``.
 Table = npt.NDArray[np.void]
-# What a run gives back: its table and the exception that stopped it, if any.
-Outcome = tuple[Table, Optional[BaseException]]
+# What a run gives back: its table, the exception that stopped it, if any, and the
+# platform it ran on (``_native._platform()``; empty if its worker died).
+Outcome = tuple[Table, Optional[BaseException], dict[str, str]]
 # What every run is given besides its parameters: duration, record, every, seed.
 Args = tuple[float, list[str], int, Optional[int]]
 
 if TYPE_CHECKING:
     from ars._native import Body, Joint, Simulation
 
-__all__ = ["RunResult", "SweepResults", "sweep"]
+__all__ = ["RunResult", "SweepResults", "load_sweep", "rerun", "sweep", "table_sha256"]
+
+
+def table_sha256(table: Table) -> str:
+    """sha256 (hex) of a table: its fields' names, types and shapes, then its bytes."""
+    digest = hashlib.sha256(repr(table.dtype.descr).encode())
+    digest.update(np.ascontiguousarray(table).tobytes())
+    return digest.hexdigest()
 
 
 @dataclasses.dataclass
 class RunResult:
     """One run: its parameters, its table (``time`` then one field per recorded
     ``"NAME.ATTRIBUTE"``; what was sampled before a failure, empty if the worker running
-    it died), and the exception that stopped it (``None`` if it ran to the end)."""
+    it died), the exception that stopped it (``None`` if it ran to the end), and its
+    ``provenance``: what ``ars.rerun`` needs to run it again anywhere and what it must
+    get (``build``, ``params``, ``duration``, ``record``, ``every``, ``seed``; the
+    ``ars_version``, ``ars_commit``, ``libode_version``, ``cpu`` and ``libc`` it ran
+    with; ``table_sha256``)."""
 
     params: dict[str, Any]
     table: Table
     error: BaseException | None = None
+    provenance: dict[str, Any] = dataclasses.field(default_factory=dict)
 
 
 class SweepResults(list[RunResult]):
@@ -84,6 +100,96 @@ class SweepResults(list[RunResult]):
     def errors(self) -> list[tuple[int, BaseException]]:
         """``[(index, exception), ...]`` of the runs that failed."""
         return [(i, r.error) for i, r in enumerate(self) if r.error is not None]
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Writes every run to a NumPy ``.npz`` file: its table (``run_0``, ``run_1``...)
+        and, as JSON text in ``provenance``, each run's provenance with its error's
+        message. ``ars.load_sweep(path)`` reads it back."""
+        provenance = [
+            dict(r.provenance, params=r.params, error=None if r.error is None else repr(r.error))
+            for r in self
+        ]
+        tables = {f"run_{i}": r.table for i, r in enumerate(self)}
+        np.savez(path, provenance=np.array(json.dumps(provenance)), **tables)  # type: ignore[arg-type]
+
+
+def load_sweep(path: str | os.PathLike[str]) -> SweepResults:
+    """The runs saved by ``SweepResults.save``: tables and provenance (an error comes
+    back as an ``ars.ArsError`` holding the message it had)."""
+    from ars import ArsError
+
+    with np.load(path, allow_pickle=False) as data:
+        provenance = json.loads(str(data["provenance"]))
+        runs = SweepResults()
+        for i, prov in enumerate(provenance):
+            message = prov.pop("error")
+            error = None if message is None else ArsError(message)
+            runs.append(RunResult(dict(prov["params"]), data[f"run_{i}"], error, prov))
+    return runs
+
+
+def _build_name(build: Build) -> str:
+    return f"{build.__module__}:{build.__qualname__}"
+
+
+def _import_build(name: str) -> Build:
+    module, _, qualname = name.partition(":")
+    target: Any = importlib.import_module(module)
+    for part in qualname.split("."):
+        target = getattr(target, part)
+    return target  # type: ignore[no-any-return]
+
+
+def _provenance(
+    build: Build, params: dict[str, Any], args: Args, outcome: Outcome
+) -> dict[str, Any]:
+    duration, record, every, seed = args
+    table, _, platform = outcome
+    return {
+        "build": _build_name(build),
+        "params": params,
+        "duration": duration,
+        "record": record,
+        "every": every,
+        "seed": seed,
+        **{
+            k: platform.get(k, "unknown")
+            for k in ("ars_version", "ars_commit", "libode_version", "cpu", "libc")
+        },
+        "table_sha256": table_sha256(table),
+    }
+
+
+def rerun(result: RunResult, check: bool = True) -> RunResult:
+    """Runs one run of a sweep again, here, from its provenance alone (``build`` is
+    imported by name: it must be importable here), and returns the new result. With
+    ``check`` (the default), a table whose sha256 differs from the one recorded raises
+    ``ars.ReproductionError`` naming both runs' platforms."""
+    prov = result.provenance
+    try:
+        build = _import_build(prov["build"])
+        args: Args = (prov["duration"], list(prov["record"]), prov["every"], prov["seed"])
+    except (KeyError, ImportError, AttributeError) as e:
+        from ars import InputError
+
+        raise InputError(
+            f"this result cannot be re-run: its provenance lacks or cannot import {e}"
+        ) from e
+    params = dict(prov["params"])
+    outcome = run_one(build, params, *args)
+    again = RunResult(params, outcome[0], outcome[1], _provenance(build, params, args, outcome))
+    if check and again.provenance["table_sha256"] != prov.get("table_sha256"):
+        from ars import ReproductionError
+
+        where = ", ".join(
+            f"{k} {prov.get(k)!r} -> {again.provenance[k]!r}"
+            for k in ("ars_commit", "libode_version", "cpu", "libc")
+        )
+        raise ReproductionError(
+            f"the re-run of {prov['build']} with {params} gave a table with sha256 "
+            f"{again.provenance['table_sha256']}, not the recorded {prov.get('table_sha256')} ({where})"
+        )
+    return again
 
 
 def _build(build: Any, params: dict[str, Any]) -> Any:
@@ -167,7 +273,10 @@ def run_one(
     every: int,
     seed: int | None,
 ) -> Outcome:
-    """One run, where it runs (a worker): returns ``(table, error)``."""
+    """One run, where it runs (a worker): returns ``(table, error, platform)``."""
+    from ars import _native
+
+    platform: dict[str, str] = dict(_native._platform())
     rows: list[list[Any]] = []
     try:
         target = _build(build, params)
@@ -186,9 +295,9 @@ def run_one(
         sample()
         sim.add_post_step(maybe_sample)
         advance(duration)
-        return _table(record, rows), None
+        return _table(record, rows), None, platform
     except Exception as e:  # noqa: BLE001  (a failing run is a result, not a crash)
-        return _table(record, rows), _portable(e)
+        return _table(record, rows), _portable(e), platform
 
 
 class _Progress:
@@ -255,7 +364,9 @@ def sweep(
         from ars import InputError
 
         raise InputError(f"backend must be 'serial', 'processes' or 'ray', got {backend!r}")
-    return SweepResults(RunResult(p, table, error) for p, (table, error) in zip(sets, outcomes))
+    return SweepResults(
+        RunResult(p, o[0], o[1], _provenance(build, p, args, o)) for p, o in zip(sets, outcomes)
+    )
 
 
 def _check_portable(build: Build, backend: str) -> None:
@@ -280,7 +391,7 @@ def _on_processes(
             try:
                 outcomes.append(f.result())
             except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
-                outcomes.append((_table(args[1], []), e))
+                outcomes.append((_table(args[1], []), e, {}))
             bar.step()
     return outcomes
 
@@ -330,7 +441,7 @@ def _on_ray(
             try:
                 outcomes.append(ray.get(ref))
             except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
-                outcomes.append((_table(args[1], []), e))
+                outcomes.append((_table(args[1], []), e, {}))
             bar.step()
         return outcomes
     finally:

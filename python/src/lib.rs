@@ -12,6 +12,7 @@ mod errors;
 mod kinds;
 mod sensors;
 mod simulation;
+mod verify;
 mod viewer;
 mod views;
 
@@ -28,6 +29,11 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(viewer::show_program, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::has_display, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::release_viewer, m)?)?;
+    m.add_function(wrap_pyfunction!(verify::platform, m)?)?;
+    m.add_function(wrap_pyfunction!(verify::golden_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(verify::golden_output, m)?)?;
+    m.add_function(wrap_pyfunction!(verify::golden_compare, m)?)?;
+    m.add_function(wrap_pyfunction!(verify::golden_with, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(panic_for_tests, m)?)?;
     Ok(())

@@ -158,3 +158,44 @@ def test_the_shipped_sweep_example_finds_the_thesis_cone():
     # The thesis' steady state at 20 N·m (ars-original.md): 3.99939 rad/s, 0.71154 rad.
     assert rate == pytest.approx(4.0, abs=1e-3)
     assert angle == pytest.approx(0.7115, abs=1e-3)
+
+
+def test_a_run_of_a_sweep_is_rerun_alone_from_its_saved_provenance(tmp_path):
+    # 8 runs on the processes backend; run 5 again, here, from the saved file alone.
+    runs = ars.sweep(
+        pendulum, TORQUES, duration=0.2, record=RECORD, every=10, backend="processes", workers=2
+    )
+    path = tmp_path / "sweep.npz"
+    runs.save(path)
+    loaded = ars.load_sweep(path)
+    assert len(loaded) == 8
+    fifth = loaded[5]
+    assert same_bits(fifth.table, runs[5].table)
+    prov = fifth.provenance
+    assert prov["build"] == f"{__name__}:pendulum" and prov["params"] == TORQUES[5]
+    assert (prov["duration"], prov["record"], prov["every"], prov["seed"]) == (0.2, RECORD, 10, 0)
+    platform = ars._native._platform()
+    for key in ("ars_version", "ars_commit", "libode_version", "cpu", "libc"):
+        assert prov[key] == platform[key], key
+    assert prov["table_sha256"] == ars.sweeps.table_sha256(runs[5].table)
+    assert len({r.provenance["table_sha256"] for r in loaded}) == 8, "each run its own table"
+
+    again = ars.rerun(fifth)
+    assert again.provenance["table_sha256"] == prov["table_sha256"]
+    assert same_bits(again.table, fifth.table)
+
+    # A recorded hash that this machine does not compute: the re-run says so.
+    recorded = prov["table_sha256"]
+    fifth.provenance["table_sha256"] = "0" * 64
+    with pytest.raises(ars.ReproductionError, match="not the recorded 0000"):
+        ars.rerun(fifth)
+    assert ars.rerun(fifth, check=False).provenance["table_sha256"] == recorded
+    with pytest.raises(ars.InputError, match="cannot be re-run"):
+        ars.rerun(ars.RunResult({}, fifth.table))
+
+
+def test_a_failed_runs_error_is_saved_with_its_message(tmp_path):
+    runs = ars.sweep(pendulum, [{"torque": 1.0, "fail": "hook"}], duration=0.1, record=RECORD)
+    runs.save(tmp_path / "failed.npz")
+    (loaded,) = ars.load_sweep(tmp_path / "failed.npz")
+    assert isinstance(loaded.error, ars.ArsError) and "on purpose at step 100" in str(loaded.error)
