@@ -42,13 +42,13 @@ impl Profile {
     /// Through `points`, whose times must be finite and non-decreasing.
     pub fn new(points: Vec<(f64, f64)>) -> Result<Self> {
         if points.is_empty() {
-            return Err(Error::OutOfRange { what: "profile", detail: "needs at least one point".into() });
+            return Err(Error::Invalid { what: "a profile", problem: "needs at least one point".into() });
         }
         if points.iter().any(|(t, v)| !t.is_finite() || !v.is_finite()) {
             return Err(Error::NotFinite { what: "profile point", value: format!("{points:?}") });
         }
         if points.windows(2).any(|w| w[1].0 < w[0].0) {
-            return Err(Error::OutOfRange { what: "profile", detail: "times must not decrease".into() });
+            return Err(Error::Invalid { what: "a profile's times", problem: "must not decrease".into() });
         }
         Ok(Profile { points })
     }

@@ -1,7 +1,13 @@
 //! The one error type of `ars-core`.
+//!
+//! Every message is a sentence about what the caller gave or asked for, naming objects
+//! by their names when they have one (a simulation's objects and joints); a world, which
+//! has no names, says "a body" instead of showing a handle.
 
-/// What went wrong in a call to `ars-core`. Every variant names the offending input,
-/// object or handle, so that a message alone is enough to find the mistake.
+/// What went wrong in a call to `ars-core`. Each cause has its own variant (a value out
+/// of its range, an unknown kind, a file that cannot be read, a malformed file, a
+/// removed object...), so that a caller can match on it, and the message alone is
+/// enough to find the mistake.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -27,40 +33,57 @@ pub enum Error {
         /// The argument, e.g. "hinge axis".
         what: &'static str,
     },
-    /// A value was outside the range the call accepts.
-    #[error("{what} is out of range: {detail}")]
+    /// A number outside the range the call accepts.
+    #[error("{what} {detail}")]
     OutOfRange {
-        /// The argument, e.g. "joint limits".
+        /// The argument, e.g. "joint limits": the subject of the message.
         what: &'static str,
-        /// What was wrong with it.
+        /// The range and the value, as the rest of the sentence: "must be within
+        /// [0, 1], got 2".
         detail: String,
     },
-    /// A handle that was never valid in this world, or whose object has been removed.
-    #[error("{kind} handle {handle} is stale: its object was removed from this world")]
-    StaleHandle {
-        /// "body", "geom", "joint" or "space".
-        kind: &'static str,
-        /// The handle, formatted.
-        handle: String,
+    /// A value, or a combination of values, that breaks a rule other than a range:
+    /// parallel joint axes, a profile without points, an offset for a geom without a
+    /// body...
+    #[error("{what} {problem}")]
+    Invalid {
+        /// The argument, e.g. "universal joint axes": the subject of the message.
+        what: &'static str,
+        /// The rule it breaks, as the rest of the sentence: "must be perpendicular...".
+        problem: String,
     },
-    /// A handle created by another world.
-    #[error("{kind} handle {handle} belongs to another world")]
-    ForeignHandle {
-        /// "body", "geom", "joint" or "space".
+    /// A kind (of sensor, of controller...) that is not one of those known.
+    #[error("unknown {what} {name:?}; the known ones are {}", .known.join(", "))]
+    UnknownKind {
+        /// What was asked for, e.g. "sensor kind".
+        what: &'static str,
+        /// The name given.
+        name: String,
+        /// The names that are known.
+        known: Vec<String>,
+    },
+    /// A handle whose object was removed (or that was never valid in this world).
+    #[error("the {kind} was removed: its handle no longer refers to anything")]
+    StaleHandle {
+        /// "body", "geom", "joint", "space", "object", "sensor" or "hook".
         kind: &'static str,
-        /// The handle, formatted.
-        handle: String,
+    },
+    /// A handle created by another world (or simulation).
+    #[error("the {kind} belongs to another world or simulation")]
+    ForeignHandle {
+        /// "body", "geom", "joint", "space", "object", "sensor" or "hook".
+        kind: &'static str,
     },
     /// A joint whose two ends are the same body.
-    #[error("a {joint} joint cannot connect body {body} to itself")]
+    #[error("{} joint cannot connect {body} to itself", article(joint))]
     SelfJoint {
         /// The joint kind.
         joint: &'static str,
-        /// The body, formatted.
+        /// The body: `object "arm"` in a simulation, "a body" in a world.
         body: String,
     },
     /// An operation that the joint kind does not have (e.g. the angle of a slider).
-    #[error("{operation} is not available on a {kind} joint")]
+    #[error("{operation} is not available on {} joint", article(kind))]
     WrongJointKind {
         /// What was asked.
         operation: &'static str,
@@ -68,15 +91,24 @@ pub enum Error {
         kind: &'static str,
     },
     /// An operation that the geom kind does not have (e.g. attaching a plane to a body).
-    #[error("{operation} is not available on a {kind} geom")]
+    #[error("{operation} is not available on {} geom", article(kind))]
     WrongGeomKind {
         /// What was asked.
         operation: &'static str,
         /// The geom's kind.
         kind: &'static str,
     },
+    /// An operation that needs a body (a joint, a laser mount, a velocity...), asked of
+    /// a static object, which has none.
+    #[error("object {object:?} is static (it has no body); {operation} needs one")]
+    NoBody {
+        /// What needs the body, e.g. "the first object of a joint".
+        operation: &'static str,
+        /// The object's name.
+        object: String,
+    },
     /// A triangle mesh that ODE cannot take.
-    #[error("invalid triangle mesh: {0}")]
+    #[error("the triangle mesh is invalid: {0}")]
     InvalidMesh(String),
     /// A name that is not registered in a simulation.
     #[error("no {kind} named {name:?}{}", suggestion(.close_matches))]
@@ -96,6 +128,39 @@ pub enum Error {
         /// The name.
         name: String,
     },
+    /// A file that cannot be read or written (or a folder that cannot be listed).
+    #[error("cannot {operation} {path:?}: {message}")]
+    Io {
+        /// What was tried, e.g. "read the scene file".
+        operation: &'static str,
+        /// The path, as given.
+        path: String,
+        /// The kind of failure (not found, permission denied...).
+        kind: std::io::ErrorKind,
+        /// The operating system's error number, when there is one.
+        errno: Option<i32>,
+        /// The system's description of the failure.
+        message: String,
+    },
+    /// A file (or text) that was read but is not what it should be: a scene file that
+    /// is not JSON, a URDF whose joint has no child, a key script line that does not
+    /// parse...
+    #[error("{file}{}: {problem}", place(.location))]
+    Format {
+        /// The format, e.g. "URDF", "scene file", "key script".
+        format: &'static str,
+        /// The file, or `"<string>"` for text given directly.
+        file: String,
+        /// Where in it, e.g. "line 3, column 7" or `joint "elbow"` (empty: the whole
+        /// file).
+        location: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// The simulation is in the middle of something that the call would disturb (hooks
+    /// that reach themselves while they run).
+    #[error("{0}")]
+    Busy(String),
     /// ODE refused an operation (it returned a failure code).
     #[error("ODE failed to {0}")]
     Ode(&'static str),
@@ -103,9 +168,10 @@ pub enum Error {
     /// force or torque accumulated, a state that diverged earlier and was not reset),
     /// or after a step (non-finite or runaway position, orientation or velocity). The
     /// world refuses to step until the body is reset or removed; nothing else is lost.
-    #[error("body {body} diverged at t = {time} s: {detail}")]
+    #[error("{body} diverged at t = {time} s: {detail}")]
     Diverged {
-        /// The body (its name, in a simulation).
+        /// The body: `object "ball"` in a simulation, its handle in a world (which has
+        /// no names; [`diverged_body`](crate::World::diverged_body) tells it too).
         body: String,
         /// Time at which it was found: the sum of the time steps taken by the world.
         time: f64,
@@ -114,7 +180,9 @@ pub enum Error {
     },
     /// ODE reported an internal error while it stepped or collided the world, caught by
     /// the [guard](crate::guard): the world is now poisoned.
-    #[error("ODE reported an internal error during {during}: {message}; the world is poisoned (drop it)")]
+    #[error(
+        "ODE reported an internal error during the {during}: {message}; the simulation is poisoned (build a new one)"
+    )]
     OdeInternal {
         /// What ODE was doing: "step" or "collision".
         during: &'static str,
@@ -122,13 +190,14 @@ pub enum Error {
         message: String,
     },
     /// The world was poisoned by an earlier ODE internal error and can only be dropped.
-    #[error("the world is poisoned by an earlier ODE internal error ({0}); build a new one")]
+    #[error("the simulation is poisoned by an earlier ODE internal error ({0}); build a new one")]
     Poisoned(String),
     /// User code (a hook or a sensor) panicked; the panic was contained and the
     /// simulation keeps its other hooks, sensors and records.
     #[error("{during} panicked: {message}")]
     Panicked {
-        /// What was running, e.g. "pre-step hook 2".
+        /// What was running, e.g. "the pre-step hook of hook set 2" (the second hooks
+        /// added among those that run before a step) or "the post-step hook of the program".
         during: String,
         /// The panic message.
         message: String,
@@ -145,22 +214,50 @@ pub enum Error {
     /// An error raised by user code inside a program or hook.
     #[error("{0}")]
     User(String),
-    /// A robot description (URDF) that cannot be loaded: the file, the element and what
-    /// is wrong with it.
-    #[error("{file}: {element}: {problem}")]
-    Urdf {
-        /// The file (or `"<string>"`).
-        file: String,
-        /// The element, e.g. `joint "elbow"`.
-        element: String,
-        /// What is wrong.
-        problem: String,
-    },
+}
+
+impl Error {
+    /// The [`Error::Io`] for `error`, met while trying to `operation` (e.g. "read the
+    /// scene file") on `path`.
+    pub fn io(operation: &'static str, path: &std::path::Path, error: &std::io::Error) -> Error {
+        Error::Io {
+            operation,
+            path: path.display().to_string(),
+            kind: error.kind(),
+            errno: error.raw_os_error(),
+            message: error.to_string(),
+        }
+    }
 }
 
 fn suggestion(close: &[String]) -> String {
     if close.is_empty() { String::new() } else { format!(" (did you mean {}?)", close.join(", ")) }
 }
 
+fn place(location: &str) -> String {
+    if location.is_empty() { String::new() } else { format!(", {location}") }
+}
+
+/// `word` with its indefinite article: "a hinge", "an angular motor".
+pub(crate) fn article(word: &str) -> String {
+    let lower = word.to_ascii_lowercase();
+    // "a universal", "an unknown".
+    let an = lower.starts_with(['a', 'e', 'i', 'o']) || (lower.starts_with("un") && !lower.starts_with("uni"));
+    format!("{} {word}", if an { "an" } else { "a" })
+}
+
 /// `Result` with [`Error`] as its error.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn articles_follow_the_sound_of_the_word() {
+        let wrong = |kind| Error::WrongJointKind { operation: "reading an angle", kind }.to_string();
+        assert_eq!(wrong("angular motor"), "reading an angle is not available on an angular motor joint");
+        assert_eq!(wrong("slider"), "reading an angle is not available on a slider joint");
+        assert_eq!(wrong("universal"), "reading an angle is not available on a universal joint");
+    }
+}

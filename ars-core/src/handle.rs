@@ -94,12 +94,8 @@ enum Slot<T> {
 /// formats).
 #[cold]
 #[inline(never)]
-fn refusal(world: WorldId, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Error {
-    if h.world != world {
-        Error::ForeignHandle { kind, handle: shown.to_string() }
-    } else {
-        Error::StaleHandle { kind, handle: shown.to_string() }
-    }
+fn refusal(world: WorldId, h: RawHandle, kind: &'static str) -> Error {
+    if h.world != world { Error::ForeignHandle { kind } } else { Error::StaleHandle { kind } }
 }
 
 /// Slots of `T`, reused after removal with a new generation.
@@ -131,38 +127,38 @@ impl<T> Arena<T> {
     }
 
     #[inline]
-    fn check(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<usize> {
+    fn check(&self, h: RawHandle, kind: &'static str) -> Result<usize> {
         match self.slots.get(h.index as usize) {
             Some(Slot::Occupied { generation, .. }) if *generation == h.generation && h.world == self.world => {
                 Ok(h.index as usize)
             }
-            _ => Err(refusal(self.world, h, kind, shown)),
+            _ => Err(refusal(self.world, h, kind)),
         }
     }
 
     #[inline]
-    pub(crate) fn get(&self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&T> {
+    pub(crate) fn get(&self, h: RawHandle, kind: &'static str) -> Result<&T> {
         match self.slots.get(h.index as usize) {
             Some(Slot::Occupied { generation, value }) if *generation == h.generation && h.world == self.world => {
                 Ok(value)
             }
-            _ => Err(refusal(self.world, h, kind, shown)),
+            _ => Err(refusal(self.world, h, kind)),
         }
     }
 
     #[inline]
-    pub(crate) fn get_mut(&mut self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<&mut T> {
+    pub(crate) fn get_mut(&mut self, h: RawHandle, kind: &'static str) -> Result<&mut T> {
         // One bounds and occupancy check (the refusal needs only the world id, so the
         // slot's borrow ends in the other arm).
         let world = self.world;
         match self.slots.get_mut(h.index as usize) {
             Some(Slot::Occupied { generation, value }) if *generation == h.generation && h.world == world => Ok(value),
-            _ => Err(refusal(world, h, kind, shown)),
+            _ => Err(refusal(world, h, kind)),
         }
     }
 
-    pub(crate) fn remove(&mut self, h: RawHandle, kind: &'static str, shown: &dyn fmt::Display) -> Result<T> {
-        let i = self.check(h, kind, shown)?;
+    pub(crate) fn remove(&mut self, h: RawHandle, kind: &'static str) -> Result<T> {
+        let i = self.check(h, kind)?;
         let next = h.generation.wrapping_add(1);
         let old = std::mem::replace(&mut self.slots[i], Slot::Vacant { generation: next });
         self.free.push(h.index);
@@ -245,12 +241,12 @@ mod tests {
     fn removed_slot_is_reused_with_a_new_generation() {
         let mut arena = Arena::new(WorldId::next());
         let a = arena.insert(1);
-        arena.remove(a, "body", &"a").unwrap();
+        arena.remove(a, "body").unwrap();
         let b = arena.insert(2);
         assert_eq!(a.index, b.index);
         assert_ne!(a.generation, b.generation);
-        assert!(matches!(arena.get(a, "body", &"a"), Err(Error::StaleHandle { .. })));
-        assert_eq!(*arena.get(b, "body", &"b").unwrap(), 2);
+        assert!(matches!(arena.get(a, "body"), Err(Error::StaleHandle { .. })));
+        assert_eq!(*arena.get(b, "body").unwrap(), 2);
     }
 
     #[test]
@@ -258,6 +254,6 @@ mod tests {
         let mut one = Arena::new(WorldId::next());
         let two: Arena<i32> = Arena::new(WorldId::next());
         let h = one.insert(5);
-        assert!(matches!(two.get(h, "body", &"h"), Err(Error::ForeignHandle { .. })));
+        assert!(matches!(two.get(h, "body"), Err(Error::ForeignHandle { .. })));
     }
 }

@@ -178,35 +178,35 @@ pub(crate) fn inertia(i: &Matrix3<f64>) -> Result<Matrix3<f64>> {
     if scale > MAX_INERTIA {
         return Err(Error::OutOfRange {
             what: WHAT,
-            detail: format!("entries must be within ±{MAX_INERTIA:e} kg·m², got {scale:e}"),
+            detail: format!("entries must be within ±{MAX_INERTIA:e} kg·m², got one of {scale:e}"),
         });
     }
     if (i - i.transpose()).amax() > 1e-12 * scale {
-        return Err(Error::OutOfRange { what: WHAT, detail: "must be symmetric".into() });
+        return Err(Error::Invalid { what: WHAT, problem: "must be symmetric".into() });
     }
     let mut moments: Vec<f64> = i.symmetric_eigenvalues().iter().copied().collect();
     moments.sort_by(f64::total_cmp);
     let (a, b, c) = (moments[0], moments[1], moments[2]);
     if a.is_nan() || a <= 0.0 {
-        return Err(Error::OutOfRange {
+        return Err(Error::Invalid {
             what: WHAT,
-            detail: format!("must be positive definite, principal moments are {a:e}, {b:e}, {c:e}"),
+            problem: format!("must be positive definite, its principal moments are {a:e}, {b:e}, {c:e}"),
         });
     }
     if a < MIN_INERTIA || c.is_nan() || c > MAX_INERTIA || c > a * MAX_INERTIA_RATIO {
         return Err(Error::OutOfRange {
             what: WHAT,
             detail: format!(
-                "principal moments must be within [{MIN_INERTIA:e}, {MAX_INERTIA:e}] kg·m², at most {MAX_INERTIA_RATIO:e} apart, got {a:e}, {b:e}, {c:e}"
+                "must have principal moments within [{MIN_INERTIA:e}, {MAX_INERTIA:e}] kg·m², at most {MAX_INERTIA_RATIO:e} apart, got {a:e}, {b:e}, {c:e}"
             ),
         });
     }
     // Relative slack for the rounding of the eigenvalues (a thin rod or a flat plate
     // sits exactly on the inequality).
     if c.is_nan() || c > (a + b) * (1.0 + 1e-9) {
-        return Err(Error::OutOfRange {
+        return Err(Error::Invalid {
             what: WHAT,
-            detail: format!(
+            problem: format!(
                 "breaks the triangle inequality: principal moment {c:e} exceeds the sum of the others ({a:e} + {b:e}); no mass distribution has it"
             ),
         });

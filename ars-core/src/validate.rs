@@ -52,7 +52,7 @@ pub fn quaternion(what: &'static str, q: &UnitQuaternion<f64>) -> Result<UnitQua
     }
     let norm_err = (c.norm() - 1.0).abs();
     if norm_err.is_nan() || norm_err > 1e-6 {
-        return Err(Error::OutOfRange { what, detail: format!("quaternion norm is {}, not 1", c.norm()) });
+        return Err(Error::Invalid { what, problem: format!("must be a unit quaternion, its norm is {}", c.norm()) });
     }
     Ok(*q)
 }
@@ -72,7 +72,7 @@ pub fn rotation(what: &'static str, r: &Rotation3<f64>) -> Result<Rotation3<f64>
     };
     let det_err = (m.determinant() - 1.0).abs();
     if err.is_nan() || err > 1e-6 || det_err.is_nan() || det_err > 1e-6 {
-        return Err(Error::OutOfRange { what, detail: "not a proper rotation matrix".into() });
+        return Err(Error::Invalid { what, problem: "must be a rotation matrix (orthonormal, determinant +1)".into() });
     }
     Ok(*r)
 }

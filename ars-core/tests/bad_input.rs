@@ -81,7 +81,7 @@ fn nan_and_infinite_poses_velocities_and_forces_are_refused() {
     let bad_q = UnitQuaternion::new_unchecked(ars_core::nalgebra::Quaternion::new(f64::NAN, 0.0, 0.0, 0.0));
     assert!(matches!(bm.set_quaternion(bad_q), Err(Error::NotFinite { .. })));
     let skew = Rotation3::from_matrix_unchecked(Matrix3::new(2.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0));
-    assert!(matches!(bm.set_rotation(skew), Err(Error::OutOfRange { .. })));
+    assert!(matches!(bm.set_rotation(skew), Err(Error::Invalid { .. })));
     // The body is untouched by the refused calls.
     assert_eq!(bm.position(), Point3::origin());
     assert_eq!(bm.force(), Vector3::zeros());
@@ -99,7 +99,9 @@ fn zero_axes_and_normals_are_refused() {
     let err = world.insert_joint(JointBuilder::slider(Vector3::zeros()).between(a, b)).unwrap_err();
     assert_eq!(err, Error::ZeroVector { what: "joint axis" });
     let parallel = JointBuilder::universal(Point3::origin(), Vector3::x(), Vector3::x() * 2.0).between(a, b);
-    assert!(matches!(world.insert_joint(parallel), Err(Error::OutOfRange { what: "joint axes", .. })));
+    let err = world.insert_joint(parallel).unwrap_err();
+    assert!(matches!(err, Error::Invalid { what: "universal joint axes", .. }), "{err}");
+    assert!(err.to_string().starts_with("universal joint axes must be perpendicular"), "{err}");
     assert_eq!(world.joint_count(), 0);
 }
 
@@ -111,7 +113,8 @@ fn a_joint_from_a_body_to_itself_is_refused() {
     assert!(matches!(err, Error::SelfJoint { joint: "hinge", .. }), "{err}");
     assert!(err.to_string().contains("to itself"));
     let err = world.insert_joint(JointBuilder::fixed()).unwrap_err();
-    assert!(matches!(err, Error::OutOfRange { what: "joint bodies", .. }));
+    assert!(matches!(err, Error::Invalid { what: "a joint", .. }), "{err}");
+    assert_eq!(err.to_string(), "a joint needs a body (use `between` or `to_world`); this fixed joint has none");
 }
 
 #[test]

@@ -89,7 +89,10 @@ impl KeyScript {
     /// A script of these events (sorted by time; equal times keep their order).
     pub fn new(mut events: Vec<KeyEvent>) -> Result<Self> {
         if let Some(e) = events.iter().find(|e| !e.time.is_finite() || e.time < 0.0) {
-            return Err(crate::Error::OutOfRange { what: "key event time", detail: format!("{} s", e.time) });
+            return Err(crate::Error::OutOfRange {
+                what: "a key event time",
+                detail: format!("must be finite and at least 0 s, got {} s", e.time),
+            });
         }
         events.sort_by(|a, b| a.time.total_cmp(&b.time));
         Ok(KeyScript { events })
@@ -103,9 +106,11 @@ impl KeyScript {
             if line.is_empty() {
                 continue;
             }
-            let bad = |why: &str| crate::Error::OutOfRange {
-                what: "key script",
-                detail: format!("line {}: {why}: {line:?} (expected `TIME down|up KEY`)", n + 1),
+            let bad = |why: &str| crate::Error::Format {
+                format: "key script",
+                file: "<key script>".into(),
+                location: format!("line {}", n + 1),
+                problem: format!("{why}: {line:?} (expected `TIME down|up KEY`)"),
             };
             let parts: Vec<&str> = line.split_whitespace().collect();
             let [time, action, key] = parts[..] else { return Err(bad("three fields needed")) };

@@ -30,7 +30,7 @@ fn check_grid(size_x: u32, size_z: u32) -> Result<()> {
     if u64::from(size_x) * u64::from(size_z) > MAX_GRID_VERTICES {
         return Err(Error::OutOfRange {
             what: "heightfield size",
-            detail: format!("at most {MAX_GRID_VERTICES} vertices, got {size_x} × {size_z}"),
+            detail: format!("must be at most {MAX_GRID_VERTICES} vertices, got {size_x} × {size_z}"),
         });
     }
     Ok(())
@@ -71,7 +71,7 @@ impl Heightfield {
         if num_x < 2 || num_z < 2 {
             return Err(Error::OutOfRange {
                 what: "heightfield size",
-                detail: format!("needs at least 2 × 2 vertices, got {num_x} × {num_z}"),
+                detail: format!("must be at least 2 × 2 vertices, got {num_x} × {num_z}"),
             });
         }
         check_grid(num_x, num_z)?;

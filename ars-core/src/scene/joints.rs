@@ -165,20 +165,17 @@ impl Scene {
         object2: JointEnd,
         builder: JointBuilder,
     ) -> Result<JointId> {
-        let body1 = self.object_data(object1)?.body.ok_or_else(|| Error::OutOfRange {
-            what: "joint object",
-            detail: format!(
-                "the first object of a joint must be dynamic; {:?} is static",
-                self.object_data(object1).map_or("?", |d| d.name.as_str())
-            ),
-        })?;
+        let first = self.object_data(object1)?;
+        let body1 = first
+            .body
+            .ok_or_else(|| Error::NoBody { operation: "the first object of a joint", object: first.name.clone() })?;
         let (object2, body2) = match object2 {
             JointEnd::World => (None, None),
             JointEnd::Object(o) => {
                 if o == object1 {
                     return Err(Error::SelfJoint {
                         joint: kind.default_name(),
-                        body: self.object_data(o)?.name.clone(),
+                        body: format!("object {:?}", self.object_data(o)?.name),
                     });
                 }
                 (Some(o), self.object_data(o)?.body)
@@ -309,7 +306,7 @@ impl Scene {
     }
 
     pub(crate) fn joint_data(&self, id: JointId) -> Result<&JointData> {
-        self.joints.get(id.0, JointId::KIND, &id)
+        self.joints.get(id.0, JointId::KIND)
     }
 
     /// Every joint's data, in slot order (creation order when none was removed).
@@ -353,7 +350,7 @@ impl Scene {
     /// Removes a joint (the sensors reading it are the simulation's business:
     /// [`Simulation::remove_joint`](crate::Simulation::remove_joint)).
     pub(crate) fn remove_joint(&mut self, id: JointId) -> Result<()> {
-        let data = self.joints.remove(id.0, JointId::KIND, &id)?;
+        let data = self.joints.remove(id.0, JointId::KIND)?;
         self.joint_names.remove(&data.name);
         self.driven_joints.retain(|j| *j != id);
         // Its followers stop following (their motors are left off).
@@ -382,7 +379,7 @@ impl Scene {
         for i in 0..self.driven_joints.len() {
             let id = self.driven_joints[i];
             let state = self.joint_state(id)?;
-            let data = self.joints.get_mut(id.0, JointId::KIND, &id)?;
+            let data = self.joints.get_mut(id.0, JointId::KIND)?;
             let (kind, handle) = (data.kind, data.handle);
             let friction = -data.friction * state.rate;
             let (effort, controller) = match data.controller.as_mut() {
@@ -440,7 +437,7 @@ impl Scene {
     ) -> Result<()> {
         // One look-up in each arena (the scene's joint, then the world's, which checks
         // that the world is usable and that the joint was not removed through it).
-        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND, &id)?.efforts;
+        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND)?.efforts;
         // The world's add_torque / add_force refuse NaN, infinities and values beyond
         // the limits before anything is booked.
         let mut j = self.world.joint_mut(handle)?;
@@ -523,7 +520,7 @@ pub struct SimJoint<'s> {
 impl SimJoint<'_> {
     fn data_mut(&mut self) -> &mut JointData {
         let id = self.id;
-        self.sim.joints.get_mut(id.0, JointId::KIND, &id).expect("checked when the view was made")
+        self.sim.joints.get_mut(id.0, JointId::KIND).expect("checked when the view was made")
     }
 
     fn wrong(&self, operation: &'static str) -> Error {
@@ -568,9 +565,12 @@ impl SimJoint<'_> {
             _ => return Err(self.wrong("setting a speed")),
         }
         if self.data_mut().mimic.is_some() {
-            return Err(Error::OutOfRange {
-                what: "joint speed",
-                detail: "the joint mimics another, whose motion drives its speed motor".into(),
+            return Err(Error::Invalid {
+                what: "a joint speed",
+                problem: format!(
+                    "cannot be set on joint {:?}: it mimics another joint, whose motion drives its speed motor",
+                    self.data_mut().name
+                ),
             });
         }
         validate::finite("joint speed", speed)?;
@@ -626,13 +626,13 @@ impl SimJoint<'_> {
         let rotational = |k| matches!(k, JointType::Hinge | JointType::Universal);
         let moving = |k| !matches!(k, JointType::Fixed | JointType::Ball);
         if leader == self.id {
-            return Err(Error::OutOfRange { what: "mimic", detail: "a joint cannot follow itself".into() });
+            return Err(Error::Invalid { what: "a mimic joint", problem: "cannot follow itself".into() });
         }
         if !moving(self.kind) || !moving(leader_kind) || rotational(self.kind) != rotational(leader_kind) {
-            return Err(Error::OutOfRange {
-                what: "mimic",
-                detail: format!(
-                    "a {} joint cannot follow a {} joint (a rotation follows a rotation, a translation a translation)",
+            return Err(Error::Invalid {
+                what: "a mimic joint and its leader",
+                problem: format!(
+                    "must move alike: a {} joint cannot follow a {} joint (a rotation follows a rotation, a translation a translation)",
                     self.kind.default_name(),
                     leader_kind.default_name()
                 ),

@@ -164,18 +164,29 @@ impl Scene {
         Ok((duration / self.time_step).round() as u64)
     }
 
-    /// Puts the object's name in a [`Error::Diverged`] from the world.
-    pub(crate) fn name_diverged_body(&self, error: Error) -> Error {
-        match (error, self.world.diverged_body()) {
-            (Error::Diverged { body, time, detail }, Some(handle)) => {
-                let name = self.objects.iter().find(|(_, o)| o.body == Some(handle)).map(|(_, o)| o.name.as_str());
-                let body = match name {
-                    Some(name) => format!("{name:?} ({body})"),
-                    None => body,
-                };
-                Error::Diverged { body, time, detail }
+    /// `error` from the world with the handles its message shows (a diverged body, two
+    /// colliding geoms...) replaced by the names of their objects: `object "ball"`.
+    pub(crate) fn name_handles(&self, error: Error) -> Error {
+        let name = |text: String| {
+            if !text.contains('#') {
+                return text;
             }
-            (error, _) => error,
+            let mut text = text;
+            for (_, o) in self.objects.iter() {
+                let named = format!("object {:?}", o.name);
+                let geoms = o.geom.iter().chain(&o.extra_geoms).map(|g| g.to_string());
+                for shown in o.body.map(|b| b.to_string()).into_iter().chain(geoms) {
+                    text = text.replace(&shown, &named);
+                }
+            }
+            text
+        };
+        match error {
+            Error::Diverged { body, time, detail } => Error::Diverged { body: name(body), time, detail },
+            Error::OutOfRange { what, detail } => Error::OutOfRange { what, detail: name(detail) },
+            Error::Invalid { what, problem } => Error::Invalid { what, problem: name(problem) },
+            Error::OdeInternal { during, message } => Error::OdeInternal { during, message: name(message) },
+            other => other,
         }
     }
 }

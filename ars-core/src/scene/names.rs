@@ -36,7 +36,12 @@ impl<Id: Copy + PartialEq> Names<Id> {
 
     pub(crate) fn insert(&mut self, name: String, id: Id) -> Result<()> {
         if name.is_empty() {
-            return Err(Error::OutOfRange { what: "name", detail: format!("an empty {} name", self.kind) });
+            let what = match self.kind {
+                "object" => "an object name",
+                "joint" => "a joint name",
+                _ => "a name",
+            };
+            return Err(Error::Invalid { what, problem: "must not be empty".into() });
         }
         if self.by_name.contains_key(&name) {
             return Err(Error::DuplicateName { kind: self.kind, name });

@@ -202,7 +202,7 @@ impl Scene {
     }
 
     pub(crate) fn object_data(&self, id: ObjectId) -> Result<&ObjectData> {
-        self.objects.get(id.0, ObjectId::KIND, &id)
+        self.objects.get(id.0, ObjectId::KIND)
     }
 
     /// Every object, by name in alphabetical order.
@@ -218,14 +218,14 @@ impl Scene {
         }
         self.object_names.insert(name.to_string(), id)?;
         self.object_names.remove(&old);
-        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.name = name.to_string();
+        self.objects.get_mut(id.0, ObjectId::KIND)?.name = name.to_string();
         Ok(())
     }
 
     /// Sets the colour the viewer draws an object with (channels in [0, 1]).
     pub fn set_color(&mut self, id: ObjectId, color: Color) -> Result<()> {
         valid_color(color)?;
-        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.color = Some(color);
+        self.objects.get_mut(id.0, ObjectId::KIND)?.color = Some(color);
         Ok(())
     }
 
@@ -239,7 +239,7 @@ impl Scene {
             }
             crate::geom::check_isometry("visual offset", &v.offset)?;
         }
-        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.visuals = visuals;
+        self.objects.get_mut(id.0, ObjectId::KIND)?.visuals = visuals;
         Ok(())
     }
 
@@ -361,7 +361,7 @@ impl Scene {
     }
 
     pub(crate) fn remove_object(&mut self, id: ObjectId) -> Result<()> {
-        let data = self.objects.remove(id.0, ObjectId::KIND, &id)?;
+        let data = self.objects.remove(id.0, ObjectId::KIND)?;
         self.object_names.remove(&data.name);
         self.pair_surfaces.forget(id);
         if data.body.is_none() {
@@ -385,7 +385,10 @@ pub(crate) fn multiply(a: &Matrix3<f64>, b: &Matrix3<f64>) -> Matrix3<f64> {
 
 fn valid_color(color: Color) -> Result<()> {
     if !color.iter().all(|c| (0.0..=1.0).contains(c)) {
-        return Err(Error::OutOfRange { what: "colour", detail: format!("channels must be in [0, 1], got {color:?}") });
+        return Err(Error::OutOfRange {
+            what: "colour channels",
+            detail: format!("must be within [0, 1], got {color:?}"),
+        });
     }
     Ok(())
 }

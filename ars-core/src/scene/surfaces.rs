@@ -62,7 +62,7 @@ impl Scene {
     pub fn set_contact_surface(&mut self, a: ObjectId, b: ObjectId, surface: ContactSurface) -> Result<()> {
         surface.validate()?;
         let geoms = |scene: &Scene, id: ObjectId| -> Result<Vec<GeomHandle>> {
-            let data = scene.objects.get(id.0, ObjectId::KIND, &id)?;
+            let data = scene.objects.get(id.0, ObjectId::KIND)?;
             Ok(data.geom.iter().chain(&data.extra_geoms).copied().collect())
         };
         let (geoms_a, geoms_b) = (geoms(self, a)?, geoms(self, b)?);

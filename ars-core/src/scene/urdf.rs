@@ -356,17 +356,18 @@ impl Scene {
     pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Urdf {
-            file: file.clone(),
-            element: "file".into(),
-            problem: format!("cannot be read: {e}"),
-        })?;
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the URDF file", path, &e))?;
         self.load_urdf_text(&text, &file, options)
     }
 
     /// Loads a robot from URDF text; `file` names it in errors.
     pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
-        let bad = |element: String, problem: String| Error::Urdf { file: file.to_string(), element, problem };
+        let bad = |location: String, problem: String| Error::Format {
+            format: "URDF",
+            file: file.to_string(),
+            location,
+            problem,
+        };
         // The parser is a dependency: a panic in it must not reach the caller either.
         let parsed = std::panic::catch_unwind(|| urdf_rs::read_from_string(text))
             .map_err(|_| bad("robot".into(), "the URDF parser failed on this text".into()))?;
@@ -375,7 +376,7 @@ impl Scene {
         let base_dir = Path::new(file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
         let mut meshes = Meshes { options, base_dir, loaded: HashMap::new() };
         self.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
-            Error::Urdf { element, problem, .. } => bad(element, problem),
+            Error::Format { format: "URDF", location, problem, .. } => bad(location, problem),
             other => bad(element, other.to_string()),
         })
     }
@@ -518,8 +519,12 @@ impl Scene {
         meshes: &mut Meshes<'_>,
     ) -> Result<(ObjectId, Option<crate::handle::BodyHandle>)> {
         let (collisions, looks) = link_geometry(robot, link, frame, meshes)?;
-        let urdf_err =
-            |problem: String| Error::Urdf { file: String::new(), element: format!("link {:?}", link.name), problem };
+        let urdf_err = |problem: String| Error::Format {
+            format: "URDF",
+            file: String::new(),
+            location: format!("link {:?}", link.name),
+            problem,
+        };
         // The visuals relative to the object's pose.
         let visuals = |object_pose: Isometry3<f64>| -> Vec<super::Visual> {
             let to_object = object_pose.inverse();
@@ -550,7 +555,7 @@ impl Scene {
                 }
             }
             let id = self.register_as(&link.name, drawn, None, geoms.first().copied())?;
-            self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
+            self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
             let object_pose = self.pose(id).unwrap_or_else(|_| Isometry3::identity());
             self.set_visuals(id, visuals(object_pose))?;
             return Ok((id, None));
@@ -583,7 +588,7 @@ impl Scene {
             }
         }
         let id = self.register_as(&link.name, drawn, Some(body), geoms.first().copied())?;
-        self.objects.get_mut(id.0, ObjectId::KIND, &id)?.extra_geoms = geoms.into_iter().skip(1).collect();
+        self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
         self.set_visuals(id, visuals(inertial.isometry()))?;
         Ok((id, Some(body)))
     }
@@ -622,7 +627,7 @@ impl Scene {
                 }
             }
         }
-        self.objects.get_mut(host.0, ObjectId::KIND, &host)?.extra_geoms.extend(geoms);
+        self.objects.get_mut(host.0, ObjectId::KIND)?.extra_geoms.extend(geoms);
         if !looks.is_empty() {
             let host_pose = match body {
                 Some(_) => host_frame.isometry(),
@@ -657,7 +662,7 @@ impl Scene {
             ((c, Some(_)), (p, Some(_))) => (p, JointEnd::Object(c), -axis),
             ((c, Some(_)), (_, None)) => (c, JointEnd::World, axis),
             ((_, None), _) => {
-                return Err(Error::OutOfRange { what: "joint", detail: "its child link has no mass".into() });
+                return Err(Error::Invalid { what: "the joint's child link", problem: "has no mass".into() });
             }
         };
         use urdf_rs::JointType as U;
@@ -705,8 +710,12 @@ fn link_geometry(
     frame: &Frame,
     meshes: &mut Meshes<'_>,
 ) -> Result<(Vec<(Shape, Frame)>, Vec<(Shape, Isometry3<f64>, Option<super::Color>)>)> {
-    let urdf_err =
-        |problem: String| Error::Urdf { file: String::new(), element: format!("link {:?}", link.name), problem };
+    let urdf_err = |problem: String| Error::Format {
+        format: "URDF",
+        file: String::new(),
+        location: format!("link {:?}", link.name),
+        problem,
+    };
     let mut collisions = Vec::new();
     for c in &link.collision {
         let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;

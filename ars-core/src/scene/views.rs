@@ -206,5 +206,5 @@ impl Scene {
 
 /// The error for a static object asked for its body.
 pub(crate) fn static_object(name: &str) -> Error {
-    Error::OutOfRange { what: "object", detail: format!("{name:?} is static and has no body") }
+    Error::NoBody { operation: "a velocity, force or mass", object: name.to_string() }
 }

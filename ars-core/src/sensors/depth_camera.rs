@@ -52,7 +52,7 @@ impl DepthCamera {
         if !(1..=4096).contains(&width) || !(1..=4096).contains(&height) {
             return Err(Error::OutOfRange {
                 what: "camera resolution",
-                detail: format!("1 to 4096 pixels each way, got {width} × {height}"),
+                detail: format!("must be 1 to 4096 pixels each way, got {width} × {height}"),
             });
         }
         let fov_y = limits::in_range("camera field of view", fov_y, 1e-3, std::f64::consts::PI - 1e-3)?;

@@ -111,10 +111,10 @@ impl Sensor for Laser {
                 ray
             }
             Mount::Body { object, offset } => {
-                let body = sim.object(*object)?.body_handle().ok_or(Error::OutOfRange {
-                    what: "laser mount",
-                    detail: "a laser can only be mounted on a dynamic object".into(),
-                })?;
+                let view = sim.object(*object)?;
+                let body = view
+                    .body_handle()
+                    .ok_or_else(|| Error::NoBody { operation: "a laser mount", object: view.name().to_string() })?;
                 let builder = GeomBuilder::ray(self.max_distance).attached_to(body).offset(*offset);
                 sim.world_mut().insert_geom(space, builder)?
             }

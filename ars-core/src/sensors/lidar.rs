@@ -54,7 +54,7 @@ impl Lidar {
     /// origin, in the horizontal plane.
     pub fn new(beams: u32, fov: f64, max_range: f64) -> Result<Self> {
         if !(1..=100_000).contains(&beams) {
-            return Err(Error::OutOfRange { what: "lidar beams", detail: format!("1 to 100000, got {beams}") });
+            return Err(Error::OutOfRange { what: "lidar beams", detail: format!("must be 1 to 100000, got {beams}") });
         }
         let fov = limits::in_range("lidar field of view", fov, 0.0, std::f64::consts::TAU)?;
         let max_range = limits::size("lidar range", max_range)?;
@@ -81,7 +81,7 @@ impl Lidar {
     /// Several scan planes, by elevation (rad, towards +Y); the default is `[0]`.
     pub fn planes(mut self, elevations: &[f64]) -> Result<Self> {
         if elevations.is_empty() {
-            return Err(Error::OutOfRange { what: "lidar planes", detail: "at least one".into() });
+            return Err(Error::Invalid { what: "a lidar", problem: "needs at least one plane".into() });
         }
         for e in elevations {
             limits::in_range("lidar plane elevation", *e, -std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2)?;

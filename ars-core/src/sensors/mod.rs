@@ -544,12 +544,12 @@ impl SensorSet {
 
     /// One sensor's log, whatever its type, with the type's name.
     pub(crate) fn table(&self, id: AnySensorId) -> Result<(String, &dyn CsvColumns)> {
-        Ok(self.slots.get(id.handle, "sensor", &format!("{id:?}"))?.table())
+        Ok(self.slots.get(id.handle, "sensor")?.table())
     }
 
     /// Removes a sensor whatever its type (its records go with it).
     pub(crate) fn remove_any(&mut self, id: AnySensorId) -> Result<()> {
-        let slot = self.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
+        let slot = self.slots.remove(id.handle, "sensor")?;
         if slot.at_end_of_step() {
             self.end_of_step -= 1;
         }
@@ -558,14 +558,14 @@ impl SensorSet {
 
     /// Forgets a sensor's records, whatever its type.
     pub(crate) fn clear_any(&mut self, id: AnySensorId) -> Result<()> {
-        self.slots.get_mut(id.handle, "sensor", &format!("{id:?}"))?.clear_log();
+        self.slots.get_mut(id.handle, "sensor")?.clear_log();
         Ok(())
     }
 
     /// Whether a sensor, whatever its type, stopped sampling (see
     /// [`Simulation::is_sensor_detached`](crate::Simulation::is_sensor_detached)).
     pub(crate) fn is_detached_any(&self, id: AnySensorId) -> Result<bool> {
-        Ok(self.slots.get(id.handle, "sensor", &format!("{id:?}"))?.is_detached())
+        Ok(self.slots.get(id.handle, "sensor")?.is_detached())
     }
 
     pub(crate) fn tables(&self) -> Vec<(String, &dyn CsvColumns)> {
@@ -609,7 +609,7 @@ impl SensorSet {
 
     pub(crate) fn remove<S: Sensor>(&mut self, id: SensorId<S>) -> Result<SensorLog<S::Record>> {
         self.slot(id)?;
-        let slot = self.slots.remove(id.handle, "sensor", &format!("{id:?}"))?;
+        let slot = self.slots.remove(id.handle, "sensor")?;
         match slot.into_any().downcast::<Slot<S>>() {
             Ok(slot) => {
                 if slot.at == SampleAt::EndOfStep {
@@ -622,21 +622,19 @@ impl SensorSet {
     }
 
     fn slot<S: Sensor>(&self, id: SensorId<S>) -> Result<&Slot<S>> {
-        let shown = format!("{id:?}");
         self.slots
-            .get(id.handle, "sensor", &shown)?
+            .get(id.handle, "sensor")?
             .as_any()
             .downcast_ref::<Slot<S>>()
-            .ok_or(Error::StaleHandle { kind: "sensor", handle: shown })
+            .ok_or(Error::StaleHandle { kind: "sensor" })
     }
 
     fn slot_mut<S: Sensor>(&mut self, id: SensorId<S>) -> Result<&mut Slot<S>> {
-        let shown = format!("{id:?}");
         self.slots
-            .get_mut(id.handle, "sensor", &shown)?
+            .get_mut(id.handle, "sensor")?
             .as_any_mut()
             .downcast_mut::<Slot<S>>()
-            .ok_or(Error::StaleHandle { kind: "sensor", handle: shown })
+            .ok_or(Error::StaleHandle { kind: "sensor" })
     }
 
     pub(crate) fn log<S: Sensor>(&self, id: SensorId<S>) -> Result<&SensorLog<S::Record>> {

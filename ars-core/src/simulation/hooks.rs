@@ -259,7 +259,7 @@ impl Simulation {
     /// Removes hooks and hands them back. Hooks cannot remove themselves while they run.
     pub fn remove_hooks<H: Hooks + Send + 'static>(&mut self, id: HookId<H>) -> Result<H> {
         self.hook_slot(id)?;
-        let slot = self.hooks.slots.remove(id.handle, "hooks", &id)?;
+        let slot = self.hooks.slots.remove(id.handle, "hook")?;
         for list in &mut self.hooks.at {
             list.retain(|h| *h != id.handle);
         }
@@ -273,24 +273,23 @@ impl Simulation {
 
     /// Hooks added with [`add_hooks`](Self::add_hooks) (their state).
     pub fn hooks<H: Hooks + Send + 'static>(&self, id: HookId<H>) -> Result<&H> {
-        self.hook_slot(id)?.as_any().downcast_ref::<H>().ok_or_else(|| stale(id))
+        self.hook_slot(id)?.as_any().downcast_ref::<H>().ok_or(STALE)
     }
 
     /// Hooks added with [`add_hooks`](Self::add_hooks), mutably.
     pub fn hooks_mut<H: Hooks + Send + 'static>(&mut self, id: HookId<H>) -> Result<&mut H> {
         self.hook_slot(id)?;
-        let slot = self.hooks.slots.get_mut(id.handle, "hooks", &id)?;
-        slot.as_mut().and_then(|h| h.as_any_mut().downcast_mut::<H>()).ok_or_else(|| stale(id))
+        let slot = self.hooks.slots.get_mut(id.handle, "hook")?;
+        slot.as_mut().and_then(|h| h.as_any_mut().downcast_mut::<H>()).ok_or(STALE)
     }
 
     fn hook_slot<H: Hooks + Send + 'static>(&self, id: HookId<H>) -> Result<&dyn AnyHooks> {
-        match self.hooks.slots.get(id.handle, "hooks", &id)? {
+        match self.hooks.slots.get(id.handle, "hook")? {
             Some(hooks) if hooks.as_any().is::<H>() => Ok(&**hooks),
-            Some(_) => Err(stale(id)),
-            None => Err(Error::OutOfRange {
-                what: "hooks",
-                detail: format!("{id} are running: hooks cannot reach themselves through the simulation"),
-            }),
+            Some(_) => Err(STALE),
+            None => Err(Error::Busy(
+                "the hooks are running: hooks cannot reach (or remove) themselves through the simulation".into(),
+            )),
         }
     }
 
@@ -306,14 +305,14 @@ impl Simulation {
         while let Some(&handle) = self.hooks.at[at as usize].get(i) {
             // Take the hooks out of their slot while they run (they get the simulation
             // mutably), then put them back: a running slot cannot be removed.
-            let Ok(Some(mut hooks)) = self.hooks.slots.get_mut(handle, "hooks", &"").map(Option::take) else {
+            let Ok(Some(mut hooks)) = self.hooks.slots.get_mut(handle, "hook").map(Option::take) else {
                 i += 1;
                 continue;
             };
             let edits = self.hooks.edits;
-            let id = HookId::<()> { handle, _hooks: PhantomData };
-            let result = at.run(&mut *hooks, self, &id);
-            *self.hooks.slots.get_mut(handle, "hooks", &id).expect("a running slot is not removed") = Some(hooks);
+            let who = HookSetNumber(i + 1);
+            let result = at.run(&mut *hooks, self, &who);
+            *self.hooks.slots.get_mut(handle, "hook").expect("a running slot is not removed") = Some(hooks);
             result?;
             // Hooks removed by this one may have shifted the order.
             i = if self.hooks.edits == edits {
@@ -326,6 +325,15 @@ impl Simulation {
     }
 }
 
-fn stale<H>(id: HookId<H>) -> Error {
-    Error::StaleHandle { kind: "hooks", handle: id.to_string() }
+/// Added hooks in messages: their rank among the hooks that run at a point, in the
+/// order added, from 1 (formatted only if a message is made).
+struct HookSetNumber(usize);
+
+impl fmt::Display for HookSetNumber {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "hook set {}", self.0)
+    }
 }
+
+/// The error for an id whose hooks were removed (or are of another type).
+const STALE: Error = Error::StaleHandle { kind: "hook" };

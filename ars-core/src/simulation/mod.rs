@@ -173,7 +173,7 @@ impl SimulationBuilder {
     pub fn build(self) -> Result<Simulation> {
         limits::time_step(self.time_step)?;
         if self.steps_per_frame == 0 {
-            return Err(Error::OutOfRange { what: "steps per frame", detail: "must be at least 1".into() });
+            return Err(Error::OutOfRange { what: "steps per frame", detail: "must be at least 1, got 0".into() });
         }
         self.surface.validate()?;
         let mut world = World::new();
@@ -331,7 +331,7 @@ impl Simulation {
         self.run_added_hooks(HookPoint::PreStep)?;
         self.scene.apply_joint_drives()?;
         self.sensors.before_step(&self.scene)?;
-        self.scene.collide()?;
+        self.scene.collide().map_err(|e| self.scene.name_handles(e))?;
         let scene = &mut self.scene;
         let time_before = scene.world.time();
         let stepped = scene.world.step(scene.time_step());
@@ -340,7 +340,7 @@ impl Simulation {
             scene.time += scene.time_step();
             scene.step_count += 1;
         }
-        stepped.map_err(|e| scene.name_diverged_body(e))?;
+        stepped.map_err(|e| scene.name_handles(e))?;
         let sampled = self.sensors.after_step(&self.scene);
         self.scene.end_joint_step();
         sampled?;

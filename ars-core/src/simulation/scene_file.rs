@@ -250,12 +250,12 @@ impl Simulation {
                     JointKind::Ball { .. } => JointKind::Ball { anchor: ode.anchor()? },
                     JointKind::Piston { .. } => JointKind::Piston { anchor: ode.anchor()?, axis: ode.axis()? },
                     other => {
-                        return Err(Error::OutOfRange {
-                            what: "scene file",
-                            detail: format!(
-                                "joint {:?}: a {} joint can be saved only before the scene steps",
+                        return Err(Error::Invalid {
+                            what: "the scene",
+                            problem: format!(
+                                "cannot be saved: joint {:?} is {} joint, which can be saved only before the scene steps",
                                 data.name,
-                                other.name()
+                                crate::error::article(other.name())
                             ),
                         });
                     }
@@ -329,22 +329,42 @@ impl Simulation {
     /// The scene as JSON text (see the [`scene_file`](crate::simulation::scene_file) module).
     pub fn save_scene(&self) -> Result<String> {
         serde_json::to_string_pretty(&self.scene_file()?)
-            .map_err(|e| Error::OutOfRange { what: "scene file", detail: format!("cannot be written: {e}") })
+            .map_err(|e| Error::Invalid { what: "the scene", problem: format!("cannot be written as JSON: {e}") })
     }
 
     /// A simulation built from JSON text written by [`save_scene`](Self::save_scene).
     pub fn load_scene(text: &str) -> Result<Simulation> {
-        let file: SceneFile = serde_json::from_str(text)
-            .map_err(|e| Error::OutOfRange { what: "scene file", detail: format!("not a scene: {e}") })?;
-        Simulation::from_scene_file(&file)
+        Simulation::load_scene_named(text, "<string>")
+    }
+
+    /// [`load_scene`](Self::load_scene) of the text of `file` (named in errors).
+    fn load_scene_named(text: &str, file: &str) -> Result<Simulation> {
+        let malformed = |location: String, problem: String| Error::Format {
+            format: "scene file",
+            file: file.to_string(),
+            location,
+            problem,
+        };
+        let scene: SceneFile = serde_json::from_str(text).map_err(|e| {
+            let message = e.to_string();
+            let position = format!(" at line {} column {}", e.line(), e.column());
+            let problem = message.strip_suffix(&position).unwrap_or(&message);
+            malformed(format!("line {}, column {}", e.line(), e.column()), format!("not a scene: {problem}"))
+        })?;
+        Simulation::from_scene_file(&scene).map_err(|e| match e {
+            Error::Format { format: "scene file", location, problem, .. } => malformed(location, problem),
+            other => other,
+        })
     }
 
     /// A simulation built from a [`SceneFile`].
     pub fn from_scene_file(file: &SceneFile) -> Result<Simulation> {
         if file.format != FORMAT {
-            return Err(Error::OutOfRange {
-                what: "scene file",
-                detail: format!("format {:?}, expected {FORMAT:?}", file.format),
+            return Err(Error::Format {
+                format: "scene file",
+                file: "<string>".into(),
+                location: "\"format\"".into(),
+                problem: format!("is {:?}, expected {FORMAT:?}", file.format),
             });
         }
         let mut sim = SimulationBuilder::default()
@@ -450,19 +470,13 @@ impl Simulation {
     /// Saves the scene as JSON to `path`.
     pub fn save_scene_to(&self, path: impl AsRef<std::path::Path>) -> Result<()> {
         let path = path.as_ref();
-        std::fs::write(path, self.save_scene()?).map_err(|e| Error::OutOfRange {
-            what: "scene file",
-            detail: format!("{}: cannot be written: {e}", path.display()),
-        })
+        std::fs::write(path, self.save_scene()?).map_err(|e| Error::io("write the scene file", path, &e))
     }
 
     /// Loads a scene saved with [`save_scene_to`](Self::save_scene_to).
     pub fn load_scene_from(path: impl AsRef<std::path::Path>) -> Result<Simulation> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::OutOfRange {
-            what: "scene file",
-            detail: format!("{}: cannot be read: {e}", path.display()),
-        })?;
-        Simulation::load_scene(&text)
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the scene file", path, &e))?;
+        Simulation::load_scene_named(&text, &path.display().to_string())
     }
 }

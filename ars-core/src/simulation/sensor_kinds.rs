@@ -42,10 +42,10 @@ impl Simulation {
         joints: &[JointId],
         period: Option<f64>,
     ) -> Result<AnySensorId> {
-        let wrong = |what: &str| Error::OutOfRange {
-            what: "sensor",
-            detail: format!(
-                "a {kind} sensor reads {what}; given {} objects and {} joints",
+        let wrong = |what: &str| Error::Invalid {
+            what: "a sensor",
+            problem: format!(
+                "of kind {kind} reads {what}; it was given {} objects and {} joints",
                 objects.len(),
                 joints.len()
             ),
@@ -82,9 +82,10 @@ impl Simulation {
                 self.add_any(sensor, period)
             }
             "JointPositions" => Err(wrong("joints only")),
-            other => Err(Error::OutOfRange {
+            other => Err(Error::UnknownKind {
                 what: "sensor kind",
-                detail: format!("{other:?}; the kinds: {}", SENSOR_KINDS.join(", ")),
+                name: other.to_string(),
+                known: SENSOR_KINDS.iter().map(|k| k.to_string()).collect(),
             }),
         }
     }

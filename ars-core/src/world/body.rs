@@ -125,9 +125,12 @@ impl MassSpec {
             Mass::Density(d) => Mass::Density(validate::positive("density", d)?),
         };
         if matches!(shape, Shape::Plane { .. } | Shape::Ray { .. } | Shape::TriMesh { .. }) {
-            return Err(Error::OutOfRange {
-                what: "mass",
-                detail: format!("a {} has no volume: give the body a solid shape or a custom mass", shape.kind_name()),
+            return Err(Error::Invalid {
+                what: "a mass from a density",
+                problem: format!(
+                    "needs a volume, and a {} has none: give the body a solid shape or a total mass",
+                    shape.kind_name()
+                ),
             });
         }
         shape.validate()?;
@@ -196,7 +199,7 @@ fn finish(m: ffi::dMass) -> Result<ffi::dMass> {
     limits::inertia(&convert::matrix_from_ode(&m.I))?;
     // SAFETY: `m` is a valid dMass; dMassCheck only reads it.
     if unsafe { ffi::dMassCheck(&m) } == 0 {
-        return Err(Error::OutOfRange { what: "mass", detail: "ODE rejects these mass parameters".into() });
+        return Err(Error::Invalid { what: "the mass parameters", problem: "are rejected by ODE (dMassCheck)".into() });
     }
     Ok(m)
 }
@@ -333,7 +336,7 @@ impl World {
         for j in joints {
             self.remove_joint(j)?;
         }
-        let data = self.bodies.remove(body.0, BodyHandle::KIND, &body)?;
+        let data = self.bodies.remove(body.0, BodyHandle::KIND)?;
         if self.diverged == Some(body) {
             self.diverged = None;
         }
@@ -345,14 +348,14 @@ impl World {
 
     /// Read access to a body.
     pub fn body(&self, body: BodyHandle) -> Result<BodyRef<'_>> {
-        let raw = self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw;
+        let raw = self.bodies.get(body.0, BodyHandle::KIND)?.raw;
         Ok(BodyRef { raw, handle: body, _world: self })
     }
 
     /// Write access to a body.
     pub fn body_mut(&mut self, body: BodyHandle) -> Result<BodyMut<'_>> {
         self.check_usable()?;
-        let raw = self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw;
+        let raw = self.bodies.get(body.0, BodyHandle::KIND)?.raw;
         Ok(BodyMut { raw, handle: body, world: self })
     }
 
@@ -362,7 +365,7 @@ impl World {
     }
 
     pub(crate) fn body_raw(&self, body: BodyHandle) -> Result<ffi::dBodyID> {
-        Ok(self.bodies.get(body.0, BodyHandle::KIND, &body)?.raw)
+        Ok(self.bodies.get(body.0, BodyHandle::KIND)?.raw)
     }
 }
 
@@ -515,9 +518,9 @@ impl BodyMut<'_> {
     pub(crate) fn restore_orientation(&mut self, q: &UnitQuaternion<f64>, r: &Rotation3<f64>) -> Result<()> {
         let r = validate::rotation("body rotation", r)?;
         if (q.to_rotation_matrix().matrix() - r.matrix()).amax() > 1e-9 {
-            return Err(Error::OutOfRange {
-                what: "body orientation",
-                detail: "the saved quaternion and rotation matrix disagree".into(),
+            return Err(Error::Invalid {
+                what: "a saved body orientation",
+                problem: "has a quaternion and a rotation matrix that disagree".into(),
             });
         }
         self.set_quaternion(*q)?;

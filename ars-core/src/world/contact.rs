@@ -89,7 +89,7 @@ impl ContactSurface {
             if !(0.0..=1.0).contains(&b) {
                 return Err(Error::OutOfRange {
                     what: "contact bounce",
-                    detail: format!("must be in [0, 1], got {b}"),
+                    detail: format!("must be within [0, 1], got {b}"),
                 });
             }
             validate::non_negative("contact bounce velocity", v)?;
@@ -97,7 +97,10 @@ impl ContactSurface {
         if let Some(e) = self.soft_erp
             && !(0.0..=1.0).contains(&e)
         {
-            return Err(Error::OutOfRange { what: "contact soft ERP", detail: format!("must be in [0, 1], got {e}") });
+            return Err(Error::OutOfRange {
+                what: "contact soft ERP",
+                detail: format!("must be within [0, 1], got {e}"),
+            });
         }
         if let Some(c) = self.soft_cfm {
             validate::non_negative("contact soft CFM", c)?;
@@ -105,7 +108,7 @@ impl ContactSurface {
         if self.max_contacts == 0 || self.max_contacts > MAX_CONTACTS_LIMIT {
             return Err(Error::OutOfRange {
                 what: "max contacts",
-                detail: format!("must be in 1..={MAX_CONTACTS_LIMIT}, got {}", self.max_contacts),
+                detail: format!("must be 1 to {MAX_CONTACTS_LIMIT}, got {}", self.max_contacts),
             });
         }
         Ok(())
@@ -381,15 +384,15 @@ impl World {
                 self.clear_contacts();
                 Err(Error::OdeInternal {
                     during: "collision",
-                    message: format!("colliding geoms {g1} and {g2}: {}", failure.message),
+                    message: format!("colliding {g1} and {g2}: {}", failure.message),
                 })
             }
             Some(PairFailure::Refused(g1, g2, ratio)) => {
                 self.clear_contacts();
                 Err(Error::OutOfRange {
-                    what: "sizes of a colliding pair",
+                    what: "the sizes of two touching shapes",
                     detail: format!(
-                        "geoms {g1} and {g2} touch, and their radii and lengths differ by a factor {ratio:e}; ODE's cylinder collider (libccd) may never finish beyond {:e}",
+                        "must differ by a factor of at most {:e} (beyond it ODE's cylinder collider, libccd, may never finish); the radii and lengths of {g1} and {g2} differ by {ratio:e}",
                         crate::limits::MAX_CONVEX_PAIR_RATIO
                     ),
                 })
@@ -411,9 +414,9 @@ impl World {
             unsafe { ffi::dGeomGetAABB(g.raw, a.as_mut_ptr()) };
             if a.iter().any(|c| c.is_nan() || c.abs() >= limit) {
                 return Err(Error::OutOfRange {
-                    what: "geom position in a hash space",
+                    what: "a shape's position in a hash space",
                     detail: format!(
-                        "geom {} reaches {:e} m; a hash space with min_level {min_level} holds coordinates within ±{limit:e} m (use a simple space, or a larger min_level)",
+                        "must be within ±{limit:e} m for min_level {min_level} (use a simple space, or a larger min_level); {} reaches {:e} m",
                         GeomHandle(h),
                         a.iter().fold(0.0_f64, |m, c| m.max(c.abs()))
                     ),

@@ -174,15 +174,15 @@ impl World {
             None => None,
         };
         if builder.offset.is_some() && builder.body.is_none() {
-            return Err(Error::OutOfRange {
-                what: "geom offset",
-                detail: "an offset needs a body; use `pose` for a geom without one".into(),
+            return Err(Error::Invalid {
+                what: "a geom offset",
+                problem: "needs a body; use `pose` for a geom without one".into(),
             });
         }
         if builder.pose.is_some() && builder.body.is_some() {
-            return Err(Error::OutOfRange {
-                what: "geom pose",
-                detail: "an attached geom follows its body; use `offset` instead".into(),
+            return Err(Error::Invalid {
+                what: "a geom pose",
+                problem: "cannot be given to an attached geom, which follows its body; use `offset` instead".into(),
             });
         }
         if builder.pose.is_some() && !placeable {
@@ -294,7 +294,7 @@ impl World {
     /// Removes a geom.
     pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
         self.check_usable()?;
-        let data = self.geoms.remove(geom.0, GeomHandle::KIND, &geom)?;
+        let data = self.geoms.remove(geom.0, GeomHandle::KIND)?;
         if matches!(data.shape, Shape::TriMesh { .. } | Shape::Cone { .. }) {
             self.trimesh_count -= 1;
         }
@@ -307,14 +307,14 @@ impl World {
 
     /// Read access to a geom.
     pub fn geom(&self, geom: GeomHandle) -> Result<GeomRef<'_>> {
-        let data = self.geoms.get(geom.0, GeomHandle::KIND, &geom)?;
+        let data = self.geoms.get(geom.0, GeomHandle::KIND)?;
         Ok(GeomRef { handle: geom, data })
     }
 
     /// Write access to a geom.
     pub fn geom_mut(&mut self, geom: GeomHandle) -> Result<GeomMut<'_>> {
         self.check_usable()?;
-        let data = self.geoms.get(geom.0, GeomHandle::KIND, &geom)?;
+        let data = self.geoms.get(geom.0, GeomHandle::KIND)?;
         Ok(GeomMut {
             handle: geom,
             raw: data.raw,
@@ -403,9 +403,9 @@ impl GeomMut<'_> {
             return Err(Error::WrongGeomKind { operation, kind: self.kind });
         }
         if !self.body_raw.is_null() {
-            return Err(Error::OutOfRange {
-                what: "geom pose",
-                detail: "the geom is attached to a body and follows it; move the body instead".into(),
+            return Err(Error::Invalid {
+                what: "a geom pose",
+                problem: "cannot be set on an attached geom, which follows its body; move the body instead".into(),
             });
         }
         Ok(())

@@ -128,10 +128,10 @@ impl JointKind {
                 let (u, v) = (unit(axis1), unit(axis2));
                 let cos = u.dot(&v);
                 if cos.is_nan() || cos.abs() > 1e-6 {
-                    return Err(Error::OutOfRange {
-                        what: "joint axes",
-                        detail: format!(
-                            "universal joint axes must be perpendicular, the angle between them is {:.6}°",
+                    return Err(Error::Invalid {
+                        what: "universal joint axes",
+                        problem: format!(
+                            "must be perpendicular, the angle between them is {:.6}°",
                             cos.clamp(-1.0, 1.0).acos().to_degrees()
                         ),
                     });
@@ -144,18 +144,15 @@ impl JointKind {
                 axis(axis2)?;
                 let sin = unit(axis1).cross(&unit(axis2)).norm();
                 if sin.is_nan() || sin <= 1e-9 {
-                    return Err(Error::OutOfRange {
-                        what: "joint axes",
-                        detail: format!("{} axes must not be parallel", self.name()),
-                    });
+                    return Err(Error::Invalid { what: "hinge-2 joint axes", problem: "must not be parallel".into() });
                 }
                 Ok(())
             }
             JointKind::AngularMotor { axes } | JointKind::LinearMotor { axes } => {
                 if axes.is_empty() || axes.len() > 3 {
                     return Err(Error::OutOfRange {
-                        what: "motor axes",
-                        detail: format!("a motor has 1 to 3 axes, got {}", axes.len()),
+                        what: "the number of motor axes",
+                        detail: format!("must be 1 to 3, got {}", axes.len()),
                     });
                 }
                 axes.iter().try_for_each(|(_, v)| axis(v))
@@ -378,21 +375,21 @@ impl World {
         self.check_usable()?;
         ensure_ode_ready();
         let kind_name = builder.kind.name();
-        let body1 = builder.body1.ok_or(Error::OutOfRange {
-            what: "joint bodies",
-            detail: format!("the {kind_name} joint has no body: use `between` or `to_world`"),
+        let body1 = builder.body1.ok_or_else(|| Error::Invalid {
+            what: "a joint",
+            problem: format!("needs a body (use `between` or `to_world`); this {kind_name} joint has none"),
         })?;
         let b1 = self.body_raw(body1)?;
         let b2 = match builder.body2 {
             Some(b) if b == body1 => {
-                return Err(Error::SelfJoint { joint: kind_name, body: body1.to_string() });
+                return Err(Error::SelfJoint { joint: kind_name, body: "a body".into() });
             }
             Some(b) => self.body_raw(b)?,
             None if matches!(builder.kind, JointKind::Hinge2 { .. }) => {
                 // ODE asserts "joint can not be attached to just one body".
-                return Err(Error::OutOfRange {
-                    what: "joint bodies",
-                    detail: "a hinge-2 joint connects two bodies; it cannot be attached to the world".into(),
+                return Err(Error::Invalid {
+                    what: "a hinge-2 joint",
+                    problem: "connects two bodies; it cannot be attached to the world".into(),
                 });
             }
             None => std::ptr::null_mut(),
@@ -474,7 +471,7 @@ impl World {
     /// Removes a joint.
     pub fn remove_joint(&mut self, joint: JointHandle) -> Result<()> {
         self.check_usable()?;
-        let data = self.joints.remove(joint.0, JointHandle::KIND, &joint)?;
+        let data = self.joints.remove(joint.0, JointHandle::KIND)?;
         // SAFETY: the joint was created by this world and is destroyed once; its
         // feedback buffer is freed after it.
         unsafe { ffi::dJointDestroy(data.raw) };
@@ -484,7 +481,7 @@ impl World {
 
     /// Read access to a joint.
     pub fn joint(&self, joint: JointHandle) -> Result<JointRef<'_>> {
-        Ok(JointRef { handle: joint, data: self.joints.get(joint.0, JointHandle::KIND, &joint)? })
+        Ok(JointRef { handle: joint, data: self.joints.get(joint.0, JointHandle::KIND)? })
     }
 
     /// Write access to a joint.
@@ -493,7 +490,7 @@ impl World {
         self.check_usable()?;
         Ok(JointMut {
             handle: joint,
-            data: self.joints.get_mut(joint.0, JointHandle::KIND, &joint)?,
+            data: self.joints.get_mut(joint.0, JointHandle::KIND)?,
             forces_added: &mut self.forces_added,
         })
     }
@@ -517,7 +514,10 @@ fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> 
     if axis >= axes {
         return Err(Error::OutOfRange {
             what: "joint axis index",
-            detail: format!("a {} joint has {axes} parameter axes, got index {axis}", kind.name()),
+            detail: format!(
+                "must be below {axes} (the parameter axes of {}), got {axis}",
+                crate::error::article(kind.name())
+            ),
         });
     }
     match param {
@@ -555,7 +555,7 @@ fn check_stop_order(kind: &JointKind, params: &[(JointParam, usize, f64)]) -> Re
         {
             return Err(Error::OutOfRange {
                 what: "joint limits",
-                detail: format!("low stop {lo} is above high stop {hi}"),
+                detail: format!("must have low ≤ high, got low {lo} above high {hi}"),
             });
         }
     }
@@ -757,7 +757,7 @@ impl JointMut<'_> {
         if lo_hi_conflict {
             return Err(Error::OutOfRange {
                 what: "joint limits",
-                detail: format!("{param:?} {value} would cross the other stop; use set_limits to move both"),
+                detail: format!("must not cross: {param:?} {value} would cross the other stop (set_limits moves both)"),
             });
         }
         let j = self.data.raw;
@@ -789,7 +789,7 @@ impl JointMut<'_> {
         if low.is_nan() || high.is_nan() || low > high {
             return Err(Error::OutOfRange {
                 what: "joint limits",
-                detail: format!("need low ≤ high, got [{low}, {high}]"),
+                detail: format!("must have low ≤ high, got [{low}, {high}]"),
             });
         }
         // Widen first so that neither intermediate state crosses.

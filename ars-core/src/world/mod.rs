@@ -374,7 +374,7 @@ impl World {
     /// Sets the global ERP, in [0, 1].
     pub fn set_erp(&mut self, erp: f64) -> Result<()> {
         if !(0.0..=1.0).contains(&erp) {
-            return Err(Error::OutOfRange { what: "ERP", detail: format!("must be in [0, 1], got {erp}") });
+            return Err(Error::OutOfRange { what: "ERP", detail: format!("must be within [0, 1], got {erp}") });
         }
         // SAFETY: the world is live.
         unsafe { ffi::dWorldSetERP(self.raw, erp) };
@@ -407,7 +407,7 @@ impl World {
             if !(1..=100_000).contains(&iterations) {
                 return Err(Error::OutOfRange {
                     what: "QuickStep iterations",
-                    detail: format!("must be within 1..=100000, got {iterations}"),
+                    detail: format!("must be 1 to 100000, got {iterations}"),
                 });
             }
             let n = iterations as i32;
@@ -584,9 +584,9 @@ impl World {
                 count[r] += 1;
                 if count[r] > self.exact_step_contacts {
                     return Err(Error::OutOfRange {
-                        what: "contacts in one island for the exact stepper",
+                        what: "the contacts in one island for the exact stepper",
                         detail: format!(
-                            "more than {} contact points link the bodies around {b}; dWorldStep's time grows with the cube of that number (1,640 take 43 s per step). Use Stepper::Quick, fewer contacts per pair (ContactSurface::max_contacts), or World::set_exact_step_contact_limit",
+                            "must number at most {0}: more than {0} contact points link the bodies around {b}; dWorldStep's time grows with the cube of that number (1,640 take 43 s per step). Use Stepper::Quick, fewer contacts per pair (ContactSurface::max_contacts), or World::set_exact_step_contact_limit",
                             self.exact_step_contacts
                         ),
                     });
@@ -614,7 +614,7 @@ impl World {
         {
             return Err(Error::OutOfRange {
                 what: "hash space levels",
-                detail: format!("need -30 ≤ min_level ≤ max_level ≤ 30, got min {min_level}, max {max_level}"),
+                detail: format!("must satisfy -30 ≤ min_level ≤ max_level ≤ 30, got min {min_level}, max {max_level}"),
             });
         }
         ensure_ode_ready();
@@ -646,7 +646,7 @@ impl World {
 
     #[inline]
     pub(crate) fn space_data(&self, space: SpaceHandle) -> Result<&SpaceData> {
-        self.spaces.get(space.0, SpaceHandle::KIND, &space)
+        self.spaces.get(space.0, SpaceHandle::KIND)
     }
 
     /// Number of bodies in the world.
