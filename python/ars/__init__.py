@@ -35,10 +35,14 @@ if sys.platform.startswith("linux") and not any(
 from ars import _native
 from ars._errors import (
     ArsError,
+    BusyError,
+    FileError,
+    FormatError,
     InputError,
     InternalError,
     ReproductionError,
     SimulationError,
+    UnknownKindError,
     UnknownNameError,
 )
 from ars._native import Body, Joint, Renderer, Sensor, Simulation, __version__, has_display
@@ -51,6 +55,9 @@ atexit.register(_native._release_viewer)
 __all__ = [
     "ArsError",
     "Body",
+    "BusyError",
+    "FileError",
+    "FormatError",
     "InputError",
     "InternalError",
     "Joint",
@@ -61,6 +68,7 @@ __all__ = [
     "Simulation",
     "SimulationError",
     "SweepResults",
+    "UnknownKindError",
     "UnknownNameError",
     "__version__",
     "has_display",

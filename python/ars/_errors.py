@@ -1,15 +1,40 @@
 """The exceptions ARS raises, importable as ``ars.ArsError`` and so on.
 
+One class per cause, each also a Python built-in class where one fits, so that
+``except ValueError`` or ``except OSError`` code keeps working:
+
+- ``InputError`` (``ValueError``): a bad value (a negative radius, a NaN pose, a joint
+  between an object and itself...); ``FormatError`` and ``UnknownKindError`` are kinds
+  of it;
+- ``UnknownKindError`` (``InputError``): a kind (of sensor, of controller) that does not
+  exist; the message lists those that do;
+- ``FormatError`` (``InputError``): a file that was read but is malformed (a scene file
+  that is not JSON, a URDF joint without a child); ``filename`` and ``position`` say
+  where;
+- ``UnknownNameError`` (``KeyError``): no object or joint has this name (or it was
+  removed);
+- ``FileError`` (``OSError``): a file or folder that cannot be read or written, with
+  ``errno``, ``strerror`` and ``filename`` set;
+- ``SimulationError``: the simulation cannot go on (a body diverged, ODE reported an
+  error, the simulation is poisoned); the same class every time for the same cause;
+- ``BusyError`` (``RuntimeError``): the simulation is busy running the hook that makes
+  the call (a hook that steps, shows or renders its own simulation);
+- ``InternalError``: a bug in ARS (a Rust panic).
+
 They live in an importable module (not in the extension) so that pickling (Ray,
 multiprocessing) rebuilds them as the same classes in other processes.
 """
 
 __all__ = [
     "ArsError",
+    "BusyError",
+    "FileError",
+    "FormatError",
     "InputError",
     "InternalError",
     "ReproductionError",
     "SimulationError",
+    "UnknownKindError",
     "UnknownNameError",
 ]
 
@@ -27,6 +52,20 @@ class InputError(ArsError, ValueError):
     """Bad input: a negative radius, a NaN pose, a joint between a body and itself..."""
 
 
+class UnknownKindError(InputError):
+    """A kind (of sensor, of controller) that does not exist; the message lists those
+    that do."""
+
+
+class FormatError(InputError):
+    """A file (or text) that is not what it should be: ``filename`` is the file (or
+    ``"<string>"``), ``position`` where in it (``"line 3, column 7"``, ``'joint
+    "elbow"'``; empty for the whole file)."""
+
+    filename = None
+    position = ""
+
+
 class UnknownNameError(ArsError, KeyError):
     """No object or joint has this name; the message lists names spelled almost the same."""
 
@@ -35,8 +74,29 @@ class UnknownNameError(ArsError, KeyError):
         return str(self.args[0]) if self.args else ""
 
 
+class FileError(ArsError, OSError):
+    """A file or folder that cannot be read or written. Built as
+    ``FileError(errno, message, filename)``: ``errno`` is the system's error number
+    (``None`` when there is none), ``strerror`` the whole message, ``filename`` the
+    path."""
+
+    @property
+    def msg(self):
+        return self.strerror
+
+    def __str__(self):
+        # OSError shows "[Errno 2] ...: 'path'"; the message already names both.
+        return str(self.strerror) if self.strerror is not None else OSError.__str__(self)
+
+
 class SimulationError(ArsError):
-    """The simulation cannot go on (a body diverged, ODE reported an error)."""
+    """The simulation cannot go on: a body diverged, or ODE reported an internal error
+    and the simulation is poisoned (every later step raises this class again)."""
+
+
+class BusyError(ArsError, RuntimeError):
+    """The simulation is busy running the hook that makes the call: a hook cannot step,
+    show or render the simulation it runs in (do it between steps)."""
 
 
 class InternalError(ArsError):
@@ -51,8 +111,12 @@ class ReproductionError(ArsError):
 for _cls in (
     ArsError,
     InputError,
+    UnknownKindError,
+    FormatError,
     UnknownNameError,
+    FileError,
     SimulationError,
+    BusyError,
     InternalError,
     ReproductionError,
 ):

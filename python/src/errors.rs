@@ -23,20 +23,61 @@ pub(crate) fn raise(py: Python<'_>, name: &str, message: String) -> PyErr {
     }
 }
 
-/// The Python exception for an ARS error: bad input is an `ars.InputError` (also a
-/// `ValueError`), an unknown name an `ars.UnknownNameError` (also a `KeyError`), a
-/// simulation that cannot go on an `ars.SimulationError`, a panic an
+/// The Python exception for an ARS error, one class per cause (see `ars/_errors.py`):
+/// a bad value is an `ars.InputError` (also a `ValueError`), an unknown kind an
+/// `ars.UnknownKindError` and a malformed file an `ars.FormatError` (both kinds of
+/// `InputError`), an unknown name or removed object an `ars.UnknownNameError` (also a
+/// `KeyError`), a file that cannot be read or written an `ars.FileError` (also an
+/// `OSError`), a simulation that cannot go on an `ars.SimulationError` (the first time
+/// and every later time), hooks reaching themselves an `ars.BusyError`, a panic an
 /// `ars.InternalError`; all are `ars.ArsError`s.
 pub(crate) fn to_py(py: Python<'_>, error: Error) -> PyErr {
+    let message = error.to_string();
     let class = match &error {
-        Error::Interrupted { .. } => return pyo3::exceptions::PyKeyboardInterrupt::new_err(error.to_string()),
-        Error::UnknownName { .. } => "UnknownNameError",
-        Error::Diverged { .. } | Error::OdeInternal { .. } | Error::Ode(_) => "SimulationError",
-        Error::Panicked { .. } | Error::Poisoned(_) => "InternalError",
+        Error::Interrupted { .. } => return pyo3::exceptions::PyKeyboardInterrupt::new_err(message),
+        Error::Io { path, errno, .. } => return file_error(py, *errno, message, path),
+        Error::Format { file, location, .. } => return format_error(py, message, file, location),
+        Error::UnknownName { .. } | Error::StaleHandle { .. } => "UnknownNameError",
+        Error::UnknownKind { .. } => "UnknownKindError",
+        Error::Diverged { .. } | Error::OdeInternal { .. } | Error::Ode(_) | Error::Poisoned(_) => "SimulationError",
+        Error::Busy(_) => "BusyError",
+        Error::Panicked { .. } => "InternalError",
         Error::User(_) => "ArsError",
         _ => "InputError",
     };
-    raise(py, class, error.to_string())
+    raise(py, class, message)
+}
+
+/// An `ars.FileError` (an `OSError`): `errno`, `strerror` (the message) and `filename`.
+pub(crate) fn file_error(py: Python<'_>, errno: Option<i32>, message: String, path: &str) -> PyErr {
+    match class(py, "FileError").and_then(|cls| cls.call1((errno, message, path))) {
+        Ok(error) => PyErr::from_value(error),
+        Err(e) => e,
+    }
+}
+
+/// An `ars.FormatError` with its `filename` and `position`.
+fn format_error(py: Python<'_>, message: String, file: &str, location: &str) -> PyErr {
+    let made = class(py, "FormatError").and_then(|cls| {
+        let error = cls.call1((message,))?;
+        error.setattr("filename", file)?;
+        error.setattr("position", location)?;
+        Ok(error)
+    });
+    match made {
+        Ok(error) => PyErr::from_value(error),
+        Err(e) => e,
+    }
+}
+
+/// `value` as a count (of steps, frames, pixels...) of type `T`: a negative or too large
+/// number is an `ars.InputError` naming `what`, where a conversion by PyO3 would raise
+/// `OverflowError`.
+pub(crate) fn count<T: TryFrom<i64>>(py: Python<'_>, what: &str, value: i64) -> PyResult<T> {
+    T::try_from(value).map_err(|_| {
+        let bound = if value < 0 { "must be 0 or more" } else { "is too large" };
+        raise(py, "InputError", format!("{what} {bound}, got {value}"))
+    })
 }
 
 /// Runs `f`, turning an ARS error into its Python exception and a panic into

@@ -1,16 +1,23 @@
 //! The names Python gives ARS's choices (spaces, steppers), in one place: parsed from
-//! keyword arguments and given back by the properties.
+//! keyword arguments and given back by the properties. A refusal is the name of the
+//! `ars` exception class to raise and its message.
 
 use ars_core::world::{SpaceKind, Stepper};
 
+/// Why a name was refused: the `ars` exception class and the message.
+pub(crate) type Refusal = (&'static str, String);
+
 /// The space called `name`.
-pub(crate) fn space(name: &str) -> Result<SpaceKind, String> {
+pub(crate) fn space(name: &str) -> Result<SpaceKind, Refusal> {
     match name {
         "simple" => Ok(SpaceKind::Simple),
         "hash" => Ok(SpaceKind::HASH),
         "sweep_and_prune" => Ok(SpaceKind::SWEEP_AND_PRUNE),
-        other => Err(format!(
-            "there is no space {other:?}; the spaces are \"sweep_and_prune\" (the default), \"hash\" and \"simple\""
+        other => Err((
+            "UnknownKindError",
+            format!(
+                "there is no space {other:?}; the spaces are \"sweep_and_prune\" (the default), \"hash\" and \"simple\""
+            ),
         )),
     }
 }
@@ -26,12 +33,15 @@ pub(crate) fn space_name(kind: SpaceKind) -> String {
 }
 
 /// The stepper called `name` (`None`: the exact one), with `iterations` for the quick one.
-pub(crate) fn stepper(name: Option<&str>, iterations: Option<u32>) -> Result<Stepper, String> {
+pub(crate) fn stepper(name: Option<&str>, iterations: Option<u32>) -> Result<Stepper, Refusal> {
     match (name.unwrap_or("exact"), iterations) {
         ("exact", None) => Ok(Stepper::Exact),
-        ("exact", Some(_)) => Err("quick_iterations is for the \"quick\" stepper only".into()),
+        ("exact", Some(_)) => Err(("InputError", "quick_iterations is for the \"quick\" stepper only".into())),
         ("quick", n) => Ok(Stepper::Quick { iterations: n.unwrap_or(20) }),
-        (other, _) => Err(format!("there is no stepper {other:?}; the steppers are \"exact\" and \"quick\"")),
+        (other, _) => Err((
+            "UnknownKindError",
+            format!("there is no stepper {other:?}; the steppers are \"exact\" and \"quick\""),
+        )),
     }
 }
 

@@ -24,6 +24,22 @@ fn kind_of(name: &str) -> Option<&'static str> {
     SENSOR_KINDS.iter().copied().find(|k| *k == name || *k == camel || *k == format!("{camel}Sensor"))
 }
 
+/// `CamelCase` in snake case: `"JointPositions"` → `"joint_positions"`.
+fn snake_case(name: &str) -> String {
+    let mut snake = String::new();
+    for (i, c) in name.chars().enumerate() {
+        if c.is_ascii_uppercase() {
+            if i > 0 {
+                snake.push('_');
+            }
+            snake.push(c.to_ascii_lowercase());
+        } else {
+            snake.push(c);
+        }
+    }
+    snake
+}
+
 /// Declares a sensor named `kind` on `targets` (object or joint names, whichever it
 /// reads).
 pub(crate) fn declare(
@@ -33,9 +49,10 @@ pub(crate) fn declare(
     every: Option<f64>,
 ) -> ars_core::Result<AnySensorId> {
     let Some(kind) = kind_of(kind) else {
-        return Err(Error::OutOfRange {
+        return Err(Error::UnknownKind {
             what: "sensor kind",
-            detail: format!("{kind:?}; the kinds (or their snake_case names): {}", SENSOR_KINDS.join(", ")),
+            name: kind.to_string(),
+            known: SENSOR_KINDS.iter().copied().map(snake_case).collect(),
         });
     };
     let reads_joints = kind.starts_with("Joint") || kind == "HingeSensor";
@@ -195,10 +212,7 @@ impl PySensor {
             let (_, log) = sim.sensor_table(id)?;
             std::fs::File::create(&path)
                 .and_then(|f| ars_core::sensors::write_csv_table(std::io::BufWriter::new(f), &[("", log)], 1))
-                .map_err(|e| Error::OutOfRange {
-                    what: "CSV file",
-                    detail: format!("{}: cannot be written: {e}", path.display()),
-                })
+                .map_err(|e| Error::io("write the CSV file", &path, &e))
         })
     }
 

@@ -18,7 +18,7 @@ use ars_core::{Error, HookId, HookPoint, Hooks, JointEnd, Mass, ObjectId, Shape,
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
-use crate::errors::{guarded, outcome, raise};
+use crate::errors::{count, guarded, outcome, raise};
 use crate::views::{Body, Joint};
 
 /// A vector given as any sequence of three numbers.
@@ -185,7 +185,7 @@ impl PySimulation {
         f: impl FnOnce(&mut Simulation) -> ars_core::Result<()> + Send,
     ) -> PyResult<()> {
         if self.context.current().is_some() {
-            return Err(raise(py, "InputError", "a hook cannot step the simulation it runs in".into()));
+            return Err(raise(py, "BusyError", "a hook cannot step the simulation it runs in".into()));
         }
         let result = self.with(py, f);
         match lock(&self.context.raised).take() {
@@ -254,14 +254,17 @@ impl PySimulation {
         gravity: Option<Vec3>,
         erp: Option<f64>,
         cfm: Option<f64>,
-        steps_per_frame: Option<u32>,
+        steps_per_frame: Option<i64>,
         space: Option<&str>,
         stepper: Option<&str>,
-        quick_iterations: Option<u32>,
-        seed: Option<u32>,
+        quick_iterations: Option<i64>,
+        seed: Option<i64>,
     ) -> PyResult<Self> {
-        let space = space.map(crate::kinds::space).transpose().map_err(|e| raise(py, "InputError", e))?;
-        let stepper = crate::kinds::stepper(stepper, quick_iterations).map_err(|e| raise(py, "InputError", e))?;
+        let steps_per_frame: Option<u32> = steps_per_frame.map(|n| count(py, "steps_per_frame", n)).transpose()?;
+        let quick_iterations: Option<u32> = quick_iterations.map(|n| count(py, "quick_iterations", n)).transpose()?;
+        let seed: Option<u32> = seed.map(|n| count(py, "the seed", n)).transpose()?;
+        let space = space.map(crate::kinds::space).transpose().map_err(|(class, e)| raise(py, class, e))?;
+        let stepper = crate::kinds::stepper(stepper, quick_iterations).map_err(|(class, e)| raise(py, class, e))?;
         let sim = guarded(py, || {
             let mut b = Simulation::builder().stepper(stepper);
             if let Some(space) = space {
@@ -401,14 +404,17 @@ impl PySimulation {
     /// Chooses the stepper for the next steps: `"exact"` or `"quick"` with
     /// `quick_iterations` iterations per step (default 20).
     #[pyo3(signature = (stepper, quick_iterations=None))]
-    fn set_stepper(&self, py: Python<'_>, stepper: &str, quick_iterations: Option<u32>) -> PyResult<()> {
-        let stepper = crate::kinds::stepper(Some(stepper), quick_iterations).map_err(|e| raise(py, "InputError", e))?;
+    fn set_stepper(&self, py: Python<'_>, stepper: &str, quick_iterations: Option<i64>) -> PyResult<()> {
+        let quick_iterations: Option<u32> = quick_iterations.map(|n| count(py, "quick_iterations", n)).transpose()?;
+        let stepper =
+            crate::kinds::stepper(Some(stepper), quick_iterations).map_err(|(class, e)| raise(py, class, e))?;
         self.with(py, move |sim| sim.world_mut().set_stepper(stepper))
     }
 
     /// Seeds the world's own random generator (used by ODE's QuickStep; each world
     /// keeps its own, so a run steps the same in any process).
-    fn set_seed(&self, py: Python<'_>, seed: u32) -> PyResult<()> {
+    fn set_seed(&self, py: Python<'_>, seed: i64) -> PyResult<()> {
+        let seed: u32 = count(py, "the seed", seed)?;
         self.with(py, move |sim| {
             sim.world_mut().set_random_seed(seed);
             Ok(())
@@ -419,7 +425,8 @@ impl PySimulation {
     /// Ctrl-C stops it between two steps with `KeyboardInterrupt`; the simulation can
     /// be stepped on.
     #[pyo3(signature = (n=1))]
-    fn step(&self, py: Python<'_>, n: u64) -> PyResult<()> {
+    fn step(&self, py: Python<'_>, n: i64) -> PyResult<()> {
+        let n: u64 = count(py, "the number of steps", n)?;
         let context = Arc::clone(&self.context);
         self.advance(py, move |sim| sim.step_n_until(n, python_signals(&context)))
     }
@@ -443,7 +450,7 @@ impl PySimulation {
         duration: Option<f64>,
         frames: Option<i64>,
         title: String,
-        size: (u32, u32),
+        size: (i64, i64),
         camera: Vec3,
         look_at: Vec3,
         background: Vec3,
@@ -547,10 +554,13 @@ impl PySimulation {
         &self,
         py: Python<'_>,
         vertices: Vec<Vec3>,
-        faces: Vec<[u32; 3]>,
+        faces: Vec<[i64; 3]>,
         center: Vec3,
         name: Option<String>,
     ) -> PyResult<String> {
+        let index = |i| count::<u32>(py, "a face's vertex index", i);
+        let faces =
+            faces.into_iter().map(|[a, b, c]| Ok([index(a)?, index(b)?, index(c)?])).collect::<PyResult<Vec<_>>>()?;
         self.with(py, move |sim| {
             let shape = Shape::TriMesh { vertices: vertices.into_iter().map(Point3::from).collect(), triangles: faces };
             let pose = ars_core::nalgebra::Isometry3::translation(center[0], center[1], center[2]);
@@ -755,7 +765,7 @@ impl PySimulation {
     /// `soft_erp`/`soft_cfm` (soft contacts; else the world's), `max_contacts=150`
     /// points per pair.
     #[pyo3(signature = (between=None, *, mu=500.0, mu2=None, bounce=0.2, bounce_velocity=0.0, soft_erp=None,
-                        soft_cfm=None, approx1=false, max_contacts=ars_core::MAX_CONTACTS_LIMIT))]
+                        soft_cfm=None, approx1=false, max_contacts=150))]
     fn set_contact_surface(
         &self,
         py: Python<'_>,
@@ -767,8 +777,9 @@ impl PySimulation {
         soft_erp: Option<f64>,
         soft_cfm: Option<f64>,
         approx1: bool,
-        max_contacts: usize,
+        max_contacts: i64,
     ) -> PyResult<()> {
+        let max_contacts: usize = count(py, "max_contacts", max_contacts)?;
         let surface = ars_core::ContactSurface {
             mu,
             mu2,
@@ -852,7 +863,7 @@ impl PySimulation {
                         rotation=None, every=None, noise=None, seed=0))]
     fn add_lidar(
         slf: Bound<'_, Self>,
-        beams: u32,
+        beams: i64,
         fov: f64,
         max_range: f64,
         min_range: f64,
@@ -862,8 +873,10 @@ impl PySimulation {
         rotation: Option<[[f64; 3]; 3]>,
         every: Option<f64>,
         noise: Option<f64>,
-        seed: u64,
+        seed: i64,
     ) -> PyResult<crate::sensors::PySensor> {
+        let beams: u32 = count(slf.py(), "lidar beams", beams)?;
+        let seed: u64 = count(slf.py(), "the seed", seed)?;
         let offset = crate::views::pose(position, rotation).map_err(|e| raise(slf.py(), "InputError", e))?;
         let spec =
             crate::sensors::LidarSpec { beams, fov, max_range, min_range, planes, on, offset, every, noise, seed };
@@ -878,8 +891,8 @@ impl PySimulation {
     #[pyo3(signature = (width, height, fov_y, near, far, *, on=None, position=[0.0; 3], rotation=None, every=None))]
     fn add_depth_camera(
         slf: Bound<'_, Self>,
-        width: u32,
-        height: u32,
+        width: i64,
+        height: i64,
         fov_y: f64,
         near: f64,
         far: f64,
@@ -888,6 +901,8 @@ impl PySimulation {
         rotation: Option<[[f64; 3]; 3]>,
         every: Option<f64>,
     ) -> PyResult<crate::sensors::PySensor> {
+        let (width, height): (u32, u32) =
+            (count(slf.py(), "image width", width)?, count(slf.py(), "image height", height)?);
         let offset = crate::views::pose(position, rotation).map_err(|e| raise(slf.py(), "InputError", e))?;
         let id = slf.get().with(slf.py(), move |sim| {
             let camera = ars_core::sensors::DepthCamera::new(width, height, fov_y, near, far)?;
@@ -960,9 +975,13 @@ impl PySimulation {
     }
 
     /// Removes a hook added with `add_pre_step` or `add_post_step`.
-    fn remove_hook(&self, py: Python<'_>, hook: u64) -> PyResult<()> {
-        let Some(id) = lock(&self.hooks).remove(&hook) else {
-            return Err(raise(py, "InputError", format!("no hook {hook} in this simulation")));
+    fn remove_hook(&self, py: Python<'_>, hook: i64) -> PyResult<()> {
+        let Some(id) = u64::try_from(hook).ok().and_then(|key| lock(&self.hooks).remove(&key)) else {
+            return Err(raise(
+                py,
+                "UnknownNameError",
+                format!("no hook {hook} in this simulation (removed, or never added)"),
+            ));
         };
         self.with(py, move |sim| sim.remove_hooks(id).map(drop))
     }

@@ -32,7 +32,8 @@ fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
 /// How the viewer sees a simulation, from the keywords `show` and `Renderer` take.
 pub(crate) struct ViewArgs {
     pub title: String,
-    pub size: (u32, u32),
+    /// Width and height in pixels, as given (checked by `settings`).
+    pub size: (i64, i64),
     pub camera: Vec3,
     pub look_at: Vec3,
     pub background: Vec3,
@@ -72,7 +73,8 @@ impl ViewArgs {
         };
         Ok(ViewSettings {
             title: self.title,
-            size: self.size,
+            // Checked above: 1 to 8192 each.
+            size: (w as u32, h as u32),
             camera_position: camera,
             camera_target: look_at,
             background: self.background.map(|c| c as f32),
@@ -180,7 +182,7 @@ pub(crate) fn show(
     view: ViewArgs,
 ) -> PyResult<Py<PyDict>> {
     if sim.get().in_own_hook() {
-        return Err(raise(py, "InputError", "a hook cannot show the simulation it runs in".into()));
+        return Err(raise(py, "BusyError", "a hook cannot show the simulation it runs in".into()));
     }
     let threading = py.import("threading")?;
     if !threading.call_method0("current_thread")?.is(&threading.call_method0("main_thread")?) {
@@ -243,7 +245,7 @@ pub(crate) fn show_program(
     duration: Option<f64>,
     frames: Option<i64>,
     title: String,
-    size: (u32, u32),
+    size: (i64, i64),
     camera: Vec3,
     look_at: Vec3,
     background: Vec3,
@@ -368,8 +370,8 @@ impl PyRenderer {
     #[pyo3(signature = (width=640, height=480, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
     fn new(
         py: Python<'_>,
-        width: u32,
-        height: u32,
+        width: i64,
+        height: i64,
         camera: Vec3,
         look_at: Vec3,
         background: Vec3,
@@ -381,6 +383,7 @@ impl PyRenderer {
             ViewArgs { title: "ARS".into(), size: (width, height), camera, look_at, background, follow, quality, axes };
         let options = args.options();
         let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
+        let size = view.size;
         let (ready_tx, ready_rx) = mpsc::sync_channel(1);
         let (requests, requests_rx) = mpsc::channel();
         let thread = std::thread::Builder::new()
@@ -389,9 +392,7 @@ impl PyRenderer {
             .map_err(|e| raise(py, "ArsError", format!("could not start the renderer's thread: {e}")))?;
         let ready = py.detach(move || ready_rx.recv());
         match ready {
-            Ok(Ok(())) => {
-                Ok(PyRenderer { requests: Mutex::new(requests), thread: Some(thread), size: (width, height) })
-            }
+            Ok(Ok(())) => Ok(PyRenderer { requests: Mutex::new(requests), thread: Some(thread), size }),
             Ok(Err(failure)) => Err(failure.into_py(py)),
             Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended before it was ready".into())),
         }
@@ -414,7 +415,12 @@ impl PyRenderer {
     /// Writes the simulation as it is now to a PNG file.
     fn save(&self, py: Python<'_>, sim: Py<PySimulation>, path: std::path::PathBuf) -> PyResult<()> {
         let image = self.draw(py, sim)?;
-        image.save(&path).map_err(|e| raise(py, "ArsError", format!("could not write {}: {e}", path.display())))
+        image.save(&path).map_err(|e| match e {
+            image::ImageError::IoError(io) => to_py(py, Error::io("write the PNG file", &path, &io)),
+            other => {
+                raise(py, "ArsError", format!("cannot write the PNG file {:?}: {other}", path.display().to_string()))
+            }
+        })
     }
 
     fn __repr__(&self) -> String {
@@ -427,7 +433,7 @@ impl PyRenderer {
         if sim.get().in_own_hook() {
             return Err(raise(
                 py,
-                "InputError",
+                "BusyError",
                 "a hook cannot render the simulation it runs in: render between steps".into(),
             ));
         }

@@ -267,7 +267,21 @@ impl Joint {
             "stop_erp" => P::StopErp,
             "stop_cfm" => P::StopCfm,
             other => {
-                return Err(crate::errors::raise(py, "InputError", format!("no joint parameter {other:?}")));
+                let known = [
+                    "lo_stop",
+                    "hi_stop",
+                    "velocity",
+                    "max_force",
+                    "fudge_factor",
+                    "bounce",
+                    "cfm",
+                    "stop_erp",
+                    "stop_cfm",
+                ]
+                .map(String::from)
+                .to_vec();
+                let error = ars_core::Error::UnknownKind { what: "joint parameter", name: other.to_string(), known };
+                return Err(crate::errors::to_py(py, error));
             }
         };
         self.act(py, |sim, id| sim.joint_mut(id)?.set_param(param, value))
@@ -294,7 +308,7 @@ impl Joint {
         use ars_core::{PositionServo, Profile, TorqueMotor, VelocityServo};
         let profile = |s: Option<Setpoint>| -> ars_core::Result<Profile> {
             match s {
-                None => Err(ars_core::Error::OutOfRange { what: "controller", detail: "needs a setpoint".into() }),
+                None => Err(ars_core::Error::Invalid { what: "a controller", problem: "needs a setpoint".into() }),
                 Some(Setpoint::Constant(v)) => Profile::constant(v),
                 Some(Setpoint::Points(p)) => Profile::new(p),
             }
@@ -310,9 +324,10 @@ impl Joint {
                 Some("torque") => joint.set_controller(TorqueMotor { torque: profile(setpoint)? }),
                 Some("position") => joint.set_controller(PositionServo::pd(profile(setpoint)?, kp, kd)),
                 Some("velocity") => joint.set_controller(VelocityServo { setpoint: profile(setpoint)?, gain: kp }),
-                Some(other) => Err(ars_core::Error::OutOfRange {
-                    what: "controller",
-                    detail: format!("kind {other:?}: \"torque\", \"position\" or \"velocity\""),
+                Some(other) => Err(ars_core::Error::UnknownKind {
+                    what: "controller kind",
+                    name: other.to_string(),
+                    known: ["torque", "position", "velocity"].map(String::from).to_vec(),
                 }),
             }
         })

@@ -121,7 +121,7 @@ def test_a_hook_cannot_render_its_own_simulation_and_the_simulation_goes_on():
     sim, _ = ball_scene()
     renderer = ars.Renderer(32, 24)
     hook = sim.add_pre_step(lambda: renderer.render(sim))
-    with pytest.raises(ars.InputError, match="render between steps"):
+    with pytest.raises(ars.BusyError, match="render between steps"):
         sim.step()
     sim.remove_hook(hook)
     sim.step(3)
