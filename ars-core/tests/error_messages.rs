@@ -109,15 +109,16 @@ fn removed_things_are_named_as_removed_not_by_handle() {
     assert_eq!(readable(&err), "the object belongs to another world or simulation");
 }
 
+/// A pre-step hook whose type can be named (to hold its own id).
+type Hook = Box<dyn FnMut(&mut Simulation) -> Result<()> + Send>;
+
 #[test]
 fn a_hook_reaching_itself_is_busy() {
     let mut sim = Simulation::new().unwrap();
     let seen = std::sync::Arc::new(std::sync::Mutex::new(None));
-    let id = std::sync::Arc::new(std::sync::Mutex::new(
-        None::<HookId<PreStep<Box<dyn FnMut(&mut Simulation) -> Result<()> + Send>>>>,
-    ));
+    let id = std::sync::Arc::new(std::sync::Mutex::new(None::<HookId<PreStep<Hook>>>));
     let (seen2, id2) = (seen.clone(), id.clone());
-    let hook: Box<dyn FnMut(&mut Simulation) -> Result<()> + Send> = Box::new(move |sim: &mut Simulation| {
+    let hook: Hook = Box::new(move |sim: &mut Simulation| {
         if let Some(me) = *id2.lock().unwrap() {
             *seen2.lock().unwrap() = Some(sim.hooks(me).map(drop).unwrap_err());
         }
