@@ -12,10 +12,11 @@
 
 use ars_core::nalgebra::Vector3;
 use ars_core::sensors::{
-    Accelerometer, CsvColumns, Gps, Imu, JointPositions, JointTorque, Lidar, Noisy, Velometer, write_csv_table,
+    Accelerometer, CsvColumns, Gps, Imu, JointPositions, JointTorque, Lidar, Noisy, Sensor, SensorId, Velometer,
+    write_csv_table,
 };
 use ars_core::world::SpaceKind;
-use ars_core::{Mass, PositionServo, Profile, ProgramRunner, Result, Simulation, UrdfOptions};
+use ars_core::{Mass, PositionServo, Profile, Program, ProgramRunner, Result, Simulation, UrdfOptions};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
@@ -97,28 +98,29 @@ fn csv(logs: &[(&str, &dyn CsvColumns)]) -> Result<Vec<u8>> {
     Ok(out)
 }
 
-fn conical_pendulum(duration: f64) -> Result<Vec<u8>> {
-    let mut program = ConicalPendulum::default();
+/// The CSV of the record a thesis program keeps (what its example's `--csv` writes).
+fn program_record<P: Program, S: Sensor>(
+    mut program: P,
+    duration: f64,
+    record: fn(&P) -> Option<SensorId<S>>,
+) -> Result<Vec<u8>> {
     let mut runner = ProgramRunner::new(&mut program)?;
     runner.run_for(duration)?;
     let sim = runner.into_simulation();
-    csv(&[("", sim.records(program.record.expect("created"))?)])
+    let id = record(&program).ok_or_else(|| ars_core::Error::User("the program made its record".into()))?;
+    csv(&[("", sim.records(id)?)])
+}
+
+fn conical_pendulum(duration: f64) -> Result<Vec<u8>> {
+    program_record(ConicalPendulum::default(), duration, |p| p.record)
 }
 
 fn speed_profile(duration: f64) -> Result<Vec<u8>> {
-    let mut program = SpeedProfile::with_derivative_gain(0.0);
-    let mut runner = ProgramRunner::new(&mut program)?;
-    runner.run_for(duration)?;
-    let sim = runner.into_simulation();
-    csv(&[("", sim.records(program.record.expect("created"))?)])
+    program_record(SpeedProfile::with_derivative_gain(0.0), duration, |p| p.record)
 }
 
 fn sinusoidal_terrain(duration: f64) -> Result<Vec<u8>> {
-    let mut program = SinusoidalTerrain::default();
-    let mut runner = ProgramRunner::new(&mut program)?;
-    runner.run_for(duration)?;
-    let sim = runner.into_simulation();
-    csv(&[("", sim.records(program.record.expect("created"))?)])
+    program_record(SinusoidalTerrain::default(), duration, |p| p.record)
 }
 
 fn falling_ball_sensors(duration: f64) -> Result<Vec<u8>> {

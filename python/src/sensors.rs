@@ -156,6 +156,25 @@ impl PySensor {
     pub(crate) fn new(sim: Py<PySimulation>, kind: String, typed: Typed) -> Self {
         PySensor { sim, kind, id: typed.any(), typed }
     }
+
+    /// `row(scan)` for each of a lidar's scans; for other sensors an `ars.InputError`
+    /// saying they have no `what`.
+    fn per_scan<T: Send>(
+        &self,
+        py: Python<'_>,
+        what: &str,
+        row: impl Fn(&ars_core::sensors::Scan) -> T + Send,
+    ) -> PyResult<Vec<T>> {
+        let typed = self.typed;
+        let rows = self.sim.get().with(py, move |sim| match typed.scans(sim) {
+            Some(scans) => Ok(Some(scans?.into_iter().map(&row).collect::<Vec<_>>())),
+            None => Ok(None),
+        })?;
+        rows.ok_or_else(|| {
+            let kind = self.kind.replace('_', " ");
+            crate::errors::raise(py, "InputError", format!("a {kind} sensor has no {what} (a lidar has)"))
+        })
+    }
 }
 
 /// A log's columns: headers, stamps and cells (NaN where a value is missing).
@@ -225,46 +244,16 @@ impl PySensor {
     /// A lidar's scans: an array of shape `(records, beams × planes)`, m, plane after
     /// plane (`inf`: nothing seen). For other sensors, an `ars.InputError`.
     fn ranges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let typed = self.typed;
-        let rows = self.sim.get().with(py, move |sim| match typed.scans(sim) {
-            Some(scans) => Ok(Some(scans?.iter().map(|s| s.ranges.clone()).collect::<Vec<_>>())),
-            None => Ok(None),
-        })?;
-        let Some(rows) = rows else {
-            return Err(crate::errors::raise(
-                py,
-                "InputError",
-                format!("a {} sensor has no ranges (a lidar has)", self.kind.replace('_', " ")),
-            ));
-        };
+        let rows = self.per_scan(py, "ranges", |s| s.ranges.clone())?;
         rows_to_array(py, rows)
     }
 
     /// A lidar's hit points: an array of shape `(records, beams × planes, 3)`, world
     /// frame, m (NaN where a beam saw nothing).
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
-        let typed = self.typed;
-        let rows = self.sim.get().with(py, move |sim| match typed.scans(sim) {
-            Some(scans) => Ok(Some(
-                scans?
-                    .iter()
-                    .map(|s| {
-                        s.points
-                            .iter()
-                            .map(|p| p.map_or(vec![f64::NAN; 3], |p| vec![p.x, p.y, p.z]))
-                            .collect::<Vec<_>>()
-                    })
-                    .collect::<Vec<_>>(),
-            )),
-            None => Ok(None),
+        let rows = self.per_scan(py, "points", |s| {
+            s.points.iter().map(|p| p.map_or(vec![f64::NAN; 3], |p| vec![p.x, p.y, p.z])).collect::<Vec<_>>()
         })?;
-        let Some(rows) = rows else {
-            return Err(crate::errors::raise(
-                py,
-                "InputError",
-                format!("a {} sensor has no points (a lidar has)", self.kind.replace('_', " ")),
-            ));
-        };
         PyArray3::from_vec3(py, &rows).map_err(Into::into)
     }
 
