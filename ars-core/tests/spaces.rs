@@ -10,7 +10,7 @@ use ars_core::*;
 /// Every space kind: simple, hash, and sweep and prune in each axis order.
 fn all_kinds() -> Vec<SpaceKind> {
     let orders = [AxisOrder::Xyz, AxisOrder::Xzy, AxisOrder::Yxz, AxisOrder::Yzx, AxisOrder::Zxy, AxisOrder::Zyx];
-    let mut kinds = vec![SpaceKind::Simple, SpaceKind::HASH];
+    let mut kinds = vec![SpaceKind::Simple, SpaceKind::HASH, SpaceKind::Grid];
     kinds.extend(orders.map(|axes| SpaceKind::SweepAndPrune { axes }));
     kinds
 }

@@ -16,9 +16,9 @@
 //!
 //! in a simple space (every pair; not at 100,000 spheres, where one step would take
 //! minutes), a hash space (ODE's default levels; not at 100,000 spheres and a floor,
-//! beyond `limits::MAX_HASH_SPACE_GEOMS`) and a sweep-and-prune space (X, Z, Y), with the ratios 10k/1k and 100k/10k (10 is linear). `--test` (what
+//! beyond `limits::MAX_HASH_SPACE_GEOMS`) a sweep-and-prune space (X, Z, Y) and the grid, with the ratios 10k/1k and 100k/10k (10 is linear). `--test` (what
 //! `cargo test --benches` passes) runs 100 spheres and a 3-layer pile once;
-//! `--run SPACE N STEPS` (SPACE `simple`, `hash` or `sap`) steps N spaced spheres
+//! `--run SPACE N STEPS` (SPACE `simple`, `hash`, `sap` or `grid`) steps N spaced spheres
 //! (N = 0: the pile), for a profiler.
 
 use std::hint::black_box;
@@ -28,8 +28,12 @@ use ars_core::nalgebra::Isometry3;
 use ars_core::{Mass, Shape, Simulation, SpaceKind, Stepper, limits};
 
 /// The spaces measured, with their names in the table.
-const SPACES: [(&str, SpaceKind); 3] =
-    [("simple", SpaceKind::Simple), ("hash", SpaceKind::HASH), ("sweep and prune", SpaceKind::SWEEP_AND_PRUNE)];
+const SPACES: [(&str, SpaceKind); 4] = [
+    ("simple", SpaceKind::Simple),
+    ("hash", SpaceKind::HASH),
+    ("sweep and prune", SpaceKind::SWEEP_AND_PRUNE),
+    ("grid", SpaceKind::Grid),
+];
 
 /// Sphere radius, m.
 const RADIUS: f64 = 0.1;
@@ -128,11 +132,12 @@ fn main() {
     }
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--run") {
-        // `--run SPACE N STEPS`: one case, for a profiler (SPACE: simple, hash, sap;
+        // `--run SPACE N STEPS`: one case, for a profiler (SPACE: simple, hash, sap, grid;
         // N = 0: the pile).
         let space = match args[i + 1].as_str() {
             "simple" => SpaceKind::Simple,
             "hash" => SpaceKind::HASH,
+            "grid" => SpaceKind::Grid,
             _ => SpaceKind::SWEEP_AND_PRUNE,
         };
         let (n, steps) = (args[i + 2].parse().expect("a sphere count"), args[i + 3].parse().expect("a step count"));

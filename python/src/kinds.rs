@@ -13,10 +13,11 @@ pub(crate) fn space(name: &str) -> Result<SpaceKind, Refusal> {
         "simple" => Ok(SpaceKind::Simple),
         "hash" => Ok(SpaceKind::HASH),
         "sweep_and_prune" => Ok(SpaceKind::SWEEP_AND_PRUNE),
+        "grid" => Ok(SpaceKind::Grid),
         other => Err((
             "UnknownKindError",
             format!(
-                "there is no space {other:?}; the spaces are \"sweep_and_prune\" (the default), \"hash\" and \"simple\""
+                "there is no space {other:?}; the spaces are \"sweep_and_prune\" (the default), \"grid\", \"hash\" and \"simple\""
             ),
         )),
     }
@@ -28,6 +29,7 @@ pub(crate) fn space_name(kind: SpaceKind) -> String {
         SpaceKind::Simple => "simple".into(),
         SpaceKind::Hash { .. } => "hash".into(),
         SpaceKind::SweepAndPrune { .. } => "sweep_and_prune".into(),
+        SpaceKind::Grid => "grid".into(),
         other => format!("{other:?}"),
     }
 }

@@ -164,6 +164,11 @@ def test_the_stepper_space_and_world_parameters_are_chosen_and_read():
     assert sim.stepper == "exact"
     assert ars.Simulation(space="simple").space == "simple"
     assert ars.Simulation().space == "sweep_and_prune", "new simulations scale"
+    grid = ars.Simulation(space="grid")
+    grid.add_floor()
+    ball = grid.add_sphere(0.1, (0.0, 0.5, 0.0), mass=1.0)
+    grid.run(1.0)
+    assert grid.space == "grid" and grid.body(ball).position[1] == pytest.approx(0.1, abs=1e-3)
     sim.erp, sim.cfm, sim.time_step, sim.gravity = 0.5, 1e-5, 0.001, (0.0, -1.0, 0.0)
     assert (sim.erp, sim.cfm, sim.time_step, sim.gravity) == (0.5, 1e-5, 0.001, (0.0, -1.0, 0.0))
     assert sim.frame_count == 0

@@ -342,8 +342,8 @@ impl World {
         self.check_usable()?;
         ensure_ode_ready();
         let data = self.space_data(space)?;
-        let raw_space = data.raw;
-        if let SpaceKind::Hash { min_level, .. } = data.kind {
+        let (raw_space, kind) = (data.raw, data.kind);
+        if let SpaceKind::Hash { min_level, .. } = kind {
             // SAFETY: the space is live.
             let geoms = unsafe { ffi::dSpaceGetNumGeoms(raw_space) };
             if usize::try_from(geoms).unwrap_or(usize::MAX) > crate::limits::MAX_HASH_SPACE_GEOMS {
@@ -361,13 +361,28 @@ impl World {
         // ODE's trimesh colliders share one process-wide cache in this build of ODE;
         // every other collider only touches the geoms it is given.
         let needs_lock = self.trimesh_count > 0;
+        // The grid is ARS's own broad phase: it lists the pairs, the near callback
+        // takes them as it takes ODE's.
+        let grid_pairs = matches!(kind, SpaceKind::Grid).then(|| super::grid::candidate_pairs(self, space));
         let mut ctx = NearContext { world: self, hooks, panic: None, failure: None };
         let collided = {
             let _guard = needs_lock.then(lock_ode_global_state);
-            // SAFETY: the space is live; `ctx` outlives the call and is only accessed
-            // by `near_callback`, which ODE calls synchronously on this thread and
-            // which never unwinds (it catches panics).
-            unsafe { guard::space_collide(raw_space, (&raw mut ctx).cast::<c_void>(), near_callback::<H>) }
+            let data = (&raw mut ctx).cast::<c_void>();
+            match &grid_pairs {
+                Some(pairs) => {
+                    for &(o1, o2) in pairs {
+                        // SAFETY: `data` is `ctx`, alive and only accessed by the
+                        // callback; both geoms are live geoms of this world (listed just
+                        // now); the callback never unwinds (it catches panics).
+                        unsafe { near_callback::<H>(data, o1, o2) };
+                    }
+                    Ok(())
+                }
+                // SAFETY: the space is live; `ctx` outlives the call and is only
+                // accessed by `near_callback`, which ODE calls synchronously on this
+                // thread and which never unwinds (it catches panics).
+                None => unsafe { guard::space_collide(raw_space, data, near_callback::<H>) },
+            }
         };
         let (panic, pair_failure) = (ctx.panic, ctx.failure);
         if let Err(failure) = collided {

@@ -684,8 +684,12 @@ impl Harness {
     }
 }
 
-/// A sweep-and-prune space in one of the six axis orders.
+/// A sweep-and-prune space in one of the six axis orders, or (one time in seven) the
+/// grid.
 fn sweep_and_prune(byte: u8) -> SpaceKind {
     let orders = [AxisOrder::Xyz, AxisOrder::Xzy, AxisOrder::Yxz, AxisOrder::Yzx, AxisOrder::Zxy, AxisOrder::Zyx];
-    SpaceKind::SweepAndPrune { axes: orders[usize::from(byte) % 6] }
+    match usize::from(byte) % 7 {
+        6 => SpaceKind::Grid,
+        k => SpaceKind::SweepAndPrune { axes: orders[k] },
+    }
 }

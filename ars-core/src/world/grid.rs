@@ -1,0 +1,155 @@
+//! The grid broad phase ([`SpaceKind::Grid`](super::SpaceKind::Grid)): ARS's own, in
+//! Rust, over the geoms of a simple ODE space. Each collision puts every geom's
+//! bounding box in the cells of a uniform grid (the cell twice the median geom's
+//! size) and reports the pairs that share a cell and whose boxes overlap, once each, in
+//! the order of the geoms' creation. Geoms much larger than a cell (and planes, whose
+//! boxes are infinite) are tested against every other geom. Its cost grows with the
+//! number of geoms and of touching pairs, not with their square: ODE's hash space
+//! clears a table of one bit per pair of geoms at every collision, and its sweep and
+//! prune sorts along one axis only, so a scene spread over the ground costs it n·√n.
+//!
+//! It applies ODE's own rules for which pairs a space reports: geoms enabled, not on
+//! the same body, and whose category and collide bits match.
+
+use ode_sys as ffi;
+
+use super::World;
+use crate::handle::SpaceHandle;
+
+/// A geom as the grid sees it.
+struct Entry {
+    raw: ffi::dGeomID,
+    body: ffi::dBodyID,
+    category: u64,
+    collide: u64,
+    aabb: [f64; 6],
+}
+
+impl Entry {
+    fn extent(&self) -> f64 {
+        (self.aabb[1] - self.aabb[0]).max(self.aabb[3] - self.aabb[2]).max(self.aabb[5] - self.aabb[4])
+    }
+
+    fn overlaps(&self, other: &Entry) -> bool {
+        (0..3).all(|a| self.aabb[2 * a] <= other.aabb[2 * a + 1] && other.aabb[2 * a] <= self.aabb[2 * a + 1])
+    }
+
+    /// ODE's rules (`collideAABBs`): not on one body, bits that match, boxes that
+    /// overlap.
+    fn may_touch(&self, other: &Entry) -> bool {
+        (self.body.is_null() || self.body != other.body)
+            && ((self.category & other.collide) != 0 || (other.category & self.collide) != 0)
+            && self.overlaps(other)
+    }
+}
+
+/// A geom's box larger than this many cells is tested against all the others.
+const LARGE: f64 = 2.0;
+
+/// A cell's key: its coordinates, 21 bits each (cells 2 million apart share a key,
+/// which only makes more candidates).
+fn key(c: [i64; 3]) -> u64 {
+    let bits = |v: i64| (v as u64) & 0x1F_FFFF;
+    bits(c[0]) | bits(c[1]) << 21 | bits(c[2]) << 42
+}
+
+fn cell(x: f64, size: f64) -> i64 {
+    // Coordinates are finite (infinite boxes are large); `as` saturates far away.
+    (x / size).floor() as i64
+}
+
+/// The pairs of geoms of `space` that may touch, in the order of the geoms' creation.
+pub(crate) fn candidate_pairs(world: &World, space: SpaceHandle) -> Vec<(ffi::dGeomID, ffi::dGeomID)> {
+    let mut entries = Vec::new();
+    for (_, g) in world.geoms.iter().filter(|(_, g)| g.space == space) {
+        let mut aabb = [0.0; 6];
+        // SAFETY: the geom is live (owned by the world's arena); `aabb` holds 6
+        // reals. dGeomGetAABB brings a moved geom's box up to date.
+        let enabled = unsafe {
+            ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr());
+            ffi::dGeomIsEnabled(g.raw) != 0
+        };
+        if !enabled {
+            continue;
+        }
+        // SAFETY: as above.
+        let (category, collide) = unsafe { (ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw)) };
+        entries.push(Entry { raw: g.raw, body: g.body_raw, category, collide, aabb });
+    }
+    let mut extents: Vec<f64> = entries.iter().map(Entry::extent).filter(|e| e.is_finite()).collect();
+    let size = if extents.is_empty() {
+        1.0
+    } else {
+        let middle = extents.len() / 2;
+        let (_, median, _) = extents.select_nth_unstable_by(middle, f64::total_cmp);
+        (2.0 * *median).max(1e-6)
+    };
+    let (mut small, mut large) = (Vec::new(), Vec::new());
+    for (i, e) in entries.iter().enumerate() {
+        let e_ext = e.extent();
+        if e_ext.is_finite() && e_ext <= LARGE * size && e.aabb.iter().all(|c| c.abs() < 1e15) {
+            small.push(i);
+        } else {
+            large.push(i);
+        }
+    }
+    // Every (cell, geom) a small geom's box covers, grouped by a hash of the cell
+    // with a counting sort (linear): the geoms of a cell are then in one bucket.
+    let mut covered: Vec<(u64, u32)> = Vec::with_capacity(2 * small.len());
+    for &i in &small {
+        let b = &entries[i].aabb;
+        let (lo, hi) = ([0, 2, 4].map(|k| cell(b[k], size)), [1, 3, 5].map(|k| cell(b[k], size)));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    covered.push((key([x, y, z]), i as u32));
+                }
+            }
+        }
+    }
+    let buckets = (2 * covered.len()).next_power_of_two().max(1);
+    let bucket = |key: u64| (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1);
+    let mut starts = vec![0u32; buckets + 1];
+    for &(k, _) in &covered {
+        starts[bucket(k) + 1] += 1;
+    }
+    for b in 0..buckets {
+        starts[b + 1] += starts[b];
+    }
+    let mut grouped = vec![(0u64, 0u32); covered.len()];
+    let mut next = starts.clone();
+    for &(k, i) in &covered {
+        let slot = &mut next[bucket(k)];
+        grouped[*slot as usize] = (k, i);
+        *slot += 1;
+    }
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for b in 0..buckets {
+        let run = &grouped[starts[b] as usize..starts[b + 1] as usize];
+        for (n, &(cell_key, i)) in run.iter().enumerate() {
+            for &(other_key, j) in &run[n + 1..] {
+                if other_key != cell_key {
+                    continue;
+                }
+                let (a, b) = (&entries[i as usize], &entries[j as usize]);
+                // Once each: in the cell that holds the corner where their boxes start
+                // to overlap (cells that share a key by wrapping only add candidates).
+                let first = key([0, 2, 4].map(|k| cell(a.aabb[k].max(b.aabb[k]), size)));
+                if first == cell_key && a.may_touch(b) {
+                    let (i, j) = (i as usize, j as usize);
+                    pairs.push((i.min(j), i.max(j)));
+                }
+            }
+        }
+    }
+    for (n, &i) in large.iter().enumerate() {
+        for &j in small.iter().chain(&large[n + 1..]) {
+            if entries[i].may_touch(&entries[j]) {
+                pairs.push((i.min(j), i.max(j)));
+            }
+        }
+    }
+    // In the order of the geoms' creation, whatever the hashing did.
+    pairs.sort_unstable();
+    pairs.into_iter().map(|(i, j)| (entries[i].raw, entries[j].raw)).collect()
+}
