@@ -204,7 +204,7 @@ fn example_4_sinusoidal_terrain_csv_is_bit_identical_to_native_ode_for_three_sec
 }
 
 /// The thesis programs choose the original's simple space themselves, whatever builder
-/// they are given (a new simulation's default is sweep and prune, whose pair order
+/// they are given (a new simulation's default is the grid, whose pair order
 /// differs): this is what keeps the programs above bit for bit with their C twins.
 #[test]
 fn every_thesis_program_builds_the_simple_space_from_any_builder() {

@@ -1,4 +1,4 @@
-//! The broad-phase spaces: sweep and prune is the default of a new simulation, every
+//! The broad-phase spaces: the grid is the default of a new simulation, every
 //! kind and axis order finds the pairs the simple space finds, and scenes in them
 //! behave as they should (a ball rests on the floor, two balls bounce apart).
 
@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::*;
 
-/// Every space kind: simple, hash, and sweep and prune in each axis order.
+/// Every space kind: simple, hash, the grid, and sweep and prune in each axis order.
 fn all_kinds() -> Vec<SpaceKind> {
     let orders = [AxisOrder::Xyz, AxisOrder::Xzy, AxisOrder::Yxz, AxisOrder::Yzx, AxisOrder::Zxy, AxisOrder::Zyx];
     let mut kinds = vec![SpaceKind::Simple, SpaceKind::HASH, SpaceKind::Grid];
@@ -16,8 +16,8 @@ fn all_kinds() -> Vec<SpaceKind> {
 }
 
 #[test]
-fn a_new_simulation_has_a_sweep_and_prune_space_and_a_program_the_simple_one() {
-    assert_eq!(DEFAULT_SPACE, SpaceKind::SweepAndPrune { axes: AxisOrder::Xzy });
+fn a_new_simulation_has_a_grid_and_a_program_the_simple_space() {
+    assert_eq!(DEFAULT_SPACE, SpaceKind::Grid);
     let sim = Simulation::new().unwrap();
     assert_eq!(sim.space_kind(), DEFAULT_SPACE);
     assert_eq!(sim.world().space_kind(sim.space()).unwrap(), DEFAULT_SPACE);

@@ -17,7 +17,7 @@ pub(crate) fn space(name: &str) -> Result<SpaceKind, Refusal> {
         other => Err((
             "UnknownKindError",
             format!(
-                "there is no space {other:?}; the spaces are \"sweep_and_prune\" (the default), \"grid\", \"hash\" and \"simple\""
+                "there is no space {other:?}; the spaces are \"grid\" (the default), \"sweep_and_prune\", \"hash\" and \"simple\""
             ),
         )),
     }

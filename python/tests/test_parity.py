@@ -163,7 +163,8 @@ def test_the_stepper_space_and_world_parameters_are_chosen_and_read():
     sim.set_stepper("exact")
     assert sim.stepper == "exact"
     assert ars.Simulation(space="simple").space == "simple"
-    assert ars.Simulation().space == "sweep_and_prune", "new simulations scale"
+    assert ars.Simulation(space="sweep_and_prune").space == "sweep_and_prune"
+    assert ars.Simulation().space == "grid", "new simulations scale"
     grid = ars.Simulation(space="grid")
     grid.add_floor()
     ball = grid.add_sphere(0.1, (0.0, 0.5, 0.0), mass=1.0)

@@ -48,7 +48,7 @@ pub trait Program: Hooks {
     /// defaults with the original's simple space ([`SpaceKind::Simple`], every pair
     /// tested), so that a program steps bit for bit as it did in the original; a
     /// program with many geoms chooses a space that scales
-    /// (`.space(SpaceKind::SWEEP_AND_PRUNE)`, the default of
+    /// (`.space(SpaceKind::Grid)`, the default of
     /// [`Simulation::new`]). The default adds the floor plane y = 0.
     fn configure(&self, builder: SimulationBuilder) -> SimulationBuilder {
         builder.floor_plane(Vector3::y(), 0.0)

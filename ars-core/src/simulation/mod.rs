@@ -45,11 +45,11 @@ use hooks::{HookPoint, HookSet, Hooks};
 pub const DEFAULT_TIME_STEP: f64 = 0.0004;
 /// The ARS default number of steps per frame.
 pub const DEFAULT_STEPS_PER_FRAME: u32 = 50;
-/// The broad-phase space of a new [`Simulation`]: sweep and prune
-/// ([`SpaceKind::SWEEP_AND_PRUNE`]), whose cost grows linearly with the geoms (the
-/// original's simple space tests every pair). [`Program`](crate::Program)s start from
+/// The broad-phase space of a new [`Simulation`]: ARS's grid ([`SpaceKind::Grid`]),
+/// whose cost grows linearly with the geoms (the original's simple space tests every
+/// pair; ODE's sweep and prune grows as n·√n on a scene spread over the ground). [`Program`](crate::Program)s start from
 /// [`SpaceKind::Simple`], the original's, so that they step bit for bit as it did.
-pub const DEFAULT_SPACE: SpaceKind = SpaceKind::SWEEP_AND_PRUNE;
+pub const DEFAULT_SPACE: SpaceKind = SpaceKind::Grid;
 
 /// The floor a simulation starts with.
 #[derive(Clone, Debug, PartialEq)]
@@ -67,7 +67,7 @@ pub enum Floor {
 }
 
 /// Parameters of a new [`Simulation`]; the defaults are the original ARS', except the
-/// broad-phase space ([`DEFAULT_SPACE`], sweep and prune, where the original tested
+/// broad-phase space ([`DEFAULT_SPACE`], the grid, where the original tested
 /// every pair: `.space(SpaceKind::Simple)` gives the original's).
 #[derive(Clone, Debug)]
 #[must_use]
@@ -147,7 +147,7 @@ impl SimulationBuilder {
         self.surface.mu = mu;
         self
     }
-    /// The broad-phase space (default [`DEFAULT_SPACE`], sweep and prune;
+    /// The broad-phase space (default [`DEFAULT_SPACE`], the grid;
     /// [`SpaceKind::Simple`] is the original's, and steps bit for bit as it).
     pub fn space(mut self, kind: SpaceKind) -> Self {
         self.space = kind;
