@@ -214,6 +214,13 @@ pub(crate) fn inertia(i: &Matrix3<f64>) -> Result<Matrix3<f64>> {
     Ok(*i)
 }
 
+/// A rotation from a 3×3 matrix given from outside (a file, another language): the
+/// matrix itself if it is one (finite, orthonormal, determinant +1, to 1e-6), never a
+/// matrix quietly made orthonormal.
+pub fn rotation_matrix(what: &'static str, m: Matrix3<f64>) -> Result<nalgebra::Rotation3<f64>> {
+    crate::validate::rotation(what, &nalgebra::Rotation3::from_matrix_unchecked(m))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -878,7 +878,7 @@ impl PySimulation {
     ) -> PyResult<crate::sensors::PySensor> {
         let beams: u32 = count(slf.py(), "lidar beams", beams)?;
         let seed: u64 = count(slf.py(), "the seed", seed)?;
-        let offset = crate::views::pose(position, rotation).map_err(|e| raise(slf.py(), "InputError", e))?;
+        let offset = crate::errors::guarded(slf.py(), || crate::views::pose(position, rotation))?;
         let spec =
             crate::sensors::LidarSpec { beams, fov, max_range, min_range, planes, on, offset, every, noise, seed };
         let id = slf.get().with(slf.py(), move |sim| spec.add_to(sim))?;
@@ -904,7 +904,7 @@ impl PySimulation {
     ) -> PyResult<crate::sensors::PySensor> {
         let (width, height): (u32, u32) =
             (count(slf.py(), "image width", width)?, count(slf.py(), "image height", height)?);
-        let offset = crate::views::pose(position, rotation).map_err(|e| raise(slf.py(), "InputError", e))?;
+        let offset = crate::errors::guarded(slf.py(), || crate::views::pose(position, rotation))?;
         let id = slf.get().with(slf.py(), move |sim| {
             let camera = ars_core::sensors::DepthCamera::new(width, height, fov_y, near, far)?;
             let camera = match on {

@@ -40,25 +40,14 @@ impl Body {
     }
 }
 
-/// A rotation from a 3×3 matrix given in Python: refused unless it is one
-/// (orthonormal within 1e-6, determinant +1), so that ODE never gets a shear.
-pub(crate) fn rotation(m: [[f64; 3]; 3]) -> Result<Rotation3<f64>, String> {
-    let m = Matrix3::from_fn(|i, j| m[i][j]);
-    if m.iter().any(|v| !v.is_finite()) {
-        return Err(format!("a rotation must be finite, got {m}"));
-    }
-    let error = (m.transpose() * m - Matrix3::identity()).abs().max();
-    if error > 1e-6 || m.determinant() < 0.0 {
-        return Err(format!(
-            "a rotation must be a rotation matrix (orthonormal, determinant +1); this one is off by {error:e}, determinant {}",
-            m.determinant()
-        ));
-    }
-    Ok(Rotation3::from_matrix(&m))
+/// A rotation from a 3×3 matrix given in Python: refused unless it is one, so that
+/// ODE never gets a shear ([`ars_core::limits::rotation_matrix`]).
+pub(crate) fn rotation(m: [[f64; 3]; 3]) -> ars_core::Result<Rotation3<f64>> {
+    ars_core::limits::rotation_matrix("rotation", Matrix3::from_fn(|i, j| m[i][j]))
 }
 
 /// A pose from a position and an optional 3×3 rotation (identity when `None`).
-pub(crate) fn pose(position: Vec3, rot: Option<[[f64; 3]; 3]>) -> Result<Isometry3<f64>, String> {
+pub(crate) fn pose(position: Vec3, rot: Option<[[f64; 3]; 3]>) -> ars_core::Result<Isometry3<f64>> {
     let r = rot.map(rotation).transpose()?.unwrap_or_else(Rotation3::identity);
     Ok(Isometry3::from_parts(Translation3::from(Vector3::from(position)), UnitQuaternion::from_rotation_matrix(&r)))
 }
@@ -142,16 +131,14 @@ impl Body {
     /// Sets its orientation to `rotation` (a 3×3 rotation matrix, world frame), about
     /// its centre; refused (`ars.InputError`) if it is not a rotation.
     fn set_rotation(&self, py: Python<'_>, rotation: [[f64; 3]; 3]) -> PyResult<()> {
-        let r = self::rotation(rotation).map_err(|e| crate::errors::raise(py, "InputError", e))?;
-        self.read(py, move |sim, id| sim.set_rotation(id, r))
+        self.read(py, move |sim, id| sim.set_rotation(id, self::rotation(rotation)?))
     }
 
     /// Moves and turns it at once: its centre to `position`, its orientation to
     /// `rotation` (3×3, identity if not given); velocities are kept.
     #[pyo3(signature = (position, rotation=None))]
     fn set_pose(&self, py: Python<'_>, position: Vec3, rotation: Option<[[f64; 3]; 3]>) -> PyResult<()> {
-        let p = pose(position, rotation).map_err(|e| crate::errors::raise(py, "InputError", e))?;
-        self.read(py, move |sim, id| sim.set_pose(id, p))
+        self.read(py, move |sim, id| sim.set_pose(id, pose(position, rotation)?))
     }
 
     /// Moves it by the position of the object `other` (the original's
