@@ -53,7 +53,7 @@ pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
 pub use scene::SceneMirror;
-pub use window::{VIEWER_KEYS, WindowReport};
+pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
 /// What the viewer draws besides the simulation, where the program's
 /// [`ViewSettings`] do not say: for [`ProgramViewer::show_with`], [`run_window_with`],

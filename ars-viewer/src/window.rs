@@ -174,7 +174,7 @@ async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
 /// `DRI_PRIME`), and nothing unless the process runs a single thread, the one case
 /// where changing the environment is sound (another thread could be reading it).
 fn quiet_wayland_probe() {
-    if !cfg!(target_os = "linux") || !needs_quiet_wayland_probe(|name| std::env::var_os(name)) {
+    if !device_select_would_print() {
         return;
     }
     let threads = std::fs::read_to_string("/proc/self/status")
@@ -186,6 +186,16 @@ fn quiet_wayland_probe() {
         // writes the environment while it changes.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
+}
+
+/// Whether this process's environment is one where Mesa's Vulkan device-selection
+/// layer would print `error: XDG_RUNTIME_DIR is invalid...` (Linux, no Wayland display,
+/// no `XDG_RUNTIME_DIR`) and nobody chose a device: where setting `NODEVICE_SELECT=1`
+/// before any rendering keeps stderr clean. The window does it itself in a
+/// single-threaded program; a host that may run threads (Python) sets it at its own
+/// start-up.
+pub fn device_select_would_print() -> bool {
+    cfg!(target_os = "linux") && needs_quiet_wayland_probe(|name| std::env::var_os(name))
 }
 
 /// Whether the environment (`var`) is one where Mesa's device-selection layer would

@@ -12,25 +12,6 @@ True
 
 import atexit
 import os
-import sys
-
-# Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
-# lists its devices; with no Wayland display and no XDG_RUNTIME_DIR (Xvfb, CI, ssh -X)
-# libwayland prints "error: XDG_RUNTIME_DIR is invalid..." four times per renderer or
-# window. The layer's own switch turns it off; nobody who chose a device is overridden.
-# (The Rust viewer does the same in a single-threaded program; a Python process may run
-# threads, so the package sets it here, at import, before any rendering starts.)
-if sys.platform.startswith("linux") and not any(
-    os.environ.get(v)
-    for v in (
-        "WAYLAND_DISPLAY",
-        "XDG_RUNTIME_DIR",
-        "NODEVICE_SELECT",
-        "MESA_VK_DEVICE_SELECT",
-        "DRI_PRIME",
-    )
-):
-    os.environ["NODEVICE_SELECT"] = "1"
 
 from ars import _native
 from ars._errors import (
@@ -47,6 +28,14 @@ from ars._errors import (
 )
 from ars._native import Body, Joint, Renderer, Sensor, Simulation, __version__, has_display
 from ars.sweeps import RunResult, SweepResults, load_sweep, rerun, sweep
+
+# Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
+# lists its devices; with no Wayland display and no XDG_RUNTIME_DIR (Xvfb, CI, ssh -X)
+# libwayland prints "error: XDG_RUNTIME_DIR is invalid..." four times per renderer or
+# window. The viewer's own switch-off only runs in a single-threaded program; a Python
+# process may run threads, so the package applies it here, before any rendering.
+if _native._device_select_would_print():
+    os.environ["NODEVICE_SELECT"] = "1"
 
 # The viewer keeps the rendering context of its windows for the next one; it is given
 # back before the interpreter's threads end.

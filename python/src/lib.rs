@@ -28,6 +28,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<viewer::PyRenderer>()?;
     m.add_function(wrap_pyfunction!(viewer::show_program, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::has_display, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::device_select_would_print, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::release_viewer, m)?)?;
     m.add_function(wrap_pyfunction!(verify::platform, m)?)?;
     m.add_function(wrap_pyfunction!(verify::golden_runs, m)?)?;

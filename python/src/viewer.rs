@@ -269,6 +269,15 @@ pub(crate) fn release_viewer(py: Python<'_>) -> PyResult<()> {
     })
 }
 
+/// Whether Mesa's Vulkan device-selection layer would print about `XDG_RUNTIME_DIR`
+/// here (`ars_viewer::device_select_would_print`): the package then sets
+/// `NODEVICE_SELECT=1` at import.
+#[pyfunction]
+#[pyo3(name = "_device_select_would_print")]
+pub(crate) fn device_select_would_print() -> bool {
+    ars_viewer::device_select_would_print()
+}
+
 /// Whether a display is reachable (`DISPLAY` or `WAYLAND_DISPLAY` is set).
 #[pyfunction]
 pub(crate) fn has_display() -> bool {
