@@ -49,11 +49,7 @@ pub(crate) fn golden_output<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<
 #[pyfunction]
 #[pyo3(name = "_golden_compare", signature = (name, output, table=None))]
 pub(crate) fn golden_compare(py: Python<'_>, name: &str, output: &[u8], table: Option<&str>) -> PyResult<String> {
-    let table = crate::errors::guarded(py, || match table {
-        Some(text) => GoldenTable::parse(text),
-        None => Ok(GoldenTable::committed()),
-    })?;
-    Ok(table.compare(name, output).to_string())
+    Ok(table_of(py, table)?.compare(name, output).to_string())
 }
 
 /// `table` (JSON text; the compiled-in one when `None`) with run `name`'s entry made
@@ -67,10 +63,12 @@ pub(crate) fn golden_with(
     output: &[u8],
     table: Option<&str>,
 ) -> PyResult<String> {
-    let mut table = crate::errors::guarded(py, || match table {
-        Some(text) => GoldenTable::parse(text),
-        None => Ok(GoldenTable::committed()),
-    })?;
+    let mut table = table_of(py, table)?;
     table.set(GoldenEntry::of(name, duration, output));
     Ok(table.to_json())
+}
+
+/// The table in `text` (JSON), or the one compiled in.
+fn table_of(py: Python<'_>, text: Option<&str>) -> PyResult<GoldenTable> {
+    crate::errors::guarded(py, || text.map_or_else(|| Ok(GoldenTable::committed()), GoldenTable::parse))
 }
