@@ -363,12 +363,13 @@ impl World {
         let needs_lock = self.trimesh_count > 0;
         // The grid is ARS's own broad phase: it lists the pairs, the near callback
         // takes them as it takes ODE's.
-        let grid_pairs = matches!(kind, SpaceKind::Grid).then(|| super::grid::candidate_pairs(self, space));
+        let mut grid = matches!(kind, SpaceKind::Grid).then(|| std::mem::take(&mut self.grid));
+        let grid_pairs = grid.as_mut().map(|g| g.candidate_pairs(self, space));
         let mut ctx = NearContext { world: self, hooks, panic: None, failure: None };
         let collided = {
             let _guard = needs_lock.then(lock_ode_global_state);
             let data = (&raw mut ctx).cast::<c_void>();
-            match &grid_pairs {
+            match grid_pairs {
                 Some(pairs) => {
                     for &(o1, o2) in pairs {
                         // SAFETY: `data` is `ctx`, alive and only accessed by the
@@ -385,6 +386,9 @@ impl World {
             }
         };
         let (panic, pair_failure) = (ctx.panic, ctx.failure);
+        if let Some(grid) = grid {
+            self.grid = grid;
+        }
         if let Err(failure) = collided {
             self.poison = Some(Poison::Collide(failure.message.clone()));
             return Err(Error::OdeInternal { during: "collision", message: failure.message });

@@ -58,98 +58,128 @@ fn cell(x: f64, size: f64) -> i64 {
     (x / size).floor() as i64
 }
 
-/// The pairs of geoms of `space` that may touch, in the order of the geoms' creation.
-pub(crate) fn candidate_pairs(world: &World, space: SpaceHandle) -> Vec<(ffi::dGeomID, ffi::dGeomID)> {
-    let mut entries = Vec::new();
-    for (_, g) in world.geoms.iter().filter(|(_, g)| g.space == space) {
-        let mut aabb = [0.0; 6];
-        // SAFETY: the geom is live (owned by the world's arena); `aabb` holds 6
-        // reals. dGeomGetAABB brings a moved geom's box up to date.
-        let enabled = unsafe {
-            ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr());
-            ffi::dGeomIsEnabled(g.raw) != 0
-        };
-        if !enabled {
-            continue;
+/// The grid's buffers, kept by the world from one collision to the next so that a
+/// step allocates nothing once the scene has stopped growing. The raw ODE ids they
+/// hold between collisions are never read there: each collision lists them anew from
+/// the world that owns them.
+#[derive(Default)]
+pub(crate) struct Grid {
+    entries: Vec<Entry>,
+    extents: Vec<f64>,
+    small: Vec<usize>,
+    large: Vec<usize>,
+    covered: Vec<(u64, u32)>,
+    starts: Vec<u32>,
+    next: Vec<u32>,
+    grouped: Vec<(u64, u32)>,
+    found: Vec<(usize, usize)>,
+    pairs: Vec<(ffi::dGeomID, ffi::dGeomID)>,
+}
+
+impl Grid {
+    /// The pairs of geoms of `space` that may touch, in the order of the geoms'
+    /// creation.
+    pub(crate) fn candidate_pairs(&mut self, world: &World, space: SpaceHandle) -> &[(ffi::dGeomID, ffi::dGeomID)] {
+        let Grid { entries, extents, small, large, covered, starts, next, grouped, found, pairs } = self;
+        entries.clear();
+        for (_, g) in world.geoms.iter().filter(|(_, g)| g.space == space) {
+            let mut aabb = [0.0; 6];
+            // SAFETY: the geom is live (owned by the world's arena); `aabb` holds 6
+            // reals. dGeomGetAABB brings a moved geom's box up to date.
+            let enabled = unsafe {
+                ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr());
+                ffi::dGeomIsEnabled(g.raw) != 0
+            };
+            if !enabled {
+                continue;
+            }
+            // SAFETY: as above.
+            let (category, collide) = unsafe { (ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw)) };
+            entries.push(Entry { raw: g.raw, body: g.body_raw, category, collide, aabb });
         }
-        // SAFETY: as above.
-        let (category, collide) = unsafe { (ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw)) };
-        entries.push(Entry { raw: g.raw, body: g.body_raw, category, collide, aabb });
-    }
-    let mut extents: Vec<f64> = entries.iter().map(Entry::extent).filter(|e| e.is_finite()).collect();
-    let size = if extents.is_empty() {
-        1.0
-    } else {
-        let middle = extents.len() / 2;
-        let (_, median, _) = extents.select_nth_unstable_by(middle, f64::total_cmp);
-        (2.0 * *median).max(1e-6)
-    };
-    let (mut small, mut large) = (Vec::new(), Vec::new());
-    for (i, e) in entries.iter().enumerate() {
-        let e_ext = e.extent();
-        if e_ext.is_finite() && e_ext <= LARGE * size && e.aabb.iter().all(|c| c.abs() < 1e15) {
-            small.push(i);
+        extents.clear();
+        extents.extend(entries.iter().map(Entry::extent).filter(|e| e.is_finite()));
+        let size = if extents.is_empty() {
+            1.0
         } else {
-            large.push(i);
+            let middle = extents.len() / 2;
+            let (_, median, _) = extents.select_nth_unstable_by(middle, f64::total_cmp);
+            (2.0 * *median).max(1e-6)
+        };
+        small.clear();
+        large.clear();
+        for (i, e) in entries.iter().enumerate() {
+            let e_ext = e.extent();
+            if e_ext.is_finite() && e_ext <= LARGE * size && e.aabb.iter().all(|c| c.abs() < 1e15) {
+                small.push(i);
+            } else {
+                large.push(i);
+            }
         }
-    }
-    // Every (cell, geom) a small geom's box covers, grouped by a hash of the cell
-    // with a counting sort (linear): the geoms of a cell are then in one bucket.
-    let mut covered: Vec<(u64, u32)> = Vec::with_capacity(2 * small.len());
-    for &i in &small {
-        let b = &entries[i].aabb;
-        let (lo, hi) = ([0, 2, 4].map(|k| cell(b[k], size)), [1, 3, 5].map(|k| cell(b[k], size)));
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    covered.push((key([x, y, z]), i as u32));
+        // Every (cell, geom) a small geom's box covers, grouped by a hash of the cell
+        // with a counting sort (linear): the geoms of a cell are then in one bucket.
+        covered.clear();
+        for &i in small.iter() {
+            let b = &entries[i].aabb;
+            let (lo, hi) = ([0, 2, 4].map(|k| cell(b[k], size)), [1, 3, 5].map(|k| cell(b[k], size)));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        covered.push((key([x, y, z]), i as u32));
+                    }
                 }
             }
         }
-    }
-    let buckets = (2 * covered.len()).next_power_of_two().max(1);
-    let bucket = |key: u64| (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1);
-    let mut starts = vec![0u32; buckets + 1];
-    for &(k, _) in &covered {
-        starts[bucket(k) + 1] += 1;
-    }
-    for b in 0..buckets {
-        starts[b + 1] += starts[b];
-    }
-    let mut grouped = vec![(0u64, 0u32); covered.len()];
-    let mut next = starts.clone();
-    for &(k, i) in &covered {
-        let slot = &mut next[bucket(k)];
-        grouped[*slot as usize] = (k, i);
-        *slot += 1;
-    }
-    let mut pairs: Vec<(usize, usize)> = Vec::new();
-    for b in 0..buckets {
-        let run = &grouped[starts[b] as usize..starts[b + 1] as usize];
-        for (n, &(cell_key, i)) in run.iter().enumerate() {
-            for &(other_key, j) in &run[n + 1..] {
-                if other_key != cell_key {
-                    continue;
-                }
-                let (a, b) = (&entries[i as usize], &entries[j as usize]);
-                // Once each: in the cell that holds the corner where their boxes start
-                // to overlap (cells that share a key by wrapping only add candidates).
-                let first = key([0, 2, 4].map(|k| cell(a.aabb[k].max(b.aabb[k]), size)));
-                if first == cell_key && a.may_touch(b) {
-                    let (i, j) = (i as usize, j as usize);
-                    pairs.push((i.min(j), i.max(j)));
+        let buckets = (2 * covered.len()).next_power_of_two().max(1);
+        let bucket = |key: u64| (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1);
+        starts.clear();
+        starts.resize(buckets + 1, 0);
+        for &(k, _) in covered.iter() {
+            starts[bucket(k) + 1] += 1;
+        }
+        for b in 0..buckets {
+            starts[b + 1] += starts[b];
+        }
+        grouped.clear();
+        grouped.resize(covered.len(), (0, 0));
+        next.clear();
+        next.extend_from_slice(starts);
+        for &(k, i) in covered.iter() {
+            let slot = &mut next[bucket(k)];
+            grouped[*slot as usize] = (k, i);
+            *slot += 1;
+        }
+        found.clear();
+        for b in 0..buckets {
+            let run = &grouped[starts[b] as usize..starts[b + 1] as usize];
+            for (n, &(cell_key, i)) in run.iter().enumerate() {
+                for &(other_key, j) in &run[n + 1..] {
+                    if other_key != cell_key {
+                        continue;
+                    }
+                    let (a, b) = (&entries[i as usize], &entries[j as usize]);
+                    // Once each: in the cell that holds the corner where their boxes
+                    // start to overlap (cells that share a key by wrapping only add
+                    // candidates).
+                    let first = key([0, 2, 4].map(|k| cell(a.aabb[k].max(b.aabb[k]), size)));
+                    if first == cell_key && a.may_touch(b) {
+                        let (i, j) = (i as usize, j as usize);
+                        found.push((i.min(j), i.max(j)));
+                    }
                 }
             }
         }
-    }
-    for (n, &i) in large.iter().enumerate() {
-        for &j in small.iter().chain(&large[n + 1..]) {
-            if entries[i].may_touch(&entries[j]) {
-                pairs.push((i.min(j), i.max(j)));
+        for (n, &i) in large.iter().enumerate() {
+            for &j in small.iter().chain(&large[n + 1..]) {
+                if entries[i].may_touch(&entries[j]) {
+                    found.push((i.min(j), i.max(j)));
+                }
             }
         }
+        // In the order of the geoms' creation, whatever the hashing did.
+        found.sort_unstable();
+        pairs.clear();
+        pairs.extend(found.iter().map(|&(i, j)| (entries[i].raw, entries[j].raw)));
+        pairs
     }
-    // In the order of the geoms' creation, whatever the hashing did.
-    pairs.sort_unstable();
-    pairs.into_iter().map(|(i, j)| (entries[i].raw, entries[j].raw)).collect()
 }

@@ -193,6 +193,8 @@ pub struct World {
     pub(crate) joints: Arena<JointData>,
     pub(crate) spaces: Arena<SpaceData>,
     pub(crate) collision: CollisionState,
+    /// The grid broad phase's buffers, reused from one collision to the next.
+    pub(crate) grid: grid::Grid,
     /// Triangle-mesh geoms in the world: ODE's trimesh colliders share a process-wide
     /// cache, so collision takes the global lock while there are any.
     pub(crate) trimesh_count: usize,
@@ -295,6 +297,7 @@ impl World {
             joints: Arena::new(id),
             spaces: Arena::new(id),
             collision: CollisionState::default(),
+            grid: grid::Grid::default(),
             trimesh_count: 0,
             stepper: Stepper::Exact,
             random_seed: 0,
