@@ -18,6 +18,41 @@ pub struct JointState {
 pub trait JointController: Send + std::any::Any {
     /// The torque or force for the step starting at `time`, given the joint's state.
     fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64;
+
+    /// The controller with its state, as a [snapshot](crate::Snapshot) keeps it; `None`
+    /// (the default) for a controller that cannot be saved: a snapshot of a
+    /// simulation with one is refused with [`Error::NotCapturable`]. ARS's own
+    /// controllers are all saved.
+    fn saved(&self) -> Option<SavedController> {
+        None
+    }
+}
+
+/// One of ARS's controllers with its settings and state, as a snapshot or scene file
+/// keeps it.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
+pub enum SavedController {
+    /// A [`PositionServo`].
+    Position(PositionServo),
+    /// A [`VelocityServo`].
+    Velocity(VelocityServo),
+    /// A [`TorqueMotor`].
+    Torque(TorqueMotor),
+    /// A [`DcMotor`].
+    DcMotor(DcMotor),
+}
+
+impl SavedController {
+    /// The controller, ready to drive a joint.
+    pub fn into_controller(self) -> Box<dyn JointController> {
+        match self {
+            SavedController::Position(c) => Box::new(c),
+            SavedController::Velocity(c) => Box::new(c),
+            SavedController::Torque(c) => Box::new(c),
+            SavedController::DcMotor(c) => Box::new(c),
+        }
+    }
 }
 
 /// A set-point that varies with time: piecewise linear through `(time, value)`
@@ -33,7 +68,7 @@ pub trait JointController: Send + std::any::Any {
 /// assert_eq!(p.value(20.0), 0.0);
 /// # Ok::<(), ars_core::Error>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Profile {
     points: Vec<(f64, f64)>,
 }
@@ -90,7 +125,7 @@ impl Profile {
 /// A PID controller on `error = setpoint − measured`; the derivative is the backward
 /// difference of the error over `dt` with the previous error starting at 0, as in the
 /// original ARS' PD controllers.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Pid {
     /// Proportional gain.
     pub kp: f64,
@@ -129,7 +164,7 @@ impl Pid {
 }
 
 /// Holds a joint at a set-point position (rad or m) with a PID controller.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct PositionServo {
     /// The set-point over time.
     pub setpoint: Profile,
@@ -148,11 +183,14 @@ impl JointController for PositionServo {
     fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64 {
         self.pid.update(self.setpoint.value(time) - state.position, dt)
     }
+    fn saved(&self) -> Option<SavedController> {
+        Some(SavedController::Position(self.clone()))
+    }
 }
 
 /// Drives a joint's rate towards a set-point with a proportional gain (what the
 /// original's speed-profile example does on the wheels).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct VelocityServo {
     /// The set-point over time (rad/s or m/s).
     pub setpoint: Profile,
@@ -164,10 +202,13 @@ impl JointController for VelocityServo {
     fn output(&mut self, time: f64, state: JointState, _dt: f64) -> f64 {
         self.gain * (self.setpoint.value(time) - state.rate)
     }
+    fn saved(&self) -> Option<SavedController> {
+        Some(SavedController::Velocity(self.clone()))
+    }
 }
 
 /// Applies a torque (or force) that follows a profile, whatever the joint does.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct TorqueMotor {
     /// The torque over time.
     pub torque: Profile,
@@ -177,13 +218,16 @@ impl JointController for TorqueMotor {
     fn output(&mut self, time: f64, _state: JointState, _dt: f64) -> f64 {
         self.torque.value(time)
     }
+    fn saved(&self) -> Option<SavedController> {
+        Some(SavedController::Torque(self.clone()))
+    }
 }
 
 /// A permanent-magnet DC motor with a gearbox driving the joint, under a voltage
 /// profile: `τ = n · k_t · (V − k_e · n · ω) / R − n² · J_r · α`, where `ω` is the joint
 /// rate, `n` the gear ratio and `α` the joint acceleration estimated from the last two
 /// rates (the reflected rotor inertia resists acceleration). Inductance is neglected.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct DcMotor {
     /// Supply voltage over time, V.
     pub voltage: Profile,
@@ -242,6 +286,9 @@ impl JointController for DcMotor {
         };
         self.previous_rate = Some(state.rate);
         electric - n * n * self.rotor_inertia * accel
+    }
+    fn saved(&self) -> Option<SavedController> {
+        Some(SavedController::DcMotor(self.clone()))
     }
 }
 

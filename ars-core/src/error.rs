@@ -214,6 +214,34 @@ pub enum Error {
     /// An error raised by user code inside a program or hook.
     #[error("{0}")]
     User(String),
+    /// A snapshot (or a scene file's state) of another scene than the simulation it is
+    /// restored into: other objects, joints or sensors, or made in another order.
+    #[error("the snapshot is of another scene: {detail}")]
+    SnapshotMismatch {
+        /// What differs.
+        detail: String,
+    },
+    /// A snapshot written by a version of ARS whose format this one does not read.
+    #[error("the snapshot is in format version {found}; this ARS reads version {supported}")]
+    SnapshotVersion {
+        /// The version in the snapshot.
+        found: u32,
+        /// The version this ARS writes and reads.
+        supported: u32,
+    },
+    /// Bytes that are not a whole snapshot: truncated, altered, or not a snapshot at all.
+    #[error("the bytes are not a whole ARS snapshot: {detail}")]
+    SnapshotCorrupt {
+        /// What was found wrong.
+        detail: String,
+    },
+    /// Something a snapshot cannot hold: a joint controller or sensor of a type of your
+    /// own that does not say how to save its state.
+    #[error("cannot take a snapshot: {what}")]
+    NotCapturable {
+        /// What cannot be saved, and what to do about it.
+        what: String,
+    },
 }
 
 impl Error {

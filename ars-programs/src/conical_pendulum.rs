@@ -96,6 +96,16 @@ impl Hooks for ConicalPendulum {
     fn runs_at(&self, point: HookPoint) -> bool {
         point == HookPoint::PreStep
     }
+    /// The rates read in the previous step (the next step's friction).
+    fn save_state(&self) -> Vec<u64> {
+        vec![self.previous_rates.0.to_bits(), self.previous_rates.1.to_bits()]
+    }
+    fn restore_state(&mut self, state: &[u64]) -> Result<()> {
+        if let [q1, q2] = state {
+            self.previous_rates = (f64::from_bits(*q1), f64::from_bits(*q2));
+        }
+        Ok(())
+    }
 }
 
 impl Program for ConicalPendulum {

@@ -725,3 +725,102 @@ impl JointKind {
         }
     }
 }
+
+/// What a snapshot keeps of a simulation joint besides its ODE side (which is in the
+/// world's state): its drive (friction, controller with its state, limits, mimic) and
+/// the efforts booked for the step being taken.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub(crate) struct JointDriveState {
+    name: String,
+    kind: JointType,
+    creation: JointKind,
+    friction: f64,
+    controller: Option<crate::control::SavedController>,
+    limits: Option<(f64, f64)>,
+    /// Effort and velocity limits.
+    actuator: (f64, f64),
+    dry_friction: f64,
+    /// The leader's name, multiplier and offset.
+    mimic: Option<(String, f64, f64)>,
+    /// Added, friction, controller and driven efforts.
+    efforts: (f64, f64, f64, f64),
+}
+
+impl Scene {
+    /// Every joint's drive state, in creation order. A controller that cannot be saved
+    /// is [`Error::NotCapturable`].
+    pub(crate) fn save_joint_drives(&self) -> Result<Vec<JointDriveState>> {
+        self.joints_in_creation_order()
+            .map(|d| {
+                let controller = match &d.controller {
+                    None => None,
+                    Some(c) => Some(c.saved().ok_or_else(|| Error::NotCapturable {
+                        what: format!(
+                            "the controller of joint {:?} is of a type of your own that does not say how to save it (JointController::saved)",
+                            d.name
+                        ),
+                    })?),
+                };
+                let mimic = match d.mimic {
+                    Some(m) => Some((self.joint_data(m.leader)?.name.clone(), m.multiplier, m.offset)),
+                    None => None,
+                };
+                let e = d.efforts;
+                Ok(JointDriveState {
+                    name: d.name.clone(),
+                    kind: d.kind,
+                    creation: d.creation.clone(),
+                    friction: d.friction,
+                    controller,
+                    limits: d.limits,
+                    actuator: (d.actuator.effort, d.actuator.velocity),
+                    dry_friction: d.dry_friction,
+                    mimic,
+                    efforts: (e.added, e.friction, e.controller, e.driven),
+                })
+            })
+            .collect()
+    }
+
+    /// Checks that `states` are of joints of the same names and types as this scene's.
+    pub(crate) fn check_joint_drives_fit(&self, states: &[JointDriveState]) -> Result<()> {
+        let mut here: Vec<(&str, JointType)> = self.joints.values().map(|d| (d.name.as_str(), d.kind)).collect();
+        let mut there: Vec<(&str, JointType)> = states.iter().map(|s| (s.name.as_str(), s.kind)).collect();
+        here.sort_by(|a, b| a.0.cmp(b.0));
+        there.sort_by(|a, b| a.0.cmp(b.0));
+        if here != there {
+            let names = |v: &[(&str, JointType)]| {
+                v.iter().map(|(n, k)| format!("{n} ({})", k.default_name())).collect::<Vec<_>>()
+            };
+            return Err(Error::SnapshotMismatch {
+                detail: format!("the snapshot has the joints {:?}, this simulation {:?}", names(&there), names(&here)),
+            });
+        }
+        Ok(())
+    }
+
+    /// Puts back every joint's drive state (checked with `check_joint_drives_fit`).
+    pub(crate) fn restore_joint_drives(&mut self, states: &[JointDriveState]) -> Result<()> {
+        for s in states {
+            let id = self.joint_names.get(&s.name)?;
+            let mimic = match &s.mimic {
+                Some((leader, multiplier, offset)) => {
+                    Some(Mimic { leader: self.joint_names.get(leader)?, multiplier: *multiplier, offset: *offset })
+                }
+                None => None,
+            };
+            let d = self.joints.get_mut(id.0, JointId::KIND)?;
+            d.creation = s.creation.clone();
+            d.friction = s.friction;
+            d.controller = s.controller.clone().map(crate::control::SavedController::into_controller);
+            d.limits = s.limits;
+            d.actuator = ActuatorLimits { effort: s.actuator.0, velocity: s.actuator.1 };
+            d.dry_friction = s.dry_friction;
+            d.mimic = mimic;
+            let (added, friction, controller, driven) = s.efforts;
+            d.efforts = JointEfforts { added, friction, controller, driven };
+            self.update_driven(id);
+        }
+        Ok(())
+    }
+}

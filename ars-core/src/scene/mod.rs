@@ -9,7 +9,7 @@
 
 pub mod colors;
 mod floor;
-mod joints;
+pub(crate) mod joints;
 mod names;
 mod objects;
 mod surfaces;
@@ -52,7 +52,7 @@ pub struct Scene {
     pub(crate) step_count: u64,
     pub(crate) frame_count: u64,
     time_step: f64,
-    steps_per_frame: u32,
+    pub(crate) steps_per_frame: u32,
 }
 
 impl std::fmt::Debug for Scene {

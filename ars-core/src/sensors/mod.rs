@@ -105,6 +105,38 @@ pub trait Sensor: Send + 'static {
     fn measures_every_step(&self) -> bool {
         true
     }
+
+    /// What the sensor carries from one step to the next that its configuration does
+    /// not give (a noise generator's state), for [snapshots](crate::Snapshot): nothing
+    /// by default. A sensor of your own with such state overrides this and
+    /// [`restore_state`](Sensor::restore_state); a closure sensor's captured variables
+    /// are not seen by ARS and are not in a snapshot.
+    fn save_state(&self) -> Vec<u64> {
+        Vec::new()
+    }
+
+    /// Puts back what [`save_state`](Sensor::save_state) returned.
+    fn restore_state(&mut self, state: &[u64]) -> Result<()> {
+        if state.is_empty() {
+            Ok(())
+        } else {
+            Err(Error::SnapshotCorrupt {
+                detail: format!("a stateless sensor was given {} numbers of state", state.len()),
+            })
+        }
+    }
+}
+
+/// A sensor's place in its schedule and its own state, as a snapshot keeps them.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct SensorState {
+    /// Its type's name (`"Gps"`, `"Noisy<Gps>"`).
+    pub(crate) kind: String,
+    /// When its next periodic sample is due, s.
+    next_sample: f64,
+    detached: bool,
+    /// What [`Sensor::save_state`] returned.
+    own: Vec<u64>,
 }
 
 /// When in the step a sensor samples.
@@ -381,6 +413,10 @@ trait ErasedSlot: Send {
     fn at_end_of_step(&self) -> bool;
     fn is_detached(&self) -> bool;
     fn clear_log(&mut self);
+    fn save(&self) -> SensorState;
+    /// Puts back a state of a sensor of the same kind (checked by the caller); the
+    /// records are cleared.
+    fn restore(&mut self, state: &SensorState) -> Result<()>;
     fn as_any(&self) -> &dyn Any;
     fn as_any_mut(&mut self) -> &mut dyn Any;
     fn into_any(self: Box<Self>) -> Box<dyn Any>;
@@ -462,6 +498,21 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
     }
     fn clear_log(&mut self) {
         self.log.samples.clear();
+    }
+    fn save(&self) -> SensorState {
+        SensorState {
+            kind: short_type_name(std::any::type_name::<S>()),
+            next_sample: self.next_sample,
+            detached: self.detached,
+            own: self.sensor.save_state(),
+        }
+    }
+    fn restore(&mut self, state: &SensorState) -> Result<()> {
+        self.sensor.restore_state(&state.own)?;
+        self.next_sample = state.next_sample;
+        self.detached = state.detached;
+        self.log.samples.clear();
+        Ok(())
     }
     fn as_any(&self) -> &dyn Any {
         self
@@ -578,6 +629,32 @@ impl SensorSet {
 
     pub(crate) fn len(&self) -> usize {
         self.slots.len()
+    }
+
+    /// Every sensor's schedule and state, in the order added.
+    pub(crate) fn save(&self) -> Vec<SensorState> {
+        self.slots.values().map(|s| s.save()).collect()
+    }
+
+    /// Checks that `states` are of sensors of the same kinds, in the same order.
+    pub(crate) fn check_fits(&self, states: &[SensorState]) -> Result<()> {
+        let here: Vec<String> = self.slots.values().map(|s| s.save().kind).collect();
+        let there: Vec<&str> = states.iter().map(|s| s.kind.as_str()).collect();
+        if here != there {
+            return Err(Error::SnapshotMismatch {
+                detail: format!("the snapshot has the sensors {there:?}, this simulation {here:?}"),
+            });
+        }
+        Ok(())
+    }
+
+    /// Puts back every sensor's schedule and state (checked with `check_fits`); the
+    /// records are cleared.
+    pub(crate) fn restore(&mut self, states: &[SensorState]) -> Result<()> {
+        for (slot, state) in self.slots.values_mut().zip(states) {
+            slot.restore(state)?;
+        }
+        Ok(())
     }
 
     /// Refuses a sensor that reads an object or joint that is not (or no longer) in

@@ -145,4 +145,16 @@ where
     fn measures_every_step(&self) -> bool {
         self.inner.measures_every_step()
     }
+    /// The generator's state, then the wrapped sensor's.
+    fn save_state(&self) -> Vec<u64> {
+        std::iter::once(self.rng.state()).chain(self.inner.save_state()).collect()
+    }
+    fn restore_state(&mut self, state: &[u64]) -> Result<()> {
+        let Some((rng, inner)) = state.split_first() else {
+            return Err(crate::Error::SnapshotCorrupt { detail: "a noisy sensor's state has no generator".into() });
+        };
+        self.inner.restore_state(inner)?;
+        self.rng = crate::random::SplitMix64::new(*rng);
+        Ok(())
+    }
 }

@@ -83,6 +83,21 @@ pub trait Hooks {
         let _ = point;
         true
     }
+
+    /// What the hooks carry from one step to the next (a rate read in the previous
+    /// step), for [snapshots](crate::Snapshot): nothing by default. Hooks with such
+    /// state override this and [`restore_state`](Hooks::restore_state), or a restored
+    /// simulation runs them from the state they are in. A closure's captured variables
+    /// and a Python hook's are not seen by ARS.
+    fn save_state(&self) -> Vec<u64> {
+        Vec::new()
+    }
+
+    /// Puts back what [`save_state`](Hooks::save_state) returned.
+    fn restore_state(&mut self, state: &[u64]) -> Result<()> {
+        let _ = state;
+        Ok(())
+    }
 }
 
 /// No hooks.
@@ -237,6 +252,46 @@ impl HookSet {
 
     pub(crate) fn len(&self) -> usize {
         self.slots.len()
+    }
+
+    /// What every hook set saves of its state (see [`Hooks::save_state`]), in slot
+    /// order.
+    pub(crate) fn save(&self) -> Result<Vec<Vec<u64>>> {
+        self.slots
+            .values()
+            .map(|h| {
+                h.as_ref()
+                    .map(|h| h.save_state())
+                    .ok_or_else(|| Error::Busy("a snapshot cannot be taken by a hook while its own hooks run".into()))
+            })
+            .collect()
+    }
+
+    /// Checks that `states` fit these hooks: one per hook set, unless every state is
+    /// empty (hooks without state may differ).
+    pub(crate) fn check_fits(&self, states: &[Vec<u64>]) -> Result<()> {
+        if states.len() != self.slots.len() && states.iter().any(|s| !s.is_empty()) {
+            return Err(Error::SnapshotMismatch {
+                detail: format!(
+                    "the snapshot holds the state of {} hook sets, this simulation has {}",
+                    states.len(),
+                    self.slots.len()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Puts back every hook set's state (checked with `check_fits`).
+    pub(crate) fn restore(&mut self, states: &[Vec<u64>]) -> Result<()> {
+        if states.len() != self.slots.len() {
+            return Ok(());
+        }
+        for (h, state) in self.slots.values_mut().zip(states) {
+            let h = h.as_mut().ok_or_else(|| Error::Busy("a hook cannot restore a snapshot while it runs".into()))?;
+            h.restore_state(state)?;
+        }
+        Ok(())
     }
 }
 

@@ -25,6 +25,7 @@
 pub mod hooks;
 pub mod scene_file;
 mod sensor_kinds;
+pub mod snapshot;
 
 pub use sensor_kinds::SENSOR_KINDS;
 

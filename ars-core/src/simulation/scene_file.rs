@@ -75,6 +75,15 @@ pub struct SceneFile {
     /// here, not saved.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub unsaved_sensors: Vec<String>,
+    /// The exact state (see [`Snapshot`](crate::Snapshot)), as the hexadecimal digits
+    /// of its bytes: with it, a scene saved at any step loads into a simulation that
+    /// steps on to the bit as the original.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state: Option<String>,
+    /// Why the exact state could not be saved (a controller of your own type), if so:
+    /// the scene then loads as described above the state.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state_not_saved: Option<String>,
 }
 
 /// The space of a file that names none: the original's simple space.
@@ -201,8 +210,29 @@ pub struct MimicFile {
 }
 
 impl Simulation {
-    /// The scene as a [`SceneFile`] (see the [`scene_file`](crate::simulation::scene_file) module).
+    /// The scene as a [`SceneFile`] (see the [`scene_file`](crate::simulation::scene_file)
+    /// module), with its exact state when it can be saved (otherwise `state_not_saved`
+    /// says why).
     pub fn scene_file(&self) -> Result<SceneFile> {
+        match self.capture_state() {
+            Ok(state) => {
+                let mut file = self.scene_structure(true)?;
+                file.state = Some(to_hex(&super::snapshot::encode(&state)));
+                Ok(file)
+            }
+            Err(Error::NotCapturable { what }) => {
+                let mut file = self.scene_structure(false)?;
+                file.state_not_saved = Some(what);
+                Ok(file)
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The scene without its exact state: with `exact`, the joints as they were made
+    /// (the state remakes them where they were made); without, where they stand after
+    /// the first step.
+    pub(crate) fn scene_structure(&self, exact: bool) -> Result<SceneFile> {
         let world = self.world();
         let mut objects = Vec::new();
         for (_, data) in self.scene.objects_in_creation_order() {
@@ -239,7 +269,7 @@ impl Simulation {
             let name_of = |o| self.object(o).map(|v| v.name().to_string());
             // Before any step, the joint as it was created (the same ODE calls again);
             // after, where its anchor and axis are now.
-            let kind = if self.step_count() == 0 {
+            let kind = if self.step_count() == 0 || exact {
                 data.creation.clone()
             } else {
                 let ode = world.joint(data.handle)?;
@@ -304,6 +334,8 @@ impl Simulation {
             format: FORMAT.into(),
             sensors,
             unsaved_sensors,
+            state: None,
+            state_not_saved: None,
             gravity: world.gravity(),
             time_step: self.time_step(),
             steps_per_frame: self.steps_per_frame(),
@@ -461,6 +493,21 @@ impl Simulation {
         for sensor in &file.sensors {
             sensor.add_to(&mut sim)?;
         }
+        if let Some(hex) = &file.state {
+            let corrupt = |problem: String| Error::Format {
+                format: "scene file",
+                file: "<string>".into(),
+                location: "\"state\"".into(),
+                problem,
+            };
+            let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
+            let mut state: super::snapshot::SceneState =
+                super::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
+            // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
+            // no place for their state.
+            state.keep_sensors(|kind| SENSOR_KINDS.contains(&kind));
+            sim.restore_state(&state)?;
+        }
         Ok(sim)
     }
 }
@@ -479,4 +526,17 @@ impl Simulation {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the scene file", path, &e))?;
         Simulation::load_scene_named(&text, &path.display().to_string())
     }
+}
+
+/// Lower-case hexadecimal digits of `bytes`.
+fn to_hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// The bytes of hexadecimal digits, if they are.
+fn from_hex(text: &str) -> Option<Vec<u8>> {
+    if !text.len().is_multiple_of(2) {
+        return None;
+    }
+    (0..text.len()).step_by(2).map(|i| u8::from_str_radix(text.get(i..i + 2)?, 16).ok()).collect()
 }

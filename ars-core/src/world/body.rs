@@ -16,6 +16,8 @@ pub(crate) struct BodyData {
     pub(crate) raw: ffi::dBodyID,
     /// Where ODE keeps the body's state, read by the checks around every step.
     pub(crate) state: StatePointers,
+    /// Its place in the world's creation order (see [`World::next_serial`]).
+    pub(crate) serial: u64,
 }
 
 /// Pointers to a body's position, orientation quaternion, linear and angular velocity,
@@ -297,7 +299,8 @@ impl World {
         let raw = unsafe { ffi::dBodyCreate(self.raw) };
         // SAFETY: the body was just created.
         let state = unsafe { StatePointers::of(raw) };
-        let handle = BodyHandle(self.bodies.insert(BodyData { raw, state }));
+        let serial = self.next_serial();
+        let handle = BodyHandle(self.bodies.insert(BodyData { raw, state, serial }));
         // SAFETY: the body id was just created by this world.
         unsafe {
             ffi::dBodySetData(raw, handle.0.index as usize as *mut _);

@@ -41,6 +41,8 @@ pub(crate) struct GeomData {
     pub(crate) cone_mesh: Option<Triangles>,
     /// The ray casts' tree of a mesh or a cone's mesh.
     pub(crate) mesh_tree: Option<MeshTree>,
+    /// Its place in the world's creation order (see [`World::next_serial`]).
+    pub(crate) serial: u64,
 }
 
 impl GeomData {
@@ -252,7 +254,9 @@ impl World {
         if mesh.is_some() {
             self.trimesh_count += 1;
         }
+        let serial = self.next_serial();
         let handle = GeomHandle(self.geoms.insert(GeomData {
+            serial,
             raw,
             shape,
             body: builder.body,

@@ -11,6 +11,8 @@ use crate::init::ensure_ode_ready;
 use crate::limits;
 use crate::validate;
 
+pub(crate) use super::state::JointReference;
+
 /// The frame an angular- or linear-motor axis is expressed in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum AxisFrame {
@@ -99,7 +101,7 @@ impl JointKind {
     }
 
     /// Number of axes that take parameters (limits, motors).
-    fn param_axes(&self) -> usize {
+    pub(crate) fn param_axes(&self) -> usize {
         match self {
             JointKind::Fixed | JointKind::Ball { .. } => 0,
             JointKind::Hinge { .. } | JointKind::Slider { .. } => 1,
@@ -157,6 +159,100 @@ impl JointKind {
                 }
                 axes.iter().try_for_each(|(_, v)| axis(v))
             }
+        }
+    }
+}
+
+/// Creates an ODE joint of `kind` between `b1` and `b2` (null: the world) and sets its
+/// anchors and axes from the bodies' poses as they are now. What
+/// [`World::insert_joint`] does before the parameters, and what
+/// [`World::remake_joint`] does again.
+///
+/// # Safety
+/// `w` is a live world; `b1` a live body of it, `b2` null or another live body of it;
+/// `kind` is validated (and a hinge-2 joint has two bodies).
+pub(crate) unsafe fn create_ode_joint(
+    w: ffi::dWorldID,
+    kind: &JointKind,
+    b1: ffi::dBodyID,
+    b2: ffi::dBodyID,
+) -> ffi::dJointID {
+    let g = std::ptr::null_mut();
+    // SAFETY: (creation) the caller's contract; group 0 means "no group": the
+    // caller owns the joint.
+    let raw = unsafe {
+        match kind {
+            JointKind::Fixed => ffi::dJointCreateFixed(w, g),
+            JointKind::Hinge { .. } => ffi::dJointCreateHinge(w, g),
+            JointKind::Slider { .. } => ffi::dJointCreateSlider(w, g),
+            JointKind::Universal { .. } => ffi::dJointCreateUniversal(w, g),
+            JointKind::Ball { .. } => ffi::dJointCreateBall(w, g),
+            JointKind::Hinge2 { .. } => ffi::dJointCreateHinge2(w, g),
+            JointKind::Piston { .. } => ffi::dJointCreatePiston(w, g),
+            JointKind::AngularMotor { .. } => ffi::dJointCreateAMotor(w, g),
+            JointKind::LinearMotor { .. } => ffi::dJointCreateLMotor(w, g),
+        }
+    };
+    // SAFETY: (geometry) the joint was just created with the kind matched below;
+    // the caller's contract for the bodies and the kind.
+    unsafe {
+        ffi::dJointAttach(raw, b1, b2);
+        match kind {
+            JointKind::Fixed => ffi::dJointSetFixed(raw),
+            JointKind::Hinge { anchor: a, axis: x } => {
+                ffi::dJointSetHingeAnchor(raw, a.x, a.y, a.z);
+                ffi::dJointSetHingeAxis(raw, x.x, x.y, x.z);
+            }
+            JointKind::Slider { axis: x } => ffi::dJointSetSliderAxis(raw, x.x, x.y, x.z),
+            JointKind::Universal { anchor: a, axis1: x, axis2: y } => {
+                ffi::dJointSetUniversalAnchor(raw, a.x, a.y, a.z);
+                set_universal_axes(raw, x, y);
+            }
+            JointKind::Ball { anchor: a } => ffi::dJointSetBallAnchor(raw, a.x, a.y, a.z),
+            JointKind::Hinge2 { anchor: a, axis1: x, axis2: y } => {
+                ffi::dJointSetHinge2Anchor(raw, a.x, a.y, a.z);
+                ffi::dJointSetHinge2Axes(raw, x.as_ptr(), y.as_ptr());
+            }
+            JointKind::Piston { anchor: a, axis: x } => {
+                ffi::dJointSetPistonAnchor(raw, a.x, a.y, a.z);
+                ffi::dJointSetPistonAxis(raw, x.x, x.y, x.z);
+            }
+            JointKind::AngularMotor { axes } => {
+                ffi::dJointSetAMotorMode(raw, ffi::dAMotorUser as i32);
+                ffi::dJointSetAMotorNumAxes(raw, axes.len() as i32);
+                for (i, (frame, x)) in axes.iter().enumerate() {
+                    ffi::dJointSetAMotorAxis(raw, i as i32, *frame as i32, x.x, x.y, x.z);
+                }
+            }
+            JointKind::LinearMotor { axes } => {
+                ffi::dJointSetLMotorNumAxes(raw, axes.len() as i32);
+                for (i, (frame, x)) in axes.iter().enumerate() {
+                    ffi::dJointSetLMotorAxis(raw, i as i32, *frame as i32, x.x, x.y, x.z);
+                }
+            }
+        }
+    }
+    raw
+}
+
+/// Sets parameter `param` of axis `axis` of a joint of `kind` as given, unchecked
+/// (values read back from ODE); fixed and ball joints have none.
+///
+/// # Safety
+/// `raw` is a live joint of `kind`; `axis` is below the kind's parameter axes.
+pub(crate) unsafe fn set_raw_param(raw: ffi::dJointID, kind: &JointKind, param: JointParam, axis: usize, value: f64) {
+    let p = param.code() + (ffi::dParamGroup as i32) * axis as i32;
+    // SAFETY: the caller's contract.
+    unsafe {
+        match kind {
+            JointKind::Hinge { .. } => ffi::dJointSetHingeParam(raw, p, value),
+            JointKind::Slider { .. } => ffi::dJointSetSliderParam(raw, p, value),
+            JointKind::Universal { .. } => ffi::dJointSetUniversalParam(raw, p, value),
+            JointKind::Hinge2 { .. } => ffi::dJointSetHinge2Param(raw, p, value),
+            JointKind::Piston { .. } => ffi::dJointSetPistonParam(raw, p, value),
+            JointKind::AngularMotor { .. } => ffi::dJointSetAMotorParam(raw, p, value),
+            JointKind::LinearMotor { .. } => ffi::dJointSetLMotorParam(raw, p, value),
+            JointKind::Fixed | JointKind::Ball { .. } => {}
         }
     }
 }
@@ -232,6 +328,19 @@ pub enum JointParam {
 }
 
 impl JointParam {
+    /// Every parameter, in the order a snapshot keeps them.
+    pub(crate) const ALL: [JointParam; 9] = [
+        JointParam::LoStop,
+        JointParam::HiStop,
+        JointParam::Velocity,
+        JointParam::MaxForce,
+        JointParam::FudgeFactor,
+        JointParam::Bounce,
+        JointParam::Cfm,
+        JointParam::StopErp,
+        JointParam::StopCfm,
+    ];
+
     fn code(self) -> i32 {
         (match self {
             JointParam::LoStop => ffi::dParamLoStop,
@@ -337,7 +446,13 @@ pub(crate) struct JointData {
     pub(crate) kind: JointKind,
     pub(crate) body1: Option<BodyHandle>,
     pub(crate) body2: Option<BodyHandle>,
-    feedback: Option<Box<ffi::dJointFeedback>>,
+    pub(crate) feedback: Option<Box<ffi::dJointFeedback>>,
+    /// Its place in the world's creation order (see [`World::next_serial`]).
+    pub(crate) serial: u64,
+    /// Where its bodies were when its anchors and axes were set: ODE keeps them in the
+    /// bodies' frames then, so a joint made again with the bodies there is the same
+    /// joint to the bit (see [`World::remake_joint`]).
+    pub(crate) reference: JointReference,
 }
 
 /// Forces and torques a joint applied on its bodies during the last step (world
@@ -400,63 +515,21 @@ impl World {
         }
         check_stop_order(&builder.kind, &builder.params)?;
 
-        let w = self.raw;
-        let g = std::ptr::null_mut();
-        // SAFETY: (creation) the world is live; group 0 means "no group": the joint is
-        // owned by the arena entry below and destroyed by `remove_joint` or Drop.
-        let raw = unsafe {
-            match &builder.kind {
-                JointKind::Fixed => ffi::dJointCreateFixed(w, g),
-                JointKind::Hinge { .. } => ffi::dJointCreateHinge(w, g),
-                JointKind::Slider { .. } => ffi::dJointCreateSlider(w, g),
-                JointKind::Universal { .. } => ffi::dJointCreateUniversal(w, g),
-                JointKind::Ball { .. } => ffi::dJointCreateBall(w, g),
-                JointKind::Hinge2 { .. } => ffi::dJointCreateHinge2(w, g),
-                JointKind::Piston { .. } => ffi::dJointCreatePiston(w, g),
-                JointKind::AngularMotor { .. } => ffi::dJointCreateAMotor(w, g),
-                JointKind::LinearMotor { .. } => ffi::dJointCreateLMotor(w, g),
-            }
+        // SAFETY: b1 is a live body, b2 null or another live body (looked up above).
+        let reference = unsafe { JointReference::of(b1, b2) };
+        // SAFETY: the world is live; the bodies are live, distinct, of this world (or
+        // null for the world); the kind was validated above.
+        let raw = unsafe { create_ode_joint(self.raw, &builder.kind, b1, b2) };
+        let serial = self.next_serial();
+        let data = JointData {
+            raw,
+            kind: builder.kind,
+            body1: Some(body1),
+            body2: builder.body2,
+            feedback: None,
+            serial,
+            reference,
         };
-        // SAFETY: (geometry) the joint was just created with the kind matched below;
-        // the bodies are live, distinct, of this world; axes are non-zero and finite.
-        unsafe {
-            ffi::dJointAttach(raw, b1, b2);
-            match &builder.kind {
-                JointKind::Fixed => ffi::dJointSetFixed(raw),
-                JointKind::Hinge { anchor: a, axis: x } => {
-                    ffi::dJointSetHingeAnchor(raw, a.x, a.y, a.z);
-                    ffi::dJointSetHingeAxis(raw, x.x, x.y, x.z);
-                }
-                JointKind::Slider { axis: x } => ffi::dJointSetSliderAxis(raw, x.x, x.y, x.z),
-                JointKind::Universal { anchor: a, axis1: x, axis2: y } => {
-                    ffi::dJointSetUniversalAnchor(raw, a.x, a.y, a.z);
-                    set_universal_axes(raw, x, y);
-                }
-                JointKind::Ball { anchor: a } => ffi::dJointSetBallAnchor(raw, a.x, a.y, a.z),
-                JointKind::Hinge2 { anchor: a, axis1: x, axis2: y } => {
-                    ffi::dJointSetHinge2Anchor(raw, a.x, a.y, a.z);
-                    ffi::dJointSetHinge2Axes(raw, x.as_ptr(), y.as_ptr());
-                }
-                JointKind::Piston { anchor: a, axis: x } => {
-                    ffi::dJointSetPistonAnchor(raw, a.x, a.y, a.z);
-                    ffi::dJointSetPistonAxis(raw, x.x, x.y, x.z);
-                }
-                JointKind::AngularMotor { axes } => {
-                    ffi::dJointSetAMotorMode(raw, ffi::dAMotorUser as i32);
-                    ffi::dJointSetAMotorNumAxes(raw, axes.len() as i32);
-                    for (i, (frame, x)) in axes.iter().enumerate() {
-                        ffi::dJointSetAMotorAxis(raw, i as i32, *frame as i32, x.x, x.y, x.z);
-                    }
-                }
-                JointKind::LinearMotor { axes } => {
-                    ffi::dJointSetLMotorNumAxes(raw, axes.len() as i32);
-                    for (i, (frame, x)) in axes.iter().enumerate() {
-                        ffi::dJointSetLMotorAxis(raw, i as i32, *frame as i32, x.x, x.y, x.z);
-                    }
-                }
-            }
-        }
-        let data = JointData { raw, kind: builder.kind, body1: Some(body1), body2: builder.body2, feedback: None };
         let handle = JointHandle(self.joints.insert(data));
         let mut joint = self.joint_mut(handle)?;
         for (param, axis, value) in builder.params {

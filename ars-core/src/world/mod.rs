@@ -12,6 +12,7 @@ mod grid;
 pub mod joint;
 pub(crate) mod mesh_tree;
 pub mod raycast;
+pub(crate) mod state;
 
 use body::BodyData;
 use contact::CollisionState;
@@ -222,6 +223,9 @@ pub struct World {
     pub(crate) forces_added: bool,
     /// Most contacts in one island that the exact stepper takes.
     exact_step_contacts: usize,
+    /// Bodies, geoms and joints created so far (each gets the next number: their
+    /// creation order, which slot order is not once slots are reused).
+    serials: u64,
     /// A bound on how far any geom reaches beyond its body (or, for a geom without a
     /// body, from the origin); it never decreases. With `max_body_coordinate` it lets
     /// a hash space skip its exact bounds check when everything is well inside.
@@ -309,7 +313,14 @@ impl World {
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
             forces_added: false,
             geom_reach: 0.0,
+            serials: 0,
         }
+    }
+
+    /// Bodies were put where a snapshot had them: the bound on their coordinates is
+    /// unknown until the next step measures it.
+    pub(crate) fn restored_coordinates(&mut self) {
+        self.max_body_coordinate = f64::INFINITY;
     }
 
     /// A body is placed at a coordinate of this magnitude.
