@@ -76,10 +76,17 @@ fn resumes_exactly(name: &str, build: impl Fn() -> Simulation, at: &[u64], run: 
         }
         // `ahead` is the uninterrupted run from the snapshot on: the original too.
         original.step_n(run).unwrap();
-        assert_eq!(states(&original), states(&reference), "{name}: the uninterrupted run, {run} steps after {k}");
+        let end = states(&original);
+        assert_eq!(states(&reference), end, "{name}: the uninterrupted run, {run} steps after {k}");
         let expected = records_after(&original, k);
         assert_eq!(records_after(&reference, k), expected, "{name}: records after step {k}");
         assert_eq!(records_after(&through_bytes, k), expected, "{name}: records through bytes after step {k}");
+        // Back in the original, whose bodies have moved on since: its joints are made
+        // again where they were made, not where the bodies are.
+        original.restore(&snapshot).unwrap();
+        original.step_n(run).unwrap();
+        assert_eq!(states(&original), end, "{name}: restored into itself after {k}");
+        assert_eq!(records_after(&original, k), expected, "{name}: records restored into itself after {k}");
     }
 }
 
@@ -96,4 +103,220 @@ fn conical_pendulum() -> Simulation {
 fn the_conical_pendulum_resumes_to_the_bit_from_any_step() {
     // 2 s of the pendulum's 0.25 ms steps after each snapshot.
     resumes_exactly("conical pendulum", conical_pendulum, &seeded_steps(1, 3, 20_000), 8000);
+}
+
+/// IROS example 4: the vehicle with its servoed arm on the sinusoidal trimesh terrain.
+fn sinusoidal_terrain() -> Simulation {
+    let mut program = ars_programs::SinusoidalTerrain::default();
+    let mut sim = program.create_simulation().unwrap();
+    sim.add_hooks(program).unwrap();
+    sim
+}
+
+#[test]
+fn the_vehicle_on_the_sinusoidal_terrain_resumes_to_the_bit() {
+    // 2 s of 0.4 ms steps after each snapshot, taken in the first 4 s.
+    resumes_exactly("sinusoidal terrain", sinusoidal_terrain, &seeded_steps(2, 2, 10_000), 5000);
+}
+
+/// IROS example 3 with the paper's PD variant (its hook keeps the previous error).
+fn speed_profile() -> Simulation {
+    let mut program = ars_programs::SpeedProfile::with_derivative_gain(0.05);
+    let mut sim = program.create_simulation().unwrap();
+    sim.add_hooks(program).unwrap();
+    sim
+}
+
+#[test]
+fn the_speed_profile_resumes_to_the_bit() {
+    resumes_exactly("speed profile", speed_profile, &seeded_steps(3, 2, 10_000), 5000);
+}
+
+const RNEA_ARM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rnea_arm.urdf");
+
+/// A URDF arm on a fixed base whose three joints are held by PID position servos on
+/// moving set-points.
+fn urdf_arm() -> Simulation {
+    use ars::{Pid, PositionServo, Profile};
+    let mut sim = Simulation::builder().floor_plane(ars::nalgebra::Vector3::y(), 0.0).build().unwrap();
+    sim.load_urdf(RNEA_ARM, &ars::UrdfOptions::new().fixed_base(true)).unwrap();
+    for (i, name) in ["j1", "j2", "j3"].into_iter().enumerate() {
+        let target = 0.3 * (i as f64 + 1.0);
+        let setpoint = Profile::new(vec![(0.0, 0.0), (1.0, target), (2.0, -target)]).unwrap();
+        let servo = PositionServo { setpoint, pid: Pid::new(40.0, 5.0, 2.0) };
+        sim.joint_mut(name).unwrap().set_controller(servo).unwrap();
+    }
+    sim
+}
+
+#[test]
+fn a_urdf_arm_with_position_servos_resumes_to_the_bit() {
+    resumes_exactly("URDF arm", urdf_arm, &seeded_steps(4, 3, 5000), 5000);
+}
+
+/// Every joint kind (the scene's, and hinge-2 and an angular motor through the
+/// world), every controller kind, noisy sensors, a lidar, contacts on a floor.
+fn every_joint_kind() -> Simulation {
+    use ars::nalgebra::{Isometry3, Point3, Vector3};
+    use ars::sensors::{Accelerometer, ContactSensor, Gps, Imu, JointPositions, Lidar, Noisy};
+    use ars::{DcMotor, JointBuilder, JointEnd, Mass, Pid, PositionServo, Profile, TorqueMotor, VelocityServo};
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let m = Mass::Total(1.0);
+    let base = sim.add_box([0.4, 0.2, 0.4], [0.0, 1.5, 0.0], m).unwrap();
+    sim.add_fixed_joint("anchor", base, JointEnd::World).unwrap();
+    let a = sim.add_box([0.1, 0.4, 0.1], [0.3, 1.3, 0.0], m).unwrap();
+    let b = sim.add_sphere(0.08, [0.3, 0.9, 0.0], m).unwrap();
+    let c = sim.add_capsule(0.05, 0.3, [-0.3, 1.2, 0.0], m).unwrap();
+    let d = sim.add_cylinder(0.3, 0.06, [-0.3, 0.8, 0.0], m).unwrap();
+    let e = sim.add_box([0.1, 0.1, 0.3], [0.0, 1.0, 0.4], m).unwrap();
+    let f = sim.add_sphere(0.1, [0.0, 0.6, 0.4], m).unwrap();
+    let g = sim.add_box([0.2, 0.1, 0.2], [0.6, 0.3, 0.6], m).unwrap();
+    let h = sim.add_sphere(0.1, [0.0, 0.2, -0.6], m).unwrap();
+    let y = Vector3::y();
+    let hinge = sim.add_hinge_joint("hinge", a, base, Some(Point3::new(0.3, 1.5, 0.0)), Vector3::z()).unwrap();
+    let slider = sim.add_slider_joint("slider", b, a, y).unwrap();
+    let universal =
+        sim.add_universal_joint("universal", c, base, Point3::new(-0.3, 1.4, 0.0), Vector3::x(), Vector3::z()).unwrap();
+    sim.add_ball_joint("ball", d, c, Some(Point3::new(-0.3, 1.0, 0.0))).unwrap();
+    let piston = sim.add_piston_joint("piston", e, base, Point3::new(0.0, 1.2, 0.4), y).unwrap();
+    sim.add_fixed_joint("weld", f, e).unwrap();
+    let (bf, bh) = (sim.object(f).unwrap().body_handle().unwrap(), sim.object(h).unwrap().body_handle().unwrap());
+    let bg = sim.object(g).unwrap().body_handle().unwrap();
+    let world = sim.world_mut();
+    world.insert_joint(JointBuilder::hinge2(Point3::new(0.0, 0.4, 0.0), y, Vector3::x()).between(bf, bh)).unwrap();
+    world
+        .insert_joint(
+            JointBuilder::new(ars::JointKind::AngularMotor { axes: vec![(ars::AxisFrame::World, y)] })
+                .to_world(bg)
+                .motor(0.7, 0.3),
+        )
+        .unwrap();
+    let profile = |v: f64| Profile::new(vec![(0.0, 0.0), (0.5, v), (1.5, -v)]).unwrap();
+    sim.joint_mut(hinge)
+        .unwrap()
+        .set_controller(PositionServo { setpoint: profile(0.8), pid: Pid::new(30.0, 4.0, 1.0) })
+        .unwrap();
+    sim.joint_mut(slider).unwrap().set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 }).unwrap();
+    sim.joint_mut(slider).unwrap().set_limits(-0.2, 0.2).unwrap();
+    sim.joint_mut(universal)
+        .unwrap()
+        .set_controller(DcMotor::new(profile(6.0), 0.05, 0.05, 2.0, 10.0, 1e-5).unwrap())
+        .unwrap();
+    sim.joint_mut(universal).unwrap().set_viscous_friction(0.01).unwrap();
+    sim.joint_mut(piston).unwrap().set_controller(TorqueMotor { torque: profile(3.0) }).unwrap();
+    sim.add_sensor(Noisy::new(Gps::new(b), 0.01, 7).unwrap()).unwrap();
+    sim.add_sensor_every(Noisy::new(Imu::new(d), 0.02, 8).unwrap(), 0.01).unwrap();
+    sim.add_sensor(Accelerometer::new(h)).unwrap();
+    sim.add_sensor(ContactSensor::new(g)).unwrap();
+    let positions = JointPositions::new(&sim, &[hinge, slider, universal, piston]).unwrap();
+    sim.add_sensor_every(positions, 0.005).unwrap();
+    let lidar = Lidar::new(90, std::f64::consts::TAU, 3.0).unwrap().on(base, Isometry3::translation(0.0, 0.2, 0.0));
+    sim.add_sensor_every(lidar, 0.02).unwrap();
+    sim
+}
+
+#[test]
+fn every_joint_kind_with_noisy_sensors_and_a_lidar_resumes_to_the_bit() {
+    resumes_exactly("every joint kind", every_joint_kind, &seeded_steps(5, 3, 5000), 5000);
+}
+
+/// The scene's own joints and sensors of kinds a scene file rebuilds: a snapshot of it
+/// rebuilds a simulation of its own ([`Simulation::from_snapshot`]).
+fn scene_joints() -> Simulation {
+    use ars::nalgebra::{Point3, Vector3};
+    use ars::{JointEnd, Mass, Pid, PositionServo, Profile, VelocityServo};
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let m = Mass::Total(1.0);
+    let base = sim.add_box([0.4, 0.2, 0.4], [0.0, 1.5, 0.0], m).unwrap();
+    sim.add_fixed_joint("anchor", base, JointEnd::World).unwrap();
+    let a = sim.add_box([0.1, 0.4, 0.1], [0.3, 1.3, 0.0], m).unwrap();
+    let b = sim.add_sphere(0.08, [0.3, 0.9, 0.0], m).unwrap();
+    let c = sim.add_capsule(0.05, 0.3, [-0.3, 1.2, 0.0], m).unwrap();
+    let d = sim.add_cylinder(0.3, 0.06, [-0.3, 0.8, 0.0], m).unwrap();
+    let e = sim.add_box([0.1, 0.1, 0.3], [0.0, 1.0, 0.4], m).unwrap();
+    let y = Vector3::y();
+    let hinge = sim.add_hinge_joint("hinge", a, base, Some(Point3::new(0.3, 1.5, 0.0)), Vector3::z()).unwrap();
+    let slider = sim.add_slider_joint("slider", b, a, y).unwrap();
+    sim.add_universal_joint("universal", c, base, Point3::new(-0.3, 1.4, 0.0), Vector3::x(), Vector3::z()).unwrap();
+    sim.add_ball_joint("ball", d, c, Some(Point3::new(-0.3, 1.0, 0.0))).unwrap();
+    sim.add_piston_joint("piston", e, base, Point3::new(0.0, 1.2, 0.4), y).unwrap();
+    let profile = |v: f64| Profile::new(vec![(0.0, 0.0), (0.5, v), (1.5, -v)]).unwrap();
+    let servo = PositionServo { setpoint: profile(0.8), pid: Pid::new(30.0, 4.0, 1.0) };
+    sim.joint_mut(hinge).unwrap().set_controller(servo).unwrap();
+    sim.joint_mut(slider).unwrap().set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 }).unwrap();
+    sim.joint_mut("universal").unwrap().set_viscous_friction(0.05).unwrap();
+    for (kind, object) in [("Gps", b), ("Accelerometer", d), ("ContactSensor", e)] {
+        sim.add_sensor_of_kind(kind, &[object], &[], Some(0.01)).unwrap();
+    }
+    sim.add_sensor_of_kind("JointPositions", &[], &[hinge, slider], None).unwrap();
+    sim
+}
+
+#[test]
+fn a_snapshot_rebuilds_a_simulation_of_its_own_that_resumes_to_the_bit() {
+    for (name, build, k) in
+        [("scene joints", scene_joints as fn() -> Simulation, 1234_u64), ("URDF arm", urdf_arm, 2345)]
+    {
+        let mut original = build();
+        original.step_n(k).unwrap();
+        let bytes = original.snapshot().unwrap().to_bytes();
+        let mut rebuilt = Simulation::from_snapshot(&Snapshot::from_bytes(&bytes).unwrap()).unwrap();
+        assert_eq!(states(&rebuilt), states(&original), "{name}");
+        for step in 1..=3000 {
+            original.step().unwrap();
+            rebuilt.step().unwrap();
+            assert_eq!(states(&rebuilt), states(&original), "{name}: {step} steps after step {k}");
+        }
+        assert_eq!(records_after(&rebuilt, k), records_after(&original, k), "{name}: records");
+        assert!(records_after(&original, k).iter().all(|(_, rows)| !rows.is_empty()), "{name}: sensors sampled");
+    }
+}
+
+#[test]
+fn a_scene_saved_mid_run_loads_and_resumes_to_the_bit() {
+    for (name, build, k) in
+        [("scene joints", scene_joints as fn() -> Simulation, 777_u64), ("every joint kind", every_joint_kind, 1500)]
+    {
+        let mut original = build();
+        original.step_n(k).unwrap();
+        let text = original.save_scene().unwrap();
+        let mut loaded = match Simulation::load_scene(&text) {
+            Ok(sim) => sim,
+            // A scene file rebuilds the scene's joints only: hinge-2 and motors made
+            // through the world are not in it.
+            Err(e) => {
+                assert_eq!(name, "every joint kind", "{e}");
+                assert!(matches!(e, ars::Error::SnapshotMismatch { .. }), "{e}");
+                continue;
+            }
+        };
+        for step in 1..=3000 {
+            original.step().unwrap();
+            loaded.step().unwrap();
+            assert_eq!(states(&loaded), states(&original), "{name}: {step} steps after step {k}");
+        }
+        assert_eq!(records_after(&loaded, k), records_after(&original, k), "{name}: records");
+    }
+}
+
+#[test]
+fn bad_snapshots_are_refused_and_change_nothing() {
+    let mut sim = scene_joints();
+    sim.step_n(100).unwrap();
+    let bytes = sim.snapshot().unwrap().to_bytes();
+    let before = states(&sim);
+    let other = conical_pendulum().snapshot().unwrap();
+    assert!(matches!(sim.restore(&other), Err(ars::Error::SnapshotMismatch { .. })));
+    assert_eq!(states(&sim), before, "a refused snapshot changes nothing");
+    let truncated = Snapshot::from_bytes(&bytes[..bytes.len() - 10]);
+    assert!(matches!(truncated, Err(ars::Error::SnapshotCorrupt { .. })), "{truncated:?}");
+    let mut altered = bytes.clone();
+    let last = altered.len() - 1;
+    altered[last] ^= 1;
+    assert!(matches!(Snapshot::from_bytes(&altered), Err(ars::Error::SnapshotCorrupt { .. })));
+    let mut newer = bytes.clone();
+    newer[8] = 99;
+    assert!(matches!(Snapshot::from_bytes(&newer), Err(ars::Error::SnapshotVersion { found: 99, .. })));
+    assert!(matches!(Snapshot::from_bytes(b"not a snapshot"), Err(ars::Error::SnapshotCorrupt { .. })));
+    sim.step().unwrap();
 }

@@ -158,6 +158,16 @@ impl Hooks for SpeedProfile {
     fn runs_at(&self, point: HookPoint) -> bool {
         point == HookPoint::PreStep
     }
+    /// The speed error of the previous step (the PD variant's derivative).
+    fn save_state(&self) -> Vec<u64> {
+        vec![self.previous_error.to_bits()]
+    }
+    fn restore_state(&mut self, state: &[u64]) -> Result<()> {
+        if let [error] = state {
+            self.previous_error = f64::from_bits(*error);
+        }
+        Ok(())
+    }
 }
 
 impl Program for SpeedProfile {

@@ -19,7 +19,13 @@ One class per cause, each also a Python built-in class where one fits, so that
   error, the simulation is poisoned); the same class every time for the same cause;
 - ``BusyError`` (``RuntimeError``): the simulation is busy running the hook that makes
   the call (a hook that steps, shows or renders its own simulation);
-- ``InternalError``: a bug in ARS (a Rust panic).
+- ``InternalError``: a bug in ARS (a Rust panic);
+- ``SnapshotError``: a snapshot that cannot be restored or taken, one class per cause:
+  ``SnapshotMismatchError`` (a snapshot of another scene), ``SnapshotVersionError``
+  (written by a version of ARS that this one does not read), ``SnapshotCorruptError``
+  (also a ``ValueError``: truncated or altered bytes, or not a snapshot),
+  ``NotCapturableError`` (something a snapshot cannot hold: a joint controller of your
+  own type).
 
 They live in an importable module (not in the extension) so that pickling (Ray,
 multiprocessing) rebuilds them as the same classes in other processes.
@@ -32,8 +38,13 @@ __all__ = [
     "FormatError",
     "InputError",
     "InternalError",
+    "NotCapturableError",
     "ReproductionError",
     "SimulationError",
+    "SnapshotCorruptError",
+    "SnapshotError",
+    "SnapshotMismatchError",
+    "SnapshotVersionError",
     "UnknownKindError",
     "UnknownNameError",
 ]
@@ -108,6 +119,27 @@ class ReproductionError(ArsError):
     platform, library or version of ARS; the message names both."""
 
 
+class SnapshotError(ArsError):
+    """A snapshot that cannot be taken or restored (one subclass per cause)."""
+
+
+class SnapshotMismatchError(SnapshotError):
+    """A snapshot of another scene: other objects, joints or sensors, or made in another
+    order. Nothing was changed."""
+
+
+class SnapshotVersionError(SnapshotError):
+    """A snapshot written by a version of ARS whose format this one does not read."""
+
+
+class SnapshotCorruptError(SnapshotError, ValueError):
+    """Bytes that are not a whole snapshot: truncated, altered, or not a snapshot."""
+
+
+class NotCapturableError(SnapshotError):
+    """Something a snapshot cannot hold (a joint controller of your own type)."""
+
+
 for _cls in (
     ArsError,
     InputError,
@@ -119,5 +151,10 @@ for _cls in (
     BusyError,
     InternalError,
     ReproductionError,
+    SnapshotError,
+    SnapshotMismatchError,
+    SnapshotVersionError,
+    SnapshotCorruptError,
+    NotCapturableError,
 ):
     _cls.__module__ = "ars"

@@ -43,6 +43,10 @@ pub(crate) fn to_py(py: Python<'_>, error: Error) -> PyErr {
         Error::Busy(_) => "BusyError",
         Error::Panicked { .. } => "InternalError",
         Error::User(_) => "ArsError",
+        Error::SnapshotMismatch { .. } => "SnapshotMismatchError",
+        Error::SnapshotVersion { .. } => "SnapshotVersionError",
+        Error::SnapshotCorrupt { .. } => "SnapshotCorruptError",
+        Error::NotCapturable { .. } => "NotCapturableError",
         _ => "InputError",
     };
     raise(py, class, message)

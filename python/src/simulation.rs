@@ -845,6 +845,31 @@ impl PySimulation {
         self.with(py, move |sim| sim.save_scene_to(&path))
     }
 
+    /// The whole state of the simulation now, as bytes (picklable): `restore` puts it
+    /// back, in this simulation or in one built by the same code (in any process), and
+    /// every later step is the same to the bit. Hooks' own variables are not in it;
+    /// records are cleared by `restore`.
+    fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
+        let bytes = self.with(py, |sim| sim.snapshot().map(|s| s.to_bytes()))?;
+        Ok(pyo3::types::PyBytes::new(py, &bytes))
+    }
+
+    /// Puts back the state `snapshot()` returned (see `snapshot`). A snapshot of
+    /// another scene raises `ars.SnapshotMismatchError` and changes nothing.
+    fn restore(&self, py: Python<'_>, state: &[u8]) -> PyResult<()> {
+        let snapshot = guarded(py, || ars_core::Snapshot::from_bytes(state))?;
+        self.with(py, move |sim| sim.restore(&snapshot))
+    }
+
+    /// A new simulation in the state `snapshot()` returned, built from the scene it
+    /// holds (a scene whose sensors are all of `add_sensor`'s kinds; otherwise build
+    /// the scene with your code and `restore` into it).
+    #[staticmethod]
+    fn from_snapshot(py: Python<'_>, state: &[u8]) -> PyResult<Self> {
+        let sim = guarded(py, || ars_core::Snapshot::from_bytes(state).and_then(|s| Simulation::from_snapshot(&s)))?;
+        Ok(PySimulation::wrap(sim))
+    }
+
     /// A simulation from a file written by `save_scene_to`.
     #[staticmethod]
     fn load_scene_from(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {

@@ -143,6 +143,20 @@ pub struct ObjectFile {
     /// What the viewer draws instead of its geom.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub visuals: Vec<Visual>,
+    /// Whether it has a geom (it collides); a robot link without a collision shape has
+    /// none, and its shape is what its mass was computed from.
+    #[serde(default = "has_geom", skip_serializing_if = "is_true")]
+    pub geom: bool,
+}
+
+/// An object of a file that does not say has a geom.
+fn has_geom() -> bool {
+    true
+}
+
+/// Whether a flag is set (a geom, as nearly every object has, is not written).
+fn is_true(flag: &bool) -> bool {
+    *flag
 }
 
 /// A body's mass and state, exactly.
@@ -262,6 +276,7 @@ impl Simulation {
                 body,
                 pose,
                 visuals: data.visuals.clone(),
+                geom: data.geom.is_some(),
             });
         }
         let mut joints = Vec::new();
@@ -416,7 +431,8 @@ impl Simulation {
                 Some(b) => {
                     let spec = MassSpec::Custom { mass: b.mass, inertia: b.inertia };
                     let body = sim.scene.world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
-                    let g = sim.scene.world.insert_geom(space, geom.attached_to(body))?;
+                    let g =
+                        if o.geom { Some(sim.scene.world.insert_geom(space, geom.attached_to(body))?) } else { None };
                     {
                         let mut m = sim.scene.world.body_mut(body)?;
                         // Both ODE's quaternion and its rotation matrix, to the bit.
@@ -424,7 +440,7 @@ impl Simulation {
                         m.set_linear_velocity(b.linear_velocity)?;
                         m.set_angular_velocity(b.angular_velocity)?;
                     }
-                    sim.scene.register_object(&o.name, o.shape.clone(), Some(body), Some(g))?
+                    sim.scene.register_object(&o.name, o.shape.clone(), Some(body), g)?
                 }
                 None => {
                     let geom = match (&o.shape, o.pose) {
