@@ -8,14 +8,17 @@
 //! joint it mimics), and the sensors ARS builds from a kind and what they read (GPS,
 //! velometer, accelerometer, inclinometer, IMU, contact, energies, joint sensors,
 //! joint positions) with their periods; the other sensors are named in
-//! `unsaved_sensors`. Not saved: hooks, joint controllers and closure sensors (they
-//! are code), sensor records, contact joints (they live within a step).
+//! `unsaved_sensors`. Not saved: hooks and closure sensors (they are code), sensor
+//! records, contact joints (they live within a step).
 //!
-//! A scene saved before it has stepped loads into a simulation that steps bit for bit
-//! as the original (the joints are created with the same anchors and axes). Saved
-//! later, every body comes back to the bit, and the joints are created anew where their
-//! anchors and axes are then: their angles and positions count from there (universal
-//! and hinge-2 joints can be saved only before the scene steps).
+//! With them, the file holds the exact state of a [`Snapshot`](crate::Snapshot)
+//! (`state`, hexadecimal): a scene saved at any step loads into a simulation that steps
+//! on bit for bit as the original, its joints made where they were made. The sensors the
+//! file does not rebuild (named in `unsaved_sensors`) are left out of that state. When
+//! the state cannot be captured (a joint controller of your own type), `state_not_saved`
+//! says why, and the scene loads as before the state existed: exact if saved before the
+//! first step; saved later, every body comes back to the bit and the joints are made
+//! where their anchors and axes are then (universal and hinge-2 joints are then refused).
 
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
