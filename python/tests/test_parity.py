@@ -296,6 +296,9 @@ PYTHON_FOR_RUST = {
     "Simulation.save_scene": "Simulation.save_scene",
     "Simulation.load_scene": "Simulation.load_scene",
     "Simulation.save_scene_to": "Simulation.save_scene_to",
+    "Simulation.snapshot": "Simulation.snapshot",
+    "Simulation.restore": "Simulation.restore",
+    "Simulation.from_snapshot": "Simulation.from_snapshot",
     "Simulation.load_scene_from": "Simulation.load_scene_from",
     # Scene
     "Scene.add_fixed_joint": "Simulation.add_fixed_joint",
