@@ -117,10 +117,11 @@ fn sensors_are_saved_by_kind_and_what_they_read() {
     let joints = original.add_sensor(positions).unwrap();
     original.add_sensor(Noisy::new(Gps::new(pole), 0.01, 3).unwrap()).unwrap();
     let file = original.scene_file().unwrap();
-    assert_eq!(file.sensors.len(), 2);
+    assert_eq!(file.sensors.len(), 3);
     assert_eq!((file.sensors[0].kind.as_str(), file.sensors[0].period), ("Gps", Some(0.01)));
     assert_eq!(file.sensors[1].joints, ["r1", "r2"]);
-    assert_eq!(file.unsaved_sensors, ["Probe<PendulumRow>", "Noisy<Gps>"]);
+    assert_eq!((file.sensors[2].kind.as_str(), file.sensors[2].noise), ("Gps", Some((0.01, 3))));
+    assert_eq!(file.unsaved_sensors, ["Probe<PendulumRow>"]);
     let mut loaded = Simulation::from_scene_file(&file).unwrap();
     let (a, b) = (driver(&original), driver(&loaded));
     original.add_hooks(a).unwrap();
@@ -129,13 +130,13 @@ fn sensors_are_saved_by_kind_and_what_they_read() {
     loaded.run_for(0.5).unwrap();
     // The loaded scene's sensors, in the same order, record the same samples.
     let tables = loaded.sensor_tables();
-    assert_eq!(tables.len(), 2);
+    assert_eq!(tables.len(), 3);
     let same = |(_, a): &(String, &dyn ars::sensors::CsvColumns), (_, b): &(String, &dyn ars::sensors::CsvColumns)| {
         a.stamps() == b.stamps() && (0..a.stamps().len()).all(|i| a.cells(i) == b.cells(i))
     };
     let theirs = original.sensor_tables();
     assert_eq!((theirs[1].0.as_str(), theirs[2].0.as_str()), ("Gps", "JointPositions"));
-    assert!(same(&theirs[1], &tables[0]) && same(&theirs[2], &tables[1]));
+    assert!(same(&theirs[1], &tables[0]) && same(&theirs[2], &tables[1]) && same(&theirs[3], &tables[2]));
     assert_eq!(original.records(gps).unwrap().len(), 50);
     assert_eq!(original.records(joints).unwrap().len(), 2000);
 }

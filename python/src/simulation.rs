@@ -862,8 +862,9 @@ impl PySimulation {
     }
 
     /// A new simulation in the state `snapshot()` returned, built from the scene it
-    /// holds (a scene whose sensors are all of `add_sensor`'s kinds; otherwise build
-    /// the scene with your code and `restore` into it).
+    /// holds (objects, joints, `add_sensor`'s sensors, lidars and depth cameras; a
+    /// robot whose links have several collision shapes needs the scene built by your
+    /// code, then `restore`).
     #[staticmethod]
     fn from_snapshot(py: Python<'_>, state: &[u8]) -> PyResult<Self> {
         let sim = guarded(py, || ars_core::Snapshot::from_bytes(state).and_then(|s| Simulation::from_snapshot(&s)))?;

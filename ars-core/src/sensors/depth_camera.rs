@@ -170,4 +170,14 @@ impl Sensor for DepthCamera {
     fn measures_every_step(&self) -> bool {
         false
     }
+    fn settings(&self) -> Option<super::SensorSettings> {
+        Some(super::SensorSettings::DepthCamera {
+            width: self.width,
+            height: self.height,
+            fov_y: self.fov_y,
+            near: self.near,
+            far: self.far,
+            pose: self.mount.offset(),
+        })
+    }
 }

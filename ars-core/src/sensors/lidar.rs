@@ -200,6 +200,16 @@ impl Sensor for Lidar {
     fn measures_every_step(&self) -> bool {
         false
     }
+    fn settings(&self) -> Option<super::SensorSettings> {
+        Some(super::SensorSettings::Lidar {
+            beams: self.beams,
+            fov: self.fov,
+            min_range: self.min_range,
+            max_range: self.max_range,
+            elevations: self.elevations.clone(),
+            pose: self.mount.offset(),
+        })
+    }
 
     /// Each beam that hit something, from the sensor to the hit.
     fn lines(scan: &Scan) -> Vec<(Point3<f64>, Point3<f64>)> {

@@ -115,6 +115,19 @@ pub trait Sensor: Send + 'static {
         Vec::new()
     }
 
+    /// What a scene file keeps of the sensor beyond its kind, what it reads and its
+    /// period, to build it again: a lidar's or camera's settings. `None` (the default)
+    /// for a sensor made from its kind alone.
+    fn settings(&self) -> Option<SensorSettings> {
+        None
+    }
+
+    /// The noise the sensor adds, if it is a noise wrapper ([`Noisy`]): the standard
+    /// deviation and its generator's state. `None` by default.
+    fn noise(&self) -> Option<(f64, u64)> {
+        None
+    }
+
     /// Puts back what [`save_state`](Sensor::save_state) returned.
     fn restore_state(&mut self, state: &[u64]) -> Result<()> {
         if state.is_empty() {
@@ -125,6 +138,44 @@ pub trait Sensor: Send + 'static {
             })
         }
     }
+}
+
+/// The settings of a sensor that its kind and what it reads do not give, as scene
+/// files keep them (see [`Sensor::settings`]). The pose is relative to the object the
+/// sensor is mounted on when it reads one, otherwise in the world.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
+pub enum SensorSettings {
+    /// A [`Lidar`].
+    Lidar {
+        /// Beams per plane.
+        beams: u32,
+        /// Field of view, rad.
+        fov: f64,
+        /// Nearest range seen, m.
+        min_range: f64,
+        /// Farthest range seen, m.
+        max_range: f64,
+        /// The planes' elevations, rad.
+        elevations: Vec<f64>,
+        /// Where it is.
+        pose: nalgebra::Isometry3<f64>,
+    },
+    /// A [`DepthCamera`].
+    DepthCamera {
+        /// Image width, pixels.
+        width: u32,
+        /// Image height, pixels.
+        height: u32,
+        /// Vertical field of view, rad.
+        fov_y: f64,
+        /// Nearest depth seen, m.
+        near: f64,
+        /// Farthest depth seen, m.
+        far: f64,
+        /// Where it is.
+        pose: nalgebra::Isometry3<f64>,
+    },
 }
 
 /// A sensor's place in its schedule and its own state, as a snapshot keeps them.
@@ -395,6 +446,8 @@ pub(crate) struct SensorDescription {
     pub(crate) objects: Vec<ObjectId>,
     pub(crate) joints: Vec<JointId>,
     pub(crate) period: Option<f64>,
+    pub(crate) settings: Option<SensorSettings>,
+    pub(crate) noise: Option<(f64, u64)>,
 }
 
 trait ErasedSlot: Send {
@@ -450,6 +503,8 @@ impl<S: Sensor> ErasedSlot for Slot<S> {
             objects: self.sensor.objects(),
             joints: self.sensor.joints(),
             period: self.period,
+            settings: self.sensor.settings(),
+            noise: self.sensor.noise(),
         }
     }
     fn table(&self) -> (String, &dyn CsvColumns) {

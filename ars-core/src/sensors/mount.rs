@@ -39,6 +39,13 @@ impl Mount {
         }
     }
 
+    /// The pose in the world, or relative to the object it is on.
+    pub fn offset(&self) -> Isometry3<f64> {
+        match self {
+            Mount::World(pose) | Mount::Object(_, pose) => *pose,
+        }
+    }
+
     /// The objects the sensor reads (for [`Sensor::objects`](super::Sensor::objects)).
     pub fn objects(&self) -> Vec<ObjectId> {
         match self {

@@ -145,6 +145,12 @@ where
     fn measures_every_step(&self) -> bool {
         self.inner.measures_every_step()
     }
+    fn settings(&self) -> Option<super::SensorSettings> {
+        self.inner.settings()
+    }
+    fn noise(&self) -> Option<(f64, u64)> {
+        Some((self.std_dev, self.rng.state()))
+    }
     /// The generator's state, then the wrapped sensor's.
     fn save_state(&self) -> Vec<u64> {
         std::iter::once(self.rng.state()).chain(self.inner.save_state()).collect()

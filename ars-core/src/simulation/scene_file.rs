@@ -5,10 +5,11 @@
 //! shape, colour, visuals, and for a body its mass, inertia, pose and velocities, to the
 //! last bit), every joint (name, type, its objects, the anchors and axes it was created
 //! with, its stops, speed motor, viscous and dry friction, actuator limits and the
-//! joint it mimics), and the sensors ARS builds from a kind and what they read (GPS,
-//! velometer, accelerometer, inclinometer, IMU, contact, energies, joint sensors,
-//! joint positions) with their periods; the other sensors are named in
-//! `unsaved_sensors`. Not saved: hooks and closure sensors (they are code), sensor
+//! joint it mimics), the joints made through the world (hinge-2 joints, motors), and the
+//! sensors ARS builds from a kind and what they read (GPS, velometer, accelerometer,
+//! inclinometer, IMU, contact, energies, joint sensors, joint positions), lidars and
+//! depth cameras with their settings, each with its period and its noise; the other
+//! sensors (closures, lasers, your own types) are named in `unsaved_sensors`. Not saved: hooks and closure sensors (they are code), sensor
 //! records, contact joints (they live within a step).
 //!
 //! With them, the file holds the exact state of a [`Snapshot`](crate::Snapshot)
@@ -30,6 +31,7 @@ use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::joint::{JointBuilder, JointKind, JointParam};
 use crate::scene::{ActuatorLimits, Color, JointEnd, JointType, Visual};
+use crate::sensors::SensorSettings;
 use crate::shape::Shape;
 use crate::world::{SpaceKind, Stepper};
 
@@ -71,6 +73,10 @@ pub struct SceneFile {
     pub objects: Vec<ObjectFile>,
     /// The joints, in creation order.
     pub joints: Vec<JointFile>,
+    /// The joints made through the world rather than the scene (hinge-2 joints,
+    /// angular and linear motors), in creation order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub world_joints: Vec<WorldJointFile>,
     /// The sensors ARS builds from a name and what they read, in the order added.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorFile>,
@@ -108,6 +114,13 @@ pub struct SensorFile {
     pub joints: Vec<String>,
     /// Seconds between samples (`None`: every step).
     pub period: Option<f64>,
+    /// Gaussian noise on it ([`Noisy`](crate::sensors::Noisy)): standard deviation and
+    /// the generator's state when saved.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub noise: Option<(f64, u64)>,
+    /// A lidar's or depth camera's settings.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settings: Option<SensorSettings>,
 }
 
 impl SensorFile {
@@ -115,8 +128,17 @@ impl SensorFile {
     fn add_to(&self, sim: &mut Simulation) -> Result<()> {
         let objects = self.objects.iter().map(|n| Ok(sim.object(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
         let joints = self.joints.iter().map(|n| Ok(sim.joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
-        sim.add_sensor_of_kind(&self.kind, &objects, &joints, self.period).map(drop)
+        sim.add_sensor_described(&self.kind, &objects, &joints, self.period, self.noise, self.settings.as_ref())
+            .map(drop)
     }
+}
+
+/// The kind of sensor a scene file rebuilds from a sensor's type name: `"Gps"` for
+/// `"Gps"` and `"Noisy<Gps>"`, `"Lidar"` for `"Lidar"` and `"Noisy<Lidar>"`; `None`
+/// for a sensor it does not rebuild (a closure, a laser, your own type).
+pub(crate) fn rebuilt_kind(type_name: &str) -> Option<&str> {
+    let kind = type_name.strip_prefix("Noisy<").and_then(|k| k.strip_suffix('>')).unwrap_or(type_name);
+    (SENSOR_KINDS.contains(&kind) || kind == "Lidar" || kind == "DepthCamera").then_some(kind)
 }
 
 /// The contact surface of a pair of objects, by name.
@@ -215,6 +237,36 @@ pub struct JointFile {
     pub motor: Option<(f64, f64)>,
 }
 
+/// A joint made through the [`World`](crate::World) between objects' bodies, as saved.
+/// Its parameters are in the exact state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WorldJointFile {
+    /// Its kind, with the anchors and axes it was made with.
+    pub kind: JointKind,
+    /// The object whose body is its first body.
+    pub object1: String,
+    /// The object whose body is its second (`None`: the world).
+    pub object2: Option<String>,
+    /// How many of the scene's joints were made before it.
+    pub after: usize,
+}
+
+impl WorldJointFile {
+    /// Makes the joint in `sim`.
+    fn add_to(&self, sim: &mut Simulation) -> Result<()> {
+        let body = |name: &str| -> Result<crate::BodyHandle> {
+            let object = sim.object(name)?;
+            object.body_handle().ok_or_else(|| Error::NoBody { operation: "a joint", object: name.to_string() })
+        };
+        let builder = JointBuilder::new(self.kind.clone());
+        let builder = match &self.object2 {
+            Some(o) => builder.between(body(&self.object1)?, body(o)?),
+            None => builder.to_world(body(&self.object1)?),
+        };
+        sim.world_mut().insert_joint(builder).map(drop)
+    }
+}
+
 /// A mimic joint's leader, by name, and its coefficients.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MimicFile {
@@ -283,7 +335,10 @@ impl Simulation {
             });
         }
         let mut joints = Vec::new();
-        for data in self.scene.joints_in_creation_order() {
+        let serial = |h: crate::JointHandle| world.joints.get(h.0, "joint").map_or(u64::MAX, |j| j.serial);
+        let mut scene_joints: Vec<_> = self.scene.joints_in_creation_order().collect();
+        scene_joints.sort_by_key(|d| serial(d.handle));
+        for data in scene_joints {
             let name_of = |o| self.object(o).map(|v| v.name().to_string());
             // Before any step, the joint as it was created (the same ODE calls again);
             // after, where its anchor and axis are now.
@@ -338,15 +393,23 @@ impl Simulation {
                 motor,
             });
         }
+        let world_joints = self.world_joint_files()?;
         let (mut sensors, mut unsaved_sensors) = (Vec::new(), Vec::new());
         for d in self.sensors.descriptions() {
-            if !SENSOR_KINDS.contains(&d.kind.as_str()) {
+            let Some(kind) = rebuilt_kind(&d.kind) else {
                 unsaved_sensors.push(d.kind);
                 continue;
-            }
+            };
             let objects = d.objects.iter().map(|o| Ok(self.object(*o)?.name().to_string())).collect::<Result<_>>()?;
             let joints = d.joints.iter().map(|j| Ok(self.joint(*j)?.name().to_string())).collect::<Result<_>>()?;
-            sensors.push(SensorFile { kind: d.kind, objects, joints, period: d.period });
+            sensors.push(SensorFile {
+                kind: kind.to_string(),
+                objects,
+                joints,
+                period: d.period,
+                noise: d.noise,
+                settings: d.settings,
+            });
         }
         Ok(SceneFile {
             format: FORMAT.into(),
@@ -373,7 +436,42 @@ impl Simulation {
             step_count: self.step_count(),
             objects,
             joints,
+            world_joints,
         })
+    }
+
+    /// The joints made through the world (hinge-2 joints, motors...), not the scene.
+    fn world_joint_files(&self) -> Result<Vec<WorldJointFile>> {
+        let world = self.world();
+        let scene_handles: Vec<crate::JointHandle> = self.scene.joints_in_creation_order().map(|d| d.handle).collect();
+        let mut scene_serials: Vec<u64> =
+            scene_handles.iter().filter_map(|h| world.joints.get(h.0, "joint").ok().map(|j| j.serial)).collect();
+        scene_serials.sort_unstable();
+        let mut others: Vec<_> =
+            world.joints.iter().filter(|(h, _)| !scene_handles.contains(&crate::JointHandle(*h))).collect();
+        others.sort_by_key(|(_, j)| j.serial);
+        let object_of = |body: crate::BodyHandle| -> Result<String> {
+            self.scene
+                .objects_in_creation_order()
+                .find(|(_, d)| d.body == Some(body))
+                .map(|(_, d)| d.name.clone())
+                .ok_or_else(|| Error::Invalid {
+                    what: "the scene",
+                    problem: "cannot be saved: a joint made through the world joins a body that is not an object"
+                        .into(),
+                })
+        };
+        others
+            .into_iter()
+            .map(|(_, j)| {
+                Ok(WorldJointFile {
+                    kind: j.kind.clone(),
+                    object1: object_of(j.body1.expect("a joint has a first body"))?,
+                    object2: j.body2.map(object_of).transpose()?,
+                    after: scene_serials.iter().filter(|s| **s < j.serial).count(),
+                })
+            })
+            .collect()
     }
 
     /// The scene as JSON text (see the [`scene_file`](crate::simulation::scene_file) module).
@@ -461,7 +559,10 @@ impl Simulation {
                 sim.set_visuals(id, o.visuals.clone())?;
             }
         }
-        for j in &file.joints {
+        for (i, j) in file.joints.iter().enumerate() {
+            for w in file.world_joints.iter().filter(|w| w.after == i) {
+                w.add_to(&mut sim)?;
+            }
             let object1 = sim.object(j.object1.as_str())?.id();
             let object2 = match &j.object2 {
                 Some(name) => JointEnd::Object(sim.object(name.as_str())?.id()),
@@ -497,6 +598,9 @@ impl Simulation {
                 sim.scene.world.joint_mut(handle)?.set_motor(0, speed, max_force)?;
             }
         }
+        for w in file.world_joints.iter().filter(|w| w.after >= file.joints.len()) {
+            w.add_to(&mut sim)?;
+        }
         // Leaders may come later in creation order than their followers.
         for j in &file.joints {
             if let Some(m) = &j.mimic {
@@ -524,7 +628,7 @@ impl Simulation {
                 super::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
             // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
             // no place for their state.
-            state.keep_sensors(|kind| SENSOR_KINDS.contains(&kind));
+            state.keep_sensors(|kind| rebuilt_kind(kind).is_some());
             sim.restore_state(&state)?;
         }
         Ok(sim)

@@ -5,9 +5,9 @@ use super::Simulation;
 use crate::error::{Error, Result};
 use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
-    Accelerometer, AnySensorId, ContactSensor, CsvColumns, Gps, HingeSensor, Imu, Inclinometer, JointForce,
-    JointPositions, JointPower, JointReaction, JointTorque, KineticEnergy, PotentialEnergy, Sensor, SystemTotalEnergy,
-    TotalEnergy, Velometer,
+    Accelerometer, AnySensorId, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu, Inclinometer,
+    JointForce, JointPositions, JointPower, JointReaction, JointTorque, KineticEnergy, Lidar, Noisy, Perturb,
+    PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Velometer,
 };
 
 /// The kinds [`Simulation::add_sensor_of_kind`] makes (the sensors' type names): on
@@ -42,6 +42,21 @@ impl Simulation {
         joints: &[JointId],
         period: Option<f64>,
     ) -> Result<AnySensorId> {
+        self.add_sensor_described(kind, objects, joints, period, None, None)
+    }
+
+    /// [`add_sensor_of_kind`](Self::add_sensor_of_kind), and also lidars and depth
+    /// cameras from their `settings`, each wrapped in seeded noise when `noise` (standard
+    /// deviation, generator state) is given: what scene files rebuild.
+    pub(crate) fn add_sensor_described(
+        &mut self,
+        kind: &str,
+        objects: &[ObjectId],
+        joints: &[JointId],
+        period: Option<f64>,
+        noise: Option<(f64, u64)>,
+        settings: Option<&SensorSettings>,
+    ) -> Result<AnySensorId> {
         let wrong = |what: &str| Error::Invalid {
             what: "a sensor",
             problem: format!(
@@ -58,35 +73,70 @@ impl Simulation {
             [j] if objects.is_empty() => Ok(*j),
             _ => Err(wrong("one joint")),
         };
-        match kind {
-            "Gps" => self.add_any(Gps::new(object()?), period),
-            "Velometer" => self.add_any(Velometer::new(object()?), period),
-            "Accelerometer" => self.add_any(Accelerometer::new(object()?), period),
-            "Inclinometer" => self.add_any(Inclinometer::new(object()?), period),
-            "Imu" => self.add_any(Imu::new(object()?), period),
-            "ContactSensor" => self.add_any(ContactSensor::new(object()?), period),
-            "KineticEnergy" => self.add_any(KineticEnergy::new(object()?), period),
-            "PotentialEnergy" => self.add_any(PotentialEnergy::new(object()?), period),
-            "TotalEnergy" => self.add_any(TotalEnergy::new(object()?), period),
-            "SystemTotalEnergy" if objects.is_empty() && joints.is_empty() => {
-                self.add_any(SystemTotalEnergy::new(), period)
+        let noiseless =
+            |kind: &str| Error::Invalid { what: "a sensor", problem: format!("of kind {kind} cannot be given noise") };
+        match (kind, settings) {
+            (_, Some(SensorSettings::Lidar { beams, fov, min_range, max_range, elevations, pose })) => {
+                let lidar = Lidar::new(*beams, *fov, *max_range)?.min_range(*min_range)?.planes(elevations)?;
+                let lidar = match objects {
+                    [] => lidar.at(*pose),
+                    [o] => lidar.on(*o, *pose),
+                    _ => return Err(wrong("at most one object")),
+                };
+                self.add_noisy(lidar, period, noise)
             }
-            "SystemTotalEnergy" => Err(wrong("nothing")),
-            "HingeSensor" => self.add_any(HingeSensor::new(joint()?), period),
-            "JointTorque" => self.add_any(JointTorque::new(joint()?), period),
-            "JointForce" => self.add_any(JointForce::new(joint()?), period),
-            "JointPower" => self.add_any(JointPower::new(joint()?), period),
-            "JointReaction" => self.add_any(JointReaction::new(joint()?), period),
-            "JointPositions" if objects.is_empty() => {
+            (_, Some(SensorSettings::DepthCamera { width, height, fov_y, near, far, pose })) => {
+                if noise.is_some() {
+                    return Err(noiseless("DepthCamera"));
+                }
+                let camera = DepthCamera::new(*width, *height, *fov_y, *near, *far)?;
+                let camera = match objects {
+                    [] => camera.at(*pose),
+                    [o] => camera.on(*o, *pose),
+                    _ => return Err(wrong("at most one object")),
+                };
+                self.add_any(camera, period)
+            }
+            ("Gps", _) => self.add_noisy(Gps::new(object()?), period, noise),
+            ("Velometer", _) => self.add_noisy(Velometer::new(object()?), period, noise),
+            ("Accelerometer", _) => self.add_noisy(Accelerometer::new(object()?), period, noise),
+            ("Inclinometer", _) => self.add_noisy(Inclinometer::new(object()?), period, noise),
+            ("Imu", _) => self.add_noisy(Imu::new(object()?), period, noise),
+            ("ContactSensor", _) => self.add_noisy(ContactSensor::new(object()?), period, noise),
+            ("KineticEnergy", _) => self.add_noisy(KineticEnergy::new(object()?), period, noise),
+            ("PotentialEnergy", _) => self.add_noisy(PotentialEnergy::new(object()?), period, noise),
+            ("TotalEnergy", _) => self.add_noisy(TotalEnergy::new(object()?), period, noise),
+            ("SystemTotalEnergy", _) if objects.is_empty() && joints.is_empty() => {
+                self.add_noisy(SystemTotalEnergy::new(), period, noise)
+            }
+            ("SystemTotalEnergy", _) => Err(wrong("nothing")),
+            ("HingeSensor", _) => self.add_noisy(HingeSensor::new(joint()?), period, noise),
+            ("JointTorque", _) => self.add_noisy(JointTorque::new(joint()?), period, noise),
+            ("JointForce", _) => self.add_noisy(JointForce::new(joint()?), period, noise),
+            ("JointPower", _) => self.add_noisy(JointPower::new(joint()?), period, noise),
+            ("JointReaction", _) => self.add_noisy(JointReaction::new(joint()?), period, noise),
+            ("JointPositions", _) if noise.is_some() => Err(noiseless("JointPositions")),
+            ("JointPositions", _) if objects.is_empty() => {
                 let sensor = JointPositions::new(self, joints)?;
                 self.add_any(sensor, period)
             }
-            "JointPositions" => Err(wrong("joints only")),
-            other => Err(Error::UnknownKind {
+            ("JointPositions", _) => Err(wrong("joints only")),
+            (other, _) => Err(Error::UnknownKind {
                 what: "sensor kind",
                 name: other.to_string(),
                 known: SENSOR_KINDS.iter().map(|k| k.to_string()).collect(),
             }),
+        }
+    }
+
+    /// `sensor`, wrapped in noise when `noise` (standard deviation, generator state) is given.
+    fn add_noisy<S: Sensor>(&mut self, sensor: S, period: Option<f64>, noise: Option<(f64, u64)>) -> Result<AnySensorId>
+    where
+        S::Record: Perturb,
+    {
+        match noise {
+            None => self.add_any(sensor, period),
+            Some((std_dev, seed)) => self.add_any(Noisy::new(sensor, std_dev, seed)?, period),
         }
     }
 

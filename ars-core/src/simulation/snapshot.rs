@@ -51,11 +51,12 @@
 //!   an [`Error::NotCapturable`].
 //!
 //! [`Simulation::from_snapshot`] builds the scene from its [`SceneFile`] and can
-//! therefore only rebuild what a scene file holds: a snapshot of a scene with sensors
-//! that are not of [`SENSOR_KINDS`](super::SENSOR_KINDS) (noisy sensors, lidars,
-//! cameras, closures) or with robots whose links have several collision shapes must be
-//! restored into a simulation built by your own code ([`Simulation::restore`]), which
-//! is what a reset does anyway.
+//! therefore rebuild what a scene file holds: the objects and joints (those made
+//! through the world too), the sensors of [`SENSOR_KINDS`](super::SENSOR_KINDS), lidars
+//! and depth cameras, noisy or not. A snapshot of a scene with other sensors (closures,
+//! lasers, your own types), with robots whose links have several collision shapes, or
+//! with bodies that are not objects, is restored into a simulation built by your own
+//! code ([`Simulation::restore`]), which is what a reset does anyway.
 //!
 //! ## Bytes
 //! [`Snapshot::to_bytes`]: `ARSSNAP\0`, the format version (u32, little-endian), the
