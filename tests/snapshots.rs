@@ -42,6 +42,9 @@ fn records_after(sim: &Simulation, after: u64) -> Vec<(String, Vec<Vec<u64>>)> {
         .collect()
 }
 
+/// A scene to test: its name, how it is built, and the step at which it is saved.
+type Scene = (&'static str, fn() -> Simulation, u64);
+
 /// A small seeded generator for the steps at which snapshots are taken.
 fn seeded_steps(seed: u64, count: usize, below: u64) -> Vec<u64> {
     let mut rng = ars::random::SplitMix64::new(seed);
@@ -255,11 +258,42 @@ fn scene_joints() -> Simulation {
     sim
 }
 
+/// A free URDF robot whose links have several collision shapes away from their
+/// inertial frames, dropped on the floor with a driven wheel.
+fn urdf_with_offset_shapes() -> Simulation {
+    const URDF: &str = r#"<robot name="cart">
+      <link name="body">
+        <inertial><origin xyz="0.05 0 0"/><mass value="2"/>
+          <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial>
+        <collision><origin xyz="0 0 0.05"/><geometry><box size="0.4 0.2 0.05"/></geometry></collision>
+        <collision><origin xyz="0.2 0.05 0.1" rpy="0.3 0 0.2"/><geometry><sphere radius="0.06"/></geometry></collision>
+        <collision><origin xyz="-0.2 0 0.08" rpy="0 0.5 0"/><geometry><cylinder radius="0.04" length="0.1"/></geometry></collision>
+      </link>
+      <link name="wheel">
+        <inertial><mass value="0.3"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+        <collision><origin rpy="1.5708 0 0"/><geometry><cylinder radius="0.08" length="0.04"/></geometry></collision>
+        <collision><origin xyz="0 0 0.03"/><geometry><sphere radius="0.03"/></geometry></collision>
+      </link>
+      <joint name="axle" type="continuous"><parent link="body"/><child link="wheel"/>
+        <origin xyz="0.15 -0.15 0"/><axis xyz="0 1 0"/></joint>
+    </robot>"#;
+    let mut sim = Simulation::builder().floor_plane(ars::nalgebra::Vector3::y(), 0.0).build().unwrap();
+    let options = ars::UrdfOptions::new().base_pose(ars::nalgebra::Isometry3::translation(0.0, 0.3, 0.0));
+    sim.load_urdf_text(URDF, "cart.urdf", &options).unwrap();
+    sim.joint_mut("axle").unwrap().set_speed(4.0, 2.0).unwrap();
+    sim.add_sensor_of_kind("Gps", &[sim.object("wheel").unwrap().id()], &[], Some(0.01)).unwrap();
+    sim
+}
+
 #[test]
 fn a_snapshot_rebuilds_a_simulation_of_its_own_that_resumes_to_the_bit() {
-    for (name, build, k) in
-        [("scene joints", scene_joints as fn() -> Simulation, 1234_u64), ("URDF arm", urdf_arm, 2345)]
-    {
+    let scenes: [Scene; 4] = [
+        ("scene joints", scene_joints, 1234),
+        ("URDF arm", urdf_arm, 2345),
+        ("URDF with offset shapes", urdf_with_offset_shapes, 1500),
+        ("every joint kind", every_joint_kind, 3456),
+    ];
+    for (name, build, k) in scenes {
         let mut original = build();
         original.step_n(k).unwrap();
         let bytes = original.snapshot().unwrap().to_bytes();
@@ -277,9 +311,12 @@ fn a_snapshot_rebuilds_a_simulation_of_its_own_that_resumes_to_the_bit() {
 
 #[test]
 fn a_scene_saved_mid_run_loads_and_resumes_to_the_bit() {
-    for (name, build, k) in
-        [("scene joints", scene_joints as fn() -> Simulation, 777_u64), ("every joint kind", every_joint_kind, 1500)]
-    {
+    let scenes: [Scene; 3] = [
+        ("scene joints", scene_joints, 777),
+        ("every joint kind", every_joint_kind, 1500),
+        ("URDF with offset shapes", urdf_with_offset_shapes, 1100),
+    ];
+    for (name, build, k) in scenes {
         let mut original = build();
         original.step_n(k).unwrap();
         let text = original.save_scene().unwrap();

@@ -201,6 +201,12 @@ impl Scene {
         self.objects.iter().map(|(h, d)| (ObjectId(h), d))
     }
 
+    /// Sets an object's other geoms (a scene file's robot link).
+    pub(crate) fn set_extra_geoms(&mut self, id: ObjectId, geoms: Vec<GeomHandle>) -> Result<()> {
+        self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms;
+        Ok(())
+    }
+
     pub(crate) fn object_data(&self, id: ObjectId) -> Result<&ObjectData> {
         self.objects.get(id.0, ObjectId::KIND)
     }

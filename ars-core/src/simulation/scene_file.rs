@@ -168,6 +168,10 @@ pub struct ObjectFile {
     /// What the viewer draws instead of its geom.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub visuals: Vec<Visual>,
+    /// The shapes of its other geoms (a robot link's other collision elements); their
+    /// offsets from the body are in the exact state.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub extra_shapes: Vec<Shape>,
     /// Whether it has a geom (it collides); a robot link without a collision shape has
     /// none, and its shape is what its mass was computed from.
     #[serde(default = "has_geom", skip_serializing_if = "is_true")]
@@ -331,6 +335,11 @@ impl Simulation {
                 body,
                 pose,
                 visuals: data.visuals.clone(),
+                extra_shapes: data
+                    .extra_geoms
+                    .iter()
+                    .map(|g| Ok(world.geoms.get(g.0, "geom")?.shape.clone()))
+                    .collect::<Result<_>>()?,
                 geom: data.geom.is_some(),
             });
         }
@@ -541,7 +550,16 @@ impl Simulation {
                         m.set_linear_velocity(b.linear_velocity)?;
                         m.set_angular_velocity(b.angular_velocity)?;
                     }
-                    sim.scene.register_object(&o.name, o.shape.clone(), Some(body), g)?
+                    let id = sim.scene.register_object(&o.name, o.shape.clone(), Some(body), g)?;
+                    let extra = o
+                        .extra_shapes
+                        .iter()
+                        .map(|shape| {
+                            sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone()).attached_to(body))
+                        })
+                        .collect::<Result<Vec<_>>>()?;
+                    sim.scene.set_extra_geoms(id, extra)?;
+                    id
                 }
                 None => {
                     let geom = match (&o.shape, o.pose) {
@@ -549,7 +567,14 @@ impl Simulation {
                         (_, Some(pose)) => geom.pose(pose),
                     };
                     let g = sim.scene.world.insert_geom(space, geom)?;
-                    sim.scene.register_object(&o.name, o.shape.clone(), None, Some(g))?
+                    let id = sim.scene.register_object(&o.name, o.shape.clone(), None, Some(g))?;
+                    let extra = o
+                        .extra_shapes
+                        .iter()
+                        .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone())))
+                        .collect::<Result<Vec<_>>>()?;
+                    sim.scene.set_extra_geoms(id, extra)?;
+                    id
                 }
             };
             if let Some(c) = o.color {

@@ -14,8 +14,9 @@
 //!   its bodies put back there first, so that ODE computes the same frames, and the
 //!   world's and bodies' joint lists come out in the order of a world built afresh;
 //! - every joint's parameters (limits, motors...) and the forces of its last step;
-//! - the pose, switch and collision bits of every geom without a body, and the order
-//!   of the geoms in each space (ODE's spaces test pairs in that order);
+//! - the pose of every geom without a body and the offset of every geom on one, every
+//!   geom's switch and collision bits, and the order of the geoms in each space (ODE's
+//!   spaces test pairs in that order);
 //! - the world's parameters, clock and random seed.
 //!
 //! Bodies, geoms and spaces are not made again: a state is restored into a world with
@@ -116,6 +117,9 @@ struct GeomState {
     body: Option<u32>,
     /// Position and rotation matrix of a geom without a body (not a plane).
     pose: Option<([f64; 3], [f64; 12])>,
+    /// Position and rotation matrix relative to its body, if it has an offset.
+    #[serde(default)]
+    offset: Option<([f64; 3], [f64; 12])>,
     enabled: bool,
     category_bits: u64,
     collide_bits: u64,
@@ -209,6 +213,13 @@ impl World {
                             let mut r = [0.0; 12];
                             p.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetPosition(g.raw), 3));
                             r.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetRotation(g.raw), 12));
+                            (p, r)
+                        }),
+                        offset: (!g.body_raw.is_null() && ffi::dGeomIsOffset(g.raw) != 0).then(|| {
+                            let mut p = [0.0; 3];
+                            let mut r = [0.0; 12];
+                            p.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetOffsetPosition(g.raw), 3));
+                            r.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetOffsetRotation(g.raw), 12));
                             (p, r)
                         }),
                         enabled: ffi::dGeomIsEnabled(g.raw) != 0,
@@ -408,11 +419,21 @@ impl World {
         let geoms: Vec<ffi::dGeomID> = geoms.into_iter().map(|(_, raw)| raw).collect();
         for (raw, s) in geoms.iter().zip(&state.geoms) {
             // SAFETY: the geom is live; a pose is kept only for a placeable geom
-            // without a body; dGeomSetRotation copies the matrix as given.
+            // without a body, an offset only for a geom on a body (checked to fit
+            // above); dGeomSetRotation and dGeomSetOffsetRotation copy the matrix as
+            // given.
             unsafe {
                 if let Some((p, r)) = &s.pose {
                     ffi::dGeomSetPosition(*raw, p[0], p[1], p[2]);
                     ffi::dGeomSetRotation(*raw, r.as_ptr());
+                }
+                match &s.offset {
+                    Some((p, r)) => {
+                        ffi::dGeomSetOffsetPosition(*raw, p[0], p[1], p[2]);
+                        ffi::dGeomSetOffsetRotation(*raw, r.as_ptr());
+                    }
+                    None if s.body.is_some() && ffi::dGeomIsOffset(*raw) != 0 => ffi::dGeomClearOffset(*raw),
+                    None => {}
                 }
                 if s.enabled {
                     ffi::dGeomEnable(*raw)
