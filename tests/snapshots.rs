@@ -412,3 +412,26 @@ fn the_order_of_a_space_s_geoms_is_restored() {
         assert_eq!(states(&restored), states(&original), "{step} steps after the snapshot");
     }
 }
+
+#[test]
+fn forces_queued_before_a_snapshot_act_after_the_restore() {
+    let mut original = scene_joints();
+    original.step_n(300).unwrap();
+    let ball = original.object("sphere").unwrap().id();
+    original.body_mut(ball).unwrap().add_force([0.0, 30.0, 5.0].into()).unwrap();
+    original.joint_mut("hinge").unwrap().add_torque(2.5).unwrap();
+    let snapshot = original.snapshot().unwrap();
+    let mut restored = scene_joints();
+    restored.restore(&snapshot).unwrap();
+    let mut without = scene_joints();
+    without.restore(&snapshot).unwrap();
+    let theirs = without.object("sphere").unwrap().id();
+    without.body_mut(theirs).unwrap().clear_forces();
+    for _ in 0..1000 {
+        original.step().unwrap();
+        restored.step().unwrap();
+        without.step().unwrap();
+    }
+    assert_eq!(states(&restored), states(&original));
+    assert_ne!(states(&without), states(&original), "the queued force made a difference");
+}
