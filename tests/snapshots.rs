@@ -206,7 +206,7 @@ fn every_joint_kind_in(builder: ars::SimulationBuilder) -> Simulation {
     sim.joint_mut(slider).unwrap().set_limits(-0.2, 0.2).unwrap();
     sim.joint_mut(universal)
         .unwrap()
-        .set_controller(DcMotor::new(profile(6.0), 0.05, 0.05, 2.0, 10.0, 1e-5).unwrap())
+        .set_controller(DcMotor::new(profile(6.0), 0.05, 0.05, 2.0, 10.0, 1e-5).unwrap().with_inductance(1e-3).unwrap())
         .unwrap();
     sim.joint_mut(universal).unwrap().set_viscous_friction(0.01).unwrap();
     sim.joint_mut(piston).unwrap().set_controller(TorqueMotor { torque: profile(3.0) }).unwrap();

@@ -224,9 +224,21 @@ impl JointController for TorqueMotor {
 }
 
 /// A permanent-magnet DC motor with a gearbox driving the joint, under a voltage
-/// profile: `τ = n · k_t · (V − k_e · n · ω) / R − n² · J_r · α`, where `ω` is the joint
-/// rate, `n` the gear ratio and `α` the joint acceleration estimated from the last two
-/// rates (the reflected rotor inertia resists acceleration). Inductance is neglected.
+/// profile. With `n` the gear ratio and `ω` the joint rate (the rotor turns at `n·ω`):
+///
+/// - the winding: `L · di/dt = V − R·i − k_e·n·ω`; over each step the current is
+///   integrated exactly with `V` and `ω` held (an exponential of time constant `L/R`;
+///   with no inductance the current is `(V − k_e·n·ω)/R` at once), and the step's
+///   torque uses its mean over the step;
+/// - the shaft: `τ = n·k_t·i − n²·b·ω − n²·J_r·α`, with `b` the rotor's viscous
+///   friction and `J_r` its inertia seen through the gearbox (`α` is the joint
+///   acceleration of the last step: the reflected inertia acts one step late, which is
+///   stable while `n²·J_r` stays below the inertia the joint drives).
+///
+/// With no inductance, rotor inertia or load, a joint of inertia `I` starting at rest
+/// under a voltage step `V` speeds up as `ω(t) = ω∞·(1 − e^(−t/τ))`, with
+/// `ω∞ = k_t·V / (n·(k_t·k_e + R·b))` and `τ = I·R / (n²·(k_t·k_e + R·b))`
+/// (`tests/dc_motor.rs` checks it, with an error proportional to the time step).
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct DcMotor {
     /// Supply voltage over time, V.
@@ -241,11 +253,21 @@ pub struct DcMotor {
     pub gear_ratio: f64,
     /// Rotor inertia, kg·m².
     pub rotor_inertia: f64,
+    /// Winding inductance, H (0: none).
+    #[serde(default)]
+    pub inductance: f64,
+    /// Viscous friction of the rotor, N·m·s/rad (at the motor, before the gearbox).
+    #[serde(default)]
+    pub friction: f64,
+    /// The winding current now, A.
+    #[serde(default)]
+    current: f64,
     previous_rate: Option<f64>,
 }
 
 impl DcMotor {
-    /// A motor; every constant must be finite, resistance and gear ratio positive.
+    /// A motor without inductance or friction; every constant must be finite,
+    /// resistance and gear ratio positive.
     pub fn new(
         voltage: Profile,
         torque_constant: f64,
@@ -266,26 +288,58 @@ impl DcMotor {
             resistance,
             gear_ratio,
             rotor_inertia,
+            inductance: 0.0,
+            friction: 0.0,
+            current: 0.0,
             previous_rate: None,
         })
     }
 
-    /// Winding current at joint rate `rate` and voltage `voltage`, A.
+    /// The motor with a winding inductance, H (finite, ≥ 0).
+    pub fn with_inductance(mut self, inductance: f64) -> Result<Self> {
+        self.inductance = crate::validate::non_negative("winding inductance", inductance)?;
+        Ok(self)
+    }
+
+    /// The motor with a viscous friction of its rotor, N·m·s/rad (finite, ≥ 0).
+    pub fn with_friction(mut self, friction: f64) -> Result<Self> {
+        self.friction = crate::validate::non_negative("rotor friction", friction)?;
+        Ok(self)
+    }
+
+    /// Steady winding current at joint rate `rate` and voltage `voltage`, A: what the
+    /// current settles to (at once, without inductance).
     pub fn current(&self, voltage: f64, rate: f64) -> f64 {
         (voltage - self.back_emf_constant * self.gear_ratio * rate) / self.resistance
+    }
+
+    /// The winding current at the end of the last step, A.
+    pub fn winding_current(&self) -> f64 {
+        self.current
     }
 }
 
 impl JointController for DcMotor {
     fn output(&mut self, time: f64, state: JointState, dt: f64) -> f64 {
         let n = self.gear_ratio;
-        let electric = n * self.torque_constant * self.current(self.voltage.value(time), state.rate);
+        let steady = self.current(self.voltage.value(time), state.rate);
+        let mean = if self.inductance > 0.0 && dt > 0.0 {
+            // i(t) = steady + (i0 − steady)·e^(−t/T), T = L/R, over the step.
+            let ratio = self.resistance * dt / self.inductance;
+            let decay = (-ratio).exp();
+            let mean = steady + (self.current - steady) * (-(-ratio).exp_m1()) / ratio;
+            self.current = steady + (self.current - steady) * decay;
+            mean
+        } else {
+            self.current = steady;
+            steady
+        };
         let accel = match self.previous_rate {
             Some(prev) if dt > 0.0 => (state.rate - prev) / dt,
             _ => 0.0,
         };
         self.previous_rate = Some(state.rate);
-        electric - n * n * self.rotor_inertia * accel
+        n * self.torque_constant * mean - n * n * (self.friction * state.rate + self.rotor_inertia * accel)
     }
     fn saved(&self) -> Option<SavedController> {
         Some(SavedController::DcMotor(self.clone()))

@@ -369,10 +369,18 @@ class Joint:
     def set_actuator_limits(self, effort: float = ..., velocity: float = ...) -> None: ...
     def set_controller(
         self,
-        kind: Literal["torque", "position", "velocity"] | None,
+        kind: Literal["torque", "position", "velocity", "dc_motor"] | None,
         setpoint: float | Sequence[tuple[float, float]] | None = None,
         kp: float = 0.0,
         kd: float = 0.0,
+        *,
+        torque_constant: float | None = None,
+        back_emf_constant: float | None = None,
+        resistance: float | None = None,
+        gear_ratio: float = 1.0,
+        rotor_inertia: float = 0.0,
+        inductance: float = 0.0,
+        friction: float = 0.0,
     ) -> None: ...
     def set_mimic(self, leader: str, multiplier: float = 1.0, offset: float = 0.0) -> None: ...
     def clear_mimic(self) -> None: ...

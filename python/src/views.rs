@@ -281,9 +281,14 @@ impl Joint {
 
     /// Drives the joint in native code every step: `kind` is `"torque"` (the torque
     /// follows `setpoint`), `"position"` (a PD servo to `setpoint` with gains `kp`,
-    /// `kd`) or `"velocity"` (a P servo to `setpoint` with gain `kp`). `setpoint` is a
+    /// `kd`), `"velocity"` (a P servo to `setpoint` with gain `kp`) or `"dc_motor"` (a
+    /// DC motor under the voltage `setpoint`, V, with `torque_constant` (N·m/A),
+    /// `back_emf_constant` (V·s/rad), `resistance` (Ω), `gear_ratio`, `rotor_inertia`
+    /// (kg·m²), `inductance` (H) and rotor `friction` (N·m·s/rad)). `setpoint` is a
     /// number or `(time, value)` breakpoints, linear between them. `None` removes it.
-    #[pyo3(signature = (kind, setpoint=None, kp=0.0, kd=0.0))]
+    #[pyo3(signature = (kind, setpoint=None, kp=0.0, kd=0.0, *, torque_constant=None, back_emf_constant=None,
+                        resistance=None, gear_ratio=1.0, rotor_inertia=0.0, inductance=0.0, friction=0.0))]
+    #[allow(clippy::too_many_arguments)]
     fn set_controller(
         &self,
         py: Python<'_>,
@@ -291,8 +296,21 @@ impl Joint {
         setpoint: Option<Setpoint>,
         kp: f64,
         kd: f64,
+        torque_constant: Option<f64>,
+        back_emf_constant: Option<f64>,
+        resistance: Option<f64>,
+        gear_ratio: f64,
+        rotor_inertia: f64,
+        inductance: f64,
+        friction: f64,
     ) -> PyResult<()> {
-        use ars_core::{PositionServo, Profile, TorqueMotor, VelocityServo};
+        use ars_core::{DcMotor, PositionServo, Profile, TorqueMotor, VelocityServo};
+        let needed = |value: Option<f64>, name: &str| {
+            value.ok_or_else(|| ars_core::Error::Invalid {
+                what: "a DC motor",
+                problem: format!("needs its {name} (set_controller(\"dc_motor\", volts, {name}=...))"),
+            })
+        };
         let profile = |s: Option<Setpoint>| -> ars_core::Result<Profile> {
             match s {
                 None => Err(ars_core::Error::Invalid { what: "a controller", problem: "needs a setpoint".into() }),
@@ -311,10 +329,23 @@ impl Joint {
                 Some("torque") => joint.set_controller(TorqueMotor { torque: profile(setpoint)? }),
                 Some("position") => joint.set_controller(PositionServo::pd(profile(setpoint)?, kp, kd)),
                 Some("velocity") => joint.set_controller(VelocityServo { setpoint: profile(setpoint)?, gain: kp }),
+                Some("dc_motor") => {
+                    let motor = DcMotor::new(
+                        profile(setpoint)?,
+                        needed(torque_constant, "torque_constant")?,
+                        needed(back_emf_constant, "back_emf_constant")?,
+                        needed(resistance, "resistance")?,
+                        gear_ratio,
+                        rotor_inertia,
+                    )?
+                    .with_inductance(inductance)?
+                    .with_friction(friction)?;
+                    joint.set_controller(motor)
+                }
                 Some(other) => Err(ars_core::Error::UnknownKind {
                     what: "controller kind",
                     name: other.to_string(),
-                    known: ["torque", "position", "velocity"].map(String::from).to_vec(),
+                    known: ["torque", "position", "velocity", "dc_motor"].map(String::from).to_vec(),
                 }),
             }
         })
