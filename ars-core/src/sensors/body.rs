@@ -302,3 +302,70 @@ impl Sensor for ContactSensor {
         vec![self.object]
     }
 }
+
+/// The forces of the contacts on an object in the last step: their sum (world frame,
+/// N) and how many contact points there were. Attaching it turns on the world's contact
+/// feedback ([`World::set_contact_feedback`](crate::World::set_contact_feedback)): ODE
+/// then reports each contact joint's force, read before the contact joints are
+/// destroyed at the end of the step.
+#[derive(Clone, Debug)]
+pub struct ContactForces {
+    object: ObjectId,
+}
+
+impl ContactForces {
+    /// The contact forces on `object`.
+    pub fn new(object: ObjectId) -> Self {
+        ContactForces { object }
+    }
+}
+
+/// A [`ContactForces`] measurement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactForceReading {
+    /// Contact points on the object.
+    pub contacts: usize,
+    /// The sum of their forces on the object, world frame, N.
+    pub force: Vector3<f64>,
+}
+
+impl Record for ContactForceReading {
+    fn columns() -> Vec<&'static str> {
+        vec!["contacts [1]", "Fx [N]", "Fy [N]", "Fz [N]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        std::iter::once(Some(self.contacts as f64)).chain(xyz(&self.force)).collect()
+    }
+}
+
+impl Sensor for ContactForces {
+    type Record = ContactForceReading;
+    fn attach(&mut self, scene: &mut Scene) -> Result<()> {
+        scene.world_mut().set_contact_feedback(true);
+        Ok(())
+    }
+    fn measure(&mut self, sim: &Scene) -> Result<ContactForceReading> {
+        let object = sim.object(self.object)?;
+        let (body, geom) = (object.body_handle(), object.geom_handle());
+        let mut reading = ContactForceReading { contacts: 0, force: Vector3::zeros() };
+        for c in sim.world().contacts() {
+            // On a body, every geom of the object; without one, its geom.
+            let (first, second) = match body {
+                Some(b) => (c.pair.body1 == Some(b), c.pair.body2 == Some(b)),
+                None => (Some(c.pair.geom1) == geom, Some(c.pair.geom2) == geom),
+            };
+            if first {
+                reading.force += c.force;
+            } else if second {
+                reading.force -= c.force;
+            } else {
+                continue;
+            }
+            reading.contacts += 1;
+        }
+        Ok(reading)
+    }
+    fn objects(&self) -> Vec<ObjectId> {
+        vec![self.object]
+    }
+}

@@ -34,8 +34,8 @@ use std::io::{self, Write};
 use std::marker::PhantomData;
 
 pub use body::{
-    Acceleration, Accelerometer, ContactReading, ContactSensor, Gps, Imu, ImuReading, Inclination, Inclinometer,
-    Position, Velocity, Velometer,
+    Acceleration, Accelerometer, ContactForceReading, ContactForces, ContactReading, ContactSensor, Gps, Imu,
+    ImuReading, Inclination, Inclinometer, Position, Velocity, Velometer,
 };
 pub use depth_camera::{DepthCamera, DepthImage};
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};

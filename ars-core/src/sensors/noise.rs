@@ -2,7 +2,7 @@
 
 use nalgebra::{Point3, Vector3};
 
-use super::body::{Acceleration, ContactReading, ImuReading, Inclination, Position, Velocity};
+use super::body::{Acceleration, ContactForceReading, ContactReading, ImuReading, Inclination, Position, Velocity};
 use super::energy::{Energy, Kinetic, Potential};
 use super::joint::{Effort, Power, Reaction};
 use super::laser::LaserReading;
@@ -56,6 +56,7 @@ perturb_fields!(Inclination, |r, n| {
     r.roll += n()
 });
 perturb_fields!(ContactReading, |r, n| { r.max_depth += n() });
+perturb_fields!(ContactForceReading, |r, n| { v3(&mut r.force, n) });
 perturb_fields!(LaserReading, |r, n| {
     if let Some(d) = r.distance.as_mut() {
         *d += n();

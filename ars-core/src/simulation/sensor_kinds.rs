@@ -5,21 +5,22 @@ use super::Simulation;
 use crate::error::{Error, Result};
 use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
-    Accelerometer, AnySensorId, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu, Inclinometer,
-    JointForce, JointPositions, JointPower, JointReaction, JointTorque, KineticEnergy, Lidar, Noisy, Perturb,
-    PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Velometer,
+    Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
+    Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, KineticEnergy, Lidar, Noisy,
+    Perturb, PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Velometer,
 };
 
 /// The kinds [`Simulation::add_sensor_of_kind`] makes (the sensors' type names): on
 /// one object, on one joint, on a list of joints (`JointPositions`), or on the whole
 /// simulation (`SystemTotalEnergy`).
-pub const SENSOR_KINDS: [&str; 16] = [
+pub const SENSOR_KINDS: [&str; 17] = [
     "Gps",
     "Velometer",
     "Accelerometer",
     "Inclinometer",
     "Imu",
     "ContactSensor",
+    "ContactForces",
     "KineticEnergy",
     "PotentialEnergy",
     "TotalEnergy",
@@ -103,6 +104,7 @@ impl Simulation {
             ("Inclinometer", _) => self.add_noisy(Inclinometer::new(object()?), period, noise),
             ("Imu", _) => self.add_noisy(Imu::new(object()?), period, noise),
             ("ContactSensor", _) => self.add_noisy(ContactSensor::new(object()?), period, noise),
+            ("ContactForces", _) => self.add_noisy(ContactForces::new(object()?), period, noise),
             ("KineticEnergy", _) => self.add_noisy(KineticEnergy::new(object()?), period, noise),
             ("PotentialEnergy", _) => self.add_noisy(PotentialEnergy::new(object()?), period, noise),
             ("TotalEnergy", _) => self.add_noisy(TotalEnergy::new(object()?), period, noise),

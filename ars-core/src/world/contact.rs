@@ -193,6 +193,11 @@ pub struct ContactPoint {
     pub normal: Vector3<f64>,
     /// Penetration depth, m.
     pub depth: f64,
+    /// Force of the contact on geom 1 (on geom 2: its opposite), world frame, N, over
+    /// the step just taken: zero until a step, and unless asked with
+    /// [`World::set_contact_feedback`] (a [`ContactForces`](crate::sensors::ContactForces)
+    /// sensor asks for it).
+    pub force: Vector3<f64>,
 }
 
 /// A ray hit found by the last [`World::collide`].
@@ -220,6 +225,48 @@ pub(crate) struct CollisionState {
     contacts: Vec<ContactPoint>,
     ray_hits: Vec<RayHit>,
     scratch: Vec<ffi::dContactGeom>,
+    /// Where ODE writes the contact joints' forces, when asked.
+    pub(crate) feedback: ContactFeedback,
+}
+
+/// Contact feedback buffers in blocks of this many.
+const FEEDBACK_BLOCK: usize = 256;
+
+/// The buffers ODE writes each contact joint's forces into during a step (one per
+/// contact point, in the order of [`World::contacts`]), when turned on. Blocks are
+/// boxed and kept: a buffer's address stays the same while the world lives.
+#[derive(Default)]
+pub(crate) struct ContactFeedback {
+    pub(crate) on: bool,
+    blocks: Vec<Box<[ffi::dJointFeedback; FEEDBACK_BLOCK]>>,
+}
+
+impl ContactFeedback {
+    /// Buffer `i`, zeroed (its block made if needed).
+    fn slot(&mut self, i: usize) -> *mut ffi::dJointFeedback {
+        while self.blocks.len() * FEEDBACK_BLOCK <= i {
+            self.blocks.push(Box::new([ffi::dJointFeedback::default(); FEEDBACK_BLOCK]));
+        }
+        let slot = &mut self.blocks[i / FEEDBACK_BLOCK][i % FEEDBACK_BLOCK];
+        *slot = ffi::dJointFeedback::default();
+        slot
+    }
+}
+
+impl CollisionState {
+    /// Copies the forces ODE wrote during the step into the contact points.
+    pub(crate) fn read_contact_forces(&mut self) {
+        if !self.feedback.on {
+            return;
+        }
+        for (i, c) in self.contacts.iter_mut().enumerate() {
+            let Some(block) = self.feedback.blocks.get(i / FEEDBACK_BLOCK) else { break };
+            let f = convert::vector_from_ode(&block[i % FEEDBACK_BLOCK].f1);
+            // ODE attaches a joint whose first body is static to the second body
+            // alone, and reports the force on it.
+            c.force = if c.pair.body1.is_some() { f } else { -f };
+        }
+    }
 }
 
 impl CollisionState {
@@ -452,6 +499,18 @@ impl World {
         unsafe { ffi::dJointGroupEmpty(self.contact_group) };
     }
 
+    /// Whether ODE reports the force of every contact point (in
+    /// [`ContactPoint::force`], after each step). Off by default: it costs a little at
+    /// every contact.
+    pub fn set_contact_feedback(&mut self, on: bool) {
+        self.collision.feedback.on = on;
+    }
+
+    /// Whether contact forces are reported (see [`World::set_contact_feedback`]).
+    pub fn contact_feedback(&self) -> bool {
+        self.collision.feedback.on
+    }
+
     /// The contact points created by the last collision pass.
     pub fn contacts(&self) -> &[ContactPoint] {
         &self.collision.contacts
@@ -586,6 +645,7 @@ impl World {
                         contact,
                         &state.scratch[..n],
                         &mut state.contacts,
+                        state.feedback.on.then_some(&mut state.feedback),
                     )
                 };
             }
@@ -595,11 +655,13 @@ impl World {
 }
 
 /// One contact joint per finite contact point, with `contact`'s surface, attached to
-/// `bodies`; each point is recorded in `out`.
+/// `bodies`; each point is recorded in `out`, and given a feedback buffer of
+/// `feedback` (at its index in `out`) when there is one.
 ///
 /// # Safety
 /// `world` and `group` are live; the bodies are live or null.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 unsafe fn create_contacts(
     world: ffi::dWorldID,
     group: ffi::dJointGroupID,
@@ -608,6 +670,7 @@ unsafe fn create_contacts(
     contact: &mut ffi::dContact,
     points: &[ffi::dContactGeom],
     out: &mut Vec<ContactPoint>,
+    mut feedback: Option<&mut ContactFeedback>,
 ) {
     // Colliders given degenerate geometry (a deep overlap of tiny shapes) can return a
     // NaN normal, which would turn the whole step into NaN.
@@ -619,12 +682,18 @@ unsafe fn create_contacts(
         unsafe {
             let j = ffi::dJointCreateContact(world, group, contact);
             ffi::dJointAttach(j, bodies.0, bodies.1);
+            if let Some(feedback) = feedback.as_deref_mut() {
+                // The buffer stays in place while the world lives (boxed block), and
+                // the joint is destroyed at the end of the step.
+                ffi::dJointSetFeedback(j, feedback.slot(out.len()));
+            }
         }
         out.push(ContactPoint {
             pair: *pair,
             position: convert::point_from_ode(&c.pos),
             normal: convert::vector_from_ode(&c.normal),
             depth: c.depth,
+            force: Vector3::zeros(),
         });
     }
 }

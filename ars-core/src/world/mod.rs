@@ -487,6 +487,7 @@ impl World {
         }
         self.time += dt;
         self.forces_added = false;
+        self.collision.read_contact_forces();
         self.check_after_step()
     }
 
