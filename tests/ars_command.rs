@@ -1,0 +1,67 @@
+//! The `ars` command: a scene saved mid-run and run by `ars run` goes on to the same
+//! bits as in the process that saved it; its help fits a screen; mistakes are said.
+
+use std::process::Command;
+
+use ars::nalgebra::Vector3;
+use ars::sensors::Gps;
+use ars::{JointEnd, Mass, Simulation};
+
+const ARS: &str = env!("CARGO_BIN_EXE_ars");
+
+/// A pendulum knocking a ball along the floor, with a GPS on the ball.
+fn scene() -> Simulation {
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let bob = sim.add_sphere(0.1, [0.6, 0.8, 0.0], Mass::Total(2.0)).unwrap();
+    sim.add_hinge_joint("pivot", bob, JointEnd::World, Some([0.0, 0.8, 0.0].into()), Vector3::z()).unwrap();
+    let ball = sim.add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).unwrap();
+    sim.add_sensor_every(Gps::new(ball), 0.01).unwrap();
+    sim
+}
+
+#[test]
+fn a_scene_saved_mid_run_goes_on_to_the_same_bits_under_ars_run() {
+    let dir = std::env::temp_dir().join(format!("ars-command-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (file, csv) = (dir.join("scene.json"), dir.join("out.csv"));
+    let mut sim = scene();
+    sim.run_for(0.7).unwrap();
+    sim.save_scene_to(&file).unwrap();
+    sim.run_for(1.0).unwrap();
+    let out = Command::new(ARS)
+        .args(["run", file.to_str().unwrap(), "--duration", "1", "--csv", csv.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let last: Vec<f64> = text.lines().last().unwrap().split(',').map(|c| c.parse().unwrap()).collect();
+    let ball = sim.object("sphere/1").unwrap().id();
+    let here = sim.body(ball).unwrap().position();
+    // time, step, x, y, z: the CSV's numbers are written to round-trip.
+    assert_eq!(last[1] as u64, sim.step_count());
+    assert_eq!([last[2], last[3], last[4]].map(f64::to_bits), [here.x, here.y, here.z].map(f64::to_bits));
+    assert!(here.x.abs() > 0.05, "the ball was knocked: {here}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn its_help_fits_a_screen_and_mistakes_are_said() {
+    let help = Command::new(ARS).arg("--help").output().unwrap();
+    assert!(help.status.success());
+    let text = String::from_utf8(help.stdout).unwrap();
+    assert!(text.lines().count() <= 40 && text.lines().all(|l| l.chars().count() <= 100), "{text}");
+    for (args, says) in [
+        (vec!["fly", "x.json"], "unknown command"),
+        (vec!["run"], "needs a FILE"),
+        (vec!["run", "x.json", "--duration", "-1"], "--duration must be a positive number"),
+        (vec!["record", "x.urdf"], "needs --screenshots"),
+        (vec!["run", "x.json", "--frobnicate"], "unknown option"),
+    ] {
+        let out = Command::new(ARS).args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains(says), "{args:?}");
+    }
+    let missing = Command::new(ARS).args(["run", "/nonexistent/scene.json"]).output().unwrap();
+    assert_eq!(missing.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("/nonexistent/scene.json"));
+}
