@@ -435,3 +435,28 @@ fn forces_queued_before_a_snapshot_act_after_the_restore() {
     assert_eq!(states(&restored), states(&original));
     assert_ne!(states(&without), states(&original), "the queued force made a difference");
 }
+
+#[test]
+fn a_diverged_simulation_is_brought_back_by_a_snapshot() {
+    let mut sim = scene_joints();
+    sim.step_n(200).unwrap();
+    let snapshot = sim.snapshot().unwrap();
+    let expected = {
+        let mut copy = scene_joints();
+        copy.restore(&snapshot).unwrap();
+        copy.step_n(500).unwrap();
+        states(&copy)
+    };
+    // A light sphere pushed with the largest force the API takes, step after step,
+    // runs away: the step that finds it too fast is refused, and so are later ones.
+    let ball = sim.object("sphere").unwrap().id();
+    let diverged = (0..100).find_map(|_| {
+        sim.body_mut(ball).unwrap().add_force([1e9, 0.0, 0.0].into()).unwrap();
+        sim.step().err()
+    });
+    assert!(matches!(diverged, Some(ars::Error::Diverged { .. })), "{diverged:?}");
+    assert!(sim.step().is_err());
+    sim.restore(&snapshot).unwrap();
+    sim.step_n(500).unwrap();
+    assert_eq!(states(&sim), expected);
+}
