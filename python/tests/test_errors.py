@@ -88,7 +88,8 @@ def test_unknown_kinds_list_the_known_ones():
         sim.joint("hinge").set_controller("pid", 1.0)
     assert (
         readable(caught.value)
-        == 'unknown controller kind "pid"; the known ones are torque, position, velocity'
+        == 'unknown controller kind "pid"; the known ones are torque, position, velocity, '
+        "dc_motor"
     )
     with pytest.raises(ars.UnknownKindError, match='unknown joint parameter "stiffness"'):
         sim.joint("hinge").set_param("stiffness", 1.0)
