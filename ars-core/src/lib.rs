@@ -120,8 +120,8 @@ pub use program::{
     Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, ViewSettings,
 };
 pub use scene::{
-    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, UpAxis, UrdfOptions,
-    UrdfRobot, Visual, heightfield_triangles,
+    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, MjcfActuator, MjcfModel, MjcfOptions,
+    Scene, SimJoint, UpAxis, UrdfOptions, UrdfRobot, Visual, heightfield_triangles,
 };
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};

@@ -193,6 +193,13 @@ class Simulation:
         *,
         name: str | None = None,
     ) -> str: ...
+    def load_mjcf(
+        self,
+        path: _Path,
+        *,
+        base_position: _Vec3 = (0.0, 0.0, 0.0),
+        skip_unsupported: bool = False,
+    ) -> dict[str, Any]: ...
     def load_urdf(
         self,
         path: _Path,

@@ -721,6 +721,36 @@ impl PySimulation {
         Ok(dict)
     }
 
+    /// Loads a MuJoCo model from an MJCF file (see the Rust `Scene::load_mjcf` for what
+    /// is read). Returns `{"name", "bodies", "joints", "timestep", "gravity",
+    /// "actuators", "skipped"}`: bodies and joints by their MJCF names in file order,
+    /// the file's time step and gravity (not applied), what was skipped.
+    #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false))]
+    fn load_mjcf<'py>(
+        &self,
+        py: Python<'py>,
+        path: std::path::PathBuf,
+        base_position: Vec3,
+        skip_unsupported: bool,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let [x, y, z] = base_position;
+        let options = ars_core::MjcfOptions::new()
+            .base_pose(ars_core::nalgebra::Isometry3::translation(x, y, z))
+            .skip_unsupported(skip_unsupported);
+        let model = self.with(py, move |sim| sim.load_mjcf(&path, &options))?;
+        let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("name", &model.name)?;
+        dict.set_item("bodies", model.bodies.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>())?;
+        dict.set_item("joints", model.joints.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>())?;
+        dict.set_item("timestep", model.timestep)?;
+        dict.set_item("gravity", model.gravity.map(|g| (g.x, g.y, g.z)))?;
+        let actuators: Vec<(String, String, String)> =
+            model.actuators.iter().map(|a| (a.name.clone(), a.kind.clone(), a.joint.clone())).collect();
+        dict.set_item("actuators", actuators)?;
+        dict.set_item("skipped", &model.skipped)?;
+        Ok(dict)
+    }
+
     /// A piston: slides along and turns about the world `axis` through `anchor`.
     #[pyo3(signature = (name, obj1, obj2, anchor, axis))]
     fn add_piston_joint(

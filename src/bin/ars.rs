@@ -21,8 +21,9 @@ usage:
   ars --help | --version
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
-Ctrl+S in the window; saved at any step, it goes on exactly where it was) or a robot
-(.urdf, standing on the floor y = 0; --fixed-base bolts its root to the world).
+Ctrl+S in the window; saved at any step, it goes on exactly where it was), a robot
+(.urdf, standing on the floor y = 0; --fixed-base bolts its root to the world) or a
+MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
 
   run       simulate without graphics and print a summary; --csv writes the scene's
             sensors (or, if it has none, every body's position) every N steps
@@ -37,7 +38,7 @@ Ctrl+S in the window; saved at any step, it goes on exactly where it was) or a r
   --axes            draw the world axes
   --fixed-base      (URDF) fix the robot's root to the world
   --y-up            (URDF) the file is written Y up (URDF's convention is Z up)
-  --at X,Y,Z        (URDF) where its root starts, m (default 0,0,0)";
+  --at X,Y,Z        (URDF, MJCF) where its root starts, m (default 0,0,0)";
 
 /// What was asked.
 struct Command {
@@ -142,6 +143,11 @@ impl FileProgram {
     fn is_urdf(&self) -> bool {
         self.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
     }
+
+    /// MuJoCo's MJCF: `.xml` (or `.mjcf`).
+    fn is_mjcf(&self) -> bool {
+        self.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml") || e.eq_ignore_ascii_case("mjcf"))
+    }
 }
 
 impl Hooks for FileProgram {}
@@ -161,7 +167,15 @@ impl Program for FileProgram {
     }
 
     fn create_simulation(&mut self) -> ars::Result<Simulation> {
-        let mut sim = if self.is_urdf() {
+        let mut sim = if self.is_mjcf() {
+            let mut sim = Simulation::builder().space(SpaceKind::Simple).build()?;
+            let options = ars::MjcfOptions::new().base_pose(self.urdf.base_pose).skip_unsupported(true);
+            let model = sim.load_mjcf(&self.path, &options)?;
+            for skipped in &model.skipped {
+                eprintln!("skipped: {skipped}");
+            }
+            sim
+        } else if self.is_urdf() {
             let mut sim = self.configure(Simulation::builder()).build()?;
             self.create_sim_objects(&mut sim)?;
             sim

@@ -10,6 +10,7 @@
 pub mod colors;
 mod floor;
 pub(crate) mod joints;
+pub mod mjcf;
 mod names;
 mod objects;
 mod surfaces;
@@ -20,6 +21,7 @@ use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic, SimJoint};
+pub use mjcf::{MjcfActuator, MjcfModel, MjcfOptions};
 pub use objects::{Color, Visual};
 pub use urdf::{UpAxis, UrdfOptions, UrdfRobot};
 pub use views::{JointKey, JointView, ObjectKey, ObjectView};

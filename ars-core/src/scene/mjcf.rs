@@ -1,0 +1,876 @@
+//! Models from MuJoCo's MJCF files: one body per `<body>`, ARS joints for its joints,
+//! the file's names.
+//!
+//! What is read (the rest is a clear error naming the element and its line, or with
+//! [`MjcfOptions::skip_unsupported`] a warning in [`MjcfModel::skipped`]):
+//! - **Frames.** `pos` and one of `quat`, `euler` (with `<compiler eulerseq>`),
+//!   `axisangle`, `xyaxes`, `zaxis` on bodies, geoms, joints' `pos`/`axis` and
+//!   `<inertial>`; angles in degrees unless `<compiler angle="radian">`. MJCF is Z-up:
+//!   the model is turned by −90° about X (MuJoCo (x, y, z) → simulation (x, z, −y)), then
+//!   placed at [`MjcfOptions::base_pose`].
+//! - **Mass.** `<inertial>` (`mass`, `diaginertia` or `fullinertia`, its own frame), or,
+//!   without one (or with `<compiler inertiafromgeom="true">`), the mass and inertia of
+//!   the body's geoms as MuJoCo's compiler computes them: each geom's `mass`, or its
+//!   `density` (1000 kg/m³ by default) times its volume, combined about the centre of
+//!   mass. ODE wants the body's frame at the centre of mass: the body is placed there,
+//!   turned as the MJCF body, with the full inertia tensor.
+//! - **Geoms.** `plane` (static only: an infinite plane), `sphere`, `capsule`,
+//!   `cylinder`, `box`, and `ellipsoid` (as a sphere of the same volume, with a warning);
+//!   `fromto` for capsules and cylinders; `rgba` for the colour; `contype` and
+//!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
+//!   when one's type meets the other's affinity).
+//! - **Joints.** `hinge` (a hinge), `slide` (a slider), `ball`, `free` (a free body); a
+//!   body without joints is fixed to its parent. `range` (with `limited`, or
+//!   `<compiler autolimits>`, on by default) becomes stops, `damping` viscous friction
+//!   (explicit, from the rate at the start of the step: stable while `damping · dt`
+//!   stays below the inertia it acts on). `armature` is not modelled (ODE has no
+//!   joint-space inertia; adding it to the body's inertia breaks ODE's check of a
+//!   physical tensor when it outweighs the body, as in Gymnasium's reacher): it is
+//!   listed in [`MjcfModel::skipped`].
+//!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
+//!   joints in one body (the planar roots of hopper, walker and half-cheetah) are not
+//!   read yet.
+//! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
+//! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
+//!   integrator is ODE's; the caller chooses to use them).
+//! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
+//!   (materials, textures, meshes not used by a geom), `<statistic>`, `<size>`,
+//!   `<custom>`, `<light>`, `<camera>`, `<site>`, and the geoms' material.
+//! - **Actuators** (`motor`, `position`, `velocity`) and **sensors** are listed in
+//!   [`MjcfModel::actuators`] and otherwise not made yet.
+//!
+//! Unnamed bodies and joints are named `body{N}` and `joint{N}` with N MuJoCo's id (the
+//! world body is 0, bodies are numbered in the file's order).
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
+
+use super::Scene;
+use super::joints::JointEnd;
+use crate::body::{BodyBuilder, MassSpec};
+use crate::error::{Error, Result};
+use crate::geom::GeomBuilder;
+use crate::handle::{JointId, ObjectId};
+use crate::shape::Shape;
+
+/// How an MJCF model is loaded.
+#[derive(Clone, Debug)]
+pub struct MjcfOptions {
+    /// Where the model's world frame goes in the simulation (after the Z-up to Y-up
+    /// turn). Default: the origin.
+    pub base_pose: Isometry3<f64>,
+    /// Skip what ARS cannot read (with a warning in [`MjcfModel::skipped`]) instead of
+    /// refusing the file.
+    pub skip_unsupported: bool,
+}
+
+impl Default for MjcfOptions {
+    fn default() -> Self {
+        MjcfOptions { base_pose: Isometry3::identity(), skip_unsupported: false }
+    }
+}
+
+impl MjcfOptions {
+    /// The defaults: at the origin, refusing what cannot be read.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Where the model goes.
+    pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
+        self.base_pose = pose;
+        self
+    }
+    /// Skip (with a warning) what cannot be read.
+    pub fn skip_unsupported(mut self, skip: bool) -> Self {
+        self.skip_unsupported = skip;
+        self
+    }
+}
+
+/// An actuator of the file, as read (not made yet).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfActuator {
+    /// Its name (`actuator{N}` when unnamed).
+    pub name: String,
+    /// `motor`, `position` or `velocity`.
+    pub kind: String,
+    /// The joint it drives.
+    pub joint: String,
+}
+
+/// What [`Scene::load_mjcf`] made.
+#[derive(Clone, Debug, Default)]
+pub struct MjcfModel {
+    /// The model's name (`<mujoco model>`).
+    pub name: String,
+    /// Every body, by name, in the file's order.
+    pub bodies: Vec<(String, ObjectId)>,
+    /// Every joint made, by name.
+    pub joints: Vec<(String, JointId)>,
+    /// The static geoms of the world body.
+    pub world_geoms: Vec<ObjectId>,
+    /// `<option timestep>`, s.
+    pub timestep: Option<f64>,
+    /// `<option gravity>`, in the simulation's frame, m/s².
+    pub gravity: Option<Vector3<f64>>,
+    /// The actuators read.
+    pub actuators: Vec<MjcfActuator>,
+    /// What was skipped, and why.
+    pub skipped: Vec<String>,
+}
+
+impl MjcfModel {
+    /// The object of a body, by name.
+    pub fn body(&self, name: &str) -> Option<ObjectId> {
+        self.bodies.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+    /// A joint, by name.
+    pub fn joint(&self, name: &str) -> Option<JointId> {
+        self.joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+}
+
+/// A problem at a place of the file.
+struct Problem {
+    element: String,
+    line: u32,
+    text: String,
+}
+
+type Parsed<T> = std::result::Result<T, Problem>;
+
+fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
+    let line = node.document().text_pos_at(node.range().start).row;
+    Problem { element: node.tag_name().name().to_string(), line, text: text.into() }
+}
+
+/// `<compiler>` settings.
+#[derive(Clone, Debug)]
+struct Compiler {
+    degrees: bool,
+    eulerseq: [u8; 3],
+    /// Extrinsic (capital letters) or intrinsic rotations.
+    extrinsic: bool,
+    autolimits: bool,
+    /// `inertiafromgeom`: Some(true) always, Some(false) never, None when no inertial.
+    from_geom: Option<bool>,
+}
+
+impl Default for Compiler {
+    fn default() -> Self {
+        Compiler { degrees: true, eulerseq: [0, 1, 2], extrinsic: false, autolimits: true, from_geom: None }
+    }
+}
+
+/// The attributes an element gets from its class, by element kind.
+type Defaults = HashMap<String, HashMap<String, HashMap<String, String>>>;
+
+/// Reads `<default>` classes (with inheritance) into `out`.
+fn read_defaults(node: roxmltree::Node<'_, '_>, parent: &HashMap<String, HashMap<String, String>>, out: &mut Defaults) {
+    let class = node.attribute("class").unwrap_or("main").to_string();
+    let mut mine = parent.clone();
+    for child in node.children().filter(|c| c.is_element() && c.tag_name().name() != "default") {
+        let attrs = mine.entry(child.tag_name().name().to_string()).or_default();
+        for a in child.attributes() {
+            attrs.insert(a.name().to_string(), a.value().to_string());
+        }
+    }
+    for child in node.children().filter(|c| c.is_element() && c.tag_name().name() == "default") {
+        read_defaults(child, &mine, out);
+    }
+    out.insert(class, mine);
+}
+
+/// An element's attributes with its class's defaults under them.
+struct Attrs<'a, 'input> {
+    node: roxmltree::Node<'a, 'input>,
+    class: Option<&'a HashMap<String, String>>,
+}
+
+impl<'a, 'input> Attrs<'a, 'input> {
+    fn new(node: roxmltree::Node<'a, 'input>, defaults: &'a Defaults, class: &str) -> Self {
+        let class = node.attribute("class").unwrap_or(class);
+        let class = defaults.get(class).and_then(|c| c.get(node.tag_name().name()));
+        Attrs { node, class }
+    }
+    fn get(&self, name: &str) -> Option<&str> {
+        self.node.attribute(name).or_else(|| self.class.and_then(|c| c.get(name)).map(String::as_str))
+    }
+    fn numbers(&self, name: &str) -> Parsed<Option<Vec<f64>>> {
+        let Some(text) = self.get(name) else { return Ok(None) };
+        let values: std::result::Result<Vec<f64>, _> = text.split_whitespace().map(str::parse::<f64>).collect();
+        match values {
+            Ok(v) if v.iter().all(|x| x.is_finite()) => Ok(Some(v)),
+            _ => Err(problem(&self.node, format!("{name}=\"{text}\" is not a list of finite numbers"))),
+        }
+    }
+    fn fixed<const N: usize>(&self, name: &str) -> Parsed<Option<[f64; N]>> {
+        match self.numbers(name)? {
+            None => Ok(None),
+            Some(v) => v
+                .try_into()
+                .map(Some)
+                .map_err(|v: Vec<f64>| problem(&self.node, format!("{name} has {} numbers, {N} expected", v.len()))),
+        }
+    }
+    fn number(&self, name: &str) -> Parsed<Option<f64>> {
+        Ok(self.fixed::<1>(name)?.map(|[x]| x))
+    }
+}
+
+/// The frame an element's `pos` and orientation attributes give, relative to its parent.
+fn frame(a: &Attrs<'_, '_>, compiler: &Compiler) -> Parsed<Isometry3<f64>> {
+    let pos = Vector3::from(a.fixed::<3>("pos")?.unwrap_or([0.0; 3]));
+    Ok(Isometry3::from_parts(Translation3::from(pos), orientation(a, compiler)?))
+}
+
+fn orientation(a: &Attrs<'_, '_>, compiler: &Compiler) -> Parsed<UnitQuaternion<f64>> {
+    let angle = |x: f64| if compiler.degrees { x.to_radians() } else { x };
+    let given: Vec<&str> = ["quat", "euler", "axisangle", "xyaxes", "zaxis"]
+        .into_iter()
+        .filter(|n| a.node.attribute(*n).is_some())
+        .collect();
+    if given.len() > 1 {
+        return Err(problem(&a.node, format!("has more than one orientation: {}", given.join(", "))));
+    }
+    if let Some([w, x, y, z]) = a.fixed::<4>("quat")? {
+        let q = nalgebra::Quaternion::new(w, x, y, z);
+        if q.norm() == 0.0 {
+            return Err(problem(&a.node, "quat is zero"));
+        }
+        return Ok(UnitQuaternion::from_quaternion(q));
+    }
+    if let Some([x, y, z, t]) = a.fixed::<4>("axisangle")? {
+        let axis =
+            Unit::try_new(Vector3::new(x, y, z), 1e-12).ok_or_else(|| problem(&a.node, "axisangle's axis is zero"))?;
+        return Ok(UnitQuaternion::from_axis_angle(&axis, angle(t)));
+    }
+    if let Some(e) = a.fixed::<3>("euler")? {
+        let mut q = UnitQuaternion::identity();
+        for (i, axis) in compiler.eulerseq.iter().enumerate() {
+            let unit = match axis {
+                0 => Vector3::x_axis(),
+                1 => Vector3::y_axis(),
+                _ => Vector3::z_axis(),
+            };
+            let turn = UnitQuaternion::from_axis_angle(&unit, angle(e[i]));
+            q = if compiler.extrinsic { turn * q } else { q * turn };
+        }
+        return Ok(q);
+    }
+    if let Some(v) = a.fixed::<6>("xyaxes")? {
+        let x = Vector3::new(v[0], v[1], v[2]);
+        let y = Vector3::new(v[3], v[4], v[5]);
+        let x = x.try_normalize(1e-12).ok_or_else(|| problem(&a.node, "xyaxes' x axis is zero"))?;
+        let y =
+            (y - x * x.dot(&y)).try_normalize(1e-12).ok_or_else(|| problem(&a.node, "xyaxes' axes are parallel"))?;
+        let m = Matrix3::from_columns(&[x, y, x.cross(&y)]);
+        return Ok(UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m)));
+    }
+    if let Some(z) = a.fixed::<3>("zaxis")? {
+        let z = Vector3::from(z);
+        return UnitQuaternion::rotation_between(&Vector3::z(), &z)
+            .or_else(|| (z.z < 0.0).then(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)))
+            .ok_or_else(|| problem(&a.node, "zaxis is zero"));
+    }
+    Ok(UnitQuaternion::identity())
+}
+
+/// A geom's shape, MuJoCo's way (half sizes).
+#[derive(Clone, Debug)]
+enum GeomKind {
+    Plane,
+    Sphere(f64),
+    Capsule(f64, f64),
+    Cylinder(f64, f64),
+    Box(Vector3<f64>),
+    Ellipsoid(Vector3<f64>),
+}
+
+#[derive(Clone, Debug)]
+struct Geom {
+    kind: GeomKind,
+    /// Relative to its body.
+    frame: Isometry3<f64>,
+    mass: Option<f64>,
+    density: f64,
+    rgba: Option<[f64; 4]>,
+    /// `contype` and `conaffinity`: ODE's category and collide bits, the same rule.
+    bits: (u64, u64),
+}
+
+impl Geom {
+    fn volume(&self) -> f64 {
+        use std::f64::consts::PI;
+        match &self.kind {
+            GeomKind::Plane => 0.0,
+            GeomKind::Sphere(r) => 4.0 / 3.0 * PI * r.powi(3),
+            GeomKind::Capsule(r, h) => PI * r * r * 2.0 * h + 4.0 / 3.0 * PI * r.powi(3),
+            GeomKind::Cylinder(r, h) => PI * r * r * 2.0 * h,
+            GeomKind::Box(s) => 8.0 * s.x * s.y * s.z,
+            GeomKind::Ellipsoid(s) => 4.0 / 3.0 * PI * s.x * s.y * s.z,
+        }
+    }
+
+    fn mass(&self) -> f64 {
+        self.mass.unwrap_or(self.density * self.volume())
+    }
+
+    /// Principal moments about the geom's centre, in its frame, as MuJoCo computes them.
+    fn inertia(&self) -> Vector3<f64> {
+        let m = self.mass();
+        match &self.kind {
+            GeomKind::Plane => Vector3::zeros(),
+            GeomKind::Sphere(r) => Vector3::repeat(0.4 * m * r * r),
+            GeomKind::Capsule(r, h) => {
+                let height = 2.0 * h;
+                let sphere_mass = m * 4.0 * r / (4.0 * r + 3.0 * height);
+                let cylinder_mass = m - sphere_mass;
+                let across = cylinder_mass * (3.0 * r * r + height * height) / 12.0
+                    + 0.4 * sphere_mass * r * r
+                    + sphere_mass * height * (3.0 * r + 2.0 * height) / 8.0;
+                Vector3::new(across, across, cylinder_mass * r * r / 2.0 + 0.4 * sphere_mass * r * r)
+            }
+            GeomKind::Cylinder(r, h) => {
+                let across = m * (3.0 * r * r + 4.0 * h * h) / 12.0;
+                Vector3::new(across, across, m * r * r / 2.0)
+            }
+            GeomKind::Box(s) => {
+                Vector3::new(s.y * s.y + s.z * s.z, s.x * s.x + s.z * s.z, s.x * s.x + s.y * s.y) * (m / 3.0)
+            }
+            GeomKind::Ellipsoid(s) => {
+                Vector3::new(s.y * s.y + s.z * s.z, s.x * s.x + s.z * s.z, s.x * s.x + s.y * s.y) * (m / 5.0)
+            }
+        }
+    }
+
+    /// The ODE shape (an ellipsoid as the sphere of its volume).
+    fn shape(&self) -> Shape {
+        match &self.kind {
+            GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
+            GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
+            GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },
+            GeomKind::Cylinder(r, h) => Shape::Cylinder { radius: *r, length: 2.0 * h },
+            GeomKind::Box(s) => Shape::Box { edges: *s * 2.0 },
+            GeomKind::Ellipsoid(s) => Shape::Sphere { radius: (s.x * s.y * s.z).cbrt() },
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum JointKind {
+    Hinge,
+    Slide,
+    Ball,
+    Free,
+}
+
+#[derive(Clone, Debug)]
+struct Joint {
+    name: String,
+    kind: JointKind,
+    /// Anchor and axis in the body's frame.
+    pos: Vector3<f64>,
+    axis: Vector3<f64>,
+    range: Option<(f64, f64)>,
+    damping: f64,
+    armature: f64,
+}
+
+#[derive(Clone, Debug)]
+struct Body {
+    name: String,
+    /// Relative to its parent.
+    frame: Isometry3<f64>,
+    /// Mass, centre of mass in the body's frame, inertia about it in the body's frame.
+    mass: Option<(f64, Vector3<f64>, Matrix3<f64>)>,
+    geoms: Vec<Geom>,
+    joints: Vec<Joint>,
+    children: Vec<Body>,
+}
+
+/// Everything read from the file before anything is built.
+struct Model {
+    name: String,
+    world_geoms: Vec<Geom>,
+    bodies: Vec<Body>,
+    timestep: Option<f64>,
+    gravity: Option<Vector3<f64>>,
+    actuators: Vec<MjcfActuator>,
+    skipped: Vec<String>,
+}
+
+/// Reads the file (`include`s resolved relative to `dir`).
+struct Reader<'d> {
+    compiler: Compiler,
+    defaults: &'d Defaults,
+    skip: bool,
+    skipped: Vec<String>,
+    bodies: usize,
+    joints: usize,
+}
+
+impl Reader<'_> {
+    fn unsupported(&mut self, node: &roxmltree::Node<'_, '_>, what: &str) -> Parsed<()> {
+        let p = problem(node, format!("{what} is not supported"));
+        if self.skip {
+            self.skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
+            Ok(())
+        } else {
+            Err(p)
+        }
+    }
+
+    fn geom(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Geom>> {
+        let a = Attrs::new(node, self.defaults, class);
+        let kind_name = a.get("type").unwrap_or("sphere");
+        let size = a.numbers("size")?.unwrap_or_default();
+        let fromto = a.fixed::<6>("fromto")?;
+        let size_at = |i: usize| -> Parsed<f64> {
+            match size.get(i) {
+                Some(s) if *s > 0.0 => Ok(*s),
+                Some(s) => Err(problem(&node, format!("size {s} must be positive"))),
+                None => Err(problem(&node, format!("a {kind_name} needs {} size numbers", i + 1))),
+            }
+        };
+        let mut frame = frame(&a, &self.compiler)?;
+        let kind = match kind_name {
+            "plane" => GeomKind::Plane,
+            "sphere" => GeomKind::Sphere(size_at(0)?),
+            "capsule" | "cylinder" => {
+                let (r, h) = match fromto {
+                    Some(f) => {
+                        let (from, to) = (Vector3::new(f[0], f[1], f[2]), Vector3::new(f[3], f[4], f[5]));
+                        let along = to - from;
+                        if along.norm() == 0.0 {
+                            return Err(problem(&node, "fromto's two points are the same"));
+                        }
+                        let turn = UnitQuaternion::rotation_between(&Vector3::z(), &along).unwrap_or_else(|| {
+                            UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
+                        });
+                        frame = Isometry3::from_parts(Translation3::from((from + to) / 2.0), turn);
+                        (size_at(0)?, along.norm() / 2.0)
+                    }
+                    None => (size_at(0)?, size_at(1)?),
+                };
+                if kind_name == "capsule" { GeomKind::Capsule(r, h) } else { GeomKind::Cylinder(r, h) }
+            }
+            "box" => GeomKind::Box(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?)),
+            "ellipsoid" => {
+                self.skipped.push(format!(
+                    "<geom> at line {}: an ellipsoid collides as the sphere of its volume",
+                    problem(&node, "").line
+                ));
+                GeomKind::Ellipsoid(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?))
+            }
+            other => {
+                self.unsupported(&node, &format!("a geom of type {other:?}"))?;
+                return Ok(None);
+            }
+        };
+        let mass = a.number("mass")?;
+        if mass.is_some_and(|m| m < 0.0) {
+            return Err(problem(&node, "mass must not be negative"));
+        }
+        let density = a.number("density")?.unwrap_or(1000.0);
+        if density < 0.0 {
+            return Err(problem(&node, "density must not be negative"));
+        }
+        let bits = |name: &str| -> Parsed<u64> {
+            match a.get(name) {
+                None => Ok(1),
+                Some(v) => {
+                    v.parse::<u64>().map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number")))
+                }
+            }
+        };
+        let bits = (bits("contype")?, bits("conaffinity")?);
+        Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits }))
+    }
+
+    fn joint(&mut self, node: roxmltree::Node<'_, '_>, class: &str, free: bool) -> Parsed<Joint> {
+        self.joints += 1;
+        let a = Attrs::new(node, self.defaults, class);
+        let kind = match (free, a.get("type").unwrap_or("hinge")) {
+            (true, _) | (_, "free") => JointKind::Free,
+            (_, "hinge") => JointKind::Hinge,
+            (_, "slide") => JointKind::Slide,
+            (_, "ball") => JointKind::Ball,
+            (_, other) => return Err(problem(&node, format!("a joint of type {other:?} is not supported"))),
+        };
+        let name = a.node.attribute("name").map_or_else(|| format!("joint{}", self.joints - 1), str::to_string);
+        let axis = Vector3::from(a.fixed::<3>("axis")?.unwrap_or([0.0, 0.0, 1.0]));
+        if axis.norm() == 0.0 {
+            return Err(problem(&node, "axis is zero"));
+        }
+        let limited = match a.get("limited") {
+            Some("true") => true,
+            Some("false") => false,
+            _ => self.compiler.autolimits && a.get("range").is_some(),
+        };
+        let range = match (limited, a.fixed::<2>("range")?) {
+            (true, Some([lo, hi])) => {
+                if lo > hi {
+                    return Err(problem(&node, format!("range {lo} {hi} is reversed")));
+                }
+                let scale = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
+                Some((lo * scale, hi * scale))
+            }
+            (true, None) => return Err(problem(&node, "is limited but has no range")),
+            _ => None,
+        };
+        let damping = a.number("damping")?.unwrap_or(0.0);
+        if damping < 0.0 {
+            return Err(problem(&node, "damping must not be negative"));
+        }
+        let armature = a.number("armature")?.unwrap_or(0.0);
+        if armature < 0.0 {
+            return Err(problem(&node, "armature must not be negative"));
+        }
+        Ok(Joint {
+            name,
+            kind,
+            pos: Vector3::from(a.fixed::<3>("pos")?.unwrap_or([0.0; 3])),
+            axis: axis.normalize(),
+            range,
+            damping,
+            armature,
+        })
+    }
+
+    fn body(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Body> {
+        self.bodies += 1;
+        let index = self.bodies;
+        let a = Attrs::new(node, self.defaults, class);
+        let class = node.attribute("childclass").unwrap_or(class).to_string();
+        let name = node.attribute("name").map_or_else(|| format!("body{index}"), str::to_string);
+        let mut body = Body {
+            name,
+            frame: frame(&a, &self.compiler)?,
+            mass: None,
+            geoms: Vec::new(),
+            joints: Vec::new(),
+            children: Vec::new(),
+        };
+        let mut inertial = None;
+        for child in node.children().filter(|c| c.is_element()) {
+            match child.tag_name().name() {
+                "geom" => body.geoms.extend(self.geom(child, &class)?),
+                "joint" => body.joints.push(self.joint(child, &class, false)?),
+                "freejoint" => body.joints.push(self.joint(child, &class, true)?),
+                "body" => body.children.push(self.body(child, &class)?),
+                "inertial" => inertial = Some(self.inertial(child, &class)?),
+                "site" | "camera" | "light" => {}
+                other => self.unsupported(&child, &format!("<{other}> in a body"))?,
+            }
+        }
+        let from_geoms = match self.compiler.from_geom {
+            Some(always) => always,
+            None => inertial.is_none(),
+        };
+        body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial };
+        if body.joints.len() > 1 {
+            self.unsupported(&node, "several joints in one body")?;
+            body.joints.truncate(1);
+        }
+        // ODE has no joint-space inertia: a joint's armature is not modelled.
+        if let Some(j) = body.joints.iter().find(|j| j.armature > 0.0) {
+            self.skipped.push(format!(
+                "<joint> {:?} in body {:?}: its armature {} is not modelled (ODE has no joint-space inertia)",
+                j.name, body.name, j.armature
+            ));
+        }
+        Ok(body)
+    }
+
+    fn inertial(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<(f64, Vector3<f64>, Matrix3<f64>)> {
+        let a = Attrs::new(node, self.defaults, class);
+        let mass = a.number("mass")?.ok_or_else(|| problem(&node, "needs a mass"))?;
+        if mass <= 0.0 {
+            return Err(problem(&node, format!("mass {mass} must be positive")));
+        }
+        let frame = frame(&a, &self.compiler)?;
+        let local = match (a.fixed::<3>("diaginertia")?, a.fixed::<6>("fullinertia")?) {
+            (Some(d), None) => Matrix3::from_diagonal(&Vector3::from(d)),
+            (None, Some(f)) => Matrix3::new(f[0], f[3], f[4], f[3], f[1], f[5], f[4], f[5], f[2]),
+            _ => return Err(problem(&node, "needs one of diaginertia and fullinertia")),
+        };
+        let r = frame.rotation.to_rotation_matrix();
+        Ok((mass, frame.translation.vector, r.matrix() * local * r.matrix().transpose()))
+    }
+}
+
+/// The mass, centre of mass and inertia about it (body frame) of `geoms`, as MuJoCo's
+/// compiler combines them; `None` when they weigh nothing.
+fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
+    let solid: Vec<&Geom> = geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)).collect();
+    let mass: f64 = solid.iter().map(|g| g.mass()).sum();
+    if mass <= 0.0 {
+        return None;
+    }
+    let com = solid.iter().map(|g| g.frame.translation.vector * g.mass()).sum::<Vector3<f64>>() / mass;
+    let mut inertia = Matrix3::zeros();
+    for g in solid {
+        let r = g.frame.rotation.to_rotation_matrix();
+        let d = g.frame.translation.vector - com;
+        inertia += r.matrix() * Matrix3::from_diagonal(&g.inertia()) * r.matrix().transpose()
+            + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * g.mass();
+    }
+    Some((mass, com, inertia))
+}
+
+/// Reads the model from the text of a file.
+fn read(text: &str, options: &MjcfOptions) -> Parsed<Model> {
+    let document = roxmltree::Document::parse(text).map_err(|e| Problem {
+        element: "mujoco".into(),
+        line: e.pos().row,
+        text: format!("not XML: {e}"),
+    })?;
+    let root = document.root_element();
+    if root.tag_name().name() != "mujoco" {
+        return Err(problem(&root, "the root element must be <mujoco>"));
+    }
+    let mut compiler = Compiler::default();
+    let mut defaults = Defaults::new();
+    let mut timestep = None;
+    let mut gravity = None;
+    for node in root.children().filter(|c| c.is_element()) {
+        match node.tag_name().name() {
+            "compiler" => {
+                if let Some(angle) = node.attribute("angle") {
+                    compiler.degrees = angle != "radian";
+                }
+                if let Some(seq) = node.attribute("eulerseq") {
+                    let axes: Vec<u8> = seq
+                        .chars()
+                        .filter_map(|c| match c.to_ascii_lowercase() {
+                            'x' => Some(0),
+                            'y' => Some(1),
+                            'z' => Some(2),
+                            _ => None,
+                        })
+                        .collect();
+                    compiler.eulerseq = axes
+                        .try_into()
+                        .map_err(|_| problem(&node, format!("eulerseq {seq:?} must be three of x, y, z")))?;
+                    compiler.extrinsic = seq.chars().all(|c| c.is_ascii_uppercase());
+                }
+                if let Some(auto) = node.attribute("autolimits") {
+                    compiler.autolimits = auto == "true";
+                }
+                if let Some(v) = node.attribute("inertiafromgeom") {
+                    compiler.from_geom = match v {
+                        "true" => Some(true),
+                        "false" => Some(false),
+                        _ => None,
+                    };
+                }
+                if node.attribute("coordinate").is_some_and(|c| c != "local") {
+                    return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
+                }
+            }
+            "default" => read_defaults(node, &HashMap::new(), &mut defaults),
+            "option" => {
+                let a = Attrs { node, class: None };
+                timestep = a.number("timestep")?;
+                gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
+            }
+            _ => {}
+        }
+    }
+    let mut reader = Reader {
+        compiler,
+        defaults: &defaults,
+        skip: options.skip_unsupported,
+        skipped: Vec::new(),
+        bodies: 0,
+        joints: 0,
+    };
+    let mut model = Model {
+        name: root.attribute("model").unwrap_or("").to_string(),
+        world_geoms: Vec::new(),
+        bodies: Vec::new(),
+        timestep,
+        gravity,
+        actuators: Vec::new(),
+        skipped: Vec::new(),
+    };
+    for node in root.children().filter(|c| c.is_element()) {
+        match node.tag_name().name() {
+            "worldbody" => {
+                for child in node.children().filter(|c| c.is_element()) {
+                    match child.tag_name().name() {
+                        "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
+                        "body" => model.bodies.push(reader.body(child, "main")?),
+                        "site" | "camera" | "light" => {}
+                        other => reader.unsupported(&child, &format!("<{other}> in the world body"))?,
+                    }
+                }
+            }
+            "actuator" => {
+                for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                    let kind = child.tag_name().name();
+                    if !["motor", "position", "velocity"].contains(&kind) {
+                        reader.unsupported(&child, &format!("an actuator of kind <{kind}>"))?;
+                        continue;
+                    }
+                    let joint = child.attribute("joint").ok_or_else(|| problem(&child, "needs a joint"))?;
+                    model.actuators.push(MjcfActuator {
+                        name: child.attribute("name").map_or_else(|| format!("actuator{i}"), str::to_string),
+                        kind: kind.to_string(),
+                        joint: joint.to_string(),
+                    });
+                }
+            }
+            "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
+            "sensor" | "contact" => {
+                reader.skipped.push(format!(
+                    "<{}> at line {}: not read yet",
+                    node.tag_name().name(),
+                    problem(&node, "").line
+                ));
+            }
+            other => reader.unsupported(&node, &format!("<{other}>"))?,
+        }
+    }
+    model.skipped = reader.skipped;
+    Ok(model)
+}
+
+/// MuJoCo (x, y, z) → simulation (x, z, −y), then the base pose.
+fn placement(options: &MjcfOptions) -> Isometry3<f64> {
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), -std::f64::consts::FRAC_PI_2);
+    options.base_pose * Isometry3::from_parts(Translation3::identity(), turn)
+}
+
+impl Scene {
+    /// Loads the MJCF model in `path` (see the [module docs](self)).
+    pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the MJCF file", path, &e))?;
+        self.load_mjcf_text(&text, &path.display().to_string(), options)
+    }
+
+    /// Loads an MJCF model from its text; `file` names it in errors.
+    pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
+        let model = read(text, options).map_err(|p| Error::Format {
+            format: "MJCF",
+            file: file.to_string(),
+            location: format!("<{}> at line {}", p.element, p.line),
+            problem: p.text,
+        })?;
+        // Built in one go; on an error everything made so far is removed.
+        let mut made = MjcfModel {
+            name: model.name.clone(),
+            timestep: model.timestep,
+            gravity: model.gravity.map(|g| placement(options).rotation * g),
+            actuators: model.actuators.clone(),
+            skipped: model.skipped.clone(),
+            ..MjcfModel::default()
+        };
+        let built = self.build_mjcf(&model, options, &mut made);
+        if let Err(e) = built {
+            let ids: Vec<ObjectId> =
+                made.bodies.iter().map(|(_, id)| *id).chain(made.world_geoms.iter().copied()).collect();
+            for id in ids.into_iter().rev() {
+                // Its joints go with it; what was made is removed whatever the error.
+                let _ = self.remove_object_with_joints(id);
+            }
+            return Err(e);
+        }
+        Ok(made)
+    }
+
+    fn build_mjcf(&mut self, model: &Model, options: &MjcfOptions, made: &mut MjcfModel) -> Result<()> {
+        let world = placement(options);
+        for g in &model.world_geoms {
+            let pose = world * g.frame;
+            let id = match g.kind {
+                GeomKind::Plane => {
+                    let normal = pose.rotation * Vector3::z();
+                    self.add_static(Shape::Plane { normal, distance: normal.dot(&pose.translation.vector) }, pose)?
+                }
+                _ => self.add_static(g.shape(), pose)?,
+            };
+            if let Some(c) = g.rgba {
+                self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
+            }
+            if let Some(geom) = self.object(id)?.geom_handle() {
+                let mut geom = self.world.geom_mut(geom)?;
+                geom.set_category_bits(g.bits.0);
+                geom.set_collide_bits(g.bits.1);
+            }
+            made.world_geoms.push(id);
+        }
+        for body in &model.bodies {
+            self.add_mjcf_body(body, &world, None, made)?;
+        }
+        Ok(())
+    }
+
+    fn add_mjcf_body(
+        &mut self,
+        body: &Body,
+        parent_frame: &Isometry3<f64>,
+        parent: Option<ObjectId>,
+        made: &mut MjcfModel,
+    ) -> Result<()> {
+        let frame = parent_frame * body.frame;
+        let invalid = |problem: String| Error::Invalid { what: "an MJCF body", problem };
+        let (mass, com, inertia) = body
+            .mass
+            .ok_or_else(|| invalid(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+        // The ODE body at the centre of mass, turned as the MJCF body.
+        let body_frame = Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(com)), frame.rotation);
+        let handle = self.world.insert_body(
+            BodyBuilder::new()
+                .mass(MassSpec::Custom { mass, inertia })
+                .position(nalgebra::Point3::from(body_frame.translation.vector))
+                .rotation(body_frame.rotation.to_rotation_matrix()),
+        )?;
+        let mut geoms = Vec::new();
+        for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
+            let offset = body_frame.inverse() * frame * g.frame;
+            let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
+            let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
+            geoms.push(self.world.insert_geom(self.space(), geom)?);
+        }
+        let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
+        let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
+        self.set_extra_geoms(id, geoms.into_iter().skip(1).collect())?;
+        if let Some(c) = body.geoms.iter().find_map(|g| g.rgba) {
+            self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
+        }
+        made.bodies.push((self.object(id)?.name().to_string(), id));
+        let end = parent.map_or(JointEnd::World, JointEnd::Object);
+        match body.joints.first() {
+            None => {
+                let name = format!("{}_weld", body.name);
+                self.add_fixed_joint(&name, id, end)?;
+            }
+            Some(j) if j.kind == JointKind::Free => {}
+            Some(j) => {
+                let anchor = frame * nalgebra::Point3::from(j.pos);
+                let axis = frame.rotation * j.axis;
+                let joint = match j.kind {
+                    JointKind::Hinge => self.add_hinge_joint(&j.name, id, end, Some(anchor), axis)?,
+                    JointKind::Slide => self.add_slider_joint(&j.name, id, end, axis)?,
+                    _ => self.add_ball_joint(&j.name, id, end, Some(anchor))?,
+                };
+                if let Some((lo, hi)) = j.range {
+                    self.joint_mut(joint)?.set_limits(lo, hi)?;
+                }
+                if j.damping > 0.0 {
+                    self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
+                }
+                made.joints.push((j.name.clone(), joint));
+            }
+        }
+        for child in &body.children {
+            self.add_mjcf_body(child, &frame, Some(id), made)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,169 @@
+"""MJCF models against MuJoCo's own compiled model: every body's mass, centre of mass
+and principal moments of inertia equal to MuJoCo's to 1e-9 relative; models written
+by others (Gymnasium's) load and run."""
+
+import os
+
+import numpy as np
+import pytest
+
+import ars
+
+mujoco = pytest.importorskip("mujoco")
+
+PENDULUM = """
+<mujoco model="double pendulum">
+  <option timestep="0.001"/>
+  <default>
+    <joint type="hinge" axis="0 1 0" damping="0.01"/>
+    <geom type="capsule" size="0.03" density="500"/>
+    <default class="heavy"><geom density="2000"/></default>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+    <body name="upper" pos="0 0 1.5" euler="0 20 0">
+      <joint name="shoulder" range="-90 90"/>
+      <geom fromto="0 0 0 0 0 -0.5"/>
+      <body name="lower" pos="0 0 -0.5" childclass="heavy">
+        <joint name="elbow"/>
+        <geom fromto="0 0 0 0.4 0 0"/>
+        <geom type="box" size="0.05 0.03 0.02" pos="0.4 0 0" euler="10 30 5"/>
+        <geom type="cylinder" size="0.02 0.1" pos="0.2 0.05 0" quat="0.9 0.1 0.3 0.2"/>
+        <geom type="sphere" size="0.04" pos="0.1 0 0.05" mass="0.3"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+ARM = """
+<mujoco model="arm">
+  <compiler angle="radian" eulerseq="zyx"/>
+  <worldbody>
+    <body name="base" pos="0 0 0.2">
+      <joint name="j1" type="hinge" axis="0 0 1"/>
+      <inertial pos="0.01 0.02 0.1" quat="0.8 0.2 0.4 0.1" mass="2.5" diaginertia="0.02 0.03 0.01"/>
+      <geom type="cylinder" size="0.05 0.1"/>
+      <body name="link1" pos="0 0 0.2" euler="0.3 0.2 0.1">
+        <joint name="j2" type="hinge" axis="0 1 0"/>
+        <inertial pos="0.15 0 0" mass="1.2" fullinertia="0.01 0.02 0.025 0.001 -0.002 0.0005"/>
+        <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+        <body name="link2" pos="0.3 0 0" axisangle="1 1 0 0.4">
+          <joint name="j3" type="hinge" axis="0 1 0"/>
+          <geom type="box" size="0.12 0.02 0.02" pos="0.12 0 0"/>
+          <geom type="ellipsoid" size="0.03 0.04 0.05" pos="0.24 0 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def gymnasium_asset(name):
+    gymnasium = pytest.importorskip("gymnasium")
+    return os.path.join(os.path.dirname(gymnasium.__file__), "envs", "mujoco", "assets", name)
+
+
+def compare(path):
+    """Loads `path` in ARS and in MuJoCo and compares every body's mass, centre of mass
+    (in the world, MuJoCo's (x, y, z) being ARS's (x, z, -y)) and principal moments."""
+    sim = ars.Simulation()
+    model = sim.load_mjcf(path, skip_unsupported=True)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    mujoco.mj_kinematics(m, d)
+    for name in model["bodies"]:
+        i = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, name)
+        if i < 0:  # unnamed in the file: ARS names it body{id}
+            i = int(name.removeprefix("body"))
+        body = sim.body(name)
+        assert body.mass == pytest.approx(m.body_mass[i], rel=1e-9), name
+        x, y, z = d.xipos[i]
+        assert body.position == pytest.approx([x, z, -y], rel=1e-9, abs=1e-12), name
+        moments = np.sort(np.linalg.eigvalsh(body.inertia))
+        assert moments == pytest.approx(np.sort(m.body_inertia[i]), rel=1e-9, abs=1e-15), name
+    return sim, model
+
+
+def test_masses_centres_and_inertias_equal_mujoco_s(tmp_path):
+    for name, text in (("pendulum.xml", PENDULUM), ("arm.xml", ARM)):
+        path = tmp_path / name
+        path.write_text(text)
+        compare(path)
+
+
+@pytest.mark.parametrize(
+    "asset", ["inverted_pendulum.xml", "inverted_double_pendulum.xml", "reacher.xml", "ant.xml"]
+)
+def test_gymnasium_models_load_match_mujoco(asset):
+    compare(gymnasium_asset(asset))
+
+
+@pytest.mark.parametrize(
+    "asset", ["inverted_pendulum.xml", "inverted_double_pendulum.xml", "ant.xml"]
+)
+def test_gymnasium_models_run(asset):
+    """Three models written by others run 2 s. (Gymnasium's reacher does not: its links
+    weigh grams, and its joint damping, explicit in ARS, outweighs their inertia at
+    0.4 ms steps; MuJoCo's armature, which ODE cannot model, holds them there.)"""
+    sim = ars.Simulation()
+    model = sim.load_mjcf(gymnasium_asset(asset), skip_unsupported=True)
+    assert model["joints"], asset
+    sim.run(2.0)
+    for name in model["bodies"]:
+        assert np.isfinite(sim.body(name).position).all(), (asset, name)
+
+
+SWINGING = """
+<mujoco model="swinging">
+  <default><geom contype="0" conaffinity="0"/></default>
+  <worldbody>
+    <body name="p1" pos="0 0 2" euler="0 50 0">
+      <joint name="a1" type="hinge" axis="0 1 0"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.03"/>
+      <body name="p2" pos="0 0 -0.4" euler="30 0 0">
+        <joint name="a2" type="hinge" axis="0 1 0"/>
+        <geom type="capsule" fromto="0 0 0 0.3 0 -0.2" size="0.025"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def angles_after_one_second(path, joints, dt):
+    sim = ars.Simulation(time_step=dt)
+    sim.load_mjcf(path)
+    sim.run(1.0)
+    return np.array([sim.joint(j).angle for j in joints])
+
+
+def test_contact_free_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
+    """From the same state under gravity, ARS's joint angles after 1 s approach
+    MuJoCo's (RK4 at 0.1 ms) as the time step shrinks, to first order."""
+    # The arm with its collisions off: its last link swings into its base.
+    no_contacts = '<default><geom contype="0" conaffinity="0"/></default><worldbody>'
+    for name, text, joints in (
+        ("swinging.xml", SWINGING, ["a1", "a2"]),
+        ("arm.xml", ARM.replace("<worldbody>", no_contacts, 1), ["j1", "j2", "j3"]),
+    ):
+        path = tmp_path / name
+        path.write_text(text)
+        m = mujoco.MjModel.from_xml_path(str(path))
+        m.opt.timestep = 1e-4
+        m.opt.integrator = mujoco.mjtIntegrator.mjINT_RK4
+        d = mujoco.MjData(m)
+        while d.time < 1.0 - 1e-9:
+            mujoco.mj_step(m, d)
+        reference = np.array(
+            [
+                d.qpos[m.jnt_qposadr[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, j)]]
+                for j in joints
+            ]
+        )
+        gaps = [
+            np.abs(angles_after_one_second(path, joints, dt) - reference).max()
+            for dt in (2e-3, 1e-3, 5e-4)
+        ]
+        assert gaps[0] > gaps[1] > gaps[2], (name, gaps)
+        for coarse, fine in zip(gaps, gaps[1:]):
+            assert 1.6 < coarse / fine < 2.5, (name, gaps)
+        assert np.abs(reference).max() > 0.1, (name, reference)

@@ -1,0 +1,112 @@
+//! MJCF models: bodies, geoms, joints and defaults read as MuJoCo reads them; bad files
+//! refused with the element and line, and nothing left behind.
+
+use ars::nalgebra::{Isometry3, Vector3};
+use ars::{Error, MjcfOptions, Simulation};
+
+const DOUBLE_PENDULUM: &str = r#"
+<mujoco model="double pendulum">
+  <compiler angle="degree"/>
+  <option timestep="0.001" gravity="0 0 -9.81"/>
+  <default>
+    <joint type="hinge" axis="0 1 0" damping="0.01"/>
+    <geom type="capsule" size="0.03" density="500"/>
+    <default class="heavy"><geom density="2000" rgba="0.8 0.2 0.2 1"/></default>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+    <body name="upper" pos="0 0 1.5" euler="0 20 0">
+      <joint name="shoulder" range="-90 90"/>
+      <geom fromto="0 0 0 0 0 -0.5"/>
+      <body pos="0 0 -0.5" childclass="heavy">
+        <joint name="elbow"/>
+        <geom fromto="0 0 0 0.4 0 0"/>
+        <geom type="box" size="0.05 0.05 0.05" pos="0.4 0 0"/>
+      </body>
+    </body>
+    <body name="ball" pos="1 0 0.5"><freejoint/><geom type="sphere" size="0.1"/></body>
+  </worldbody>
+  <actuator><motor joint="shoulder" gear="10"/></actuator>
+</mujoco>"#;
+
+#[test]
+fn a_double_pendulum_loads_with_its_names_masses_and_limits() {
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(DOUBLE_PENDULUM, "pendulum.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.name, "double pendulum");
+    assert_eq!(model.timestep, Some(0.001));
+    // MuJoCo's Z-up gravity comes out along −Y.
+    let g = model.gravity.unwrap();
+    assert!((g - Vector3::new(0.0, -9.81, 0.0)).norm() < 1e-12, "{g}");
+    let names: Vec<&str> = model.bodies.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["upper", "body2", "ball"], "unnamed bodies take MuJoCo's id");
+    assert!(model.joint("shoulder").is_some() && model.joint("elbow").is_some());
+    assert_eq!(model.actuators.len(), 1);
+    // Capsule: ρ·(π r² L + 4/3 π r³) with the default density 500.
+    let upper = sim.body(model.body("upper").unwrap()).unwrap().mass();
+    let expected = 500.0 * std::f64::consts::PI * (0.03f64.powi(2) * 0.5 + 4.0 / 3.0 * 0.03f64.powi(3));
+    assert!((upper - expected).abs() < 1e-12 * expected, "{upper} vs {expected}");
+    // The class "heavy" (childclass) makes the lower link four times as dense.
+    let lower = sim.body(model.body("body2").unwrap()).unwrap().mass();
+    let capsule = 2000.0 * std::f64::consts::PI * (0.03f64.powi(2) * 0.4 + 4.0 / 3.0 * 0.03f64.powi(3));
+    assert!((lower - (capsule + 2000.0 * 0.001)).abs() < 1e-9, "{lower}");
+    let shoulder = sim.joint("shoulder").unwrap().ode().unwrap();
+    let (lo, hi) =
+        (shoulder.param(ars::JointParam::LoStop, 0).unwrap(), shoulder.param(ars::JointParam::HiStop, 0).unwrap());
+    assert!((lo + std::f64::consts::FRAC_PI_2).abs() < 1e-12 && (hi - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    // It swings and the ball falls to the floor.
+    sim.run_for(1.0).unwrap();
+    assert!(sim.joint("elbow").unwrap().state().unwrap().position.abs() > 0.01);
+    let ball = sim.body(model.body("ball").unwrap()).unwrap().position();
+    assert!((ball.y - 0.1).abs() < 0.01 && (ball.x - 1.0).abs() < 1e-6, "{ball}");
+}
+
+#[test]
+fn a_base_pose_places_the_model() {
+    let mut sim = Simulation::builder().build().unwrap();
+    let options = MjcfOptions::new().base_pose(Isometry3::translation(2.0, 0.0, 0.0));
+    let model = sim.load_mjcf_text(DOUBLE_PENDULUM, "pendulum.xml", &options).unwrap();
+    let mut at_origin = Simulation::builder().build().unwrap();
+    let there = at_origin.load_mjcf_text(DOUBLE_PENDULUM, "pendulum.xml", &MjcfOptions::new()).unwrap();
+    for name in ["upper", "body2", "ball"] {
+        let moved = sim.body(model.body(name).unwrap()).unwrap().position();
+        let origin = at_origin.body(there.body(name).unwrap()).unwrap().position();
+        assert!((moved - origin - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-12, "{name}: {moved} vs {origin}");
+    }
+}
+
+#[test]
+fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
+    let cases = [
+        ("<mujoco><worldbody><body>", "not XML"),
+        ("<robot/>", "<mujoco>"),
+        (
+            "<mujoco><worldbody><body><geom size='0.1' mass='-1'/></body></worldbody></mujoco>",
+            "mass must not be negative",
+        ),
+        (
+            "<mujoco><worldbody><body><geom type='box' size='0.1 0 0.1'/></body></worldbody></mujoco>",
+            "must be positive",
+        ),
+        ("<mujoco><worldbody><body><joint range='10 -10'/><geom size='.1'/></body></worldbody></mujoco>", "reversed"),
+        ("<mujoco><tendon/></mujoco>", "<tendon> is not supported"),
+        ("<mujoco><worldbody><body><geom type='hfield' size='1'/></body></worldbody></mujoco>", "hfield"),
+        ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
+    ];
+    for (text, says) in cases {
+        let mut sim = Simulation::builder().build().unwrap();
+        let err = sim.load_mjcf_text(text, "bad.xml", &MjcfOptions::new()).unwrap_err();
+        let message = err.to_string();
+        assert!(matches!(err, Error::Format { format: "MJCF", .. }), "{message}");
+        assert!(message.contains(says) && message.contains("bad.xml") && message.contains("line"), "{message}");
+        assert_eq!(sim.objects().count(), 0, "nothing left behind: {message}");
+    }
+    // With skip_unsupported, what cannot be read is listed instead.
+    let mut sim = Simulation::builder().build().unwrap();
+    let text = "<mujoco><tendon/><worldbody><body><geom size='.1'/></body></worldbody></mujoco>";
+    let model = sim.load_mjcf_text(text, "skip.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
+    assert!(model.skipped.iter().any(|s| s.contains("<tendon>")), "{:?}", model.skipped);
+    assert_eq!(sim.objects().count(), 1);
+    let missing = sim.load_mjcf("/nonexistent/model.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(matches!(missing, Error::Io { .. }), "{missing}");
+}
