@@ -110,3 +110,27 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
     let missing = sim.load_mjcf("/nonexistent/model.xml", &MjcfOptions::new()).unwrap_err();
     assert!(matches!(missing, Error::Io { .. }), "{missing}");
 }
+
+#[test]
+fn several_joints_in_one_body_are_chained_through_light_links() {
+    const PLANAR: &str = r#"<mujoco><worldbody><geom type="plane" size="5 5 .1"/>
+        <body name="torso" pos="0 0 1" euler="0 30 0">
+          <joint name="rootx" type="slide" axis="1 0 0"/>
+          <joint name="rootz" type="slide" axis="0 0 1"/>
+          <joint name="rooty" type="hinge" axis="0 1 0"/>
+          <geom type="capsule" fromto="0 0 -0.3 0 0 0.3" size="0.05"/>
+        </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(PLANAR, "planar.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.joints.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), ["rootx", "rootz", "rooty"]);
+    assert_eq!(model.chain_links.len(), 2);
+    let torso = model.body("torso").unwrap();
+    let link = sim.body(model.chain_links[0]).unwrap().mass();
+    assert!((link - sim.body(torso).unwrap().mass() * ars::scene::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
+    // The tilted capsule falls, lands and tips over in its plane: it moves along x and
+    // turns about the hinge, and never leaves the plane z = 0.
+    sim.run_for(1.5).unwrap();
+    let p = sim.body(torso).unwrap().position();
+    assert!(p.z.abs() < 1e-6, "{p}");
+    assert!(sim.joint("rooty").unwrap().state().unwrap().position.abs() > 0.3);
+}

@@ -28,9 +28,15 @@
 //!   physical tensor when it outweighs the body, as in Gymnasium's reacher): it is
 //!   listed in [`MjcfModel::skipped`].
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
-//!   joints in one body (the planar roots of hopper, walker and half-cheetah) are not
-//!   read yet.
+//!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
+//!   slide z, hinge y) are chained through light links at the body's frame (each of
+//!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
+//!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
+//!   along each joint but the first (and a free joint cannot be chained).
 //! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
+//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`,
+//!   `settotalmass` (every body's mass and inertia scaled by one factor, as MuJoCo
+//!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
 //!   integrator is ODE's; the caller chooses to use them).
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
@@ -119,6 +125,8 @@ pub struct MjcfModel {
     pub actuators: Vec<MjcfActuator>,
     /// What was skipped, and why.
     pub skipped: Vec<String>,
+    /// The light links that chain several joints of one body (see the module docs).
+    pub chain_links: Vec<ObjectId>,
 }
 
 impl MjcfModel {
@@ -131,6 +139,10 @@ impl MjcfModel {
         self.joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
     }
 }
+
+/// The mass (and inertia) of each light link that chains several joints of one body,
+/// as a fraction of the body's.
+pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
 
 /// A problem at a place of the file.
 struct Problem {
@@ -156,11 +168,20 @@ struct Compiler {
     autolimits: bool,
     /// `inertiafromgeom`: Some(true) always, Some(false) never, None when no inertial.
     from_geom: Option<bool>,
+    /// `settotalmass`: every body's mass and inertia scaled so that they add up to it.
+    total_mass: Option<f64>,
 }
 
 impl Default for Compiler {
     fn default() -> Self {
-        Compiler { degrees: true, eulerseq: [0, 1, 2], extrinsic: false, autolimits: true, from_geom: None }
+        Compiler {
+            degrees: true,
+            eulerseq: [0, 1, 2],
+            extrinsic: false,
+            autolimits: true,
+            from_geom: None,
+            total_mass: None,
+        }
     }
 }
 
@@ -571,9 +592,8 @@ impl Reader<'_> {
             None => inertial.is_none(),
         };
         body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial };
-        if body.joints.len() > 1 {
-            self.unsupported(&node, "several joints in one body")?;
-            body.joints.truncate(1);
+        if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
+            return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
         }
         // ODE has no joint-space inertia: a joint's armature is not modelled.
         if let Some(j) = body.joints.iter().find(|j| j.armature > 0.0) {
@@ -667,6 +687,13 @@ fn read(text: &str, options: &MjcfOptions) -> Parsed<Model> {
                         _ => None,
                     };
                 }
+                if let Some(total) = node.attribute("settotalmass") {
+                    compiler.total_mass = match total.parse::<f64>() {
+                        Ok(m) if m > 0.0 && m.is_finite() => Some(m),
+                        Ok(_) => None,
+                        Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
+                    };
+                }
                 if node.attribute("coordinate").is_some_and(|c| c != "local") {
                     return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
                 }
@@ -736,6 +763,24 @@ fn read(text: &str, options: &MjcfOptions) -> Parsed<Model> {
         }
     }
     model.skipped = reader.skipped;
+    if let Some(total) = reader.compiler.total_mass {
+        fn sum(bodies: &[Body]) -> f64 {
+            bodies.iter().map(|b| b.mass.map_or(0.0, |m| m.0) + sum(&b.children)).sum()
+        }
+        fn scale(bodies: &mut [Body], factor: f64) {
+            for b in bodies {
+                if let Some((mass, _, inertia)) = b.mass.as_mut() {
+                    *mass *= factor;
+                    *inertia *= factor;
+                }
+                scale(&mut b.children, factor);
+            }
+        }
+        let now = sum(&model.bodies);
+        if now > 0.0 {
+            scale(&mut model.bodies, total / now);
+        }
+    }
     Ok(model)
 }
 
@@ -772,8 +817,13 @@ impl Scene {
         };
         let built = self.build_mjcf(&model, options, &mut made);
         if let Err(e) = built {
-            let ids: Vec<ObjectId> =
-                made.bodies.iter().map(|(_, id)| *id).chain(made.world_geoms.iter().copied()).collect();
+            let ids: Vec<ObjectId> = made
+                .bodies
+                .iter()
+                .map(|(_, id)| *id)
+                .chain(made.chain_links.iter().copied())
+                .chain(made.world_geoms.iter().copied())
+                .collect();
             for id in ids.into_iter().rev() {
                 // Its joints go with it; what was made is removed whatever the error.
                 let _ = self.remove_object_with_joints(id);
@@ -844,29 +894,50 @@ impl Scene {
             self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
         }
         made.bodies.push((self.object(id)?.name().to_string(), id));
-        let end = parent.map_or(JointEnd::World, JointEnd::Object);
-        match body.joints.first() {
-            None => {
-                let name = format!("{}_weld", body.name);
-                self.add_fixed_joint(&name, id, end)?;
+        let mut end = parent.map_or(JointEnd::World, JointEnd::Object);
+        if body.joints.is_empty() {
+            let name = format!("{}_weld", body.name);
+            self.add_fixed_joint(&name, id, end)?;
+        }
+        for (k, j) in body.joints.iter().enumerate() {
+            if j.kind == JointKind::Free {
+                continue;
             }
-            Some(j) if j.kind == JointKind::Free => {}
-            Some(j) => {
-                let anchor = frame * nalgebra::Point3::from(j.pos);
-                let axis = frame.rotation * j.axis;
-                let joint = match j.kind {
-                    JointKind::Hinge => self.add_hinge_joint(&j.name, id, end, Some(anchor), axis)?,
-                    JointKind::Slide => self.add_slider_joint(&j.name, id, end, axis)?,
-                    _ => self.add_ball_joint(&j.name, id, end, Some(anchor))?,
-                };
-                if let Some((lo, hi)) = j.range {
-                    self.joint_mut(joint)?.set_limits(lo, hi)?;
-                }
-                if j.damping > 0.0 {
-                    self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
-                }
-                made.joints.push((j.name.clone(), joint));
+            // Several joints in one body: a chain through light links at the body's
+            // frame, the first joint nearest the parent (MuJoCo's order).
+            let child = if k + 1 < body.joints.len() {
+                let link = self.world.insert_body(
+                    BodyBuilder::new()
+                        .mass(MassSpec::Custom {
+                            mass: mass * CHAIN_LINK_FRACTION,
+                            inertia: inertia * CHAIN_LINK_FRACTION,
+                        })
+                        .position(nalgebra::Point3::from(body_frame.translation.vector))
+                        .rotation(body_frame.rotation.to_rotation_matrix()),
+                )?;
+                let name = format!("{}/{}", body.name, j.name);
+                self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)?
+            } else {
+                id
+            };
+            let anchor = frame * nalgebra::Point3::from(j.pos);
+            let axis = frame.rotation * j.axis;
+            let joint = match j.kind {
+                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis)?,
+                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis)?,
+                _ => self.add_ball_joint(&j.name, child, end, Some(anchor))?,
+            };
+            if let Some((lo, hi)) = j.range {
+                self.joint_mut(joint)?.set_limits(lo, hi)?;
             }
+            if j.damping > 0.0 {
+                self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
+            }
+            made.joints.push((j.name.clone(), joint));
+            if child != id {
+                made.chain_links.push(child);
+            }
+            end = JointEnd::Object(child);
         }
         for child in &body.children {
             self.add_mjcf_body(child, &frame, Some(id), made)?;
