@@ -105,6 +105,7 @@ def test_the_python_page_has_examples_of_every_part():
         "ars.sweep(",
         "class Pendulum(Program)",
         "threading.Thread(",
+        "ars.step_many(",
     ]:
         assert call in code, call
 
