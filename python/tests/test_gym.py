@@ -122,16 +122,31 @@ def test_a_seeded_rollout_is_the_same_twice_and_in_the_vector_environment(env_id
     assert rows[1] == first
 
 
-def test_reset_restores_the_initial_state_and_draws_the_same_task_for_a_seed():
+@pytest.mark.parametrize("env_id", IDS)
+def test_reset_restores_the_initial_state_and_steps_on_as_a_new_environment(env_id):
+    used = gymnasium.make(env_id).unwrapped
+    sim = used.sim
+    used.reset(seed=1)
+    for action in actions_for(env_id, 30, seed=2):
+        used.step(action)
+    assert sim.step_count > 0
+    new = gymnasium.make(env_id).unwrapped
+    # The same simulation, restored (not rebuilt), on as a new environment does.
+    a, info_a = used.reset(seed=5)
+    b, info_b = new.reset(seed=5)
+    assert used.sim is sim and sim.time == 0.0 and sim.step_count == 0
+    assert bits(a) == bits(b) and info_a == info_b
+    for action in actions_for(env_id, 50, seed=3):
+        got, want = used.step(action), new.step(action)
+        assert bits(got[0]) == bits(want[0]) and got[1:] == want[1:]
+
+
+def test_another_seed_draws_another_task():
     env = ars.gym.ReachEnv()
-    fresh, info = env.reset(seed=5)
-    for _ in range(30):
-        env.step(env.action_space.high)
-    again, info_again = env.reset(seed=5)
-    assert bits(again) == bits(fresh) and info_again == info
-    assert env.sim.time == 0.0 and env.sim.step_count == 0
+    first, _ = env.reset(seed=5)
     other, _ = env.reset(seed=6)
-    assert bits(other[12:15]) != bits(fresh[12:15])  # another target
+    assert bits(other[12:15]) != bits(first[12:15])  # another target
+    assert bits(other[:12]) == bits(first[:12])  # the same arm, at rest
 
 
 @pytest.mark.parametrize(

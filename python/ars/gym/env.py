@@ -25,8 +25,9 @@ class ArsEnv(gymnasium.Env[Array, Array]):
     A subclass gives the scene and the task; `ArsEnv` does the rest (seeding, resets,
     the step loop, action checks, truncation, rendering):
 
-    - `build(self) -> ars.Simulation`: makes the scene (called when the environment
-      is made; a reset restores the state it had then, see `reset`);
+    - `build(self) -> ars.Simulation`: makes the scene, once, when the environment
+      is made; every reset restores the exact snapshot taken then (a Python hook's
+      own variables are not in it: reset them in `randomize`);
     - `observe(self) -> numpy array`: the observation, in `observation_space`;
     - `reward(self, obs, action) -> float`: the reward of the step that led to `obs`;
     - `apply_action(self, action)`: puts the (checked) action on the simulation
@@ -84,9 +85,10 @@ class ArsEnv(gymnasium.Env[Array, Array]):
             self.max_episode_steps = int(max_episode_steps)
         if int(self.frame_skip) < 1:
             raise ars.InputError(f"frame_skip must be 1 or more, got {self.frame_skip}")
-        #: The simulation the environment steps.
+        #: The simulation the environment steps (the same object for the
+        #: environment's life: resets restore its state).
         self.sim: ars.Simulation = self.build()
-        self._initial_state: Any = None
+        self._initial_state: bytes = self.sim.snapshot()
         self._elapsed = 0
         self._renderer: ars.Renderer | None = None
 
@@ -131,7 +133,8 @@ class ArsEnv(gymnasium.Env[Array, Array]):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[Array, dict[str, Any]]:
-        """Restores the scene's initial state, then calls `randomize` with the
+        """Restores the scene's initial state (the snapshot taken after `build`: the
+        same bits as a new environment), then calls `randomize` with the
         environment's random generator (seeded by `seed` if given)."""
         super().reset(seed=seed, options=options)
         self._restore_initial_state()
@@ -207,9 +210,9 @@ class ArsEnv(gymnasium.Env[Array, Array]):
         return obs, reward, terminated, truncated, self.info()
 
     def _restore_initial_state(self) -> None:
-        """Puts the scene back as `build` made it: for now by building it again (the
-        one place to switch to `sim.restore` of a snapshot)."""
-        self.sim = self.build()
+        """Puts the scene back as `build` made it: restores the exact snapshot taken
+        then (bodies, joints, controllers, sensors, clock; records cleared)."""
+        self.sim.restore(self._initial_state)
 
 
 def float_box(low: npt.ArrayLike, high: npt.ArrayLike) -> gymnasium.spaces.Space[Array]:
