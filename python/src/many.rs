@@ -2,16 +2,26 @@
 //! released.
 //!
 //! Every simulation is checked before any steps (each an `ars.Simulation`, none listed
-//! twice, none whose own hook is calling), so a refused call steps nothing. The calling
-//! thread steps simulations too, and is the one that looks for Ctrl-C; the others are
-//! scoped threads, at most one per core and one per simulation, taking the next
-//! simulation not yet stepped until none is left. Each simulation is locked only while
-//! it steps, one at a time per thread, so `step_many` waits for (and never deadlocks
-//! with) a step of the same simulation on another Python thread.
+//! twice, none whose own hook is calling), so a refused call steps nothing. The
+//! simulations are then stepped by the calling thread and by the workers of one pool
+//! per process (one thread fewer than there are cores, started on first use and kept:
+//! a vector environment calls `step_many` at every step, and starting threads each
+//! time cost about 70 µs a call on a 2-core machine, a fifth of a pendulum's 80
+//! steps). Each takes the next simulation not yet taken until none is left, so the
+//! calling thread takes on the work alone when the workers are busy with another
+//! call (it then waits for them to get to this one and find nothing left). The
+//! calling thread is the one that looks for Ctrl-C. Each simulation is
+//! locked only while it steps, one at a time per thread, so `step_many` waits for (and
+//! never deadlocks with) a step of the same simulation on another Python thread.
+//!
+//! A `step_many` from a pool worker (a hook of a simulation it steps) runs on that
+//! thread alone: a worker never waits for another worker.
 
+use std::cell::Cell;
 use std::collections::HashMap;
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -21,6 +31,74 @@ use crate::simulation::{PySimulation, python_signals};
 
 /// What one simulation's steps came to, by its index in the list.
 type Outcome = (usize, std::thread::Result<ars_core::Result<()>>);
+
+/// One call's simulations, shared by the threads stepping them.
+struct Job {
+    sims: Vec<Py<PySimulation>>,
+    n: u64,
+    /// The index of the next simulation not yet taken.
+    next: AtomicUsize,
+    /// Set when Ctrl-C stops the call: every thread stops between two steps.
+    stop: AtomicBool,
+}
+
+impl Job {
+    /// Takes the next simulation not yet taken and steps it, until none is left.
+    fn work(&self, mut stop: impl FnMut() -> bool) -> Vec<Outcome> {
+        let mut outcomes = Vec::new();
+        loop {
+            let i = self.next.fetch_add(1, Ordering::Relaxed);
+            let Some(sim) = self.sims.get(i) else { return outcomes };
+            outcomes.push((i, sim.get().step_detached(self.n, &mut stop)));
+        }
+    }
+}
+
+/// A job for a worker, and where to send what it stepped.
+type Task = (Arc<Job>, Sender<Vec<Outcome>>);
+
+/// The workers: one channel of tasks each.
+struct Pool {
+    workers: Vec<Mutex<Sender<Task>>>,
+}
+
+thread_local! {
+    /// Whether this thread is a pool worker.
+    static IN_POOL: Cell<bool> = const { Cell::new(false) };
+}
+
+impl Pool {
+    /// The process's pool: one worker per core but one (none on one core).
+    fn get() -> &'static Pool {
+        static POOL: OnceLock<Pool> = OnceLock::new();
+        POOL.get_or_init(|| {
+            let cores = std::thread::available_parallelism().map_or(1, usize::from);
+            let workers = (1..cores)
+                .filter_map(|i| {
+                    let (tasks, received) = mpsc::channel::<Task>();
+                    std::thread::Builder::new()
+                        .name(format!("ars-step-many-{i}"))
+                        .spawn(move || serve(received))
+                        .ok()
+                        .map(|_| Mutex::new(tasks))
+                })
+                .collect();
+            Pool { workers }
+        })
+    }
+}
+
+/// A worker's life: step the simulations of each task it gets, then send back what
+/// they came to (after letting the job go, so that the caller holds its last
+/// reference and drops its Python objects with the GIL).
+fn serve(tasks: Receiver<Task>) {
+    IN_POOL.with(|flag| flag.set(true));
+    for (job, done) in tasks {
+        let outcomes = job.work(|| job.stop.load(Ordering::Relaxed));
+        drop(job);
+        let _ = done.send(outcomes);
+    }
+}
 
 /// Steps each simulation of `sims` by `n` steps (as `sim.step(n)` would, bit for bit),
 /// on native threads (as many as there are cores, at most one per simulation) with the
@@ -36,7 +114,7 @@ type Outcome = (usize, std::thread::Result<ars_core::Result<()>>);
 #[pyo3(signature = (sims, n=1))]
 pub(crate) fn step_many(py: Python<'_>, sims: &Bound<'_, PyAny>, n: i64) -> PyResult<()> {
     let n: u64 = count(py, "the number of steps", n)?;
-    let mut list: Vec<Bound<'_, PySimulation>> = Vec::new();
+    let mut list: Vec<Py<PySimulation>> = Vec::new();
     let mut seen: HashMap<usize, usize> = HashMap::new();
     for (i, item) in sims.try_iter()?.enumerate() {
         let item = item?;
@@ -54,62 +132,56 @@ pub(crate) fn step_many(py: Python<'_>, sims: &Bound<'_, PyAny>, n: i64) -> PyRe
         if sim.get().in_own_hook() {
             return Err(raise(py, "BusyError", format!("item {i}: a hook cannot step the simulation it runs in")));
         }
-        list.push(sim);
+        list.push(sim.unbind());
     }
-    let refs: Vec<&PySimulation> = list.iter().map(Bound::get).collect();
+    let job = Arc::new(Job { sims: list, n, next: AtomicUsize::new(0), stop: AtomicBool::new(false) });
     let interrupt: Mutex<Option<PyErr>> = Mutex::new(None);
-    let mut outcomes = py.detach(|| run_all(&refs, n, &interrupt));
+    let mut outcomes = py.detach(|| run_all(&job, &interrupt));
     outcomes.sort_by_key(|(i, _)| *i);
     // Every simulation's exception is taken (none is left for a later call); the first
     // in the list is raised, a Ctrl-C before any.
     let mut first = None;
     for (i, caught) in outcomes {
-        if let Err(e) = refs[i].stepped(py, caught) {
+        if let Err(e) = job.sims[i].get().stepped(py, caught) {
             first.get_or_insert(e);
         }
     }
-    let interrupt = interrupt.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let interrupt = interrupt.into_inner().unwrap_or_else(PoisonError::into_inner);
     match interrupt.or(first) {
         Some(e) => Err(e),
         None => Ok(()),
     }
 }
 
-/// Steps every simulation `n` steps on up to one thread per core; the calling thread
-/// (the main one, which alone sees signals) checks for Ctrl-C and keeps it in
-/// `interrupt`.
-fn run_all(sims: &[&PySimulation], n: u64, interrupt: &Mutex<Option<PyErr>>) -> Vec<Outcome> {
-    let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let threads = cores.min(sims.len());
-    let next = AtomicUsize::new(0);
-    let stop = AtomicBool::new(false);
-    std::thread::scope(|scope| {
-        let workers: Vec<_> =
-            (1..threads).map(|_| scope.spawn(|| work(sims, n, &next, || stop.load(Ordering::Relaxed)))).collect();
-        let mut signals = python_signals(interrupt);
-        let mut outcomes = work(sims, n, &next, || {
-            if signals() {
-                stop.store(true, Ordering::Relaxed);
-            }
-            stop.load(Ordering::Relaxed)
-        });
-        for worker in workers {
-            // `work` catches the panics of stepping; one here would be a bug of its own.
-            match worker.join() {
-                Ok(more) => outcomes.extend(more),
-                Err(panic) => std::panic::resume_unwind(panic),
-            }
+/// Steps every simulation of `job` on the calling thread and as many pool workers as
+/// there are simulations but one; the calling thread (the main one, which alone sees
+/// signals) checks for Ctrl-C and keeps it in `interrupt`.
+fn run_all(job: &Arc<Job>, interrupt: &Mutex<Option<PyErr>>) -> Vec<Outcome> {
+    let helpers: &[Mutex<Sender<Task>>] = if IN_POOL.with(Cell::get) || job.sims.len() < 2 {
+        &[]
+    } else {
+        let workers = &Pool::get().workers;
+        &workers[..workers.len().min(job.sims.len() - 1)]
+    };
+    let (done, results) = mpsc::channel();
+    let mut sent = 0;
+    for worker in helpers {
+        let tasks = worker.lock().unwrap_or_else(PoisonError::into_inner);
+        if tasks.send((Arc::clone(job), done.clone())).is_ok() {
+            sent += 1;
         }
-        outcomes
-    })
-}
-
-/// Takes the next simulation not yet taken and steps it, until none is left.
-fn work(sims: &[&PySimulation], n: u64, next: &AtomicUsize, mut stop: impl FnMut() -> bool) -> Vec<Outcome> {
-    let mut outcomes = Vec::new();
-    loop {
-        let i = next.fetch_add(1, Ordering::Relaxed);
-        let Some(sim) = sims.get(i) else { return outcomes };
-        outcomes.push((i, sim.step_detached(n, &mut stop)));
     }
+    drop(done);
+    let mut signals = python_signals(interrupt);
+    let mut outcomes = job.work(|| {
+        if signals() {
+            job.stop.store(true, Ordering::Relaxed);
+        }
+        job.stop.load(Ordering::Relaxed)
+    });
+    // A worker that is gone sends nothing: its share was taken by the others.
+    for more in results.iter().take(sent) {
+        outcomes.extend(more);
+    }
+    outcomes
 }

@@ -156,3 +156,40 @@ def test_step_many_waits_for_a_simulation_stepping_on_another_thread():
     for sim, n in zip(reference, (500, 2500, 500)):
         sim.step(n)
     assert [state(s) for s in sims] == [state(s) for s in reference]
+
+
+def test_a_hook_may_step_other_simulations_with_step_many():
+    # The hook runs on whichever thread steps its simulation, a pool worker too:
+    # there its step_many runs on that thread alone, and nothing waits for ever.
+    outer = [falling_box(0), falling_box(1)]
+    inner = [[falling_box(2), falling_box(3)], [falling_box(4), falling_box(5)]]
+    for sim, pair in zip(outer, inner):
+        sim.add_post_step(lambda pair=pair: ars.step_many(pair, 2))
+    ars.step_many(outer, 50)
+    reference = [falling_box(i) for i in range(2, 6)]
+    for sim in reference:
+        sim.step(100)
+    assert [state(s) for pair in inner for s in pair] == [state(s) for s in reference]
+
+
+def test_calls_from_several_threads_at_once_each_step_their_own_simulations():
+    groups = [[falling_box(i), falling_box(i + 1), falling_box(i + 2)] for i in (0, 3, 6)]
+    errors = []
+
+    def run(group):
+        try:
+            for _ in range(20):
+                ars.step_many(group, 25)
+        except Exception as e:  # noqa: BLE001 - reported by the assertion below
+            errors.append(e)
+
+    threads = [threading.Thread(target=run, args=(g,)) for g in groups]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    reference = [falling_box(i) for i in range(9)]
+    for sim in reference:
+        sim.step(500)
+    assert [state(s) for g in groups for s in g] == [state(s) for s in reference]
