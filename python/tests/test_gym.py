@@ -12,6 +12,7 @@ from importlib import resources
 
 import numpy as np
 import pytest
+from conftest import window_env
 
 import ars
 
@@ -73,6 +74,29 @@ def test_each_environment_passes_gymnasiums_checker(env_id):
     # The robot is in the picture: more than the floor and the sky.
     assert len(np.unique(image.reshape(-1, 3), axis=0)) > 50
     env.close()
+
+
+def test_human_rendering_shows_each_step_in_the_window(display, tmp_path):
+    code = (
+        "import gymnasium, ars.gym\n"
+        "assert 'human' in ars.gym.ArsEnv.metadata['render_modes']\n"
+        "env = gymnasium.make('ars/Reach-v0', render_mode='human')\n"
+        "env.reset(seed=0)\n"
+        "for _ in range(2):\n"
+        "    env.step(env.action_space.sample())\n"
+        "print(env.unwrapped.sim.step_count, env.render())\n"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", code],
+        env=window_env(display, tmp_path),
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    # Shown, not stepped: the window's frames add no steps.
+    assert run.stdout.split() == ["40", "None"]
 
 
 def rollout(env, actions, seed):

@@ -50,8 +50,9 @@ class ArsEnv(gymnasium.Env[Array, Array]):
     shape or a NaN or infinite component, before anything is applied), clips it to
     the action space's bounds, applies it, steps the simulation `frame_skip` steps and
     returns `(obs, reward, terminated, truncated, info)`. `render_mode="rgb_array"`
-    draws off screen (`ars.Renderer`), `"human"` opens ARS's window on the current
-    state (one frame per `render()`; a display is needed).
+    draws off screen (`ars.Renderer`); `"human"` shows the state in ARS's window after
+    every `reset` and `step` (and `render()`), one frame each: the window opens and
+    closes each time (a display is needed).
     """
 
     # "human" where there is a display when `ars.gym` is imported (without one, the
@@ -140,13 +141,18 @@ class ArsEnv(gymnasium.Env[Array, Array]):
         self._restore_initial_state()
         self._elapsed = 0
         self.randomize(self.np_random)
+        if self.render_mode == "human":
+            self.render()
         return self.observe(), self.info()
 
     def step(self, action: Any) -> tuple[Array, float, bool, bool, dict[str, Any]]:
         """Takes `action` for `frame_skip` simulation steps."""
         checked = self._begin_step(action)
         self.sim.step(self.frame_skip)
-        return self._end_step(checked)
+        result = self._end_step(checked)
+        if self.render_mode == "human":
+            self.render()
+        return result
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """`rgb_array`: the image now (height × width × 3, `uint8`); `human`: shows
