@@ -20,8 +20,9 @@
 use std::cell::Cell;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+use std::time::{Duration, Instant};
 
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -88,12 +89,33 @@ impl Pool {
     }
 }
 
+/// How long a thread waiting for a message polls before it sleeps. A vector
+/// environment calls `step_many` again some 20 µs after the last call ended, and a
+/// sleeping thread takes 10–50 µs to wake on a virtual machine: a worker that still
+/// polls takes the next call at once, and a caller whose worker finishes just after it
+/// does not sleep either.
+const SPIN: Duration = Duration::from_micros(200);
+
+/// The next message of `channel`: polled for [`SPIN`], then waited for asleep; `None`
+/// when the channel is closed.
+fn receive<T>(channel: &Receiver<T>) -> Option<T> {
+    let start = Instant::now();
+    loop {
+        match channel.try_recv() {
+            Ok(message) => return Some(message),
+            Err(TryRecvError::Disconnected) => return None,
+            Err(TryRecvError::Empty) if start.elapsed() < SPIN => std::hint::spin_loop(),
+            Err(TryRecvError::Empty) => return channel.recv().ok(),
+        }
+    }
+}
+
 /// A worker's life: step the simulations of each task it gets, then send back what
 /// they came to (after letting the job go, so that the caller holds its last
 /// reference and drops its Python objects with the GIL).
 fn serve(tasks: Receiver<Task>) {
     IN_POOL.with(|flag| flag.set(true));
-    for (job, done) in tasks {
+    while let Some((job, done)) = receive(&tasks) {
         let outcomes = job.work(|| job.stop.load(Ordering::Relaxed));
         drop(job);
         let _ = done.send(outcomes);
@@ -180,8 +202,11 @@ fn run_all(job: &Arc<Job>, interrupt: &Mutex<Option<PyErr>>) -> Vec<Outcome> {
         job.stop.load(Ordering::Relaxed)
     });
     // A worker that is gone sends nothing: its share was taken by the others.
-    for more in results.iter().take(sent) {
-        outcomes.extend(more);
+    for _ in 0..sent {
+        match receive(&results) {
+            Some(more) => outcomes.extend(more),
+            None => break,
+        }
     }
     outcomes
 }

@@ -55,9 +55,8 @@ class ArsEnv(gymnasium.Env[Array, Array]):
     closes each time (a display is needed).
     """
 
-    # "human" where there is a display when `ars.gym` is imported (without one, the
-    # window cannot open).
-    # Gymnasium's own declaration: a class attribute, read through instances.
+    # Gymnasium's class attribute. "human" where there is a display when `ars.gym` is
+    # imported (without one, the window cannot open).
     metadata: dict[str, Any] = {  # noqa: RUF012
         "render_modes": ["rgb_array", "human"] if ars.has_display() else ["rgb_array"],
         "render_fps": 50,
