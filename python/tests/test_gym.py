@@ -215,6 +215,8 @@ def test_the_vector_environment_refuses_bad_actions_before_any_environment_steps
         vector.step(np.zeros((2, 1)))
     with pytest.raises(ars.gym.ActionError, match="NaN"):
         vector.step(np.array([[1.0], [float("nan")], [2.0]]))
+    with pytest.raises(ars.gym.ActionError, match="not an array of numbers"):
+        vector.step([["a"], [1.0], [2.0]])
     assert [env.sim.step_count for env in vector.envs] == counts
     vector.step(np.ones((3, 1)))
     assert [env.sim.step_count for env in vector.envs] == [80, 80, 80]

@@ -110,7 +110,10 @@ class ArsVectorEnv(VectorEnv[Array, Array, Batch]):
     def step(self, actions: Any) -> tuple[Array, Batch, Batch, Batch, dict[str, Any]]:
         """Applies each environment's action, steps all simulations at once
         (`ars.step_many`), and returns the batched results."""
-        actions = np.asarray(actions, dtype=np.float64)
+        try:
+            actions = np.asarray(actions, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise ActionError(f"the actions are not an array of numbers: {e}") from None
         expected = (self.num_envs, *self._action_shape)
         if actions.shape != expected:
             raise ActionError(
