@@ -31,7 +31,16 @@ from ars._errors import (
     UnknownKindError,
     UnknownNameError,
 )
-from ars._native import Body, Joint, Renderer, Sensor, Simulation, __version__, has_display
+from ars._native import (
+    Body,
+    Joint,
+    Renderer,
+    Sensor,
+    Simulation,
+    __version__,
+    has_display,
+    step_many,
+)
 from ars.sweeps import RunResult, SweepResults, load_sweep, rerun, sweep
 
 # Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
@@ -73,5 +82,6 @@ __all__ = [
     "has_display",
     "load_sweep",
     "rerun",
+    "step_many",
     "sweep",
 ]

@@ -5,7 +5,7 @@ checks it); the docstrings are in the module itself (`help(ars.Simulation)`).
 """
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any, Callable, Literal, TypedDict, final
 
 import numpy as np
@@ -23,6 +23,7 @@ __all__ = [
     "_release_viewer",
     "has_display",
     "show_program",
+    "step_many",
 ]
 
 __version__: str
@@ -427,6 +428,7 @@ class Renderer:
     def save(self, sim: Simulation, path: _Path) -> None: ...
 
 def has_display() -> bool: ...
+def step_many(sims: Iterable[Simulation], n: int = 1) -> None: ...
 def show_program(
     program: object,
     *,

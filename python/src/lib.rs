@@ -10,6 +10,7 @@
 
 mod errors;
 mod kinds;
+mod many;
 mod sensors;
 mod simulation;
 mod verify;
@@ -26,6 +27,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<views::Joint>()?;
     m.add_class::<sensors::PySensor>()?;
     m.add_class::<viewer::PyRenderer>()?;
+    m.add_function(wrap_pyfunction!(many::step_many, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::show_program, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::has_display, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::device_select_would_print, m)?)?;

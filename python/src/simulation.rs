@@ -55,9 +55,9 @@ const SIGNAL_CHECK_PERIOD: Duration = Duration::from_millis(5);
 
 /// The stop condition of a long `step`/`run` (called between steps or frames): every
 /// [`SIGNAL_CHECK_PERIOD`] it runs Python's signal handlers; if one raises (Ctrl-C's
-/// `KeyboardInterrupt`), the exception is kept for `advance` to raise and the run
-/// stops, the simulation whole between two steps.
-fn python_signals(context: &HookContext) -> impl FnMut() -> bool + Send + '_ {
+/// `KeyboardInterrupt`), the exception is kept in `raised` for the caller to raise and
+/// the run stops, the simulation whole between two steps.
+pub(crate) fn python_signals(raised: &Mutex<Option<PyErr>>) -> impl FnMut() -> bool + Send + '_ {
     let mut last = Instant::now();
     let mut calls = 0u32;
     move || {
@@ -70,7 +70,7 @@ fn python_signals(context: &HookContext) -> impl FnMut() -> bool + Send + '_ {
         match Python::attach(|py| py.check_signals()) {
             Ok(()) => false,
             Err(e) => {
-                *lock(&context.raised) = Some(e);
+                *lock(raised) = Some(e);
                 true
             }
         }
@@ -188,6 +188,28 @@ impl PySimulation {
             return Err(raise(py, "BusyError", "a hook cannot step the simulation it runs in".into()));
         }
         let result = self.with(py, f);
+        match lock(&self.context.raised).take() {
+            Some(e) => Err(e),
+            None => result,
+        }
+    }
+
+    /// Takes `n` steps on the calling thread, which holds no GIL (Python hooks take
+    /// it back), asking `stop` before each step; what `ars.step_many` runs on its
+    /// threads. The outcome goes to [`stepped`](Self::stepped), with the GIL.
+    pub(crate) fn step_detached(
+        &self,
+        n: u64,
+        stop: impl FnMut() -> bool,
+    ) -> std::thread::Result<ars_core::Result<()>> {
+        let mut sim = lock(&self.sim);
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sim.step_n_until(n, stop)))
+    }
+
+    /// The exception for the outcome of [`step_detached`](Self::step_detached): the
+    /// one a Python hook raised, unchanged, else the ARS error or panic, if any.
+    pub(crate) fn stepped(&self, py: Python<'_>, caught: std::thread::Result<ars_core::Result<()>>) -> PyResult<()> {
+        let result = outcome(py, caught);
         match lock(&self.context.raised).take() {
             Some(e) => Err(e),
             None => result,
@@ -429,14 +451,14 @@ impl PySimulation {
     fn step(&self, py: Python<'_>, n: i64) -> PyResult<()> {
         let n: u64 = count(py, "the number of steps", n)?;
         let context = Arc::clone(&self.context);
-        self.advance(py, move |sim| sim.step_n_until(n, python_signals(&context)))
+        self.advance(py, move |sim| sim.step_n_until(n, python_signals(&context.raised)))
     }
 
     /// Runs for `duration` seconds of simulated time (whole steps). Ctrl-C stops it
     /// between two frames with `KeyboardInterrupt`; the simulation can be run on.
     fn run(&self, py: Python<'_>, duration: f64) -> PyResult<()> {
         let context = Arc::clone(&self.context);
-        self.advance(py, move |sim| sim.run_for_until(duration, python_signals(&context)))
+        self.advance(py, move |sim| sim.run_for_until(duration, python_signals(&context.raised)))
     }
 
     /// Opens a window on the simulation and runs it in real time until the window is

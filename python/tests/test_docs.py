@@ -20,6 +20,7 @@ import textwrap
 from conftest import REPO, window_env
 
 import ars
+import ars.gym
 
 DOCS = REPO / "docs" / "python.md"
 README = REPO / "README.md"
@@ -105,6 +106,10 @@ def test_the_python_page_has_examples_of_every_part():
         "ars.sweep(",
         "class Pendulum(Program)",
         "threading.Thread(",
+        "ars.step_many(",
+        "(ArsEnv):",
+        "gymnasium.make(",
+        "ars.gym.make_vec(",
     ]:
         assert call in code, call
 
@@ -127,6 +132,7 @@ def public(cls):
 def test_the_python_page_names_every_public_attribute():
     text = DOCS.read_text()
     names = set(ars.__all__) - {"__version__"}
+    names |= set(ars.gym.__all__)
     for cls in CLASSES:
         names |= public(cls)
     missing = sorted(n for n in names if not re.search(rf"\b{re.escape(n)}\b", text))

@@ -352,6 +352,7 @@ PYTHON_FOR_RUST = {
     "Scene.clear_contact_surface": "Simulation.clear_contact_surface",
     "Scene.contact_surfaces": "Simulation.contact_surface",
     "Scene.load_urdf": "Simulation.load_urdf",
+    "Scene.load_mjcf": "Simulation.load_mjcf",
     # SimJoint (what `joint_mut` hands out)
     "SimJoint.id": "Joint.name",
     "SimJoint.add_torque": "Joint.add_torque",
@@ -386,6 +387,7 @@ NOT_IN_PYTHON = {
     "Scene.set_name",
     "Scene.set_visuals",
     "Scene.load_urdf_text",
+    "Scene.load_mjcf_text",
     "SimJoint.controller_mut",
 }
 
