@@ -460,3 +460,60 @@ fn a_diverged_simulation_is_brought_back_by_a_snapshot() {
     sim.step_n(500).unwrap();
     assert_eq!(states(&sim), expected);
 }
+
+/// The scenes by name, for a child process.
+fn scene_by_name(name: &str) -> Build {
+    match name {
+        "conical pendulum" => conical_pendulum,
+        "sinusoidal terrain" => sinusoidal_terrain,
+        "URDF arm" => urdf_arm,
+        "every joint kind" => every_joint_kind,
+        other => panic!("no scene {other:?}"),
+    }
+}
+
+/// In a child process (when `ARS_SNAPSHOT_CHILD` names a snapshot file): builds the
+/// scene named by `ARS_SNAPSHOT_SCENE`, restores the snapshot, steps
+/// `ARS_SNAPSHOT_STEPS` steps and writes the states beside the snapshot. Does nothing
+/// in the test run itself.
+#[test]
+fn resume_in_a_child_process() {
+    let Ok(path) = std::env::var("ARS_SNAPSHOT_CHILD") else { return };
+    let scene = std::env::var("ARS_SNAPSHOT_SCENE").unwrap();
+    let steps: u64 = std::env::var("ARS_SNAPSHOT_STEPS").unwrap().parse().unwrap();
+    let mut sim = scene_by_name(&scene)();
+    sim.restore(&Snapshot::from_bytes(&std::fs::read(&path).unwrap()).unwrap()).unwrap();
+    sim.step_n(steps).unwrap();
+    let bits: Vec<u8> = states(&sim).iter().flat_map(|b| b.to_le_bytes()).collect();
+    std::fs::write(format!("{path}.states"), bits).unwrap();
+}
+
+#[test]
+fn snapshots_resume_to_the_bit_in_another_process() {
+    let dir = std::env::temp_dir().join(format!("ars-snapshots-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, k, run) in [
+        ("conical pendulum", 3000, 8000),
+        ("sinusoidal terrain", 2500, 5000),
+        ("URDF arm", 1800, 5000),
+        ("every joint kind", 2200, 5000),
+    ] {
+        let mut sim = scene_by_name(name)();
+        sim.step_n(k).unwrap();
+        let path = dir.join(name.replace(' ', "_"));
+        std::fs::write(&path, sim.snapshot().unwrap().to_bytes()).unwrap();
+        let child = std::process::Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", "resume_in_a_child_process", "--test-threads", "1"])
+            .env("ARS_SNAPSHOT_CHILD", &path)
+            .env("ARS_SNAPSHOT_SCENE", name)
+            .env("ARS_SNAPSHOT_STEPS", run.to_string())
+            .output()
+            .unwrap();
+        assert!(child.status.success(), "{name}: {}", String::from_utf8_lossy(&child.stdout));
+        sim.step_n(run).unwrap();
+        let theirs = std::fs::read(format!("{}.states", path.display())).unwrap();
+        let ours: Vec<u8> = states(&sim).iter().flat_map(|b| b.to_le_bytes()).collect();
+        assert_eq!(theirs, ours, "{name}: {run} steps after step {k} in another process");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
