@@ -517,3 +517,54 @@ fn snapshots_resume_to_the_bit_in_another_process() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Bytes framed as a snapshot (right magic, version, length and checksum) around
+/// `payload`.
+fn framed(payload: &[u8]) -> Vec<u8> {
+    let mut bytes = b"ARSSNAP\0".to_vec();
+    bytes.extend_from_slice(&ars::SNAPSHOT_VERSION.to_le_bytes());
+    bytes.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    let mut crc = 0xFFFF_FFFFu32;
+    for &b in payload {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+        }
+    }
+    bytes.extend_from_slice(&(!crc).to_le_bytes());
+    bytes.extend_from_slice(payload);
+    bytes
+}
+
+#[test]
+fn crafted_snapshots_with_a_good_checksum_are_refused_not_obeyed() {
+    // Lengths of 2^62 (a string, an array): no allocation of that size, an error.
+    for payload in [&[0x7b, 0x40, 0, 0, 0, 0, 0, 0, 0][..], &[0x9b, 0x40, 0, 0, 0, 0, 0, 0, 0]] {
+        let err = Snapshot::from_bytes(&framed(payload)).unwrap_err();
+        assert!(matches!(err, ars::Error::SnapshotCorrupt { .. }), "{err}");
+    }
+    // A real snapshot whose body was moved to NaN, re-framed with a good checksum: its
+    // content decodes, and restoring it is refused before anything changes.
+    let mut sim = scene_joints();
+    sim.step_n(50).unwrap();
+    let bytes = sim.snapshot().unwrap().to_bytes();
+    let payload = &bytes[24..];
+    // CBOR writes a double as 0xfb and 8 bytes (or 0xf9 and 2 when exact in half
+    // precision): make the first number of the last body's linear velocity (the world
+    // state comes after the scene) NaN.
+    let key = b"linear_velocity";
+    let at = payload.windows(key.len()).rposition(|w| w == key).unwrap() + key.len();
+    let double = at + payload[at..].iter().position(|b| *b == 0xfb || *b == 0xf9).unwrap();
+    let mut bad = payload.to_vec();
+    if bad[double] == 0xf9 {
+        bad[double + 1..double + 3].copy_from_slice(&[0x7e, 0x00]); // half-precision NaN
+    } else {
+        bad[double + 1..double + 9].copy_from_slice(&f64::NAN.to_be_bytes());
+    }
+    let snapshot = Snapshot::from_bytes(&framed(&bad)).unwrap();
+    let before = states(&sim);
+    let err = sim.restore(&snapshot).unwrap_err();
+    assert!(matches!(err, ars::Error::SnapshotCorrupt { .. }), "{err}");
+    assert_eq!(states(&sim), before);
+    sim.step().unwrap();
+}

@@ -110,7 +110,7 @@ impl JointKind {
         }
     }
 
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         let anchor = |p: &Point3<f64>| limits::point("joint anchor", p).map(drop);
         let axis = |v: &Vector3<f64>| validate::direction("joint axis", v).map(drop);
         match self {

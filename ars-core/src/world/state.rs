@@ -161,6 +161,66 @@ fn mismatch(detail: String) -> Error {
     Error::SnapshotMismatch { detail }
 }
 
+/// `Error::SnapshotCorrupt` unless every number of `values` is finite and within `bound`.
+fn within(what: &str, values: &[f64], bound: f64) -> Result<()> {
+    match values.iter().find(|v| !v.is_finite() || v.abs() > bound) {
+        Some(v) => Err(Error::SnapshotCorrupt { detail: format!("{what} holds {v}, beyond ±{bound}") }),
+        None => Ok(()),
+    }
+}
+
+impl WorldState {
+    /// Every number of the state within what ODE takes: the limits the API holds
+    /// bodies to, a unit quaternion, a positive mass, parameters that are not NaN.
+    fn check_numbers(&self) -> Result<()> {
+        use crate::limits::{MAX_ANGULAR_SPEED, MAX_COORDINATE, MAX_FORCE, MAX_SPEED, MAX_TORQUE};
+        let corrupt = |detail: String| Error::SnapshotCorrupt { detail };
+        within("the gravity", self.gravity.as_slice(), MAX_FORCE)?;
+        within("the world's ERP, CFM and clock", &[self.erp, self.cfm, self.time], f64::MAX)?;
+        let pose = |what: &str, p: &ExactPose| -> Result<()> {
+            within(what, &p.position, MAX_COORDINATE)?;
+            within(what, &p.rotation, 1.5)?;
+            within(what, &p.quaternion, 1.5)?;
+            let norm = p.quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if (norm - 1.0).abs() > 1e-6 {
+                return Err(corrupt(format!("{what} has a quaternion of norm {norm}")));
+            }
+            Ok(())
+        };
+        for b in &self.bodies {
+            pose("a body's pose", &b.pose)?;
+            within("a body's velocity", &b.linear_velocity, MAX_SPEED)?;
+            within("a body's angular velocity", &b.angular_velocity, MAX_ANGULAR_SPEED)?;
+            within("a body's force", &b.force, MAX_FORCE)?;
+            within("a body's torque", &b.torque, MAX_TORQUE)?;
+            if b.mass.len() != 17 || b.mass[0].is_nan() || b.mass[0] <= 0.0 {
+                return Err(corrupt("a body's mass is not a positive mass with its centre and inertia".into()));
+            }
+            within("a body's mass", &b.mass, f64::MAX)?;
+        }
+        for g in &self.geoms {
+            for (p, r) in g.pose.iter().chain(&g.offset) {
+                within("a geom's pose", p, MAX_COORDINATE)?;
+                within("a geom's pose", r, 1.5)?;
+            }
+        }
+        for j in &self.joints {
+            pose("a joint's reference pose", &j.reference.body1)?;
+            if let Some(p) = &j.reference.body2 {
+                pose("a joint's reference pose", p)?;
+            }
+            if j.params.len() != 9 * j.kind.param_axes() || j.params.iter().any(|v| v.is_nan()) {
+                return Err(corrupt("a joint's parameters are not the ones of its kind".into()));
+            }
+            if j.feedback.as_ref().is_some_and(|f| f.len() != 16) {
+                return Err(corrupt("a joint's forces are not four vectors".into()));
+            }
+            j.kind.validate().map_err(|e| corrupt(format!("a joint's kind: {e}")))?;
+        }
+        Ok(())
+    }
+}
+
 impl World {
     /// The next number in the world's creation order of bodies, geoms and joints.
     pub(crate) fn next_serial(&mut self) -> u64 {
@@ -282,8 +342,11 @@ impl World {
     }
 
     /// Checks that `state` fits this world: the same bodies, geoms (kinds, bodies),
-    /// joints (kinds, bodies) and spaces, created in the same order.
+    /// joints (kinds, bodies) and spaces, created in the same order; and that its
+    /// numbers are ones ODE can take (bytes that pass the checksum may still have been
+    /// made by hand).
     pub(crate) fn check_state_fits(&self, state: &WorldState) -> Result<()> {
+        state.check_numbers()?;
         let counts = [
             ("bodies", self.bodies.len(), state.bodies.len()),
             ("geoms", self.geoms.len(), state.geoms.len()),
