@@ -134,3 +134,40 @@ fn several_joints_in_one_body_are_chained_through_light_links() {
     assert!(p.z.abs() < 1e-6, "{p}");
     assert!(sim.joint("rooty").unwrap().state().unwrap().position.abs() > 0.3);
 }
+
+#[test]
+fn includes_are_read_in_place_and_their_errors_name_their_file() {
+    let dir = std::env::temp_dir().join(format!("ars-mjcf-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    let write = |name: &str, text: &str| std::fs::write(dir.join(name), text).unwrap();
+    write(
+        "scene.xml",
+        r#"<mujoco model="scene"><include file="parts/classes.xml"/><include file="parts/robot.xml"/></mujoco>"#,
+    );
+    write("parts/classes.xml", r#"<mujoco><default><geom density="300"/></default></mujoco>"#);
+    write(
+        "parts/robot.xml",
+        r#"<mujoco><worldbody><body name="bob" pos="0 0 1"><joint name="pivot" pos="0 0 0.5"/>
+           <geom type="sphere" size="0.1"/></body></worldbody></mujoco>"#,
+    );
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf(dir.join("scene.xml"), &MjcfOptions::new()).unwrap();
+    assert_eq!(model.name, "scene");
+    // The included class's density (not MuJoCo's 1000) weighs the included body.
+    let mass = sim.body(model.body("bob").unwrap()).unwrap().mass();
+    assert!((mass - 300.0 * 4.0 / 3.0 * std::f64::consts::PI * 1e-3).abs() < 1e-12, "{mass}");
+    // An error in an included file names that file and its line.
+    write("parts/robot.xml", r#"<mujoco><worldbody><body><geom size="-1"/></body></worldbody></mujoco>"#);
+    let err = sim.load_mjcf(dir.join("scene.xml"), &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(err.contains("robot.xml") && err.contains("line 1") && err.contains("positive"), "{err}");
+    // A cycle, and a file that is not there.
+    write("a.xml", r#"<mujoco><include file="b.xml"/></mujoco>"#);
+    write("b.xml", r#"<mujoco><include file="a.xml"/></mujoco>"#);
+    let err = sim.load_mjcf(dir.join("a.xml"), &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(err.contains("cycle") && err.contains("b.xml"), "{err}");
+    write("c.xml", r#"<mujoco><include file="nowhere.xml"/></mujoco>"#);
+    let err = sim.load_mjcf(dir.join("c.xml"), &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(err.contains("nowhere.xml") && err.contains("<include>"), "{err}");
+    assert_eq!(sim.objects().count(), 1, "only the first model's body");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -39,6 +39,9 @@
 //!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
 //!   integrator is ODE's; the caller chooses to use them).
+//! - **Includes.** `<include file>` at the top level (its path relative to the file
+//!   that includes it; a cycle is refused): the included file's elements take its
+//!   place, and an error in it names that file.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (materials, textures, meshes not used by a geom), `<statistic>`, `<size>`,
 //!   `<custom>`, `<light>`, `<camera>`, `<site>`, and the geoms' material.
@@ -144,18 +147,20 @@ impl MjcfModel {
 /// as a fraction of the body's.
 pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
 
-/// A problem at a place of the file.
+/// A problem at a place of the file (or of a file it includes).
 struct Problem {
     element: String,
     line: u32,
     text: String,
+    /// The included file it is in, if not the main one.
+    file: Option<String>,
 }
 
 type Parsed<T> = std::result::Result<T, Problem>;
 
 fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
     let line = node.document().text_pos_at(node.range().start).row;
-    Problem { element: node.tag_name().name().to_string(), line, text: text.into() }
+    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None }
 }
 
 /// `<compiler>` settings.
@@ -641,71 +646,158 @@ fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
     Some((mass, com, inertia))
 }
 
-/// Reads the model from the text of a file.
-fn read(text: &str, options: &MjcfOptions) -> Parsed<Model> {
-    let document = roxmltree::Document::parse(text).map_err(|e| Problem {
+/// A file and its text: the model's, then those it includes, in the order met.
+type Files = Vec<(String, String)>;
+
+/// Deepest chain of `<include>`s followed.
+const MAX_INCLUDE_DEPTH: usize = 32;
+
+/// Reads the files that `text` (the file `name`) includes, depth first, into `files`
+/// after it; `stack` is the chain of files being read (a cycle is refused).
+fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) -> Parsed<()> {
+    let document = roxmltree::Document::parse(&text).map_err(|e| Problem {
         element: "mujoco".into(),
         line: e.pos().row,
         text: format!("not XML: {e}"),
+        file: Some(name.to_string()),
     })?;
+    let in_file = |mut p: Problem| {
+        p.file.get_or_insert_with(|| name.to_string());
+        p
+    };
     let root = document.root_element();
     if root.tag_name().name() != "mujoco" {
-        return Err(problem(&root, "the root element must be <mujoco>"));
+        return Err(in_file(problem(&root, "the root element must be <mujoco>")));
     }
+    let mut includes = Vec::new();
+    for node in root.children().filter(|c| c.is_element() && c.tag_name().name() == "include") {
+        let file = node.attribute("file").ok_or_else(|| in_file(problem(&node, "needs a file")))?;
+        let path = Path::new(name).parent().unwrap_or(Path::new("")).join(file);
+        let path_name = path.display().to_string();
+        if stack.contains(&path_name) || stack.len() >= MAX_INCLUDE_DEPTH {
+            return Err(in_file(problem(&node, format!("includes {path_name} again: a cycle of includes"))));
+        }
+        let included = std::fs::read_to_string(&path)
+            .map_err(|e| in_file(problem(&node, format!("cannot read {path_name}: {e}"))))?;
+        includes.push((path_name, included));
+    }
+    drop(document);
+    files.push((name.to_string(), text));
+    for (path, included) in includes {
+        stack.push(path.clone());
+        gather(&path, included, files, stack)?;
+        stack.pop();
+    }
+    Ok(())
+}
+
+/// The top-level elements of the model, in order, each `<include>` replaced by the
+/// included file's elements; each with the index of its file.
+fn top_level<'a, 'input>(
+    documents: &'a [roxmltree::Document<'input>],
+    index: &mut usize,
+    out: &mut Vec<(usize, roxmltree::Node<'a, 'input>)>,
+) {
+    let mine = *index;
+    for node in documents[mine].root_element().children().filter(|c| c.is_element()) {
+        if node.tag_name().name() == "include" {
+            *index += 1;
+            top_level(documents, index, out);
+        } else {
+            out.push((mine, node));
+        }
+    }
+}
+
+/// Reads the model from the text of a file (`name` resolves its includes).
+fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Model> {
+    let mut files = Files::new();
+    gather(name, text.to_string(), &mut files, &mut vec![name.to_string()])?;
+    let documents = files
+        .iter()
+        .map(|(_, text)| roxmltree::Document::parse(text).expect("parsed once already"))
+        .collect::<Vec<_>>();
+    let mut nodes = Vec::new();
+    top_level(&documents, &mut 0, &mut nodes);
+    let root = documents[0].root_element();
+    let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
+    read_nodes(root, &nodes, &names, options)
+}
+
+/// Reads the model from its top-level elements.
+fn read_nodes(
+    root: roxmltree::Node<'_, '_>,
+    nodes: &[(usize, roxmltree::Node<'_, '_>)],
+    names: &[&str],
+    options: &MjcfOptions,
+) -> Parsed<Model> {
+    // A problem in an included file names it.
+    let in_file = |file: usize| {
+        move |mut p: Problem| {
+            if file > 0 && p.file.is_none() {
+                p.file = Some(names[file].to_string());
+            }
+            p
+        }
+    };
     let mut compiler = Compiler::default();
     let mut defaults = Defaults::new();
     let mut timestep = None;
     let mut gravity = None;
-    for node in root.children().filter(|c| c.is_element()) {
-        match node.tag_name().name() {
-            "compiler" => {
-                if let Some(angle) = node.attribute("angle") {
-                    compiler.degrees = angle != "radian";
-                }
-                if let Some(seq) = node.attribute("eulerseq") {
-                    let axes: Vec<u8> = seq
-                        .chars()
-                        .filter_map(|c| match c.to_ascii_lowercase() {
-                            'x' => Some(0),
-                            'y' => Some(1),
-                            'z' => Some(2),
+    for &(file, node) in nodes {
+        let mut first_pass = || -> Parsed<()> {
+            match node.tag_name().name() {
+                "compiler" => {
+                    if let Some(angle) = node.attribute("angle") {
+                        compiler.degrees = angle != "radian";
+                    }
+                    if let Some(seq) = node.attribute("eulerseq") {
+                        let axes: Vec<u8> = seq
+                            .chars()
+                            .filter_map(|c| match c.to_ascii_lowercase() {
+                                'x' => Some(0),
+                                'y' => Some(1),
+                                'z' => Some(2),
+                                _ => None,
+                            })
+                            .collect();
+                        compiler.eulerseq = axes
+                            .try_into()
+                            .map_err(|_| problem(&node, format!("eulerseq {seq:?} must be three of x, y, z")))?;
+                        compiler.extrinsic = seq.chars().all(|c| c.is_ascii_uppercase());
+                    }
+                    if let Some(auto) = node.attribute("autolimits") {
+                        compiler.autolimits = auto == "true";
+                    }
+                    if let Some(v) = node.attribute("inertiafromgeom") {
+                        compiler.from_geom = match v {
+                            "true" => Some(true),
+                            "false" => Some(false),
                             _ => None,
-                        })
-                        .collect();
-                    compiler.eulerseq = axes
-                        .try_into()
-                        .map_err(|_| problem(&node, format!("eulerseq {seq:?} must be three of x, y, z")))?;
-                    compiler.extrinsic = seq.chars().all(|c| c.is_ascii_uppercase());
+                        };
+                    }
+                    if let Some(total) = node.attribute("settotalmass") {
+                        compiler.total_mass = match total.parse::<f64>() {
+                            Ok(m) if m > 0.0 && m.is_finite() => Some(m),
+                            Ok(_) => None,
+                            Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
+                        };
+                    }
+                    if node.attribute("coordinate").is_some_and(|c| c != "local") {
+                        return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
+                    }
                 }
-                if let Some(auto) = node.attribute("autolimits") {
-                    compiler.autolimits = auto == "true";
+                "default" => read_defaults(node, &HashMap::new(), &mut defaults),
+                "option" => {
+                    let a = Attrs { node, class: None };
+                    timestep = a.number("timestep")?;
+                    gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
                 }
-                if let Some(v) = node.attribute("inertiafromgeom") {
-                    compiler.from_geom = match v {
-                        "true" => Some(true),
-                        "false" => Some(false),
-                        _ => None,
-                    };
-                }
-                if let Some(total) = node.attribute("settotalmass") {
-                    compiler.total_mass = match total.parse::<f64>() {
-                        Ok(m) if m > 0.0 && m.is_finite() => Some(m),
-                        Ok(_) => None,
-                        Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
-                    };
-                }
-                if node.attribute("coordinate").is_some_and(|c| c != "local") {
-                    return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
-                }
+                _ => {}
             }
-            "default" => read_defaults(node, &HashMap::new(), &mut defaults),
-            "option" => {
-                let a = Attrs { node, class: None };
-                timestep = a.number("timestep")?;
-                gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
-            }
-            _ => {}
-        }
+            Ok(())
+        };
+        first_pass().map_err(in_file(file))?;
     }
     let mut reader = Reader {
         compiler,
@@ -724,43 +816,47 @@ fn read(text: &str, options: &MjcfOptions) -> Parsed<Model> {
         actuators: Vec::new(),
         skipped: Vec::new(),
     };
-    for node in root.children().filter(|c| c.is_element()) {
-        match node.tag_name().name() {
-            "worldbody" => {
-                for child in node.children().filter(|c| c.is_element()) {
-                    match child.tag_name().name() {
-                        "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
-                        "body" => model.bodies.push(reader.body(child, "main")?),
-                        "site" | "camera" | "light" => {}
-                        other => reader.unsupported(&child, &format!("<{other}> in the world body"))?,
+    for &(file, node) in nodes {
+        let mut second_pass = || -> Parsed<()> {
+            match node.tag_name().name() {
+                "worldbody" => {
+                    for child in node.children().filter(|c| c.is_element()) {
+                        match child.tag_name().name() {
+                            "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
+                            "body" => model.bodies.push(reader.body(child, "main")?),
+                            "site" | "camera" | "light" => {}
+                            other => reader.unsupported(&child, &format!("<{other}> in the world body"))?,
+                        }
                     }
                 }
-            }
-            "actuator" => {
-                for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
-                    let kind = child.tag_name().name();
-                    if !["motor", "position", "velocity"].contains(&kind) {
-                        reader.unsupported(&child, &format!("an actuator of kind <{kind}>"))?;
-                        continue;
+                "actuator" => {
+                    for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                        let kind = child.tag_name().name();
+                        if !["motor", "position", "velocity"].contains(&kind) {
+                            reader.unsupported(&child, &format!("an actuator of kind <{kind}>"))?;
+                            continue;
+                        }
+                        let joint = child.attribute("joint").ok_or_else(|| problem(&child, "needs a joint"))?;
+                        model.actuators.push(MjcfActuator {
+                            name: child.attribute("name").map_or_else(|| format!("actuator{i}"), str::to_string),
+                            kind: kind.to_string(),
+                            joint: joint.to_string(),
+                        });
                     }
-                    let joint = child.attribute("joint").ok_or_else(|| problem(&child, "needs a joint"))?;
-                    model.actuators.push(MjcfActuator {
-                        name: child.attribute("name").map_or_else(|| format!("actuator{i}"), str::to_string),
-                        kind: kind.to_string(),
-                        joint: joint.to_string(),
-                    });
                 }
+                "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
+                "sensor" | "contact" => {
+                    reader.skipped.push(format!(
+                        "<{}> at line {}: not read yet",
+                        node.tag_name().name(),
+                        problem(&node, "").line
+                    ));
+                }
+                other => reader.unsupported(&node, &format!("<{other}>"))?,
             }
-            "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
-            "sensor" | "contact" => {
-                reader.skipped.push(format!(
-                    "<{}> at line {}: not read yet",
-                    node.tag_name().name(),
-                    problem(&node, "").line
-                ));
-            }
-            other => reader.unsupported(&node, &format!("<{other}>"))?,
-        }
+            Ok(())
+        };
+        second_pass().map_err(in_file(file))?;
     }
     model.skipped = reader.skipped;
     if let Some(total) = reader.compiler.total_mass {
@@ -800,9 +896,9 @@ impl Scene {
 
     /// Loads an MJCF model from its text; `file` names it in errors.
     pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
-        let model = read(text, options).map_err(|p| Error::Format {
+        let model = read(file, text, options).map_err(|p| Error::Format {
             format: "MJCF",
-            file: file.to_string(),
+            file: p.file.unwrap_or_else(|| file.to_string()),
             location: format!("<{}> at line {}", p.element, p.line),
             problem: p.text,
         })?;
