@@ -504,6 +504,320 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
     Ok(())
 }
 
+/// A 1 kg crate on the floor where the camera looks, in a window big enough for the
+/// panel and the editor beside it.
+struct Crate;
+
+impl Hooks for Crate {}
+
+impl Program for Crate {
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let id = sim.add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(1.0))?;
+        sim.set_name(id, "crate")?;
+        sim.set_color(id, [0.2, 0.4, 0.9])
+    }
+    fn view_settings(&self) -> ViewSettings {
+        ViewSettings {
+            title: "touch".into(),
+            size: (1024, 768),
+            camera_position: Point3::new(4.0, 3.0, 4.0),
+            camera_target: Point3::new(0.0, 0.25, 0.0),
+            ..ViewSettings::default()
+        }
+    }
+}
+
+/// What the window showed last, and the crate as the simulation holds it.
+#[derive(Default)]
+struct Seen {
+    state: Option<ars::viewer::ViewerState>,
+    position: Point3<f64>,
+    mass: f64,
+    time: f64,
+}
+
+/// The crate's program, driven by the window, telling the test what the window shows.
+struct Watched<'p> {
+    runner: ProgramRunner<'p, Crate>,
+    seen: std::sync::Arc<std::sync::Mutex<Seen>>,
+}
+
+impl ars::viewer::Driver for Watched<'_> {
+    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
+        self.runner.simulation_mut()
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        ars::viewer::Driver::step_frame(&mut self.runner)
+    }
+    fn step(&mut self) -> Result<()> {
+        ars::viewer::Driver::step(&mut self.runner)
+    }
+    fn reset(&mut self) -> Result<()> {
+        ars::viewer::Driver::reset(&mut self.runner)
+    }
+    fn key_down(&mut self, key: ars::Key) -> Result<()> {
+        ars::viewer::Driver::key_down(&mut self.runner, key)
+    }
+    fn key_up(&mut self, key: ars::Key) -> Result<()> {
+        ars::viewer::Driver::key_up(&mut self.runner, key)
+    }
+    fn viewer_state(&mut self, state: &ars::viewer::ViewerState) {
+        let sim = self.runner.simulation_mut();
+        let object = sim.object("crate").expect("the crate");
+        let body = object.body().expect("a body");
+        let mut seen = self.seen.lock().unwrap();
+        (seen.position, seen.mass, seen.time) = (body.position(), body.mass(), sim.time());
+        seen.state = Some(state.clone());
+    }
+}
+
+/// A person at the window, through xdotool: a click selects the crate (the panel's
+/// state names it); a Ctrl-drag 250 px up pulls it up by more than 0.5 m (along the
+/// camera's up, read from the simulation) and `p` then writes a screenshot showing the
+/// outline and the drag line; paused, a Ctrl-drag 150 px right moves it right by more
+/// than 0.5 m with the clock stopped; a mass of -5 typed into the editor is refused
+/// with an error and the mass stays 1 kg; Escape deselects, and a second Escape quits.
+fn a_person_selects_pulls_and_edits_a_body() -> std::result::Result<bool, String> {
+    use std::sync::{Arc, Mutex};
+    if Command::new("xdotool").arg("version").output().is_err() {
+        return Err("xdotool is missing: install it (make deps)".into());
+    }
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: this process runs this test alone, on its main thread, before any other
+    // thread starts.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    // The window cannot quiet Mesa's device-selection layer once the person's thread
+    // runs (see the README): turn it off here, before that thread starts.
+    // SAFETY: as above, no other thread yet.
+    unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    let shots = std::env::temp_dir().join(format!("ars-touch-{}", std::process::id()));
+    std::fs::create_dir_all(&shots).map_err(|e| e.to_string())?;
+    std::env::set_current_dir(&shots).map_err(|e| e.to_string())?;
+    let seen = Arc::new(Mutex::new(Seen::default()));
+    let person = {
+        let (seen, display) = (seen.clone(), display.clone());
+        std::thread::spawn(move || {
+            let acted = act(&seen, &display);
+            if acted.is_err() {
+                // Close the window: deselect, then quit.
+                for _ in 0..2 {
+                    let _ = Command::new("xdotool").args(["key", "Escape"]).env("DISPLAY", &display).output();
+                    std::thread::sleep(Duration::from_millis(500));
+                }
+            }
+            acted
+        })
+    };
+    let mut program = Crate;
+    let view = program.view_settings();
+    let runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
+    let mut watched = Watched { runner, seen };
+    let window = ars::viewer::run_window(&mut watched, &view, Some(Duration::from_secs(90)));
+    let closed = Instant::now();
+    let acted = person.join().map_err(|_| "the person's thread panicked".to_string());
+    stop_xvfb(xvfb);
+    window.map_err(|e| e.to_string())?;
+    let (lines, escape) = acted??;
+    for line in lines {
+        println!("  {line}");
+    }
+    match closed.checked_duration_since(escape) {
+        Some(after) if after < Duration::from_secs(3) => {
+            println!("  the second Escape closed the window ({after:.2?} later)");
+            Ok(true)
+        }
+        _ => Err("the window did not close on the second Escape".into()),
+    }
+}
+
+/// The person's side of [`a_person_selects_pulls_and_edits_a_body`]: what they did and
+/// saw, and when they pressed the last Escape.
+fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec<String>, Instant), String> {
+    let xdotool = |args: &[&str]| -> std::result::Result<String, String> {
+        let out = Command::new("xdotool").args(args).env("DISPLAY", display).output().map_err(|e| e.to_string())?;
+        Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+    };
+    let wait = |ms: u64| std::thread::sleep(Duration::from_millis(ms));
+    let found = xdotool(&["search", "--sync", "--name", "^touch$"])?;
+    let window = found.lines().next().unwrap_or_default().to_string();
+    if window.is_empty() {
+        return Err("the window did not appear".into());
+    }
+    xdotool(&["windowfocus", "--sync", &window])?;
+    let state = || seen.lock().unwrap().state.clone();
+    let crate_now = || {
+        let s = seen.lock().unwrap();
+        (s.position, s.mass, s.time)
+    };
+    let started = Instant::now();
+    while state().is_none() {
+        if started.elapsed() > Duration::from_secs(30) {
+            return Err("the window drew no frame in 30 s".into());
+        }
+        wait(100);
+    }
+    // Let it settle on the floor and the panel take its place.
+    wait(2000);
+    let mut lines = Vec::new();
+    let to_window = |p: &Point3<f64>| -> std::result::Result<(i64, i64), String> {
+        let (x, y) = state().unwrap().window_point(p).ok_or("the crate is behind the camera")?;
+        Ok((x.round() as i64, y.round() as i64))
+    };
+    let move_to = |x: i64, y: i64| xdotool(&["mousemove", "--window", &window, &x.to_string(), &y.to_string()]);
+    // The camera's up and right, as the test's own geometry says.
+    let view = Crate.view_settings();
+    let forward = (view.camera_target - view.camera_position).normalize();
+    let up = (Vector3::y() - forward * forward.y).normalize();
+    let right = forward.cross(&up);
+
+    // Click: selected.
+    let (p0, _, _) = crate_now();
+    let (x, y) = to_window(&p0)?;
+    move_to(x, y)?;
+    wait(300);
+    xdotool(&["click", "1"])?;
+    wait(700);
+    let name = state().unwrap().selected.map(|s| s.name);
+    if name.as_deref() != Some("crate") {
+        return Err(format!("a click at ({x}, {y}) on the crate selected {name:?}"));
+    }
+    lines.push(format!("click at ({x}, {y}): the panel shows {:?} selected", name.unwrap()));
+
+    // Ctrl-drag up, running.
+    let drag = |dx: i64, dy: i64, screenshot: bool| -> std::result::Result<(), String> {
+        xdotool(&["keydown", "ctrl"])?;
+        wait(100);
+        xdotool(&["mousedown", "1"])?;
+        wait(200);
+        for i in 1..=10 {
+            move_to(x + dx * i / 10, y + dy * i / 10)?;
+            wait(60);
+        }
+        if screenshot {
+            // While the crate still trails the mouse: the line is long.
+            xdotool(&["key", "p"])?;
+        }
+        wait(1500);
+        Ok(())
+    };
+    let release = || -> std::result::Result<(), String> {
+        xdotool(&["mouseup", "1"])?;
+        wait(100);
+        xdotool(&["keyup", "ctrl"])?;
+        wait(300);
+        Ok(())
+    };
+    let (p0, _, t0) = crate_now();
+    let held = drag(0, -250, true);
+    let (p1, _, t1) = crate_now();
+    let line = state().unwrap().drag;
+    release()?;
+    held?;
+    let moved = p1 - p0;
+    lines.push(format!(
+        "running, Ctrl-drag 250 px up: crate from {:.2?} to {:.2?} ({:.2} m along the camera's up, {:.2} s)",
+        p0.coords.as_slice(),
+        p1.coords.as_slice(),
+        moved.dot(&up),
+        t1 - t0
+    ));
+    if moved.dot(&up) < 0.5 || t1 <= t0 {
+        return Err(lines.pop().unwrap());
+    }
+    if line.is_none() {
+        return Err("no drag line while the button was held".into());
+    }
+    // The screenshot taken during the drag shows the outline (yellow) and the line (pink).
+    let shot = std::fs::read_dir(".")
+        .map_err(|e| e.to_string())?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .find(|p| p.extension().is_some_and(|e| e == "png"))
+        .ok_or("no screenshot written by p")?;
+    let image = ars::viewer::image::open(&shot).map_err(|e| e.to_string())?.to_rgb8();
+    let count = |want: [u8; 3]| {
+        image.pixels().filter(|p| p.0.iter().zip(want).all(|(a, b)| (i32::from(*a) - i32::from(b)).abs() < 40)).count()
+    };
+    // As the window draws them (#FFD900 and #FF3399 come out so, shaded).
+    let (yellow, pink) = (count([241, 224, 38]), count([239, 109, 188]));
+    lines.push(format!("screenshot {}: {yellow} outline pixels, {pink} drag-line pixels", shot.display()));
+    if yellow < 100 || pink < 50 {
+        return Err(lines.pop().unwrap());
+    }
+    // Settle, pause, and drag right.
+    wait(2000);
+    xdotool(&["key", "space"])?;
+    wait(500);
+    let (p0, _, t0) = crate_now();
+    if !state().unwrap().paused {
+        return Err("space did not pause".into());
+    }
+    let (x, y) = to_window(&p0)?;
+    move_to(x, y)?;
+    wait(300);
+    let (x, y) = (x, y);
+    let held = {
+        xdotool(&["keydown", "ctrl"])?;
+        wait(100);
+        xdotool(&["mousedown", "1"])?;
+        wait(200);
+        let mut r = Ok(());
+        for i in 1..=10 {
+            r = r.and(move_to(x + 150 * i / 10, y).map(drop));
+            wait(60);
+        }
+        wait(500);
+        r
+    };
+    release()?;
+    held?;
+    let (p1, _, t1) = crate_now();
+    let moved = p1 - p0;
+    lines.push(format!(
+        "paused, Ctrl-drag 150 px right: crate from {:.2?} to {:.2?} ({:.2} m along the camera's right; clock {t0} s then {t1} s)",
+        p0.coords.as_slice(),
+        p1.coords.as_slice(),
+        moved.dot(&right)
+    ));
+    if moved.dot(&right) < 0.5 || t1 != t0 {
+        return Err(lines.pop().unwrap());
+    }
+
+    // An invalid mass typed into the editor.
+    let field = state().unwrap().field("mass").ok_or("no mass field in the editor")?;
+    let (fx, fy) = (((field[0] + field[2]) / 2.0) as i64, ((field[1] + field[3]) / 2.0) as i64);
+    move_to(fx, fy)?;
+    wait(200);
+    xdotool(&["click", "1"])?;
+    wait(300);
+    // Clear the field (as a person would: End, then Backspace), then type.
+    xdotool(&["key", "End"])?;
+    for _ in 0..12 {
+        xdotool(&["key", "BackSpace"])?;
+    }
+    wait(100);
+    xdotool(&["type", "--", "-5"])?;
+    wait(100);
+    xdotool(&["key", "Return"])?;
+    wait(700);
+    let (_, mass, _) = crate_now();
+    let error = state().unwrap().error;
+    lines.push(format!("typed -5 into the mass field: mass {mass} kg, the panel says {error:?}"));
+    if mass != 1.0 || !error.as_deref().is_some_and(|e| e.contains("mass")) {
+        return Err(lines.pop().unwrap());
+    }
+    // Escape deselects, the next one quits.
+    move_to(x, y + 200)?;
+    wait(200);
+    xdotool(&["key", "Escape"])?;
+    wait(700);
+    if let Some(s) = state().unwrap().selected {
+        return Err(format!("Escape left {:?} selected", s.name));
+    }
+    lines.push("Escape: nothing selected".into());
+    xdotool(&["key", "Escape"])?;
+    Ok((lines, Instant::now()))
+}
+
 /// Runs one test and counts it (`threaded`: on a thread of its own, as off-screen
 /// rendering wants; windows stay on the main thread).
 fn run<T: Send + 'static>(
@@ -557,6 +871,7 @@ fn main() {
         let test = match name.as_str() {
             "window_memory_stays_flat_over_a_minute" => window_memory_stays_flat_over_a_minute,
             "windows_one_after_another_when_the_context_is_kept" => windows_one_after_another_when_the_context_is_kept,
+            "a_person_selects_pulls_and_edits_a_body" => a_person_selects_pulls_and_edits_a_body,
             other => panic!("no test {other}"),
         };
         match test() {
@@ -599,6 +914,13 @@ fn main() {
     run(
         "windows_one_after_another_when_the_context_is_kept",
         || in_own_process("windows_one_after_another_when_the_context_is_kept"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "a_person_selects_pulls_and_edits_a_body",
+        || in_own_process("a_person_selects_pulls_and_edits_a_body"),
         false,
         shown,
         &mut tally,

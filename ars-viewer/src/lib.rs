@@ -30,13 +30,16 @@
 mod camera;
 pub mod convert;
 mod driver;
+mod edit;
 mod error;
 mod frames;
 mod gui;
+mod interact;
 mod layout;
 mod material;
 mod offscreen;
 mod scene;
+mod state;
 mod window;
 
 use std::path::PathBuf;
@@ -46,13 +49,16 @@ use ars_core::{Program, ViewSettings};
 
 pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use driver::Driver;
+pub use edit::{Edit, apply_edit, parse_number};
 pub use error::{Result, ViewerError};
 pub use frames::FrameWriter;
 pub use image;
+pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_force, spring_torque};
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
 pub use scene::SceneMirror;
+pub use state::{DragLine, Selected, ViewerState};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
 /// What the viewer draws besides the simulation, where the program's

@@ -67,6 +67,13 @@ impl SceneMirror {
         }
     }
 
+    /// Draws `id` anew at the next [`sync`](Self::sync) (after its colour changed).
+    pub fn redraw(&mut self, id: ObjectId) {
+        if let Some(mut n) = self.nodes.remove(&id) {
+            n.group.remove();
+        }
+    }
+
     /// Creates nodes for new objects, removes those of removed objects, and poses
     /// every dynamic one.
     pub fn sync(&mut self, sim: &Simulation, scene: &mut SceneNode3d) -> ars_core::Result<()> {

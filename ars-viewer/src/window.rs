@@ -3,23 +3,29 @@
 
 use std::time::{Duration, Instant};
 
-use ars_core::{Key, Program, ProgramRunner, ViewSettings};
-use kiss3d::event::{Action, Key as WindowKey, WindowEvent};
-use kiss3d::glamx::Vec2;
+use ars_core::nalgebra::{Matrix4, Point3, Vector3};
+use ars_core::{HookId, Key, ObjectId, Program, ProgramRunner, Simulation, ViewSettings};
+use kiss3d::camera::Camera3d;
+use kiss3d::event::{Action, Key as WindowKey, Modifiers, MouseButton, WindowEvent};
+use kiss3d::glamx::{Vec2, Vec3};
 use kiss3d::text::Font;
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::ViewerOptions;
 use crate::convert;
 use crate::driver::Driver;
+use crate::edit::{Edit, apply_edit};
 use crate::error::Result;
 use crate::gui;
+use crate::interact::{DragMode, Grab, Push, pick};
 use crate::layout;
 use crate::scene::View;
+use crate::state::{DragLine, Selected, ViewerState};
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
-     x: axes, f: follow, g: panel, p: screenshot, escape: quit";
+     x: axes, f: follow, g: panel, p: screenshot, click: select, ctrl+drag: pull the selected body, \
+     shift+drag: turn it, ctrl+s: save the scene, escape: deselect (quit when nothing is selected)";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -87,6 +93,189 @@ fn wrapped(font: &Font, size: f32, text: &str, separator: &str, width: f32) -> (
     let items: Vec<&str> = text.split(separator).collect();
     let lines = layout::wrap_items(&items, separator, width, |s| text_width(font, size, s));
     (lines.join("\n"), lines.len())
+}
+
+/// How far the mouse may move between press and release for a click, pixels.
+const CLICK_SLOP: f64 = 5.0;
+
+/// What a drag with these modifiers does: Ctrl pulls, Shift or Alt turns.
+fn drag_mode(modifiers: Modifiers) -> Option<DragMode> {
+    if modifiers.contains(Modifiers::Control) {
+        Some(DragMode::Force)
+    } else if modifiers.intersects(Modifiers::Shift | Modifiers::Alt) {
+        Some(DragMode::Torque)
+    } else {
+        None
+    }
+}
+
+/// The modifier keys held down, as the window saw their keys (X11 stamps events with
+/// the modifiers only while the window has the focus).
+fn held_modifiers(window: &Window) -> Modifiers {
+    let down = |keys: [WindowKey; 2]| keys.iter().any(|k| window.get_key(*k) == Action::Press);
+    let mut modifiers = Modifiers::empty();
+    modifiers.set(Modifiers::Control, down([WindowKey::LControl, WindowKey::RControl]));
+    modifiers.set(Modifiers::Shift, down([WindowKey::LShift, WindowKey::RShift]));
+    modifiers.set(Modifiers::Alt, down([WindowKey::LAlt, WindowKey::RAlt]));
+    modifiers
+}
+
+/// The mouse's hold on the simulation: the selected body, and the drag in progress
+/// with the hooks that push it while running.
+#[derive(Default)]
+struct Hand {
+    /// The cursor, window pixels.
+    cursor: (f64, f64),
+    /// Where the left button went down (not for a drag): a click if it comes up there.
+    press: Option<(f64, f64)>,
+    selected: Option<ObjectId>,
+    grab: Option<Grab>,
+    /// The hooks pushing the grabbed body (while running).
+    push: Option<HookId<Push>>,
+    /// Escape went down to deselect: its release must not close the window.
+    escape_held: bool,
+}
+
+impl Hand {
+    /// The picking ray under the cursor.
+    fn ray(&self, camera: &layout::FramedCamera, size: Vec2) -> (Point3<f64>, Vector3<f64>) {
+        let (o, d) = camera.unproject(Vec2::new(self.cursor.0 as f32, self.cursor.1 as f32), size);
+        (convert::point_back(o), convert::vector_back(d))
+    }
+
+    /// The left button went down with `modifiers`: a drag of the selected body starts
+    /// (at the point under the cursor when it is on the body, else at its centre).
+    /// Returns whether a drag started.
+    fn press(
+        &mut self,
+        sim: &Simulation,
+        ray: (Point3<f64>, Vector3<f64>),
+        view: Vector3<f64>,
+        modifiers: Modifiers,
+    ) -> bool {
+        self.press = Some(self.cursor);
+        let (Some(mode), Some(id)) = (drag_mode(modifiers), self.selected) else { return false };
+        let at = match pick(sim, ray.0, ray.1) {
+            Some((hit, at)) if hit == id => at,
+            _ => match sim.body(id) {
+                Ok(b) => b.position(),
+                Err(_) => return false,
+            },
+        };
+        self.grab = Grab::new(sim, id, at, view, mode).ok();
+        self.press = None;
+        self.grab.is_some()
+    }
+
+    /// The left button came up: the drag ends, or a click selects the body under the
+    /// cursor (or nothing, off every body).
+    fn release(&mut self, sim: &mut Simulation, ray: (Point3<f64>, Vector3<f64>)) {
+        if self.grab.take().is_some() {
+            self.stop_pushing(sim);
+        } else if let Some((x, y)) = self.press.take()
+            && (x - self.cursor.0).hypot(y - self.cursor.1) <= CLICK_SLOP
+        {
+            self.selected = pick(sim, ray.0, ray.1).map(|(id, _)| id);
+        }
+    }
+
+    fn stop_pushing(&mut self, sim: &mut Simulation) {
+        if let Some(hook) = self.push.take() {
+            let _ = sim.remove_hooks(hook);
+        }
+    }
+
+    /// Forgets the selection and any drag.
+    fn deselect(&mut self, sim: &mut Simulation) {
+        self.stop_pushing(sim);
+        self.grab = None;
+        self.selected = None;
+    }
+
+    /// Moves the drag's target under the cursor: while running, the hooks push the
+    /// body toward it at every step; paused, the body is moved there now.
+    fn drag(&mut self, sim: &mut Simulation, ray: (Point3<f64>, Vector3<f64>), paused: bool) -> ars_core::Result<()> {
+        let Some(grab) = self.grab.as_mut() else { return Ok(()) };
+        if sim.body(grab.object).is_err() {
+            self.deselect(sim);
+            return Ok(());
+        }
+        grab.aim(ray.0, ray.1);
+        let grab = *grab;
+        if paused {
+            self.stop_pushing(sim);
+            return grab.place(sim);
+        }
+        match self.push {
+            Some(hook) => sim.hooks_mut(hook)?.0 = grab,
+            None => self.push = Some(sim.add_hooks(Push(grab))?),
+        }
+        Ok(())
+    }
+
+    /// The selected body outlined (its bounding box), and the drag's line.
+    fn draw(&self, sim: &Simulation, window: &mut Window) {
+        if let Some(id) = self.selected
+            && let Ok(object) = sim.object(id)
+        {
+            let world = sim.world();
+            let boxes: Vec<_> = object.geoms().filter_map(|g| world.geom(g).ok()).map(|g| g.aabb()).collect();
+            if let Some((mut low, mut high)) = boxes.first().copied() {
+                for (l, h) in &boxes {
+                    low = low.inf(l);
+                    high = high.sup(h);
+                }
+                outline(window, convert::point(&low), convert::point(&high));
+            }
+        }
+        if let Some(grab) = &self.grab
+            && let Ok(from) = grab.point(sim)
+        {
+            let colour = match grab.mode {
+                DragMode::Force => kiss3d::color::Color::new(1.0, 0.2, 0.6, 1.0),
+                DragMode::Torque => kiss3d::color::Color::new(0.2, 0.6, 1.0, 1.0),
+            };
+            window.draw_line(convert::point(&from), convert::point(&grab.target), colour, 4.0, false);
+            window.draw_point(convert::point(&grab.target), colour, 10.0);
+        }
+    }
+}
+
+/// The 12 edges of the box from `low` to `high`, in yellow.
+fn outline(window: &mut Window, low: Vec3, high: Vec3) {
+    let yellow = kiss3d::color::Color::new(1.0, 0.85, 0.0, 1.0);
+    let corner = |i: u32| {
+        Vec3::new(
+            if i & 1 == 0 { low.x } else { high.x },
+            if i & 2 == 0 { low.y } else { high.y },
+            if i & 4 == 0 { low.z } else { high.z },
+        )
+    };
+    for i in 0..8u32 {
+        for bit in [1, 2, 4] {
+            if i & bit == 0 {
+                window.draw_line(corner(i), corner(i | bit), yellow, 3.0, false);
+            }
+        }
+    }
+}
+
+/// Saves the scene where the panel says, and says how it went.
+fn save(sim: &Simulation, panel: &mut gui::Panel) {
+    match sim.save_scene_to(&panel.save_path) {
+        Ok(()) => {
+            eprintln!("scene saved to {}", panel.save_path);
+            panel.saved = Some(panel.save_path.clone());
+            panel.error = None;
+        }
+        Err(e) => panel.error = Some(format!("not saved: {e}")),
+    }
+}
+
+/// The camera's world-to-device matrix, in the simulation's numbers.
+fn view_projection(camera: &layout::FramedCamera) -> Matrix4<f64> {
+    let m = camera.transformation().to_cols_array().map(f64::from);
+    Matrix4::from_column_slice(&m)
 }
 
 /// Real-time pacing: simulated time follows wall time while the machine keeps up.
@@ -288,6 +477,9 @@ pub(crate) fn drive_window<D: Driver>(
         window.set_background_color(convert::color(view.background));
         let mut shown = View::new(view, &mut window);
         shown.mirror.show_axes = options.axes;
+        // A plain left drag orbits; with a modifier it drags the selected body.
+        shown.camera.orbit.set_rotate_modifiers(Some(Modifiers::empty()));
+        let mut hand = Hand::default();
         let font = Font::default();
         let mut paused = false;
         let mut pacer = Pacer::new(runner.simulation().time());
@@ -319,10 +511,48 @@ pub(crate) fn drive_window<D: Driver>(
             // twice in one frame (seen with xdotool); a press of a key already down in
             // the same frame is that copy, not a new press.
             let mut pressed: Vec<WindowKey> = Vec::new();
+            // While a text field of the panel has the keyboard, keys are its own; while
+            // the pointer is over the panel, clicks are.
+            let typing = window.is_egui_capturing_keyboard();
+            let over_panel = window.is_egui_capturing_mouse();
+            let size = Vec2::new(window.width() as f32, window.height() as f32);
+            let forward = convert::vector_back(shown.camera.orbit.at() - shown.camera.eye());
             for mut event in window.events().iter() {
-                let WindowEvent::Key(key, action, _) = event.value else { continue };
+                let (key, action, modifiers) = match event.value {
+                    WindowEvent::CursorPos(x, y, _) => {
+                        hand.cursor = (x, y);
+                        // A drag moves the body, not the camera.
+                        event.inhibited = hand.grab.is_some();
+                        continue;
+                    }
+                    WindowEvent::MouseButton(MouseButton::Button1, action, modifiers) => {
+                        if over_panel && hand.grab.is_none() {
+                            continue;
+                        }
+                        let ray = hand.ray(&shown.camera, size);
+                        match action {
+                            Action::Press => {
+                                let modifiers = modifiers | held_modifiers(&window);
+                                event.inhibited = hand.press(&runner.simulation(), ray, forward, modifiers);
+                            }
+                            Action::Release => {
+                                event.inhibited = hand.grab.is_some();
+                                hand.release(&mut runner.simulation(), ray);
+                            }
+                        }
+                        continue;
+                    }
+                    WindowEvent::Key(key, action, modifiers) if !typing => (key, action, modifiers),
+                    _ => continue,
+                };
                 if key == WindowKey::Escape {
-                    // kiss3d's close key: it must reach kiss3d, which closes the window.
+                    // Deselects; with nothing selected it is kiss3d's close key, and
+                    // must reach kiss3d, which closes the window on its release.
+                    if hand.selected.is_some() || hand.escape_held {
+                        event.inhibited = true;
+                        hand.escape_held = action == Action::Press;
+                        hand.deselect(&mut runner.simulation());
+                    }
                     continue;
                 }
                 // Every other key is the viewer's or the program's, not the camera's.
@@ -332,6 +562,12 @@ pub(crate) fn drive_window<D: Driver>(
                     Action::Press => pressed.push(key),
                     Action::Release => pressed.retain(|k| *k != key),
                 }
+                if key == WindowKey::S && (modifiers | held_modifiers(&window)).contains(Modifiers::Control) {
+                    if action == Action::Press {
+                        save(&runner.simulation(), &mut panel);
+                    }
+                    continue;
+                }
                 match (key, action) {
                     (WindowKey::Space, Action::Press) => {
                         paused = !paused;
@@ -339,6 +575,7 @@ pub(crate) fn drive_window<D: Driver>(
                     }
                     (WindowKey::N, Action::Press) if paused => runner.step()?,
                     (WindowKey::R, Action::Press) => {
+                        hand.deselect(&mut runner.simulation());
                         runner.reset()?;
                         shown.mirror.clear();
                         pacer = Pacer::new(runner.simulation().time());
@@ -365,6 +602,14 @@ pub(crate) fn drive_window<D: Driver>(
             // it (`ars_core::interrupt::stop_on_ctrl_c`: the examples do).
             if runner.wants_to_close() || ars_core::interrupt::requested() {
                 break;
+            }
+            {
+                let ray = hand.ray(&shown.camera, size);
+                let dragged = hand.drag(&mut runner.simulation(), ray, paused);
+                if let Err(e) = dragged {
+                    panel.error = Some(format!("drag: {e}"));
+                    hand.deselect(&mut runner.simulation());
+                }
             }
             if panel.speed != pacer.speed {
                 pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
@@ -398,7 +643,14 @@ pub(crate) fn drive_window<D: Driver>(
                 contacts: shown.mirror.show_contacts,
                 joints: shown.mirror.show_joints,
                 axes: shown.mirror.show_axes,
+                selected: None,
             };
+            let selected = hand.selected.and_then(|id| Selected::of(&runner.simulation(), id));
+            if selected.is_none() && hand.selected.is_some() {
+                // The body is gone (removed by the program).
+                hand.deselect(&mut runner.simulation());
+            }
+            let status = gui::Status { selected: selected.as_ref(), ..status };
             let mut commands = Vec::new();
             window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
             // What the camera looks at appears in the middle of what the panel leaves
@@ -416,6 +668,7 @@ pub(crate) fn drive_window<D: Driver>(
                     gui::Command::StepFrame => runner.step_frame()?,
                     gui::Command::StepPhysics => runner.step()?,
                     gui::Command::Reset => {
+                        hand.deselect(&mut runner.simulation());
                         runner.reset()?;
                         shown.mirror.clear();
                         pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
@@ -428,10 +681,37 @@ pub(crate) fn drive_window<D: Driver>(
                     gui::Command::Setpoint(joint, value) => {
                         gui::set_setpoint(&mut runner.simulation(), joint, value)?;
                     }
+                    gui::Command::Edit(edit) => match apply_edit(&mut runner.simulation(), &edit) {
+                        Ok(()) => {
+                            panel.error = None;
+                            if let Edit::Color(id, _) = edit {
+                                shown.mirror.redraw(id);
+                            }
+                        }
+                        Err(e) => panel.error = Some(e.to_string()),
+                    },
+                    gui::Command::Save => save(&runner.simulation(), &mut panel),
+                    gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
                 }
             }
+            let state = ViewerState {
+                paused,
+                selected: hand.selected.and_then(|id| Selected::of(&runner.simulation(), id)),
+                drag: hand.grab.and_then(|g| {
+                    let from = g.point(&runner.simulation()).ok()?;
+                    Some(DragLine { mode: g.mode, from, to: g.target })
+                }),
+                error: panel.error.clone(),
+                save_path: panel.save_path.clone().into(),
+                saved: panel.saved.clone().map(Into::into),
+                fields: panel.fields.clone(),
+                window_size: (size.x, size.y),
+                view_projection: view_projection(&shown.camera),
+            };
+            runner.viewer_state(&state);
             let sim = runner.simulation();
             shown.update(&sim, &mut window)?;
+            hand.draw(&sim, &mut window);
             if panel.shown {
                 // The panel says the same.
                 continue;
