@@ -178,6 +178,62 @@ fn offscreen_axes_are_drawn_only_when_asked() -> std::result::Result<(), String>
     Ok(())
 }
 
+/// Contact forces are drawn off screen only when asked (`ViewerOptions::forces`): a red
+/// 2 kg box resting on the floor, once without and once with them: cyan arrows stand
+/// above its bottom corners, as tall as 0.05 m per newton make them (the four add up to
+/// 2 g N, about 0.98 m).
+fn offscreen_contact_forces_are_drawn_when_asked() -> std::result::Result<(), String> {
+    use ars::viewer::ViewerOptions;
+    struct Resting;
+    impl Hooks for Resting {}
+    impl Program for Resting {
+        fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+            let id = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.5, 0.0], Mass::Total(2.0))?;
+            sim.set_color(id, [0.8, 0.1, 0.1])
+        }
+        fn view_settings(&self) -> ViewSettings {
+            ViewSettings { size: (320, 240), camera_position: Point3::new(4.0, 3.0, 5.0), ..ViewSettings::default() }
+        }
+    }
+    let dir = std::env::temp_dir().join(format!("ars_viewer_test_forces_{}", std::process::id()));
+    // Two recordings on this thread: this renderer holds the thread's one rendering
+    // context for both, to the end.
+    let holder = OffscreenRenderer::new(&Resting.view_settings()).map_err(|e| e.to_string())?;
+    let recorded = |options: ViewerOptions| -> std::result::Result<RgbImage, String> {
+        let recorder = ScreenshotRecorder::new(&dir).every(25).options(options);
+        let (sim, written) = recorder.record(&mut Resting, 1.0).map_err(|e| e.to_string())?;
+        if options.forces && !sim.world().contact_feedback() {
+            return Err("the recorder drew forces without asking ODE for them".into());
+        }
+        let last = written.last().ok_or("no frame")?;
+        Ok(ars::viewer::image::open(last).map_err(|e| e.to_string())?.to_rgb8())
+    };
+    let (without, with) = (recorded(ViewerOptions::default()), recorded(ViewerOptions::default().with_forces(true)));
+    drop(holder);
+    let _ = std::fs::remove_dir_all(&dir);
+    let (without, with) = (without?, with?);
+    let _ = with.save(std::env::temp_dir().join("ars_viewer_test_forces.png"));
+    let cyan = |image: &RgbImage| image.pixels().filter(|p| p.0[0] < 90 && p.0[1] > 120 && p.0[2] > 140).count();
+    let (before, after) = (cyan(&without), cyan(&with));
+    // A corner's arrow, from the contact point up a quarter of 0.98 m: cyan halfway.
+    let view = Resting.view_settings();
+    let (x, y) = project(&view, Point3::new(0.5, 0.12, 0.5));
+    let near = (-3..=3i64)
+        .flat_map(|dx| (-3..=3i64).map(move |dy| (dx, dy)))
+        .filter(|(dx, dy)| {
+            let p = with.get_pixel((x as i64 + dx) as u32, (y as i64 + dy) as u32).0;
+            p[0] < 90 && p[1] > 120 && p[2] > 140
+        })
+        .count();
+    println!(
+        "  forces: {before} cyan pixels without, {after} with; {near} at the front corner's arrow ({x:.0}, {y:.0})"
+    );
+    if before != 0 || after < 40 || near == 0 {
+        return Err("no arrows where the forces act, or arrows when not asked".into());
+    }
+    Ok(())
+}
+
 /// The recorder encodes and writes on worker threads: every frame is there, numbered
 /// in order, each the same bytes as the image the renderer draws of the same state
 /// saved with `RgbImage::save` (what the recorder wrote itself before).
@@ -576,7 +632,8 @@ impl ars::viewer::Driver for Watched<'_> {
 /// camera's up, read from the simulation) and `p` then writes a screenshot showing the
 /// outline and the drag line; paused, a Ctrl-drag 150 px right moves it right by more
 /// than 0.5 m with the clock stopped; a mass of -5 typed into the editor is refused
-/// with an error and the mass stays 1 kg; Escape deselects, and a second Escape quits.
+/// with an error and the mass stays 1 kg; Ctrl+S saves the scene as it is; Escape
+/// deselects, and a second Escape quits.
 fn a_person_selects_pulls_and_edits_a_body() -> std::result::Result<bool, String> {
     use std::sync::{Arc, Mutex};
     if Command::new("xdotool").arg("version").output().is_err() {
@@ -624,6 +681,8 @@ fn a_person_selects_pulls_and_edits_a_body() -> std::result::Result<bool, String
     match closed.checked_duration_since(escape) {
         Some(after) if after < Duration::from_secs(3) => {
             println!("  the second Escape closed the window ({after:.2?} later)");
+            let _ = std::env::set_current_dir(std::env::temp_dir());
+            let _ = std::fs::remove_dir_all(&shots);
             Ok(true)
         }
         _ => Err("the window did not close on the second Escape".into()),
@@ -782,6 +841,17 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
         return Err(lines.pop().unwrap());
     }
 
+    // Ctrl+S, paused: the saved scene holds the crate where the drag left it.
+    xdotool(&["key", "ctrl+s"])?;
+    wait(700);
+    let saved = state().unwrap().saved.ok_or("Ctrl+S saved nothing")?;
+    let loaded = Simulation::load_scene_from(&saved).map_err(|e| format!("{}: {e}", saved.display()))?;
+    let there = loaded.object("crate").and_then(|o| o.position()).map_err(|e| e.to_string())?;
+    lines.push(format!("Ctrl+S wrote {}: the crate at {:.2?} in it", saved.display(), there.coords.as_slice()));
+    if there != p1 {
+        return Err(format!("the saved crate is at {there}, the window's at {p1}"));
+    }
+
     // An invalid mass typed into the editor.
     let field = state().unwrap().field("mass").ok_or("no mass field in the editor")?;
     let (fx, fy) = (((field[0] + field[2]) / 2.0) as i64, ((field[1] + field[3]) / 2.0) as i64);
@@ -895,6 +965,13 @@ fn main() {
     );
     run("the_recorder_writes_every_frame_as_drawn", the_recorder_writes_every_frame_as_drawn, true, always, &mut tally);
     run("offscreen_axes_are_drawn_only_when_asked", offscreen_axes_are_drawn_only_when_asked, true, always, &mut tally);
+    run(
+        "offscreen_contact_forces_are_drawn_when_asked",
+        offscreen_contact_forces_are_drawn_when_asked,
+        true,
+        always,
+        &mut tally,
+    );
     let shown = |ran: &bool| *ran;
     run("a_real_window_under_xvfb_shows_the_ball", a_real_window_under_xvfb_shows_the_ball, false, shown, &mut tally);
     run(

@@ -28,6 +28,8 @@ pub(crate) enum Command {
     ToggleFollow,
     /// Draw the contact points, or stop.
     ToggleContacts,
+    /// Draw the contact forces as arrows, or stop.
+    ToggleForces,
     /// Draw the joints' anchors and axes, or stop.
     ToggleJoints,
     /// Draw the world axes, or stop.
@@ -57,6 +59,9 @@ pub(crate) struct Panel {
     /// Where the panel was drawn last, `[left, top, right, bottom]`, with the size of
     /// the window, in egui's points (`None` while hidden).
     pub(crate) covers: Option<([f32; 4], (f32, f32))>,
+    /// Where the editor was drawn last, `[left, top, right, bottom]` (`None` while
+    /// hidden).
+    pub(crate) editor_covers: Option<[f32; 4]>,
     /// The editor's number fields being typed in, by label (a field not in it shows
     /// the simulation's value).
     typing: HashMap<String, String>,
@@ -71,6 +76,8 @@ pub(crate) struct Panel {
     pub(crate) save_path: String,
     /// Where it was saved last.
     pub(crate) saved: Option<String>,
+    /// The contact-force arrows' length per newton, m/N.
+    pub(crate) force_scale: f64,
 }
 
 impl Default for Panel {
@@ -84,12 +91,14 @@ impl Default for Panel {
             column: 0,
             span: 10.0,
             covers: None,
+            editor_covers: None,
             typing: HashMap::new(),
             fields: Vec::new(),
             joint: None,
             error: None,
             save_path: format!("./scene-{stamp}.json"),
             saved: None,
+            force_scale: crate::scene::DEFAULT_FORCE_SCALE,
         }
     }
 }
@@ -102,10 +111,12 @@ pub(crate) struct Status<'a> {
     pub(crate) real_time_factor: f64,
     pub(crate) following: bool,
     pub(crate) contacts: bool,
+    /// Whether contact forces are drawn.
+    pub(crate) forces: bool,
     pub(crate) joints: bool,
     pub(crate) axes: bool,
-    /// The selected body.
-    pub(crate) selected: Option<&'a Selected>,
+    /// The selected body, with the colour it is drawn with.
+    pub(crate) selected: Option<(&'a Selected, [f32; 3])>,
 }
 
 impl Panel {
@@ -113,6 +124,7 @@ impl Panel {
     pub(crate) fn draw(&mut self, ctx: &egui::Context, sim: &Simulation, status: &Status<'_>) -> Vec<Command> {
         let mut commands = Vec::new();
         self.covers = None;
+        self.editor_covers = None;
         if !self.shown {
             return commands;
         }
@@ -154,6 +166,9 @@ impl Panel {
                 if ui.selectable_label(status.contacts, "Contacts").clicked() {
                     commands.push(Command::ToggleContacts);
                 }
+                if ui.selectable_label(status.forces, "Forces").on_hover_text("contact forces as arrows").clicked() {
+                    commands.push(Command::ToggleForces);
+                }
                 if ui.selectable_label(status.joints, "Joints").clicked() {
                     commands.push(Command::ToggleJoints);
                 }
@@ -164,6 +179,10 @@ impl Panel {
                     commands.push(Command::Screenshot);
                 }
             });
+            if status.forces {
+                let slider = egui::Slider::new(&mut self.force_scale, 0.001..=1.0).logarithmic(true).suffix(" m/N");
+                ui.add(slider.text("force arrows"));
+            }
             ui.separator();
             self.plots(ui, sim);
             ui.separator();
@@ -179,7 +198,11 @@ impl Panel {
         }
         self.fields.clear();
         let editor = egui::Window::new("Edit").anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).default_width(280.0);
-        editor.show(ctx, |ui| self.editor(ui, sim, status, &mut commands));
+        let edited = editor.show(ctx, |ui| self.editor(ui, sim, status, &mut commands));
+        self.editor_covers = edited.map(|shown| {
+            let (r, o) = (shown.response.rect, ctx.viewport_rect().min);
+            [r.min.x - o.x, r.min.y - o.y, r.max.x - o.x, r.max.y - o.y]
+        });
         commands
     }
 
@@ -192,10 +215,10 @@ impl Panel {
             None => {
                 ui.label("Click a body to select it; Ctrl+drag pulls it, Shift+drag turns it.");
             }
-            Some(s) => self.selected_body(ui, sim, s, status.paused, commands),
+            Some((s, rgb)) => self.selected_body(ui, s, rgb, status.paused, commands),
         });
         egui::CollapsingHeader::new("Joint").default_open(status.selected.is_some()).show(ui, |ui| {
-            self.joint_editor(ui, sim, status.selected.map(|s| s.id), commands);
+            self.joint_editor(ui, sim, status.selected.map(|(s, _)| s.id), commands);
         });
         egui::CollapsingHeader::new("Simulation").default_open(false).show(ui, |ui| {
             let g = sim.gravity();
@@ -241,8 +264,8 @@ impl Panel {
     fn selected_body(
         &mut self,
         ui: &mut egui::Ui,
-        sim: &Simulation,
         s: &Selected,
+        mut rgb: [f32; 3],
         paused: bool,
         commands: &mut Vec<Command>,
     ) {
@@ -270,7 +293,6 @@ impl Panel {
         });
         egui::Grid::new("ars-edit-body").show(ui, |ui| {
             ui.label("colour");
-            let mut rgb = sim.object(s.id).ok().and_then(|o| o.color()).unwrap_or([0.5, 0.5, 0.5]);
             if ui.color_edit_button_rgb(&mut rgb).changed() {
                 commands.push(Command::Edit(Edit::Color(s.id, rgb)));
             }

@@ -57,7 +57,7 @@ pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_for
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
-pub use scene::SceneMirror;
+pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
@@ -75,12 +75,24 @@ pub struct ViewerOptions {
     /// Draw the world axes at the origin, 1 m long: X red, Y green, Z blue. Off by
     /// default; the window's `x` key (and the panel's Axes button) toggles them.
     pub axes: bool,
+    /// Draw the contact forces as arrows ([`DEFAULT_FORCE_SCALE`] metres per newton).
+    /// Off by default; the panel's Forces button toggles them. They are the forces ODE
+    /// reports: the window and the recorder turn the world's contact feedback on
+    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)); with an
+    /// [`OffscreenRenderer`] of your own, turn it on in the simulation you render.
+    pub forces: bool,
 }
 
 impl ViewerOptions {
     /// With the world axes drawn or not.
     pub fn with_axes(mut self, axes: bool) -> Self {
         self.axes = axes;
+        self
+    }
+
+    /// With the contact forces drawn or not.
+    pub fn with_forces(mut self, forces: bool) -> Self {
+        self.forces = forces;
         self
     }
 }

@@ -134,6 +134,8 @@ struct Hand {
     push: Option<HookId<Push>>,
     /// Escape went down to deselect: its release must not close the window.
     escape_held: bool,
+    /// The cursor when the panel was last drawn (where egui last saw it).
+    ui_cursor: (f64, f64),
 }
 
 impl Hand {
@@ -256,6 +258,35 @@ fn outline(window: &mut Window, low: Vec3, high: Vec3) {
             if i & bit == 0 {
                 window.draw_line(corner(i), corner(i | bit), yellow, 3.0, false);
             }
+        }
+    }
+}
+
+/// The world's contact feedback (ODE's forces of the contact points), on while the
+/// forces are drawn, and as it was before (a `ContactForces` sensor keeps it on) once
+/// they are not.
+#[derive(Default)]
+struct Feedback {
+    /// Whether the world reported the forces before the window asked.
+    before: bool,
+}
+
+impl Feedback {
+    /// Forces drawn (`on`) or not from now on.
+    fn show(&mut self, sim: &mut Simulation, on: bool) {
+        let world = sim.world_mut();
+        if on {
+            self.before = world.contact_feedback();
+            world.set_contact_feedback(true);
+        } else {
+            world.set_contact_feedback(self.before);
+        }
+    }
+
+    /// The simulation was rebuilt: ask the new one for the forces if they are drawn.
+    fn rebuilt(&mut self, sim: &mut Simulation, on: bool) {
+        if on {
+            self.show(sim, true);
         }
     }
 }
@@ -480,6 +511,11 @@ pub(crate) fn drive_window<D: Driver>(
         // A plain left drag orbits; with a modifier it drags the selected body.
         shown.camera.orbit.set_rotate_modifiers(Some(Modifiers::empty()));
         let mut hand = Hand::default();
+        let mut feedback = Feedback::default();
+        if options.forces {
+            shown.mirror.show_forces = true;
+            feedback.show(&mut runner.simulation(), true);
+        }
         let font = Font::default();
         let mut paused = false;
         let mut pacer = Pacer::new(runner.simulation().time());
@@ -514,7 +550,9 @@ pub(crate) fn drive_window<D: Driver>(
             // While a text field of the panel has the keyboard, keys are its own; while
             // the pointer is over the panel, clicks are.
             let typing = window.is_egui_capturing_keyboard();
-            let over_panel = window.is_egui_capturing_mouse();
+            let egui_pointer = window.is_egui_capturing_mouse();
+            let mut panels: Vec<layout::Rect> = panel.covers.map(|(r, _)| r).into_iter().collect();
+            panels.extend(panel.editor_covers);
             let size = Vec2::new(window.width() as f32, window.height() as f32);
             let forward = convert::vector_back(shown.camera.orbit.at() - shown.camera.eye());
             for mut event in window.events().iter() {
@@ -526,6 +564,7 @@ pub(crate) fn drive_window<D: Driver>(
                         continue;
                     }
                     WindowEvent::MouseButton(MouseButton::Button1, action, modifiers) => {
+                        let over_panel = layout::pointer_on_panel(hand.cursor, hand.ui_cursor, egui_pointer, &panels);
                         if over_panel && hand.grab.is_none() {
                             continue;
                         }
@@ -578,6 +617,7 @@ pub(crate) fn drive_window<D: Driver>(
                         hand.deselect(&mut runner.simulation());
                         runner.reset()?;
                         shown.mirror.clear();
+                        feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
                         pacer = Pacer::new(runner.simulation().time());
                     }
                     (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
@@ -641,6 +681,7 @@ pub(crate) fn drive_window<D: Driver>(
                 real_time_factor: pacer.factor,
                 following: shown.following,
                 contacts: shown.mirror.show_contacts,
+                forces: shown.mirror.show_forces,
                 joints: shown.mirror.show_joints,
                 axes: shown.mirror.show_axes,
                 selected: None,
@@ -650,13 +691,18 @@ pub(crate) fn drive_window<D: Driver>(
                 // The body is gone (removed by the program).
                 hand.deselect(&mut runner.simulation());
             }
-            let status = gui::Status { selected: selected.as_ref(), ..status };
+            let drawn = selected.as_ref().and_then(|s| shown.mirror.drawn_color(s.id)).unwrap_or([0.5; 3]);
+            let status = gui::Status { selected: selected.as_ref().map(|s| (s, drawn)), ..status };
             let mut commands = Vec::new();
             window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
+            hand.ui_cursor = hand.cursor;
             // What the camera looks at appears in the middle of what the panel leaves
             // free (from the next frame on).
             shown.camera.shift = match panel.covers {
-                Some((panel_rect, (w, h))) => layout::ndc_shift(w, h, layout::free_centre(w, h, Some(panel_rect))),
+                Some((panel_rect, (w, h))) => {
+                    let panels: Vec<layout::Rect> = std::iter::once(panel_rect).chain(panel.editor_covers).collect();
+                    layout::ndc_shift(w, h, layout::free_centre_of(w, h, &panels))
+                }
                 None => Vec2::ZERO,
             };
             for command in commands {
@@ -671,11 +717,16 @@ pub(crate) fn drive_window<D: Driver>(
                         hand.deselect(&mut runner.simulation());
                         runner.reset()?;
                         shown.mirror.clear();
+                        feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
                         pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
                     }
                     gui::Command::Screenshot => screenshot(&window, &view.title),
                     gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
                     gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                    gui::Command::ToggleForces => {
+                        shown.mirror.show_forces = !shown.mirror.show_forces;
+                        feedback.show(&mut runner.simulation(), shown.mirror.show_forces);
+                    }
                     gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
                     gui::Command::ToggleAxes => shown.mirror.show_axes = !shown.mirror.show_axes,
                     gui::Command::Setpoint(joint, value) => {
@@ -694,6 +745,7 @@ pub(crate) fn drive_window<D: Driver>(
                     gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
                 }
             }
+            shown.mirror.force_scale = panel.force_scale;
             let state = ViewerState {
                 paused,
                 selected: hand.selected.and_then(|id| Selected::of(&runner.simulation(), id)),
