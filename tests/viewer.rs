@@ -588,6 +588,7 @@ impl Program for Crate {
 struct Seen {
     state: Option<ars::viewer::ViewerState>,
     position: Point3<f64>,
+    rotation: ars::nalgebra::UnitQuaternion<f64>,
     mass: f64,
     time: f64,
 }
@@ -623,6 +624,7 @@ impl ars::viewer::Driver for Watched<'_> {
         let body = object.body().expect("a body");
         let mut seen = self.seen.lock().unwrap();
         (seen.position, seen.mass, seen.time) = (body.position(), body.mass(), sim.time());
+        seen.rotation = body.quaternion();
         seen.state = Some(state.clone());
     }
 }
@@ -631,9 +633,10 @@ impl ars::viewer::Driver for Watched<'_> {
 /// state names it); a Ctrl-drag 250 px up pulls it up by more than 0.5 m (along the
 /// camera's up, read from the simulation) and `p` then writes a screenshot showing the
 /// outline and the drag line; paused, a Ctrl-drag 150 px right moves it right by more
-/// than 0.5 m with the clock stopped; a mass of -5 typed into the editor is refused
-/// with an error and the mass stays 1 kg; Ctrl+S saves the scene as it is; Escape
-/// deselects, and a second Escape quits.
+/// than 0.5 m with the clock stopped, Ctrl+S saves the scene as it is, and a
+/// Shift-drag turns the crate about the camera's up; a mass of -5 typed into the
+/// editor is refused with an error and the mass stays 1 kg; Escape deselects, and a
+/// second Escape quits.
 fn a_person_selects_pulls_and_edits_a_body() -> std::result::Result<bool, String> {
     use std::sync::{Arc, Mutex};
     if Command::new("xdotool").arg("version").output().is_err() {
@@ -850,6 +853,47 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     lines.push(format!("Ctrl+S wrote {}: the crate at {:.2?} in it", saved.display(), there.coords.as_slice()));
     if there != p1 {
         return Err(format!("the saved crate is at {there}, the window's at {p1}"));
+    }
+
+    // Paused, Shift-drag 100 px right turns it about the camera's up, its centre kept.
+    let (p0, q0) = {
+        let s = seen.lock().unwrap();
+        (s.position, s.rotation)
+    };
+    let (x, y) = to_window(&p0)?;
+    move_to(x, y)?;
+    wait(300);
+    let held = {
+        xdotool(&["keydown", "shift"])?;
+        wait(100);
+        xdotool(&["mousedown", "1"])?;
+        wait(200);
+        let mut r = Ok(());
+        for i in 1..=10 {
+            r = r.and(move_to(x + 100 * i / 10, y).map(drop));
+            wait(60);
+        }
+        wait(500);
+        r
+    };
+    xdotool(&["mouseup", "1"])?;
+    wait(100);
+    xdotool(&["keyup", "shift"])?;
+    wait(300);
+    held?;
+    let (p1, q1, t2) = {
+        let s = seen.lock().unwrap();
+        (s.position, s.rotation, s.time)
+    };
+    let turn = (q1 * q0.inverse()).scaled_axis();
+    lines.push(format!(
+        "paused, Shift-drag 100 px right: turned {:.2} rad, {:.2} of it about the camera's up; centre moved {:.1e} m",
+        turn.norm(),
+        turn.dot(&up),
+        (p1 - p0).norm()
+    ));
+    if turn.dot(&up) < 0.3 || (p1 - p0).norm() > 1e-9 || t2 != t1 {
+        return Err(lines.pop().unwrap());
     }
 
     // An invalid mass typed into the editor.
