@@ -526,275 +526,286 @@ pub(crate) fn drive_window<D: Driver>(
         // milliseconds a frame.
         let mut fxaa = kiss3d::post_processing::Fxaa::new();
         let smooth = shown.mirror.draws_fast();
-        loop {
-            let open = if smooth {
-                window.render_3d_with_chain(&mut shown.scene, &mut shown.camera, &mut [&mut fxaa]).await
-            } else {
-                window.render_3d(&mut shown.scene, &mut shown.camera).await
-            };
-            if !open {
-                break;
-            }
-            let wall = started.elapsed();
-            report.frames += 1;
-            if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
-                report.resident_mb.push((wall.as_secs_f64(), resident_mb()));
-            }
-            if limit.is_some_and(|l| wall >= l) {
-                break;
-            }
-            // Keys pressed in this frame's events: under X11 a press sometimes arrives
-            // twice in one frame (seen with xdotool); a press of a key already down in
-            // the same frame is that copy, not a new press.
-            let mut pressed: Vec<WindowKey> = Vec::new();
-            // While a text field of the panel has the keyboard, keys are its own; while
-            // the pointer is over the panel, clicks are.
-            let typing = window.is_egui_capturing_keyboard();
-            let egui_pointer = window.is_egui_capturing_mouse();
-            let mut panels: Vec<layout::Rect> = panel.covers.map(|(r, _)| r).into_iter().collect();
-            panels.extend(panel.editor_covers);
-            let size = Vec2::new(window.width() as f32, window.height() as f32);
-            let forward = convert::vector_back(shown.camera.orbit.at() - shown.camera.eye());
-            for mut event in window.events().iter() {
-                let (key, action, modifiers) = match event.value {
-                    WindowEvent::CursorPos(x, y, _) => {
-                        hand.cursor = (x, y);
-                        // A drag moves the body, not the camera.
-                        event.inhibited = hand.grab.is_some();
-                        continue;
-                    }
-                    WindowEvent::MouseButton(MouseButton::Button1, action, modifiers) => {
-                        let over_panel = layout::pointer_on_panel(hand.cursor, hand.ui_cursor, egui_pointer, &panels);
-                        if over_panel && hand.grab.is_none() {
+        // The loop, in a block of its own so that the drag ends however it ends.
+        let outcome: Result<()> = async {
+            loop {
+                let open = if smooth {
+                    window.render_3d_with_chain(&mut shown.scene, &mut shown.camera, &mut [&mut fxaa]).await
+                } else {
+                    window.render_3d(&mut shown.scene, &mut shown.camera).await
+                };
+                if !open {
+                    break;
+                }
+                let wall = started.elapsed();
+                report.frames += 1;
+                if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
+                    report.resident_mb.push((wall.as_secs_f64(), resident_mb()));
+                }
+                if limit.is_some_and(|l| wall >= l) {
+                    break;
+                }
+                // Keys pressed in this frame's events: under X11 a press sometimes arrives
+                // twice in one frame (seen with xdotool); a press of a key already down in
+                // the same frame is that copy, not a new press.
+                let mut pressed: Vec<WindowKey> = Vec::new();
+                // While a text field of the panel has the keyboard, keys are its own; while
+                // the pointer is over the panel, clicks are.
+                let typing = window.is_egui_capturing_keyboard();
+                let egui_pointer = window.is_egui_capturing_mouse();
+                let mut panels: Vec<layout::Rect> = panel.covers.map(|(r, _)| r).into_iter().collect();
+                panels.extend(panel.editor_covers);
+                let size = Vec2::new(window.width() as f32, window.height() as f32);
+                let forward = convert::vector_back(shown.camera.orbit.at() - shown.camera.eye());
+                for mut event in window.events().iter() {
+                    let (key, action, modifiers) = match event.value {
+                        WindowEvent::CursorPos(x, y, _) => {
+                            hand.cursor = (x, y);
+                            // A drag moves the body, not the camera.
+                            event.inhibited = hand.grab.is_some();
                             continue;
                         }
-                        let ray = hand.ray(&shown.camera, size);
-                        match action {
-                            Action::Press => {
-                                let modifiers = modifiers | held_modifiers(&window);
-                                event.inhibited = hand.press(&runner.simulation(), ray, forward, modifiers);
+                        WindowEvent::MouseButton(MouseButton::Button1, action, modifiers) => {
+                            let over_panel =
+                                layout::pointer_on_panel(hand.cursor, hand.ui_cursor, egui_pointer, &panels);
+                            if over_panel && hand.grab.is_none() {
+                                continue;
                             }
-                            Action::Release => {
-                                event.inhibited = hand.grab.is_some();
-                                hand.release(&mut runner.simulation(), ray);
+                            let ray = hand.ray(&shown.camera, size);
+                            match action {
+                                Action::Press => {
+                                    let modifiers = modifiers | held_modifiers(&window);
+                                    event.inhibited = hand.press(&runner.simulation(), ray, forward, modifiers);
+                                }
+                                Action::Release => {
+                                    event.inhibited = hand.grab.is_some();
+                                    hand.release(&mut runner.simulation(), ray);
+                                }
                             }
+                            continue;
+                        }
+                        WindowEvent::Key(key, action, modifiers) if !typing => (key, action, modifiers),
+                        _ => continue,
+                    };
+                    if key == WindowKey::Escape {
+                        // Deselects; with nothing selected it is kiss3d's close key, and
+                        // must reach kiss3d, which closes the window on its release.
+                        if hand.selected.is_some() || hand.escape_held {
+                            event.inhibited = true;
+                            hand.escape_held = action == Action::Press;
+                            hand.deselect(&mut runner.simulation());
                         }
                         continue;
                     }
-                    WindowEvent::Key(key, action, modifiers) if !typing => (key, action, modifiers),
-                    _ => continue,
-                };
-                if key == WindowKey::Escape {
-                    // Deselects; with nothing selected it is kiss3d's close key, and
-                    // must reach kiss3d, which closes the window on its release.
-                    if hand.selected.is_some() || hand.escape_held {
-                        event.inhibited = true;
-                        hand.escape_held = action == Action::Press;
-                        hand.deselect(&mut runner.simulation());
+                    // Every other key is the viewer's or the program's, not the camera's.
+                    event.inhibited = true;
+                    match action {
+                        Action::Press if pressed.contains(&key) => continue,
+                        Action::Press => pressed.push(key),
+                        Action::Release => pressed.retain(|k| *k != key),
                     }
-                    continue;
-                }
-                // Every other key is the viewer's or the program's, not the camera's.
-                event.inhibited = true;
-                match action {
-                    Action::Press if pressed.contains(&key) => continue,
-                    Action::Press => pressed.push(key),
-                    Action::Release => pressed.retain(|k| *k != key),
-                }
-                if key == WindowKey::S && (modifiers | held_modifiers(&window)).contains(Modifiers::Control) {
-                    if action == Action::Press {
-                        save(&runner.simulation(), &mut panel);
-                    }
-                    continue;
-                }
-                match (key, action) {
-                    (WindowKey::Space, Action::Press) => {
-                        paused = !paused;
-                        pacer = Pacer::new(runner.simulation().time());
-                    }
-                    (WindowKey::N, Action::Press) if paused => runner.step()?,
-                    (WindowKey::R, Action::Press) => {
-                        hand.deselect(&mut runner.simulation());
-                        runner.reset()?;
-                        shown.mirror.clear();
-                        feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
-                        pacer = Pacer::new(runner.simulation().time());
-                    }
-                    (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
-                    (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
-                    (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
-                    (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
-                    (WindowKey::X, Action::Press) => shown.mirror.show_axes = !shown.mirror.show_axes,
-                    (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
-                    (k, Action::Press) => {
-                        if let Some(k) = program_key(k) {
-                            runner.key_down(k)?;
+                    if key == WindowKey::S && (modifiers | held_modifiers(&window)).contains(Modifiers::Control) {
+                        if action == Action::Press {
+                            save(&runner.simulation(), &mut panel);
                         }
+                        continue;
                     }
-                    (k, Action::Release) => {
-                        if let Some(k) = program_key(k) {
-                            runner.key_up(k)?;
+                    match (key, action) {
+                        (WindowKey::Space, Action::Press) => {
+                            paused = !paused;
+                            pacer = Pacer::new(runner.simulation().time());
                         }
-                    }
-                }
-            }
-            // Ctrl-C in the terminal closes the window too, once the program asked for
-            // it (`ars_core::interrupt::stop_on_ctrl_c`: the examples do).
-            if runner.wants_to_close() || ars_core::interrupt::requested() {
-                break;
-            }
-            {
-                let ray = hand.ray(&shown.camera, size);
-                let dragged = hand.drag(&mut runner.simulation(), ray, paused);
-                if let Err(e) = dragged {
-                    panel.error = Some(format!("drag: {e}"));
-                    hand.deselect(&mut runner.simulation());
-                }
-            }
-            if panel.speed != pacer.speed {
-                pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
-            }
-            if !paused && panel.fastest {
-                // As fast as the machine can: frames for about 30 ms, then draw.
-                let budget = Instant::now();
-                while budget.elapsed() < Duration::from_millis(30) {
-                    runner.step_frame()?;
-                }
-                pacer.measure(runner.simulation().time());
-            } else if !paused {
-                let mut frames = 0;
-                while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
-                    runner.step_frame()?;
-                    frames += 1;
-                }
-                pacer.behind = runner.simulation().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
-                if pacer.behind {
-                    // Give up on the lost time rather than spiral: keep pacing from now.
-                    pacer.wall_origin = Instant::now();
-                    pacer.sim_origin = runner.simulation().time();
-                }
-                pacer.measure(runner.simulation().time());
-            }
-            let status = gui::Status {
-                title: &view.title,
-                paused,
-                real_time_factor: pacer.factor,
-                following: shown.following,
-                contacts: shown.mirror.show_contacts,
-                forces: shown.mirror.show_forces,
-                joints: shown.mirror.show_joints,
-                axes: shown.mirror.show_axes,
-                selected: None,
-            };
-            let selected = hand.selected.and_then(|id| Selected::of(&runner.simulation(), id));
-            if selected.is_none() && hand.selected.is_some() {
-                // The body is gone (removed by the program).
-                hand.deselect(&mut runner.simulation());
-            }
-            let drawn = selected.as_ref().and_then(|s| shown.mirror.drawn_color(s.id)).unwrap_or([0.5; 3]);
-            let status = gui::Status { selected: selected.as_ref().map(|s| (s, drawn)), ..status };
-            let mut commands = Vec::new();
-            window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
-            hand.ui_cursor = hand.cursor;
-            // What the camera looks at appears in the middle of what the panel leaves
-            // free (from the next frame on).
-            shown.camera.shift = match panel.covers {
-                Some((panel_rect, (w, h))) => {
-                    let panels: Vec<layout::Rect> = std::iter::once(panel_rect).chain(panel.editor_covers).collect();
-                    layout::ndc_shift(w, h, layout::free_centre_of(w, h, &panels))
-                }
-                None => Vec2::ZERO,
-            };
-            for command in commands {
-                match command {
-                    gui::Command::TogglePause => {
-                        paused = !paused;
-                        pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
-                    }
-                    gui::Command::StepFrame => runner.step_frame()?,
-                    gui::Command::StepPhysics => runner.step()?,
-                    gui::Command::Reset => {
-                        hand.deselect(&mut runner.simulation());
-                        runner.reset()?;
-                        shown.mirror.clear();
-                        feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
-                        pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
-                    }
-                    gui::Command::Screenshot => screenshot(&window, &view.title),
-                    gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
-                    gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
-                    gui::Command::ToggleForces => {
-                        shown.mirror.show_forces = !shown.mirror.show_forces;
-                        feedback.show(&mut runner.simulation(), shown.mirror.show_forces);
-                    }
-                    gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
-                    gui::Command::ToggleAxes => shown.mirror.show_axes = !shown.mirror.show_axes,
-                    gui::Command::Setpoint(joint, value) => {
-                        gui::set_setpoint(&mut runner.simulation(), joint, value)?;
-                    }
-                    gui::Command::Edit(edit) => match apply_edit(&mut runner.simulation(), &edit) {
-                        Ok(()) => {
-                            panel.error = None;
-                            if let Edit::Color(id, _) = edit {
-                                shown.mirror.redraw(id);
+                        (WindowKey::N, Action::Press) if paused => runner.step()?,
+                        (WindowKey::R, Action::Press) => {
+                            hand.deselect(&mut runner.simulation());
+                            runner.reset()?;
+                            shown.mirror.clear();
+                            feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
+                            pacer = Pacer::new(runner.simulation().time());
+                        }
+                        (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
+                        (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
+                        (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
+                        (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                        (WindowKey::X, Action::Press) => shown.mirror.show_axes = !shown.mirror.show_axes,
+                        (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
+                        (k, Action::Press) => {
+                            if let Some(k) = program_key(k) {
+                                runner.key_down(k)?;
                             }
                         }
-                        Err(e) => panel.error = Some(e.to_string()),
-                    },
-                    gui::Command::Save => save(&runner.simulation(), &mut panel),
-                    gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
+                        (k, Action::Release) => {
+                            if let Some(k) = program_key(k) {
+                                runner.key_up(k)?;
+                            }
+                        }
+                    }
                 }
+                // Ctrl-C in the terminal closes the window too, once the program asked for
+                // it (`ars_core::interrupt::stop_on_ctrl_c`: the examples do).
+                if runner.wants_to_close() || ars_core::interrupt::requested() {
+                    break;
+                }
+                {
+                    let ray = hand.ray(&shown.camera, size);
+                    let dragged = hand.drag(&mut runner.simulation(), ray, paused);
+                    if let Err(e) = dragged {
+                        panel.error = Some(format!("drag: {e}"));
+                        hand.deselect(&mut runner.simulation());
+                    }
+                }
+                if panel.speed != pacer.speed {
+                    pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                }
+                if !paused && panel.fastest {
+                    // As fast as the machine can: frames for about 30 ms, then draw.
+                    let budget = Instant::now();
+                    while budget.elapsed() < Duration::from_millis(30) {
+                        runner.step_frame()?;
+                    }
+                    pacer.measure(runner.simulation().time());
+                } else if !paused {
+                    let mut frames = 0;
+                    while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
+                        runner.step_frame()?;
+                        frames += 1;
+                    }
+                    pacer.behind = runner.simulation().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
+                    if pacer.behind {
+                        // Give up on the lost time rather than spiral: keep pacing from now.
+                        pacer.wall_origin = Instant::now();
+                        pacer.sim_origin = runner.simulation().time();
+                    }
+                    pacer.measure(runner.simulation().time());
+                }
+                let status = gui::Status {
+                    title: &view.title,
+                    paused,
+                    real_time_factor: pacer.factor,
+                    following: shown.following,
+                    contacts: shown.mirror.show_contacts,
+                    forces: shown.mirror.show_forces,
+                    joints: shown.mirror.show_joints,
+                    axes: shown.mirror.show_axes,
+                    selected: None,
+                };
+                let selected = hand.selected.and_then(|id| Selected::of(&runner.simulation(), id));
+                if selected.is_none() && hand.selected.is_some() {
+                    // The body is gone (removed by the program).
+                    hand.deselect(&mut runner.simulation());
+                }
+                let drawn = selected.as_ref().and_then(|s| shown.mirror.drawn_color(s.id)).unwrap_or([0.5; 3]);
+                let status = gui::Status { selected: selected.as_ref().map(|s| (s, drawn)), ..status };
+                let mut commands = Vec::new();
+                window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
+                hand.ui_cursor = hand.cursor;
+                // What the camera looks at appears in the middle of what the panel leaves
+                // free (from the next frame on).
+                shown.camera.shift = match panel.covers {
+                    Some((panel_rect, (w, h))) => {
+                        let panels: Vec<layout::Rect> =
+                            std::iter::once(panel_rect).chain(panel.editor_covers).collect();
+                        layout::ndc_shift(w, h, layout::free_centre_of(w, h, &panels))
+                    }
+                    None => Vec2::ZERO,
+                };
+                for command in commands {
+                    match command {
+                        gui::Command::TogglePause => {
+                            paused = !paused;
+                            pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                        }
+                        gui::Command::StepFrame => runner.step_frame()?,
+                        gui::Command::StepPhysics => runner.step()?,
+                        gui::Command::Reset => {
+                            hand.deselect(&mut runner.simulation());
+                            runner.reset()?;
+                            shown.mirror.clear();
+                            feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
+                            pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                        }
+                        gui::Command::Screenshot => screenshot(&window, &view.title),
+                        gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
+                        gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                        gui::Command::ToggleForces => {
+                            shown.mirror.show_forces = !shown.mirror.show_forces;
+                            feedback.show(&mut runner.simulation(), shown.mirror.show_forces);
+                        }
+                        gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
+                        gui::Command::ToggleAxes => shown.mirror.show_axes = !shown.mirror.show_axes,
+                        gui::Command::Setpoint(joint, value) => {
+                            gui::set_setpoint(&mut runner.simulation(), joint, value)?;
+                        }
+                        gui::Command::Edit(edit) => match apply_edit(&mut runner.simulation(), &edit) {
+                            Ok(()) => {
+                                panel.error = None;
+                                if let Edit::Color(id, _) = edit {
+                                    shown.mirror.redraw(id);
+                                }
+                            }
+                            Err(e) => panel.error = Some(e.to_string()),
+                        },
+                        gui::Command::Save => save(&runner.simulation(), &mut panel),
+                        gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
+                    }
+                }
+                shown.mirror.force_scale = panel.force_scale;
+                let state = ViewerState {
+                    paused,
+                    selected: hand.selected.and_then(|id| Selected::of(&runner.simulation(), id)),
+                    drag: hand.grab.and_then(|g| {
+                        let from = g.point(&runner.simulation()).ok()?;
+                        Some(DragLine { mode: g.mode, from, to: g.target })
+                    }),
+                    error: panel.error.clone(),
+                    save_path: panel.save_path.clone().into(),
+                    saved: panel.saved.clone().map(Into::into),
+                    fields: panel.fields.clone(),
+                    window_size: (size.x, size.y),
+                    view_projection: view_projection(&shown.camera),
+                };
+                runner.viewer_state(&state);
+                let sim = runner.simulation();
+                shown.update(&sim, &mut window)?;
+                hand.draw(&sim, &mut window);
+                if panel.shown {
+                    // The panel says the same.
+                    continue;
+                }
+                let status = if paused {
+                    "paused".to_string()
+                } else if pacer.behind {
+                    format!("x{:.2} real time: slower than real time", pacer.factor)
+                } else {
+                    format!("x{:.2} real time", pacer.factor)
+                };
+                // Both lines wrap to the window's width (10 px margins).
+                let width = window.width() as f32 - 20.0;
+                let text = format!("t = {:.3} s   {status}", sim.time());
+                let (text, lines) = wrapped(&font, STATUS_SIZE, &text, "   ", width);
+                window.draw_text(
+                    &text,
+                    Vec2::new(10.0, 10.0),
+                    STATUS_SIZE,
+                    &font,
+                    kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0),
+                );
+                let (keys, _) = wrapped(&font, KEYS_SIZE, VIEWER_KEYS, ", ", width);
+                window.draw_text(
+                    &keys,
+                    Vec2::new(10.0, 16.0 + lines as f32 * line_height(&font, STATUS_SIZE)),
+                    KEYS_SIZE,
+                    &font,
+                    kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
+                );
             }
-            shown.mirror.force_scale = panel.force_scale;
-            let state = ViewerState {
-                paused,
-                selected: hand.selected.and_then(|id| Selected::of(&runner.simulation(), id)),
-                drag: hand.grab.and_then(|g| {
-                    let from = g.point(&runner.simulation()).ok()?;
-                    Some(DragLine { mode: g.mode, from, to: g.target })
-                }),
-                error: panel.error.clone(),
-                save_path: panel.save_path.clone().into(),
-                saved: panel.saved.clone().map(Into::into),
-                fields: panel.fields.clone(),
-                window_size: (size.x, size.y),
-                view_projection: view_projection(&shown.camera),
-            };
-            runner.viewer_state(&state);
-            let sim = runner.simulation();
-            shown.update(&sim, &mut window)?;
-            hand.draw(&sim, &mut window);
-            if panel.shown {
-                // The panel says the same.
-                continue;
-            }
-            let status = if paused {
-                "paused".to_string()
-            } else if pacer.behind {
-                format!("x{:.2} real time: slower than real time", pacer.factor)
-            } else {
-                format!("x{:.2} real time", pacer.factor)
-            };
-            // Both lines wrap to the window's width (10 px margins).
-            let width = window.width() as f32 - 20.0;
-            let text = format!("t = {:.3} s   {status}", sim.time());
-            let (text, lines) = wrapped(&font, STATUS_SIZE, &text, "   ", width);
-            window.draw_text(
-                &text,
-                Vec2::new(10.0, 10.0),
-                STATUS_SIZE,
-                &font,
-                kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0),
-            );
-            let (keys, _) = wrapped(&font, KEYS_SIZE, VIEWER_KEYS, ", ", width);
-            window.draw_text(
-                &keys,
-                Vec2::new(10.0, 16.0 + lines as f32 * line_height(&font, STATUS_SIZE)),
-                KEYS_SIZE,
-                &font,
-                kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
-            );
+            Ok(())
         }
+        .await;
+        // A drag in progress ends with the window (closed, or stopped by an error): its
+        // hooks must not go on pushing the body in the simulation handed back.
+        hand.deselect(&mut runner.simulation());
+        outcome?;
         report.wall_seconds = started.elapsed().as_secs_f64();
         report.simulated_seconds = runner.simulation().time();
         Ok(report)
