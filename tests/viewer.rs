@@ -591,6 +591,8 @@ struct Seen {
     rotation: ars::nalgebra::UnitQuaternion<f64>,
     mass: f64,
     time: f64,
+    /// Frames drawn so far.
+    frames: u64,
 }
 
 /// The crate's program, driven by the window, telling the test what the window shows.
@@ -625,6 +627,7 @@ impl ars::viewer::Driver for Watched<'_> {
         let mut seen = self.seen.lock().unwrap();
         (seen.position, seen.mass, seen.time) = (body.position(), body.mass(), sim.time());
         seen.rotation = body.quaternion();
+        seen.frames += 1;
         seen.state = Some(state.clone());
     }
 }
@@ -919,6 +922,25 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     if mass != 1.0 || !error.as_deref().is_some_and(|e| e.contains("mass")) {
         return Err(lines.pop().unwrap());
     }
+    // Escape while typing leaves the field: the window stays, the crate selected. (The
+    // error line above the fields moved them down.)
+    let field = state().unwrap().field("mass").ok_or("no mass field in the editor")?;
+    let (fx, fy) = (((field[0] + field[2]) / 2.0) as i64, ((field[1] + field[3]) / 2.0) as i64);
+    move_to(fx, fy)?;
+    wait(200);
+    xdotool(&["click", "1"])?;
+    wait(300);
+    xdotool(&["key", "Escape"])?;
+    wait(700);
+    let frames = seen.lock().unwrap().frames;
+    wait(500);
+    if seen.lock().unwrap().frames == frames {
+        return Err("Escape in the mass field closed the window".into());
+    }
+    if state().unwrap().selected.is_none() {
+        return Err("Escape in the mass field deselected the crate".into());
+    }
+    lines.push("Escape in the mass field: the field left, the crate still selected".into());
     // Escape deselects, the next one quits.
     move_to(x, y + 200)?;
     wait(200);

@@ -584,17 +584,31 @@ pub(crate) fn drive_window<D: Driver>(
                             }
                             continue;
                         }
-                        WindowEvent::Key(key, action, modifiers) if !typing => (key, action, modifiers),
+                        WindowEvent::Key(key, action, modifiers) => (key, action, modifiers),
                         _ => continue,
                     };
                     if key == WindowKey::Escape {
-                        // Deselects; with nothing selected it is kiss3d's close key, and
-                        // must reach kiss3d, which closes the window on its release.
-                        if hand.selected.is_some() || hand.escape_held {
-                            event.inhibited = true;
-                            hand.escape_held = action == Action::Press;
-                            hand.deselect(&mut runner.simulation());
+                        // kiss3d closes the window on the close key's release. While a
+                        // field is typed in, the press is egui's (it leaves the field);
+                        // with a selection, it deselects; either way its release must not
+                        // close the window. Otherwise it goes to kiss3d, and closes.
+                        match action {
+                            Action::Press if typing => hand.escape_held = true,
+                            Action::Press if hand.selected.is_some() => {
+                                event.inhibited = true;
+                                hand.escape_held = true;
+                                hand.deselect(&mut runner.simulation());
+                            }
+                            Action::Release if hand.escape_held => {
+                                event.inhibited = true;
+                                hand.escape_held = false;
+                            }
+                            _ => {}
                         }
+                        continue;
+                    }
+                    if typing {
+                        // The panel's text field has the keyboard.
                         continue;
                     }
                     // Every other key is the viewer's or the program's, not the camera's.
