@@ -420,7 +420,7 @@ impl Panel {
     fn number(&mut self, ui: &mut egui::Ui, label: &str, value: f64) -> Option<f64> {
         let shown = format_number(value);
         let text = self.typing.entry(label.to_string()).or_insert_with(|| shown.clone());
-        let response = ui.add(egui::TextEdit::singleline(text).desired_width(64.0)).on_hover_text(label);
+        let response = ui.add(egui::TextEdit::singleline(text).desired_width(72.0)).on_hover_text(label);
         let r = response.rect;
         self.fields.push((label.to_string(), [r.min.x, r.min.y, r.max.x, r.max.y]));
         if response.lost_focus() {
