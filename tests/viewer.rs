@@ -570,7 +570,12 @@ impl Program for Crate {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let id = sim.add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(1.0))?;
         sim.set_name(id, "crate")?;
-        sim.set_color(id, [0.2, 0.4, 0.9])
+        sim.set_color(id, [0.2, 0.4, 0.9])?;
+        // A depth camera 3 m in front of the crate, looking at it (along −Z), sampled
+        // once a second: what the fourth view shows.
+        let camera = ars::sensors::DepthCamera::new(64, 48, 1.0, 0.1, 20.0)?
+            .at(ars::nalgebra::Isometry3::translation(0.0, 0.5, 3.0));
+        sim.add_sensor_every(camera, 1.0).map(drop)
     }
     fn view_settings(&self) -> ViewSettings {
         ViewSettings {
@@ -688,7 +693,12 @@ fn a_person_selects_pulls_and_edits_a_body() -> std::result::Result<bool, String
         Some(after) if after < Duration::from_secs(3) => {
             println!("  the second Escape closed the window ({after:.2?} later)");
             let _ = std::env::set_current_dir(std::env::temp_dir());
-            let _ = std::fs::remove_dir_all(&shots);
+            // ARS_KEEP_TEST_FILES=1 keeps the screenshots and the saved scene.
+            if std::env::var_os("ARS_KEEP_TEST_FILES").is_some_and(|v| v == "1") {
+                println!("  files kept in {}", shots.display());
+            } else {
+                let _ = std::fs::remove_dir_all(&shots);
+            }
             Ok(true)
         }
         _ => Err("the window did not close on the second Escape".into()),
@@ -808,9 +818,11 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     if yellow < 100 || pink < 50 {
         return Err(lines.pop().unwrap());
     }
-    // Settle, pause, and drag right.
+    // Settle, pause, and drag right, with the panel hidden (g): the crate, wherever it
+    // fell, is not under it.
     wait(2000);
     xdotool(&["key", "space"])?;
+    xdotool(&["key", "g"])?;
     wait(500);
     let (p0, _, t0) = crate_now();
     if !state().unwrap().paused {
@@ -899,7 +911,9 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
         return Err(lines.pop().unwrap());
     }
 
-    // An invalid mass typed into the editor.
+    // An invalid mass typed into the editor (shown again).
+    xdotool(&["key", "g"])?;
+    wait(500);
     let field = state().unwrap().field("mass").ok_or("no mass field in the editor")?;
     let (fx, fy) = (((field[0] + field[2]) / 2.0) as i64, ((field[1] + field[3]) / 2.0) as i64);
     move_to(fx, fy)?;
@@ -941,6 +955,60 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
         return Err("Escape in the mass field deselected the crate".into());
     }
     lines.push("Escape in the mass field: the field left, the crate still selected".into());
+    // Key 4: four views, each its own picture: the free camera (under the panel), the
+    // crate followed, the top view and the depth camera's, both showing the blue crate.
+    // (g hides the panel and the editor over them first.)
+    xdotool(&["key", "g"])?;
+    xdotool(&["key", "4"])?;
+    wait(2500);
+    if state().unwrap().views != 4 {
+        return Err("key 4 did not show four views".into());
+    }
+    xdotool(&["key", "p"])?;
+    wait(1000);
+    let image =
+        ars::viewer::image::open("ars-touch-002.png").map_err(|e| format!("the views' screenshot: {e}"))?.to_rgb8();
+    let (w, h) = (image.width() / 2, image.height() / 2);
+    let quarter = |i: u32| ((i % 2) * w, (i / 2) * h);
+    // Pixel by pixel, each pair of quarters differs (mean absolute difference of the
+    // channels), and each shows the blue crate.
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let ((ax, ay), (bx, by)) = (quarter(i), quarter(j));
+            let mut total = 0u64;
+            for x in 0..w {
+                for y in 0..h {
+                    let (a, b) = (image.get_pixel(ax + x, ay + y).0, image.get_pixel(bx + x, by + y).0);
+                    total += (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))).sum::<u64>();
+                }
+            }
+            let difference = total as f64 / f64::from(3 * w * h);
+            if difference < 8.0 {
+                return Err(format!("views {} and {} look alike: {difference:.1} apart on average", i + 1, j + 1));
+            }
+        }
+    }
+    let blue: Vec<usize> = (0..4)
+        .map(|i| {
+            let (qx, qy) = quarter(i);
+            (qx..qx + w)
+                .flat_map(|x| (qy..qy + h).map(move |y| (x, y)))
+                .filter(|(x, y)| {
+                    let [r, g, b] = image.get_pixel(*x, *y).0;
+                    u32::from(b) > u32::from(r) + 60 && u32::from(b) > u32::from(g) + 30
+                })
+                .count()
+        })
+        .collect();
+    lines.push(format!(
+        "key 4: four views, each pair different; blue crate pixels in the free, follow, top and camera views: {blue:?}"
+    ));
+    if blue.iter().any(|&n| n < 50) {
+        return Err(lines.pop().unwrap());
+    }
+    xdotool(&["key", "1"])?;
+    xdotool(&["key", "g"])?;
+    wait(500);
     // Escape deselects, the next one quits.
     move_to(x, y + 200)?;
     wait(200);

@@ -40,6 +40,8 @@ pub(crate) enum Command {
     Edit(Edit),
     /// Save the scene to the panel's save path (`Ctrl+S`).
     Save,
+    /// Show this many views (1 to 4: keys `1`–`4`).
+    Views(usize),
     /// Forget the selection.
     Deselect,
 }
@@ -113,6 +115,8 @@ pub(crate) struct Status<'a> {
     pub(crate) contacts: bool,
     /// Whether contact forces are drawn.
     pub(crate) forces: bool,
+    /// How many views are shown.
+    pub(crate) views: usize,
     pub(crate) joints: bool,
     pub(crate) axes: bool,
     /// The selected body, with the colour it is drawn with.
@@ -177,6 +181,14 @@ impl Panel {
                 }
                 if ui.button("Screenshot (p)").clicked() {
                     commands.push(Command::Screenshot);
+                }
+            });
+            ui.horizontal(|ui| {
+                ui.label("Views (1–4)");
+                for (n, name) in [(1, "free"), (2, "+ follow"), (3, "+ top"), (4, "+ camera")] {
+                    if ui.selectable_label(status.views == n, name).clicked() {
+                        commands.push(Command::Views(n));
+                    }
                 }
             });
             if status.forces {

@@ -40,6 +40,7 @@ mod material;
 mod offscreen;
 mod scene;
 mod state;
+mod views;
 mod window;
 
 use std::path::PathBuf;
@@ -59,6 +60,7 @@ pub use offscreen::{
 };
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
+pub use views::{VIEW_KINDS, ViewKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
 /// What the viewer draws besides the simulation, where the program's

@@ -21,11 +21,12 @@ use crate::interact::{DragMode, Grab, Push, pick};
 use crate::layout;
 use crate::scene::View;
 use crate::state::{DragLine, Selected, ViewerState};
+use crate::views::{self, Views};
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
      x: axes, f: follow, g: panel, p: screenshot, click: select, ctrl+drag: pull the selected body, \
-     shift+drag: turn it, ctrl+s: save the scene, escape: deselect (quit when nothing is selected)";
+     shift+drag: turn it, ctrl+s: save the scene, 1-4: views, escape: deselect (quit when nothing is selected)";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -512,6 +513,9 @@ pub(crate) fn drive_window<D: Driver>(
         shown.camera.orbit.set_rotate_modifiers(Some(Modifiers::empty()));
         let mut hand = Hand::default();
         let mut feedback = Feedback::default();
+        let mut views = Views::new();
+        // Where the extra views were drawn last (their clicks are not the scene's).
+        let mut view_covers: Vec<layout::Rect> = Vec::new();
         if options.forces {
             shown.mirror.show_forces = true;
             feedback.show(&mut runner.simulation(), true);
@@ -555,6 +559,7 @@ pub(crate) fn drive_window<D: Driver>(
                 let egui_pointer = window.is_egui_capturing_mouse();
                 let mut panels: Vec<layout::Rect> = panel.covers.map(|(r, _)| r).into_iter().collect();
                 panels.extend(panel.editor_covers);
+                panels.extend(view_covers.iter().copied());
                 let size = Vec2::new(window.width() as f32, window.height() as f32);
                 let forward = convert::vector_back(shown.camera.orbit.at() - shown.camera.eye());
                 for mut event in window.events().iter() {
@@ -638,6 +643,10 @@ pub(crate) fn drive_window<D: Driver>(
                             pacer = Pacer::new(runner.simulation().time());
                         }
                         (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
+                        (WindowKey::Key1, Action::Press) => views.count = 1,
+                        (WindowKey::Key2, Action::Press) => views.count = 2,
+                        (WindowKey::Key3, Action::Press) => views.count = 3,
+                        (WindowKey::Key4, Action::Press) => views.count = 4,
                         (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
                         (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
                         (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
@@ -699,6 +708,7 @@ pub(crate) fn drive_window<D: Driver>(
                     following: shown.following,
                     contacts: shown.mirror.show_contacts,
                     forces: shown.mirror.show_forces,
+                    views: views.count,
                     joints: shown.mirror.show_joints,
                     axes: shown.mirror.show_axes,
                     selected: None,
@@ -710,12 +720,28 @@ pub(crate) fn drive_window<D: Driver>(
                 }
                 let drawn = selected.as_ref().and_then(|s| shown.mirror.drawn_color(s.id)).unwrap_or([0.5; 3]);
                 let status = gui::Status { selected: selected.as_ref().map(|s| (s, drawn)), ..status };
+                if views.count > 1 {
+                    let sim = runner.simulation();
+                    let free = (convert::point_back(shown.camera.eye()), convert::point_back(shown.camera.orbit.at()));
+                    let target = views::followed(&sim, hand.selected, shown.follow.as_deref());
+                    let size = (window.width() as f32, window.height() as f32);
+                    views.render(&sim, view, size, free, target).await?;
+                }
                 let mut commands = Vec::new();
-                window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
+                window.draw_ui(|ctx| {
+                    view_covers = views.show(ctx);
+                    commands = panel.draw(ctx, &runner.simulation(), &status);
+                });
                 hand.ui_cursor = hand.cursor;
                 // What the camera looks at appears in the middle of what the panel leaves
                 // free (from the next frame on).
                 shown.camera.shift = match panel.covers {
+                    // Several views: the free one in the top-left quarter.
+                    _ if views.count > 1 => {
+                        let (w, h) = (window.width() as f32, window.height() as f32);
+                        let [l, t, r, b] = views::viewports(w, h, views.count)[0];
+                        layout::ndc_shift(w, h, ((l + r) / 2.0, (t + b) / 2.0))
+                    }
                     Some((panel_rect, (w, h))) => {
                         let panels: Vec<layout::Rect> =
                             std::iter::once(panel_rect).chain(panel.editor_covers).collect();
@@ -760,6 +786,7 @@ pub(crate) fn drive_window<D: Driver>(
                             Err(e) => panel.error = Some(e.to_string()),
                         },
                         gui::Command::Save => save(&runner.simulation(), &mut panel),
+                        gui::Command::Views(n) => views.count = n,
                         gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
                     }
                 }
@@ -776,6 +803,7 @@ pub(crate) fn drive_window<D: Driver>(
                     saved: panel.saved.clone().map(Into::into),
                     fields: panel.fields.clone(),
                     window_size: (size.x, size.y),
+                    views: views.count,
                     view_projection: view_projection(&shown.camera),
                 };
                 runner.viewer_state(&state);
