@@ -86,6 +86,20 @@ impl Views {
         Views { count: 1, extras: Vec::new() }
     }
 
+    /// Draws `id` anew in every extra view (after its colour changed).
+    pub(crate) fn redraw(&mut self, id: ObjectId) {
+        for extra in &mut self.extras {
+            extra.view.mirror.redraw(id);
+        }
+    }
+
+    /// Forgets every extra view's nodes (after the simulation was rebuilt).
+    pub(crate) fn clear(&mut self) {
+        for extra in &mut self.extras {
+            extra.view.mirror.clear();
+        }
+    }
+
     /// Draws the extra views of `sim` off screen, each the size of a quarter of the
     /// window (`free`: the free camera's eye and target).
     pub(crate) async fn render(

@@ -639,6 +639,7 @@ pub(crate) fn drive_window<D: Driver>(
                             hand.deselect(&mut runner.simulation());
                             runner.reset()?;
                             shown.mirror.clear();
+                            views.clear();
                             feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
                             pacer = Pacer::new(runner.simulation().time());
                         }
@@ -761,6 +762,7 @@ pub(crate) fn drive_window<D: Driver>(
                             hand.deselect(&mut runner.simulation());
                             runner.reset()?;
                             shown.mirror.clear();
+                            views.clear();
                             feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
                             pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
                         }
@@ -781,6 +783,7 @@ pub(crate) fn drive_window<D: Driver>(
                                 panel.error = None;
                                 if let Edit::Color(id, _) = edit {
                                     shown.mirror.redraw(id);
+                                    views.redraw(id);
                                 }
                             }
                             Err(e) => panel.error = Some(e.to_string()),
