@@ -1,4 +1,4 @@
-//! nalgebra `f64` (the simulation) to glam `f32` (kiss3d), in one place.
+//! nalgebra `f64` (the simulation) to glam `f32` (kiss3d) and back, in one place.
 
 use ars_core::nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 use kiss3d::glamx::{Pose3, Quat, Vec3};
@@ -23,6 +23,16 @@ pub fn pose(iso: &Isometry3<f64>) -> Pose3 {
     Pose3::from_parts(vector(&iso.translation.vector), rotation(&iso.rotation))
 }
 
+/// A point back (kiss3d to the simulation: picking rays).
+pub fn point_back(p: Vec3) -> Point3<f64> {
+    Point3::new(f64::from(p.x), f64::from(p.y), f64::from(p.z))
+}
+
+/// A vector back (kiss3d to the simulation).
+pub fn vector_back(v: Vec3) -> Vector3<f64> {
+    Vector3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
+}
+
 /// An RGB colour.
 pub fn color(rgb: [f32; 3]) -> kiss3d::color::Color {
     kiss3d::color::Color::new(rgb[0], rgb[1], rgb[2], 1.0)
@@ -39,5 +49,13 @@ mod tests {
         let expected = point(&(iso * p));
         let got = pose(&iso) * point(&p);
         assert!((expected - got).length() < 1e-5, "{expected} vs {got}");
+    }
+
+    #[test]
+    fn points_and_vectors_come_back() {
+        let p = Point3::new(0.25, -2.5, 1e3);
+        assert_eq!(point_back(point(&p)), p);
+        let v = Vector3::new(-0.5, 0.125, 8.0);
+        assert_eq!(vector_back(vector(&v)), v);
     }
 }

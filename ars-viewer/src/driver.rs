@@ -7,6 +7,8 @@ use std::ops::DerefMut;
 
 use ars_core::{Key, Program, ProgramRunner, Result, Simulation};
 
+use crate::state::ViewerState;
+
 /// A simulation the viewer shows and drives.
 pub trait Driver {
     /// The simulation as it is now (after [`reset`](Self::reset), the new one).
@@ -27,6 +29,12 @@ pub trait Driver {
     /// only the window's own close (Escape, the close button) closes it.
     fn wants_to_close(&mut self) -> bool {
         false
+    }
+    /// What the window shows besides the scene (the selected body, the drag in
+    /// progress, the panel's error and save path), once a frame after it is drawn. By
+    /// default ignored; a front end can mirror it, a test can read it.
+    fn viewer_state(&mut self, state: &ViewerState) {
+        let _ = state;
     }
 }
 

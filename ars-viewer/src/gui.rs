@@ -2,12 +2,17 @@
 //! program's sensors, a table of the named objects and joints, sliders for the joints'
 //! position set-points, and a screenshot button. Never drawn off screen.
 
-use ars_core::{JointId, PositionServo, Profile, Simulation};
+use std::collections::HashMap;
+
+use ars_core::{DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
 use egui_plot::{Line, Plot, PlotPoints};
 use kiss3d::egui;
 
+use crate::edit::{Edit, joint_param, parse_number};
+use crate::state::Selected;
+
 /// What the panel asks the window to do this frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Command {
     /// Pause or resume.
     TogglePause,
@@ -23,12 +28,22 @@ pub(crate) enum Command {
     ToggleFollow,
     /// Draw the contact points, or stop.
     ToggleContacts,
+    /// Draw the contact forces as arrows, or stop.
+    ToggleForces,
     /// Draw the joints' anchors and axes, or stop.
     ToggleJoints,
     /// Draw the world axes, or stop.
     ToggleAxes,
     /// Set a joint's position set-point (rad or m).
     Setpoint(JointId, f64),
+    /// Change the simulation (the editor).
+    Edit(Edit),
+    /// Save the scene to the panel's save path (`Ctrl+S`).
+    Save,
+    /// Show this many views (1 to 4: keys `1`–`4`).
+    Views(usize),
+    /// Forget the selection.
+    Deselect,
 }
 
 /// The panel's own state.
@@ -46,11 +61,47 @@ pub(crate) struct Panel {
     /// Where the panel was drawn last, `[left, top, right, bottom]`, with the size of
     /// the window, in egui's points (`None` while hidden).
     pub(crate) covers: Option<([f32; 4], (f32, f32))>,
+    /// Where the editor was drawn last, `[left, top, right, bottom]` (`None` while
+    /// hidden).
+    pub(crate) editor_covers: Option<[f32; 4]>,
+    /// The editor's number fields being typed in, by label (a field not in it shows
+    /// the simulation's value).
+    typing: HashMap<String, String>,
+    /// The editor's fields drawn last frame, by label, with their rectangles (window
+    /// pixels).
+    pub(crate) fields: Vec<(String, [f32; 4])>,
+    /// The joint the editor shows.
+    joint: Option<JointId>,
+    /// The error shown in red: the last edit refused, or a save that failed.
+    pub(crate) error: Option<String>,
+    /// Where the scene is saved.
+    pub(crate) save_path: String,
+    /// Where it was saved last.
+    pub(crate) saved: Option<String>,
+    /// The contact-force arrows' length per newton, m/N.
+    pub(crate) force_scale: f64,
 }
 
 impl Default for Panel {
     fn default() -> Self {
-        Panel { shown: true, speed: 1.0, fastest: false, sensor: 0, column: 0, span: 10.0, covers: None }
+        let stamp = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+        Panel {
+            shown: true,
+            speed: 1.0,
+            fastest: false,
+            sensor: 0,
+            column: 0,
+            span: 10.0,
+            covers: None,
+            editor_covers: None,
+            typing: HashMap::new(),
+            fields: Vec::new(),
+            joint: None,
+            error: None,
+            save_path: format!("./scene-{stamp}.json"),
+            saved: None,
+            force_scale: crate::scene::DEFAULT_FORCE_SCALE,
+        }
     }
 }
 
@@ -62,8 +113,14 @@ pub(crate) struct Status<'a> {
     pub(crate) real_time_factor: f64,
     pub(crate) following: bool,
     pub(crate) contacts: bool,
+    /// Whether contact forces are drawn.
+    pub(crate) forces: bool,
+    /// How many views are shown.
+    pub(crate) views: usize,
     pub(crate) joints: bool,
     pub(crate) axes: bool,
+    /// The selected body, with the colour it is drawn with.
+    pub(crate) selected: Option<(&'a Selected, [f32; 3])>,
 }
 
 impl Panel {
@@ -71,6 +128,7 @@ impl Panel {
     pub(crate) fn draw(&mut self, ctx: &egui::Context, sim: &Simulation, status: &Status<'_>) -> Vec<Command> {
         let mut commands = Vec::new();
         self.covers = None;
+        self.editor_covers = None;
         if !self.shown {
             return commands;
         }
@@ -112,6 +170,9 @@ impl Panel {
                 if ui.selectable_label(status.contacts, "Contacts").clicked() {
                     commands.push(Command::ToggleContacts);
                 }
+                if ui.selectable_label(status.forces, "Forces").on_hover_text("contact forces as arrows").clicked() {
+                    commands.push(Command::ToggleForces);
+                }
                 if ui.selectable_label(status.joints, "Joints").clicked() {
                     commands.push(Command::ToggleJoints);
                 }
@@ -122,6 +183,18 @@ impl Panel {
                     commands.push(Command::Screenshot);
                 }
             });
+            ui.horizontal(|ui| {
+                ui.label("Views (1–4)");
+                for (n, name) in [(1, "free"), (2, "+ follow"), (3, "+ top"), (4, "+ camera")] {
+                    if ui.selectable_label(status.views == n, name).clicked() {
+                        commands.push(Command::Views(n));
+                    }
+                }
+            });
+            if status.forces {
+                let slider = egui::Slider::new(&mut self.force_scale, 0.001..=1.0).logarithmic(true).suffix(" m/N");
+                ui.add(slider.text("force arrows"));
+            }
             ui.separator();
             self.plots(ui, sim);
             ui.separator();
@@ -135,7 +208,247 @@ impl Panel {
             let rect = [r.min.x - o.x, r.min.y - o.y, r.max.x - o.x, r.max.y - o.y];
             self.covers = Some((rect, (screen.width(), screen.height())));
         }
+        self.fields.clear();
+        let editor = egui::Window::new("Edit").anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).default_width(280.0);
+        let edited = editor.show(ctx, |ui| self.editor(ui, sim, status, &mut commands));
+        self.editor_covers = edited.map(|shown| {
+            let (r, o) = (shown.response.rect, ctx.viewport_rect().min);
+            [r.min.x - o.x, r.min.y - o.y, r.max.x - o.x, r.max.y - o.y]
+        });
         commands
+    }
+
+    /// The editor: the selected body, a joint, the simulation's settings, saving.
+    fn editor(&mut self, ui: &mut egui::Ui, sim: &Simulation, status: &Status<'_>, commands: &mut Vec<Command>) {
+        if let Some(error) = &self.error {
+            ui.colored_label(egui::Color32::from_rgb(220, 40, 40), error);
+        }
+        egui::CollapsingHeader::new("Selected body").default_open(true).show(ui, |ui| match status.selected {
+            None => {
+                ui.label("Click a body to select it; Ctrl+drag pulls it, Shift+drag turns it.");
+            }
+            Some((s, rgb)) => self.selected_body(ui, s, rgb, status.paused, commands),
+        });
+        egui::CollapsingHeader::new("Joint").default_open(status.selected.is_some()).show(ui, |ui| {
+            self.joint_editor(ui, sim, status.selected.map(|(s, _)| s.id), commands);
+        });
+        egui::CollapsingHeader::new("Simulation").default_open(false).show(ui, |ui| {
+            let g = sim.gravity();
+            egui::Grid::new("ars-edit-sim").show(ui, |ui| {
+                for (axis, label) in ["gravity x", "gravity y", "gravity z"].into_iter().enumerate() {
+                    ui.label(label);
+                    if let Some(v) = self.number(ui, label, g[axis]) {
+                        let mut g = g;
+                        g[axis] = v;
+                        commands.push(Command::Edit(Edit::Gravity(g)));
+                    }
+                    ui.end_row();
+                }
+                let world = sim.world();
+                type Make = fn(f64) -> Edit;
+                let settings: [(&str, f64, Make); 3] = [
+                    ("time step", sim.time_step(), Edit::TimeStep),
+                    ("ERP", world.erp(), Edit::Erp),
+                    ("CFM", world.cfm(), Edit::Cfm),
+                ];
+                for (label, value, make) in settings {
+                    ui.label(label);
+                    if let Some(v) = self.number(ui, label, value) {
+                        commands.push(Command::Edit(make(v)));
+                    }
+                    ui.end_row();
+                }
+            });
+        });
+        ui.separator();
+        ui.horizontal(|ui| {
+            if ui.button("Save (Ctrl+S)").clicked() {
+                commands.push(Command::Save);
+            }
+            ui.add(egui::TextEdit::singleline(&mut self.save_path).desired_width(170.0));
+        });
+        if let Some(saved) = &self.saved {
+            ui.label(format!("saved to {saved}"));
+        }
+    }
+
+    /// The selected body: what it is and where, and its colour, mass and pose to edit.
+    fn selected_body(
+        &mut self,
+        ui: &mut egui::Ui,
+        s: &Selected,
+        mut rgb: [f32; 3],
+        paused: bool,
+        commands: &mut Vec<Command>,
+    ) {
+        ui.horizontal(|ui| {
+            ui.strong(elided(&s.name)).on_hover_text(&s.name);
+            if ui.small_button("✖ (Esc)").clicked() {
+                commands.push(Command::Deselect);
+            }
+        });
+        let (roll, pitch, yaw) = s.rotation.euler_angles();
+        let v3 = |v: [f64; 3]| format!("{:7.3} {:7.3} {:7.3}", v[0], v[1], v[2]);
+        egui::Grid::new("ars-selected").show(ui, |ui| {
+            ui.label("position [m]");
+            ui.monospace(v3(s.position.coords.into()));
+            ui.end_row();
+            ui.label("roll pitch yaw [°]");
+            ui.monospace(v3([roll.to_degrees(), pitch.to_degrees(), yaw.to_degrees()]));
+            ui.end_row();
+            ui.label("velocity [m/s]");
+            ui.monospace(v3(s.linear_velocity.into()));
+            ui.end_row();
+            ui.label("angular [rad/s]");
+            ui.monospace(v3(s.angular_velocity.into()));
+            ui.end_row();
+        });
+        egui::Grid::new("ars-edit-body").show(ui, |ui| {
+            ui.label("colour");
+            if ui.color_edit_button_rgb(&mut rgb).changed() {
+                commands.push(Command::Edit(Edit::Color(s.id, rgb)));
+            }
+            ui.end_row();
+            ui.label("mass [kg]");
+            if let Some(m) = self.number(ui, "mass", s.mass) {
+                commands.push(Command::Edit(Edit::Mass(s.id, m)));
+            }
+            ui.end_row();
+            for (axis, label) in ["x", "y", "z"].into_iter().enumerate() {
+                ui.label(format!("{label} [m]"));
+                let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, s.position[axis])).inner;
+                if let Some(v) = field {
+                    let mut p = s.position;
+                    p[axis] = v;
+                    commands.push(Command::Edit(Edit::Position(s.id, p)));
+                }
+                ui.end_row();
+            }
+        });
+        if !paused {
+            ui.label("Pause (space) to edit the position.");
+        }
+    }
+
+    /// A joint (of the selected body first): limits, motor, viscous friction, and its
+    /// controller's set-point and gains.
+    fn joint_editor(
+        &mut self,
+        ui: &mut egui::Ui,
+        sim: &Simulation,
+        selected: Option<ObjectId>,
+        commands: &mut Vec<Command>,
+    ) {
+        let joints: Vec<(String, JointId)> = sim.joints().map(|(n, id)| (n.to_string(), id)).collect();
+        if joints.is_empty() {
+            ui.label("No joints.");
+            return;
+        }
+        let of_selected = |id: JointId| {
+            sim.joint(id).is_ok_and(|j| {
+                let (a, b) = j.objects();
+                Some(a) == selected || b == selected
+            })
+        };
+        if self.joint.is_none_or(|j| sim.joint(j).is_err()) {
+            self.joint = joints.iter().map(|(_, id)| *id).find(|id| of_selected(*id)).or(Some(joints[0].1));
+        }
+        let Some(id) = self.joint else { return };
+        let name = joints.iter().find(|(_, j)| *j == id).map(|(n, _)| n.clone()).unwrap_or_default();
+        egui::ComboBox::from_id_salt("ars-edit-joint").selected_text(elided(&name)).show_ui(ui, |ui| {
+            for (n, j) in &joints {
+                let mark = if of_selected(*j) { " •" } else { "" };
+                ui.selectable_value(&mut self.joint, Some(*j), format!("{}{mark}", elided(n)));
+            }
+        });
+        let param = |p| joint_param(sim, id, p).unwrap_or(f64::NAN);
+        egui::Grid::new("ars-edit-joint-grid").show(ui, |ui| {
+            let (low, high) = (param(JointParam::LoStop), param(JointParam::HiStop));
+            ui.label("limits low, high");
+            ui.horizontal(|ui| {
+                if let Some(v) = self.number(ui, "low", low) {
+                    commands.push(Command::Edit(Edit::JointLimits(id, v, high)));
+                }
+                if let Some(v) = self.number(ui, "high", high) {
+                    commands.push(Command::Edit(Edit::JointLimits(id, low, v)));
+                }
+            });
+            ui.end_row();
+            let (speed, force) = (param(JointParam::Velocity), param(JointParam::MaxForce));
+            ui.label("motor speed, max");
+            ui.horizontal(|ui| {
+                if let Some(v) = self.number(ui, "motor speed", speed) {
+                    commands.push(Command::Edit(Edit::Motor(id, v, force)));
+                }
+                if let Some(v) = self.number(ui, "motor max", force) {
+                    commands.push(Command::Edit(Edit::Motor(id, speed, v)));
+                }
+            });
+            ui.end_row();
+            ui.label("viscous friction");
+            let friction = sim.joint(id).map_or(0.0, |j| j.viscous_friction());
+            if let Some(v) = self.number(ui, "viscous friction", friction) {
+                commands.push(Command::Edit(Edit::ViscousFriction(id, v)));
+            }
+            ui.end_row();
+            let now = sim.time();
+            let controller = if let Ok(Some(s)) = sim.joint_controller::<PositionServo>(id) {
+                Some(("position", s.setpoint.value(now), vec![("kp", s.pid.kp), ("ki", s.pid.ki), ("kd", s.pid.kd)]))
+            } else if let Ok(Some(s)) = sim.joint_controller::<VelocityServo>(id) {
+                Some(("speed", s.setpoint.value(now), vec![("gain", s.gain)]))
+            } else if let Ok(Some(m)) = sim.joint_controller::<DcMotor>(id) {
+                Some(("voltage", m.voltage.value(now), vec![]))
+            } else {
+                None
+            };
+            if let Some((what, setpoint, gains)) = controller {
+                ui.label(format!("set-point ({what})"));
+                if let Some(v) = self.number(ui, "set-point", setpoint) {
+                    commands.push(Command::Edit(Edit::Setpoint(id, v)));
+                }
+                ui.end_row();
+                if !gains.is_empty() {
+                    ui.label(gains.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "));
+                    ui.horizontal(|ui| {
+                        let mut all = [0.0; 3];
+                        for (i, (_, g)) in gains.iter().enumerate() {
+                            all[i] = *g;
+                        }
+                        for (i, (label, g)) in gains.iter().enumerate() {
+                            if let Some(v) = self.number(ui, label, *g) {
+                                all[i] = v;
+                                commands.push(Command::Edit(Edit::Gains(id, all)));
+                            }
+                        }
+                    });
+                    ui.end_row();
+                }
+            }
+        });
+    }
+
+    /// A number field showing `value`: what was typed once it is entered (Enter, or
+    /// focus moved away) and differs from what was shown; a typo is the panel's error.
+    fn number(&mut self, ui: &mut egui::Ui, label: &str, value: f64) -> Option<f64> {
+        let shown = format_number(value);
+        let text = self.typing.entry(label.to_string()).or_insert_with(|| shown.clone());
+        let response = ui.add(egui::TextEdit::singleline(text).desired_width(72.0)).on_hover_text(label);
+        let r = response.rect;
+        self.fields.push((label.to_string(), [r.min.x, r.min.y, r.max.x, r.max.y]));
+        if response.lost_focus() {
+            let typed = self.typing.remove(label).unwrap_or_default();
+            if typed.trim() == shown {
+                return None;
+            }
+            match parse_number(label, &typed) {
+                Ok(v) => return Some(v),
+                Err(e) => self.error = Some(e),
+            }
+        } else if !response.has_focus() {
+            // Not being typed in: show the simulation's value next frame.
+            self.typing.remove(label);
+        }
+        None
     }
 
     /// A plot of one column of one sensor, over the last `span` seconds.
@@ -249,6 +562,17 @@ fn state_table(ui: &mut egui::Ui, sim: &Simulation) {
     });
 }
 
+/// A number as the editor shows it: short, and read back as the same number when it
+/// was typed so (`inf` for no limit).
+fn format_number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-3..1e6).contains(&v.abs()) {
+        let s = format!("{v:.6}");
+        if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// The longest name the panel shows whole, in characters.
 const SHOWN_NAME_CHARS: usize = 24;
 
@@ -285,6 +609,19 @@ pub(crate) fn set_setpoint(sim: &mut Simulation, joint: JointId, value: f64) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_are_shown_short_and_read_back_the_same() {
+        assert_eq!(format_number(2.0), "2");
+        assert_eq!(format_number(0.0004), "4e-4");
+        assert_eq!(format_number(-9.81), "-9.81");
+        assert_eq!(format_number(1e-10), "1e-10");
+        assert_eq!(format_number(f64::INFINITY), "inf");
+        assert_eq!(format_number(f64::NEG_INFINITY), "-inf");
+        for v in [2.0, 0.0004, -9.81, 1e-10, 0.2, f64::INFINITY, -f64::INFINITY, 1234.5] {
+            assert_eq!(parse_number("v", &format_number(v)), Ok(v));
+        }
+    }
 
     #[test]
     fn long_names_keep_their_start_and_end_around_an_ellipsis() {

@@ -9,27 +9,48 @@ use kiss3d::window::Canvas;
 /// A rectangle `[left, top, right, bottom]`, y down (window coordinates).
 pub(crate) type Rect = [f32; 4];
 
-/// The centre of the part of a `width × height` window that `panel` leaves free: the
-/// largest (by area) of the four strips left of, right of, above and below the panel,
-/// each as wide or as tall as the window. The window's centre when there is no panel,
-/// or when it leaves no strip free.
-pub(crate) fn free_centre(width: f32, height: f32, panel: Option<Rect>) -> (f32, f32) {
+/// The centre of the part of a `width × height` window that `panels` leave free: the
+/// largest (by area) of the strips, each as tall or as wide as the window, that no
+/// panel overlaps (between two panels side by side, beside one, above or below them
+/// all); the window's centre when none is free.
+pub(crate) fn free_centre_of(width: f32, height: f32, panels: &[Rect]) -> (f32, f32) {
     let middle = (width / 2.0, height / 2.0);
-    let Some([left, top, right, bottom]) = panel else { return middle };
-    let (left, right) = (left.clamp(0.0, width), right.clamp(0.0, width));
-    let (top, bottom) = (top.clamp(0.0, height), bottom.clamp(0.0, height));
-    // (area, centre) of each strip.
-    let strips = [
-        (left * height, (left / 2.0, middle.1)),
-        ((width - right) * height, ((right + width) / 2.0, middle.1)),
-        (top * width, (middle.0, top / 2.0)),
-        ((height - bottom) * width, (middle.0, (bottom + height) / 2.0)),
-    ];
-    strips
+    // The intervals of [0, total] that none of `spans` covers.
+    let gaps = |spans: Vec<(f32, f32)>, total: f32| {
+        let mut spans: Vec<(f32, f32)> =
+            spans.into_iter().map(|(a, b)| (a.clamp(0.0, total), b.clamp(0.0, total))).collect();
+        spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (mut free, mut reached) = (Vec::new(), 0.0f32);
+        for (a, b) in spans {
+            if a > reached {
+                free.push((reached, a));
+            }
+            reached = reached.max(b);
+        }
+        if total > reached {
+            free.push((reached, total));
+        }
+        free
+    };
+    let columns = gaps(panels.iter().map(|p| (p[0], p[2])).collect(), width)
         .into_iter()
-        .filter(|(area, _)| *area > 0.0)
-        .max_by(|a, b| a.0.total_cmp(&b.0))
-        .map_or(middle, |(_, centre)| centre)
+        .map(|(a, b)| ((b - a) * height, ((a + b) / 2.0, middle.1)));
+    let rows = gaps(panels.iter().map(|p| (p[1], p[3])).collect(), height)
+        .into_iter()
+        .map(|(a, b)| ((b - a) * width, (middle.0, (a + b) / 2.0)));
+    columns.chain(rows).filter(|(area, _)| *area > 0.0).max_by(|a, b| a.0.total_cmp(&b.0)).map_or(middle, |(_, c)| c)
+}
+
+/// Whether a click at `cursor` is the panel's: egui's word (`egui_says`) when egui saw
+/// the cursor there (`ui_cursor`, where it was when the panel was last drawn), else
+/// whether it falls on one of `panels` (a click that arrives with the move that brought
+/// the cursor, as xdotool sends them, would otherwise be judged where the cursor was).
+pub(crate) fn pointer_on_panel(cursor: (f64, f64), ui_cursor: (f64, f64), egui_says: bool, panels: &[Rect]) -> bool {
+    if cursor == ui_cursor {
+        return egui_says;
+    }
+    let (x, y) = (cursor.0 as f32, cursor.1 as f32);
+    panels.iter().any(|[l, t, r, b]| (*l..=*r).contains(&x) && (*t..=*b).contains(&y))
 }
 
 /// The shift, in normalised device coordinates (x right, y up, the window from −1 to
@@ -149,18 +170,48 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_free_centre_is_beside_the_panel_where_most_room_is() {
+    fn the_free_centre_is_beside_a_panel_where_most_room_is() {
         // No panel: the window's centre.
-        assert_eq!(free_centre(800.0, 600.0, None), (400.0, 300.0));
+        assert_eq!(free_centre_of(800.0, 600.0, &[]), (400.0, 300.0));
         // The panel down the left, 348 px wide (43 % of 800): the centre of the 452 px
         // to its right.
-        assert_eq!(free_centre(800.0, 600.0, Some([8.0, 8.0, 348.0, 590.0])), (574.0, 300.0));
+        assert_eq!(free_centre_of(800.0, 600.0, &[[8.0, 8.0, 348.0, 590.0]]), (574.0, 300.0));
         // Moved to the right edge: the centre of what is left of it.
-        assert_eq!(free_centre(800.0, 600.0, Some([500.0, 0.0, 800.0, 600.0])), (250.0, 300.0));
+        assert_eq!(free_centre_of(800.0, 600.0, &[[500.0, 0.0, 800.0, 600.0]]), (250.0, 300.0));
         // Collapsed to its title bar at the top: the whole width below it.
-        assert_eq!(free_centre(800.0, 600.0, Some([8.0, 8.0, 348.0, 40.0])), (400.0, 320.0));
+        assert_eq!(free_centre_of(800.0, 600.0, &[[8.0, 8.0, 348.0, 40.0]]), (400.0, 320.0));
         // Over the whole window (or beyond it): nothing is free, the window's centre.
-        assert_eq!(free_centre(800.0, 600.0, Some([-10.0, -10.0, 900.0, 700.0])), (400.0, 300.0));
+        assert_eq!(free_centre_of(800.0, 600.0, &[[-10.0, -10.0, 900.0, 700.0]]), (400.0, 300.0));
+    }
+
+    #[test]
+    fn the_free_centre_of_several_panels_is_in_the_widest_gap() {
+        // The panel on the left and the editor on the right, both tall: between them.
+        let (panel, editor) = ([8.0, 8.0, 353.0, 590.0], [722.0, 8.0, 1016.0, 500.0]);
+        assert_eq!(free_centre_of(1024.0, 768.0, &[panel, editor]), (537.5, 384.0));
+        // Both short: the whole width below them holds more.
+        let (panel, editor) = ([8.0, 8.0, 353.0, 340.0], [722.0, 8.0, 1016.0, 380.0]);
+        assert_eq!(free_centre_of(1024.0, 768.0, &[panel, editor]), (512.0, 574.0));
+        // Both collapsed to their title bars: the whole width below them.
+        let (panel, editor) = ([8.0, 8.0, 353.0, 40.0], [722.0, 8.0, 1016.0, 40.0]);
+        assert_eq!(free_centre_of(1024.0, 768.0, &[panel, editor]), (512.0, 404.0));
+        // Overlapping panels count once.
+        assert_eq!(
+            free_centre_of(800.0, 600.0, &[[0.0, 0.0, 300.0, 600.0], [100.0, 0.0, 400.0, 600.0]]),
+            (600.0, 300.0)
+        );
+    }
+
+    #[test]
+    fn a_click_is_the_panels_where_egui_saw_it_or_on_a_panel() {
+        let panels = [[8.0, 8.0, 348.0, 590.0]];
+        // Where egui last saw the cursor, egui decides (a pop-up outside the panel).
+        assert!(pointer_on_panel((500.0, 300.0), (500.0, 300.0), true, &panels));
+        assert!(!pointer_on_panel((100.0, 100.0), (100.0, 100.0), false, &panels));
+        // Moved since: the panel's rectangle decides, whatever egui said before.
+        assert!(!pointer_on_panel((573.0, 450.0), (170.0, 142.0), true, &panels));
+        assert!(pointer_on_panel((170.0, 142.0), (573.0, 450.0), false, &panels));
+        assert!(!pointer_on_panel((170.0, 142.0), (573.0, 450.0), false, &[]));
     }
 
     #[test]
@@ -179,7 +230,7 @@ mod tests {
         let size = Vec2::new(800.0, 600.0);
         let centre = camera.project(at, size);
         assert!((centre - Vec2::new(400.0, 300.0)).length() < 1e-3, "{centre}");
-        let free = free_centre(size.x, size.y, Some([8.0, 8.0, 348.0, 590.0]));
+        let free = free_centre_of(size.x, size.y, &[[8.0, 8.0, 348.0, 590.0]]);
         camera.shift = ndc_shift(size.x, size.y, free);
         // kiss3d's `project` gives y up from the bottom: the middle row either way.
         let shown = camera.project(at, size);

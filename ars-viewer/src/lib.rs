@@ -30,13 +30,17 @@
 mod camera;
 pub mod convert;
 mod driver;
+mod edit;
 mod error;
 mod frames;
 mod gui;
+mod interact;
 mod layout;
 mod material;
 mod offscreen;
 mod scene;
+mod state;
+mod views;
 mod window;
 
 use std::path::PathBuf;
@@ -46,13 +50,17 @@ use ars_core::{Program, ViewSettings};
 
 pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use driver::Driver;
+pub use edit::{Edit, apply_edit, parse_number};
 pub use error::{Result, ViewerError};
 pub use frames::FrameWriter;
 pub use image;
+pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_force, spring_torque};
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
-pub use scene::SceneMirror;
+pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
+pub use state::{DragLine, Selected, ViewerState};
+pub use views::{VIEW_KINDS, ViewKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
 /// What the viewer draws besides the simulation, where the program's
@@ -69,12 +77,24 @@ pub struct ViewerOptions {
     /// Draw the world axes at the origin, 1 m long: X red, Y green, Z blue. Off by
     /// default; the window's `x` key (and the panel's Axes button) toggles them.
     pub axes: bool,
+    /// Draw the contact forces as arrows ([`DEFAULT_FORCE_SCALE`] metres per newton).
+    /// Off by default; the panel's Forces button toggles them. They are the forces ODE
+    /// reports: the window and the recorder turn the world's contact feedback on
+    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)); with an
+    /// [`OffscreenRenderer`] of your own, turn it on in the simulation you render.
+    pub forces: bool,
 }
 
 impl ViewerOptions {
     /// With the world axes drawn or not.
     pub fn with_axes(mut self, axes: bool) -> Self {
         self.axes = axes;
+        self
+    }
+
+    /// With the contact forces drawn or not.
+    pub fn with_forces(mut self, forces: bool) -> Self {
+        self.forces = forces;
         self
     }
 }

@@ -163,6 +163,7 @@ impl OffscreenRenderer {
         surface.set_background_color(convert::color(view.background));
         let mut shown = View::new(view, surface.window_mut());
         shown.mirror.show_axes = options.axes;
+        shown.mirror.show_forces = options.forces;
         Ok(OffscreenRenderer { surface, view: shown })
     }
 
@@ -268,6 +269,10 @@ impl ScreenshotRecorder {
             view.size = size;
         }
         let mut renderer = OffscreenRenderer::with_options(&view, &self.options)?;
+        if self.options.forces {
+            // The forces drawn are those ODE reports.
+            driver.simulation().world_mut().set_contact_feedback(true);
+        }
         let mut writer = FrameWriter::new();
         let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
         for frame in 1..=frames {

@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use ars_core::nalgebra::Isometry3;
+use ars_core::nalgebra::{Isometry3, Point3, Vector3};
 use ars_core::{ObjectId, RenderQuality, Shape, Simulation, ViewSettings};
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
@@ -27,10 +27,11 @@ const PLANE_HALF_SIZE: f32 = 25.0;
 struct ObjectNode {
     group: SceneNode3d,
     dynamic: bool,
+    /// The colour it is drawn with (its own, or the palette's).
+    color: [f32; 3],
 }
 
 /// The scene nodes of a simulation's objects.
-#[derive(Default)]
 pub struct SceneMirror {
     nodes: HashMap<ObjectId, ObjectNode>,
     /// Draw the world axes at the origin (X red, Y green, Z blue, 1 m long).
@@ -39,8 +40,29 @@ pub struct SceneMirror {
     pub show_joints: bool,
     /// Draw the contact points of the last step, with their normals.
     pub show_contacts: bool,
+    /// Draw the contact forces of the last step as arrows, [`force_scale`](Self::force_scale)
+    /// metres per newton. The world must report them
+    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback): the window's
+    /// Forces button turns it on while they are drawn).
+    pub show_forces: bool,
+    /// The arrows' length per newton, m/N.
+    pub force_scale: f64,
     /// The fast materials (objects, floors), when drawing fast.
     fast: Option<(SharedMaterial, SharedMaterial)>,
+}
+
+impl Default for SceneMirror {
+    fn default() -> Self {
+        SceneMirror {
+            nodes: HashMap::new(),
+            show_axes: false,
+            show_joints: false,
+            show_contacts: false,
+            show_forces: false,
+            force_scale: DEFAULT_FORCE_SCALE,
+            fast: None,
+        }
+    }
 }
 
 impl SceneMirror {
@@ -63,6 +85,18 @@ impl SceneMirror {
     /// Forgets every node (after the simulation was rebuilt).
     pub fn clear(&mut self) {
         for (_, mut n) in self.nodes.drain() {
+            n.group.remove();
+        }
+    }
+
+    /// The colour `id` is drawn with (its own, or the one the viewer gave it).
+    pub fn drawn_color(&self, id: ObjectId) -> Option<[f32; 3]> {
+        self.nodes.get(&id).map(|n| n.color)
+    }
+
+    /// Draws `id` anew at the next [`sync`](Self::sync) (after its colour changed).
+    pub fn redraw(&mut self, id: ObjectId) {
+        if let Some(mut n) = self.nodes.remove(&id) {
             n.group.remove();
         }
     }
@@ -136,6 +170,14 @@ impl SceneMirror {
                 window.draw_line(convert::point(&a), convert::point(&b), orange, 3.0, false);
             }
         }
+        if self.show_forces {
+            let cyan = Color::new(0.0, 0.75, 0.85, 1.0);
+            for c in world.contacts() {
+                for (a, b) in force_arrow(c, self.force_scale) {
+                    window.draw_line(convert::point(&a), convert::point(&b), cyan, 3.0, false);
+                }
+            }
+        }
         if self.show_joints {
             for (_, j) in sim.joints() {
                 let Ok(joint) = sim.joint(j).and_then(|j| j.ode()) else { continue };
@@ -151,6 +193,29 @@ impl SceneMirror {
             }
         }
     }
+}
+
+/// The default length of the contact-force arrows per newton, m/N (a 1 kg body
+/// resting on four contact points: four arrows of 12 cm).
+pub const DEFAULT_FORCE_SCALE: f64 = 0.05;
+
+/// The segments of the arrow drawing a contact's force, `scale` metres per newton: the
+/// force on the moving body of the pair (on the first geom's body, or, when that one is
+/// static, on the second's), from the contact point, with a head of two strokes a
+/// fifth of its length. No segments for a force of zero (not reported, or no push).
+pub fn force_arrow(contact: &ars_core::ContactPoint, scale: f64) -> Vec<(Point3<f64>, Point3<f64>)> {
+    let force = if contact.pair.body1.is_some() { contact.force } else { -contact.force };
+    let shaft = force * scale;
+    let length = shaft.norm();
+    if !(length.is_finite() && length > 1e-9) {
+        return Vec::new();
+    }
+    let (start, tip) = (contact.position, contact.position + shaft);
+    // Any direction across the shaft, for the head.
+    let across =
+        shaft.cross(&Vector3::x()).try_normalize(1e-9).unwrap_or_else(|| shaft.cross(&Vector3::y()).normalize());
+    let back = tip - shaft * 0.2;
+    vec![(start, tip), (tip, back + across * length * 0.1), (tip, back - across * length * 0.1)]
 }
 
 /// The rotation taking kiss3d's +Y-aligned round primitives to ODE's +Z.
@@ -172,7 +237,8 @@ fn build_node(
     } else {
         PALETTE[index % PALETTE.len()]
     };
-    let color = convert::color(object.color().unwrap_or(default));
+    let rgb = object.color().unwrap_or(default);
+    let color = convert::color(rgb);
     let pose = sim.pose(id).unwrap_or(Isometry3::identity());
     let mut group = scene.add_group();
     // Its visuals if it has any (a robot link's <visual>s), else each of its geoms
@@ -209,7 +275,7 @@ fn build_node(
         }
     }
     group.set_pose(convert::pose(&pose));
-    Ok(ObjectNode { group, dynamic })
+    Ok(ObjectNode { group, dynamic, color: rgb })
 }
 
 /// A node drawing `shape` in its own frame.
@@ -331,4 +397,46 @@ fn add_lights(scene: &mut SceneNode3d, view: &ViewSettings) {
         eye.y as f32 + 5.0,
         -eye.z as f32,
     ));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ars_core::{Mass, Simulation};
+
+    /// A 2 kg box resting on the floor: its contact forces, drawn at 0.05 m/N, point up
+    /// (the floor pushes the box) and their lengths add up to 2 g × 0.05 m.
+    #[test]
+    fn force_arrows_point_from_the_contacts_by_the_force_on_the_body() {
+        let mut sim = Simulation::new().unwrap();
+        let floor = sim.add_floor_plane(Vector3::y(), 0.0).unwrap();
+        sim.add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(2.0)).unwrap();
+        sim.world_mut().set_contact_feedback(true);
+        sim.run_for(1.0).unwrap();
+        let contacts = sim.world().contacts().to_vec();
+        assert!(!contacts.is_empty());
+        let mut total = 0.0;
+        for c in &contacts {
+            let arrow = force_arrow(c, 0.05);
+            assert_eq!(arrow.len(), 3);
+            let (start, tip) = arrow[0];
+            assert_eq!(start, c.position);
+            assert!(tip.y > start.y, "the floor pushes the box up: {start} to {tip}");
+            total += (tip - start).y;
+            // The head's strokes end a fifth of the way back, either side of the shaft.
+            for (from, end) in &arrow[1..] {
+                assert_eq!(*from, tip);
+                assert!(((tip - end).y - 0.2 * (tip - start).y).abs() < 1e-9);
+            }
+        }
+        let g = sim.gravity().norm();
+        assert!((total - 2.0 * g * 0.05).abs() < 0.01 * 2.0 * g * 0.05, "arrows add up to {total} m");
+        // The floor's id is not a body: whichever geom comes first, the arrow is the
+        // force on the box.
+        assert!(sim.object(floor).unwrap().body_handle().is_none());
+        // No force reported, no arrow.
+        let mut quiet = contacts[0];
+        quiet.force = Vector3::zeros();
+        assert!(force_arrow(&quiet, 0.05).is_empty());
+    }
 }

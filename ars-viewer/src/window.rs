@@ -3,23 +3,30 @@
 
 use std::time::{Duration, Instant};
 
-use ars_core::{Key, Program, ProgramRunner, ViewSettings};
-use kiss3d::event::{Action, Key as WindowKey, WindowEvent};
-use kiss3d::glamx::Vec2;
+use ars_core::nalgebra::{Matrix4, Point3, Vector3};
+use ars_core::{HookId, Key, ObjectId, Program, ProgramRunner, Simulation, ViewSettings};
+use kiss3d::camera::Camera3d;
+use kiss3d::event::{Action, Key as WindowKey, Modifiers, MouseButton, WindowEvent};
+use kiss3d::glamx::{Vec2, Vec3};
 use kiss3d::text::Font;
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::ViewerOptions;
 use crate::convert;
 use crate::driver::Driver;
+use crate::edit::{Edit, apply_edit};
 use crate::error::Result;
 use crate::gui;
+use crate::interact::{DragMode, Grab, Push, pick};
 use crate::layout;
 use crate::scene::View;
+use crate::state::{DragLine, Selected, ViewerState};
+use crate::views::{self, Views};
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
-     x: axes, f: follow, g: panel, p: screenshot, escape: quit";
+     x: axes, f: follow, g: panel, p: screenshot, click: select, ctrl+drag: pull the selected body, \
+     shift+drag: turn it, ctrl+s: save the scene, 1-4: views, escape: deselect (quit when nothing is selected)";
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;
@@ -87,6 +94,220 @@ fn wrapped(font: &Font, size: f32, text: &str, separator: &str, width: f32) -> (
     let items: Vec<&str> = text.split(separator).collect();
     let lines = layout::wrap_items(&items, separator, width, |s| text_width(font, size, s));
     (lines.join("\n"), lines.len())
+}
+
+/// How far the mouse may move between press and release for a click, pixels.
+const CLICK_SLOP: f64 = 5.0;
+
+/// What a drag with these modifiers does: Ctrl pulls, Shift or Alt turns.
+fn drag_mode(modifiers: Modifiers) -> Option<DragMode> {
+    if modifiers.contains(Modifiers::Control) {
+        Some(DragMode::Force)
+    } else if modifiers.intersects(Modifiers::Shift | Modifiers::Alt) {
+        Some(DragMode::Torque)
+    } else {
+        None
+    }
+}
+
+/// The modifier keys held down, as the window saw their keys (X11 stamps events with
+/// the modifiers only while the window has the focus).
+fn held_modifiers(window: &Window) -> Modifiers {
+    let down = |keys: [WindowKey; 2]| keys.iter().any(|k| window.get_key(*k) == Action::Press);
+    let mut modifiers = Modifiers::empty();
+    modifiers.set(Modifiers::Control, down([WindowKey::LControl, WindowKey::RControl]));
+    modifiers.set(Modifiers::Shift, down([WindowKey::LShift, WindowKey::RShift]));
+    modifiers.set(Modifiers::Alt, down([WindowKey::LAlt, WindowKey::RAlt]));
+    modifiers
+}
+
+/// The mouse's hold on the simulation: the selected body, and the drag in progress
+/// with the hooks that push it while running.
+#[derive(Default)]
+struct Hand {
+    /// The cursor, window pixels.
+    cursor: (f64, f64),
+    /// Where the left button went down (not for a drag): a click if it comes up there.
+    press: Option<(f64, f64)>,
+    selected: Option<ObjectId>,
+    grab: Option<Grab>,
+    /// The hooks pushing the grabbed body (while running).
+    push: Option<HookId<Push>>,
+    /// Escape went down to deselect: its release must not close the window.
+    escape_held: bool,
+    /// The cursor when the panel was last drawn (where egui last saw it).
+    ui_cursor: (f64, f64),
+}
+
+impl Hand {
+    /// The picking ray under the cursor.
+    fn ray(&self, camera: &layout::FramedCamera, size: Vec2) -> (Point3<f64>, Vector3<f64>) {
+        let (o, d) = camera.unproject(Vec2::new(self.cursor.0 as f32, self.cursor.1 as f32), size);
+        (convert::point_back(o), convert::vector_back(d))
+    }
+
+    /// The left button went down with `modifiers`: a drag of the selected body starts
+    /// (at the point under the cursor when it is on the body, else at its centre).
+    /// Returns whether a drag started.
+    fn press(
+        &mut self,
+        sim: &Simulation,
+        ray: (Point3<f64>, Vector3<f64>),
+        view: Vector3<f64>,
+        modifiers: Modifiers,
+    ) -> bool {
+        self.press = Some(self.cursor);
+        let (Some(mode), Some(id)) = (drag_mode(modifiers), self.selected) else { return false };
+        let at = match pick(sim, ray.0, ray.1) {
+            Some((hit, at)) if hit == id => at,
+            _ => match sim.body(id) {
+                Ok(b) => b.position(),
+                Err(_) => return false,
+            },
+        };
+        self.grab = Grab::new(sim, id, at, view, mode).ok();
+        self.press = None;
+        self.grab.is_some()
+    }
+
+    /// The left button came up: the drag ends, or a click selects the body under the
+    /// cursor (or nothing, off every body).
+    fn release(&mut self, sim: &mut Simulation, ray: (Point3<f64>, Vector3<f64>)) {
+        if self.grab.take().is_some() {
+            self.stop_pushing(sim);
+        } else if let Some((x, y)) = self.press.take()
+            && (x - self.cursor.0).hypot(y - self.cursor.1) <= CLICK_SLOP
+        {
+            self.selected = pick(sim, ray.0, ray.1).map(|(id, _)| id);
+        }
+    }
+
+    fn stop_pushing(&mut self, sim: &mut Simulation) {
+        if let Some(hook) = self.push.take() {
+            let _ = sim.remove_hooks(hook);
+        }
+    }
+
+    /// Forgets the selection and any drag.
+    fn deselect(&mut self, sim: &mut Simulation) {
+        self.stop_pushing(sim);
+        self.grab = None;
+        self.selected = None;
+    }
+
+    /// Moves the drag's target under the cursor: while running, the hooks push the
+    /// body toward it at every step; paused, the body is moved there now.
+    fn drag(&mut self, sim: &mut Simulation, ray: (Point3<f64>, Vector3<f64>), paused: bool) -> ars_core::Result<()> {
+        let Some(grab) = self.grab.as_mut() else { return Ok(()) };
+        if sim.body(grab.object).is_err() {
+            self.deselect(sim);
+            return Ok(());
+        }
+        grab.aim(ray.0, ray.1);
+        let grab = *grab;
+        if paused {
+            self.stop_pushing(sim);
+            return grab.place(sim);
+        }
+        match self.push {
+            Some(hook) => sim.hooks_mut(hook)?.0 = grab,
+            None => self.push = Some(sim.add_hooks(Push(grab))?),
+        }
+        Ok(())
+    }
+
+    /// The selected body outlined (its bounding box), and the drag's line.
+    fn draw(&self, sim: &Simulation, window: &mut Window) {
+        if let Some(id) = self.selected
+            && let Ok(object) = sim.object(id)
+        {
+            let world = sim.world();
+            let boxes: Vec<_> = object.geoms().filter_map(|g| world.geom(g).ok()).map(|g| g.aabb()).collect();
+            if let Some((mut low, mut high)) = boxes.first().copied() {
+                for (l, h) in &boxes {
+                    low = low.inf(l);
+                    high = high.sup(h);
+                }
+                outline(window, convert::point(&low), convert::point(&high));
+            }
+        }
+        if let Some(grab) = &self.grab
+            && let Ok(from) = grab.point(sim)
+        {
+            let colour = match grab.mode {
+                DragMode::Force => kiss3d::color::Color::new(1.0, 0.2, 0.6, 1.0),
+                DragMode::Torque => kiss3d::color::Color::new(0.2, 0.6, 1.0, 1.0),
+            };
+            window.draw_line(convert::point(&from), convert::point(&grab.target), colour, 4.0, false);
+            window.draw_point(convert::point(&grab.target), colour, 10.0);
+        }
+    }
+}
+
+/// The 12 edges of the box from `low` to `high`, in yellow.
+fn outline(window: &mut Window, low: Vec3, high: Vec3) {
+    let yellow = kiss3d::color::Color::new(1.0, 0.85, 0.0, 1.0);
+    let corner = |i: u32| {
+        Vec3::new(
+            if i & 1 == 0 { low.x } else { high.x },
+            if i & 2 == 0 { low.y } else { high.y },
+            if i & 4 == 0 { low.z } else { high.z },
+        )
+    };
+    for i in 0..8u32 {
+        for bit in [1, 2, 4] {
+            if i & bit == 0 {
+                window.draw_line(corner(i), corner(i | bit), yellow, 3.0, false);
+            }
+        }
+    }
+}
+
+/// The world's contact feedback (ODE's forces of the contact points), on while the
+/// forces are drawn, and as it was before (a `ContactForces` sensor keeps it on) once
+/// they are not.
+#[derive(Default)]
+struct Feedback {
+    /// Whether the world reported the forces before the window asked.
+    before: bool,
+}
+
+impl Feedback {
+    /// Forces drawn (`on`) or not from now on.
+    fn show(&mut self, sim: &mut Simulation, on: bool) {
+        let world = sim.world_mut();
+        if on {
+            self.before = world.contact_feedback();
+            world.set_contact_feedback(true);
+        } else {
+            world.set_contact_feedback(self.before);
+        }
+    }
+
+    /// The simulation was rebuilt: ask the new one for the forces if they are drawn.
+    fn rebuilt(&mut self, sim: &mut Simulation, on: bool) {
+        if on {
+            self.show(sim, true);
+        }
+    }
+}
+
+/// Saves the scene where the panel says, and says how it went.
+fn save(sim: &Simulation, panel: &mut gui::Panel) {
+    match sim.save_scene_to(&panel.save_path) {
+        Ok(()) => {
+            eprintln!("scene saved to {}", panel.save_path);
+            panel.saved = Some(panel.save_path.clone());
+            panel.error = None;
+        }
+        Err(e) => panel.error = Some(format!("not saved: {e}")),
+    }
+}
+
+/// The camera's world-to-device matrix, in the simulation's numbers.
+fn view_projection(camera: &layout::FramedCamera) -> Matrix4<f64> {
+    let m = camera.transformation().to_cols_array().map(f64::from);
+    Matrix4::from_column_slice(&m)
 }
 
 /// Real-time pacing: simulated time follows wall time while the machine keeps up.
@@ -288,6 +509,17 @@ pub(crate) fn drive_window<D: Driver>(
         window.set_background_color(convert::color(view.background));
         let mut shown = View::new(view, &mut window);
         shown.mirror.show_axes = options.axes;
+        // A plain left drag orbits; with a modifier it drags the selected body.
+        shown.camera.orbit.set_rotate_modifiers(Some(Modifiers::empty()));
+        let mut hand = Hand::default();
+        let mut feedback = Feedback::default();
+        let mut views = Views::new();
+        // Where the extra views were drawn last (their clicks are not the scene's).
+        let mut view_covers: Vec<layout::Rect> = Vec::new();
+        if options.forces {
+            shown.mirror.show_forces = true;
+            feedback.show(&mut runner.simulation(), true);
+        }
         let font = Font::default();
         let mut paused = false;
         let mut pacer = Pacer::new(runner.simulation().time());
@@ -298,171 +530,327 @@ pub(crate) fn drive_window<D: Driver>(
         // milliseconds a frame.
         let mut fxaa = kiss3d::post_processing::Fxaa::new();
         let smooth = shown.mirror.draws_fast();
-        loop {
-            let open = if smooth {
-                window.render_3d_with_chain(&mut shown.scene, &mut shown.camera, &mut [&mut fxaa]).await
-            } else {
-                window.render_3d(&mut shown.scene, &mut shown.camera).await
-            };
-            if !open {
-                break;
-            }
-            let wall = started.elapsed();
-            report.frames += 1;
-            if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
-                report.resident_mb.push((wall.as_secs_f64(), resident_mb()));
-            }
-            if limit.is_some_and(|l| wall >= l) {
-                break;
-            }
-            // Keys pressed in this frame's events: under X11 a press sometimes arrives
-            // twice in one frame (seen with xdotool); a press of a key already down in
-            // the same frame is that copy, not a new press.
-            let mut pressed: Vec<WindowKey> = Vec::new();
-            for mut event in window.events().iter() {
-                let WindowEvent::Key(key, action, _) = event.value else { continue };
-                if key == WindowKey::Escape {
-                    // kiss3d's close key: it must reach kiss3d, which closes the window.
+        // The loop, in a block of its own so that the drag ends however it ends.
+        let outcome: Result<()> = async {
+            loop {
+                let open = if smooth {
+                    window.render_3d_with_chain(&mut shown.scene, &mut shown.camera, &mut [&mut fxaa]).await
+                } else {
+                    window.render_3d(&mut shown.scene, &mut shown.camera).await
+                };
+                if !open {
+                    break;
+                }
+                let wall = started.elapsed();
+                report.frames += 1;
+                if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
+                    report.resident_mb.push((wall.as_secs_f64(), resident_mb()));
+                }
+                if limit.is_some_and(|l| wall >= l) {
+                    break;
+                }
+                // Keys pressed in this frame's events: under X11 a press sometimes arrives
+                // twice in one frame (seen with xdotool); a press of a key already down in
+                // the same frame is that copy, not a new press.
+                let mut pressed: Vec<WindowKey> = Vec::new();
+                // While a text field of the panel has the keyboard, keys are its own; while
+                // the pointer is over the panel, clicks are.
+                let typing = window.is_egui_capturing_keyboard();
+                let egui_pointer = window.is_egui_capturing_mouse();
+                let mut panels: Vec<layout::Rect> = panel.covers.map(|(r, _)| r).into_iter().collect();
+                panels.extend(panel.editor_covers);
+                panels.extend(view_covers.iter().copied());
+                let size = Vec2::new(window.width() as f32, window.height() as f32);
+                let forward = convert::vector_back(shown.camera.orbit.at() - shown.camera.eye());
+                for mut event in window.events().iter() {
+                    let (key, action, modifiers) = match event.value {
+                        WindowEvent::CursorPos(x, y, _) => {
+                            hand.cursor = (x, y);
+                            // A drag moves the body, not the camera.
+                            event.inhibited = hand.grab.is_some();
+                            continue;
+                        }
+                        WindowEvent::MouseButton(MouseButton::Button1, action, modifiers) => {
+                            let over_panel =
+                                layout::pointer_on_panel(hand.cursor, hand.ui_cursor, egui_pointer, &panels);
+                            if over_panel && hand.grab.is_none() {
+                                continue;
+                            }
+                            let ray = hand.ray(&shown.camera, size);
+                            match action {
+                                Action::Press => {
+                                    let modifiers = modifiers | held_modifiers(&window);
+                                    event.inhibited = hand.press(&runner.simulation(), ray, forward, modifiers);
+                                }
+                                Action::Release => {
+                                    event.inhibited = hand.grab.is_some();
+                                    hand.release(&mut runner.simulation(), ray);
+                                }
+                            }
+                            continue;
+                        }
+                        WindowEvent::Key(key, action, modifiers) => (key, action, modifiers),
+                        _ => continue,
+                    };
+                    if key == WindowKey::Escape {
+                        // kiss3d closes the window on the close key's release. While a
+                        // field is typed in, the press is egui's (it leaves the field);
+                        // with a selection, it deselects; either way its release must not
+                        // close the window. Otherwise it goes to kiss3d, and closes.
+                        match action {
+                            Action::Press if typing => hand.escape_held = true,
+                            Action::Press if hand.selected.is_some() => {
+                                event.inhibited = true;
+                                hand.escape_held = true;
+                                hand.deselect(&mut runner.simulation());
+                            }
+                            Action::Release if hand.escape_held => {
+                                event.inhibited = true;
+                                hand.escape_held = false;
+                            }
+                            _ => {}
+                        }
+                        continue;
+                    }
+                    if typing {
+                        // The panel's text field has the keyboard.
+                        continue;
+                    }
+                    // Every other key is the viewer's or the program's, not the camera's.
+                    event.inhibited = true;
+                    match action {
+                        Action::Press if pressed.contains(&key) => continue,
+                        Action::Press => pressed.push(key),
+                        Action::Release => pressed.retain(|k| *k != key),
+                    }
+                    if key == WindowKey::S && (modifiers | held_modifiers(&window)).contains(Modifiers::Control) {
+                        if action == Action::Press {
+                            save(&runner.simulation(), &mut panel);
+                        }
+                        continue;
+                    }
+                    match (key, action) {
+                        (WindowKey::Space, Action::Press) => {
+                            paused = !paused;
+                            pacer = Pacer::new(runner.simulation().time());
+                        }
+                        (WindowKey::N, Action::Press) if paused => runner.step()?,
+                        (WindowKey::R, Action::Press) => {
+                            hand.deselect(&mut runner.simulation());
+                            runner.reset()?;
+                            shown.mirror.clear();
+                            views.clear();
+                            feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
+                            pacer = Pacer::new(runner.simulation().time());
+                        }
+                        (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
+                        (WindowKey::Key1, Action::Press) => views.count = 1,
+                        (WindowKey::Key2, Action::Press) => views.count = 2,
+                        (WindowKey::Key3, Action::Press) => views.count = 3,
+                        (WindowKey::Key4, Action::Press) => views.count = 4,
+                        (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
+                        (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
+                        (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                        (WindowKey::X, Action::Press) => shown.mirror.show_axes = !shown.mirror.show_axes,
+                        (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
+                        (k, Action::Press) => {
+                            if let Some(k) = program_key(k) {
+                                runner.key_down(k)?;
+                            }
+                        }
+                        (k, Action::Release) => {
+                            if let Some(k) = program_key(k) {
+                                runner.key_up(k)?;
+                            }
+                        }
+                    }
+                }
+                // Ctrl-C in the terminal closes the window too, once the program asked for
+                // it (`ars_core::interrupt::stop_on_ctrl_c`: the examples do).
+                if runner.wants_to_close() || ars_core::interrupt::requested() {
+                    break;
+                }
+                {
+                    let ray = hand.ray(&shown.camera, size);
+                    let dragged = hand.drag(&mut runner.simulation(), ray, paused);
+                    if let Err(e) = dragged {
+                        panel.error = Some(format!("drag: {e}"));
+                        hand.deselect(&mut runner.simulation());
+                    }
+                }
+                if panel.speed != pacer.speed {
+                    pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                }
+                if !paused && panel.fastest {
+                    // As fast as the machine can: frames for about 30 ms, then draw.
+                    let budget = Instant::now();
+                    while budget.elapsed() < Duration::from_millis(30) {
+                        runner.step_frame()?;
+                    }
+                    pacer.measure(runner.simulation().time());
+                } else if !paused {
+                    let mut frames = 0;
+                    while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
+                        runner.step_frame()?;
+                        frames += 1;
+                    }
+                    pacer.behind = runner.simulation().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
+                    if pacer.behind {
+                        // Give up on the lost time rather than spiral: keep pacing from now.
+                        pacer.wall_origin = Instant::now();
+                        pacer.sim_origin = runner.simulation().time();
+                    }
+                    pacer.measure(runner.simulation().time());
+                }
+                let status = gui::Status {
+                    title: &view.title,
+                    paused,
+                    real_time_factor: pacer.factor,
+                    following: shown.following,
+                    contacts: shown.mirror.show_contacts,
+                    forces: shown.mirror.show_forces,
+                    views: views.count,
+                    joints: shown.mirror.show_joints,
+                    axes: shown.mirror.show_axes,
+                    selected: None,
+                };
+                let selected = hand.selected.and_then(|id| Selected::of(&runner.simulation(), id));
+                if selected.is_none() && hand.selected.is_some() {
+                    // The body is gone (removed by the program).
+                    hand.deselect(&mut runner.simulation());
+                }
+                let drawn = selected.as_ref().and_then(|s| shown.mirror.drawn_color(s.id)).unwrap_or([0.5; 3]);
+                let status = gui::Status { selected: selected.as_ref().map(|s| (s, drawn)), ..status };
+                if views.count > 1 {
+                    let sim = runner.simulation();
+                    let free = (convert::point_back(shown.camera.eye()), convert::point_back(shown.camera.orbit.at()));
+                    let target = views::followed(&sim, hand.selected, shown.follow.as_deref());
+                    let size = (window.width() as f32, window.height() as f32);
+                    views.render(&sim, view, size, free, target).await?;
+                }
+                let mut commands = Vec::new();
+                window.draw_ui(|ctx| {
+                    view_covers = views.show(ctx);
+                    commands = panel.draw(ctx, &runner.simulation(), &status);
+                });
+                hand.ui_cursor = hand.cursor;
+                // What the camera looks at appears in the middle of what the panel leaves
+                // free (from the next frame on).
+                shown.camera.shift = match panel.covers {
+                    // Several views: the free one in the top-left quarter.
+                    _ if views.count > 1 => {
+                        let (w, h) = (window.width() as f32, window.height() as f32);
+                        let [l, t, r, b] = views::viewports(w, h, views.count)[0];
+                        layout::ndc_shift(w, h, ((l + r) / 2.0, (t + b) / 2.0))
+                    }
+                    Some((panel_rect, (w, h))) => {
+                        let panels: Vec<layout::Rect> =
+                            std::iter::once(panel_rect).chain(panel.editor_covers).collect();
+                        layout::ndc_shift(w, h, layout::free_centre_of(w, h, &panels))
+                    }
+                    None => Vec2::ZERO,
+                };
+                for command in commands {
+                    match command {
+                        gui::Command::TogglePause => {
+                            paused = !paused;
+                            pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                        }
+                        gui::Command::StepFrame => runner.step_frame()?,
+                        gui::Command::StepPhysics => runner.step()?,
+                        gui::Command::Reset => {
+                            hand.deselect(&mut runner.simulation());
+                            runner.reset()?;
+                            shown.mirror.clear();
+                            views.clear();
+                            feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
+                            pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                        }
+                        gui::Command::Screenshot => screenshot(&window, &view.title),
+                        gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
+                        gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
+                        gui::Command::ToggleForces => {
+                            shown.mirror.show_forces = !shown.mirror.show_forces;
+                            feedback.show(&mut runner.simulation(), shown.mirror.show_forces);
+                        }
+                        gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
+                        gui::Command::ToggleAxes => shown.mirror.show_axes = !shown.mirror.show_axes,
+                        gui::Command::Setpoint(joint, value) => {
+                            gui::set_setpoint(&mut runner.simulation(), joint, value)?;
+                        }
+                        gui::Command::Edit(edit) => match apply_edit(&mut runner.simulation(), &edit) {
+                            Ok(()) => {
+                                panel.error = None;
+                                if let Edit::Color(id, _) = edit {
+                                    shown.mirror.redraw(id);
+                                    views.redraw(id);
+                                }
+                            }
+                            Err(e) => panel.error = Some(e.to_string()),
+                        },
+                        gui::Command::Save => save(&runner.simulation(), &mut panel),
+                        gui::Command::Views(n) => views.count = n,
+                        gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
+                    }
+                }
+                shown.mirror.force_scale = panel.force_scale;
+                let state = ViewerState {
+                    paused,
+                    selected: hand.selected.and_then(|id| Selected::of(&runner.simulation(), id)),
+                    drag: hand.grab.and_then(|g| {
+                        let from = g.point(&runner.simulation()).ok()?;
+                        Some(DragLine { mode: g.mode, from, to: g.target })
+                    }),
+                    error: panel.error.clone(),
+                    save_path: panel.save_path.clone().into(),
+                    saved: panel.saved.clone().map(Into::into),
+                    fields: panel.fields.clone(),
+                    window_size: (size.x, size.y),
+                    views: views.count,
+                    view_projection: view_projection(&shown.camera),
+                };
+                runner.viewer_state(&state);
+                let sim = runner.simulation();
+                shown.update(&sim, &mut window)?;
+                hand.draw(&sim, &mut window);
+                if panel.shown {
+                    // The panel says the same.
                     continue;
                 }
-                // Every other key is the viewer's or the program's, not the camera's.
-                event.inhibited = true;
-                match action {
-                    Action::Press if pressed.contains(&key) => continue,
-                    Action::Press => pressed.push(key),
-                    Action::Release => pressed.retain(|k| *k != key),
-                }
-                match (key, action) {
-                    (WindowKey::Space, Action::Press) => {
-                        paused = !paused;
-                        pacer = Pacer::new(runner.simulation().time());
-                    }
-                    (WindowKey::N, Action::Press) if paused => runner.step()?,
-                    (WindowKey::R, Action::Press) => {
-                        runner.reset()?;
-                        shown.mirror.clear();
-                        pacer = Pacer::new(runner.simulation().time());
-                    }
-                    (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
-                    (WindowKey::F, Action::Press) => shown.toggle_follow(&runner.simulation()),
-                    (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
-                    (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
-                    (WindowKey::X, Action::Press) => shown.mirror.show_axes = !shown.mirror.show_axes,
-                    (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
-                    (k, Action::Press) => {
-                        if let Some(k) = program_key(k) {
-                            runner.key_down(k)?;
-                        }
-                    }
-                    (k, Action::Release) => {
-                        if let Some(k) = program_key(k) {
-                            runner.key_up(k)?;
-                        }
-                    }
-                }
+                let status = if paused {
+                    "paused".to_string()
+                } else if pacer.behind {
+                    format!("x{:.2} real time: slower than real time", pacer.factor)
+                } else {
+                    format!("x{:.2} real time", pacer.factor)
+                };
+                // Both lines wrap to the window's width (10 px margins).
+                let width = window.width() as f32 - 20.0;
+                let text = format!("t = {:.3} s   {status}", sim.time());
+                let (text, lines) = wrapped(&font, STATUS_SIZE, &text, "   ", width);
+                window.draw_text(
+                    &text,
+                    Vec2::new(10.0, 10.0),
+                    STATUS_SIZE,
+                    &font,
+                    kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0),
+                );
+                let (keys, _) = wrapped(&font, KEYS_SIZE, VIEWER_KEYS, ", ", width);
+                window.draw_text(
+                    &keys,
+                    Vec2::new(10.0, 16.0 + lines as f32 * line_height(&font, STATUS_SIZE)),
+                    KEYS_SIZE,
+                    &font,
+                    kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
+                );
             }
-            // Ctrl-C in the terminal closes the window too, once the program asked for
-            // it (`ars_core::interrupt::stop_on_ctrl_c`: the examples do).
-            if runner.wants_to_close() || ars_core::interrupt::requested() {
-                break;
-            }
-            if panel.speed != pacer.speed {
-                pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
-            }
-            if !paused && panel.fastest {
-                // As fast as the machine can: frames for about 30 ms, then draw.
-                let budget = Instant::now();
-                while budget.elapsed() < Duration::from_millis(30) {
-                    runner.step_frame()?;
-                }
-                pacer.measure(runner.simulation().time());
-            } else if !paused {
-                let mut frames = 0;
-                while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
-                    runner.step_frame()?;
-                    frames += 1;
-                }
-                pacer.behind = runner.simulation().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
-                if pacer.behind {
-                    // Give up on the lost time rather than spiral: keep pacing from now.
-                    pacer.wall_origin = Instant::now();
-                    pacer.sim_origin = runner.simulation().time();
-                }
-                pacer.measure(runner.simulation().time());
-            }
-            let status = gui::Status {
-                title: &view.title,
-                paused,
-                real_time_factor: pacer.factor,
-                following: shown.following,
-                contacts: shown.mirror.show_contacts,
-                joints: shown.mirror.show_joints,
-                axes: shown.mirror.show_axes,
-            };
-            let mut commands = Vec::new();
-            window.draw_ui(|ctx| commands = panel.draw(ctx, &runner.simulation(), &status));
-            // What the camera looks at appears in the middle of what the panel leaves
-            // free (from the next frame on).
-            shown.camera.shift = match panel.covers {
-                Some((panel_rect, (w, h))) => layout::ndc_shift(w, h, layout::free_centre(w, h, Some(panel_rect))),
-                None => Vec2::ZERO,
-            };
-            for command in commands {
-                match command {
-                    gui::Command::TogglePause => {
-                        paused = !paused;
-                        pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
-                    }
-                    gui::Command::StepFrame => runner.step_frame()?,
-                    gui::Command::StepPhysics => runner.step()?,
-                    gui::Command::Reset => {
-                        runner.reset()?;
-                        shown.mirror.clear();
-                        pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
-                    }
-                    gui::Command::Screenshot => screenshot(&window, &view.title),
-                    gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
-                    gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
-                    gui::Command::ToggleJoints => shown.mirror.show_joints = !shown.mirror.show_joints,
-                    gui::Command::ToggleAxes => shown.mirror.show_axes = !shown.mirror.show_axes,
-                    gui::Command::Setpoint(joint, value) => {
-                        gui::set_setpoint(&mut runner.simulation(), joint, value)?;
-                    }
-                }
-            }
-            let sim = runner.simulation();
-            shown.update(&sim, &mut window)?;
-            if panel.shown {
-                // The panel says the same.
-                continue;
-            }
-            let status = if paused {
-                "paused".to_string()
-            } else if pacer.behind {
-                format!("x{:.2} real time: slower than real time", pacer.factor)
-            } else {
-                format!("x{:.2} real time", pacer.factor)
-            };
-            // Both lines wrap to the window's width (10 px margins).
-            let width = window.width() as f32 - 20.0;
-            let text = format!("t = {:.3} s   {status}", sim.time());
-            let (text, lines) = wrapped(&font, STATUS_SIZE, &text, "   ", width);
-            window.draw_text(
-                &text,
-                Vec2::new(10.0, 10.0),
-                STATUS_SIZE,
-                &font,
-                kiss3d::color::Color::new(0.1, 0.1, 0.1, 1.0),
-            );
-            let (keys, _) = wrapped(&font, KEYS_SIZE, VIEWER_KEYS, ", ", width);
-            window.draw_text(
-                &keys,
-                Vec2::new(10.0, 16.0 + lines as f32 * line_height(&font, STATUS_SIZE)),
-                KEYS_SIZE,
-                &font,
-                kiss3d::color::Color::new(0.3, 0.3, 0.3, 1.0),
-            );
+            Ok(())
         }
+        .await;
+        // A drag in progress ends with the window (closed, or stopped by an error): its
+        // hooks must not go on pushing the body in the simulation handed back.
+        hand.deselect(&mut runner.simulation());
+        outcome?;
         report.wall_seconds = started.elapsed().as_secs_f64();
         report.simulated_seconds = runner.simulation().time();
         Ok(report)

@@ -180,6 +180,16 @@ impl<'s> JointView<'s> {
     pub fn dry_friction(&self) -> f64 {
         self.data.dry_friction
     }
+    /// Its viscous friction coefficient (N·m·s/rad or N·s/m; 0: none), as set with
+    /// [`SimJoint::set_viscous_friction`](crate::SimJoint::set_viscous_friction).
+    pub fn viscous_friction(&self) -> f64 {
+        self.data.friction
+    }
+    /// The limits of its first degree of freedom set with
+    /// [`SimJoint::set_limits`](crate::SimJoint::set_limits) (or a scene file), if any.
+    pub fn limits(&self) -> Option<(f64, f64)> {
+        self.data.limits
+    }
     /// The joint it follows, if any.
     pub fn mimic(&self) -> Option<Mimic> {
         self.data.mimic

@@ -782,6 +782,11 @@ impl SensorSet {
         Ok(&self.slot(id)?.sensor)
     }
 
+    /// Every sensor of type `S`, in the order added.
+    pub(crate) fn of_type<S: Sensor>(&self) -> impl Iterator<Item = &S> + '_ {
+        self.slots.values().filter_map(|slot| slot.as_any().downcast_ref::<Slot<S>>()).map(|slot| &slot.sensor)
+    }
+
     pub(crate) fn is_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         Ok(self.slot(id)?.detached)
     }

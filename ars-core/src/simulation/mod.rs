@@ -440,6 +440,23 @@ impl Simulation {
         self.sensors.sensor(id)
     }
 
+    /// Every sensor of type `S` (its configuration), in the order added: what a viewer
+    /// shows of, say, every depth camera without holding their ids.
+    ///
+    /// ```
+    /// use ars_core::sensors::DepthCamera;
+    /// use ars_core::Simulation;
+    ///
+    /// let mut sim = Simulation::new()?;
+    /// assert_eq!(sim.sensors_of::<DepthCamera>().count(), 0);
+    /// sim.add_sensor(DepthCamera::new(64, 48, 1.0, 0.1, 10.0)?)?;
+    /// assert_eq!(sim.sensors_of::<DepthCamera>().count(), 1);
+    /// # Ok::<(), ars_core::Error>(())
+    /// ```
+    pub fn sensors_of<S: Sensor>(&self) -> impl Iterator<Item = &S> + '_ {
+        self.sensors.of_type::<S>()
+    }
+
     /// Line segments (world frame) showing the latest record of every sensor that draws
     /// (see [`Sensor::lines`]): what a viewer overlays.
     pub fn sensor_lines(&self) -> Vec<(nalgebra::Point3<f64>, nalgebra::Point3<f64>)> {

@@ -1,0 +1,237 @@
+//! Changes made in the panel: one [`Edit`] at a time, applied through the safe API by
+//! [`apply_edit`] (what the panel calls), which checks everything first, so that an
+//! invalid value is an error and changes nothing.
+
+use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::{
+    DcMotor, Error, JointId, JointParam, MassSpec, ObjectId, PositionServo, Profile, Result, Simulation, VelocityServo,
+};
+
+/// One change to a simulation, as the panel asks for it.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Edit {
+    /// An object's colour (channels in [0, 1]).
+    Color(ObjectId, [f32; 3]),
+    /// A body's total mass, kg: its mass distribution scaled (the inertia with it).
+    Mass(ObjectId, f64),
+    /// A body's position, m (its centre of mass).
+    Position(ObjectId, Point3<f64>),
+    /// A joint's limits on its first degree of freedom (rad or m; ±∞ for none).
+    JointLimits(JointId, f64, f64),
+    /// A joint's viscous friction coefficient.
+    ViscousFriction(JointId, f64),
+    /// A joint's velocity motor: target speed and the most force or torque it uses
+    /// (0 turns it off).
+    Motor(JointId, f64, f64),
+    /// The set-point of a joint's controller, held from now on: a position servo's
+    /// position, a velocity servo's speed, a DC motor's voltage.
+    Setpoint(JointId, f64),
+    /// A position servo's PID gains `kp, ki, kd`, or a velocity servo's gain (the first).
+    Gains(JointId, [f64; 3]),
+    /// Gravity, m/s².
+    Gravity(Vector3<f64>),
+    /// The time step, s.
+    TimeStep(f64),
+    /// The world's error reduction parameter.
+    Erp(f64),
+    /// The world's constraint force mixing.
+    Cfm(f64),
+}
+
+/// Applies `edit` to `sim` through its safe API; on an error (a negative or NaN mass,
+/// limits crossed, a joint without a controller…) nothing has changed.
+///
+/// ```
+/// use ars_core::{Mass, Simulation};
+/// use ars_viewer::{Edit, apply_edit};
+///
+/// let mut sim = Simulation::new()?;
+/// let ball = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(2.0))?;
+/// apply_edit(&mut sim, &Edit::Mass(ball, 3.0))?;
+/// assert_eq!(sim.body(ball)?.mass(), 3.0);
+/// assert!(apply_edit(&mut sim, &Edit::Mass(ball, -1.0)).is_err());
+/// assert_eq!(sim.body(ball)?.mass(), 3.0);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+pub fn apply_edit(sim: &mut Simulation, edit: &Edit) -> Result<()> {
+    match *edit {
+        Edit::Color(id, rgb) => sim.set_color(id, rgb),
+        Edit::Mass(id, mass) => {
+            let body = sim.body(id)?;
+            let (old, inertia) = (body.mass(), body.inertia());
+            // Checked by the mass spec (range, finite) before anything changes.
+            let scale = mass / old;
+            sim.body_mut(id)?.set_mass(MassSpec::Custom { mass, inertia: inertia * scale })
+        }
+        Edit::Position(id, p) => sim.set_position(id, p),
+        Edit::JointLimits(id, low, high) => sim.joint_mut(id)?.set_limits(low, high),
+        Edit::ViscousFriction(id, c) => sim.joint_mut(id)?.set_viscous_friction(c),
+        Edit::Motor(id, speed, max_force) => sim.joint_mut(id)?.set_speed(speed, max_force),
+        Edit::Setpoint(id, value) => {
+            let profile = Profile::constant(value)?;
+            let mut joint = sim.joint_mut(id)?;
+            if let Some(servo) = joint.controller_mut::<PositionServo>() {
+                servo.setpoint = profile;
+            } else if let Some(servo) = joint.controller_mut::<VelocityServo>() {
+                servo.setpoint = profile;
+            } else if let Some(motor) = joint.controller_mut::<DcMotor>() {
+                motor.voltage = profile;
+            } else {
+                return Err(no_controller(sim, id));
+            }
+            Ok(())
+        }
+        Edit::Gains(id, gains) => {
+            if let Some(g) = gains.iter().find(|g| !g.is_finite()) {
+                return Err(Error::NotFinite { what: "controller gain", value: g.to_string() });
+            }
+            let mut joint = sim.joint_mut(id)?;
+            if let Some(servo) = joint.controller_mut::<PositionServo>() {
+                [servo.pid.kp, servo.pid.ki, servo.pid.kd] = gains;
+            } else if let Some(servo) = joint.controller_mut::<VelocityServo>() {
+                servo.gain = gains[0];
+            } else {
+                return Err(no_controller(sim, id));
+            }
+            Ok(())
+        }
+        Edit::Gravity(g) => sim.world_mut().set_gravity(g),
+        Edit::TimeStep(dt) => sim.set_time_step(dt),
+        Edit::Erp(erp) => sim.world_mut().set_erp(erp),
+        Edit::Cfm(cfm) => sim.world_mut().set_cfm(cfm),
+    }
+}
+
+fn no_controller(sim: &Simulation, id: JointId) -> Error {
+    let name = sim.joint(id).map(|j| j.name().to_string()).unwrap_or_default();
+    Error::Invalid { what: "a set-point or gain", problem: format!("joint {name:?} has no servo or DC motor") }
+}
+
+/// A number typed in the panel: `what` names it in the error (`inf`, `-inf` and
+/// exponents are numbers; an empty field or `NaN` is not).
+pub fn parse_number(what: &str, text: &str) -> std::result::Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if !v.is_nan() => Ok(v),
+        _ => Err(format!("{what}: {:?} is not a number", text.trim())),
+    }
+}
+
+/// The current value of a joint's first-axis ODE parameter, for the panel.
+pub(crate) fn joint_param(sim: &Simulation, id: JointId, param: JointParam) -> Option<f64> {
+    sim.joint(id).ok()?.ode().ok()?.param(param, 0).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ars_core::{JointEnd, JointType, Mass};
+
+    fn arm() -> (Simulation, ObjectId, JointId) {
+        let mut sim = Simulation::new().unwrap();
+        let link = sim.add_box([0.1, 0.1, 1.0], [0.0, 1.0, 0.5], Mass::Total(2.0)).unwrap();
+        let hinge = sim
+            .add_hinge_joint("hinge", link, JointEnd::World, Some(Point3::new(0.0, 1.0, 0.0)), [1.0, 0.0, 0.0])
+            .unwrap();
+        (sim, link, hinge)
+    }
+
+    /// Every field of the body and the world after an edit, to check that a refused
+    /// edit changed none of them.
+    fn everything(sim: &Simulation, id: ObjectId) -> String {
+        let b = sim.body(id).unwrap();
+        format!(
+            "{} {:?} {} {} {:?} {} {} {} {:?}",
+            b.mass(),
+            b.inertia(),
+            b.position(),
+            b.linear_velocity(),
+            sim.object(id).unwrap().color(),
+            sim.gravity(),
+            sim.time_step(),
+            sim.world().erp(),
+            sim.world().cfm()
+        )
+    }
+
+    #[test]
+    fn a_valid_mass_scales_the_inertia_and_an_invalid_one_changes_nothing() {
+        let (mut sim, link, _) = arm();
+        let inertia = sim.body(link).unwrap().inertia();
+        apply_edit(&mut sim, &Edit::Mass(link, 6.0)).unwrap();
+        assert_eq!(sim.body(link).unwrap().mass(), 6.0);
+        assert!((sim.body(link).unwrap().inertia() - inertia * 3.0).norm() < 1e-12);
+        let before = everything(&sim, link);
+        for bad in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
+            let e = apply_edit(&mut sim, &Edit::Mass(link, bad)).unwrap_err();
+            assert!(e.to_string().contains("mass"), "{e}");
+            assert_eq!(everything(&sim, link), before, "after a mass of {bad}");
+        }
+    }
+
+    #[test]
+    fn world_settings_are_checked() {
+        let (mut sim, link, _) = arm();
+        apply_edit(&mut sim, &Edit::Gravity(Vector3::new(0.0, -1.62, 0.0))).unwrap();
+        apply_edit(&mut sim, &Edit::TimeStep(0.001)).unwrap();
+        apply_edit(&mut sim, &Edit::Erp(0.5)).unwrap();
+        apply_edit(&mut sim, &Edit::Cfm(1e-5)).unwrap();
+        assert_eq!((sim.gravity().y, sim.time_step(), sim.world().erp(), sim.world().cfm()), (-1.62, 0.001, 0.5, 1e-5));
+        let before = everything(&sim, link);
+        for bad in [
+            Edit::Gravity(Vector3::new(f64::NAN, 0.0, 0.0)),
+            Edit::TimeStep(-0.001),
+            Edit::TimeStep(0.0),
+            Edit::Erp(1.5),
+            Edit::Cfm(-1.0),
+            Edit::Color(link, [2.0, 0.0, 0.0]),
+            Edit::Position(link, Point3::new(f64::NAN, 0.0, 0.0)),
+        ] {
+            assert!(apply_edit(&mut sim, &bad).is_err(), "{bad:?} was accepted");
+            assert_eq!(everything(&sim, link), before, "after {bad:?}");
+        }
+        apply_edit(&mut sim, &Edit::Color(link, [0.0, 1.0, 0.0])).unwrap();
+        assert_eq!(sim.object(link).unwrap().color(), Some([0.0, 1.0, 0.0]));
+        apply_edit(&mut sim, &Edit::Position(link, Point3::new(1.0, 2.0, 3.0))).unwrap();
+        assert_eq!(sim.body(link).unwrap().position(), Point3::new(1.0, 2.0, 3.0));
+    }
+
+    #[test]
+    fn joint_edits_go_through_the_joint() {
+        let (mut sim, _, hinge) = arm();
+        assert_eq!(sim.joint(hinge).unwrap().joint_type(), JointType::Hinge);
+        apply_edit(&mut sim, &Edit::JointLimits(hinge, -0.5, 0.5)).unwrap();
+        assert_eq!(joint_param(&sim, hinge, JointParam::LoStop), Some(-0.5));
+        assert_eq!(joint_param(&sim, hinge, JointParam::HiStop), Some(0.5));
+        // Crossed limits are refused, the old ones kept.
+        assert!(apply_edit(&mut sim, &Edit::JointLimits(hinge, 1.0, -1.0)).is_err());
+        assert_eq!(sim.joint(hinge).unwrap().limits(), Some((-0.5, 0.5)));
+        apply_edit(&mut sim, &Edit::ViscousFriction(hinge, 0.3)).unwrap();
+        assert_eq!(sim.joint(hinge).unwrap().viscous_friction(), 0.3);
+        assert!(apply_edit(&mut sim, &Edit::ViscousFriction(hinge, -0.3)).is_err());
+        assert_eq!(sim.joint(hinge).unwrap().viscous_friction(), 0.3);
+        apply_edit(&mut sim, &Edit::Motor(hinge, 1.0, 5.0)).unwrap();
+        assert_eq!(joint_param(&sim, hinge, JointParam::Velocity), Some(1.0));
+        // No controller yet: set-points and gains are errors.
+        assert!(apply_edit(&mut sim, &Edit::Setpoint(hinge, 0.2)).is_err());
+        assert!(apply_edit(&mut sim, &Edit::Gains(hinge, [1.0, 0.0, 0.0])).is_err());
+        let servo = PositionServo::pd(Profile::constant(0.0).unwrap(), 10.0, 1.0);
+        sim.joint_mut(hinge).unwrap().set_controller(servo).unwrap();
+        apply_edit(&mut sim, &Edit::Setpoint(hinge, 0.2)).unwrap();
+        apply_edit(&mut sim, &Edit::Gains(hinge, [20.0, 0.5, 2.0])).unwrap();
+        assert!(apply_edit(&mut sim, &Edit::Gains(hinge, [f64::NAN, 0.5, 2.0])).is_err());
+        let servo = sim.joint_controller::<PositionServo>(hinge).unwrap().unwrap();
+        assert_eq!(servo.setpoint.value(3.0), 0.2);
+        assert_eq!((servo.pid.kp, servo.pid.ki, servo.pid.kd), (20.0, 0.5, 2.0));
+    }
+
+    #[test]
+    fn typed_numbers_are_parsed_or_named_in_the_error() {
+        assert_eq!(parse_number("mass", " 2.5 "), Ok(2.5));
+        assert_eq!(parse_number("mass", "-1e-3"), Ok(-0.001));
+        assert_eq!(parse_number("high", "inf"), Ok(f64::INFINITY));
+        assert_eq!(parse_number("mass", "two"), Err("mass: \"two\" is not a number".into()));
+        assert!(parse_number("mass", "").is_err());
+        assert!(parse_number("mass", "NaN").is_err());
+    }
+}
