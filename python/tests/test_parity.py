@@ -375,6 +375,7 @@ NOT_IN_PYTHON = {
     "Simulation.hooks",
     "Simulation.hooks_mut",
     "Simulation.sensor",
+    "Simulation.sensors_of",
     "Simulation.sensor_lines",
     "Simulation.sensor_tables",
     "Simulation.scene_file",
