@@ -236,7 +236,9 @@ pub(crate) unsafe fn create_ode_joint(
 }
 
 /// Sets parameter `param` of axis `axis` of a joint of `kind` as given, unchecked
-/// (values read back from ODE); fixed and ball joints have none.
+/// (what [`JointMut::set_param`] does once it has checked the value, and what a
+/// snapshot's restore does with values read back from ODE); fixed and ball joints
+/// have none.
 ///
 /// # Safety
 /// `raw` is a live joint of `kind`; `axis` is below the kind's parameter axes.
@@ -833,21 +835,11 @@ impl JointMut<'_> {
                 detail: format!("must not cross: {param:?} {value} would cross the other stop (set_limits moves both)"),
             });
         }
-        let j = self.data.raw;
-        let p = param.code() + (ffi::dParamGroup as i32) * axis as i32;
-        // SAFETY: the joint is live and of the kind matched; axis and value checked.
-        unsafe {
-            match self.data.kind {
-                JointKind::Hinge { .. } => ffi::dJointSetHingeParam(j, p, value),
-                JointKind::Slider { .. } => ffi::dJointSetSliderParam(j, p, value),
-                JointKind::Universal { .. } => ffi::dJointSetUniversalParam(j, p, value),
-                JointKind::Hinge2 { .. } => ffi::dJointSetHinge2Param(j, p, value),
-                JointKind::Piston { .. } => ffi::dJointSetPistonParam(j, p, value),
-                JointKind::AngularMotor { .. } => ffi::dJointSetAMotorParam(j, p, value),
-                JointKind::LinearMotor { .. } => ffi::dJointSetLMotorParam(j, p, value),
-                JointKind::Fixed | JointKind::Ball { .. } => return Err(self.wrong("parameters")),
-            }
+        if matches!(self.data.kind, JointKind::Fixed | JointKind::Ball { .. }) {
+            return Err(self.wrong("parameters"));
         }
+        // SAFETY: the joint is live and of its kind; axis and value checked.
+        unsafe { set_raw_param(self.data.raw, &self.data.kind, param, axis, value) };
         Ok(())
     }
 
