@@ -12,6 +12,22 @@ use crate::limits;
 use crate::shape::Shape;
 use crate::validate;
 
+/// Writes ODE's quaternion and rotation matrix of `body` as given, without the
+/// renormalisation of ODE's setters (call a setter first: it tells the body's geoms
+/// that it moved). The two must describe the same rotation.
+///
+/// # Safety
+/// `body` is a live body, and nothing else uses it during the call.
+pub(crate) unsafe fn write_orientation(body: ffi::dBodyID, q: &[f64; 4], r: &[f64; 12]) {
+    // SAFETY: the caller's contract; dBodyGetQuaternion and dBodyGetRotation point into
+    // the body's own heap-allocated state (4 and 12 reals, which ODE itself writes at
+    // every step).
+    unsafe {
+        std::ptr::copy_nonoverlapping(q.as_ptr(), ffi::dBodyGetQuaternion(body).cast_mut(), 4);
+        std::ptr::copy_nonoverlapping(r.as_ptr(), ffi::dBodyGetRotation(body).cast_mut(), 12);
+    }
+}
+
 pub(crate) struct BodyData {
     pub(crate) raw: ffi::dBodyID,
     /// Where ODE keeps the body's state, read by the checks around every step.
@@ -528,13 +544,8 @@ impl BodyMut<'_> {
         }
         self.set_quaternion(*q)?;
         let (q, r) = (convert::quaternion_to_ode(q), convert::rotation_to_ode(&r));
-        // SAFETY: the body is live; dBodyGetQuaternion and dBodyGetRotation point into
-        // the body's own heap-allocated state (4 and 12 reals, which ODE itself writes
-        // at every step); nothing else reads or writes them during these copies.
-        unsafe {
-            std::ptr::copy_nonoverlapping(q.as_ptr(), ffi::dBodyGetQuaternion(self.raw).cast_mut(), 4);
-            std::ptr::copy_nonoverlapping(r.as_ptr(), ffi::dBodyGetRotation(self.raw).cast_mut(), 12);
-        }
+        // SAFETY: the body is live (checked handle, exclusive borrow of the world).
+        unsafe { write_orientation(self.raw, &q, &r) };
         Ok(())
     }
 

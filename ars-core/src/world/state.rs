@@ -64,13 +64,10 @@ impl ExactPose {
     /// `body` is a live body.
     unsafe fn put(&self, body: ffi::dBodyID) {
         let p = self.position;
-        // SAFETY: the caller's contract; dBodyGetQuaternion and dBodyGetRotation point
-        // into the body's own heap-allocated state (4 and 12 reals, which ODE itself
-        // writes at every step); nothing else reads or writes them during the copies.
+        // SAFETY: the caller's contract.
         unsafe {
             ffi::dBodySetPosition(body, p[0], p[1], p[2]);
-            std::ptr::copy_nonoverlapping(self.quaternion.as_ptr(), ffi::dBodyGetQuaternion(body).cast_mut(), 4);
-            std::ptr::copy_nonoverlapping(self.rotation.as_ptr(), ffi::dBodyGetRotation(body).cast_mut(), 12);
+            super::body::write_orientation(body, &self.quaternion, &self.rotation);
         }
     }
 }
