@@ -83,12 +83,24 @@ pub struct ViewerOptions {
     /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)); with an
     /// [`OffscreenRenderer`] of your own, turn it on in the simulation you render.
     pub forces: bool,
+    /// How many views, 1 to 4 (0 is taken as 1): with more than one, the image is split
+    /// into quarters showing, in reading order, the free camera, a camera following a
+    /// body, the top view (orthographic) and what the scene's first depth camera sees
+    /// (see [`ViewKind`]). A window starts with these views (keys `1`–`4` change them);
+    /// off screen, every frame is the split image.
+    pub views: usize,
 }
 
 impl ViewerOptions {
     /// With the world axes drawn or not.
     pub fn with_axes(mut self, axes: bool) -> Self {
         self.axes = axes;
+        self
+    }
+
+    /// With `views` views (1 to 4; see [`views`](Self::views)).
+    pub fn with_views(mut self, views: usize) -> Self {
+        self.views = views;
         self
     }
 

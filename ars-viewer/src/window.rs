@@ -514,6 +514,7 @@ pub(crate) fn drive_window<D: Driver>(
         let mut hand = Hand::default();
         let mut feedback = Feedback::default();
         let mut views = Views::new();
+        views.count = options.views.clamp(1, 4);
         // Where the extra views were drawn last (their clicks are not the scene's).
         let mut view_covers: Vec<layout::Rect> = Vec::new();
         if options.forces {

@@ -17,7 +17,9 @@ ars: run, view and record ARS scenes and URDF robots
 usage:
   ars run FILE [--duration S] [--csv OUT] [--every N]
   ars view FILE [--screenshots DIR] [--duration S] [--frame-every N] [--size WxH] [--axes]
+           [--views N] [--csv OUT]
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
+           [--views N] [--csv OUT]
   ars --help | --version
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
@@ -26,7 +28,8 @@ Ctrl+S in the window; saved at any step, it goes on exactly where it was), a rob
 MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
 
   run       simulate without graphics and print a summary; --csv writes the scene's
-            sensors (or, if it has none, every body's position) every N steps
+            sensors (or, if it has none, every body's position) every N steps; with
+            view and record, --csv writes what was simulated until the end
   view      open a window (Escape closes it); without a display, record off screen
             into --screenshots
   record    render off screen (no display or GPU needed) into DIR/frame_00001.png...
@@ -36,6 +39,7 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
   --frame-every N   one picture every N frames (default 5)
   --size WxH        picture or window size in pixels (default 1024x768)
   --axes            draw the world axes
+  --views N         split the picture into N views (1-4): free, following, top, camera
   --fixed-base      (URDF) fix the robot's root to the world
   --y-up            (URDF) the file is written Y up (URDF's convention is Z up)
   --at X,Y,Z        (URDF, MJCF) where its root starts, m (default 0,0,0)";
@@ -51,6 +55,7 @@ struct Command {
     frame_every: u32,
     size: Option<(u32, u32)>,
     axes: bool,
+    views: usize,
     fixed_base: bool,
     y_up: bool,
     at: Vector3<f64>,
@@ -74,6 +79,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
         frame_every: 5,
         size: None,
         axes: false,
+        views: 1,
         fixed_base: false,
         y_up: false,
         at: Vector3::zeros(),
@@ -109,6 +115,13 @@ fn parse(args: &[String]) -> Result<Command, String> {
                 };
             }
             "--axes" => command.axes = true,
+            "--views" => {
+                let v = value("--views")?;
+                command.views = match v.parse::<usize>() {
+                    Ok(n) if (1..=4).contains(&n) => n,
+                    _ => return Err(format!("--views must be 1, 2, 3 or 4, got {v:?}")),
+                };
+            }
             "--fixed-base" => command.fixed_base = true,
             "--y-up" => command.y_up = true,
             "--at" => {
@@ -124,9 +137,6 @@ fn parse(args: &[String]) -> Result<Command, String> {
     }
     if command.verb == "record" && command.screenshots.is_none() {
         return Err("ars record needs --screenshots DIR".into());
-    }
-    if command.csv.is_some() && command.verb != "run" {
-        return Err("--csv goes with ars run".into());
     }
     Ok(command)
 }
@@ -270,14 +280,12 @@ fn run(command: &Command) -> Result<(), Box<dyn std::error::Error>> {
 #[cfg(feature = "viewer")]
 fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     use ars::viewer::{ProgramViewer, ScreenshotRecorder, ViewerOptions};
-    let options = ViewerOptions::default().with_axes(command.axes);
+    let options = ViewerOptions::default().with_axes(command.axes).with_views(command.views);
     let window = command.verb == "view" && ars::viewer::has_display();
     if window {
         eprintln!("{}", ars::viewer::VIEWER_KEYS);
-        match (command.size, command.duration) {
-            (None, None) => {
-                program.show_with(&options)?;
-            }
+        let sim = match (command.size, command.duration) {
+            (None, None) => program.show_with(&options)?,
             (size, limit) => {
                 let view =
                     ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
@@ -285,7 +293,13 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
                 // The window runs in real time: a duration is wall seconds here.
                 let limit = limit.map(std::time::Duration::from_secs_f64);
                 ars::viewer::run_window_with(&mut runner, &view, &options, limit)?;
+                runner.into_simulation()
             }
+        };
+        println!("{}", program.summary);
+        println!("closed at t = {} s ({} steps)", sim.time(), sim.step_count());
+        if let Some(path) = &command.csv {
+            write_csv(&sim, path, command.every)?;
         }
         return Ok(());
     }
@@ -301,6 +315,9 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
     let (sim, written) = recorder.record(program, command.duration.unwrap_or(10.0))?;
     println!("{}", program.summary);
     println!("recorded t = {} s: {} frames into {}", sim.time(), written.len(), dir.display());
+    if let Some(path) = &command.csv {
+        write_csv(&sim, path, command.every)?;
+    }
     Ok(())
 }
 
