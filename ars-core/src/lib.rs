@@ -126,6 +126,7 @@ pub use scene::{
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, HookPoint, Hooks, PostFrame, PostStep, PreFrame, PreStep};
+pub use simulation::open::{FileFormat, OpenedFile};
 pub use simulation::snapshot::{SNAPSHOT_VERSION, SceneState, Snapshot};
 pub use simulation::{
     DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, SENSOR_KINDS, Simulation, SimulationBuilder,

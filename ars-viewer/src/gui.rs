@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use ars_core::nalgebra::UnitQuaternion;
 use ars_core::{DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
 use egui_plot::{Line, Plot, PlotPoints};
 use kiss3d::egui;
@@ -40,6 +41,9 @@ pub(crate) enum Command {
     Edit(Edit),
     /// Save the scene to the panel's save path (`Ctrl+S`).
     Save,
+    /// Open the file at the panel's open path (a scene file, a URDF or an MJCF model)
+    /// instead of the program.
+    Open,
     /// Show this many views (1 to 4: keys `1`–`4`).
     Views(usize),
     /// Forget the selection.
@@ -78,6 +82,10 @@ pub(crate) struct Panel {
     pub(crate) save_path: String,
     /// Where it was saved last.
     pub(crate) saved: Option<String>,
+    /// The file to open.
+    pub(crate) open_path: String,
+    /// The file shown, if one was opened.
+    pub(crate) opened: Option<String>,
     /// The contact-force arrows' length per newton, m/N.
     pub(crate) force_scale: f64,
 }
@@ -100,6 +108,8 @@ impl Default for Panel {
             error: None,
             save_path: format!("./scene-{stamp}.json"),
             saved: None,
+            open_path: String::new(),
+            opened: None,
             force_scale: crate::scene::DEFAULT_FORCE_SCALE,
         }
     }
@@ -270,6 +280,15 @@ impl Panel {
         if let Some(saved) = &self.saved {
             ui.label(format!("saved to {saved}"));
         }
+        ui.horizontal(|ui| {
+            if ui.button("Open").on_hover_text("a scene file (.json), a URDF robot or an MJCF model (.xml)").clicked() {
+                commands.push(Command::Open);
+            }
+            ui.add(egui::TextEdit::singleline(&mut self.open_path).hint_text("file").desired_width(170.0));
+        });
+        if let Some(opened) = &self.opened {
+            ui.label(format!("showing {opened}"));
+        }
     }
 
     /// The selected body: what it is and where, and its colour, mass and pose to edit.
@@ -314,6 +333,13 @@ impl Panel {
                 commands.push(Command::Edit(Edit::Mass(s.id, m)));
             }
             ui.end_row();
+            if let Some(volume) = s.volume {
+                ui.label("density [kg/m³]");
+                if let Some(rho) = self.number(ui, "density", s.mass / volume) {
+                    commands.push(Command::Edit(Edit::Density(s.id, rho)));
+                }
+                ui.end_row();
+            }
             for (axis, label) in ["x", "y", "z"].into_iter().enumerate() {
                 ui.label(format!("{label} [m]"));
                 let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, s.position[axis])).inner;
@@ -324,9 +350,21 @@ impl Panel {
                 }
                 ui.end_row();
             }
+            let angles = [roll, pitch, yaw].map(f64::to_degrees);
+            for (axis, label) in ["roll", "pitch", "yaw"].into_iter().enumerate() {
+                ui.label(format!("{label} [°]"));
+                let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, angles[axis])).inner;
+                if let Some(v) = field {
+                    let mut a = angles;
+                    a[axis] = v;
+                    let [r, p, y] = a.map(f64::to_radians);
+                    commands.push(Command::Edit(Edit::Rotation(s.id, UnitQuaternion::from_euler_angles(r, p, y))));
+                }
+                ui.end_row();
+            }
         });
         if !paused {
-            ui.label("Pause (space) to edit the position.");
+            ui.label("Pause (space) to edit the pose.");
         }
     }
 

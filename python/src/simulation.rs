@@ -930,6 +930,20 @@ impl PySimulation {
         Ok(PySimulation::wrap(sim))
     }
 
+    /// A simulation from any file ARS reads, by its extension: a scene file (`.json`), a
+    /// URDF robot standing on a floor (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`;
+    /// what ARS cannot read is skipped, each with a `UserWarning`). What the viewer's
+    /// Open button and `ars view FILE` open.
+    #[staticmethod]
+    fn open(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let opened = guarded(py, || Simulation::open(&path))?;
+        for skipped in &opened.skipped {
+            let message = std::ffi::CString::new(format!("skipped: {skipped}")).unwrap_or_default();
+            PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
+        }
+        Ok(PySimulation::wrap(opened.simulation))
+    }
+
     /// A lidar: `beams` beams per plane fanned over `fov` radians, seeing from
     /// `min_range` to `max_range` m, in its own X–Z plane (horizontal when upright in
     /// the Y-up world, azimuth from +X towards −Z) and the planes tilted by

@@ -300,6 +300,7 @@ PYTHON_FOR_RUST = {
     "Simulation.restore": "Simulation.restore",
     "Simulation.from_snapshot": "Simulation.from_snapshot",
     "Simulation.load_scene_from": "Simulation.load_scene_from",
+    "Simulation.open": "Simulation.open",
     # Scene
     "Scene.add_fixed_joint": "Simulation.add_fixed_joint",
     "Scene.add_hinge_joint": "Simulation.add_rotary_joint",

@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::{CsvColumns, Gps, JointPositions};
-use ars::{Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, ViewSettings};
+use ars::{FileFormat, Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, ViewSettings};
 
 const USAGE: &str = "\
 ars: run, view and record ARS scenes and URDF robots
@@ -151,12 +151,12 @@ struct FileProgram {
 
 impl FileProgram {
     fn is_urdf(&self) -> bool {
-        self.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+        FileFormat::of(&self.path).is_ok_and(|f| f == FileFormat::Urdf)
     }
 
     /// MuJoCo's MJCF: `.xml` (or `.mjcf`).
     fn is_mjcf(&self) -> bool {
-        self.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml") || e.eq_ignore_ascii_case("mjcf"))
+        FileFormat::of(&self.path).is_ok_and(|f| f == FileFormat::Mjcf)
     }
 }
 
@@ -177,6 +177,7 @@ impl Program for FileProgram {
     }
 
     fn create_simulation(&mut self) -> ars::Result<Simulation> {
+        FileFormat::of(&self.path)?;
         let mut sim = if self.is_mjcf() {
             let mut sim = Simulation::builder().space(SpaceKind::Simple).build()?;
             let options = ars::MjcfOptions::new().base_pose(self.urdf.base_pose).skip_unsupported(true);
