@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 
 use ars_core::nalgebra::UnitQuaternion;
+use ars_core::sensors::DepthCamera;
 use ars_core::{DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
 use egui_plot::{Line, Plot, PlotPoints};
 use kiss3d::egui;
@@ -46,6 +47,9 @@ pub(crate) enum Command {
     Open,
     /// Show this many views (1 to 4: keys `1`–`4`).
     Views(usize),
+    /// Show this depth camera (counted from 0, in the order the sensors were added) in
+    /// the camera view.
+    ViewCamera(usize),
     /// Forget the selection.
     Deselect,
 }
@@ -127,6 +131,8 @@ pub(crate) struct Status<'a> {
     pub(crate) forces: bool,
     /// How many views are shown.
     pub(crate) views: usize,
+    /// The depth camera the camera view shows (from 0).
+    pub(crate) camera: usize,
     pub(crate) joints: bool,
     pub(crate) axes: bool,
     /// The selected body, with the colour it is drawn with.
@@ -180,7 +186,11 @@ impl Panel {
                 if ui.selectable_label(status.contacts, "Contacts").clicked() {
                     commands.push(Command::ToggleContacts);
                 }
-                if ui.selectable_label(status.forces, "Forces").on_hover_text("contact forces as arrows").clicked() {
+                if ui
+                    .selectable_label(status.forces, "Forces")
+                    .on_hover_text("contact forces (cyan) and joint reactions (amber) as arrows")
+                    .clicked()
+                {
                     commands.push(Command::ToggleForces);
                 }
                 if ui.selectable_label(status.joints, "Joints").clicked() {
@@ -198,6 +208,21 @@ impl Panel {
                 for (n, name) in [(1, "free"), (2, "+ follow"), (3, "+ top"), (4, "+ camera")] {
                     if ui.selectable_label(status.views == n, name).clicked() {
                         commands.push(Command::Views(n));
+                    }
+                }
+                // Which camera sensor the fourth view shows, when there are several.
+                let cameras = sim.sensors_of::<DepthCamera>().count();
+                if status.views == 4 && cameras > 1 {
+                    let mut chosen = status.camera.min(cameras - 1);
+                    egui::ComboBox::from_id_salt("ars-view-camera")
+                        .selected_text(format!("camera {}", chosen + 1))
+                        .show_ui(ui, |ui| {
+                            for i in 0..cameras {
+                                ui.selectable_value(&mut chosen, i, format!("camera {}", i + 1));
+                            }
+                        });
+                    if chosen != status.camera {
+                        commands.push(Command::ViewCamera(chosen));
                     }
                 }
             });

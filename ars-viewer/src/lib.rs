@@ -58,7 +58,7 @@ pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_for
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
-pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
+pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
 pub use views::{VIEW_KINDS, ViewKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
@@ -77,11 +77,13 @@ pub struct ViewerOptions {
     /// Draw the world axes at the origin, 1 m long: X red, Y green, Z blue. Off by
     /// default; the window's `x` key (and the panel's Axes button) toggles them.
     pub axes: bool,
-    /// Draw the contact forces as arrows ([`DEFAULT_FORCE_SCALE`] metres per newton).
-    /// Off by default; the panel's Forces button toggles them. They are the forces ODE
-    /// reports: the window and the recorder turn the world's contact feedback on
-    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)); with an
-    /// [`OffscreenRenderer`] of your own, turn it on in the simulation you render.
+    /// Draw the contact forces (cyan) and the joints' reaction forces on their first
+    /// body (amber, from the anchor) as arrows ([`DEFAULT_FORCE_SCALE`] metres per
+    /// newton). Off by default; the panel's Forces button toggles them. They are the
+    /// forces ODE reports: the window and the recorder turn the world's contact feedback
+    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)) and every
+    /// joint's on; with an [`OffscreenRenderer`] of your own, turn them on in the
+    /// simulation you render.
     pub forces: bool,
     /// How many views, 1 to 4 (0 is taken as 1): with more than one, the image is split
     /// into quarters showing, in reading order, the free camera, a camera following a

@@ -296,7 +296,7 @@ impl ScreenshotRecorder {
         let mut renderer = OffscreenRenderer::with_options(&view, &self.options)?;
         if self.options.forces {
             // The forces drawn are those ODE reports.
-            driver.simulation().world_mut().set_contact_feedback(true);
+            crate::scene::report_forces(driver.simulation().world_mut());
         }
         let mut writer = FrameWriter::new();
         let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];

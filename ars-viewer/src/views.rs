@@ -26,7 +26,8 @@ pub enum ViewKind {
     Follow,
     /// Straight down on what the free camera looks at, orthographic.
     Top,
-    /// What the scene's first depth camera sees.
+    /// What one of the scene's depth cameras sees (the first, unless another is
+    /// chosen in the panel).
     Sensor,
 }
 
@@ -89,12 +90,14 @@ impl ViewCamera {
 }
 
 /// What the view of `kind` shows of `sim`: `free` is the free camera's eye and target,
-/// `target` the point a follow view looks at ([`followed`]).
+/// `target` the point a follow view looks at ([`followed`]), `camera` the depth camera
+/// a camera view shows (counted from 0; the last if there are fewer).
 pub(crate) fn camera_of(
     kind: ViewKind,
     sim: &Simulation,
     free: (Point3<f64>, Point3<f64>),
     target: Option<Point3<f64>>,
+    camera: usize,
 ) -> ars_core::Result<Seen> {
     let (eye, at) = free;
     Ok(match kind {
@@ -113,7 +116,8 @@ pub(crate) fn camera_of(
             Seen::Through(Box::new(ViewCamera::Orbit(camera)), "3 top")
         }
         ViewKind::Sensor => {
-            let Some(sensor) = sim.sensors_of::<DepthCamera>().next() else {
+            let cameras = sim.sensors_of::<DepthCamera>().count();
+            let Some(sensor) = sim.sensors_of::<DepthCamera>().nth(camera.min(cameras.saturating_sub(1))) else {
                 return Ok(Seen::Nothing("4 camera: no depth camera in the scene"));
             };
             Seen::Through(Box::new(ViewCamera::Eye(sensor_camera(sensor, sim)?)), "4 camera")
@@ -156,13 +160,16 @@ struct Extra {
 pub(crate) struct Views {
     /// How many views are shown (1 to 4).
     pub(crate) count: usize,
+    /// The depth camera the camera view shows, counted from 0 in the order the
+    /// sensors were added.
+    pub(crate) camera: usize,
     extras: Vec<Extra>,
 }
 
 impl Views {
     /// One view, the window's.
     pub(crate) fn new() -> Self {
-        Views { count: 1, extras: Vec::new() }
+        Views { count: 1, camera: 0, extras: Vec::new() }
     }
 
     /// Draws `id` anew in every extra view (after its colour changed).
@@ -210,7 +217,7 @@ impl Views {
         }
         for extra in self.extras.iter_mut().filter(|e| VIEW_KINDS[..self.count].contains(&e.kind)) {
             extra.view.mirror.sync(sim, &mut extra.view.scene)?;
-            let image = match camera_of(extra.kind, sim, free, target)? {
+            let image = match camera_of(extra.kind, sim, free, target, self.camera)? {
                 Seen::Free => continue,
                 Seen::Nothing(why) => {
                     extra.caption = why.into();
@@ -407,7 +414,7 @@ impl OffscreenViews {
         let mut pixels = Vec::new();
         for cell in &mut self.cells {
             cell.view.mirror.sync(sim, &mut cell.view.scene)?;
-            if let Seen::Through(mut camera, _) = camera_of(cell.kind, sim, free, target)? {
+            if let Seen::Through(mut camera, _) = camera_of(cell.kind, sim, free, target, 0)? {
                 cell.view.mirror.draw_overlays(sim, cell.surface.window_mut());
                 kiss3d::pollster::block_on(camera.draw(&mut cell.surface, &mut cell.view.scene));
                 cell.surface.snap(&mut pixels);

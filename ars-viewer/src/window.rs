@@ -278,7 +278,7 @@ impl Feedback {
         let world = sim.world_mut();
         if on {
             self.before = world.contact_feedback();
-            world.set_contact_feedback(true);
+            crate::scene::report_forces(world);
         } else {
             world.set_contact_feedback(self.before);
         }
@@ -714,6 +714,7 @@ pub(crate) fn drive_window<D: Driver>(
                     contacts: shown.mirror.show_contacts,
                     forces: shown.mirror.show_forces,
                     views: views.count,
+                    camera: views.camera,
                     joints: shown.mirror.show_joints,
                     axes: shown.mirror.show_axes,
                     selected: None,
@@ -816,6 +817,7 @@ pub(crate) fn drive_window<D: Driver>(
                             Err(e) => panel.error = Some(format!("not opened: {e}")),
                         },
                         gui::Command::Views(n) => views.count = n,
+                        gui::Command::ViewCamera(i) => views.camera = i,
                         gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
                     }
                 }
