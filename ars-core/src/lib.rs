@@ -109,7 +109,8 @@ pub use world::{body, contact, geom, joint};
 pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, Mass, MassSpec};
 pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit};
 pub use control::{
-    DcMotor, JointController, JointState, Pid, PositionServo, Profile, SavedController, TorqueMotor, VelocityServo,
+    Actuator, ActuatorKind, DcMotor, JointController, JointState, Pid, PositionServo, Profile, SavedController,
+    TorqueMotor, VelocityServo,
 };
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef};

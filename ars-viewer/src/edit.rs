@@ -4,7 +4,8 @@
 
 use ars_core::nalgebra::{Point3, UnitQuaternion, Vector3};
 use ars_core::{
-    DcMotor, Error, JointId, JointParam, MassSpec, ObjectId, PositionServo, Profile, Result, Simulation, VelocityServo,
+    Actuator, DcMotor, Error, JointId, JointParam, MassSpec, ObjectId, PositionServo, Profile, Result, Simulation,
+    VelocityServo,
 };
 
 /// One change to a simulation, as the panel asks for it.
@@ -84,6 +85,8 @@ pub fn apply_edit(sim: &mut Simulation, edit: &Edit) -> Result<()> {
                 servo.setpoint = profile;
             } else if let Some(motor) = joint.controller_mut::<DcMotor>() {
                 motor.voltage = profile;
+            } else if let Some(actuator) = joint.controller_mut::<Actuator>() {
+                actuator.set_ctrl(value)?;
             } else {
                 return Err(no_controller(sim, id));
             }

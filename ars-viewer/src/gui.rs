@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use ars_core::nalgebra::UnitQuaternion;
 use ars_core::sensors::DepthCamera;
-use ars_core::{DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
+use ars_core::{Actuator, DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
 use egui_plot::{Line, Plot, PlotPoints};
 use kiss3d::egui;
 
@@ -565,17 +565,25 @@ impl Panel {
 /// A slider for every joint held by a position servo: its set-point.
 fn setpoints(ui: &mut egui::Ui, sim: &Simulation, commands: &mut Vec<Command>) {
     let mut any = false;
+    let pi = std::f64::consts::PI;
     for (name, id) in sim.joints() {
-        let Ok(Some(servo)) = sim.joint_controller::<PositionServo>(id) else { continue };
+        // A position servo's set-point, or an actuator's control over its range.
+        let (mut value, range, label) = if let Ok(Some(servo)) = sim.joint_controller::<PositionServo>(id) {
+            (servo.setpoint.value(sim.time()), -pi..=pi, name)
+        } else if let Ok(Some(actuator)) = sim.joint_controller::<Actuator>(id) {
+            let (lo, hi) = actuator.ctrl_range().unwrap_or((-1.0, 1.0));
+            (actuator.ctrl(), lo..=hi, actuator.name())
+        } else {
+            continue;
+        };
         any = true;
-        let mut value = servo.setpoint.value(sim.time());
-        let slider = egui::Slider::new(&mut value, -std::f64::consts::PI..=std::f64::consts::PI).text(elided(name));
-        if ui.add(slider).on_hover_text(name).changed() {
+        let slider = egui::Slider::new(&mut value, range).text(elided(label));
+        if ui.add(slider).on_hover_text(label).changed() {
             commands.push(Command::Setpoint(id, value));
         }
     }
     if !any {
-        ui.label("No position set-points (joints with a PositionServo get a slider).");
+        ui.label("No set-points (joints with a PositionServo or an actuator get a slider).");
     }
 }
 

@@ -773,6 +773,24 @@ impl PySimulation {
         Ok(dict)
     }
 
+    /// Sets the control of the actuator called `name` (an MJCF `<motor>`,
+    /// `<position>` or `<velocity>`), clamped to its control range and held until set
+    /// again: MuJoCo's `data.ctrl`.
+    fn set_control(&self, py: Python<'_>, name: &str, ctrl: f64) -> PyResult<()> {
+        self.with(py, |sim| sim.set_control(name, ctrl))
+    }
+
+    /// The control of the actuator called `name`.
+    fn control(&self, py: Python<'_>, name: &str) -> PyResult<f64> {
+        self.with(py, |sim| sim.control(name))
+    }
+
+    /// The names of the actuators, in joint order.
+    #[getter]
+    fn actuators(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        self.with(py, |sim| Ok(sim.actuators().map(|(name, _)| name.to_string()).collect()))
+    }
+
     /// A piston: slides along and turns about the world `axis` through `anchor`.
     #[pyo3(signature = (name, obj1, obj2, anchor, axis))]
     fn add_piston_joint(

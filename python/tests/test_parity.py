@@ -301,6 +301,9 @@ PYTHON_FOR_RUST = {
     "Simulation.from_snapshot": "Simulation.from_snapshot",
     "Simulation.load_scene_from": "Simulation.load_scene_from",
     "Simulation.open": "Simulation.open",
+    "Scene.set_control": "Simulation.set_control",
+    "Scene.control": "Simulation.control",
+    "Scene.actuators": "Simulation.actuators",
     # Scene
     "Scene.add_fixed_joint": "Simulation.add_fixed_joint",
     "Scene.add_hinge_joint": "Simulation.add_rotary_joint",
