@@ -256,3 +256,35 @@ fn an_actuator_on_a_missing_joint_is_refused_and_leaves_nothing() {
     assert_eq!(sim.objects().count(), 0);
     assert_eq!(sim.joints().count(), 0);
 }
+
+#[test]
+fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
+    // A ball dropped on a fixed plate, and a second ball on a second plate, with the
+    // first pair excluded.
+    let text = r#"
+<mujoco>
+  <worldbody>
+    <body name="plate"><geom type="box" size="0.5 0.5 0.05"/></body>
+    <body name="ball" pos="0 0 0.5"><freejoint/><geom type="sphere" size="0.1"/></body>
+    <body name="plate2" pos="2 0 0"><geom type="box" size="0.5 0.5 0.05"/></body>
+    <body name="ball2" pos="2 0 0.5"><freejoint/><geom type="sphere" size="0.1"/></body>
+  </worldbody>
+  <contact><exclude body1="plate" body2="ball"/></contact>
+</mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(text, "exclude.xml", &MjcfOptions::new()).unwrap();
+    let (plate, ball) = (model.body("plate").unwrap(), model.body("ball").unwrap());
+    assert_eq!(sim.excluded_contacts(), [(ball, plate)]);
+    let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    for mut s in [sim, copy] {
+        s.run_for(1.0).unwrap();
+        let y = |name: &str| s.object(name).unwrap().position().unwrap().y;
+        assert!(y("ball") < -1.0, "the excluded ball fell through its plate: {}", y("ball"));
+        assert!((y("ball2") - 0.15).abs() < 0.01, "the other rests on its plate: {}", y("ball2"));
+    }
+    let bad = text.replace(r#"body2="ball""#, r#"body2="bal""#);
+    let mut sim = Simulation::builder().build().unwrap();
+    let e = sim.load_mjcf_text(&bad, "exclude.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("\"bal\""), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+}

@@ -905,6 +905,30 @@ impl PySimulation {
         })
     }
 
+    /// Objects `a` and `b` never touch (MJCF's `<contact><exclude>`).
+    fn exclude_contacts(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
+            sim.exclude_contacts(a, b)
+        })
+    }
+
+    /// Objects `a` and `b` touch again.
+    fn include_contacts(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
+            sim.include_contacts(a, b)
+        })
+    }
+
+    /// The pairs of objects that never touch, by name.
+    fn excluded_contacts(&self, py: Python<'_>) -> PyResult<Vec<(String, String)>> {
+        self.with(py, |sim| {
+            let name = |id| sim.object(id).map(|o| o.name().to_string());
+            sim.excluded_contacts().into_iter().map(|(a, b)| Ok((name(a)?, name(b)?))).collect()
+        })
+    }
+
     /// Runs one frame: `steps_per_frame` steps, with the hooks per frame.
     fn step_frame(&self, py: Python<'_>) -> PyResult<()> {
         self.advance(py, |sim| sim.step_frame())

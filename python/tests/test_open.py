@@ -46,3 +46,19 @@ def test_other_files_are_refused_by_name(tmp_path):
         ars.Simulation.open(tmp_path / "robot.sdf")
     with pytest.raises(ars.FileError, match="missing.json"):
         ars.Simulation.open(tmp_path / "missing.json")
+
+
+def test_excluded_objects_pass_through_each_other():
+    sim = ars.Simulation()
+    floor = sim.add_floor()
+    ghost = sim.add_sphere(0.1, (0.0, 0.5, 0.0), mass=1.0, name="ghost")
+    ball = sim.add_sphere(0.1, (1.0, 0.5, 0.0), mass=1.0, name="ball")
+    sim.exclude_contacts(floor, ghost)
+    assert sim.excluded_contacts() == [(floor, ghost)]
+    sim.run(1.0)
+    assert sim.body(ghost).position[1] < -1.0
+    assert abs(sim.body(ball).position[1] - 0.1) < 0.01
+    sim.include_contacts(floor, ghost)
+    assert sim.excluded_contacts() == []
+    with pytest.raises(ars.InputError, match="twice"):
+        sim.exclude_contacts(ball, ball)

@@ -302,6 +302,9 @@ PYTHON_FOR_RUST = {
     "Simulation.load_scene_from": "Simulation.load_scene_from",
     "Simulation.open": "Simulation.open",
     "Scene.set_control": "Simulation.set_control",
+    "Scene.exclude_contacts": "Simulation.exclude_contacts",
+    "Scene.include_contacts": "Simulation.include_contacts",
+    "Scene.excluded_contacts": "Simulation.excluded_contacts",
     "Scene.control": "Simulation.control",
     "Scene.actuators": "Simulation.actuators",
     # Scene

@@ -53,7 +53,9 @@
 //!   `data.ctrl`, at 0 until set. Other kinds, and actuators on tendons or sites, are
 //!   unsupported; a second actuator on one joint is skipped (ARS drives a joint with
 //!   one controller).
-//! - **Sensors** and `<contact>` are not read yet (listed in [`MjcfModel::skipped`]).
+//! - **Contacts.** `<contact><exclude body1 body2>`: the two bodies never touch
+//!   ([`Scene::exclude_contacts`]); `<pair>` is unsupported.
+//! - **Sensors** are not read yet (listed in [`MjcfModel::skipped`]).
 //!
 //! Unnamed bodies and joints are named `body{N}` and `joint{N}` with N MuJoCo's id (the
 //! world body is 0, bodies are numbered in the file's order).
@@ -436,6 +438,8 @@ struct Model {
     timestep: Option<f64>,
     gravity: Option<Vector3<f64>>,
     actuators: Vec<MjcfActuator>,
+    /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
+    excluded: Vec<(String, String)>,
     skipped: Vec<String>,
 }
 
@@ -871,6 +875,7 @@ fn read_nodes(
         timestep,
         gravity,
         actuators: Vec::new(),
+        excluded: Vec::new(),
         skipped: Vec::new(),
     };
     for &(file, node) in nodes {
@@ -894,7 +899,23 @@ fn read_nodes(
                     }
                 }
                 "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
-                "sensor" | "contact" => {
+                "contact" => {
+                    for child in node.children().filter(|c| c.is_element()) {
+                        match child.tag_name().name() {
+                            "exclude" => {
+                                let body = |attr: &str| {
+                                    child
+                                        .attribute(attr)
+                                        .map(str::to_string)
+                                        .ok_or_else(|| problem(&child, format!("needs a {attr}")))
+                                };
+                                model.excluded.push((body("body1")?, body("body2")?));
+                            }
+                            other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
+                        }
+                    }
+                }
+                "sensor" => {
                     reader.skipped.push(format!(
                         "<{}> at line {}: not read yet",
                         node.tag_name().name(),
@@ -1001,6 +1022,15 @@ impl Scene {
         }
         for body in &model.bodies {
             self.add_mjcf_body(body, &world, None, made)?;
+        }
+        for (a, b) in &model.excluded {
+            let body = |name: &str| {
+                made.body(name).ok_or_else(|| Error::Invalid {
+                    what: "an MJCF contact exclusion",
+                    problem: format!("names the body {name:?}, which the model does not have"),
+                })
+            };
+            self.exclude_contacts(body(a)?, body(b)?)?;
         }
         for a in &model.actuators {
             let joint = made.joint(&a.joint).ok_or_else(|| Error::Invalid {
