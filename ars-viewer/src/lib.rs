@@ -62,7 +62,7 @@ pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_for
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
-pub use replay::{Replay, ReplayRecorder};
+pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
 pub use views::{VIEW_KINDS, ViewKind, viewports};
