@@ -52,7 +52,7 @@ $(PYTHON):
 	$(PYTHON) -m pip install --quiet --upgrade pip
 
 python: deps $(PYTHON)
-	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0"
+	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0" nbclient ipykernel
 	$(PYTHON) -m pip install --quiet --force-reinstall --no-deps ./python
 
 python-test: python
