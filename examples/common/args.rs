@@ -1,5 +1,6 @@
 //! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
-//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes] [--views N]`.
+//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes] [--views N]`,
+//! and the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`.
 
 use std::path::PathBuf;
 use std::process::exit;
@@ -27,11 +28,15 @@ pub struct Args {
     pub axes: bool,
     /// How many views (1 to 4): the free camera, following, top, camera sensor.
     pub views: usize,
+    /// Write a browser replay (one self-contained HTML file) here.
+    pub html: Option<PathBuf>,
+    /// The sensor columns the replay plots (`"Gps 1: y"`).
+    pub html_plots: Vec<String>,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes] [--views N]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes] [--views N] [--html OUT.html [--html-plot COLUMN]...]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
@@ -41,7 +46,9 @@ fn usage(program: &str, default_duration: f64) -> String {
          \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
          \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
          \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)\n\
-         \x20 --views N          split the picture into N views (1-4): free, following, top, camera sensor"
+         \x20 --views N          split the picture into N views (1-4): free, following, top, camera sensor\n\
+         \x20 --html OUT.html    write a browser replay: one HTML file that plays the run back, no network needed\n\
+         \x20 --html-plot COLUMN plot a sensor column under the replay (\"Gps 1: y\", as --csv heads it; repeatable)"
     )
 }
 
@@ -65,6 +72,8 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         window: false,
         axes: false,
         views: 1,
+        html: None,
+        html_plots: Vec::new(),
     };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
@@ -99,6 +108,8 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
                 };
             }
             "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
+            "--html" => args.html = Some(value("--html").into()),
+            "--html-plot" => args.html_plots.push(value("--html-plot")),
             "--frame-every" => {
                 let v = value("--frame-every");
                 args.frame_every = match v.parse::<u32>() {
@@ -121,6 +132,12 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
             }
             other => fail(format!("unknown option {other:?}")),
         }
+    }
+    if args.html.is_some() && (args.window || args.screenshots.is_some()) {
+        fail("--html records a run of its own: give it without --window and --screenshots".into());
+    }
+    if !args.html_plots.is_empty() && args.html.is_none() {
+        fail("--html-plot goes with --html".into());
     }
     args
 }
@@ -161,6 +178,9 @@ pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulat
     ars::interrupt::stop_on_ctrl_c()?;
     if args.window {
         return show(program, args);
+    }
+    if let Some(path) = &args.html {
+        return replay(program, args, path);
     }
     match &args.screenshots {
         None => {
@@ -239,11 +259,48 @@ fn record<P: ars::Program>(
     Err("--screenshots needs the viewer: build with the default features".into())
 }
 
-/// Off-screen frames for examples that drive their own [`ars::ProgramRunner`]: call
-/// [`Capture::frame`] after every frame.
+/// The replay recorder `--html-plot` asks for.
+#[cfg(feature = "viewer")]
+fn replay_recorder(args: &Args) -> ars::viewer::ReplayRecorder {
+    let mut recorder = ars::viewer::ReplayRecorder::new();
+    for column in &args.html_plots {
+        recorder = recorder.plot(column.clone());
+    }
+    if let Some((w, h)) = args.size {
+        recorder = recorder.size(w, h);
+    }
+    recorder
+}
+
+#[cfg(feature = "viewer")]
+fn replay<P: ars::Program>(
+    program: &mut P,
+    args: &Args,
+    path: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    let (sim, replay) = replay_recorder(args).record_to(program, args.duration, path)?;
+    eprintln!("wrote the replay {} ({} frames, {} bytes)", path.display(), replay.frames(), replay.html().len());
+    Ok(sim)
+}
+
+#[cfg(not(feature = "viewer"))]
+fn replay<P: ars::Program>(
+    _: &mut P,
+    _: &Args,
+    _: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    Err("--html needs the viewer: build with the default features".into())
+}
+
+/// Off-screen frames (and the replay of `--html`) for examples that drive their own
+/// [`ars::ProgramRunner`]: call [`Capture::frame`] at the start of every frame and
+/// [`Capture::finish`] at the end.
 pub struct Capture {
     #[cfg(feature = "viewer")]
     inner: Option<(ars::viewer::OffscreenRenderer, PathBuf, u32, u64, u32)>,
+    /// The replay: its recorder, view and file, then the recording once begun.
+    #[cfg(feature = "viewer")]
+    replay: Option<(ars::viewer::ReplayRecorder, ars::ViewSettings, PathBuf, Option<ars::viewer::ReplayInProgress>)>,
 }
 
 impl Capture {
@@ -251,27 +308,36 @@ impl Capture {
     pub fn new(args: &Args, view: ars::ViewSettings) -> Result<Self, Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
         {
-            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None }) };
+            let replay = args.html.as_ref().map(|path| (replay_recorder(args), view.clone(), path.clone(), None));
+            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, replay }) };
             std::fs::create_dir_all(dir)?;
             let mut view = view;
             if let Some(size) = args.size {
                 view.size = size;
             }
             let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
-            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)) })
+            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), replay })
         }
         #[cfg(not(feature = "viewer"))]
         {
             let _ = view;
-            if args.screenshots.is_some() {
-                return Err("--screenshots needs the viewer: build with the default features".into());
+            if args.screenshots.is_some() || args.html.is_some() {
+                return Err("--screenshots and --html need the viewer: build with the default features".into());
             }
             Ok(Capture {})
         }
     }
 
-    /// Writes the current frame if one is due (the first, then every N frames).
+    /// Writes the current frame if one is due (the first, then every N frames), and
+    /// samples the replay.
     pub fn frame(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "viewer")]
+        if let Some((recorder, view, path, recording)) = &mut self.replay {
+            match recording {
+                Some(recording) => recording.frame(sim),
+                None => *recording = Some(recorder.begin_to(sim, view, path)?),
+            }
+        }
         #[cfg(feature = "viewer")]
         if let Some((renderer, dir, every, frame, index)) = &mut self.inner {
             if *frame % u64::from(*every) == 0 {
@@ -279,6 +345,18 @@ impl Capture {
                 renderer.render(sim)?.save(dir.join(format!("frame_{:05}.png", index)))?;
             }
             *frame += 1;
+        }
+        #[cfg(not(feature = "viewer"))]
+        let _ = sim;
+        Ok(())
+    }
+
+    /// Writes the replay, if `--html` asked for one, with `sim` as it is at the end.
+    pub fn finish(self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "viewer")]
+        if let Some((_, _, path, Some(recording))) = self.replay {
+            let replay = recording.finish(sim)?;
+            eprintln!("wrote the replay {} ({} frames)", path.display(), replay.frames());
         }
         #[cfg(not(feature = "viewer"))]
         let _ = sim;

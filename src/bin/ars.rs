@@ -20,6 +20,7 @@ usage:
            [--views N] [--csv OUT]
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
            [--views N] [--csv OUT]
+  ars record FILE --html OUT.html [--html-plot COLUMN]... [--duration S] [--size WxH]
   ars --help | --version
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
@@ -32,7 +33,10 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
             view and record, --csv writes what was simulated until the end
   view      open a window (Escape closes it); without a display, record off screen
             into --screenshots
-  record    render off screen (no display or GPU needed) into DIR/frame_00001.png...
+  record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
+            or write a browser replay: one HTML file that plays the run back in any
+            browser, no network needed (--html-plot \"Gps 1: y\" plots a sensor column,
+            as ars run --csv heads it)
 
   --duration S      simulated seconds (default: run and record 10, view until closed)
   --every N         one CSV row every N steps (default 1)
@@ -52,6 +56,8 @@ struct Command {
     csv: Option<PathBuf>,
     every: usize,
     screenshots: Option<PathBuf>,
+    html: Option<PathBuf>,
+    html_plots: Vec<String>,
     frame_every: u32,
     size: Option<(u32, u32)>,
     axes: bool,
@@ -76,6 +82,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
         csv: None,
         every: 1,
         screenshots: None,
+        html: None,
+        html_plots: Vec::new(),
         frame_every: 5,
         size: None,
         axes: false,
@@ -101,6 +109,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
             "--csv" => command.csv = Some(value("--csv")?.into()),
             "--every" => command.every = positive("--every", value("--every")?)? as usize,
             "--screenshots" => command.screenshots = Some(value("--screenshots")?.into()),
+            "--html" => command.html = Some(value("--html")?.into()),
+            "--html-plot" => command.html_plots.push(value("--html-plot")?),
             "--frame-every" => {
                 let n = positive("--frame-every", value("--frame-every")?)?;
                 command.frame_every = u32::try_from(n).map_err(|_| format!("--frame-every is too large: {n}"))?;
@@ -135,8 +145,14 @@ fn parse(args: &[String]) -> Result<Command, String> {
             other => return Err(format!("unknown option {other:?}")),
         }
     }
-    if command.verb == "record" && command.screenshots.is_none() {
-        return Err("ars record needs --screenshots DIR".into());
+    if command.verb == "record" && command.screenshots.is_none() && command.html.is_none() {
+        return Err("ars record needs --screenshots DIR or --html OUT.html".into());
+    }
+    if command.html.is_some() && (command.verb != "record" || command.screenshots.is_some()) {
+        return Err("--html goes with ars record, without --screenshots".into());
+    }
+    if !command.html_plots.is_empty() && command.html.is_none() {
+        return Err("--html-plot goes with --html".into());
     }
     Ok(command)
 }
@@ -301,6 +317,22 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
         println!("closed at t = {} s ({} steps)", sim.time(), sim.step_count());
         if let Some(path) = &command.csv {
             write_csv(&sim, path, command.every)?;
+        }
+        return Ok(());
+    }
+    if let Some(path) = &command.html {
+        let mut recorder = ars::viewer::ReplayRecorder::new();
+        for column in &command.html_plots {
+            recorder = recorder.plot(column.clone());
+        }
+        if let Some((w, h)) = command.size {
+            recorder = recorder.size(w, h);
+        }
+        let (sim, replay) = recorder.record_to(program, command.duration.unwrap_or(10.0), path)?;
+        println!("{}", program.summary);
+        println!("recorded t = {} s: a replay of {} frames into {}", sim.time(), replay.frames(), path.display());
+        if let Some(csv) = &command.csv {
+            write_csv(&sim, csv, command.every)?;
         }
         return Ok(());
     }
