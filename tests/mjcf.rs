@@ -311,3 +311,48 @@ fn a_mesh_that_encloses_nothing_is_refused() {
     assert_eq!(sim.objects().count(), 0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn sensors_read_their_joints_and_bodies() {
+    let text = ACTUATED.replace(
+        "</mujoco>",
+        r#"<sensor>
+    <jointpos name="a_angle" joint="ja"/>
+    <jointvel joint="ja"/>
+    <framepos name="c_at" objtype="body" objname="c"/>
+    <framelinvel objtype="body" objname="c"/>
+  </sensor></mujoco>"#,
+    );
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let model = sim.load_mjcf_text(&text, "sensed.xml", &MjcfOptions::new()).unwrap();
+    let names: Vec<&str> = model.sensors.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["a_angle", "sensor1", "c_at", "sensor3"]);
+    assert!(model.sensors.iter().all(|s| s.id.is_some()));
+    sim.set_control("push", 0.5).unwrap();
+    sim.set_control("spin", 3.0).unwrap();
+    sim.run_for(0.2).unwrap();
+    // Each sensor's last row is the joint's or body's state after the last step.
+    let tables = sim.sensor_tables();
+    let last = |i: usize| {
+        let table = tables[i].1;
+        table.cells(table.len() - 1).into_iter().map(|v| v.unwrap()).collect::<Vec<f64>>()
+    };
+    let ja = sim.joint("ja").unwrap().state().unwrap();
+    assert_eq!(last(0), [ja.position]);
+    assert_eq!(last(1), [ja.rate]);
+    let c = sim.body(model.body("c").unwrap()).unwrap();
+    assert_eq!(last(2), c.position().coords.as_slice());
+    // A velometer reads the angular velocity too, after the linear one.
+    assert_eq!(last(3)[..3], *c.linear_velocity().as_slice());
+    assert!(ja.rate.abs() > 0.1);
+
+    // What ARS cannot read is said, naming the element and line.
+    let site = ACTUATED.replace("</mujoco>", r#"<sensor><framepos objtype="site" objname="s"/></sensor></mujoco>"#);
+    let e = Simulation::new().unwrap().load_mjcf_text(&site, "site.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("objtype site") && e.to_string().contains("<framepos>"), "{e}");
+    let missing = ACTUATED.replace("</mujoco>", r#"<sensor><jointpos joint="nope"/></sensor></mujoco>"#);
+    let mut sim = Simulation::new().unwrap();
+    let e = sim.load_mjcf_text(&missing, "missing.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("\"nope\""), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+}

@@ -122,7 +122,7 @@ pub use program::{
 };
 pub use scene::{
     ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, MjcfActuator, MjcfModel, MjcfOptions,
-    Scene, SimJoint, UpAxis, UrdfOptions, UrdfRobot, Visual, heightfield_triangles,
+    MjcfSensor, Scene, SimJoint, UpAxis, UrdfOptions, UrdfRobot, Visual, heightfield_triangles,
 };
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};

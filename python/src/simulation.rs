@@ -782,21 +782,22 @@ impl PySimulation {
 
     /// Loads a MuJoCo model from an MJCF file (see the Rust `Scene::load_mjcf` for what
     /// is read). Returns `{"name", "bodies", "joints", "timestep", "gravity",
-    /// "actuators", "skipped"}`: bodies and joints by their MJCF names in file order,
-    /// the file's time step and gravity (not applied), what was skipped.
+    /// "actuators", "sensors", "skipped"}`: bodies and joints by their MJCF names in file
+    /// order, the file's time step and gravity (not applied), the file's sensors made
+    /// (`ars.Sensor`s by name), what was skipped.
     #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false))]
     fn load_mjcf<'py>(
-        &self,
-        py: Python<'py>,
+        slf: Bound<'py, Self>,
         path: std::path::PathBuf,
         base_position: Vec3,
         skip_unsupported: bool,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let py = slf.py();
         let [x, y, z] = base_position;
         let options = ars_core::MjcfOptions::new()
             .base_pose(ars_core::nalgebra::Isometry3::translation(x, y, z))
             .skip_unsupported(skip_unsupported);
-        let model = self.with(py, move |sim| sim.load_mjcf(&path, &options))?;
+        let model = slf.get().with(py, move |sim| sim.load_mjcf(&path, &options))?;
         let dict = pyo3::types::PyDict::new(py);
         dict.set_item("name", &model.name)?;
         dict.set_item("bodies", model.bodies.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>())?;
@@ -806,6 +807,19 @@ impl PySimulation {
         let actuators: Vec<(String, String, String)> =
             model.actuators.iter().map(|a| (a.name.clone(), a.kind.clone(), a.joint.clone())).collect();
         dict.set_item("actuators", actuators)?;
+        let sensors = pyo3::types::PyDict::new(py);
+        for sensor in &model.sensors {
+            let Some(id) = sensor.id else { continue };
+            let kind = match sensor.kind.as_str() {
+                "jointpos" => "joint_positions",
+                "jointvel" => "joint_velocities",
+                "framepos" => "gps",
+                _ => "velometer",
+            };
+            let typed = crate::sensors::Typed::Table(id);
+            sensors.set_item(&sensor.name, crate::sensors::PySensor::new(slf.clone().unbind(), kind.into(), typed))?;
+        }
+        dict.set_item("sensors", sensors)?;
         dict.set_item("skipped", &model.skipped)?;
         Ok(dict)
     }

@@ -282,3 +282,42 @@ def test_contact_free_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
         for coarse, fine in zip(gaps, gaps[1:]):
             assert 1.6 < coarse / fine < 2.5, (name, gaps)
         assert np.abs(reference).max() > 0.1, (name, reference)
+
+
+def test_sensors_read_what_mujoco_s_read(tmp_path):
+    """jointpos and framepos (a body's centre of mass) as MuJoCo computes them: after
+    one step of a microsecond from the same state, ARS's records equal MuJoCo's
+    sensordata at the start (MuJoCo's (x, y, z) being ARS's (x, z, -y))."""
+    sensors = """<sensor>
+      <jointpos name="q1" joint="a1"/>
+      <jointpos name="q2" joint="a2"/>
+      <framepos name="tip" objtype="body" objname="p2"/>
+      <jointvel name="w1" joint="a1"/>
+    </sensor></mujoco>"""
+    path = tmp_path / "sensed.xml"
+    path.write_text(SWINGING.replace("</mujoco>", sensors))
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    sim = ars.Simulation(time_step=1e-6)
+    model = sim.load_mjcf(path)
+    assert list(model["sensors"]) == ["q1", "q2", "tip", "w1"]
+    sim.step()
+
+    def last(sensor):
+        row = sensor.records()[-1]
+        return [float(row[field]) for field in row.dtype.names[2:]]
+
+    ours = {name: last(sensor) for name, sensor in model["sensors"].items()}
+    assert ours["q1"] == pytest.approx([d.sensordata[0]], abs=1e-9)
+    assert ours["q2"] == pytest.approx([d.sensordata[1]], abs=1e-9)
+    x, y, z = d.sensordata[2:5]
+    assert ours["tip"] == pytest.approx([x, z, -y], abs=1e-9)
+    assert list(ours["tip"]) == list(sim.body("p2").position)
+    assert ours["w1"] == [sim.joint("a1").rate]
+    assert [s.kind for s in model["sensors"].values()] == [
+        "joint_positions",
+        "joint_positions",
+        "gps",
+        "joint_velocities",
+    ]

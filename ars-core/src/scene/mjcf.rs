@@ -59,7 +59,12 @@
 //!   one controller).
 //! - **Contacts.** `<contact><exclude body1 body2>`: the two bodies never touch
 //!   ([`Scene::exclude_contacts`]); `<pair>` is unsupported.
-//! - **Sensors** are not read yet (listed in [`MjcfModel::skipped`]).
+//! - **Sensors.** `jointpos` and `jointvel` of hinges and slides, `framepos` and
+//!   `framelinvel` of a body (`objtype="body"`: its centre of mass, as ARS's
+//!   [`Gps`](crate::sensors::Gps) and [`Velometer`](crate::sensors::Velometer) read it,
+//!   in the simulation's Y-up frame), made by
+//!   [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) and listed in
+//!   [`MjcfModel::sensors`]; other kinds and frames are unsupported.
 //!
 //! Unnamed bodies and joints are named `body{N}` and `joint{N}` with N MuJoCo's id (the
 //! world body is 0, bodies are numbered in the file's order).
@@ -77,6 +82,7 @@ use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{JointId, ObjectId};
 use crate::mesh::MeshMass;
+use crate::sensors::AnySensorId;
 use crate::shape::Shape;
 
 /// How an MJCF model is loaded.
@@ -148,6 +154,27 @@ pub struct MjcfModel {
     pub skipped: Vec<String>,
     /// The light links that chain several joints of one body (see the module docs).
     pub chain_links: Vec<ObjectId>,
+    /// The sensors read, in the file's order: made by
+    /// [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) (a scene alone has no
+    /// sensors: [`Scene::load_mjcf`] lists them unmade).
+    pub sensors: Vec<MjcfSensor>,
+}
+
+/// A sensor of the file and the ARS sensor made of it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfSensor {
+    /// Its name (`sensor{N}` when unnamed, N its index among the sensors).
+    pub name: String,
+    /// `jointpos`, `jointvel`, `framepos` or `framelinvel`.
+    pub kind: String,
+    /// The joint or body it reads, by name.
+    pub target: String,
+    /// The ARS sensor: a [`JointPositions`](crate::sensors::JointPositions) or
+    /// [`JointVelocities`](crate::sensors::JointVelocities) of its joint, a
+    /// [`Gps`](crate::sensors::Gps) or [`Velometer`](crate::sensors::Velometer) (whose
+    /// first three columns are MuJoCo's `framelinvel`) of its body (its centre of mass,
+    /// in the simulation's Y-up frame); `None` until made.
+    pub id: Option<AnySensorId>,
 }
 
 impl MjcfModel {
@@ -467,6 +494,7 @@ struct Model {
     actuators: Vec<MjcfActuator>,
     /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
     excluded: Vec<(String, String)>,
+    sensors: Vec<MjcfSensor>,
     skipped: Vec<String>,
 }
 
@@ -681,6 +709,41 @@ impl Reader<'_> {
         let mesh = std::sync::Arc::new(MeshGeom { shape, mass });
         self.loaded.insert(name.to_string(), mesh.clone());
         Ok(mesh)
+    }
+
+    /// A sensor (the `index`-th), or `None` when skipped.
+    fn sensor(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfSensor>> {
+        let kind = node.tag_name().name();
+        let a = Attrs::new(node, self.defaults, "main");
+        let target = match kind {
+            "jointpos" | "jointvel" => a.get("joint").ok_or_else(|| problem(&node, "needs a joint"))?,
+            "framepos" | "framelinvel" => {
+                match a.get("objtype") {
+                    Some("body") => {}
+                    other => {
+                        let what = other.unwrap_or("(none)");
+                        self.unsupported(
+                            &node,
+                            &format!(
+                                "a {kind} of objtype {what} (ARS reads a body's centre of mass: objtype=\"body\")"
+                            ),
+                        )?;
+                        return Ok(None);
+                    }
+                }
+                if a.get("reftype").is_some() {
+                    self.unsupported(&node, &format!("a {kind} relative to another frame (reftype)"))?;
+                    return Ok(None);
+                }
+                a.get("objname").ok_or_else(|| problem(&node, "needs an objname"))?
+            }
+            other => {
+                self.unsupported(&node, &format!("a sensor of kind <{other}>"))?;
+                return Ok(None);
+            }
+        };
+        let name = node.attribute("name").map_or_else(|| format!("sensor{index}"), str::to_string);
+        Ok(Some(MjcfSensor { name, kind: kind.to_string(), target: target.to_string(), id: None }))
     }
 
     /// An actuator (the `index`-th), or `None` when skipped.
@@ -963,6 +1026,7 @@ fn read_nodes(
         gravity,
         actuators: Vec::new(),
         excluded: Vec::new(),
+        sensors: Vec::new(),
         skipped: Vec::new(),
     };
     for &(file, node) in nodes {
@@ -1003,11 +1067,11 @@ fn read_nodes(
                     }
                 }
                 "sensor" => {
-                    reader.skipped.push(format!(
-                        "<{}> at line {}: not read yet",
-                        node.tag_name().name(),
-                        problem(&node, "").line
-                    ));
+                    for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                        if let Some(sensor) = reader.sensor(child, i)? {
+                            model.sensors.push(sensor);
+                        }
+                    }
                 }
                 other => reader.unsupported(&node, &format!("<{other}>"))?,
             }
@@ -1110,6 +1174,19 @@ impl Scene {
         for body in &model.bodies {
             self.add_mjcf_body(body, &world, None, made)?;
         }
+        for sensor in &model.sensors {
+            let found = match sensor.kind.as_str() {
+                "jointpos" | "jointvel" => made.joint(&sensor.target).is_some(),
+                _ => made.body(&sensor.target).is_some(),
+            };
+            if !found {
+                return Err(Error::Invalid {
+                    what: "an MJCF sensor",
+                    problem: format!("{:?} reads {:?}, which the model does not have", sensor.name, sensor.target),
+                });
+            }
+        }
+        made.sensors = model.sensors.clone();
         for (a, b) in &model.excluded {
             let body = |name: &str| {
                 made.body(name).ok_or_else(|| Error::Invalid {
@@ -1223,4 +1300,54 @@ impl Scene {
         }
         Ok(())
     }
+}
+
+/// Loads MJCF models with their sensors.
+impl crate::Simulation {
+    /// Loads the MJCF model in `path` as [`Scene::load_mjcf`] does, and makes its
+    /// sensors ([`MjcfModel::sensors`]), sampled after every step.
+    pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
+        let model = self.scene_mut().load_mjcf(path, options)?;
+        self.make_mjcf_sensors(model)
+    }
+
+    /// Loads an MJCF model from its text with its sensors (see
+    /// [`load_mjcf`](Self::load_mjcf)); `file` names it in errors.
+    pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
+        let model = self.scene_mut().load_mjcf_text(text, file, options)?;
+        self.make_mjcf_sensors(model)
+    }
+
+    fn make_mjcf_sensors(&mut self, mut model: MjcfModel) -> Result<MjcfModel> {
+        use crate::sensors::{Gps, JointPositions, JointVelocities, Velometer};
+        for i in 0..model.sensors.len() {
+            let (kind, target) = (model.sensors[i].kind.clone(), model.sensors[i].target.clone());
+            // The targets were checked while the model was built.
+            let id: AnySensorId = match kind.as_str() {
+                "jointpos" | "jointvel" => {
+                    let joint = model.joint(&target).ok_or_else(|| unknown_target(&target))?;
+                    if kind == "jointpos" {
+                        self.add_sensor(JointPositions::new(self, &[joint])?)?.into()
+                    } else {
+                        self.add_sensor(JointVelocities::new(self, &[joint])?)?.into()
+                    }
+                }
+                _ => {
+                    let body = model.body(&target).ok_or_else(|| unknown_target(&target))?;
+                    if kind == "framepos" {
+                        self.add_sensor(Gps::new(body))?.into()
+                    } else {
+                        self.add_sensor(Velometer::new(body))?.into()
+                    }
+                }
+            };
+            model.sensors[i].id = Some(id);
+        }
+        Ok(model)
+    }
+}
+
+/// A sensor target the model does not have (checked before: not expected).
+fn unknown_target(target: &str) -> Error {
+    Error::Invalid { what: "an MJCF sensor", problem: format!("reads {target:?}, which the model does not have") }
 }

@@ -21,7 +21,7 @@ use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic, SimJoint};
-pub use mjcf::{MjcfActuator, MjcfModel, MjcfOptions};
+pub use mjcf::{MjcfActuator, MjcfModel, MjcfOptions, MjcfSensor};
 pub use objects::{Color, Visual};
 pub use urdf::{UpAxis, UrdfOptions, UrdfRobot};
 pub use views::{JointKey, JointView, ObjectKey, ObjectView};

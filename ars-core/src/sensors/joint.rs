@@ -274,3 +274,65 @@ impl Sensor for JointPositions {
         self.joints.clone()
     }
 }
+
+/// The rates (rad/s, or m/s for a slider) of several joints, one column per joint named
+/// after it: a robot's joint velocities (MJCF's `jointvel`).
+///
+/// ```
+/// use ars_core::nalgebra::Vector3;
+/// use ars_core::sensors::JointVelocities;
+/// use ars_core::{JointEnd, Mass, Simulation};
+///
+/// let mut sim = Simulation::new()?;
+/// let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0))?;
+/// let pivot = sim.add_hinge_joint("pivot", ball, JointEnd::World, Some([0.0, 0.0, 0.0].into()), Vector3::z())?;
+/// let rates = sim.add_sensor(JointVelocities::new(&sim, &[pivot])?)?;
+/// sim.step_n(100)?;
+/// let last = sim.records(rates)?.last().unwrap().record.values[0];
+/// assert_eq!(last, sim.joint(pivot)?.state()?.rate);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct JointVelocities {
+    joints: Vec<JointId>,
+    names: std::sync::Arc<[String]>,
+}
+
+impl JointVelocities {
+    /// Of `joints`, in this order (hinges, sliders, pistons, universals).
+    pub fn new(scene: &Scene, joints: &[JointId]) -> Result<Self> {
+        let names = joints.iter().map(|j| Ok(scene.joint(*j)?.name().to_string())).collect::<Result<Vec<_>>>()?;
+        Ok(JointVelocities { joints: joints.to_vec(), names: names.into() })
+    }
+}
+
+/// A [`JointVelocities`] measurement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rates {
+    /// The rates, in the sensor's joint order.
+    pub values: Vec<f64>,
+    names: std::sync::Arc<[String]>,
+}
+
+impl Record for Rates {
+    fn columns() -> Vec<&'static str> {
+        Vec::new()
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        self.values.iter().copied().map(Some).collect()
+    }
+    fn headers(&self) -> Vec<String> {
+        self.names.to_vec()
+    }
+}
+
+impl Sensor for JointVelocities {
+    type Record = Rates;
+    fn measure(&mut self, sim: &Scene) -> Result<Rates> {
+        let values = self.joints.iter().map(|j| Ok(sim.joint_state(*j)?.rate)).collect::<Result<Vec<_>>>()?;
+        Ok(Rates { values, names: self.names.clone() })
+    }
+    fn joints(&self) -> Vec<JointId> {
+        self.joints.clone()
+    }
+}

@@ -40,8 +40,8 @@ pub use body::{
 pub use depth_camera::{DepthCamera, DepthImage};
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};
 pub use joint::{
-    Effort, HingeReading, HingeSensor, JointForce, JointPositions, JointPower, JointReaction, JointTorque, Positions,
-    Power, Reaction,
+    Effort, HingeReading, HingeSensor, JointForce, JointPositions, JointPower, JointReaction, JointTorque,
+    JointVelocities, Positions, Power, Rates, Reaction,
 };
 pub use laser::{Laser, LaserReading};
 pub use lidar::{Lidar, Scan};

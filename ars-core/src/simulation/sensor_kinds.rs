@@ -6,14 +6,14 @@ use crate::error::{Error, Result};
 use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
     Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
-    Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, KineticEnergy, Lidar, Noisy,
-    Perturb, PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Velometer,
+    Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, JointVelocities, KineticEnergy,
+    Lidar, Noisy, Perturb, PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Velometer,
 };
 
 /// The kinds [`Simulation::add_sensor_of_kind`] makes (the sensors' type names): on
-/// one object, on one joint, on a list of joints (`JointPositions`), or on the whole
+/// one object, on one joint, on a list of joints (`JointPositions`, `JointVelocities`), or on the whole
 /// simulation (`SystemTotalEnergy`).
-pub const SENSOR_KINDS: [&str; 17] = [
+pub const SENSOR_KINDS: [&str; 18] = [
     "Gps",
     "Velometer",
     "Accelerometer",
@@ -31,6 +31,7 @@ pub const SENSOR_KINDS: [&str; 17] = [
     "JointPower",
     "JointReaction",
     "JointPositions",
+    "JointVelocities",
 ];
 
 impl Simulation {
@@ -123,6 +124,12 @@ impl Simulation {
                 self.add_any(sensor, period)
             }
             ("JointPositions", _) => Err(wrong("joints only")),
+            ("JointVelocities", _) if noise.is_some() => Err(noiseless("JointVelocities")),
+            ("JointVelocities", _) if objects.is_empty() => {
+                let sensor = JointVelocities::new(self, joints)?;
+                self.add_any(sensor, period)
+            }
+            ("JointVelocities", _) => Err(wrong("joints only")),
             (other, _) => Err(Error::UnknownKind {
                 what: "sensor kind",
                 name: other.to_string(),
