@@ -94,6 +94,14 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
         ("<mujoco><worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>", "no <mesh> asset"),
         (
+            "<mujoco><worldbody><body><joint stiffness='3'/><geom size='.1'/></body></worldbody></mujoco>",
+            "joint spring",
+        ),
+        (
+            "<mujoco><worldbody><body><joint ref='30'/><geom size='.1'/></body></worldbody></mujoco>",
+            "reference position",
+        ),
+        (
             "<mujoco><asset><mesh file='/nonexistent/m.stl'/></asset>\
              <worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>",
             "/nonexistent/m.stl",
@@ -112,6 +120,10 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
     let text = "<mujoco><tendon/><worldbody><body><geom size='.1'/></body></worldbody></mujoco>";
     let model = sim.load_mjcf_text(text, "skip.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
     assert!(model.skipped.iter().any(|s| s.contains("<tendon>")), "{:?}", model.skipped);
+    // MuJoCo's contact parameters are said unused, without skip_unsupported too.
+    let text = "<mujoco><worldbody><body><geom size='.1' friction='1 0.1 0.1'/></body></worldbody></mujoco>";
+    let model = Simulation::new().unwrap().load_mjcf_text(text, "friction.xml", &MjcfOptions::new()).unwrap();
+    assert!(model.skipped.iter().any(|s| s.contains("friction not used")), "{:?}", model.skipped);
     assert_eq!(sim.objects().count(), 1);
     let missing = sim.load_mjcf("/nonexistent/model.xml", &MjcfOptions::new()).unwrap_err();
     assert!(matches!(missing, Error::Io { .. }), "{missing}");

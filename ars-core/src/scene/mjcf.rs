@@ -36,6 +36,11 @@
 //!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
 //!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
 //!   along each joint but the first (and a free joint cannot be chained).
+//!   A joint's `ref`, `stiffness` (a spring) and `frictionloss` are unsupported (an
+//!   error, or skipped with a warning).
+//! - **Contact parameters.** A geom's `friction`, `solref`, `solimp`, `condim`,
+//!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
+//!   contacts take ARS's surfaces ([`Scene::set_contact_surface`]).
 //! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
 //! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`, `meshdir`,
 //!   `assetdir`,
@@ -590,6 +595,18 @@ impl Reader<'_> {
             }
         };
         let bits = (bits("contype")?, bits("conaffinity")?);
+        // MuJoCo's contact model is not ODE's: its parameters are read and said unused.
+        let contact: Vec<&str> = ["friction", "solref", "solimp", "condim", "margin", "gap"]
+            .into_iter()
+            .filter(|k| a.get(k).is_some())
+            .collect();
+        if !contact.is_empty() {
+            self.skipped.push(format!(
+                "<geom> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
+                problem(&node, "").line,
+                contact.join(", ")
+            ));
+        }
         Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits }))
     }
 
@@ -631,6 +648,17 @@ impl Reader<'_> {
         let armature = a.number("armature")?.unwrap_or(0.0);
         if armature < 0.0 {
             return Err(problem(&node, "armature must not be negative"));
+        }
+        // What ARS's joints cannot do: a reference position other than the frame's, a
+        // spring, dry friction.
+        for (attribute, what) in [
+            ("ref", "a reference position (ARS measures a joint from the pose the file gives)"),
+            ("stiffness", "a joint spring"),
+            ("frictionloss", "dry joint friction"),
+        ] {
+            if a.number(attribute)?.is_some_and(|v| v != 0.0) {
+                self.unsupported(&node, &format!("{attribute}: {what}"))?;
+            }
         }
         Ok(Joint {
             name,
