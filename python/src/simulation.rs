@@ -1024,7 +1024,7 @@ impl PySimulation {
     }
 
     /// A simulation from any file ARS reads, by its extension: a scene file (`.json`), a
-    /// URDF robot standing on a floor (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`;
+    /// URDF robot with its root at the origin over a floor (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`;
     /// what ARS cannot read is skipped, each with a `UserWarning`). What the viewer's
     /// Open button and `ars view FILE` open.
     #[staticmethod]

@@ -57,7 +57,7 @@ pub struct OpenedFile {
 impl Simulation {
     /// Opens `path` as a new simulation, by its [`FileFormat`]:
     /// - a scene file as saved, where it was saved (mid-run: exactly);
-    /// - a URDF robot, Z up, standing on a floor plane at y = 0 (default
+    /// - a URDF robot, Z up, its root at the origin over a floor plane at y = 0 (default
     ///   [`UrdfOptions`]), in a simple space;
     /// - a MuJoCo model with its own floor and gravity, at ARS's time step (the model's
     ///   is [`MjcfModel::timestep`](crate::MjcfModel::timestep)), in a simple space, what
