@@ -37,9 +37,11 @@ mod gui;
 mod interact;
 mod layout;
 mod material;
+mod mp4;
 mod offscreen;
 mod scene;
 mod state;
+mod video;
 mod views;
 mod window;
 
@@ -60,6 +62,9 @@ pub use offscreen::{
 };
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
+pub use video::{
+    MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,
+};
 pub use views::{VIEW_KINDS, ViewKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
