@@ -36,6 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         runner.step()?;
     }
+    capture.finish(runner.simulation())?;
     let record = runner.program().record.expect("created");
     let log = runner.simulation().records(record)?;
     let every = (0.25 / dt).round() as usize;

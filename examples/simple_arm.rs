@@ -37,6 +37,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         runner.step()?;
     }
+    capture.finish(runner.simulation())?;
     let sim = runner.simulation();
     let (q1, q2) = (sim.records(waist)?, sim.records(shoulder)?);
     let every_half_second = (0.5 / sim.time_step()).round() as usize;

@@ -73,6 +73,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let x = r * ars::nalgebra::Vector3::x();
         heading.push((runner.simulation().time(), (-x.z).atan2(x.x)));
     }
+    capture.finish(runner.simulation())?;
     let turned = unwrapped(heading.clone()).last().map_or(0.0, |h| h.1);
     let record = runner.program().record.expect("created");
     let log = runner.simulation().records(record)?;

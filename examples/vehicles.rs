@@ -49,6 +49,7 @@ fn drive<P: Program>(
         capture.frame(runner.simulation())?;
         runner.run_script_frame(script)?;
     }
+    capture.finish(runner.simulation())?;
     Ok(runner.simulation_mut().remove_sensor(gps)?)
 }
 

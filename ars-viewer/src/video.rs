@@ -428,6 +428,13 @@ impl VideoRecorder {
         Ok((runner.into_simulation(), video))
     }
 
+    /// Runs a bare simulation (its own and added hooks, no program) for `duration`
+    /// seconds of simulated time, seen as `view` says, recording the video (the front
+    /// ends' `sim.record_video`).
+    pub fn record_simulation(&self, sim: &mut Simulation, view: &ViewSettings, duration: f64) -> Result<RecordedVideo> {
+        self.record_driven(&mut BareSimulation(sim), view, duration)
+    }
+
     /// Runs what `driver` drives for `duration` seconds of simulated time (whole
     /// frames of the simulation), seen as `view` says, recording
     /// [`video_frame_count`] frames. Everything is checked before anything is
@@ -490,6 +497,36 @@ impl VideoRecorder {
             stepped?;
         }
         writer.finish()
+    }
+}
+
+/// A simulation driven by nothing but its own frames.
+struct BareSimulation<'a>(&'a mut Simulation);
+
+impl Driver for BareSimulation<'_> {
+    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
+        &mut *self.0
+    }
+    fn step_frame(&mut self) -> ars_core::Result<()> {
+        self.0.step_frame()
+    }
+    fn step_frame_observed(
+        &mut self,
+        after_step: &mut dyn FnMut(&Simulation) -> ars_core::Result<()>,
+    ) -> ars_core::Result<()> {
+        self.0.step_frame_observed(after_step)
+    }
+    fn step(&mut self) -> ars_core::Result<()> {
+        self.0.step()
+    }
+    fn reset(&mut self) -> ars_core::Result<()> {
+        Ok(())
+    }
+    fn key_down(&mut self, _: ars_core::Key) -> ars_core::Result<()> {
+        Ok(())
+    }
+    fn key_up(&mut self, _: ars_core::Key) -> ars_core::Result<()> {
+        Ok(())
     }
 }
 

@@ -1,5 +1,6 @@
 //! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
-//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes]`.
+//! the viewer's `[--window | --screenshots DIR [--frame-every N] | --video OUT.mp4 [--fps N]] [--size WxH]
+//! [--axes]`.
 
 use std::path::PathBuf;
 use std::process::exit;
@@ -25,17 +26,23 @@ pub struct Args {
     pub window: bool,
     /// Draw the world axes (in the window, or in the frames).
     pub axes: bool,
+    /// Record an MP4 video off screen into this file.
+    pub video: Option<PathBuf>,
+    /// The video's frames per second (of simulated time).
+    pub fps: f64,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N] | --video OUT.mp4 [--fps N]] [--size WxH] [--axes]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
          \x20 --every N          keep one CSV row every N steps (default 1)\n\
          \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
          \x20 --frame-every N    one screenshot every N frames (default 5)\n\
+         \x20 --video OUT.mp4    record an H.264 MP4 video off screen, frame k at k/fps simulated seconds\n\
+         \x20 --fps N            the video's frames per second (default 30)\n\
          \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
          \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
          \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)"
@@ -61,6 +68,8 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         size: None,
         window: false,
         axes: false,
+        video: None,
+        fps: 30.0,
     };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
@@ -88,6 +97,14 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
             "--window" => args.window = true,
             "--axes" => args.axes = true,
             "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
+            "--video" => args.video = Some(value("--video").into()),
+            "--fps" => {
+                let v = value("--fps");
+                args.fps = match v.parse::<f64>() {
+                    Ok(f) if f.is_finite() && f > 0.0 => f,
+                    _ => fail(format!("--fps must be a positive number of frames per second, got {v:?}")),
+                };
+            }
             "--frame-every" => {
                 let v = value("--frame-every");
                 args.frame_every = match v.parse::<u32>() {
@@ -150,6 +167,9 @@ pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulat
     ars::interrupt::stop_on_ctrl_c()?;
     if args.window {
         return show(program, args);
+    }
+    if let Some(path) = &args.video {
+        return record_video(program, args, path);
     }
     match &args.screenshots {
         None => {
@@ -228,11 +248,79 @@ fn record<P: ars::Program>(
     Err("--screenshots needs the viewer: build with the default features".into())
 }
 
+#[cfg(feature = "viewer")]
+fn record_video<P: ars::Program>(
+    program: &mut P,
+    args: &Args,
+    path: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    let mut recorder = ars::viewer::VideoRecorder::new(path).fps(args.fps).options(viewer_options(args));
+    if let Some((w, h)) = args.size {
+        recorder = recorder.size(w, h);
+    }
+    let (sim, video) = recorder.record(program, args.duration)?;
+    say_video(&video);
+    Ok(sim)
+}
+
+#[cfg(feature = "viewer")]
+fn say_video(video: &ars::viewer::RecordedVideo) {
+    eprintln!(
+        "wrote {}: {} frames, {} s at {} frames/s, {}x{}, {} kB",
+        video.path.display(),
+        video.frames,
+        video.duration,
+        video.fps,
+        video.size.0,
+        video.size.1,
+        video.bytes / 1000
+    );
+}
+
+#[cfg(not(feature = "viewer"))]
+fn record_video<P: ars::Program>(
+    _: &mut P,
+    _: &Args,
+    _: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    Err("--video needs the viewer: build with the default features".into())
+}
+
+/// A video taken by [`Capture`]: the writer, its renderer, the frames wanted, the
+/// frames taken and the simulated time it started at.
+#[cfg(feature = "viewer")]
+struct CapturedVideo {
+    writer: ars::viewer::VideoWriter,
+    renderer: ars::viewer::OffscreenRenderer,
+    fps: f64,
+    count: u64,
+    taken: u64,
+    start: Option<f64>,
+}
+
+#[cfg(feature = "viewer")]
+impl CapturedVideo {
+    /// Takes the video frames due by the simulation's time now.
+    fn take(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        let start = *self.start.get_or_insert(sim.time());
+        while self.taken < self.count && sim.time() - start >= self.taken as f64 / self.fps - 1e-9 {
+            self.writer.add_frame(self.renderer.render(sim)?)?;
+            self.taken += 1;
+        }
+        Ok(())
+    }
+}
+
 /// Off-screen frames for examples that drive their own [`ars::ProgramRunner`]: call
-/// [`Capture::frame`] after every frame.
+/// [`Capture::frame`] at the start of every frame and [`Capture::finish`] at the end.
+/// With `--video`, these examples step their own frames: video frame k is the picture
+/// at the first frame start at or after k/fps simulated seconds (at most a frame
+/// late; the other examples take it at the first step).
 pub struct Capture {
     #[cfg(feature = "viewer")]
     inner: Option<(ars::viewer::OffscreenRenderer, PathBuf, u32, u64, u32)>,
+    #[cfg(feature = "viewer")]
+    video: Option<CapturedVideo>,
 }
 
 impl Capture {
@@ -240,20 +328,28 @@ impl Capture {
     pub fn new(args: &Args, view: ars::ViewSettings) -> Result<Self, Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
         {
-            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None }) };
-            std::fs::create_dir_all(dir)?;
             let mut view = view;
             if let Some(size) = args.size {
                 view.size = size;
             }
+            if let Some(path) = &args.video {
+                ars::viewer::check_video_settings(args.fps, view.size.0, view.size.1)?;
+                let count = ars::viewer::video_frame_count(args.duration, args.fps)?;
+                let writer = ars::viewer::VideoWriter::create(path, view.size.0, view.size.1, args.fps)?;
+                let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
+                let video = CapturedVideo { writer, renderer, fps: args.fps, count, taken: 0, start: None };
+                return Ok(Capture { inner: None, video: Some(video) });
+            }
+            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, video: None }) };
+            std::fs::create_dir_all(dir)?;
             let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
-            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)) })
+            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), video: None })
         }
         #[cfg(not(feature = "viewer"))]
         {
             let _ = view;
-            if args.screenshots.is_some() {
-                return Err("--screenshots needs the viewer: build with the default features".into());
+            if args.screenshots.is_some() || args.video.is_some() {
+                return Err("--screenshots and --video need the viewer: build with the default features".into());
             }
             Ok(Capture {})
         }
@@ -268,6 +364,23 @@ impl Capture {
                 renderer.render(sim)?.save(dir.join(format!("frame_{:05}.png", index)))?;
             }
             *frame += 1;
+        }
+        #[cfg(feature = "viewer")]
+        if let Some(video) = &mut self.video {
+            video.take(sim)?;
+        }
+        #[cfg(not(feature = "viewer"))]
+        let _ = sim;
+        Ok(())
+    }
+
+    /// Ends the recording with the simulation as it is at the end: a video takes the
+    /// frames still due and is written.
+    pub fn finish(self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "viewer")]
+        if let Some(mut video) = self.video {
+            video.take(sim)?;
+            say_video(&video.writer.finish()?);
         }
         #[cfg(not(feature = "viewer"))]
         let _ = sim;

@@ -18,6 +18,7 @@ usage:
   ars run FILE [--duration S] [--csv OUT] [--every N]
   ars view FILE [--screenshots DIR] [--duration S] [--frame-every N] [--size WxH] [--axes]
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
+  ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes]
   ars --help | --version
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
@@ -29,11 +30,13 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
             sensors (or, if it has none, every body's position) every N steps
   view      open a window (Escape closes it); without a display, record off screen
             into --screenshots
-  record    render off screen (no display or GPU needed) into DIR/frame_00001.png...
+  record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
+            or into an H.264 MP4 video (frame k at k/fps simulated seconds)
 
   --duration S      simulated seconds (default: run and record 10, view until closed)
   --every N         one CSV row every N steps (default 1)
   --frame-every N   one picture every N frames (default 5)
+  --fps N           the video's frames per second (default 30)
   --size WxH        picture or window size in pixels (default 1024x768)
   --axes            draw the world axes
   --fixed-base      (URDF) fix the robot's root to the world
@@ -49,6 +52,8 @@ struct Command {
     every: usize,
     screenshots: Option<PathBuf>,
     frame_every: u32,
+    video: Option<PathBuf>,
+    fps: f64,
     size: Option<(u32, u32)>,
     axes: bool,
     fixed_base: bool,
@@ -72,6 +77,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
         every: 1,
         screenshots: None,
         frame_every: 5,
+        video: None,
+        fps: 30.0,
         size: None,
         axes: false,
         fixed_base: false,
@@ -95,6 +102,14 @@ fn parse(args: &[String]) -> Result<Command, String> {
             "--csv" => command.csv = Some(value("--csv")?.into()),
             "--every" => command.every = positive("--every", value("--every")?)? as usize,
             "--screenshots" => command.screenshots = Some(value("--screenshots")?.into()),
+            "--video" => command.video = Some(value("--video")?.into()),
+            "--fps" => {
+                let v = value("--fps")?;
+                command.fps = match v.parse::<f64>() {
+                    Ok(f) if f.is_finite() && f > 0.0 => f,
+                    _ => return Err(format!("--fps must be a positive number of frames per second, got {v:?}")),
+                };
+            }
             "--frame-every" => {
                 let n = positive("--frame-every", value("--frame-every")?)?;
                 command.frame_every = u32::try_from(n).map_err(|_| format!("--frame-every is too large: {n}"))?;
@@ -122,8 +137,11 @@ fn parse(args: &[String]) -> Result<Command, String> {
             other => return Err(format!("unknown option {other:?}")),
         }
     }
-    if command.verb == "record" && command.screenshots.is_none() {
-        return Err("ars record needs --screenshots DIR".into());
+    if command.verb == "record" && command.screenshots.is_none() == command.video.is_none() {
+        return Err("ars record needs --screenshots DIR or --video OUT.mp4 (one of them)".into());
+    }
+    if command.video.is_some() && command.verb != "record" {
+        return Err("--video goes with ars record".into());
     }
     if command.csv.is_some() && command.verb != "run" {
         return Err("--csv goes with ars run".into());
@@ -287,6 +305,24 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
                 ars::viewer::run_window_with(&mut runner, &view, &options, limit)?;
             }
         }
+        return Ok(());
+    }
+    if let Some(path) = &command.video {
+        let mut recorder = ars::viewer::VideoRecorder::new(path).fps(command.fps).options(options);
+        if let Some((w, h)) = command.size {
+            recorder = recorder.size(w, h);
+        }
+        let (sim, video) = recorder.record(program, command.duration.unwrap_or(10.0))?;
+        println!("{}", program.summary);
+        println!(
+            "recorded t = {} s: {} frames ({} s at {} frames/s, {} bytes) into {}",
+            sim.time(),
+            video.frames,
+            video.duration,
+            video.fps,
+            video.bytes,
+            path.display()
+        );
         return Ok(());
     }
     let Some(dir) = &command.screenshots else {
