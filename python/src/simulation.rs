@@ -910,7 +910,8 @@ impl PySimulation {
         quality: String,
         axes: bool,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = crate::video::view_args(size, camera, look_at, background, follow, quality, axes);
+        let view =
+            crate::viewer::ViewArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes };
         crate::video::record_video(py, self, path, duration, fps, view)
     }
 

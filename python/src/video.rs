@@ -156,16 +156,3 @@ impl PyVideoWriter {
         py.detach(|| drop(writer));
     }
 }
-
-/// The keywords of `record_video`, as the viewer's.
-pub(crate) fn view_args(
-    size: (i64, i64),
-    camera: Vec3,
-    look_at: Vec3,
-    background: Vec3,
-    follow: Option<String>,
-    quality: String,
-    axes: bool,
-) -> ViewArgs {
-    ViewArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes }
-}

@@ -18,15 +18,28 @@ def probe(path):
     assert shutil.which("ffprobe"), "ffprobe is missing: install Debian's ffmpeg package"
     out = subprocess.run(
         [
-            "ffprobe", "-v", "error", "-count_frames", "-show_entries",
-            "stream=codec_name,nb_read_frames,width,height:format=duration", "-of", "json", str(path),
+            "ffprobe",
+            "-v",
+            "error",
+            "-count_frames",
+            "-show_entries",
+            "stream=codec_name,nb_read_frames,width,height:format=duration",
+            "-of",
+            "json",
+            str(path),
         ],
-        check=True, capture_output=True, text=True,
+        check=True,
+        capture_output=True,
+        text=True,
     ).stdout
     data = json.loads(out)
     stream = data["streams"][0]
-    return stream["codec_name"], int(stream["nb_read_frames"]), float(data["format"]["duration"]), (
-        stream["width"], stream["height"])
+    return (
+        stream["codec_name"],
+        int(stream["nb_read_frames"]),
+        float(data["format"]["duration"]),
+        (stream["width"], stream["height"]),
+    )
 
 
 def falling_ball():
@@ -38,7 +51,9 @@ def falling_ball():
 def test_a_simulation_records_a_video_at_its_own_time(tmp_path):
     sim = falling_ball()
     path = tmp_path / "ball.mp4"
-    video = sim.record_video(path, 1.0, fps=30, size=(160, 120), camera=(0.0, 1.0, 6.0), look_at=(0.0, 1.0, 0.0))
+    video = sim.record_video(
+        path, 1.0, fps=30, size=(160, 120), camera=(0.0, 1.0, 6.0), look_at=(0.0, 1.0, 0.0)
+    )
     assert video["frames"] == 30
     assert video["duration"] == 1.0
     assert video["path"] == str(path)
