@@ -208,3 +208,31 @@ fn a_short_video_at_an_odd_frame_rate_has_its_frames_where_the_rule_says() {
     assert!((duration - 4.0 / 7.0).abs() < 1e-3, "ffprobe says {duration} s");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn ars_record_writes_a_video_of_a_robot() {
+    let dir = folder("ars-record");
+    let path = dir.join("arm.mp4");
+    let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/conical_pendulum_arm.urdf");
+    let out = Command::new(env!("CARGO_BIN_EXE_ars"))
+        .args(["record", urdf, "--video", path.to_str().unwrap(), "--duration", "1", "--fps", "20", "--size", "96x64"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("20 frames"));
+    let probe = run_tool(
+        "ffprobe",
+        &[
+            "-v",
+            "error",
+            "-count_frames",
+            "-show_entries",
+            "stream=nb_read_frames",
+            "-of",
+            "flat=s=_",
+            path.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(probed(&probe, "streams_stream_0_nb_read_frames"), "20");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
