@@ -297,6 +297,54 @@ impl Drop for VideoWriter {
     }
 }
 
+/// A video of a window: what it shows, at the simulation's time. Frame k is the
+/// window's picture at the first window frame at or after k/fps simulated seconds
+/// from its first picture (a frame shown longer than 1/fps repeats; while paused,
+/// simulated time stands still and so does the video).
+pub(crate) struct WindowVideo {
+    writer: VideoWriter,
+    start: Option<f64>,
+    taken: u64,
+}
+
+impl WindowVideo {
+    /// Into `writer`.
+    pub(crate) fn new(writer: VideoWriter) -> Self {
+        WindowVideo { writer, start: None, taken: 0 }
+    }
+
+    /// The window shows the simulation at `time`: the video frames due by then are
+    /// its picture, taken by `snap` (scaled to the video's size if the window's
+    /// differs: resized, or on a screen of another scale).
+    pub(crate) fn shown(&mut self, time: f64, snap: impl FnOnce() -> image::RgbImage) -> Result<()> {
+        let start = *self.start.get_or_insert(time);
+        let fps = self.writer.fps;
+        let mut due = 0;
+        while time - start >= (self.taken + due) as f64 / fps - TIME_TOLERANCE {
+            due += 1;
+        }
+        if due == 0 {
+            return Ok(());
+        }
+        let mut picture = snap();
+        let (w, h) = self.writer.size;
+        if picture.dimensions() != (w, h) {
+            picture = image::imageops::resize(&picture, w, h, image::imageops::FilterType::Triangle);
+        }
+        for _ in 1..due {
+            self.writer.add_frame(picture.clone())?;
+        }
+        self.writer.add_frame(picture)?;
+        self.taken += due;
+        Ok(())
+    }
+
+    /// Writes the video.
+    pub(crate) fn finish(self) -> Result<RecordedVideo> {
+        self.writer.finish()
+    }
+}
+
 /// The worker: converts, encodes and writes each frame until the queue closes.
 fn encode(
     queue: Receiver<Frame>,

@@ -1,5 +1,5 @@
 //! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
-//! the viewer's `[--window | --screenshots DIR [--frame-every N] | --video OUT.mp4 [--fps N]] [--size WxH]
+//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
 //! [--axes]`.
 
 use std::path::PathBuf;
@@ -34,14 +34,15 @@ pub struct Args {
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N] | --video OUT.mp4 [--fps N]] [--size WxH] [--axes]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
          \x20 --every N          keep one CSV row every N steps (default 1)\n\
          \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
          \x20 --frame-every N    one screenshot every N frames (default 5)\n\
-         \x20 --video OUT.mp4    record an H.264 MP4 video off screen, frame k at k/fps simulated seconds\n\
+         \x20 --video OUT.mp4    record an H.264 MP4 video off screen (with --window: of the window), frame k at\n\
+         \x20                    k/fps simulated seconds\n\
          \x20 --fps N            the video's frames per second (default 30)\n\
          \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
          \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
@@ -204,6 +205,19 @@ fn show<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation
     use ars::viewer::ProgramViewer;
     eprintln!("{}", ars::viewer::VIEWER_KEYS);
     let options = viewer_options(args);
+    if let Some(path) = &args.video {
+        if !ars::viewer::has_display() {
+            eprintln!("no display: recording the video off screen");
+            return record_video(program, args, path);
+        }
+        // The window's pictures, at the simulation's time.
+        let view =
+            ars::ViewSettings { size: args.size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+        let mut runner = ars::ProgramRunner::new(program)?;
+        let (_, video) = ars::viewer::run_window_recording(&mut runner, &view, &options, None, path, args.fps)?;
+        say_video(&video);
+        return Ok(runner.into_simulation());
+    }
     match args.size {
         // The program's view at the size asked for.
         Some(size) if ars::viewer::has_display() => {
