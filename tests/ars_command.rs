@@ -55,7 +55,7 @@ fn its_help_fits_a_screen_and_mistakes_are_said() {
         (vec!["run"], "needs a FILE"),
         (vec!["run", "x.json", "--duration", "-1"], "--duration must be a positive number"),
         (vec!["record", "x.urdf"], "needs --screenshots"),
-        (vec!["view", "x.urdf", "--video", "a.mp4"], "--video goes with ars record"),
+        (vec!["run", "x.urdf", "--video", "a.mp4"], "--video goes with ars record or ars view"),
         (vec!["record", "x.urdf", "--video", "a.mp4", "--fps", "0"], "--fps must be a positive number"),
         (vec!["run", "x.json", "--frobnicate"], "unknown option"),
     ] {

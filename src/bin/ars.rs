@@ -16,7 +16,7 @@ ars: run, view and record ARS scenes and URDF robots
 
 usage:
   ars run FILE [--duration S] [--csv OUT] [--every N]
-  ars view FILE [--screenshots DIR] [--duration S] [--frame-every N] [--size WxH] [--axes]
+  ars view FILE [--screenshots DIR | --video OUT.mp4] [--duration S] [--size WxH] [--axes]
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
   ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes]
   ars --help | --version
@@ -28,8 +28,8 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
 
   run       simulate without graphics and print a summary; --csv writes the scene's
             sensors (or, if it has none, every body's position) every N steps
-  view      open a window (Escape closes it); without a display, record off screen
-            into --screenshots
+  view      open a window (Escape closes it; --video records it); without a display,
+            record off screen into --screenshots or --video
   record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
             or into an H.264 MP4 video (frame k at k/fps simulated seconds)
 
@@ -140,8 +140,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
     if command.verb == "record" && command.screenshots.is_none() == command.video.is_none() {
         return Err("ars record needs --screenshots DIR or --video OUT.mp4 (one of them)".into());
     }
-    if command.video.is_some() && command.verb != "record" {
-        return Err("--video goes with ars record".into());
+    if command.video.is_some() && command.verb == "run" {
+        return Err("--video goes with ars record or ars view".into());
     }
     if command.csv.is_some() && command.verb != "run" {
         return Err("--csv goes with ars run".into());
@@ -292,6 +292,16 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
     let window = command.verb == "view" && ars::viewer::has_display();
     if window {
         eprintln!("{}", ars::viewer::VIEWER_KEYS);
+        if let Some(path) = &command.video {
+            let view =
+                ViewSettings { size: command.size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+            let mut runner = ars::ProgramRunner::new(program)?;
+            // The window runs in real time: a duration is wall seconds here.
+            let limit = command.duration.map(std::time::Duration::from_secs_f64);
+            let (_, video) = ars::viewer::run_window_recording(&mut runner, &view, &options, limit, path, command.fps)?;
+            println!("recorded the window: {} frames ({} s) into {}", video.frames, video.duration, path.display());
+            return Ok(());
+        }
         match (command.size, command.duration) {
             (None, None) => {
                 program.show_with(&options)?;
@@ -308,6 +318,7 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
         return Ok(());
     }
     if let Some(path) = &command.video {
+        // Off screen (ars record, or ars view with no display).
         let mut recorder = ars::viewer::VideoRecorder::new(path).fps(command.fps).options(options);
         if let Some((w, h)) = command.size {
             recorder = recorder.size(w, h);
