@@ -32,6 +32,14 @@ fn run_tool(tool: &str, args: &[&str]) -> String {
     String::from_utf8(output.stdout).unwrap()
 }
 
+/// What ffprobe says of the first video stream of `path` (frames counted by decoding
+/// them): the `entries` asked for, as `key=value` lines.
+fn ffprobe(path: &Path, entries: &str) -> String {
+    let path = path.to_str().unwrap();
+    let args = ["-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries", entries];
+    run_tool("ffprobe", &[&args[..], &["-of", "flat=s=_", path]].concat())
+}
+
 /// The value of `key=value` in ffprobe's flat output.
 fn probed<'a>(probe: &'a str, key: &str) -> &'a str {
     probe
@@ -63,21 +71,7 @@ fn five_seconds_of_the_conical_pendulum_make_150_frames_and_the_frame_at_2_s_mat
     assert_eq!(files_in(&dir), ["pendulum.mp4"], "only the video is left");
     assert_eq!(std::fs::metadata(&path).unwrap().len(), video.bytes);
 
-    let probe = run_tool(
-        "ffprobe",
-        &[
-            "-v",
-            "error",
-            "-count_frames",
-            "-select_streams",
-            "v:0",
-            "-show_entries",
-            "stream=codec_name,pix_fmt,width,height,nb_read_frames,avg_frame_rate:format=duration",
-            "-of",
-            "flat=s=_",
-            path.to_str().unwrap(),
-        ],
-    );
+    let probe = ffprobe(&path, "stream=codec_name,pix_fmt,width,height,nb_read_frames,avg_frame_rate:format=duration");
     assert_eq!(probed(&probe, "streams_stream_0_codec_name"), "h264");
     assert_eq!(probed(&probe, "streams_stream_0_pix_fmt"), "yuv420p");
     assert_eq!(probed(&probe, "streams_stream_0_width"), "400");
@@ -190,19 +184,7 @@ fn a_short_video_at_an_odd_frame_rate_has_its_frames_where_the_rule_says() {
     let (_, video) =
         VideoRecorder::new(&path).fps(7.0).size(64, 48).record(&mut ConicalPendulum::default(), 0.5).unwrap();
     assert_eq!(video.frames, 4);
-    let probe = run_tool(
-        "ffprobe",
-        &[
-            "-v",
-            "error",
-            "-count_frames",
-            "-show_entries",
-            "stream=nb_read_frames:format=duration",
-            "-of",
-            "flat=s=_",
-            path.to_str().unwrap(),
-        ],
-    );
+    let probe = ffprobe(&path, "stream=nb_read_frames:format=duration");
     assert_eq!(probed(&probe, "streams_stream_0_nb_read_frames"), "4");
     let duration: f64 = probed(&probe, "format_duration").parse().unwrap();
     assert!((duration - 4.0 / 7.0).abs() < 1e-3, "ffprobe says {duration} s");
@@ -220,19 +202,7 @@ fn ars_record_writes_a_video_of_a_robot() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(String::from_utf8_lossy(&out.stdout).contains("20 frames"));
-    let probe = run_tool(
-        "ffprobe",
-        &[
-            "-v",
-            "error",
-            "-count_frames",
-            "-show_entries",
-            "stream=nb_read_frames",
-            "-of",
-            "flat=s=_",
-            path.to_str().unwrap(),
-        ],
-    );
+    let probe = ffprobe(&path, "stream=nb_read_frames");
     assert_eq!(probed(&probe, "streams_stream_0_nb_read_frames"), "20");
     std::fs::remove_dir_all(&dir).unwrap();
 }
