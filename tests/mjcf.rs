@@ -171,3 +171,120 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     assert_eq!(sim.objects().count(), 1, "only the first model's body");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Three single-hinge arms in zero gravity, each with one kind of actuator.
+const ACTUATED: &str = r#"
+<mujoco model="actuated">
+  <option gravity="0 0 0"/>
+  <default>
+    <joint type="hinge" axis="0 1 0"/>
+    <geom type="capsule" size="0.03" contype="0" conaffinity="0"/>
+    <motor ctrlrange="-1 1"/>
+  </default>
+  <worldbody>
+    <body name="a"><joint name="ja"/><geom fromto="0 0 0 0.5 0 0"/></body>
+    <body name="b" pos="0 1 0"><joint name="jb"/><geom fromto="0 0 0 0.5 0 0"/></body>
+    <body name="c" pos="0 2 0"><joint name="jc"/><geom fromto="0 0 0 0.5 0 0"/></body>
+  </worldbody>
+  <actuator>
+    <motor name="push" joint="ja" gear="10"/>
+    <position name="hold" joint="jb" kp="30" kv="3" forcerange="-5 5"/>
+    <velocity name="spin" joint="jc" kv="2" gear="2"/>
+  </actuator>
+</mujoco>"#;
+
+#[test]
+fn actuators_drive_their_joints_as_mujoco_defines_them() {
+    // The file's gravity (none) is returned, not applied: the simulation is built so.
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let model = sim.load_mjcf_text(ACTUATED, "actuated.xml", &MjcfOptions::new()).unwrap();
+    let names: Vec<&str> = sim.actuators().map(|(n, _)| n).collect();
+    assert_eq!(names, ["push", "hold", "spin"]);
+    let push = &model.actuators[0].actuator;
+    assert_eq!((push.gear(), push.ctrl_range()), (10.0, Some((-1.0, 1.0))), "the class's motor default");
+    assert_eq!(model.actuators[1].actuator.force_range(), Some((-5.0, 5.0)));
+    assert_eq!(sim.control("push").unwrap(), 0.0);
+
+    // The motor: 5 is clamped to 1, a torque of gear × 1 = 10 N·m from rest.
+    sim.set_control("push", 5.0).unwrap();
+    assert_eq!(sim.control("push").unwrap(), 1.0);
+    sim.set_control("hold", 0.4).unwrap();
+    sim.set_control("spin", 3.0).unwrap();
+    // The inertia of arm a about its hinge: MuJoCo's Y axis through the origin is the
+    // simulation's −Z; the capsule's centre is 0.25 m out along X.
+    let i_a = {
+        let b = sim.body(model.body("a").unwrap()).unwrap();
+        let axis = Vector3::z();
+        let p = b.position().coords;
+        let r = (p - axis * p.dot(&axis)).norm();
+        let about_centre = b.rotation().matrix() * b.inertia() * b.rotation().matrix().transpose();
+        axis.dot(&(about_centre * axis)) + b.mass() * r * r
+    };
+    sim.step().unwrap();
+    let rate = sim.joint("ja").unwrap().state().unwrap().rate;
+    // MuJoCo's qacc for this model is 75.2208 rad/s² (mj_forward).
+    let expected = 10.0 / i_a * sim.time_step();
+    assert!((rate.abs() - expected).abs() < 1e-6 * expected, "{rate} vs {expected}");
+    assert!((expected / sim.time_step() - 75.2208).abs() < 1e-3);
+
+    // The position servo settles at its control (gear 1), the velocity servo at
+    // ctrl / gear.
+    sim.run_for(5.0).unwrap();
+    let hold = sim.joint("jb").unwrap().state().unwrap().position;
+    assert!((hold.abs() - 0.4).abs() < 1e-3, "held at {hold}");
+    let spin = sim.joint("jc").unwrap().state().unwrap().rate;
+    assert!((spin.abs() - 1.5).abs() < 1e-3, "spins at {spin}");
+
+    // Kept by scene files and snapshots.
+    let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    assert_eq!(copy.control("push").unwrap(), 1.0);
+    assert_eq!(copy.control("spin").unwrap(), 3.0);
+
+    // Unknown names and bad values are said.
+    let e = sim.set_control("pusj", 0.0).unwrap_err();
+    assert!(e.to_string().contains("push"), "a close match is suggested: {e}");
+    assert!(sim.set_control("hold", f64::NAN).is_err());
+    assert_eq!(sim.control("hold").unwrap(), 0.4);
+}
+
+#[test]
+fn an_actuator_on_a_missing_joint_is_refused_and_leaves_nothing() {
+    let mut sim = Simulation::builder().build().unwrap();
+    let text = ACTUATED.replace(r#"joint="jc""#, r#"joint="jz""#);
+    let e = sim.load_mjcf_text(&text, "actuated.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("\"jz\""), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+    assert_eq!(sim.joints().count(), 0);
+}
+
+#[test]
+fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
+    // A ball dropped on a fixed plate, and a second ball on a second plate, with the
+    // first pair excluded.
+    let text = r#"
+<mujoco>
+  <worldbody>
+    <body name="plate"><geom type="box" size="0.5 0.5 0.05"/></body>
+    <body name="ball" pos="0 0 0.5"><freejoint/><geom type="sphere" size="0.1"/></body>
+    <body name="plate2" pos="2 0 0"><geom type="box" size="0.5 0.5 0.05"/></body>
+    <body name="ball2" pos="2 0 0.5"><freejoint/><geom type="sphere" size="0.1"/></body>
+  </worldbody>
+  <contact><exclude body1="plate" body2="ball"/></contact>
+</mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(text, "exclude.xml", &MjcfOptions::new()).unwrap();
+    let (plate, ball) = (model.body("plate").unwrap(), model.body("ball").unwrap());
+    assert_eq!(sim.excluded_contacts(), [(ball, plate)]);
+    let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    for mut s in [sim, copy] {
+        s.run_for(1.0).unwrap();
+        let y = |name: &str| s.object(name).unwrap().position().unwrap().y;
+        assert!(y("ball") < -1.0, "the excluded ball fell through its plate: {}", y("ball"));
+        assert!((y("ball2") - 0.15).abs() < 0.01, "the other rests on its plate: {}", y("ball2"));
+    }
+    let bad = text.replace(r#"body2="ball""#, r#"body2="bal""#);
+    let mut sim = Simulation::builder().build().unwrap();
+    let e = sim.load_mjcf_text(&bad, "exclude.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("\"bal\""), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+}

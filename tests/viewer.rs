@@ -599,6 +599,81 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
     Ok(())
 }
 
+/// The mean absolute difference of two images of one size, in levels per channel.
+fn mean_difference(a: &RgbImage, b: &RgbImage) -> f64 {
+    let sum: u64 = a.as_raw().iter().zip(b.as_raw()).map(|(x, y)| u64::from(x.abs_diff(*y))).sum();
+    sum as f64 / a.as_raw().len() as f64
+}
+
+/// The fraction of the pixels of two images of one size that differ by more than 30
+/// levels in a channel.
+fn differing_fraction(a: &RgbImage, b: &RgbImage) -> f64 {
+    let differ = a.pixels().zip(b.pixels()).filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 30));
+    differ.count() as f64 / f64::from(a.width() * a.height())
+}
+
+/// Four views off screen (`--views 4`): a red box 3 m in front of a depth camera at the
+/// origin, a blue ball falling beside it. The four quarters of a frame differ from each
+/// other, and the camera quarter is what [`ars::viewer::Camera`] sees from the sensor's
+/// place with its field of view and range, at the quarter's size.
+fn offscreen_views_split_the_frame_and_the_camera_view_sees_as_the_camera() -> std::result::Result<(), String> {
+    use ars::viewer::{Camera, Intrinsics, ViewerOptions};
+    let e = |e: ars::Error| e.to_string();
+    let mut sim = Simulation::new().map_err(e)?;
+    let cube = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.0, -3.0], Mass::Total(1.0)).map_err(e)?;
+    sim.set_color(cube, [1.0, 0.0, 0.0]).map_err(e)?;
+    sim.body_mut(cube).map(|mut b| b.set_kinematic(true)).map_err(e)?;
+    let ball = sim.add_sphere(0.4, [2.0, 2.0, 1.0], Mass::Total(1.0)).map_err(e)?;
+    sim.set_color(ball, [0.1, 0.2, 0.9]).map_err(e)?;
+    let (fov_y, near, far) = (0.9, 0.1, 30.0);
+    sim.add_sensor(ars::sensors::DepthCamera::new(32, 24, fov_y, near, far).map_err(e)?).map_err(e)?;
+    for _ in 0..100 {
+        sim.step().map_err(e)?;
+    }
+    let view = ViewSettings {
+        size: (640, 480),
+        camera_position: Point3::new(3.0, 2.5, 3.0),
+        camera_target: Point3::new(0.0, 0.0, -1.5),
+        ..ViewSettings::default()
+    };
+    let options = ViewerOptions::default().with_views(4);
+    // One rendering context per thread: the renderer lives while the camera renders.
+    let mut renderer = OffscreenRenderer::with_options(&view, &options).map_err(|e| e.to_string())?;
+    let frame = renderer.render(&sim).map_err(|e| e.to_string())?;
+    let _ = frame.save(std::env::temp_dir().join("ars_viewer_test_views.png"));
+    if frame.dimensions() != (640, 480) {
+        return Err(format!("a {:?} frame, expected 640 × 480", frame.dimensions()));
+    }
+    let quarter =
+        |i: u32| ars::viewer::image::imageops::crop_imm(&frame, 320 * (i % 2), 240 * (i / 2), 320, 240).to_image();
+    let quarters: Vec<RgbImage> = (0..4).map(quarter).collect();
+    let names = ["free", "follow", "top", "camera"];
+    let mut differences = Vec::new();
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let d = 100.0 * differing_fraction(&quarters[i], &quarters[j]);
+            if d < 2.0 {
+                return Err(format!("the {} and {} views differ in {d:.2} % of their pixels only", names[i], names[j]));
+            }
+            differences.push(format!("{}/{} {d:.1} %", names[i], names[j]));
+        }
+    }
+    let intrinsics = Intrinsics { width: 320, height: 240, fov_y, near, far };
+    let seen = Camera::new(intrinsics).and_then(|mut c| c.capture(&sim)).map_err(|e| e.to_string())?.rgb;
+    let gap = mean_difference(&quarters[3], &seen);
+    if gap > 0.5 {
+        return Err(format!("the camera view differs from the camera's image by {gap:.2} levels"));
+    }
+    if !reddish(&quarters[3], 160.0, 120.0, 3) {
+        return Err("the camera view must see the red box in its middle".into());
+    }
+    println!(
+        "  views: the quarters' pixels differing: {}; camera view against the camera: {gap:.3} levels",
+        differences.join(", ")
+    );
+    Ok(())
+}
+
 /// A 1 kg crate on the floor where the camera looks, in a window big enough for the
 /// panel and the editor beside it.
 struct Crate;
@@ -1093,6 +1168,203 @@ fn run<T: Send + 'static>(
     }
 }
 
+/// A pendulum knocking a ball along the floor, with no sensor: `ars` writes every
+/// body's position at every step.
+struct Knock;
+
+impl Hooks for Knock {}
+
+impl Program for Knock {
+    fn configure(&self, builder: ars::SimulationBuilder) -> ars::SimulationBuilder {
+        builder.floor_plane(Vector3::y(), 0.0)
+    }
+    fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+        let bob = sim.add_sphere(0.1, [0.6, 0.8, 0.0], Mass::Total(2.0))?;
+        sim.add_hinge_joint("pivot", bob, ars::JointEnd::World, Some([0.0, 0.8, 0.0].into()), Vector3::z())?;
+        sim.add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).map(drop)
+    }
+    fn view_settings(&self) -> ViewSettings {
+        ViewSettings {
+            title: "knock".into(),
+            size: (640, 480),
+            camera_position: Point3::new(1.5, 1.0, 2.5),
+            camera_target: Point3::new(0.0, 0.3, 0.0),
+            ..ViewSettings::default()
+        }
+    }
+}
+
+/// Every body's position after every frame the window stepped, by step count; and the
+/// file Ctrl+S wrote.
+#[derive(Default)]
+struct History {
+    positions: Vec<(u64, Vec<Point3<f64>>)>,
+    saved: Option<std::path::PathBuf>,
+    drawn: bool,
+}
+
+/// [`Knock`] driven by the window, keeping its [`History`].
+struct Kept<'p> {
+    runner: ProgramRunner<'p, Knock>,
+    history: std::sync::Arc<std::sync::Mutex<History>>,
+}
+
+impl ars::viewer::Driver for Kept<'_> {
+    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
+        self.runner.simulation_mut()
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        ars::viewer::Driver::step_frame(&mut self.runner)?;
+        let sim = self.runner.simulation();
+        let positions = sim.bodies().filter_map(|(id, _)| sim.body(id).ok().map(|b| b.position())).collect();
+        self.history.lock().unwrap().positions.push((sim.step_count(), positions));
+        Ok(())
+    }
+    fn step(&mut self) -> Result<()> {
+        ars::viewer::Driver::step(&mut self.runner)
+    }
+    fn reset(&mut self) -> Result<()> {
+        ars::viewer::Driver::reset(&mut self.runner)
+    }
+    fn key_down(&mut self, key: ars::Key) -> Result<()> {
+        ars::viewer::Driver::key_down(&mut self.runner, key)
+    }
+    fn key_up(&mut self, key: ars::Key) -> Result<()> {
+        ars::viewer::Driver::key_up(&mut self.runner, key)
+    }
+    fn viewer_state(&mut self, state: &ars::viewer::ViewerState) {
+        let mut history = self.history.lock().unwrap();
+        history.drawn = true;
+        if history.saved.is_none() {
+            history.saved.clone_from(&state.saved);
+        }
+    }
+}
+
+/// Ctrl+S in a running window saves the scene mid-run, and `ars view` opens the file
+/// (in a window, under Xvfb) and goes on exactly as the window went on: every body's
+/// position 1 s (2500 steps) after the save, as `ars view --csv` writes it, has the
+/// same bits as in the window that saved it.
+fn a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view() -> std::result::Result<bool, String> {
+    use std::sync::{Arc, Mutex};
+    if Command::new("xdotool").arg("version").output().is_err() {
+        return Err("xdotool is missing: install it (make deps)".into());
+    }
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: this process runs this test alone, on its main thread, before any other
+    // thread starts.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    // SAFETY: as above, no other thread yet (see a_person_selects_pulls_and_edits_a_body).
+    unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    let dir = std::env::temp_dir().join(format!("ars-ctrl-s-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    std::env::set_current_dir(&dir).map_err(|e| e.to_string())?;
+    let history = Arc::new(Mutex::new(History::default()));
+    let person = {
+        let (history, display) = (history.clone(), display.clone());
+        std::thread::spawn(move || -> std::result::Result<(), String> {
+            let xdotool = |args: &[&str]| {
+                Command::new("xdotool").args(args).env("DISPLAY", &display).output().map_err(|e| e.to_string())
+            };
+            let found = xdotool(&["search", "--sync", "--name", "^knock$"])?;
+            let window = String::from_utf8_lossy(&found.stdout).lines().next().unwrap_or_default().to_string();
+            let outcome = (|| {
+                if window.is_empty() {
+                    return Err("the window did not appear".to_string());
+                }
+                xdotool(&["windowfocus", "--sync", &window])?;
+                let started = Instant::now();
+                let step_now = || history.lock().unwrap().positions.last().map_or(0, |p| p.0);
+                // Mid-run: once the pendulum has knocked the ball (0.6 s).
+                while step_now() < 1500 {
+                    if started.elapsed() > Duration::from_secs(60) {
+                        return Err("the window did not run 0.6 s in a minute".into());
+                    }
+                    std::thread::sleep(Duration::from_millis(50));
+                }
+                xdotool(&["key", "ctrl+s"])?;
+                while history.lock().unwrap().saved.is_none() {
+                    if started.elapsed() > Duration::from_secs(60) {
+                        return Err("Ctrl+S saved nothing".into());
+                    }
+                    std::thread::sleep(Duration::from_millis(50));
+                }
+                // On for more than a second after the save.
+                let after = step_now() + 3000;
+                while step_now() < after {
+                    if started.elapsed() > Duration::from_secs(120) {
+                        return Err("the window stopped running".into());
+                    }
+                    std::thread::sleep(Duration::from_millis(50));
+                }
+                Ok(())
+            })();
+            // Escape closes the window (nothing is selected).
+            let _ = xdotool(&["key", "Escape"]);
+            outcome
+        })
+    };
+    let mut program = Knock;
+    let view = program.view_settings();
+    let runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
+    let mut kept = Kept { runner, history: history.clone() };
+    let window = ars::viewer::run_window(&mut kept, &view, Some(Duration::from_secs(150)));
+    let acted = person.join().map_err(|_| "the person's thread panicked".to_string());
+    let outcome = (|| {
+        window.map_err(|e| e.to_string())?;
+        acted??;
+        let history = history.lock().unwrap();
+        let saved = history.saved.clone().ok_or("nothing saved")?;
+        let at_save = Simulation::load_scene_from(&saved).map_err(|e| e.to_string())?.step_count();
+        let then = at_save + 2500;
+        let (_, expected) = history
+            .positions
+            .iter()
+            .find(|(step, _)| *step == then)
+            .ok_or(format!("the window never stood at step {then}"))?;
+        // The saved file opened in a window by `ars view` for 4 s of wall time (well
+        // over 1 s of simulated time at real speed), writing every body's position at
+        // every step.
+        let csv = dir.join("view.csv");
+        let out = Command::new(env!("CARGO_BIN_EXE_ars"))
+            .args(["view", saved.to_str().unwrap(), "--duration", "4", "--csv", csv.to_str().unwrap()])
+            .env("DISPLAY", &display)
+            .output()
+            .map_err(|e| e.to_string())?;
+        if !out.status.success() {
+            return Err(format!("ars view failed: {}", String::from_utf8_lossy(&out.stderr)));
+        }
+        let text = std::fs::read_to_string(&csv).map_err(|e| e.to_string())?;
+        let row: Vec<f64> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect::<Vec<f64>>())
+            .find(|r| r.get(1) == Some(&(then as f64)))
+            .ok_or(format!("ars view did not reach step {then}: {}", String::from_utf8_lossy(&out.stdout).trim()))?;
+        let viewed: Vec<Point3<f64>> = row[2..].chunks_exact(3).map(|c| Point3::new(c[0], c[1], c[2])).collect();
+        let bits = |ps: &[Point3<f64>]| {
+            ps.iter().flat_map(|p| p.coords.iter().map(|c| c.to_bits()).collect::<Vec<_>>()).collect::<Vec<_>>()
+        };
+        if bits(&viewed) != bits(expected) {
+            return Err(format!(
+                "1 s after the save, ars view has the bodies at {viewed:?}, the window had {expected:?}"
+            ));
+        }
+        println!(
+            "  Ctrl+S at step {at_save} ({}); 2500 steps on, ars view and the window agree to the bit: {:?}",
+            saved.display(),
+            viewed.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>()
+        );
+        Ok(true)
+    })();
+    stop_xvfb(xvfb);
+    let _ = std::env::set_current_dir(std::env::temp_dir());
+    if outcome.is_ok() {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    outcome
+}
+
 /// Runs `test` in a new process of this program: kiss3d 0.47 makes one rendering
 /// context per thread, and windows live on the main thread.
 fn in_own_process(name: &str) -> std::result::Result<bool, String> {
@@ -1115,6 +1387,9 @@ fn main() {
             "window_memory_stays_flat_over_a_minute" => window_memory_stays_flat_over_a_minute,
             "windows_one_after_another_when_the_context_is_kept" => windows_one_after_another_when_the_context_is_kept,
             "a_person_selects_pulls_and_edits_a_body" => a_person_selects_pulls_and_edits_a_body,
+            "a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view" => {
+                a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view
+            }
             "a_window_records_a_video" => a_window_records_a_video,
             other => panic!("no test {other}"),
         };
@@ -1138,6 +1413,13 @@ fn main() {
         &mut tally,
     );
     run("the_recorder_writes_every_frame_as_drawn", the_recorder_writes_every_frame_as_drawn, true, always, &mut tally);
+    run(
+        "offscreen_views_split_the_frame_and_the_camera_view_sees_as_the_camera",
+        offscreen_views_split_the_frame_and_the_camera_view_sees_as_the_camera,
+        true,
+        always,
+        &mut tally,
+    );
     run("offscreen_axes_are_drawn_only_when_asked", offscreen_axes_are_drawn_only_when_asked, true, always, &mut tally);
     run(
         "offscreen_contact_forces_are_drawn_when_asked",
@@ -1172,6 +1454,13 @@ fn main() {
     run(
         "a_person_selects_pulls_and_edits_a_body",
         || in_own_process("a_person_selects_pulls_and_edits_a_body"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view",
+        || in_own_process("a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view"),
         false,
         shown,
         &mut tally,

@@ -41,6 +41,8 @@ pub enum SavedController {
     Torque(TorqueMotor),
     /// A [`DcMotor`].
     DcMotor(DcMotor),
+    /// An [`Actuator`].
+    Actuator(Actuator),
 }
 
 impl SavedController {
@@ -51,6 +53,7 @@ impl SavedController {
             SavedController::Velocity(c) => Box::new(c),
             SavedController::Torque(c) => Box::new(c),
             SavedController::DcMotor(c) => Box::new(c),
+            SavedController::Actuator(c) => Box::new(c),
         }
     }
 }
@@ -204,6 +207,149 @@ impl JointController for VelocityServo {
     }
     fn saved(&self) -> Option<SavedController> {
         Some(SavedController::Velocity(self.clone()))
+    }
+}
+
+/// What an [`Actuator`]'s force is made of, as in MuJoCo's actuator shortcuts.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum ActuatorKind {
+    /// `force = ctrl` (MuJoCo's `motor`).
+    Motor,
+    /// `force = kp·(ctrl − length) − kv·velocity` (MuJoCo's `position`).
+    Position {
+        /// Position gain, N·m per rad (or N per m) of actuator length.
+        kp: f64,
+        /// Damping gain, N·m·s per rad (or N·s per m); 0 for none.
+        kv: f64,
+    },
+    /// `force = kv·(ctrl − velocity)` (MuJoCo's `velocity`).
+    Velocity {
+        /// Velocity gain, N·m·s per rad (or N·s per m).
+        kv: f64,
+    },
+}
+
+/// A named actuator on a joint, as MuJoCo models one: a control input `ctrl` (set
+/// with [`Scene::set_control`](crate::Scene::set_control), clamped to `ctrl_range`),
+/// an actuator length `gear·q` and velocity `gear·q̇`, a force from [`ActuatorKind`]
+/// clamped to `force_range`, and the joint torque (or force) `gear·force`. What an MJCF
+/// file's `<motor>`, `<position>` and `<velocity>` become.
+///
+/// ```
+/// use ars_core::{Actuator, ActuatorKind, JointController, JointState};
+/// let mut a = Actuator::new("elbow", ActuatorKind::Position { kp: 10.0, kv: 0.0 }, 2.0)?.with_ctrl_range(-1.0, 1.0)?;
+/// a.set_ctrl(5.0)?; // clamped to 1
+/// // length 2 × 0.25: force 10 × (1 − 0.5) = 5, torque 2 × 5.
+/// assert_eq!(a.output(0.0, JointState { position: 0.25, rate: 0.0 }, 1e-3), 10.0);
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Actuator {
+    name: String,
+    kind: ActuatorKind,
+    gear: f64,
+    ctrl: f64,
+    ctrl_range: Option<(f64, f64)>,
+    force_range: Option<(f64, f64)>,
+}
+
+impl Actuator {
+    /// An actuator called `name` of this kind and gear, its control at 0, unlimited.
+    pub fn new(name: impl Into<String>, kind: ActuatorKind, gear: f64) -> Result<Self> {
+        if !gear.is_finite() || gear == 0.0 {
+            return Err(Error::Invalid {
+                what: "an actuator's gear",
+                problem: format!("must be finite and not 0, got {gear}"),
+            });
+        }
+        let gains = match kind {
+            ActuatorKind::Motor => vec![],
+            ActuatorKind::Position { kp, kv } => vec![kp, kv],
+            ActuatorKind::Velocity { kv } => vec![kv],
+        };
+        if let Some(bad) = gains.iter().find(|g| !(g.is_finite() && **g >= 0.0)) {
+            return Err(Error::OutOfRange {
+                what: "an actuator's gain",
+                detail: format!("must be finite and ≥ 0, got {bad}"),
+            });
+        }
+        Ok(Actuator { name: name.into(), kind, gear, ctrl: 0.0, ctrl_range: None, force_range: None })
+    }
+
+    /// With its control clamped to `[low, high]`.
+    pub fn with_ctrl_range(mut self, low: f64, high: f64) -> Result<Self> {
+        self.ctrl_range = Some(range("an actuator's control range", low, high)?);
+        self.ctrl = self.ctrl.clamp(low, high);
+        Ok(self)
+    }
+
+    /// With its force clamped to `[low, high]` (before the gear).
+    pub fn with_force_range(mut self, low: f64, high: f64) -> Result<Self> {
+        self.force_range = Some(range("an actuator's force range", low, high)?);
+        Ok(self)
+    }
+
+    /// Its name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Its kind and gains.
+    pub fn kind(&self) -> ActuatorKind {
+        self.kind
+    }
+
+    /// Its gear: the actuator length per unit of joint position.
+    pub fn gear(&self) -> f64 {
+        self.gear
+    }
+
+    /// Its control now.
+    pub fn ctrl(&self) -> f64 {
+        self.ctrl
+    }
+
+    /// Its control range, if limited.
+    pub fn ctrl_range(&self) -> Option<(f64, f64)> {
+        self.ctrl_range
+    }
+
+    /// Its force range, if limited.
+    pub fn force_range(&self) -> Option<(f64, f64)> {
+        self.force_range
+    }
+
+    /// Sets the control (clamped to the control range), held until set again.
+    pub fn set_ctrl(&mut self, ctrl: f64) -> Result<()> {
+        if !ctrl.is_finite() {
+            return Err(Error::NotFinite { what: "an actuator's control", value: ctrl.to_string() });
+        }
+        self.ctrl = self.ctrl_range.map_or(ctrl, |(lo, hi)| ctrl.clamp(lo, hi));
+        Ok(())
+    }
+}
+
+/// `[low, high]`, checked.
+fn range(what: &'static str, low: f64, high: f64) -> Result<(f64, f64)> {
+    if low.is_nan() || high.is_nan() || low > high {
+        return Err(Error::Invalid { what, problem: format!("must be low ≤ high, got [{low}, {high}]") });
+    }
+    Ok((low, high))
+}
+
+impl JointController for Actuator {
+    fn output(&mut self, _time: f64, state: JointState, _dt: f64) -> f64 {
+        let (length, velocity) = (self.gear * state.position, self.gear * state.rate);
+        let force = match self.kind {
+            ActuatorKind::Motor => self.ctrl,
+            ActuatorKind::Position { kp, kv } => kp * (self.ctrl - length) - kv * velocity,
+            ActuatorKind::Velocity { kv } => kv * (self.ctrl - velocity),
+        };
+        let force = self.force_range.map_or(force, |(lo, hi)| force.clamp(lo, hi));
+        self.gear * force
+    }
+    fn saved(&self) -> Option<SavedController> {
+        Some(SavedController::Actuator(self.clone()))
     }
 }
 

@@ -109,7 +109,8 @@ pub use world::{body, contact, geom, joint};
 pub use body::{BodyBuilder, BodyKind, BodyMut, BodyRef, Mass, MassSpec};
 pub use contact::{CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit};
 pub use control::{
-    DcMotor, JointController, JointState, Pid, PositionServo, Profile, SavedController, TorqueMotor, VelocityServo,
+    Actuator, ActuatorKind, DcMotor, JointController, JointState, Pid, PositionServo, Profile, SavedController,
+    TorqueMotor, VelocityServo,
 };
 pub use error::{Error, Result};
 pub use geom::{GeomBuilder, GeomMut, GeomRef};
@@ -126,6 +127,7 @@ pub use scene::{
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, HookPoint, Hooks, PostFrame, PostStep, PreFrame, PreStep};
+pub use simulation::open::{FileFormat, OpenedFile};
 pub use simulation::snapshot::{SNAPSHOT_VERSION, SceneState, Snapshot};
 pub use simulation::{
     DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, SENSOR_KINDS, Simulation, SimulationBuilder,

@@ -87,6 +87,37 @@ impl Shape {
         }
     }
 
+    /// The volume it encloses, m³: `None` for a plane or a ray. A triangle mesh's is
+    /// that of the solid its triangles close (counter-clockwise seen from outside).
+    ///
+    /// ```
+    /// use ars_core::Shape;
+    /// let cube = Shape::Box { edges: [1.0, 2.0, 3.0].into() };
+    /// assert_eq!(cube.volume(), Some(6.0));
+    /// assert_eq!(Shape::Ray { length: 1.0 }.volume(), None);
+    /// ```
+    pub fn volume(&self) -> Option<f64> {
+        use std::f64::consts::PI;
+        match self {
+            Shape::Sphere { radius } => Some(4.0 / 3.0 * PI * radius.powi(3)),
+            Shape::Box { edges } => Some(edges.product()),
+            Shape::Capsule { radius, length } => Some(PI * radius.powi(2) * (length + 4.0 / 3.0 * radius)),
+            Shape::Cylinder { radius, length } => Some(PI * radius.powi(2) * length),
+            Shape::Cone { radius, height } => Some(PI * radius.powi(2) * height / 3.0),
+            Shape::Plane { .. } | Shape::Ray { .. } => None,
+            Shape::TriMesh { vertices, triangles } => {
+                // The divergence theorem: the signed volumes of the tetrahedra from the
+                // origin to each triangle.
+                let corner = |k: u32| vertices.get(k as usize).map(|p| p.coords);
+                let sum: f64 = triangles
+                    .iter()
+                    .filter_map(|&[a, b, c]| Some(corner(a)?.dot(&corner(b)?.cross(&corner(c)?)) / 6.0))
+                    .sum();
+                Some(sum.abs())
+            }
+        }
+    }
+
     pub(crate) fn validate(&self) -> Result<()> {
         match self {
             Shape::Sphere { radius } => limits::size("sphere radius", *radius).map(drop),

@@ -4,10 +4,9 @@
 
 use std::path::Path;
 
-use ars_core::nalgebra::{Isometry3, Point3, Vector3};
+use ars_core::nalgebra::Isometry3;
 use ars_core::sensors::{DepthCamera, DepthImage, Sensor};
 use ars_core::{ObjectId, Simulation, ViewSettings};
-use kiss3d::camera::FirstPersonCamera3d;
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::convert;
@@ -169,21 +168,9 @@ impl Camera {
 
     /// Renders the colour image and computes the depth image of `sim` as it is now.
     pub fn capture(&mut self, sim: &Simulation) -> Result<CameraFrame> {
-        // One mount for both images: the depth camera's.
-        let pose = self.depth.mount().pose(sim.scene())?;
-        let eye = Point3::from(pose.translation.vector);
-        let at = eye + pose.rotation * -Vector3::z();
-        let Intrinsics { fov_y, near, far, .. } = self.intrinsics;
-        let mut camera = FirstPersonCamera3d::new_with_frustum(
-            fov_y as f32,
-            near as f32,
-            far as f32,
-            convert::point(&eye),
-            convert::point(&at),
-        );
-        // The camera's own up (its +Y), not the world's: the colour image rolls with it,
-        // as the depth image does.
-        camera.set_up_axis(convert::vector(&(pose.rotation * Vector3::y())));
+        // One mount for both images: the depth camera's. The colour image rolls with the
+        // camera's own up (its +Y), not the world's, as the depth image does.
+        let mut camera = crate::views::sensor_camera(&self.depth, sim)?;
         self.view.mirror.sync(sim, &mut self.view.scene).map_err(ViewerError::from)?;
         let rgb = kiss3d::pollster::block_on(self.surface.render_image_3d(&mut self.view.scene, &mut camera));
         let depth = self.depth.measure(sim.scene()).map_err(ViewerError::from)?;

@@ -3,7 +3,8 @@
 //! [`Program`](ars_core::Program) is driven by its [`ProgramRunner`]; other front ends
 //! (the Python package) implement [`Driver`] themselves.
 
-use std::ops::DerefMut;
+use std::ops::{Deref, DerefMut};
+use std::path::PathBuf;
 
 use ars_core::{Key, Program, ProgramRunner, Result, Simulation};
 
@@ -68,5 +69,146 @@ impl<P: Program> Driver for ProgramRunner<'_, P> {
     fn key_up(&mut self, key: Key) -> Result<()> {
         ProgramRunner::key_up(self, key);
         Ok(())
+    }
+}
+
+/// What a window drives: its program, until a file is opened from the panel; from then
+/// on the file's simulation, stepped without the program (its hooks and keys), and
+/// `r` opens the file again.
+pub(crate) struct Shown<'d, D> {
+    program: &'d mut D,
+    file: Option<(PathBuf, Simulation)>,
+}
+
+/// The simulation of a [`Shown`]: the program's or the file's.
+pub(crate) enum ShownSimulation<'a, T> {
+    Program(T),
+    File(&'a mut Simulation),
+}
+
+impl<T: DerefMut<Target = Simulation>> Deref for ShownSimulation<'_, T> {
+    type Target = Simulation;
+    fn deref(&self) -> &Simulation {
+        match self {
+            ShownSimulation::Program(sim) => sim,
+            ShownSimulation::File(sim) => sim,
+        }
+    }
+}
+
+impl<T: DerefMut<Target = Simulation>> DerefMut for ShownSimulation<'_, T> {
+    fn deref_mut(&mut self) -> &mut Simulation {
+        match self {
+            ShownSimulation::Program(sim) => sim,
+            ShownSimulation::File(sim) => sim,
+        }
+    }
+}
+
+impl<'d, D: Driver> Shown<'d, D> {
+    /// The program's simulation, shown.
+    pub(crate) fn new(program: &'d mut D) -> Self {
+        Shown { program, file: None }
+    }
+
+    /// Shows `simulation`, opened from `path`, instead.
+    pub(crate) fn open(&mut self, path: PathBuf, simulation: Simulation) {
+        self.file = Some((path, simulation));
+    }
+}
+
+impl<D: Driver> Driver for Shown<'_, D> {
+    fn simulation(&mut self) -> impl DerefMut<Target = Simulation> + '_ {
+        match &mut self.file {
+            Some((_, sim)) => ShownSimulation::File(sim),
+            None => ShownSimulation::Program(self.program.simulation()),
+        }
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        match &mut self.file {
+            Some((_, sim)) => sim.step_frame(),
+            None => self.program.step_frame(),
+        }
+    }
+    fn step(&mut self) -> Result<()> {
+        match &mut self.file {
+            Some((_, sim)) => sim.step(),
+            None => self.program.step(),
+        }
+    }
+    fn reset(&mut self) -> Result<()> {
+        match &mut self.file {
+            Some((path, sim)) => {
+                *sim = Simulation::open(&*path)?.simulation;
+                Ok(())
+            }
+            None => self.program.reset(),
+        }
+    }
+    fn key_down(&mut self, key: Key) -> Result<()> {
+        if self.file.is_some() { Ok(()) } else { self.program.key_down(key) }
+    }
+    fn key_up(&mut self, key: Key) -> Result<()> {
+        if self.file.is_some() { Ok(()) } else { self.program.key_up(key) }
+    }
+    fn wants_to_close(&mut self) -> bool {
+        self.program.wants_to_close()
+    }
+    fn viewer_state(&mut self, state: &ViewerState) {
+        self.program.viewer_state(state);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ars_core::{Hooks, Mass};
+
+    /// A ball dropped from 1 m, and a count of the frames the program saw.
+    struct Drop {
+        frames: u32,
+    }
+    impl Hooks for Drop {
+        fn pre_frame(&mut self, _: &mut Simulation) -> Result<()> {
+            self.frames += 1;
+            Ok(())
+        }
+    }
+    impl Program for Drop {
+        fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
+            sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0)).map(drop)
+        }
+    }
+
+    #[test]
+    fn an_opened_file_is_shown_stepped_and_reopened_without_the_program() {
+        let dir = std::env::temp_dir().join(format!("ars-shown-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("three.json");
+        let mut three = Simulation::new().unwrap();
+        three.add_sphere(0.1, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        three.add_sphere(0.1, [1.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        three.add_sphere(0.1, [2.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        three.save_scene_to(&path).unwrap();
+
+        let mut program = Drop { frames: 0 };
+        let mut runner = ProgramRunner::new(&mut program).unwrap();
+        let mut shown = Shown::new(&mut runner);
+        shown.step_frame().unwrap();
+        let of_program = shown.simulation().objects().count();
+        shown.open(path.clone(), Simulation::open(&path).unwrap().simulation);
+        assert_eq!(shown.simulation().objects().count(), 3, "the file's scene is shown");
+        shown.step_frame().unwrap();
+        shown.key_down(Key::Up).unwrap();
+        let frame_time = shown.simulation().time();
+        assert!(frame_time > 0.0);
+        shown.reset().unwrap();
+        assert_eq!(shown.simulation().time(), 0.0, "r opens the file again");
+        assert_eq!(shown.simulation().objects().count(), 3);
+        drop(shown);
+        assert_eq!(runner.simulation().objects().count(), of_program, "the program's simulation is kept");
+        drop(runner);
+        assert_eq!(program.frames, 1, "the program's hooks ran only before the file was opened");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

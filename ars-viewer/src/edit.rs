@@ -2,9 +2,10 @@
 //! [`apply_edit`] (what the panel calls), which checks everything first, so that an
 //! invalid value is an error and changes nothing.
 
-use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::nalgebra::{Point3, UnitQuaternion, Vector3};
 use ars_core::{
-    DcMotor, Error, JointId, JointParam, MassSpec, ObjectId, PositionServo, Profile, Result, Simulation, VelocityServo,
+    Actuator, DcMotor, Error, JointId, JointParam, MassSpec, ObjectId, PositionServo, Profile, Result, Simulation,
+    VelocityServo,
 };
 
 /// One change to a simulation, as the panel asks for it.
@@ -15,8 +16,13 @@ pub enum Edit {
     Color(ObjectId, [f32; 3]),
     /// A body's total mass, kg: its mass distribution scaled (the inertia with it).
     Mass(ObjectId, f64),
+    /// A body's density, kg/m³: its mass set to the density times its shape's volume,
+    /// as [`Mass`](Self::Mass) does. Only for a body of one solid shape.
+    Density(ObjectId, f64),
     /// A body's position, m (its centre of mass).
     Position(ObjectId, Point3<f64>),
+    /// A body's orientation (about its centre of mass).
+    Rotation(ObjectId, UnitQuaternion<f64>),
     /// A joint's limits on its first degree of freedom (rad or m; ±∞ for none).
     JointLimits(JointId, f64, f64),
     /// A joint's viscous friction coefficient.
@@ -57,14 +63,16 @@ pub enum Edit {
 pub fn apply_edit(sim: &mut Simulation, edit: &Edit) -> Result<()> {
     match *edit {
         Edit::Color(id, rgb) => sim.set_color(id, rgb),
-        Edit::Mass(id, mass) => {
-            let body = sim.body(id)?;
-            let (old, inertia) = (body.mass(), body.inertia());
-            // Checked by the mass spec (range, finite) before anything changes.
-            let scale = mass / old;
-            sim.body_mut(id)?.set_mass(MassSpec::Custom { mass, inertia: inertia * scale })
+        Edit::Mass(id, mass) => set_mass(sim, id, mass),
+        Edit::Density(id, density) => {
+            let volume = solid_volume(sim, id)?;
+            if !(density.is_finite() && density > 0.0) {
+                return Err(Error::NotPositive { what: "density", value: density });
+            }
+            set_mass(sim, id, density * volume)
         }
         Edit::Position(id, p) => sim.set_position(id, p),
+        Edit::Rotation(id, q) => sim.set_rotation(id, q.to_rotation_matrix()),
         Edit::JointLimits(id, low, high) => sim.joint_mut(id)?.set_limits(low, high),
         Edit::ViscousFriction(id, c) => sim.joint_mut(id)?.set_viscous_friction(c),
         Edit::Motor(id, speed, max_force) => sim.joint_mut(id)?.set_speed(speed, max_force),
@@ -77,6 +85,8 @@ pub fn apply_edit(sim: &mut Simulation, edit: &Edit) -> Result<()> {
                 servo.setpoint = profile;
             } else if let Some(motor) = joint.controller_mut::<DcMotor>() {
                 motor.voltage = profile;
+            } else if let Some(actuator) = joint.controller_mut::<Actuator>() {
+                actuator.set_ctrl(value)?;
             } else {
                 return Err(no_controller(sim, id));
             }
@@ -120,6 +130,28 @@ pub fn parse_number(what: &str, text: &str) -> std::result::Result<f64, String> 
 /// The current value of a joint's first-axis ODE parameter, for the panel.
 pub(crate) fn joint_param(sim: &Simulation, id: JointId, param: JointParam) -> Option<f64> {
     sim.joint(id).ok()?.ode().ok()?.param(param, 0).ok()
+}
+
+/// Sets a body's total mass, scaling its inertia with it.
+fn set_mass(sim: &mut Simulation, id: ObjectId, mass: f64) -> Result<()> {
+    let body = sim.body(id)?;
+    let (old, inertia) = (body.mass(), body.inertia());
+    // Checked by the mass spec (range, finite) before anything changes.
+    let scale = mass / old;
+    sim.body_mut(id)?.set_mass(MassSpec::Custom { mass, inertia: inertia * scale })
+}
+
+/// The volume of a body made of one solid shape, m³: what a density multiplies. An
+/// error for a static object, a body of several shapes (a robot link's) or a shape that
+/// encloses nothing.
+pub(crate) fn solid_volume(sim: &Simulation, id: ObjectId) -> Result<f64> {
+    let object = sim.object(id)?;
+    object.body()?;
+    let volume = object.shape().volume().filter(|_| object.geoms().count() == 1);
+    volume.filter(|v| *v > 0.0).ok_or_else(|| Error::Invalid {
+        what: "a density",
+        problem: format!("needs a body of one solid shape, and {:?} is not one", object.name()),
+    })
 }
 
 #[cfg(test)]
@@ -167,6 +199,34 @@ mod tests {
             assert!(e.to_string().contains("mass"), "{e}");
             assert_eq!(everything(&sim, link), before, "after a mass of {bad}");
         }
+    }
+
+    #[test]
+    fn a_density_sets_the_mass_of_a_solid_body_and_a_bad_one_changes_nothing() {
+        let (mut sim, link, _) = arm();
+        // A 0.1 × 0.1 × 1 m box: 0.01 m³.
+        apply_edit(&mut sim, &Edit::Density(link, 700.0)).unwrap();
+        assert!((sim.body(link).unwrap().mass() - 7.0).abs() < 1e-12);
+        let before = everything(&sim, link);
+        for bad in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
+            let e = apply_edit(&mut sim, &Edit::Density(link, bad)).unwrap_err();
+            assert!(e.to_string().contains("density"), "{e}");
+            assert_eq!(everything(&sim, link), before, "after a density of {bad}");
+        }
+        let id = sim.add_floor_plane(ars_core::nalgebra::Vector3::y(), 0.0).unwrap();
+        let e = apply_edit(&mut sim, &Edit::Density(id, 1000.0)).unwrap_err();
+        assert!(e.to_string().contains("body"), "{e}");
+    }
+
+    #[test]
+    fn a_rotation_turns_the_body_about_its_centre() {
+        let (mut sim, link, _) = arm();
+        let centre = sim.body(link).unwrap().position();
+        let turn = UnitQuaternion::from_euler_angles(0.3, -0.2, 1.1);
+        apply_edit(&mut sim, &Edit::Rotation(link, turn)).unwrap();
+        let body = sim.body(link).unwrap();
+        assert!(body.quaternion().angle_to(&turn) < 1e-12);
+        assert_eq!(body.position(), centre);
     }
 
     #[test]

@@ -4,7 +4,9 @@
 
 use std::collections::HashMap;
 
-use ars_core::{DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
+use ars_core::nalgebra::UnitQuaternion;
+use ars_core::sensors::DepthCamera;
+use ars_core::{Actuator, DcMotor, JointId, JointParam, ObjectId, PositionServo, Profile, Simulation, VelocityServo};
 use egui_plot::{Line, Plot, PlotPoints};
 use kiss3d::egui;
 
@@ -40,8 +42,14 @@ pub(crate) enum Command {
     Edit(Edit),
     /// Save the scene to the panel's save path (`Ctrl+S`).
     Save,
+    /// Open the file at the panel's open path (a scene file, a URDF or an MJCF model)
+    /// instead of the program.
+    Open,
     /// Show this many views (1 to 4: keys `1`–`4`).
     Views(usize),
+    /// Show this depth camera (counted from 0, in the order the sensors were added) in
+    /// the camera view.
+    ViewCamera(usize),
     /// Forget the selection.
     Deselect,
 }
@@ -78,6 +86,10 @@ pub(crate) struct Panel {
     pub(crate) save_path: String,
     /// Where it was saved last.
     pub(crate) saved: Option<String>,
+    /// The file to open.
+    pub(crate) open_path: String,
+    /// The file shown, if one was opened.
+    pub(crate) opened: Option<String>,
     /// The contact-force arrows' length per newton, m/N.
     pub(crate) force_scale: f64,
 }
@@ -100,6 +112,8 @@ impl Default for Panel {
             error: None,
             save_path: format!("./scene-{stamp}.json"),
             saved: None,
+            open_path: String::new(),
+            opened: None,
             force_scale: crate::scene::DEFAULT_FORCE_SCALE,
         }
     }
@@ -117,6 +131,8 @@ pub(crate) struct Status<'a> {
     pub(crate) forces: bool,
     /// How many views are shown.
     pub(crate) views: usize,
+    /// The depth camera the camera view shows (from 0).
+    pub(crate) camera: usize,
     pub(crate) joints: bool,
     pub(crate) axes: bool,
     /// The selected body, with the colour it is drawn with.
@@ -170,7 +186,11 @@ impl Panel {
                 if ui.selectable_label(status.contacts, "Contacts").clicked() {
                     commands.push(Command::ToggleContacts);
                 }
-                if ui.selectable_label(status.forces, "Forces").on_hover_text("contact forces as arrows").clicked() {
+                if ui
+                    .selectable_label(status.forces, "Forces")
+                    .on_hover_text("contact forces (cyan) and joint reactions (amber) as arrows")
+                    .clicked()
+                {
                     commands.push(Command::ToggleForces);
                 }
                 if ui.selectable_label(status.joints, "Joints").clicked() {
@@ -188,6 +208,21 @@ impl Panel {
                 for (n, name) in [(1, "free"), (2, "+ follow"), (3, "+ top"), (4, "+ camera")] {
                     if ui.selectable_label(status.views == n, name).clicked() {
                         commands.push(Command::Views(n));
+                    }
+                }
+                // Which camera sensor the fourth view shows, when there are several.
+                let cameras = sim.sensors_of::<DepthCamera>().count();
+                if status.views == 4 && cameras > 1 {
+                    let mut chosen = status.camera.min(cameras - 1);
+                    egui::ComboBox::from_id_salt("ars-view-camera")
+                        .selected_text(format!("camera {}", chosen + 1))
+                        .show_ui(ui, |ui| {
+                            for i in 0..cameras {
+                                ui.selectable_value(&mut chosen, i, format!("camera {}", i + 1));
+                            }
+                        });
+                    if chosen != status.camera {
+                        commands.push(Command::ViewCamera(chosen));
                     }
                 }
             });
@@ -270,6 +305,15 @@ impl Panel {
         if let Some(saved) = &self.saved {
             ui.label(format!("saved to {saved}"));
         }
+        ui.horizontal(|ui| {
+            if ui.button("Open").on_hover_text("a scene file (.json), a URDF robot or an MJCF model (.xml)").clicked() {
+                commands.push(Command::Open);
+            }
+            ui.add(egui::TextEdit::singleline(&mut self.open_path).hint_text("file").desired_width(170.0));
+        });
+        if let Some(opened) = &self.opened {
+            ui.label(format!("showing {opened}"));
+        }
     }
 
     /// The selected body: what it is and where, and its colour, mass and pose to edit.
@@ -314,6 +358,13 @@ impl Panel {
                 commands.push(Command::Edit(Edit::Mass(s.id, m)));
             }
             ui.end_row();
+            if let Some(volume) = s.volume {
+                ui.label("density [kg/m³]");
+                if let Some(rho) = self.number(ui, "density", s.mass / volume) {
+                    commands.push(Command::Edit(Edit::Density(s.id, rho)));
+                }
+                ui.end_row();
+            }
             for (axis, label) in ["x", "y", "z"].into_iter().enumerate() {
                 ui.label(format!("{label} [m]"));
                 let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, s.position[axis])).inner;
@@ -324,9 +375,21 @@ impl Panel {
                 }
                 ui.end_row();
             }
+            let angles = [roll, pitch, yaw].map(f64::to_degrees);
+            for (axis, label) in ["roll", "pitch", "yaw"].into_iter().enumerate() {
+                ui.label(format!("{label} [°]"));
+                let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, angles[axis])).inner;
+                if let Some(v) = field {
+                    let mut a = angles;
+                    a[axis] = v;
+                    let [r, p, y] = a.map(f64::to_radians);
+                    commands.push(Command::Edit(Edit::Rotation(s.id, UnitQuaternion::from_euler_angles(r, p, y))));
+                }
+                ui.end_row();
+            }
         });
         if !paused {
-            ui.label("Pause (space) to edit the position.");
+            ui.label("Pause (space) to edit the pose.");
         }
     }
 
@@ -502,17 +565,25 @@ impl Panel {
 /// A slider for every joint held by a position servo: its set-point.
 fn setpoints(ui: &mut egui::Ui, sim: &Simulation, commands: &mut Vec<Command>) {
     let mut any = false;
+    let pi = std::f64::consts::PI;
     for (name, id) in sim.joints() {
-        let Ok(Some(servo)) = sim.joint_controller::<PositionServo>(id) else { continue };
+        // A position servo's set-point, or an actuator's control over its range.
+        let (mut value, range, label) = if let Ok(Some(servo)) = sim.joint_controller::<PositionServo>(id) {
+            (servo.setpoint.value(sim.time()), -pi..=pi, name)
+        } else if let Ok(Some(actuator)) = sim.joint_controller::<Actuator>(id) {
+            let (lo, hi) = actuator.ctrl_range().unwrap_or((-1.0, 1.0));
+            (actuator.ctrl(), lo..=hi, actuator.name())
+        } else {
+            continue;
+        };
         any = true;
-        let mut value = servo.setpoint.value(sim.time());
-        let slider = egui::Slider::new(&mut value, -std::f64::consts::PI..=std::f64::consts::PI).text(elided(name));
-        if ui.add(slider).on_hover_text(name).changed() {
+        let slider = egui::Slider::new(&mut value, range).text(elided(label));
+        if ui.add(slider).on_hover_text(label).changed() {
             commands.push(Command::Setpoint(id, value));
         }
     }
     if !any {
-        ui.label("No position set-points (joints with a PositionServo get a slider).");
+        ui.label("No set-points (joints with a PositionServo or an actuator get a slider).");
     }
 }
 

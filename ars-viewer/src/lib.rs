@@ -60,7 +60,7 @@ pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_for
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
-pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow};
+pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
 pub use video::{
     MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,
@@ -82,18 +82,32 @@ pub struct ViewerOptions {
     /// Draw the world axes at the origin, 1 m long: X red, Y green, Z blue. Off by
     /// default; the window's `x` key (and the panel's Axes button) toggles them.
     pub axes: bool,
-    /// Draw the contact forces as arrows ([`DEFAULT_FORCE_SCALE`] metres per newton).
-    /// Off by default; the panel's Forces button toggles them. They are the forces ODE
-    /// reports: the window and the recorder turn the world's contact feedback on
-    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)); with an
-    /// [`OffscreenRenderer`] of your own, turn it on in the simulation you render.
+    /// Draw the contact forces (cyan) and the joints' reaction forces on their first
+    /// body (amber, from the anchor) as arrows ([`DEFAULT_FORCE_SCALE`] metres per
+    /// newton). Off by default; the panel's Forces button toggles them. They are the
+    /// forces ODE reports: the window and the recorder turn the world's contact feedback
+    /// ([`World::set_contact_feedback`](ars_core::World::set_contact_feedback)) and every
+    /// joint's on; with an [`OffscreenRenderer`] of your own, turn them on in the
+    /// simulation you render.
     pub forces: bool,
+    /// How many views, 1 to 4 (0 is taken as 1): with more than one, the image is split
+    /// into quarters showing, in reading order, the free camera, a camera following a
+    /// body, the top view (orthographic) and what the scene's first depth camera sees
+    /// (see [`ViewKind`]). A window starts with these views (keys `1`–`4` change them);
+    /// off screen, every frame is the split image.
+    pub views: usize,
 }
 
 impl ViewerOptions {
     /// With the world axes drawn or not.
     pub fn with_axes(mut self, axes: bool) -> Self {
         self.axes = axes;
+        self
+    }
+
+    /// With `views` views (1 to 4; see [`views`](Self::views)).
+    pub fn with_views(mut self, views: usize) -> Self {
+        self.views = views;
         self
     }
 

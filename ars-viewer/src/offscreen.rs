@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
+use kiss3d::camera::Camera3d;
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::ViewerOptions;
@@ -15,7 +16,8 @@ use crate::convert;
 use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
 use crate::frames::{FrameWriter, RawFrame};
-use crate::scene::View;
+use crate::scene::{SceneMirror, View};
+use crate::views::OffscreenViews;
 
 thread_local! {
     /// Whether a kiss3d context was made on this thread.
@@ -142,6 +144,9 @@ pub fn init_offscreen_context() -> Result<()> {
 pub struct OffscreenRenderer {
     surface: OffscreenSurface,
     view: View,
+    /// The other views when several are drawn ([`ViewerOptions::views`]); `surface`
+    /// then draws the free one, in the top-left quarter.
+    views: Option<OffscreenViews>,
 }
 
 impl OffscreenRenderer {
@@ -156,7 +161,18 @@ impl OffscreenRenderer {
         if w == 0 || h == 0 || w > 8192 || h > 8192 {
             return Err(ViewerError::Settings(format!("image size {w}×{h} must be between 1 and 8192 pixels")));
         }
+        if !(1..=4).contains(&options.views.max(1)) || (options.views > 1 && (w < 2 || h < 2)) {
+            return Err(ViewerError::Settings(format!(
+                "{} views in a {w}×{h} image: 1 to 4 views, of at least one pixel each",
+                options.views
+            )));
+        }
         init_offscreen_context()?;
+        let mut mirror = SceneMirror::new();
+        mirror.show_axes = options.axes;
+        mirror.show_forces = options.forces;
+        let views = (options.views > 1).then(|| OffscreenViews::new(view, options.views, &mirror));
+        let (w, h) = views.as_ref().map_or((w, h), OffscreenViews::free_size);
         // One sample: MSAA ×4 renders black on Mesa's GL path.
         let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
         let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(w, h, setup));
@@ -164,7 +180,7 @@ impl OffscreenRenderer {
         let mut shown = View::new(view, surface.window_mut());
         shown.mirror.show_axes = options.axes;
         shown.mirror.show_forces = options.forces;
-        Ok(OffscreenRenderer { surface, view: shown })
+        Ok(OffscreenRenderer { surface, view: shown, views })
     }
 
     /// Renders the simulation as it is now.
@@ -181,12 +197,21 @@ impl OffscreenRenderer {
         let mut bottom_up = Vec::new();
         self.surface.snap(&mut bottom_up);
         let size = self.surface.size();
-        Ok(RawFrame { width: size.x, height: size.y, bottom_up })
+        let Some(views) = &mut self.views else {
+            return Ok(RawFrame { width: size.x, height: size.y, bottom_up });
+        };
+        let free = (convert::point_back(self.view.camera.eye()), convert::point_back(self.view.camera.orbit.at()));
+        let (width, height) = views.size();
+        let bottom_up = views.compose(sim, &bottom_up, free, self.view.follow.as_deref())?;
+        Ok(RawFrame { width, height, bottom_up })
     }
 
     /// Forgets the scene (after the simulation was rebuilt).
     pub fn reset(&mut self) {
         self.view.mirror.clear();
+        if let Some(views) = &mut self.views {
+            views.clear();
+        }
     }
 }
 
@@ -271,7 +296,7 @@ impl ScreenshotRecorder {
         let mut renderer = OffscreenRenderer::with_options(&view, &self.options)?;
         if self.options.forces {
             // The forces drawn are those ODE reports.
-            driver.simulation().world_mut().set_contact_feedback(true);
+            crate::scene::report_forces(driver.simulation().world_mut());
         }
         let mut writer = FrameWriter::new();
         let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];

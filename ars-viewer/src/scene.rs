@@ -177,6 +177,11 @@ impl SceneMirror {
                     window.draw_line(convert::point(&a), convert::point(&b), cyan, 3.0, false);
                 }
             }
+            // The joints' reaction forces, where they report them.
+            let amber = Color::new(1.0, 0.6, 0.0, 1.0);
+            for (a, b) in world.joints().flat_map(|j| joint_force_arrow(world, j, self.force_scale)) {
+                window.draw_line(convert::point(&a), convert::point(&b), amber, 3.0, false);
+            }
         }
         if self.show_joints {
             for (_, j) in sim.joints() {
@@ -205,17 +210,51 @@ pub const DEFAULT_FORCE_SCALE: f64 = 0.05;
 /// fifth of its length. No segments for a force of zero (not reported, or no push).
 pub fn force_arrow(contact: &ars_core::ContactPoint, scale: f64) -> Vec<(Point3<f64>, Point3<f64>)> {
     let force = if contact.pair.body1.is_some() { contact.force } else { -contact.force };
-    let shaft = force * scale;
+    arrow(contact.position, force * scale)
+}
+
+/// The segments of an arrow from `start` along `shaft`, with a head of two strokes a
+/// fifth of its length; none for a shaft of (nearly) zero length.
+fn arrow(start: Point3<f64>, shaft: Vector3<f64>) -> Vec<(Point3<f64>, Point3<f64>)> {
     let length = shaft.norm();
     if !(length.is_finite() && length > 1e-9) {
         return Vec::new();
     }
-    let (start, tip) = (contact.position, contact.position + shaft);
+    let tip = start + shaft;
     // Any direction across the shaft, for the head.
     let across =
         shaft.cross(&Vector3::x()).try_normalize(1e-9).unwrap_or_else(|| shaft.cross(&Vector3::y()).normalize());
     let back = tip - shaft * 0.2;
     vec![(start, tip), (tip, back + across * length * 0.1), (tip, back - across * length * 0.1)]
+}
+
+/// Asks `world` to report the forces the viewer draws: the contacts' and every joint's
+/// (reporting them changes no result).
+pub(crate) fn report_forces(world: &mut ars_core::World) {
+    world.set_contact_feedback(true);
+    let joints: Vec<_> = world.joints().collect();
+    for joint in joints {
+        if let Ok(mut joint) = world.joint_mut(joint) {
+            joint.enable_feedback();
+        }
+    }
+}
+
+/// The segments of the arrow drawing the force a joint puts on its first body, `scale`
+/// metres per newton, from its anchor: none when the joint has no anchor (a slider, a
+/// fixed joint) or does not report its forces ([`JointMut::enable_feedback`]).
+///
+/// [`JointMut::enable_feedback`]: ars_core::joint::JointMut::enable_feedback
+pub fn joint_force_arrow(
+    world: &ars_core::World,
+    joint: ars_core::JointHandle,
+    scale: f64,
+) -> Vec<(Point3<f64>, Point3<f64>)> {
+    let Ok(joint) = world.joint(joint) else { return Vec::new() };
+    match (joint.feedback(), joint.anchor()) {
+        (Some(feedback), Ok(anchor)) => arrow(anchor, feedback.force1 * scale),
+        _ => Vec::new(),
+    }
 }
 
 /// The rotation taking kiss3d's +Y-aligned round primitives to ODE's +Z.
@@ -438,5 +477,27 @@ mod tests {
         let mut quiet = contacts[0];
         quiet.force = Vector3::zeros();
         assert!(force_arrow(&quiet, 0.05).is_empty());
+    }
+
+    #[test]
+    fn a_hanging_pendulum_pulls_its_pivot_by_its_weight() {
+        use ars_core::JointEnd;
+        let mut sim = Simulation::new().unwrap();
+        let bob = sim.add_sphere(0.1, [0.0, 0.5, 0.0], Mass::Total(3.0)).unwrap();
+        let pivot =
+            sim.add_hinge_joint("pivot", bob, JointEnd::World, Some([0.0, 1.0, 0.0].into()), Vector3::z()).unwrap();
+        let handle = sim.joint(pivot).unwrap().ode().unwrap().handle();
+        assert!(joint_force_arrow(sim.world(), handle, 0.05).is_empty(), "no feedback asked for: no arrow");
+        sim.world_mut().joint_mut(handle).unwrap().enable_feedback();
+        sim.run_for(0.5).unwrap();
+        let arrow = joint_force_arrow(sim.world(), handle, 0.05);
+        assert_eq!(arrow.len(), 3);
+        let (start, tip) = arrow[0];
+        // From the anchor, as ODE reports it from the bob (the joint's error: 1e-11 m).
+        assert!((start - Point3::new(0.0, 1.0, 0.0)).norm() < 1e-9, "from the anchor: {start}");
+        // The joint holds the bob up: 3 kg × g, upwards, at rest.
+        let expected = 3.0 * sim.gravity().norm() * 0.05;
+        assert!(((tip - start).y - expected).abs() < 1e-6 * expected, "{start} to {tip}");
+        assert!((tip - start).xz().norm() < 1e-9);
     }
 }

@@ -21,6 +21,9 @@ pub struct Selected {
     pub name: String,
     /// Its mass, kg.
     pub mass: f64,
+    /// The volume of its one solid shape, m³ (`None` for a body of several shapes):
+    /// what its density is reckoned on.
+    pub volume: Option<f64>,
     /// Its position (centre of mass), m.
     pub position: Point3<f64>,
     /// Its orientation.
@@ -40,6 +43,7 @@ impl Selected {
             id,
             name: object.name().to_string(),
             mass: body.mass(),
+            volume: crate::edit::solid_volume(sim, id).ok(),
             position: body.position(),
             rotation: body.quaternion(),
             linear_velocity: body.linear_velocity(),

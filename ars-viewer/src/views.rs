@@ -9,11 +9,12 @@ use ars_core::sensors::DepthCamera;
 use ars_core::{ObjectId, Simulation, ViewSettings};
 use kiss3d::camera::{FirstPersonCamera3d, OrbitCamera3d, Projection};
 use kiss3d::egui;
+use kiss3d::scene::SceneNode3d;
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::convert;
 use crate::layout::Rect;
-use crate::scene::View;
+use crate::scene::{SceneMirror, View};
 
 /// What a viewport shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -25,7 +26,8 @@ pub enum ViewKind {
     Follow,
     /// Straight down on what the free camera looks at, orthographic.
     Top,
-    /// What the scene's first depth camera sees.
+    /// What one of the scene's depth cameras sees (the first, unless another is
+    /// chosen in the panel).
     Sensor,
 }
 
@@ -59,6 +61,87 @@ pub(crate) fn followed(sim: &Simulation, selected: Option<ObjectId>, follow: Opt
         .or_else(|| sim.bodies().next().and_then(|(id, _)| by_id(id)))
 }
 
+/// What a view shows.
+pub(crate) enum Seen {
+    /// The free view: the window's (or the renderer's) own camera.
+    Free,
+    /// The scene through this camera, with the view's caption.
+    Through(Box<ViewCamera>, &'static str),
+    /// Nothing, for this reason.
+    Nothing(&'static str),
+}
+
+/// The camera of a view other than the free one.
+pub(crate) enum ViewCamera {
+    /// Following a body, or from above (orthographic).
+    Orbit(OrbitCamera3d),
+    /// Through a camera sensor's eye.
+    Eye(FirstPersonCamera3d),
+}
+
+impl ViewCamera {
+    /// Draws `scene` through this camera into `surface`.
+    pub(crate) async fn draw(&mut self, surface: &mut OffscreenSurface, scene: &mut SceneNode3d) {
+        match self {
+            ViewCamera::Orbit(camera) => surface.render_3d(scene, camera).await,
+            ViewCamera::Eye(camera) => surface.render_3d(scene, camera).await,
+        }
+    }
+}
+
+/// What the view of `kind` shows of `sim`: `free` is the free camera's eye and target,
+/// `target` the point a follow view looks at ([`followed`]), `camera` the depth camera
+/// a camera view shows (counted from 0; the last if there are fewer).
+pub(crate) fn camera_of(
+    kind: ViewKind,
+    sim: &Simulation,
+    free: (Point3<f64>, Point3<f64>),
+    target: Option<Point3<f64>>,
+    camera: usize,
+) -> ars_core::Result<Seen> {
+    let (eye, at) = free;
+    Ok(match kind {
+        ViewKind::Free => Seen::Free,
+        ViewKind::Follow => {
+            let Some(target) = target else { return Ok(Seen::Nothing("2 follow: no moving body")) };
+            let side = (eye - at).try_normalize(1e-9).unwrap_or_else(Vector3::z);
+            let camera = OrbitCamera3d::new(convert::point(&(target + side * 5.0)), convert::point(&target));
+            Seen::Through(Box::new(ViewCamera::Orbit(camera)), "2 follow")
+        }
+        ViewKind::Top => {
+            let height = (eye - at).norm().max(1.0);
+            let above = at + Vector3::new(0.0, height, 1e-3 * height);
+            let mut camera = OrbitCamera3d::new(convert::point(&above), convert::point(&at));
+            camera.set_projection(Projection::Orthographic);
+            Seen::Through(Box::new(ViewCamera::Orbit(camera)), "3 top")
+        }
+        ViewKind::Sensor => {
+            let cameras = sim.sensors_of::<DepthCamera>().count();
+            let Some(sensor) = sim.sensors_of::<DepthCamera>().nth(camera.min(cameras.saturating_sub(1))) else {
+                return Ok(Seen::Nothing("4 camera: no depth camera in the scene"));
+            };
+            Seen::Through(Box::new(ViewCamera::Eye(sensor_camera(sensor, sim)?)), "4 camera")
+        }
+    })
+}
+
+/// The colour camera at a depth camera's place, with its field of view and range, its
+/// image rolling with it: what [`Camera`](crate::Camera) renders.
+pub(crate) fn sensor_camera(sensor: &DepthCamera, sim: &Simulation) -> ars_core::Result<FirstPersonCamera3d> {
+    let pose = sensor.mount().pose(sim.scene())?;
+    let eye = Point3::from(pose.translation.vector);
+    let at = eye + pose.rotation * -Vector3::z();
+    let mut camera = FirstPersonCamera3d::new_with_frustum(
+        sensor.fov_y() as f32,
+        sensor.near() as f32,
+        sensor.far() as f32,
+        convert::point(&eye),
+        convert::point(&at),
+    );
+    camera.set_up_axis(convert::vector(&(pose.rotation * Vector3::y())));
+    Ok(camera)
+}
+
 /// One extra view drawn off screen.
 struct Extra {
     kind: ViewKind,
@@ -77,13 +160,16 @@ struct Extra {
 pub(crate) struct Views {
     /// How many views are shown (1 to 4).
     pub(crate) count: usize,
+    /// The depth camera the camera view shows, counted from 0 in the order the
+    /// sensors were added.
+    pub(crate) camera: usize,
     extras: Vec<Extra>,
 }
 
 impl Views {
     /// One view, the window's.
     pub(crate) fn new() -> Self {
-        Views { count: 1, extras: Vec::new() }
+        Views { count: 1, camera: 0, extras: Vec::new() }
     }
 
     /// Draws `id` anew in every extra view (after its colour changed).
@@ -131,47 +217,17 @@ impl Views {
         }
         for extra in self.extras.iter_mut().filter(|e| VIEW_KINDS[..self.count].contains(&e.kind)) {
             extra.view.mirror.sync(sim, &mut extra.view.scene)?;
-            let (eye, at) = free;
-            let image = match extra.kind {
-                ViewKind::Free => continue,
-                ViewKind::Follow => {
-                    let Some(target) = target else {
-                        extra.caption = "2 follow: no moving body".into();
-                        continue;
-                    };
-                    let side = (eye - at).try_normalize(1e-9).unwrap_or_else(Vector3::z);
-                    let mut camera =
-                        OrbitCamera3d::new(convert::point(&(target + side * 5.0)), convert::point(&target));
-                    extra.caption = "2 follow".into();
-                    extra.surface.render_image_3d(&mut extra.view.scene, &mut camera).await
+            let image = match camera_of(extra.kind, sim, free, target, self.camera)? {
+                Seen::Free => continue,
+                Seen::Nothing(why) => {
+                    extra.caption = why.into();
+                    extra.texture = None;
+                    continue;
                 }
-                ViewKind::Top => {
-                    let height = (eye - at).norm().max(1.0);
-                    let above = at + Vector3::new(0.0, height, 1e-3 * height);
-                    let mut camera = OrbitCamera3d::new(convert::point(&above), convert::point(&at));
-                    camera.set_projection(Projection::Orthographic);
-                    extra.caption = "3 top".into();
-                    extra.surface.render_image_3d(&mut extra.view.scene, &mut camera).await
-                }
-                ViewKind::Sensor => {
-                    let Some(sensor) = sim.sensors_of::<DepthCamera>().next() else {
-                        extra.caption = "4 camera: no depth camera in the scene".into();
-                        extra.texture = None;
-                        continue;
-                    };
-                    let pose = sensor.mount().pose(sim.scene())?;
-                    let eye = Point3::from(pose.translation.vector);
-                    let at = eye + pose.rotation * -Vector3::z();
-                    let mut camera = FirstPersonCamera3d::new_with_frustum(
-                        sensor.fov_y() as f32,
-                        0.05,
-                        1000.0,
-                        convert::point(&eye),
-                        convert::point(&at),
-                    );
-                    camera.set_up_axis(convert::vector(&(pose.rotation * Vector3::y())));
-                    extra.caption = "4 camera".into();
-                    extra.surface.render_image_3d(&mut extra.view.scene, &mut camera).await
+                Seen::Through(mut camera, caption) => {
+                    extra.caption = caption.into();
+                    camera.draw(&mut extra.surface, &mut extra.view.scene).await;
+                    extra.surface.snap_image()
                 }
             };
             let pixels = egui::ColorImage::from_rgb([image.width() as usize, image.height() as usize], image.as_raw());
@@ -229,6 +285,144 @@ impl Views {
             );
         }
         covered
+    }
+}
+
+/// The pixel rectangles (left, top, width, height) of `count` views in a `width ×
+/// height` image: [`viewports`] rounded to whole pixels, covering the image exactly.
+pub(crate) fn pixel_cells(width: u32, height: u32, count: usize) -> Vec<[u32; 4]> {
+    viewports(width as f32, height as f32, count)
+        .into_iter()
+        .map(|[l, t, r, b]| {
+            let (l, t, r, b) = (l.round() as u32, t.round() as u32, r.round() as u32, b.round() as u32);
+            [l, t, r - l, b - t]
+        })
+        .collect()
+}
+
+/// Copies `cell` (RGB rows of `rect`'s size, bottom row first, as read back) into its
+/// place in `image` (RGB rows of `width × height`, bottom row first).
+pub(crate) fn place(image: &mut [u8], width: u32, height: u32, rect: [u32; 4], cell: &[u8]) {
+    let [left, top, w, h] = rect;
+    let row = 3 * w as usize;
+    // The cell's bottom row is the image's row `height - top - h`, counted from the bottom.
+    let first = (height - top - h) as usize;
+    for (i, source) in cell.chunks_exact(row).take(h as usize).enumerate() {
+        let start = 3 * ((first + i) * width as usize + left as usize);
+        image[start..start + row].copy_from_slice(source);
+    }
+}
+
+/// The colour of a view that shows nothing (as in the window).
+const EMPTY_VIEW: u8 = 40;
+
+/// The grey of the lines between views (as in the window).
+const BORDER: u8 = 60;
+
+/// One view after the free one in an off-screen image of several views.
+struct Cell {
+    kind: ViewKind,
+    rect: [u32; 4],
+    surface: OffscreenSurface,
+    view: View,
+}
+
+/// The views after the free one of an off-screen renderer of several views (its
+/// `--views`): each drawn into its own surface the size of its quarter, then put in
+/// its place in the renderer's image.
+pub(crate) struct OffscreenViews {
+    cells: Vec<Cell>,
+    /// The image's size.
+    size: (u32, u32),
+    /// The free view's quarter.
+    free: [u32; 4],
+}
+
+impl OffscreenViews {
+    /// The views 2 to `count` of a `settings.size` image, drawing what `mirror` draws
+    /// (axes, forces...). Needs the rendering context.
+    pub(crate) fn new(settings: &ViewSettings, count: usize, mirror: &SceneMirror) -> Self {
+        let (width, height) = settings.size;
+        let rects = pixel_cells(width, height, count);
+        let cells = rects
+            .iter()
+            .zip(VIEW_KINDS)
+            .skip(1)
+            .map(|(&rect, kind)| {
+                let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
+                let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(rect[2], rect[3], setup));
+                surface.set_background_color(convert::color(settings.background));
+                let mut view = View::new(settings, surface.window_mut());
+                view.mirror.show_axes = mirror.show_axes;
+                view.mirror.show_forces = mirror.show_forces;
+                Cell { kind, rect, surface, view }
+            })
+            .collect();
+        OffscreenViews { cells, size: (width, height), free: rects[0] }
+    }
+
+    /// The whole image's size.
+    pub(crate) fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// Forgets every view's nodes (after the simulation was rebuilt).
+    pub(crate) fn clear(&mut self) {
+        for cell in &mut self.cells {
+            cell.view.mirror.clear();
+        }
+    }
+
+    /// A line between the quarters, drawn on the free view's right and bottom edges and
+    /// on the follow and top views' edges next to it (the camera view keeps every pixel
+    /// of its image).
+    fn draw_borders(&self, image: &mut [u8]) {
+        let (width, height) = self.size;
+        let [_, _, w, h] = self.free;
+        let mut paint = |x: u32, y: u32| {
+            let at = 3 * ((height - 1 - y) as usize * width as usize + x as usize);
+            image[at..at + 3].fill(BORDER);
+        };
+        for y in 0..height {
+            paint(w - 1, y);
+        }
+        for x in 0..width {
+            paint(x, h - 1);
+        }
+    }
+
+    /// The free view's size: the renderer draws it through its own camera.
+    pub(crate) fn free_size(&self) -> (u32, u32) {
+        (self.free[2], self.free[3])
+    }
+
+    /// The whole image (bottom row first): the free view's pixels `free_view` (bottom
+    /// row first, [`free_size`](Self::free_size)) in the top-left quarter, the others
+    /// drawn now from `sim`. `free` is the free camera's eye and target, `follow` the
+    /// object it follows.
+    pub(crate) fn compose(
+        &mut self,
+        sim: &Simulation,
+        free_view: &[u8],
+        free: (Point3<f64>, Point3<f64>),
+        follow: Option<&str>,
+    ) -> ars_core::Result<Vec<u8>> {
+        let (width, height) = self.size;
+        let mut image = vec![EMPTY_VIEW; 3 * width as usize * height as usize];
+        place(&mut image, width, height, self.free, free_view);
+        let target = followed(sim, None, follow);
+        let mut pixels = Vec::new();
+        for cell in &mut self.cells {
+            cell.view.mirror.sync(sim, &mut cell.view.scene)?;
+            if let Seen::Through(mut camera, _) = camera_of(cell.kind, sim, free, target, 0)? {
+                cell.view.mirror.draw_overlays(sim, cell.surface.window_mut());
+                kiss3d::pollster::block_on(camera.draw(&mut cell.surface, &mut cell.view.scene));
+                cell.surface.snap(&mut pixels);
+                place(&mut image, width, height, cell.rect, &pixels);
+            }
+        }
+        self.draw_borders(&mut image);
+        Ok(image)
     }
 }
 

@@ -13,7 +13,7 @@ use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::ViewerOptions;
 use crate::convert;
-use crate::driver::Driver;
+use crate::driver::{Driver, Shown};
 use crate::edit::{Edit, apply_edit};
 use crate::error::Result;
 use crate::gui;
@@ -279,7 +279,7 @@ impl Feedback {
         let world = sim.world_mut();
         if on {
             self.before = world.contact_feedback();
-            world.set_contact_feedback(true);
+            crate::scene::report_forces(world);
         } else {
             world.set_contact_feedback(self.before);
         }
@@ -506,6 +506,9 @@ pub(crate) fn drive_window<D: Driver>(
     mut video: Option<&mut WindowVideo>,
 ) -> Result<WindowReport> {
     kiss3d::pollster::block_on(async move {
+        // The program's simulation, or a file opened from the panel (then titled so).
+        let mut runner = Shown::new(runner);
+        let mut title = view.title.clone();
         let mut window = open_window(view).await?;
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
@@ -516,6 +519,7 @@ pub(crate) fn drive_window<D: Driver>(
         let mut hand = Hand::default();
         let mut feedback = Feedback::default();
         let mut views = Views::new();
+        views.count = options.views.clamp(1, 4);
         // Where the extra views were drawn last (their clicks are not the scene's).
         let mut view_covers: Vec<layout::Rect> = Vec::new();
         if options.forces {
@@ -659,7 +663,7 @@ pub(crate) fn drive_window<D: Driver>(
                         (WindowKey::G, Action::Press) => panel.shown = !panel.shown,
                         (WindowKey::K, Action::Press) => shown.mirror.show_contacts = !shown.mirror.show_contacts,
                         (WindowKey::X, Action::Press) => shown.mirror.show_axes = !shown.mirror.show_axes,
-                        (WindowKey::P, Action::Press) => screenshot(&window, &view.title),
+                        (WindowKey::P, Action::Press) => screenshot(&window, &title),
                         (k, Action::Press) => {
                             if let Some(k) = program_key(k) {
                                 runner.key_down(k)?;
@@ -710,13 +714,14 @@ pub(crate) fn drive_window<D: Driver>(
                     pacer.measure(runner.simulation().time());
                 }
                 let status = gui::Status {
-                    title: &view.title,
+                    title: &title,
                     paused,
                     real_time_factor: pacer.factor,
                     following: shown.following,
                     contacts: shown.mirror.show_contacts,
                     forces: shown.mirror.show_forces,
                     views: views.count,
+                    camera: views.camera,
                     joints: shown.mirror.show_joints,
                     axes: shown.mirror.show_axes,
                     selected: None,
@@ -773,7 +778,7 @@ pub(crate) fn drive_window<D: Driver>(
                             feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
                             pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
                         }
-                        gui::Command::Screenshot => screenshot(&window, &view.title),
+                        gui::Command::Screenshot => screenshot(&window, &title),
                         gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
                         gui::Command::ToggleContacts => shown.mirror.show_contacts = !shown.mirror.show_contacts,
                         gui::Command::ToggleForces => {
@@ -796,7 +801,30 @@ pub(crate) fn drive_window<D: Driver>(
                             Err(e) => panel.error = Some(e.to_string()),
                         },
                         gui::Command::Save => save(&runner.simulation(), &mut panel),
+                        gui::Command::Open => match Simulation::open(panel.open_path.trim()) {
+                            Ok(opened) => {
+                                hand.deselect(&mut runner.simulation());
+                                let path = std::path::PathBuf::from(panel.open_path.trim());
+                                eprintln!("opened {}", path.display());
+                                for skipped in &opened.skipped {
+                                    eprintln!("skipped: {skipped}");
+                                }
+                                runner.open(path.clone(), opened.simulation);
+                                shown.mirror.clear();
+                                views.clear();
+                                feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
+                                pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                                title = format!("ARS: {}", path.display());
+                                panel.opened = Some(path.display().to_string());
+                                panel.error = opened.skipped.first().map(|first| {
+                                    let n = opened.skipped.len();
+                                    format!("{n} skipped (listed on the terminal), the first: {first}")
+                                });
+                            }
+                            Err(e) => panel.error = Some(format!("not opened: {e}")),
+                        },
                         gui::Command::Views(n) => views.count = n,
+                        gui::Command::ViewCamera(i) => views.camera = i,
                         gui::Command::Deselect => hand.deselect(&mut runner.simulation()),
                     }
                 }

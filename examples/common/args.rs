@@ -1,6 +1,6 @@
 //! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
 //! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
-//! [--axes]`.
+//! [--axes] [--views N]`.
 
 use std::path::PathBuf;
 use std::process::exit;
@@ -30,11 +30,13 @@ pub struct Args {
     pub video: Option<PathBuf>,
     /// The video's frames per second (of simulated time).
     pub fps: f64,
+    /// How many views (1 to 4): the free camera, following, top, camera sensor.
+    pub views: usize,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes] [--views N]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
@@ -46,7 +48,8 @@ fn usage(program: &str, default_duration: f64) -> String {
          \x20 --fps N            the video's frames per second (default 30)\n\
          \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
          \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
-         \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)"
+         \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)\n\
+         \x20 --views N          split the picture into N views (1-4): free, following, top, camera sensor"
     )
 }
 
@@ -71,6 +74,7 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         axes: false,
         video: None,
         fps: 30.0,
+        views: 1,
     };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
@@ -97,6 +101,13 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
             }
             "--window" => args.window = true,
             "--axes" => args.axes = true,
+            "--views" => {
+                let v = value("--views");
+                args.views = match v.parse::<usize>() {
+                    Ok(n) if (1..=4).contains(&n) => n,
+                    _ => fail(format!("--views must be 1, 2, 3 or 4, got {v:?}")),
+                };
+            }
             "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
             "--video" => args.video = Some(value("--video").into()),
             "--fps" => {
@@ -197,7 +208,7 @@ pub fn stopped_early(run: ars::Result<()>) -> ars::Result<()> {
 /// What the viewer draws, from `--axes`.
 #[cfg(feature = "viewer")]
 pub fn viewer_options(args: &Args) -> ars::viewer::ViewerOptions {
-    ars::viewer::ViewerOptions::default().with_axes(args.axes)
+    ars::viewer::ViewerOptions::default().with_axes(args.axes).with_views(args.views)
 }
 
 #[cfg(feature = "viewer")]

@@ -773,6 +773,24 @@ impl PySimulation {
         Ok(dict)
     }
 
+    /// Sets the control of the actuator called `name` (an MJCF `<motor>`,
+    /// `<position>` or `<velocity>`), clamped to its control range and held until set
+    /// again: MuJoCo's `data.ctrl`.
+    fn set_control(&self, py: Python<'_>, name: &str, ctrl: f64) -> PyResult<()> {
+        self.with(py, |sim| sim.set_control(name, ctrl))
+    }
+
+    /// The control of the actuator called `name`.
+    fn control(&self, py: Python<'_>, name: &str) -> PyResult<f64> {
+        self.with(py, |sim| sim.control(name))
+    }
+
+    /// The names of the actuators, in joint order.
+    #[getter]
+    fn actuators(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        self.with(py, |sim| Ok(sim.actuators().map(|(name, _)| name.to_string()).collect()))
+    }
+
     /// A piston: slides along and turns about the world `axis` through `anchor`.
     #[pyo3(signature = (name, obj1, obj2, anchor, axis))]
     fn add_piston_joint(
@@ -887,6 +905,30 @@ impl PySimulation {
         })
     }
 
+    /// Objects `a` and `b` never touch (MJCF's `<contact><exclude>`).
+    fn exclude_contacts(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
+            sim.exclude_contacts(a, b)
+        })
+    }
+
+    /// Objects `a` and `b` touch again.
+    fn include_contacts(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
+            sim.include_contacts(a, b)
+        })
+    }
+
+    /// The pairs of objects that never touch, by name.
+    fn excluded_contacts(&self, py: Python<'_>) -> PyResult<Vec<(String, String)>> {
+        self.with(py, |sim| {
+            let name = |id| sim.object(id).map(|o| o.name().to_string());
+            sim.excluded_contacts().into_iter().map(|(a, b)| Ok((name(a)?, name(b)?))).collect()
+        })
+    }
+
     /// Runs one frame: `steps_per_frame` steps, with the hooks per frame.
     fn step_frame(&self, py: Python<'_>) -> PyResult<()> {
         self.advance(py, |sim| sim.step_frame())
@@ -951,6 +993,20 @@ impl PySimulation {
     fn load_scene_from(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         let sim = guarded(py, || Simulation::load_scene_from(&path))?;
         Ok(PySimulation::wrap(sim))
+    }
+
+    /// A simulation from any file ARS reads, by its extension: a scene file (`.json`), a
+    /// URDF robot standing on a floor (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`;
+    /// what ARS cannot read is skipped, each with a `UserWarning`). What the viewer's
+    /// Open button and `ars view FILE` open.
+    #[staticmethod]
+    fn open(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let opened = guarded(py, || Simulation::open(&path))?;
+        for skipped in &opened.skipped {
+            let message = std::ffi::CString::new(format!("skipped: {skipped}")).unwrap_or_default();
+            PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
+        }
+        Ok(PySimulation::wrap(opened.simulation))
     }
 
     /// A lidar: `beams` beams per plane fanned over `fov` radians, seeing from

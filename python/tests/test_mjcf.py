@@ -139,11 +139,58 @@ SWINGING = """
 </mujoco>"""
 
 
-def angles_after_one_second(path, joints, dt):
+def angles_after_one_second(path, joints, dt, controls=None):
     sim = ars.Simulation(time_step=dt)
     sim.load_mjcf(path)
+    for name, ctrl in (controls or {}).items():
+        sim.set_control(name, ctrl)
     sim.run(1.0)
     return np.array([sim.joint(j).angle for j in joints])
+
+
+def mujoco_angles_after_one_second(path, joints, controls=None):
+    """MuJoCo's joint angles after 1 s, RK4 at 0.1 ms, with these controls."""
+    m = mujoco.MjModel.from_xml_path(str(path))
+    m.opt.timestep = 1e-4
+    m.opt.integrator = mujoco.mjtIntegrator.mjINT_RK4
+    d = mujoco.MjData(m)
+    for name, ctrl in (controls or {}).items():
+        d.ctrl[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, name)] = ctrl
+    while d.time < 1.0 - 1e-9:
+        mujoco.mj_step(m, d)
+    return np.array(
+        [d.qpos[m.jnt_qposadr[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, j)]] for j in joints]
+    )
+
+
+def test_actuated_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
+    """The swinging pendulum with a position servo (kp, kv) on its first joint and a
+    geared motor, its control clamped by its range, on the second: the joint angles
+    after 1 s approach MuJoCo's to first order in the time step."""
+    actuators = """<actuator>
+      <position name="hold" joint="a1" kp="20" kv="1"/>
+      <motor name="push" joint="a2" gear="2" ctrlrange="-0.1 0.1"/>
+    </actuator></mujoco>"""
+    path = tmp_path / "actuated.xml"
+    path.write_text(SWINGING.replace("</mujoco>", actuators))
+    controls = {"hold": 0.3, "push": 1.0}
+    reference = mujoco_angles_after_one_second(path, ["a1", "a2"], controls)
+    passive = mujoco_angles_after_one_second(path, ["a1", "a2"])
+    assert np.abs(reference - passive).max() > 0.1, "the actuators change the motion"
+    gaps = [
+        np.abs(angles_after_one_second(path, ["a1", "a2"], dt, controls) - reference).max()
+        for dt in (2e-3, 1e-3, 5e-4)
+    ]
+    assert gaps[0] > gaps[1] > gaps[2], gaps
+    for coarse, fine in zip(gaps, gaps[1:]):
+        assert 1.6 < coarse / fine < 2.5, gaps
+    sim = ars.Simulation()
+    sim.load_mjcf(path)
+    assert sim.actuators == ["hold", "push"]
+    sim.set_control("push", 1.0)
+    assert sim.control("push") == 0.1
+    with pytest.raises(ars.UnknownNameError, match="hold"):
+        sim.set_control("hodl", 0.0)
 
 
 def test_contact_free_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):

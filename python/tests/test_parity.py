@@ -300,6 +300,13 @@ PYTHON_FOR_RUST = {
     "Simulation.restore": "Simulation.restore",
     "Simulation.from_snapshot": "Simulation.from_snapshot",
     "Simulation.load_scene_from": "Simulation.load_scene_from",
+    "Simulation.open": "Simulation.open",
+    "Scene.set_control": "Simulation.set_control",
+    "Scene.exclude_contacts": "Simulation.exclude_contacts",
+    "Scene.include_contacts": "Simulation.include_contacts",
+    "Scene.excluded_contacts": "Simulation.excluded_contacts",
+    "Scene.control": "Simulation.control",
+    "Scene.actuators": "Simulation.actuators",
     # Scene
     "Scene.add_fixed_joint": "Simulation.add_fixed_joint",
     "Scene.add_hinge_joint": "Simulation.add_rotary_joint",

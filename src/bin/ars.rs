@@ -9,16 +9,18 @@ use std::time::Instant;
 
 use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::{CsvColumns, Gps, JointPositions};
-use ars::{Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, ViewSettings};
+use ars::{FileFormat, Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, ViewSettings};
 
 const USAGE: &str = "\
 ars: run, view and record ARS scenes and URDF robots
 
 usage:
   ars run FILE [--duration S] [--csv OUT] [--every N]
-  ars view FILE [--screenshots DIR | --video OUT.mp4] [--duration S] [--size WxH] [--axes]
+  ars view FILE [--screenshots DIR | --video OUT.mp4] [--duration S] [--frame-every N]
+           [--size WxH] [--axes] [--views N] [--csv OUT]
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
-  ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes]
+           [--views N] [--csv OUT]
+  ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes] ...
   ars --help | --version
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
@@ -27,7 +29,8 @@ Ctrl+S in the window; saved at any step, it goes on exactly where it was), a rob
 MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
 
   run       simulate without graphics and print a summary; --csv writes the scene's
-            sensors (or, if it has none, every body's position) every N steps
+            sensors (or, if it has none, every body's position) every N steps; with
+            view and record, --csv writes what was simulated until the end
   view      open a window (Escape closes it; --video records it); without a display,
             record off screen into --screenshots or --video
   record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
@@ -39,6 +42,7 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
   --fps N           the video's frames per second (default 30)
   --size WxH        picture or window size in pixels (default 1024x768)
   --axes            draw the world axes
+  --views N         split the picture into N views (1-4): free, following, top, camera
   --fixed-base      (URDF) fix the robot's root to the world
   --y-up            (URDF) the file is written Y up (URDF's convention is Z up)
   --at X,Y,Z        (URDF, MJCF) where its root starts, m (default 0,0,0)";
@@ -56,6 +60,7 @@ struct Command {
     fps: f64,
     size: Option<(u32, u32)>,
     axes: bool,
+    views: usize,
     fixed_base: bool,
     y_up: bool,
     at: Vector3<f64>,
@@ -81,6 +86,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
         fps: 30.0,
         size: None,
         axes: false,
+        views: 1,
         fixed_base: false,
         y_up: false,
         at: Vector3::zeros(),
@@ -124,6 +130,13 @@ fn parse(args: &[String]) -> Result<Command, String> {
                 };
             }
             "--axes" => command.axes = true,
+            "--views" => {
+                let v = value("--views")?;
+                command.views = match v.parse::<usize>() {
+                    Ok(n) if (1..=4).contains(&n) => n,
+                    _ => return Err(format!("--views must be 1, 2, 3 or 4, got {v:?}")),
+                };
+            }
             "--fixed-base" => command.fixed_base = true,
             "--y-up" => command.y_up = true,
             "--at" => {
@@ -143,9 +156,6 @@ fn parse(args: &[String]) -> Result<Command, String> {
     if command.video.is_some() && command.verb == "run" {
         return Err("--video goes with ars record or ars view".into());
     }
-    if command.csv.is_some() && command.verb != "run" {
-        return Err("--csv goes with ars run".into());
-    }
     Ok(command)
 }
 
@@ -159,12 +169,12 @@ struct FileProgram {
 
 impl FileProgram {
     fn is_urdf(&self) -> bool {
-        self.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+        FileFormat::of(&self.path).is_ok_and(|f| f == FileFormat::Urdf)
     }
 
     /// MuJoCo's MJCF: `.xml` (or `.mjcf`).
     fn is_mjcf(&self) -> bool {
-        self.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xml") || e.eq_ignore_ascii_case("mjcf"))
+        FileFormat::of(&self.path).is_ok_and(|f| f == FileFormat::Mjcf)
     }
 }
 
@@ -185,6 +195,7 @@ impl Program for FileProgram {
     }
 
     fn create_simulation(&mut self) -> ars::Result<Simulation> {
+        FileFormat::of(&self.path)?;
         let mut sim = if self.is_mjcf() {
             let mut sim = Simulation::builder().space(SpaceKind::Simple).build()?;
             let options = ars::MjcfOptions::new().base_pose(self.urdf.base_pose).skip_unsupported(true);
@@ -288,32 +299,37 @@ fn run(command: &Command) -> Result<(), Box<dyn std::error::Error>> {
 #[cfg(feature = "viewer")]
 fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     use ars::viewer::{ProgramViewer, ScreenshotRecorder, ViewerOptions};
-    let options = ViewerOptions::default().with_axes(command.axes);
+    let options = ViewerOptions::default().with_axes(command.axes).with_views(command.views);
     let window = command.verb == "view" && ars::viewer::has_display();
     if window {
         eprintln!("{}", ars::viewer::VIEWER_KEYS);
-        if let Some(path) = &command.video {
-            let view =
-                ViewSettings { size: command.size.unwrap_or(program.view_settings().size), ..program.view_settings() };
-            let mut runner = ars::ProgramRunner::new(program)?;
-            // The window runs in real time: a duration is wall seconds here.
-            let limit = command.duration.map(std::time::Duration::from_secs_f64);
-            let (_, video) = ars::viewer::run_window_recording(&mut runner, &view, &options, limit, path, command.fps)?;
-            println!("recorded the window: {} frames ({} s) into {}", video.frames, video.duration, path.display());
-            return Ok(());
-        }
-        match (command.size, command.duration) {
-            (None, None) => {
-                program.show_with(&options)?;
+        let sim = match (command.size, command.duration, &command.video) {
+            (size, limit, Some(path)) => {
+                let view =
+                    ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+                let mut runner = ars::ProgramRunner::new(program)?;
+                // The window runs in real time: a duration is wall seconds here.
+                let limit = limit.map(std::time::Duration::from_secs_f64);
+                let (_, video) =
+                    ars::viewer::run_window_recording(&mut runner, &view, &options, limit, path, command.fps)?;
+                println!("recorded the window: {} frames ({} s) into {}", video.frames, video.duration, path.display());
+                runner.into_simulation()
             }
-            (size, limit) => {
+            (None, None, None) => program.show_with(&options)?,
+            (size, limit, None) => {
                 let view =
                     ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
                 let mut runner = ars::ProgramRunner::new(program)?;
                 // The window runs in real time: a duration is wall seconds here.
                 let limit = limit.map(std::time::Duration::from_secs_f64);
                 ars::viewer::run_window_with(&mut runner, &view, &options, limit)?;
+                runner.into_simulation()
             }
+        };
+        println!("{}", program.summary);
+        println!("closed at t = {} s ({} steps)", sim.time(), sim.step_count());
+        if let Some(path) = &command.csv {
+            write_csv(&sim, path, command.every)?;
         }
         return Ok(());
     }
@@ -334,6 +350,9 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
             video.bytes,
             path.display()
         );
+        if let Some(csv) = &command.csv {
+            write_csv(&sim, csv, command.every)?;
+        }
         return Ok(());
     }
     let Some(dir) = &command.screenshots else {
@@ -348,6 +367,9 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
     let (sim, written) = recorder.record(program, command.duration.unwrap_or(10.0))?;
     println!("{}", program.summary);
     println!("recorded t = {} s: {} frames into {}", sim.time(), written.len(), dir.display());
+    if let Some(path) = &command.csv {
+        write_csv(&sim, path, command.every)?;
+    }
     Ok(())
 }
 

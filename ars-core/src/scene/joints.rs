@@ -7,7 +7,7 @@ use nalgebra::{Point3, Vector3};
 
 use super::Scene;
 use super::views::JointKey;
-use crate::control::{JointController, JointState};
+use crate::control::{Actuator, JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
 use crate::joint::{JointBuilder, JointKind, JointParam};
@@ -451,6 +451,42 @@ impl Scene {
             efforts.added += effort;
         }
         Ok(())
+    }
+
+    /// The [`Actuator`]s driving joints, by name, with their joints, in joint creation
+    /// order.
+    pub fn actuators(&self) -> impl Iterator<Item = (&str, JointId)> + '_ {
+        self.driven_joints.iter().filter_map(|&id| Some((self.actuator_of(id)?.name(), id)))
+    }
+
+    /// The actuator of joint `id`, if it is driven by one.
+    fn actuator_of(&self, id: JointId) -> Option<&Actuator> {
+        let c = self.joint_data(id).ok()?.controller.as_deref()?;
+        (c as &dyn std::any::Any).downcast_ref::<Actuator>()
+    }
+
+    /// The joint of the actuator called `name`.
+    fn actuator_joint(&self, name: &str) -> Result<JointId> {
+        self.actuators().find(|(n, _)| *n == name).map(|(_, id)| id).ok_or_else(|| Error::UnknownName {
+            kind: "actuator",
+            name: name.to_string(),
+            close_matches: super::names::close_matches(name, self.actuators().map(|(n, _)| n)),
+        })
+    }
+
+    /// Sets the control of the actuator called `name` (clamped to its control range),
+    /// held until set again: MuJoCo's `data.ctrl`.
+    pub fn set_control(&mut self, name: &str, ctrl: f64) -> Result<()> {
+        let id = self.actuator_joint(name)?;
+        let mut joint = self.joint_mut(id)?;
+        // Found on this joint just above.
+        joint.controller_mut::<Actuator>().map_or(Ok(()), |actuator| actuator.set_ctrl(ctrl))
+    }
+
+    /// The control of the actuator called `name`.
+    pub fn control(&self, name: &str) -> Result<f64> {
+        let id = self.actuator_joint(name)?;
+        Ok(self.actuator_of(id).map_or(0.0, Actuator::ctrl))
     }
 
     /// Keeps the list of joints with friction or a controller.

@@ -45,8 +45,17 @@
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (materials, textures, meshes not used by a geom), `<statistic>`, `<size>`,
 //!   `<custom>`, `<light>`, `<camera>`, `<site>`, and the geoms' material.
-//! - **Actuators** (`motor`, `position`, `velocity`) and **sensors** are listed in
-//!   [`MjcfModel::actuators`] and otherwise not made yet.
+//! - **Actuators.** `motor`, `position` (`kp`, `kv`) and `velocity` (`kv`) on a joint
+//!   become [`Actuator`]s of the same names driving their joints, with `gear` (its
+//!   first number), `ctrlrange`/`ctrllimited` and `forcerange`/`forcelimited` (with
+//!   `autolimits`), their defaults from the element's own kind in a `<default>` class
+//!   (not from `<general>`); set a control with [`Scene::set_control`], as MuJoCo's
+//!   `data.ctrl`, at 0 until set. Other kinds, and actuators on tendons or sites, are
+//!   unsupported; a second actuator on one joint is skipped (ARS drives a joint with
+//!   one controller).
+//! - **Contacts.** `<contact><exclude body1 body2>`: the two bodies never touch
+//!   ([`Scene::exclude_contacts`]); `<pair>` is unsupported.
+//! - **Sensors** are not read yet (listed in [`MjcfModel::skipped`]).
 //!
 //! Unnamed bodies and joints are named `body{N}` and `joint{N}` with N MuJoCo's id (the
 //! world body is 0, bodies are numbered in the file's order).
@@ -59,6 +68,7 @@ use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion
 use super::Scene;
 use super::joints::JointEnd;
 use crate::body::{BodyBuilder, MassSpec};
+use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{JointId, ObjectId};
@@ -98,15 +108,18 @@ impl MjcfOptions {
     }
 }
 
-/// An actuator of the file, as read (not made yet).
+/// An actuator of the file, as made: an [`Actuator`] of the same name driving its
+/// joint (set its control with [`Scene::set_control`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MjcfActuator {
-    /// Its name (`actuator{N}` when unnamed).
+    /// Its name (`actuator{N}` when unnamed, N its index among the actuators).
     pub name: String,
     /// `motor`, `position` or `velocity`.
     pub kind: String,
     /// The joint it drives.
     pub joint: String,
+    /// The actuator made of it.
+    pub actuator: Actuator,
 }
 
 /// What [`Scene::load_mjcf`] made.
@@ -425,6 +438,8 @@ struct Model {
     timestep: Option<f64>,
     gravity: Option<Vector3<f64>>,
     actuators: Vec<MjcfActuator>,
+    /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
+    excluded: Vec<(String, String)>,
     skipped: Vec<String>,
 }
 
@@ -608,6 +623,52 @@ impl Reader<'_> {
             ));
         }
         Ok(body)
+    }
+
+    /// An actuator (the `index`-th), or `None` when skipped.
+    fn actuator(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfActuator>> {
+        let tag = node.tag_name().name();
+        let a = Attrs::new(node, self.defaults, "main");
+        for transmission in ["tendon", "site", "jointinparent", "body", "cranksite"] {
+            if a.get(transmission).is_some() {
+                self.unsupported(&node, &format!("an actuator driving a {transmission} (only joints are)"))?;
+                return Ok(None);
+            }
+        }
+        let kind = match tag {
+            "motor" => ActuatorKind::Motor,
+            "position" => {
+                ActuatorKind::Position { kp: a.number("kp")?.unwrap_or(1.0), kv: a.number("kv")?.unwrap_or(0.0) }
+            }
+            "velocity" => ActuatorKind::Velocity { kv: a.number("kv")?.unwrap_or(1.0) },
+            other => {
+                self.unsupported(&node, &format!("an actuator of kind <{other}>"))?;
+                return Ok(None);
+            }
+        };
+        let joint = a.get("joint").ok_or_else(|| problem(&node, "needs a joint"))?.to_string();
+        let name = node.attribute("name").map_or_else(|| format!("actuator{index}"), str::to_string);
+        let gear = a.numbers("gear")?.and_then(|g| g.first().copied()).unwrap_or(1.0);
+        let to_problem = |e: Error| problem(&node, e.to_string());
+        let mut actuator = Actuator::new(&name, kind, gear).map_err(to_problem)?;
+        if let Some([lo, hi]) = self.limited(&a, "ctrl")? {
+            actuator = actuator.with_ctrl_range(lo, hi).map_err(to_problem)?;
+        }
+        if let Some([lo, hi]) = self.limited(&a, "force")? {
+            actuator = actuator.with_force_range(lo, hi).map_err(to_problem)?;
+        }
+        Ok(Some(MjcfActuator { name, kind: tag.to_string(), joint, actuator }))
+    }
+
+    /// `{what}range` when `{what}limited` says it applies ("true", or "auto" with a
+    /// range and `<compiler autolimits>`).
+    fn limited(&self, a: &Attrs<'_, '_>, what: &str) -> Parsed<Option<[f64; 2]>> {
+        let range = a.fixed::<2>(&format!("{what}range"))?;
+        Ok(match a.get(&format!("{what}limited")).unwrap_or("auto") {
+            "true" => Some(range.ok_or_else(|| problem(&a.node, format!("{what}limited needs a {what}range")))?),
+            "auto" if self.compiler.autolimits => range,
+            _ => None,
+        })
     }
 
     fn inertial(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<(f64, Vector3<f64>, Matrix3<f64>)> {
@@ -814,6 +875,7 @@ fn read_nodes(
         timestep,
         gravity,
         actuators: Vec::new(),
+        excluded: Vec::new(),
         skipped: Vec::new(),
     };
     for &(file, node) in nodes {
@@ -831,21 +893,29 @@ fn read_nodes(
                 }
                 "actuator" => {
                     for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
-                        let kind = child.tag_name().name();
-                        if !["motor", "position", "velocity"].contains(&kind) {
-                            reader.unsupported(&child, &format!("an actuator of kind <{kind}>"))?;
-                            continue;
+                        if let Some(actuator) = reader.actuator(child, i)? {
+                            model.actuators.push(actuator);
                         }
-                        let joint = child.attribute("joint").ok_or_else(|| problem(&child, "needs a joint"))?;
-                        model.actuators.push(MjcfActuator {
-                            name: child.attribute("name").map_or_else(|| format!("actuator{i}"), str::to_string),
-                            kind: kind.to_string(),
-                            joint: joint.to_string(),
-                        });
                     }
                 }
                 "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
-                "sensor" | "contact" => {
+                "contact" => {
+                    for child in node.children().filter(|c| c.is_element()) {
+                        match child.tag_name().name() {
+                            "exclude" => {
+                                let body = |attr: &str| {
+                                    child
+                                        .attribute(attr)
+                                        .map(str::to_string)
+                                        .ok_or_else(|| problem(&child, format!("needs a {attr}")))
+                                };
+                                model.excluded.push((body("body1")?, body("body2")?));
+                            }
+                            other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
+                        }
+                    }
+                }
+                "sensor" => {
                     reader.skipped.push(format!(
                         "<{}> at line {}: not read yet",
                         node.tag_name().name(),
@@ -952,6 +1022,32 @@ impl Scene {
         }
         for body in &model.bodies {
             self.add_mjcf_body(body, &world, None, made)?;
+        }
+        for (a, b) in &model.excluded {
+            let body = |name: &str| {
+                made.body(name).ok_or_else(|| Error::Invalid {
+                    what: "an MJCF contact exclusion",
+                    problem: format!("names the body {name:?}, which the model does not have"),
+                })
+            };
+            self.exclude_contacts(body(a)?, body(b)?)?;
+        }
+        for a in &model.actuators {
+            let joint = made.joint(&a.joint).ok_or_else(|| Error::Invalid {
+                what: "an MJCF actuator",
+                problem: format!("{:?} drives the joint {:?}, which the model does not have", a.name, a.joint),
+            })?;
+            if self.actuators().any(|(_, j)| j == joint) {
+                made.skipped.push(format!(
+                    "actuator {:?}: the joint {:?} has an actuator already (ARS drives a joint with one)",
+                    a.name, a.joint
+                ));
+                continue;
+            }
+            self.joint_mut(joint)?.set_controller(a.actuator.clone()).map_err(|e| Error::Invalid {
+                what: "an MJCF actuator",
+                problem: format!("{:?} on the joint {:?}: {e}", a.name, a.joint),
+            })?;
         }
         Ok(())
     }

@@ -70,7 +70,7 @@ impl<Id: Copy + PartialEq> Names<Id> {
         self.by_name.get(name).copied().ok_or_else(|| Error::UnknownName {
             kind: self.kind,
             name: name.to_string(),
-            close_matches: self.close_matches(name),
+            close_matches: close_matches(name, self.by_name.keys().map(String::as_str)),
         })
     }
 
@@ -78,20 +78,19 @@ impl<Id: Copy + PartialEq> Names<Id> {
     pub(crate) fn iter(&self) -> impl Iterator<Item = (&str, Id)> + '_ {
         self.by_name.iter().map(|(n, id)| (n.as_str(), *id))
     }
+}
 
-    /// Up to three registered names within a small edit distance, closest first.
-    fn close_matches(&self, name: &str) -> Vec<String> {
-        let limit = (name.chars().count() / 3).max(2);
-        let lower = name.to_lowercase();
-        let mut scored: Vec<(usize, &String)> = self
-            .by_name
-            .keys()
-            .map(|k| (edit_distance(&lower, &k.to_lowercase()), k))
-            .filter(|(d, k)| *d <= limit || k.to_lowercase().starts_with(&lower))
-            .collect();
-        scored.sort();
-        scored.into_iter().take(3).map(|(_, k)| k.clone()).collect()
-    }
+/// Up to three of `known` within a small edit distance of `name`, closest first: what
+/// an unknown name's error suggests.
+pub(crate) fn close_matches<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> Vec<String> {
+    let limit = (name.chars().count() / 3).max(2);
+    let lower = name.to_lowercase();
+    let mut scored: Vec<(usize, &str)> = known
+        .map(|k| (edit_distance(&lower, &k.to_lowercase()), k))
+        .filter(|(d, k)| *d <= limit || k.to_lowercase().starts_with(&lower))
+        .collect();
+    scored.sort();
+    scored.into_iter().take(3).map(|(_, k)| k.to_string()).collect()
 }
 
 /// Levenshtein distance between two strings (in chars).

@@ -2,11 +2,11 @@
 //! pads, a ball that bounces off one wall only. Every other pair touches with the
 //! world's default surface ([`World::set_default_surface`](crate::World::set_default_surface)).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use super::Scene;
 use crate::contact::{CollisionHooks, ContactSurface, GeomPair};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::handle::{GeomHandle, ObjectId};
 
 /// The surfaces chosen for pairs of objects, and which object each of their geoms
@@ -15,18 +15,26 @@ use crate::handle::{GeomHandle, ObjectId};
 pub(crate) struct PairSurfaces {
     /// Both orders of each pair.
     by_pair: HashMap<(ObjectId, ObjectId), ContactSurface>,
+    /// Pairs that never touch, both orders.
+    excluded: HashSet<(ObjectId, ObjectId)>,
     owner: HashMap<GeomHandle, ObjectId>,
 }
 
 impl PairSurfaces {
     pub(crate) fn is_empty(&self) -> bool {
-        self.by_pair.is_empty()
+        self.by_pair.is_empty() && self.excluded.is_empty()
     }
 
     /// Forgets every pair with `object` (it is being removed).
     pub(crate) fn forget(&mut self, object: ObjectId) {
         self.by_pair.retain(|(a, b), _| *a != object && *b != object);
+        self.excluded.retain(|(a, b)| *a != object && *b != object);
         self.owner.retain(|_, o| *o != object);
+    }
+
+    /// Whether `object` is in any pair (its geoms must be known).
+    fn has(&self, object: ObjectId) -> bool {
+        self.by_pair.keys().chain(&self.excluded).any(|(x, _)| *x == object)
     }
 }
 
@@ -34,6 +42,7 @@ impl CollisionHooks for PairSurfaces {
     fn contact_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
         let owners = (self.owner.get(&pair.geom1), self.owner.get(&pair.geom2));
         let surface = match owners {
+            (Some(a), Some(b)) if self.excluded.contains(&(*a, *b)) => return None,
             (Some(a), Some(b)) => self.by_pair.get(&(*a, *b)),
             _ => None,
         };
@@ -61,17 +70,7 @@ impl Scene {
     /// ```
     pub fn set_contact_surface(&mut self, a: ObjectId, b: ObjectId, surface: ContactSurface) -> Result<()> {
         surface.validate()?;
-        let geoms = |scene: &Scene, id: ObjectId| -> Result<Vec<GeomHandle>> {
-            let data = scene.objects.get(id.0, ObjectId::KIND)?;
-            Ok(data.geom.iter().chain(&data.extra_geoms).copied().collect())
-        };
-        let (geoms_a, geoms_b) = (geoms(self, a)?, geoms(self, b)?);
-        for g in geoms_a {
-            self.pair_surfaces.owner.insert(g, a);
-        }
-        for g in geoms_b {
-            self.pair_surfaces.owner.insert(g, b);
-        }
+        self.own_geoms(a, b)?;
         self.pair_surfaces.by_pair.insert((a, b), surface);
         self.pair_surfaces.by_pair.insert((b, a), surface);
         Ok(())
@@ -91,12 +90,81 @@ impl Scene {
         self.object(b)?;
         self.pair_surfaces.by_pair.remove(&(a, b));
         self.pair_surfaces.by_pair.remove(&(b, a));
+        self.forget_unpaired(a, b);
+        Ok(())
+    }
+
+    /// Objects `a` and `b` never touch (MJCF's `<contact><exclude>`): their geoms pass
+    /// through each other, whatever their collision bits and surface. Kept by scene
+    /// files and snapshots; [`include_contacts`](Self::include_contacts) undoes it.
+    ///
+    /// ```
+    /// use ars_core::{Mass, Simulation};
+    ///
+    /// let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
+    /// let floor = sim.object("floor")?.id();
+    /// let ghost = sim.add_sphere(0.1, [0.0, 0.5, 0.0], Mass::Total(1.0))?;
+    /// sim.exclude_contacts(floor, ghost)?;
+    /// sim.run_for(1.0)?;
+    /// assert!(sim.position(ghost)?.y < -1.0, "it fell through the floor");
+    /// # Ok::<(), ars_core::Error>(())
+    /// ```
+    pub fn exclude_contacts(&mut self, a: ObjectId, b: ObjectId) -> Result<()> {
+        if a == b {
+            return Err(Error::Invalid {
+                what: "a pair without contacts",
+                problem: format!("needs two objects, and {:?} is given twice", self.object(a)?.name()),
+            });
+        }
+        self.own_geoms(a, b)?;
+        self.pair_surfaces.excluded.insert((a, b));
+        self.pair_surfaces.excluded.insert((b, a));
+        Ok(())
+    }
+
+    /// Objects `a` and `b` touch again (see [`exclude_contacts`](Self::exclude_contacts)).
+    pub fn include_contacts(&mut self, a: ObjectId, b: ObjectId) -> Result<()> {
+        self.object(a)?;
+        self.object(b)?;
+        self.pair_surfaces.excluded.remove(&(a, b));
+        self.pair_surfaces.excluded.remove(&(b, a));
+        self.forget_unpaired(a, b);
+        Ok(())
+    }
+
+    /// Every pair of objects that never touch, once each, by the objects' names in
+    /// alphabetical order.
+    pub fn excluded_contacts(&self) -> Vec<(ObjectId, ObjectId)> {
+        let name = |id: &ObjectId| self.object(*id).map(|o| o.name()).unwrap_or_default();
+        let mut pairs: Vec<_> =
+            self.pair_surfaces.excluded.iter().filter(|(a, b)| name(a) <= name(b)).copied().collect();
+        pairs.sort_by(|x, y| (name(&x.0), name(&x.1)).cmp(&(name(&y.0), name(&y.1))));
+        pairs
+    }
+
+    /// Records which object the geoms of `a` and `b` belong to (the collision's lookup).
+    fn own_geoms(&mut self, a: ObjectId, b: ObjectId) -> Result<()> {
+        let geoms = |scene: &Scene, id: ObjectId| -> Result<Vec<GeomHandle>> {
+            let data = scene.objects.get(id.0, ObjectId::KIND)?;
+            Ok(data.geom.iter().chain(&data.extra_geoms).copied().collect())
+        };
+        let (geoms_a, geoms_b) = (geoms(self, a)?, geoms(self, b)?);
+        for g in geoms_a {
+            self.pair_surfaces.owner.insert(g, a);
+        }
+        for g in geoms_b {
+            self.pair_surfaces.owner.insert(g, b);
+        }
+        Ok(())
+    }
+
+    /// Forgets the geoms of `a` and `b` when they are in no pair any more.
+    fn forget_unpaired(&mut self, a: ObjectId, b: ObjectId) {
         for object in [a, b] {
-            if !self.pair_surfaces.by_pair.keys().any(|(x, _)| *x == object) {
+            if !self.pair_surfaces.has(object) {
                 self.pair_surfaces.owner.retain(|_, o| *o != object);
             }
         }
-        Ok(())
     }
 
     /// Every pair of objects with a surface of its own, once each, by the objects' names

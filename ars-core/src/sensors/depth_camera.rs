@@ -94,6 +94,16 @@ impl DepthCamera {
     pub fn fov_y(&self) -> f64 {
         self.fov_y
     }
+
+    /// The nearest distance it sees, m.
+    pub fn near(&self) -> f64 {
+        self.near
+    }
+
+    /// The farthest distance it sees, m.
+    pub fn far(&self) -> f64 {
+        self.far
+    }
 }
 
 /// One [`DepthCamera`] image.

@@ -23,6 +23,7 @@
 //! only (ODE clears its accumulators after each step).
 
 pub mod hooks;
+pub mod open;
 pub mod scene_file;
 mod sensor_kinds;
 pub mod snapshot;

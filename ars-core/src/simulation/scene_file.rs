@@ -60,6 +60,9 @@ pub struct SceneFile {
     /// The contact surfaces of pairs of objects (by name) that have their own.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pair_surfaces: Vec<PairSurfaceFile>,
+    /// The pairs of objects (by name) that never touch.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub excluded_contacts: Vec<(String, String)>,
     /// The broad-phase space. A file that names none (written by hand, say) loads
     /// with [`SpaceKind::Simple`], the original's (and, before sweep and prune was the
     /// default, every simulation's).
@@ -440,6 +443,11 @@ impl Simulation {
                     Ok(PairSurfaceFile { a: self.object(a)?.name().into(), b: self.object(b)?.name().into(), surface })
                 })
                 .collect::<Result<_>>()?,
+            excluded_contacts: self
+                .excluded_contacts()
+                .into_iter()
+                .map(|(a, b)| Ok((self.object(a)?.name().to_string(), self.object(b)?.name().to_string())))
+                .collect::<Result<_>>()?,
             space: self.space_kind(),
             time: self.time(),
             step_count: self.step_count(),
@@ -637,6 +645,10 @@ impl Simulation {
         for pair in &file.pair_surfaces {
             let (a, b) = (sim.object(pair.a.as_str())?.id(), sim.object(pair.b.as_str())?.id());
             sim.set_contact_surface(a, b, pair.surface)?;
+        }
+        for (a, b) in &file.excluded_contacts {
+            let (a, b) = (sim.object(a.as_str())?.id(), sim.object(b.as_str())?.id());
+            sim.exclude_contacts(a, b)?;
         }
         for sensor in &file.sensors {
             sensor.add_to(&mut sim)?;

@@ -1,0 +1,98 @@
+//! Opening any file ARS reads as a new simulation, by its extension: a scene file
+//! (`.json`), a URDF robot (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`). What the
+//! viewer's Open button and `ars view FILE` open.
+
+use std::path::Path;
+
+use nalgebra::Vector3;
+
+use super::Simulation;
+use crate::error::{Error, Result};
+use crate::scene::{MjcfOptions, UrdfOptions};
+use crate::world::SpaceKind;
+
+/// The kinds of file [`Simulation::open`] reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileFormat {
+    /// A scene file (`.json`), as [`Simulation::save_scene_to`] writes it.
+    Scene,
+    /// A URDF robot (`.urdf`).
+    Urdf,
+    /// A MuJoCo model (`.xml` or `.mjcf`).
+    Mjcf,
+}
+
+impl FileFormat {
+    /// The extensions read, with their formats.
+    pub const EXTENSIONS: [(&'static str, FileFormat); 4] = [
+        ("json", FileFormat::Scene),
+        ("urdf", FileFormat::Urdf),
+        ("xml", FileFormat::Mjcf),
+        ("mjcf", FileFormat::Mjcf),
+    ];
+
+    /// The format of `path`, by its extension (in any case).
+    pub fn of(path: impl AsRef<Path>) -> Result<FileFormat> {
+        let extension = path.as_ref().extension().and_then(|e| e.to_str()).unwrap_or_default().to_ascii_lowercase();
+        FileFormat::EXTENSIONS.iter().find(|(e, _)| *e == extension).map(|(_, format)| *format).ok_or_else(|| {
+            Error::UnknownKind {
+                what: "file extension",
+                name: format!("{}", path.as_ref().display()),
+                known: FileFormat::EXTENSIONS.iter().map(|(e, _)| format!(".{e}")).collect(),
+            }
+        })
+    }
+}
+
+/// A file opened by [`Simulation::open`].
+#[derive(Debug)]
+pub struct OpenedFile {
+    /// Its simulation.
+    pub simulation: Simulation,
+    /// What it holds that ARS skipped (MJCF elements it cannot read), said as
+    /// sentences: empty for scene files and URDF robots.
+    pub skipped: Vec<String>,
+}
+
+impl Simulation {
+    /// Opens `path` as a new simulation, by its [`FileFormat`]:
+    /// - a scene file as saved, where it was saved (mid-run: exactly);
+    /// - a URDF robot, Z up, standing on a floor plane at y = 0 (default
+    ///   [`UrdfOptions`]), in a simple space;
+    /// - a MuJoCo model with its own floor and gravity, at ARS's time step (the model's
+    ///   is [`MjcfModel::timestep`](crate::MjcfModel::timestep)), in a simple space, what
+    ///   ARS cannot read skipped and listed in [`OpenedFile::skipped`].
+    ///
+    /// ```
+    /// # let dir = std::env::temp_dir().join(format!("ars-open-doc-{}", std::process::id()));
+    /// # std::fs::create_dir_all(&dir).unwrap();
+    /// use ars_core::{Mass, Simulation};
+    /// let mut sim = Simulation::new()?;
+    /// sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
+    /// sim.save_scene_to(dir.join("ball.json"))?;
+    /// let opened = Simulation::open(dir.join("ball.json"))?;
+    /// assert_eq!(opened.simulation.objects().count(), 1);
+    /// assert!(Simulation::open(dir.join("ball.txt")).is_err());
+    /// # Ok::<(), ars_core::Error>(())
+    /// ```
+    pub fn open(path: impl AsRef<Path>) -> Result<OpenedFile> {
+        let path = path.as_ref();
+        match FileFormat::of(path)? {
+            FileFormat::Scene => Ok(OpenedFile { simulation: Simulation::load_scene_from(path)?, skipped: Vec::new() }),
+            FileFormat::Urdf => {
+                let mut simulation =
+                    Simulation::builder().space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0).build()?;
+                simulation.load_urdf(path, &UrdfOptions::new())?;
+                Ok(OpenedFile { simulation, skipped: Vec::new() })
+            }
+            FileFormat::Mjcf => {
+                let mut simulation = Simulation::builder().space(SpaceKind::Simple).build()?;
+                let model = simulation.load_mjcf(path, &MjcfOptions::new().skip_unsupported(true))?;
+                if let Some(gravity) = model.gravity {
+                    simulation.world_mut().set_gravity(gravity)?;
+                }
+                Ok(OpenedFile { simulation, skipped: model.skipped })
+            }
+        }
+    }
+}

@@ -1,0 +1,64 @@
+"""`ars.Simulation.open`: any file ARS reads, by its extension, as the viewer's Open
+button and `ars view FILE` open it."""
+
+import os
+import warnings
+
+import pytest
+
+import ars
+
+ROOT = os.path.join(os.path.dirname(__file__), "..", "..")
+
+
+def test_a_scene_file_opens_where_it_was_saved(tmp_path):
+    sim = ars.Simulation()
+    sim.add_floor()
+    sim.add_sphere(0.1, (0.0, 1.0, 0.0), mass=1.0, name="ball")
+    sim.run(0.2)
+    path = tmp_path / "ball.json"
+    sim.save_scene_to(path)
+    opened = ars.Simulation.open(path)
+    for s in (sim, opened):
+        s.run(0.3)
+    assert (opened.body("ball").position == sim.body("ball").position).all()
+
+
+def test_a_urdf_robot_stands_on_a_floor():
+    sim = ars.Simulation.open(os.path.join(ROOT, "tests", "data", "gripper.urdf"))
+    sim.run(0.5)
+    assert sim.body("palm").position[1] > 0.0
+
+
+def test_an_mjcf_model_opens_and_says_what_it_skipped():
+    gymnasium = pytest.importorskip("gymnasium")
+    ant = os.path.join(os.path.dirname(gymnasium.__file__), "envs", "mujoco", "assets", "ant.xml")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sim = ars.Simulation.open(ant)
+    assert any("armature" in str(w.message) for w in caught)
+    sim.run(0.1)
+    assert sim.body("torso").position[1] > 0.0
+
+
+def test_other_files_are_refused_by_name(tmp_path):
+    with pytest.raises(ars.UnknownKindError, match=r"\.json, \.urdf, \.xml, \.mjcf"):
+        ars.Simulation.open(tmp_path / "robot.sdf")
+    with pytest.raises(ars.FileError, match="missing.json"):
+        ars.Simulation.open(tmp_path / "missing.json")
+
+
+def test_excluded_objects_pass_through_each_other():
+    sim = ars.Simulation()
+    floor = sim.add_floor()
+    ghost = sim.add_sphere(0.1, (0.0, 0.5, 0.0), mass=1.0, name="ghost")
+    ball = sim.add_sphere(0.1, (1.0, 0.5, 0.0), mass=1.0, name="ball")
+    sim.exclude_contacts(floor, ghost)
+    assert sim.excluded_contacts() == [(floor, ghost)]
+    sim.run(1.0)
+    assert sim.body(ghost).position[1] < -1.0
+    assert abs(sim.body(ball).position[1] - 0.1) < 0.01
+    sim.include_contacts(floor, ghost)
+    assert sim.excluded_contacts() == []
+    with pytest.raises(ars.InputError, match="twice"):
+        sim.exclude_contacts(ball, ball)
