@@ -12,7 +12,7 @@
 
 DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
 	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb \
-	python3 python3-venv python3-pyode python3-numpy xdotool \
+	python3 python3-venv python3-pyode python3-numpy xdotool chromium \
 	ffmpeg
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
@@ -53,7 +53,7 @@ $(PYTHON):
 	$(PYTHON) -m pip install --quiet --upgrade pip
 
 python: deps $(PYTHON)
-	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0"
+	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0" nbclient ipykernel
 	$(PYTHON) -m pip install --quiet --force-reinstall --no-deps ./python
 
 python-test: python

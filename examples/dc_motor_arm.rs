@@ -33,7 +33,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let steps = sim.steps_in(args.duration)?;
     let every = (0.5 / sim.time_step()).round() as u64;
+    let view = ars::ViewSettings {
+        camera_position: Point3::new(0.0, 1.0, 3.0),
+        camera_target: Point3::new(0.0, 0.8, 0.0),
+        ..Default::default()
+    };
+    let mut capture = common::args::Capture::new(&args, view)?;
+    let spf = u64::from(sim.steps_per_frame());
     for step in 1..=steps {
+        if (step - 1) % spf == 0 {
+            capture.frame(&sim)?;
+        }
         sim.step()?;
         if step % every == 0 {
             let mut line = format!("t = {:.2} s", sim.time());
@@ -45,6 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!("{line}");
         }
     }
+    capture.finish(&sim)?;
     if let Some(path) = &args.csv {
         let tables = sim.sensor_tables();
         let names = ["shoulder", "shoulder torque", "elbow", "elbow torque"];

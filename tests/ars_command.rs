@@ -54,7 +54,7 @@ fn its_help_fits_a_screen_and_mistakes_are_said() {
         (vec!["fly", "x.json"], "unknown command"),
         (vec!["run"], "needs a FILE"),
         (vec!["run", "x.json", "--duration", "-1"], "--duration must be a positive number"),
-        (vec!["record", "x.urdf"], "needs --screenshots"),
+        (vec!["record", "x.urdf"], "needs --screenshots DIR, --video OUT.mp4 or --html OUT.html"),
         (vec!["run", "x.urdf", "--video", "a.mp4"], "--video goes with ars record or ars view"),
         (vec!["record", "x.urdf", "--video", "a.mp4", "--fps", "0"], "--fps must be a positive number"),
         (vec!["run", "x.json", "--frobnicate"], "unknown option"),
@@ -66,4 +66,35 @@ fn its_help_fits_a_screen_and_mistakes_are_said() {
     let missing = Command::new(ARS).args(["run", "/nonexistent/scene.json"]).output().unwrap();
     assert_eq!(missing.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("/nonexistent/scene.json"));
+}
+
+#[test]
+fn ars_record_writes_a_browser_replay_with_a_plot() {
+    let dir = std::env::temp_dir().join(format!("ars-command-html-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (file, page) = (dir.join("scene.json"), dir.join("replay.html"));
+    scene().save_scene_to(&file).unwrap();
+    let record = |page: &std::path::Path, plot: &str| {
+        Command::new(ARS)
+            .args(["record", file.to_str().unwrap(), "--html", page.to_str().unwrap(), "--duration", "1"])
+            .args(["--html-plot", plot])
+            .output()
+            .unwrap()
+    };
+    let out = record(&page, "Gps 1: x");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("a replay of 51 frames"));
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>") && html.contains("id=\"ars-data\""));
+    // An unknown column and a folder that is not there: said, and nothing written.
+    let unknown = record(&dir.join("other.html"), "Gps 1: w");
+    assert_eq!(unknown.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("no sensor column \"Gps 1: w\""));
+    let nowhere = record(&dir.join("missing/replay.html"), "Gps 1: x");
+    assert_eq!(nowhere.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&nowhere.stderr).contains("missing/replay.html"));
+    let mut left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    left.sort();
+    assert_eq!(left, ["replay.html", "scene.json"]);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

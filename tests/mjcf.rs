@@ -92,6 +92,12 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         ("<mujoco><tendon/></mujoco>", "<tendon> is not supported"),
         ("<mujoco><worldbody><body><geom type='hfield' size='1'/></body></worldbody></mujoco>", "hfield"),
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
+        ("<mujoco><worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>", "no <mesh> asset"),
+        (
+            "<mujoco><asset><mesh file='/nonexistent/m.stl'/></asset>\
+             <worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>",
+            "/nonexistent/m.stl",
+        ),
     ];
     for (text, says) in cases {
         let mut sim = Simulation::builder().build().unwrap();
@@ -287,4 +293,21 @@ fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
     let e = sim.load_mjcf_text(&bad, "exclude.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"bal\""), "{e}");
     assert_eq!(sim.objects().count(), 0);
+}
+
+#[test]
+fn a_mesh_that_encloses_nothing_is_refused() {
+    let dir = std::env::temp_dir().join(format!("ars-mjcf-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // One triangle: no volume.
+    std::fs::write(dir.join("flat.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let text = "<mujoco><asset><mesh file='flat.obj'/></asset>\
+                <worldbody><body><geom type='mesh' mesh='flat'/></body></worldbody></mujoco>";
+    let path = dir.join("flat.xml");
+    std::fs::write(&path, text).unwrap();
+    let mut sim = Simulation::builder().build().unwrap();
+    let e = sim.load_mjcf(&path, &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(e.contains("encloses no volume") && e.contains("line 1"), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

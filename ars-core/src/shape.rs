@@ -88,7 +88,8 @@ impl Shape {
     }
 
     /// The volume it encloses, m³: `None` for a plane or a ray. A triangle mesh's is
-    /// that of the solid its triangles close (counter-clockwise seen from outside).
+    /// that of the solid its triangles close (counter-clockwise seen from outside; `None`
+    /// when they enclose nothing: see [`mass_properties`](crate::mesh::mass_properties)).
     ///
     /// ```
     /// use ars_core::Shape;
@@ -106,14 +107,7 @@ impl Shape {
             Shape::Cone { radius, height } => Some(PI * radius.powi(2) * height / 3.0),
             Shape::Plane { .. } | Shape::Ray { .. } => None,
             Shape::TriMesh { vertices, triangles } => {
-                // The divergence theorem: the signed volumes of the tetrahedra from the
-                // origin to each triangle.
-                let corner = |k: u32| vertices.get(k as usize).map(|p| p.coords);
-                let sum: f64 = triangles
-                    .iter()
-                    .filter_map(|&[a, b, c]| Some(corner(a)?.dot(&corner(b)?.cross(&corner(c)?)) / 6.0))
-                    .sum();
-                Some(sum.abs())
+                crate::mesh::mass_properties(vertices, triangles).map(|m| m.volume)
             }
         }
     }

@@ -3,7 +3,9 @@
 //! The ARS 3D viewer, on kiss3d: a window on screen that runs a program in real time
 //! (orbit camera with the mouse, the program's keys, pause, single step, reset, a text
 //! overlay with the simulated time and the real-time factor), and off-screen rendering
-//! with no display and no GPU (Mesa's software rasterisers) for screenshot recording.
+//! with no display and no GPU (Mesa's software rasterisers) for screenshot recording,
+//! and browser replays: one self-contained HTML file to play a run back in
+//! ([`ReplayRecorder`]).
 //!
 //! ```no_run
 //! use ars_core::{Hooks, Mass, Program, Result, Simulation};
@@ -36,9 +38,11 @@ mod frames;
 mod gui;
 mod interact;
 mod layout;
+mod look;
 mod material;
 mod mp4;
 mod offscreen;
+mod replay;
 mod scene;
 mod state;
 mod video;
@@ -60,6 +64,7 @@ pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_for
 pub use offscreen::{
     OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
 };
+pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
 pub use video::{

@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use ars_core::nalgebra::{Isometry3, Point3, Vector3};
+use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::{ObjectId, RenderQuality, Shape, Simulation, ViewSettings};
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
@@ -14,15 +14,8 @@ use kiss3d::window::Window;
 
 use crate::convert;
 use crate::layout::FramedCamera;
+use crate::look::{PLANE_HALF_SIZE, look_of};
 use crate::material::{FlatMaterial, SharedMaterial};
-
-/// Colours given to objects that have none, in creation order.
-const PALETTE: [[f32; 3]; 6] =
-    [[0.8, 0.1, 0.1], [0.1, 0.3, 0.8], [0.9, 0.7, 0.1], [0.1, 0.6, 0.2], [0.6, 0.2, 0.7], [0.9, 0.4, 0.1]];
-/// The floor's colour (the original's 0.7 grey).
-const FLOOR: [f32; 3] = [0.7, 0.7, 0.7];
-/// Half the side of the square drawn for an infinite floor plane, m.
-const PLANE_HALF_SIZE: f32 = 25.0;
 
 struct ObjectNode {
     group: SceneNode3d,
@@ -269,52 +262,20 @@ fn build_node(
     index: usize,
     fast: Option<&(SharedMaterial, SharedMaterial)>,
 ) -> ars_core::Result<ObjectNode> {
-    let object = sim.object(id)?;
-    let dynamic = object.body_handle().is_some();
-    let default = if matches!(object.shape(), Shape::Plane { .. } | Shape::TriMesh { .. }) {
-        FLOOR
-    } else {
-        PALETTE[index % PALETTE.len()]
-    };
-    let rgb = object.color().unwrap_or(default);
-    let color = convert::color(rgb);
-    let pose = sim.pose(id).unwrap_or(Isometry3::identity());
+    let look = look_of(sim, id, index)?;
     let mut group = scene.add_group();
-    // Its visuals if it has any (a robot link's <visual>s), else each of its geoms
-    // where it is relative to the object (a robot link may have several, offset from
-    // its body); an object without either is drawn as its shape.
-    let world = sim.world();
-    let mut parts: Vec<(Shape, Isometry3<f64>, Option<ars_core::Color>)> = if object.visuals().is_empty() {
-        object
-            .geoms()
-            .filter_map(|g| world.geom(g).ok())
-            .map(|g| {
-                let local = match g.shape() {
-                    Shape::Plane { .. } => Isometry3::identity(),
-                    _ => pose.inverse() * g.pose(),
-                };
-                (g.shape().clone(), local, None)
-            })
-            .collect()
-    } else {
-        object.visuals().iter().map(|v| (v.shape.clone(), v.offset, v.color)).collect()
-    };
-    if parts.is_empty() {
-        parts.push((object.shape().clone(), Isometry3::identity(), None));
-    }
-    // Floors (planes, static meshes) are checkered when drawn fast.
-    let floor = !dynamic && matches!(object.shape(), Shape::Plane { .. } | Shape::TriMesh { .. });
-    for (shape, local, own) in &parts {
-        let mut part = group.add_group();
-        part.set_pose(convert::pose(local));
-        let mut node = add_shape(&mut part, shape);
-        node.set_color(own.map_or(color, convert::color));
+    for part in &look.parts {
+        let mut placed = group.add_group();
+        placed.set_pose(convert::pose(&part.local));
+        let mut node = add_shape(&mut placed, &part.shape);
+        node.set_color(convert::color(part.color));
         if let Some((object_material, floor_material)) = fast {
-            node.set_material(if floor { floor_material.clone() } else { object_material.clone() });
+            // Floors (planes, static meshes) are checkered when drawn fast.
+            node.set_material(if look.floor { floor_material.clone() } else { object_material.clone() });
         }
     }
-    group.set_pose(convert::pose(&pose));
-    Ok(ObjectNode { group, dynamic, color: rgb })
+    group.set_pose(convert::pose(&look.pose));
+    Ok(ObjectNode { group, dynamic: look.dynamic, color: look.color })
 }
 
 /// A node drawing `shape` in its own frame.

@@ -1,6 +1,6 @@
 //! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
 //! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
-//! [--axes] [--views N]`.
+//! [--axes] [--views N]`, and the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`.
 
 use std::path::PathBuf;
 use std::process::exit;
@@ -32,11 +32,15 @@ pub struct Args {
     pub fps: f64,
     /// How many views (1 to 4): the free camera, following, top, camera sensor.
     pub views: usize,
+    /// Write a browser replay (one self-contained HTML file) here.
+    pub html: Option<PathBuf>,
+    /// The sensor columns the replay plots (`"Gps 1: y"`).
+    pub html_plots: Vec<String>,
 }
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes] [--views N]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes] [--views N] [--html OUT.html [--html-plot COLUMN]...]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
@@ -49,7 +53,9 @@ fn usage(program: &str, default_duration: f64) -> String {
          \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
          \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
          \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)\n\
-         \x20 --views N          split the picture into N views (1-4): free, following, top, camera sensor"
+         \x20 --views N          split the picture into N views (1-4): free, following, top, camera sensor\n\
+         \x20 --html OUT.html    write a browser replay: one HTML file that plays the run back, no network needed\n\
+         \x20 --html-plot COLUMN plot a sensor column under the replay (\"Gps 1: y\", as --csv heads it; repeatable)"
     )
 }
 
@@ -75,6 +81,8 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         video: None,
         fps: 30.0,
         views: 1,
+        html: None,
+        html_plots: Vec::new(),
     };
     let fail = |msg: String| -> ! {
         eprintln!("{msg}\n{}", usage(&program, default_duration));
@@ -117,6 +125,8 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
                     _ => fail(format!("--fps must be a positive number of frames per second, got {v:?}")),
                 };
             }
+            "--html" => args.html = Some(value("--html").into()),
+            "--html-plot" => args.html_plots.push(value("--html-plot")),
             "--frame-every" => {
                 let v = value("--frame-every");
                 args.frame_every = match v.parse::<u32>() {
@@ -139,6 +149,12 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
             }
             other => fail(format!("unknown option {other:?}")),
         }
+    }
+    if args.html.is_some() && (args.window || args.screenshots.is_some()) {
+        fail("--html records a run of its own: give it without --window and --screenshots".into());
+    }
+    if !args.html_plots.is_empty() && args.html.is_none() {
+        fail("--html-plot goes with --html".into());
     }
     args
 }
@@ -182,6 +198,9 @@ pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulat
     }
     if let Some(path) = &args.video {
         return record_video(program, args, path);
+    }
+    if let Some(path) = &args.html {
+        return replay(program, args, path);
     }
     match &args.screenshots {
         None => {
@@ -311,6 +330,39 @@ fn record_video<P: ars::Program>(
     Err("--video needs the viewer: build with the default features".into())
 }
 
+/// The replay recorder `--html-plot` asks for.
+#[cfg(feature = "viewer")]
+fn replay_recorder(args: &Args) -> ars::viewer::ReplayRecorder {
+    let mut recorder = ars::viewer::ReplayRecorder::new();
+    for column in &args.html_plots {
+        recorder = recorder.plot(column.clone());
+    }
+    if let Some((w, h)) = args.size {
+        recorder = recorder.size(w, h);
+    }
+    recorder
+}
+
+#[cfg(feature = "viewer")]
+fn replay<P: ars::Program>(
+    program: &mut P,
+    args: &Args,
+    path: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    let (sim, replay) = replay_recorder(args).record_to(program, args.duration, path)?;
+    eprintln!("wrote the replay {} ({} frames, {} bytes)", path.display(), replay.frames(), replay.html().len());
+    Ok(sim)
+}
+
+#[cfg(not(feature = "viewer"))]
+fn replay<P: ars::Program>(
+    _: &mut P,
+    _: &Args,
+    _: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    Err("--html needs the viewer: build with the default features".into())
+}
+
 /// A video taken by [`Capture`]: the writer, its renderer, the frames wanted, the
 /// frames taken and the simulated time it started at.
 #[cfg(feature = "viewer")]
@@ -336,52 +388,68 @@ impl CapturedVideo {
     }
 }
 
-/// Off-screen frames for examples that drive their own [`ars::ProgramRunner`]: call
-/// [`Capture::frame`] at the start of every frame and [`Capture::finish`] at the end.
-/// With `--video`, these examples step their own frames: video frame k is the picture
-/// at the first frame start at or after k/fps simulated seconds (at most a frame
-/// late; the other examples take it at the first step).
+/// Off-screen frames (and the replay of `--html`, the video of `--video`) for examples
+/// that drive their own [`ars::ProgramRunner`]: call [`Capture::frame`] at the start of
+/// every frame and [`Capture::finish`] at the end. These examples step their own
+/// frames: video frame k is the picture at the first frame start at or after k/fps
+/// simulated seconds (at most a frame late; the other examples take it at the first
+/// step).
 pub struct Capture {
     #[cfg(feature = "viewer")]
     inner: Option<(ars::viewer::OffscreenRenderer, PathBuf, u32, u64, u32)>,
+    /// The replay: its recorder, view and file, then the recording once begun.
+    #[cfg(feature = "viewer")]
+    replay: Option<(ars::viewer::ReplayRecorder, ars::ViewSettings, PathBuf, Option<ars::viewer::ReplayInProgress>)>,
     #[cfg(feature = "viewer")]
     video: Option<CapturedVideo>,
 }
 
 impl Capture {
-    /// Records when `--screenshots` was given, with `view` (the program's settings).
+    /// Records when `--screenshots`, `--html` or `--video` was given, with `view` (the
+    /// program's settings).
     pub fn new(args: &Args, view: ars::ViewSettings) -> Result<Self, Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
         {
+            let replay = args.html.as_ref().map(|path| (replay_recorder(args), view.clone(), path.clone(), None));
             let mut view = view;
             if let Some(size) = args.size {
                 view.size = size;
             }
-            if let Some(path) = &args.video {
-                ars::viewer::check_video_settings(args.fps, view.size.0, view.size.1)?;
-                let count = ars::viewer::video_frame_count(args.duration, args.fps)?;
-                let writer = ars::viewer::VideoWriter::create(path, view.size.0, view.size.1, args.fps)?;
-                let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
-                let video = CapturedVideo { writer, renderer, fps: args.fps, count, taken: 0, start: None };
-                return Ok(Capture { inner: None, video: Some(video) });
-            }
-            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, video: None }) };
+            let video = match &args.video {
+                Some(path) => {
+                    ars::viewer::check_video_settings(args.fps, view.size.0, view.size.1)?;
+                    let count = ars::viewer::video_frame_count(args.duration, args.fps)?;
+                    let writer = ars::viewer::VideoWriter::create(path, view.size.0, view.size.1, args.fps)?;
+                    let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
+                    Some(CapturedVideo { writer, renderer, fps: args.fps, count, taken: 0, start: None })
+                }
+                None => None,
+            };
+            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, replay, video }) };
             std::fs::create_dir_all(dir)?;
             let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
-            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), video: None })
+            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), replay, video })
         }
         #[cfg(not(feature = "viewer"))]
         {
             let _ = view;
-            if args.screenshots.is_some() || args.video.is_some() {
-                return Err("--screenshots and --video need the viewer: build with the default features".into());
+            if args.screenshots.is_some() || args.html.is_some() || args.video.is_some() {
+                return Err("--screenshots, --html and --video need the viewer: build with the default features".into());
             }
             Ok(Capture {})
         }
     }
 
-    /// Writes the current frame if one is due (the first, then every N frames).
+    /// Writes the current frame if one is due (the first, then every N frames), and
+    /// samples the replay and the video.
     pub fn frame(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "viewer")]
+        if let Some((recorder, view, path, recording)) = &mut self.replay {
+            match recording {
+                Some(recording) => recording.frame(sim),
+                None => *recording = Some(recorder.begin_to(sim, view, path)?),
+            }
+        }
         #[cfg(feature = "viewer")]
         if let Some((renderer, dir, every, frame, index)) = &mut self.inner {
             if *frame % u64::from(*every) == 0 {
@@ -399,13 +467,20 @@ impl Capture {
         Ok(())
     }
 
-    /// Ends the recording with the simulation as it is at the end: a video takes the
-    /// frames still due and is written.
+    /// Ends the recording with `sim` as it is at the end: writes the replay, if
+    /// `--html` asked for one, and the video, if `--video` did (with the frames still
+    /// due).
     pub fn finish(self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
-        if let Some(mut video) = self.video {
-            video.take(sim)?;
-            say_video(&video.writer.finish()?);
+        {
+            if let Some((_, _, path, Some(recording))) = self.replay {
+                let replay = recording.finish(sim)?;
+                eprintln!("wrote the replay {} ({} frames)", path.display(), replay.frames());
+            }
+            if let Some(mut video) = self.video {
+                video.take(sim)?;
+                say_video(&video.writer.finish()?);
+            }
         }
         #[cfg(not(feature = "viewer"))]
         let _ = sim;

@@ -42,6 +42,7 @@ from ars._native import (
     has_display,
     step_many,
 )
+from ars.display import Image, Replay
 from ars.sweeps import RunResult, SweepResults, load_sweep, rerun, sweep
 
 # Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
@@ -62,11 +63,13 @@ __all__ = [
     "BusyError",
     "FileError",
     "FormatError",
+    "Image",
     "InputError",
     "InternalError",
     "Joint",
     "NotCapturableError",
     "Renderer",
+    "Replay",
     "ReproductionError",
     "RunResult",
     "Sensor",

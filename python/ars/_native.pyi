@@ -12,6 +12,8 @@ import numpy as np
 import numpy.typing as npt
 from typing_extensions import TypeAlias
 
+from ars.display import Image, Replay
+
 __all__ = [
     "Body",
     "Joint",
@@ -337,6 +339,20 @@ class Simulation:
         quality: _Quality = ...,
         axes: bool = ...,
     ) -> _ShowReport: ...
+    def save_replay(
+        self,
+        path: _Path | None,
+        duration: float,
+        *,
+        fps: float | None = None,
+        plots: Sequence[str] = ...,
+        size: tuple[int, int] = ...,
+        camera: _Vec3 = ...,
+        look_at: _Vec3 = ...,
+        background: _Vec3 = ...,
+        title: str = ...,
+    ) -> Replay: ...
+    def replay(self, duration: float, **options: Any) -> Replay: ...
 
 @final
 class Body:
@@ -450,7 +466,7 @@ class Renderer:
     ) -> Renderer: ...
     @property
     def size(self) -> tuple[int, int]: ...
-    def render(self, sim: Simulation) -> npt.NDArray[np.uint8]: ...
+    def render(self, sim: Simulation) -> Image: ...
     def save(self, sim: Simulation, path: _Path) -> None: ...
 
 class _RecordedVideo(TypedDict):

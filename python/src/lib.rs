@@ -11,6 +11,7 @@
 mod errors;
 mod kinds;
 mod many;
+mod replay;
 mod sensors;
 mod simulation;
 mod verify;

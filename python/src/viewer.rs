@@ -49,6 +49,11 @@ impl ViewArgs {
         ars_viewer::ViewerOptions::default().with_axes(self.axes)
     }
 
+    /// The keywords of a replay: no follow, no axes, the automatic quality.
+    pub(crate) fn for_replay(title: String, size: (i64, i64), camera: Vec3, look_at: Vec3, background: Vec3) -> Self {
+        ViewArgs { title, size, camera, look_at, background, follow: None, quality: "auto".into(), axes: false }
+    }
+
     pub(crate) fn settings(self) -> Result<ViewSettings, String> {
         let (w, h) = self.size;
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
@@ -413,12 +418,15 @@ impl PyRenderer {
         self.size
     }
 
-    /// The simulation as it is now, as a numpy array of shape (height, width, 3).
+    /// The simulation as it is now, as a numpy array of shape (height, width, 3),
+    /// `uint8`: an `ars.Image`, which a notebook shows as a picture.
     fn render<'py>(&self, py: Python<'py>, sim: Py<PySimulation>) -> PyResult<Bound<'py, PyAny>> {
         let image = self.draw(py, sim)?;
         let (w, h) = image.dimensions();
-        let array = PyArray1::from_vec(py, image.into_raw());
-        Ok(array.reshape([h as usize, w as usize, 3])?.into_any())
+        let array = PyArray1::from_vec(py, image.into_raw()).reshape([h as usize, w as usize, 3])?;
+        // An `ars.Image`: a numpy array that a notebook shows as a picture.
+        let image_class = py.import("ars.display")?.getattr("Image")?;
+        array.call_method1("view", (image_class,))
     }
 
     /// Writes the simulation as it is now to a PNG file.

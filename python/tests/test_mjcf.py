@@ -81,7 +81,65 @@ def compare(path):
         assert body.position == pytest.approx([x, z, -y], rel=1e-9, abs=1e-12), name
         moments = np.sort(np.linalg.eigvalsh(body.inertia))
         assert moments == pytest.approx(np.sort(m.body_inertia[i]), rel=1e-9, abs=1e-15), name
+        # And the principal axes: the inertia tensors in the world agree.
+        turn = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+        frame = turn @ d.ximat[i].reshape(3, 3)
+        theirs = frame @ np.diag(m.body_inertia[i]) @ frame.T
+        ours = body.rotation @ body.inertia @ body.rotation.T
+        assert ours == pytest.approx(theirs, rel=1e-9, abs=1e-12 * np.abs(theirs).max()), name
     return sim, model
+
+
+TETRAHEDRON_OBJ = """v 0 0 0
+v 0.5 0 0
+v 0 0.25 0
+v 0 0 0.75
+f 1 3 2
+f 1 2 4
+f 1 4 3
+f 2 3 4
+"""
+
+CUBE_OBJ = "".join(f"v {x} {y} {z}\n" for z in (0, 1) for y in (0, 1) for x in (0, 1)) + "".join(
+    f"f {a} {b} {c}\n"
+    for a, b, c in [
+        (1, 3, 2), (2, 3, 4), (5, 6, 7), (6, 8, 7), (1, 2, 5), (2, 6, 5),
+        (3, 7, 4), (4, 7, 8), (1, 5, 3), (3, 5, 7), (2, 4, 6), (4, 8, 6),
+    ]
+)  # fmt: skip
+
+MESHES = """
+<mujoco model="meshes">
+  <compiler meshdir="parts"/>
+  <asset>
+    <mesh file="tetra.obj"/>
+    <mesh name="brick" file="cube.obj" scale="0.5 0.25 2"/>
+  </asset>
+  <worldbody>
+    <body name="pointed" pos="0 0 1" euler="10 20 30">
+      <freejoint/>
+      <geom type="mesh" mesh="tetra" pos="0.1 0 0" euler="0 45 0"/>
+      <geom type="sphere" size="0.05" pos="-0.2 0 0"/>
+    </body>
+    <body name="brick" pos="1 0 1">
+      <freejoint/>
+      <geom type="mesh" mesh="brick" mass="3" quat="0.9 0.1 0.3 0.2"/>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def test_mesh_geoms_weigh_as_in_mujoco(tmp_path):
+    """Mesh geoms (OBJ files in the compiler's meshdir, scaled): their mass, centre and
+    inertia tensor, from the closed mesh, as MuJoCo computes them."""
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "tetra.obj").write_text(TETRAHEDRON_OBJ)
+    (tmp_path / "parts" / "cube.obj").write_text(CUBE_OBJ)
+    path = tmp_path / "meshes.xml"
+    path.write_text(MESHES)
+    sim, _ = compare(path)
+    assert sim.body("brick").mass == pytest.approx(3.0)
+    sim.run(0.5)
 
 
 def test_masses_centres_and_inertias_equal_mujoco_s(tmp_path):

@@ -21,6 +21,7 @@ usage:
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
            [--views N] [--csv OUT]
   ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes] ...
+  ars record FILE --html OUT.html [--html-plot COLUMN]... [--duration S] [--size WxH]
   ars --help | --version
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
@@ -34,7 +35,10 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
   view      open a window (Escape closes it; --video records it); without a display,
             record off screen into --screenshots or --video
   record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
-            or into an H.264 MP4 video (frame k at k/fps simulated seconds)
+            into an H.264 MP4 video (frame k at k/fps simulated seconds), or into a
+            browser replay: one HTML file that plays the run back in any browser, no
+            network needed (--html-plot \"Gps 1: y\" plots a sensor column, as ars run
+            --csv heads it)
 
   --duration S      simulated seconds (default: run and record 10, view until closed)
   --every N         one CSV row every N steps (default 1)
@@ -55,6 +59,8 @@ struct Command {
     csv: Option<PathBuf>,
     every: usize,
     screenshots: Option<PathBuf>,
+    html: Option<PathBuf>,
+    html_plots: Vec<String>,
     frame_every: u32,
     video: Option<PathBuf>,
     fps: f64,
@@ -81,6 +87,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
         csv: None,
         every: 1,
         screenshots: None,
+        html: None,
+        html_plots: Vec::new(),
         frame_every: 5,
         video: None,
         fps: 30.0,
@@ -116,6 +124,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
                     _ => return Err(format!("--fps must be a positive number of frames per second, got {v:?}")),
                 };
             }
+            "--html" => command.html = Some(value("--html")?.into()),
+            "--html-plot" => command.html_plots.push(value("--html-plot")?),
             "--frame-every" => {
                 let n = positive("--frame-every", value("--frame-every")?)?;
                 command.frame_every = u32::try_from(n).map_err(|_| format!("--frame-every is too large: {n}"))?;
@@ -150,11 +160,17 @@ fn parse(args: &[String]) -> Result<Command, String> {
             other => return Err(format!("unknown option {other:?}")),
         }
     }
-    if command.verb == "record" && command.screenshots.is_none() == command.video.is_none() {
-        return Err("ars record needs --screenshots DIR or --video OUT.mp4 (one of them)".into());
+    if command.verb == "record" && command.screenshots.is_none() && command.html.is_none() && command.video.is_none() {
+        return Err("ars record needs --screenshots DIR, --video OUT.mp4 or --html OUT.html".into());
     }
-    if command.video.is_some() && command.verb == "run" {
-        return Err("--video goes with ars record or ars view".into());
+    if command.html.is_some() && (command.verb != "record" || command.screenshots.is_some()) {
+        return Err("--html goes with ars record, without --screenshots".into());
+    }
+    if !command.html_plots.is_empty() && command.html.is_none() {
+        return Err("--html-plot goes with --html".into());
+    }
+    if command.video.is_some() && (command.verb == "run" || command.screenshots.is_some() || command.html.is_some()) {
+        return Err("--video goes with ars record or ars view, without --screenshots or --html".into());
     }
     Ok(command)
 }
@@ -350,6 +366,22 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
             video.bytes,
             path.display()
         );
+        if let Some(csv) = &command.csv {
+            write_csv(&sim, csv, command.every)?;
+        }
+        return Ok(());
+    }
+    if let Some(path) = &command.html {
+        let mut recorder = ars::viewer::ReplayRecorder::new();
+        for column in &command.html_plots {
+            recorder = recorder.plot(column.clone());
+        }
+        if let Some((w, h)) = command.size {
+            recorder = recorder.size(w, h);
+        }
+        let (sim, replay) = recorder.record_to(program, command.duration.unwrap_or(10.0), path)?;
+        println!("{}", program.summary);
+        println!("recorded t = {} s: a replay of {} frames into {}", sim.time(), replay.frames(), path.display());
         if let Some(csv) = &command.csv {
             write_csv(&sim, csv, command.every)?;
         }

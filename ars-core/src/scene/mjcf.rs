@@ -16,6 +16,9 @@
 //!   turned as the MJCF body, with the full inertia tensor.
 //! - **Geoms.** `plane` (static only: an infinite plane), `sphere`, `capsule`,
 //!   `cylinder`, `box`, and `ellipsoid` (as a sphere of the same volume, with a warning);
+//!   `mesh` (an `<asset><mesh>`'s STL or OBJ file, with its `scale`, in `<compiler
+//!   meshdir>` or `assetdir`, as a triangle mesh; its mass and inertia those of the
+//!   closed solid it bounds, as MuJoCo's for a convex mesh);
 //!   `fromto` for capsules and cylinders; `rgba` for the colour; `contype` and
 //!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
 //!   when one's type meets the other's affinity).
@@ -34,7 +37,8 @@
 //!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
 //!   along each joint but the first (and a free joint cannot be chained).
 //! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
-//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`,
+//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`, `meshdir`,
+//!   `assetdir`,
 //!   `settotalmass` (every body's mass and inertia scaled by one factor, as MuJoCo
 //!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
@@ -72,6 +76,7 @@ use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{JointId, ObjectId};
+use crate::mesh::MeshMass;
 use crate::shape::Shape;
 
 /// How an MJCF model is loaded.
@@ -188,6 +193,8 @@ struct Compiler {
     from_geom: Option<bool>,
     /// `settotalmass`: every body's mass and inertia scaled so that they add up to it.
     total_mass: Option<f64>,
+    /// `meshdir` (else `assetdir`): where mesh files are, relative to the model's folder.
+    meshdir: Option<String>,
 }
 
 impl Default for Compiler {
@@ -199,6 +206,7 @@ impl Default for Compiler {
             autolimits: true,
             from_geom: None,
             total_mass: None,
+            meshdir: None,
         }
     }
 }
@@ -320,12 +328,20 @@ fn orientation(a: &Attrs<'_, '_>, compiler: &Compiler) -> Parsed<UnitQuaternion<
 /// A geom's shape, MuJoCo's way (half sizes).
 #[derive(Clone, Debug)]
 enum GeomKind {
+    Mesh(std::sync::Arc<MeshGeom>),
     Plane,
     Sphere(f64),
     Capsule(f64, f64),
     Cylinder(f64, f64),
     Box(Vector3<f64>),
     Ellipsoid(Vector3<f64>),
+}
+
+/// A mesh asset as a geom uses it: its triangles (scaled) and their mass properties.
+#[derive(Debug)]
+struct MeshGeom {
+    shape: Shape,
+    mass: MeshMass,
 }
 
 #[derive(Clone, Debug)]
@@ -344,6 +360,7 @@ impl Geom {
     fn volume(&self) -> f64 {
         use std::f64::consts::PI;
         match &self.kind {
+            GeomKind::Mesh(mesh) => mesh.mass.volume,
             GeomKind::Plane => 0.0,
             GeomKind::Sphere(r) => 4.0 / 3.0 * PI * r.powi(3),
             GeomKind::Capsule(r, h) => PI * r * r * 2.0 * h + 4.0 / 3.0 * PI * r.powi(3),
@@ -357,11 +374,20 @@ impl Geom {
         self.mass.unwrap_or(self.density * self.volume())
     }
 
-    /// Principal moments about the geom's centre, in its frame, as MuJoCo computes them.
+    /// Its centre of mass and its inertia tensor about it, in its frame.
+    fn mass_distribution(&self) -> (Vector3<f64>, Matrix3<f64>) {
+        match &self.kind {
+            GeomKind::Mesh(mesh) => (mesh.mass.centre.coords, mesh.mass.inertia * (self.mass() / mesh.mass.volume)),
+            _ => (Vector3::zeros(), Matrix3::from_diagonal(&self.inertia())),
+        }
+    }
+
+    /// Principal moments about the geom's centre, in its frame, as MuJoCo computes them
+    /// (a mesh's are [`mass_distribution`](Self::mass_distribution)'s).
     fn inertia(&self) -> Vector3<f64> {
         let m = self.mass();
         match &self.kind {
-            GeomKind::Plane => Vector3::zeros(),
+            GeomKind::Plane | GeomKind::Mesh(_) => Vector3::zeros(),
             GeomKind::Sphere(r) => Vector3::repeat(0.4 * m * r * r),
             GeomKind::Capsule(r, h) => {
                 let height = 2.0 * h;
@@ -388,6 +414,7 @@ impl Geom {
     /// The ODE shape (an ellipsoid as the sphere of its volume).
     fn shape(&self) -> Shape {
         match &self.kind {
+            GeomKind::Mesh(mesh) => mesh.shape.clone(),
             GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
             GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
             GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },
@@ -451,6 +478,12 @@ struct Reader<'d> {
     skipped: Vec<String>,
     bodies: usize,
     joints: usize,
+    /// The `<asset><mesh>`es by name: their file (as written) and scale.
+    meshes: HashMap<String, (String, Vector3<f64>)>,
+    /// The meshes loaded so far, by name.
+    loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
+    /// The main file's folder.
+    dir: std::path::PathBuf,
 }
 
 impl Reader<'_> {
@@ -478,6 +511,7 @@ impl Reader<'_> {
         };
         let mut frame = frame(&a, &self.compiler)?;
         let kind = match kind_name {
+            "mesh" => GeomKind::Mesh(self.mesh(&node, a.get("mesh"))?),
             "plane" => GeomKind::Plane,
             "sphere" => GeomKind::Sphere(size_at(0)?),
             "capsule" | "cylinder" => {
@@ -625,6 +659,30 @@ impl Reader<'_> {
         Ok(body)
     }
 
+    /// The mesh asset `name` (loaded once), for a geom at `node`.
+    fn mesh(&mut self, node: &roxmltree::Node<'_, '_>, name: Option<&str>) -> Parsed<std::sync::Arc<MeshGeom>> {
+        let name = name.ok_or_else(|| problem(node, "a mesh geom needs a mesh"))?;
+        if let Some(mesh) = self.loaded.get(name) {
+            return Ok(mesh.clone());
+        }
+        let (file, scale) =
+            self.meshes.get(name).ok_or_else(|| problem(node, format!("no <mesh> asset is called {name:?}")))?;
+        let dir = match &self.compiler.meshdir {
+            Some(meshdir) => self.dir.join(meshdir),
+            None => self.dir.clone(),
+        };
+        let shape = crate::mesh::load_mesh(&dir.join(file), *scale).map_err(|e| problem(node, e.to_string()))?;
+        let Shape::TriMesh { vertices, triangles } = &shape else {
+            return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
+        };
+        let mass = crate::mesh::mass_properties(vertices, triangles).ok_or_else(|| {
+            problem(node, format!("the mesh {name:?} encloses no volume (it must be closed and wound outwards)"))
+        })?;
+        let mesh = std::sync::Arc::new(MeshGeom { shape, mass });
+        self.loaded.insert(name.to_string(), mesh.clone());
+        Ok(mesh)
+    }
+
     /// An actuator (the `index`-th), or `None` when skipped.
     fn actuator(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfActuator>> {
         let tag = node.tag_name().name();
@@ -696,13 +754,20 @@ fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
     if mass <= 0.0 {
         return None;
     }
-    let com = solid.iter().map(|g| g.frame.translation.vector * g.mass()).sum::<Vector3<f64>>() / mass;
+    // Each geom's centre of mass and inertia about it, in the body's frame.
+    let parts: Vec<(f64, Vector3<f64>, Matrix3<f64>)> = solid
+        .iter()
+        .map(|g| {
+            let (centre, inertia) = g.mass_distribution();
+            let r = g.frame.rotation.to_rotation_matrix();
+            (g.mass(), (g.frame * nalgebra::Point3::from(centre)).coords, r.matrix() * inertia * r.matrix().transpose())
+        })
+        .collect();
+    let com = parts.iter().map(|(m, c, _)| c * *m).sum::<Vector3<f64>>() / mass;
     let mut inertia = Matrix3::zeros();
-    for g in solid {
-        let r = g.frame.rotation.to_rotation_matrix();
-        let d = g.frame.translation.vector - com;
-        inertia += r.matrix() * Matrix3::from_diagonal(&g.inertia()) * r.matrix().transpose()
-            + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * g.mass();
+    for (m, c, about_centre) in parts {
+        let d = c - com;
+        inertia += about_centre + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m;
     }
     Some((mass, com, inertia))
 }
@@ -805,6 +870,7 @@ fn read_nodes(
     let mut defaults = Defaults::new();
     let mut timestep = None;
     let mut gravity = None;
+    let mut meshes = HashMap::new();
     for &(file, node) in nodes {
         let mut first_pass = || -> Parsed<()> {
             match node.tag_name().name() {
@@ -844,11 +910,29 @@ fn read_nodes(
                             Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
                         };
                     }
+                    if let Some(dir) = node.attribute("meshdir").or(node.attribute("assetdir")) {
+                        compiler.meshdir = Some(dir.to_string());
+                    }
                     if node.attribute("coordinate").is_some_and(|c| c != "local") {
                         return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
                     }
                 }
                 "default" => read_defaults(node, &HashMap::new(), &mut defaults),
+                "asset" => {
+                    for mesh in node.children().filter(|c| c.has_tag_name("mesh")) {
+                        let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
+                        let name = match mesh.attribute("name") {
+                            Some(name) => name.to_string(),
+                            None => Path::new(file)
+                                .file_stem()
+                                .map(|s| s.to_string_lossy().into_owned())
+                                .unwrap_or_default(),
+                        };
+                        let a = Attrs { node: mesh, class: None };
+                        let scale = a.fixed::<3>("scale")?.map_or(Vector3::repeat(1.0), Vector3::from);
+                        meshes.insert(name, (file.to_string(), scale));
+                    }
+                }
                 "option" => {
                     let a = Attrs { node, class: None };
                     timestep = a.number("timestep")?;
@@ -867,6 +951,9 @@ fn read_nodes(
         skipped: Vec::new(),
         bodies: 0,
         joints: 0,
+        meshes,
+        loaded: HashMap::new(),
+        dir: Path::new(names[0]).parent().map(Path::to_path_buf).unwrap_or_default(),
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),

@@ -1,0 +1,70 @@
+//! Browser replays from Python: `sim.save_replay(path, duration)` and
+//! `sim.replay(duration)` run the simulation and record it (see
+//! [`ars_viewer::ReplayRecorder`]); the result is an `ars.Replay` (python/ars/display.py),
+//! which a notebook shows inline.
+
+use std::path::PathBuf;
+
+use ars_viewer::{ReplayRecorder, ViewerError};
+use pyo3::prelude::*;
+
+use crate::errors::{raise, to_py};
+use crate::simulation::PySimulation;
+use crate::viewer::ViewArgs;
+
+/// What `save_replay` and `replay` take besides the view.
+pub(crate) struct ReplayArgs {
+    pub duration: f64,
+    pub fps: Option<f64>,
+    pub plots: Vec<String>,
+    pub view: ViewArgs,
+}
+
+/// Runs `sim` for the duration, recording it; writes the page to `path` if given
+/// (nothing is written, and no file left, when the settings are refused or the run
+/// fails). Returns an `ars.Replay`.
+pub(crate) fn record(
+    py: Python<'_>,
+    sim: &PySimulation,
+    path: Option<PathBuf>,
+    args: ReplayArgs,
+) -> PyResult<Py<PyAny>> {
+    let ReplayArgs { duration, fps, plots, view } = args;
+    let view = view.settings().map_err(|m| raise(py, "InputError", m))?;
+    let mut recorder = ReplayRecorder::new();
+    if let Some(fps) = fps {
+        recorder = recorder.fps(fps);
+    }
+    for column in plots {
+        recorder = recorder.plot(column);
+    }
+    let mut replay = None;
+    let mut refused = None;
+    sim.advance(py, |sim| {
+        let recorded = match &path {
+            Some(path) => recorder.record_simulation_to(sim, &view, duration, path),
+            None => recorder.record_simulation(sim, &view, duration),
+        };
+        match recorded {
+            Ok(r) => replay = Some(r),
+            Err(ViewerError::Simulation(e)) => return Err(e),
+            Err(other) => refused = Some(other),
+        }
+        Ok(())
+    })?;
+    if let Some(e) = refused {
+        return Err(match e {
+            ViewerError::Write { path, message } => {
+                raise(py, "FileError", format!("cannot write the replay {path:?}: {message}"))
+            }
+            ViewerError::Settings(message) => raise(py, "InputError", message),
+            other => to_py(py, ars_core::Error::User(other.to_string())),
+        });
+    }
+    let Some(replay) = replay else {
+        return Err(raise(py, "InternalError", "the replay ended with neither a result nor an error".into()));
+    };
+    let (start, end) = replay.span();
+    let class = py.import("ars.display")?.getattr("Replay")?;
+    Ok(class.call1((replay.html(), path, replay.frames(), start, end))?.unbind())
+}
