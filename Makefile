@@ -12,7 +12,8 @@
 
 DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
 	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb \
-	python3 python3-venv python3-pyode python3-numpy xdotool chromium
+	python3 python3-venv python3-pyode python3-numpy xdotool chromium \
+	ffmpeg
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: deps demo test check bench figures readme-table python python-test

@@ -54,7 +54,9 @@ fn its_help_fits_a_screen_and_mistakes_are_said() {
         (vec!["fly", "x.json"], "unknown command"),
         (vec!["run"], "needs a FILE"),
         (vec!["run", "x.json", "--duration", "-1"], "--duration must be a positive number"),
-        (vec!["record", "x.urdf"], "needs --screenshots DIR or --html OUT.html"),
+        (vec!["record", "x.urdf"], "needs --screenshots DIR, --video OUT.mp4 or --html OUT.html"),
+        (vec!["run", "x.urdf", "--video", "a.mp4"], "--video goes with ars record or ars view"),
+        (vec!["record", "x.urdf", "--video", "a.mp4", "--fps", "0"], "--fps must be a positive number"),
         (vec!["run", "x.json", "--frobnicate"], "unknown option"),
     ] {
         let out = Command::new(ARS).args(&args).output().unwrap();

@@ -416,6 +416,45 @@ fn windows_one_after_another_when_the_context_is_kept() -> std::result::Result<b
     }
 }
 
+/// A window recorded to MP4 for a second and a half of wall time: the video has a
+/// frame for every 1/10 s of simulated time the window showed, and ffprobe reads it.
+fn a_window_records_a_video() -> std::result::Result<bool, String> {
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: this process runs this test alone, on its main thread.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    let path = std::env::temp_dir().join(format!("ars-window-video-{}.mp4", std::process::id()));
+    let mut program = RedBall;
+    let view = program.view_settings();
+    let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
+    let recorded = ars::viewer::run_window_recording(
+        &mut runner,
+        &view,
+        &Default::default(),
+        Some(Duration::from_secs_f64(1.5)),
+        &path,
+        10.0,
+    );
+    stop_xvfb(xvfb);
+    let (report, video) = recorded.map_err(|e| e.to_string())?;
+    let shown = runner.simulation().time();
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-show_entries", "stream=codec_name,nb_read_frames,width,height"])
+        .args(["-of", "csv=p=0", path.to_str().unwrap_or_default()])
+        .output()
+        .map_err(|e| format!("ffprobe could not run ({e}): install Debian's ffmpeg (make deps)"))?;
+    let _ = std::fs::remove_file(&path);
+    let probed = String::from_utf8_lossy(&probe.stdout).trim().to_string();
+    println!("  {} window frames, {shown:.2} s simulated: {} video frames ({probed})", report.frames, video.frames);
+    if probed != format!("h264,320,240,{}", video.frames) {
+        return Err(format!("ffprobe read {probed:?} from a video of {} frames", video.frames));
+    }
+    // Frames from the first picture (after the first window frame) to the last.
+    if video.frames < 3 || video.frames as f64 > shown * 10.0 + 1.0 {
+        return Err(format!("{} video frames for {shown:.2} s of simulated time at 10 frames/s", video.frames));
+    }
+    Ok(true)
+}
+
 /// The teleoperated example (IROS example 5) in a real window, driven by a person's
 /// keys through xdotool: holding Up drives the vehicle forward; Escape ends the
 /// process within 2 s. Run as under CI (no `XDG_RUNTIME_DIR`, no Wayland), its stderr
@@ -1351,6 +1390,7 @@ fn main() {
             "a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view" => {
                 a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view
             }
+            "a_window_records_a_video" => a_window_records_a_video,
             other => panic!("no test {other}"),
         };
         match test() {
@@ -1425,6 +1465,7 @@ fn main() {
         shown,
         &mut tally,
     );
+    run("a_window_records_a_video", || in_own_process("a_window_records_a_video"), false, shown, &mut tally);
     let (passed, failed, skipped) = tally;
     println!("{passed} passed, {failed} failed, {skipped} skipped");
     if failed > 0 {

@@ -17,6 +17,14 @@ pub trait Driver {
     /// One frame: the simulation's `steps_per_frame` steps, with whatever the program
     /// does around them.
     fn step_frame(&mut self) -> Result<()>;
+    /// As [`step_frame`](Self::step_frame), showing the simulation to `after_step`
+    /// after each step: the video recorder takes its pictures at the steps it wants.
+    /// By default the frame runs whole and `after_step` sees it once, at its end (for
+    /// front ends whose frames run out of reach, the Python package's programs).
+    fn step_frame_observed(&mut self, after_step: &mut dyn FnMut(&Simulation) -> Result<()>) -> Result<()> {
+        self.step_frame()?;
+        after_step(&self.simulation())
+    }
     /// One physics step.
     fn step(&mut self) -> Result<()>;
     /// Rebuilds the simulation from scratch (the `r` key).
@@ -45,6 +53,9 @@ impl<P: Program> Driver for ProgramRunner<'_, P> {
     }
     fn step_frame(&mut self) -> Result<()> {
         ProgramRunner::step_frame(self)
+    }
+    fn step_frame_observed(&mut self, after_step: &mut dyn FnMut(&Simulation) -> Result<()>) -> Result<()> {
+        ProgramRunner::step_frame_observed(self, after_step)
     }
     fn step(&mut self) -> Result<()> {
         ProgramRunner::step(self)

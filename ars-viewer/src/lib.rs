@@ -40,10 +40,12 @@ mod interact;
 mod layout;
 mod look;
 mod material;
+mod mp4;
 mod offscreen;
 mod replay;
 mod scene;
 mod state;
+mod video;
 mod views;
 mod window;
 
@@ -65,6 +67,9 @@ pub use offscreen::{
 pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
+pub use video::{
+    MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,
+};
 pub use views::{VIEW_KINDS, ViewKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
@@ -214,7 +219,36 @@ pub fn run_window_with<D: Driver>(
     if limit.is_some_and(|l| l.is_zero()) {
         return Err(ViewerError::Settings("a window run needs a positive duration".into()));
     }
-    catch_window_panic(|| window::drive_window(driver, view, options, limit))
+    catch_window_panic(|| window::drive_window(driver, view, options, limit, None))
+}
+
+/// As [`run_window_with`], recording what the window shows (the panel and the text
+/// too) into an MP4 video at `fps` frames a second of simulated time: frame k is the
+/// window's picture at the first window frame at or after k/fps simulated seconds
+/// from its first picture, at the window's size (`view.size`, both even). A window
+/// frame shown longer than 1/fps (the window draws slower than the video's rate, or
+/// runs faster than real time) repeats; while paused, the video stands still. The
+/// frame rate, size and path are checked before the window opens; the video is
+/// written when the window closes, and nothing is left if it fails.
+pub fn run_window_recording<D: Driver>(
+    driver: &mut D,
+    view: &ViewSettings,
+    options: &ViewerOptions,
+    limit: Option<Duration>,
+    path: impl Into<PathBuf>,
+    fps: f64,
+) -> Result<(WindowReport, RecordedVideo)> {
+    if !has_display() {
+        return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
+    }
+    if limit.is_some_and(|l| l.is_zero()) {
+        return Err(ViewerError::Settings("a window run needs a positive duration".into()));
+    }
+    // Before the encoder's thread starts: the probe's fix needs a single thread.
+    window::quiet_wayland_probe();
+    let mut video = video::WindowVideo::new(VideoWriter::create(path, view.size.0, view.size.1, fps)?);
+    let report = catch_window_panic(|| window::drive_window(driver, view, options, limit, Some(&mut video)))?;
+    Ok((report, video.finish()?))
 }
 
 /// The windowing stack panics when it cannot open a window or find a graphics

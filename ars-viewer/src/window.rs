@@ -21,6 +21,7 @@ use crate::interact::{DragMode, Grab, Push, pick};
 use crate::layout;
 use crate::scene::View;
 use crate::state::{DragLine, Selected, ViewerState};
+use crate::video::WindowVideo;
 use crate::views::{self, Views};
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
@@ -394,7 +395,7 @@ async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
 /// says how to select a device (`NODEVICE_SELECT`, `MESA_VK_DEVICE_SELECT`,
 /// `DRI_PRIME`), and nothing unless the process runs a single thread, the one case
 /// where changing the environment is sound (another thread could be reading it).
-fn quiet_wayland_probe() {
+pub(crate) fn quiet_wayland_probe() {
     if !device_select_would_print() {
         return;
     }
@@ -491,7 +492,7 @@ pub(crate) fn run_window_until<P: Program>(
 ) -> Result<(ars_core::Simulation, WindowReport)> {
     let view = program.view_settings();
     let mut runner = ProgramRunner::new(program)?;
-    let report = drive_window(&mut runner, &view, options, limit)?;
+    let report = drive_window(&mut runner, &view, options, limit, None)?;
     Ok((runner.into_simulation(), report))
 }
 
@@ -502,6 +503,7 @@ pub(crate) fn drive_window<D: Driver>(
     view: &ViewSettings,
     options: &ViewerOptions,
     limit: Option<Duration>,
+    mut video: Option<&mut WindowVideo>,
 ) -> Result<WindowReport> {
     kiss3d::pollster::block_on(async move {
         // The program's simulation, or a file opened from the panel (then titled so).
@@ -547,6 +549,11 @@ pub(crate) fn drive_window<D: Driver>(
                 }
                 let wall = started.elapsed();
                 report.frames += 1;
+                // The first frame is drawn before the scene is (see `shown.update`).
+                if let Some(video) = video.as_deref_mut().filter(|_| report.frames > 1) {
+                    let time = runner.simulation().time();
+                    video.shown(time, || window.snap_image())?;
+                }
                 if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
                     report.resident_mb.push((wall.as_secs_f64(), resident_mb()));
                 }

@@ -1,6 +1,6 @@
 //! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
-//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes] [--views N]`,
-//! and the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`.
+//! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
+//! [--axes] [--views N]`, and the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`.
 
 use std::path::PathBuf;
 use std::process::exit;
@@ -26,6 +26,10 @@ pub struct Args {
     pub window: bool,
     /// Draw the world axes (in the window, or in the frames).
     pub axes: bool,
+    /// Record an MP4 video off screen into this file.
+    pub video: Option<PathBuf>,
+    /// The video's frames per second (of simulated time).
+    pub fps: f64,
     /// How many views (1 to 4): the free camera, following, top, camera sensor.
     pub views: usize,
     /// Write a browser replay (one self-contained HTML file) here.
@@ -36,13 +40,16 @@ pub struct Args {
 
 fn usage(program: &str, default_duration: f64) -> String {
     format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--size WxH] [--axes] [--views N] [--html OUT.html [--html-plot COLUMN]...]\n\
+        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes] [--views N] [--html OUT.html [--html-plot COLUMN]...]\n\
          \x20 --duration S       simulated seconds to run (default {default_duration})\n\
          \x20 --csv PATH         write the data as CSV\n\
          \x20 --plot DIR         write the figures as PNG into DIR\n\
          \x20 --every N          keep one CSV row every N steps (default 1)\n\
          \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
          \x20 --frame-every N    one screenshot every N frames (default 5)\n\
+         \x20 --video OUT.mp4    record an H.264 MP4 video off screen (with --window: of the window), frame k at\n\
+         \x20                    k/fps simulated seconds\n\
+         \x20 --fps N            the video's frames per second (default 30)\n\
          \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
          \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
          \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)\n\
@@ -71,6 +78,8 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         size: None,
         window: false,
         axes: false,
+        video: None,
+        fps: 30.0,
         views: 1,
         html: None,
         html_plots: Vec::new(),
@@ -108,6 +117,14 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
                 };
             }
             "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
+            "--video" => args.video = Some(value("--video").into()),
+            "--fps" => {
+                let v = value("--fps");
+                args.fps = match v.parse::<f64>() {
+                    Ok(f) if f.is_finite() && f > 0.0 => f,
+                    _ => fail(format!("--fps must be a positive number of frames per second, got {v:?}")),
+                };
+            }
             "--html" => args.html = Some(value("--html").into()),
             "--html-plot" => args.html_plots.push(value("--html-plot")),
             "--frame-every" => {
@@ -179,6 +196,9 @@ pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulat
     if args.window {
         return show(program, args);
     }
+    if let Some(path) = &args.video {
+        return record_video(program, args, path);
+    }
     if let Some(path) = &args.html {
         return replay(program, args, path);
     }
@@ -215,6 +235,19 @@ fn show<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation
     use ars::viewer::ProgramViewer;
     eprintln!("{}", ars::viewer::VIEWER_KEYS);
     let options = viewer_options(args);
+    if let Some(path) = &args.video {
+        if !ars::viewer::has_display() {
+            eprintln!("no display: recording the video off screen");
+            return record_video(program, args, path);
+        }
+        // The window's pictures, at the simulation's time.
+        let view =
+            ars::ViewSettings { size: args.size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+        let mut runner = ars::ProgramRunner::new(program)?;
+        let (_, video) = ars::viewer::run_window_recording(&mut runner, &view, &options, None, path, args.fps)?;
+        say_video(&video);
+        return Ok(runner.into_simulation());
+    }
     match args.size {
         // The program's view at the size asked for.
         Some(size) if ars::viewer::has_display() => {
@@ -259,6 +292,44 @@ fn record<P: ars::Program>(
     Err("--screenshots needs the viewer: build with the default features".into())
 }
 
+#[cfg(feature = "viewer")]
+fn record_video<P: ars::Program>(
+    program: &mut P,
+    args: &Args,
+    path: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    let mut recorder = ars::viewer::VideoRecorder::new(path).fps(args.fps).options(viewer_options(args));
+    if let Some((w, h)) = args.size {
+        recorder = recorder.size(w, h);
+    }
+    let (sim, video) = recorder.record(program, args.duration)?;
+    say_video(&video);
+    Ok(sim)
+}
+
+#[cfg(feature = "viewer")]
+fn say_video(video: &ars::viewer::RecordedVideo) {
+    eprintln!(
+        "wrote {}: {} frames, {} s at {} frames/s, {}x{}, {} kB",
+        video.path.display(),
+        video.frames,
+        video.duration,
+        video.fps,
+        video.size.0,
+        video.size.1,
+        video.bytes / 1000
+    );
+}
+
+#[cfg(not(feature = "viewer"))]
+fn record_video<P: ars::Program>(
+    _: &mut P,
+    _: &Args,
+    _: &std::path::Path,
+) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
+    Err("--video needs the viewer: build with the default features".into())
+}
+
 /// The replay recorder `--html-plot` asks for.
 #[cfg(feature = "viewer")]
 fn replay_recorder(args: &Args) -> ars::viewer::ReplayRecorder {
@@ -292,44 +363,85 @@ fn replay<P: ars::Program>(
     Err("--html needs the viewer: build with the default features".into())
 }
 
-/// Off-screen frames (and the replay of `--html`) for examples that drive their own
-/// [`ars::ProgramRunner`]: call [`Capture::frame`] at the start of every frame and
-/// [`Capture::finish`] at the end.
+/// A video taken by [`Capture`]: the writer, its renderer, the frames wanted, the
+/// frames taken and the simulated time it started at.
+#[cfg(feature = "viewer")]
+struct CapturedVideo {
+    writer: ars::viewer::VideoWriter,
+    renderer: ars::viewer::OffscreenRenderer,
+    fps: f64,
+    count: u64,
+    taken: u64,
+    start: Option<f64>,
+}
+
+#[cfg(feature = "viewer")]
+impl CapturedVideo {
+    /// Takes the video frames due by the simulation's time now.
+    fn take(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        let start = *self.start.get_or_insert(sim.time());
+        while self.taken < self.count && sim.time() - start >= self.taken as f64 / self.fps - 1e-9 {
+            self.writer.add_frame(self.renderer.render(sim)?)?;
+            self.taken += 1;
+        }
+        Ok(())
+    }
+}
+
+/// Off-screen frames (and the replay of `--html`, the video of `--video`) for examples
+/// that drive their own [`ars::ProgramRunner`]: call [`Capture::frame`] at the start of
+/// every frame and [`Capture::finish`] at the end. These examples step their own
+/// frames: video frame k is the picture at the first frame start at or after k/fps
+/// simulated seconds (at most a frame late; the other examples take it at the first
+/// step).
 pub struct Capture {
     #[cfg(feature = "viewer")]
     inner: Option<(ars::viewer::OffscreenRenderer, PathBuf, u32, u64, u32)>,
     /// The replay: its recorder, view and file, then the recording once begun.
     #[cfg(feature = "viewer")]
     replay: Option<(ars::viewer::ReplayRecorder, ars::ViewSettings, PathBuf, Option<ars::viewer::ReplayInProgress>)>,
+    #[cfg(feature = "viewer")]
+    video: Option<CapturedVideo>,
 }
 
 impl Capture {
-    /// Records when `--screenshots` was given, with `view` (the program's settings).
+    /// Records when `--screenshots`, `--html` or `--video` was given, with `view` (the
+    /// program's settings).
     pub fn new(args: &Args, view: ars::ViewSettings) -> Result<Self, Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
         {
             let replay = args.html.as_ref().map(|path| (replay_recorder(args), view.clone(), path.clone(), None));
-            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, replay }) };
-            std::fs::create_dir_all(dir)?;
             let mut view = view;
             if let Some(size) = args.size {
                 view.size = size;
             }
+            let video = match &args.video {
+                Some(path) => {
+                    ars::viewer::check_video_settings(args.fps, view.size.0, view.size.1)?;
+                    let count = ars::viewer::video_frame_count(args.duration, args.fps)?;
+                    let writer = ars::viewer::VideoWriter::create(path, view.size.0, view.size.1, args.fps)?;
+                    let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
+                    Some(CapturedVideo { writer, renderer, fps: args.fps, count, taken: 0, start: None })
+                }
+                None => None,
+            };
+            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, replay, video }) };
+            std::fs::create_dir_all(dir)?;
             let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
-            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), replay })
+            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), replay, video })
         }
         #[cfg(not(feature = "viewer"))]
         {
             let _ = view;
-            if args.screenshots.is_some() || args.html.is_some() {
-                return Err("--screenshots and --html need the viewer: build with the default features".into());
+            if args.screenshots.is_some() || args.html.is_some() || args.video.is_some() {
+                return Err("--screenshots, --html and --video need the viewer: build with the default features".into());
             }
             Ok(Capture {})
         }
     }
 
     /// Writes the current frame if one is due (the first, then every N frames), and
-    /// samples the replay.
+    /// samples the replay and the video.
     pub fn frame(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
         if let Some((recorder, view, path, recording)) = &mut self.replay {
@@ -346,17 +458,29 @@ impl Capture {
             }
             *frame += 1;
         }
+        #[cfg(feature = "viewer")]
+        if let Some(video) = &mut self.video {
+            video.take(sim)?;
+        }
         #[cfg(not(feature = "viewer"))]
         let _ = sim;
         Ok(())
     }
 
-    /// Writes the replay, if `--html` asked for one, with `sim` as it is at the end.
+    /// Ends the recording with `sim` as it is at the end: writes the replay, if
+    /// `--html` asked for one, and the video, if `--video` did (with the frames still
+    /// due).
     pub fn finish(self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
-        if let Some((_, _, path, Some(recording))) = self.replay {
-            let replay = recording.finish(sim)?;
-            eprintln!("wrote the replay {} ({} frames)", path.display(), replay.frames());
+        {
+            if let Some((_, _, path, Some(recording))) = self.replay {
+                let replay = recording.finish(sim)?;
+                eprintln!("wrote the replay {} ({} frames)", path.display(), replay.frames());
+            }
+            if let Some(mut video) = self.video {
+                video.take(sim)?;
+                say_video(&video.writer.finish()?);
+            }
         }
         #[cfg(not(feature = "viewer"))]
         let _ = sim;

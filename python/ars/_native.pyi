@@ -20,6 +20,7 @@ __all__ = [
     "Renderer",
     "Sensor",
     "Simulation",
+    "VideoWriter",
     "__version__",
     "_panic_for_tests",
     "_release_viewer",
@@ -292,6 +293,21 @@ class Simulation:
     # Scene files.
     def save_scene(self) -> str: ...
     def save_scene_to(self, path: _Path) -> None: ...
+    # Video files.
+    def record_video(
+        self,
+        path: _Path,
+        duration: float,
+        fps: float = 30.0,
+        size: tuple[int, int] = (800, 600),
+        *,
+        camera: _Vec3 = ...,
+        look_at: _Vec3 = ...,
+        background: _Vec3 = ...,
+        follow: str | None = None,
+        quality: _Quality = ...,
+        axes: bool = ...,
+    ) -> _RecordedVideo: ...
     @staticmethod
     def load_scene(text: str) -> Simulation: ...
     @staticmethod
@@ -452,6 +468,34 @@ class Renderer:
     def size(self) -> tuple[int, int]: ...
     def render(self, sim: Simulation) -> Image: ...
     def save(self, sim: Simulation, path: _Path) -> None: ...
+
+class _RecordedVideo(TypedDict):
+    path: str
+    frames: int
+    fps: float
+    duration: float
+    size: tuple[int, int]
+    bytes: int
+
+@final
+class VideoWriter:
+    def __new__(
+        cls,
+        path: _Path,
+        width: int,
+        height: int,
+        fps: float = 30.0,
+        *,
+        camera: _Vec3 = ...,
+        look_at: _Vec3 = ...,
+        background: _Vec3 = ...,
+        follow: str | None = None,
+        quality: _Quality = ...,
+        axes: bool = ...,
+    ) -> VideoWriter: ...
+    def add(self, sim: Simulation) -> None: ...
+    def finish(self) -> _RecordedVideo: ...
+    def close(self) -> None: ...
 
 def has_display() -> bool: ...
 def step_many(sims: Iterable[Simulation], n: int = 1) -> None: ...

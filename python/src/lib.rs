@@ -15,6 +15,7 @@ mod replay;
 mod sensors;
 mod simulation;
 mod verify;
+mod video;
 mod viewer;
 mod views;
 
@@ -28,6 +29,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<views::Joint>()?;
     m.add_class::<sensors::PySensor>()?;
     m.add_class::<viewer::PyRenderer>()?;
+    m.add_class::<video::PyVideoWriter>()?;
     m.add_function(wrap_pyfunction!(many::step_many, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::show_program, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::has_display, m)?)?;

@@ -21,7 +21,7 @@ use crate::errors::{panic_message, raise, to_py};
 use crate::simulation::{PySimulation, Vec3};
 
 /// The Python exception for a viewer error.
-fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
+pub(crate) fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
     match error {
         ViewerError::Simulation(e) => to_py(py, e),
         ViewerError::Settings(message) => raise(py, "InputError", message),
@@ -45,7 +45,7 @@ pub(crate) struct ViewArgs {
 
 impl ViewArgs {
     /// The viewer's options these keywords ask for.
-    fn options(&self) -> ars_viewer::ViewerOptions {
+    pub(crate) fn options(&self) -> ars_viewer::ViewerOptions {
         ars_viewer::ViewerOptions::default().with_axes(self.axes)
     }
 
@@ -382,7 +382,7 @@ impl Drop for PyRenderer {
 impl PyRenderer {
     #[new]
     #[pyo3(signature = (width=640, height=480, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
-    fn new(
+    pub(crate) fn new(
         py: Python<'_>,
         width: i64,
         height: i64,
@@ -446,7 +446,7 @@ impl PyRenderer {
 }
 
 impl PyRenderer {
-    fn draw(&self, py: Python<'_>, sim: Py<PySimulation>) -> PyResult<image::RgbImage> {
+    pub(crate) fn draw(&self, py: Python<'_>, sim: Py<PySimulation>) -> PyResult<image::RgbImage> {
         if sim.get().in_own_hook() {
             return Err(raise(
                 py,

@@ -385,6 +385,7 @@ NOT_IN_PYTHON = {
     "Simulation.sensors_of",
     "Simulation.sensor_lines",
     "Simulation.sensor_tables",
+    "Simulation.step_frame_observed",
     "Simulation.scene_file",
     "Simulation.from_scene_file",
     "Scene.world",

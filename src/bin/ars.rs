@@ -16,10 +16,11 @@ ars: run, view and record ARS scenes and URDF robots
 
 usage:
   ars run FILE [--duration S] [--csv OUT] [--every N]
-  ars view FILE [--screenshots DIR] [--duration S] [--frame-every N] [--size WxH] [--axes]
-           [--views N] [--csv OUT]
+  ars view FILE [--screenshots DIR | --video OUT.mp4] [--duration S] [--frame-every N]
+           [--size WxH] [--axes] [--views N] [--csv OUT]
   ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
            [--views N] [--csv OUT]
+  ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes] ...
   ars record FILE --html OUT.html [--html-plot COLUMN]... [--duration S] [--size WxH]
   ars --help | --version
 
@@ -31,16 +32,18 @@ MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
   run       simulate without graphics and print a summary; --csv writes the scene's
             sensors (or, if it has none, every body's position) every N steps; with
             view and record, --csv writes what was simulated until the end
-  view      open a window (Escape closes it); without a display, record off screen
-            into --screenshots
+  view      open a window (Escape closes it; --video records it); without a display,
+            record off screen into --screenshots or --video
   record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
-            or write a browser replay: one HTML file that plays the run back in any
-            browser, no network needed (--html-plot \"Gps 1: y\" plots a sensor column,
-            as ars run --csv heads it)
+            into an H.264 MP4 video (frame k at k/fps simulated seconds), or into a
+            browser replay: one HTML file that plays the run back in any browser, no
+            network needed (--html-plot \"Gps 1: y\" plots a sensor column, as ars run
+            --csv heads it)
 
   --duration S      simulated seconds (default: run and record 10, view until closed)
   --every N         one CSV row every N steps (default 1)
   --frame-every N   one picture every N frames (default 5)
+  --fps N           the video's frames per second (default 30)
   --size WxH        picture or window size in pixels (default 1024x768)
   --axes            draw the world axes
   --views N         split the picture into N views (1-4): free, following, top, camera
@@ -59,6 +62,8 @@ struct Command {
     html: Option<PathBuf>,
     html_plots: Vec<String>,
     frame_every: u32,
+    video: Option<PathBuf>,
+    fps: f64,
     size: Option<(u32, u32)>,
     axes: bool,
     views: usize,
@@ -85,6 +90,8 @@ fn parse(args: &[String]) -> Result<Command, String> {
         html: None,
         html_plots: Vec::new(),
         frame_every: 5,
+        video: None,
+        fps: 30.0,
         size: None,
         axes: false,
         views: 1,
@@ -109,6 +116,14 @@ fn parse(args: &[String]) -> Result<Command, String> {
             "--csv" => command.csv = Some(value("--csv")?.into()),
             "--every" => command.every = positive("--every", value("--every")?)? as usize,
             "--screenshots" => command.screenshots = Some(value("--screenshots")?.into()),
+            "--video" => command.video = Some(value("--video")?.into()),
+            "--fps" => {
+                let v = value("--fps")?;
+                command.fps = match v.parse::<f64>() {
+                    Ok(f) if f.is_finite() && f > 0.0 => f,
+                    _ => return Err(format!("--fps must be a positive number of frames per second, got {v:?}")),
+                };
+            }
             "--html" => command.html = Some(value("--html")?.into()),
             "--html-plot" => command.html_plots.push(value("--html-plot")?),
             "--frame-every" => {
@@ -145,14 +160,17 @@ fn parse(args: &[String]) -> Result<Command, String> {
             other => return Err(format!("unknown option {other:?}")),
         }
     }
-    if command.verb == "record" && command.screenshots.is_none() && command.html.is_none() {
-        return Err("ars record needs --screenshots DIR or --html OUT.html".into());
+    if command.verb == "record" && command.screenshots.is_none() && command.html.is_none() && command.video.is_none() {
+        return Err("ars record needs --screenshots DIR, --video OUT.mp4 or --html OUT.html".into());
     }
     if command.html.is_some() && (command.verb != "record" || command.screenshots.is_some()) {
         return Err("--html goes with ars record, without --screenshots".into());
     }
     if !command.html_plots.is_empty() && command.html.is_none() {
         return Err("--html-plot goes with --html".into());
+    }
+    if command.video.is_some() && (command.verb == "run" || command.screenshots.is_some() || command.html.is_some()) {
+        return Err("--video goes with ars record or ars view, without --screenshots or --html".into());
     }
     Ok(command)
 }
@@ -301,9 +319,20 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
     let window = command.verb == "view" && ars::viewer::has_display();
     if window {
         eprintln!("{}", ars::viewer::VIEWER_KEYS);
-        let sim = match (command.size, command.duration) {
-            (None, None) => program.show_with(&options)?,
-            (size, limit) => {
+        let sim = match (command.size, command.duration, &command.video) {
+            (size, limit, Some(path)) => {
+                let view =
+                    ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+                let mut runner = ars::ProgramRunner::new(program)?;
+                // The window runs in real time: a duration is wall seconds here.
+                let limit = limit.map(std::time::Duration::from_secs_f64);
+                let (_, video) =
+                    ars::viewer::run_window_recording(&mut runner, &view, &options, limit, path, command.fps)?;
+                println!("recorded the window: {} frames ({} s) into {}", video.frames, video.duration, path.display());
+                runner.into_simulation()
+            }
+            (None, None, None) => program.show_with(&options)?,
+            (size, limit, None) => {
                 let view =
                     ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
                 let mut runner = ars::ProgramRunner::new(program)?;
@@ -317,6 +346,28 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
         println!("closed at t = {} s ({} steps)", sim.time(), sim.step_count());
         if let Some(path) = &command.csv {
             write_csv(&sim, path, command.every)?;
+        }
+        return Ok(());
+    }
+    if let Some(path) = &command.video {
+        // Off screen (ars record, or ars view with no display).
+        let mut recorder = ars::viewer::VideoRecorder::new(path).fps(command.fps).options(options);
+        if let Some((w, h)) = command.size {
+            recorder = recorder.size(w, h);
+        }
+        let (sim, video) = recorder.record(program, command.duration.unwrap_or(10.0))?;
+        println!("{}", program.summary);
+        println!(
+            "recorded t = {} s: {} frames ({} s at {} frames/s, {} bytes) into {}",
+            sim.time(),
+            video.frames,
+            video.duration,
+            video.fps,
+            video.bytes,
+            path.display()
+        );
+        if let Some(csv) = &command.csv {
+            write_csv(&sim, csv, command.every)?;
         }
         return Ok(());
     }

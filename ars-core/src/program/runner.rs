@@ -135,6 +135,14 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
         self.run_steps(n, &mut || false)
     }
 
+    /// As [`step_frame`](Self::step_frame), showing the simulation to `after_step`
+    /// after each step (see [`Simulation::step_frame_observed`]).
+    pub fn step_frame_observed(&mut self, after_step: &mut dyn FnMut(&Simulation) -> Result<()>) -> Result<()> {
+        let n = self.sim.steps_per_frame();
+        let (mut program, sim) = self.driven();
+        sim.frame_observed(Some(&mut program), n, after_step)
+    }
+
     /// Runs for `duration` seconds of simulated time in frames, pressing and releasing
     /// keys as `script` says. As in the original, keys are handled between frames: an
     /// event takes effect before the first frame that starts at or after its time. A

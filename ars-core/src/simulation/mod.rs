@@ -308,6 +308,14 @@ impl Simulation {
         self.frame_driven(None::<&mut ()>, steps)
     }
 
+    /// As [`step_frame`](Self::step_frame), showing the simulation to `after_step`
+    /// after each step: a video recorder takes its pictures at the steps it wants (an
+    /// error from it ends the frame there).
+    pub fn step_frame_observed(&mut self, after_step: &mut dyn FnMut(&Simulation) -> Result<()>) -> Result<()> {
+        let steps = self.scene.steps_per_frame();
+        self.frame_observed(None::<&mut ()>, steps, after_step)
+    }
+
     /// Runs for `duration` seconds of simulated time (rounded to whole steps), in
     /// frames of `steps_per_frame` steps (the last frame may be shorter). A stop
     /// requested through [`interrupt`](crate::interrupt) (Ctrl-C) ends it between two
@@ -353,7 +361,18 @@ impl Simulation {
     }
 
     /// A frame of `steps` steps driven by `program`.
-    pub(crate) fn frame_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>, steps: u32) -> Result<()> {
+    pub(crate) fn frame_driven<H: Hooks + ?Sized>(&mut self, program: Option<&mut H>, steps: u32) -> Result<()> {
+        self.frame_observed(program, steps, &mut |_| Ok(()))
+    }
+
+    /// A frame of `steps` steps driven by `program`, showing the simulation to
+    /// `after_step` after each step (once the step's hooks have run).
+    pub(crate) fn frame_observed<H: Hooks + ?Sized>(
+        &mut self,
+        mut program: Option<&mut H>,
+        steps: u32,
+        after_step: &mut dyn FnMut(&Simulation) -> Result<()>,
+    ) -> Result<()> {
         self.scene.frame_count += 1;
         if let Some(program) = program.as_deref_mut() {
             HookPoint::PreFrame.run(program, self, &"the program")?;
@@ -361,6 +380,7 @@ impl Simulation {
         self.run_added_hooks(HookPoint::PreFrame)?;
         for _ in 0..steps {
             self.step_driven(program.as_deref_mut())?;
+            after_step(self)?;
         }
         if let Some(program) = program {
             HookPoint::PostFrame.run(program, self, &"the program")?;

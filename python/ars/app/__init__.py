@@ -136,10 +136,20 @@ class Program:
             self.sim.on_idle()
         return self.sim
 
-    def start(self):
+    def start(self, video=None):
         """Opens the viewer on the program until its window is closed; with no display,
-        records ``ARS_DURATION`` seconds (default 10) off screen instead."""
+        records ``ARS_DURATION`` seconds (default 10) off screen instead. With
+        ``video="out.mp4"``, records those seconds off screen into that MP4 video
+        (see ``record_video``), display or not."""
         self.do_create_window = False
+        if video is not None:
+            duration = float(os.environ.get("ARS_DURATION", "10"))
+            made = self.record_video(video, duration)
+            print(
+                f"ars: wrote {made['path']}: {made['frames']} frames, {made['duration']:g} s",
+                file=sys.stderr,
+            )
+            return
         if _native.has_display():
             self.show()
             return
@@ -196,6 +206,32 @@ class Program:
                 if frame % every == 0:
                     write()
         return written
+
+    def record_video(self, path, duration, fps=30):
+        """Runs ``duration`` seconds of simulated time off screen into an H.264 MP4
+        video at ``path`` (the window's size and camera); returns a dict of what it
+        holds. The program's frames run in Python, so frame k is the picture at the
+        first frame start at or after k/fps simulated seconds (at most one frame of
+        ``1/FPS`` late; ``Simulation.record_video`` takes it at the step)."""
+        view = self._view()
+        width, height = view.pop("size")
+        writer = _native.VideoWriter(path, width, height, fps, **view)
+        count = max(1, math.ceil(duration * fps - 1e-9))
+        try:
+            with self._viewed() as driver:
+                start = self.sim.sim_time
+                taken = 0
+                frames = max(0, math.ceil(duration * self.FPS - 1e-9))
+                for frame in range(frames + 1):
+                    now = self.sim.sim_time - start
+                    while taken < count and now >= taken / fps - 1e-9:
+                        writer.add(driver.native())
+                        taken += 1
+                    if frame < frames:
+                        driver.frame()
+            return writer.finish()
+        finally:
+            writer.close()
 
     @contextlib.contextmanager
     def _viewed(self):
