@@ -367,11 +367,12 @@ impl Simulation {
 
     /// A frame of `steps` steps driven by `program`, showing the simulation to
     /// `after_step` after each step (once the step's hooks have run).
-    pub(crate) fn frame_observed<H: Hooks + ?Sized>(
+    /// Generic in `after_step`, so that a plain frame's does nothing at no cost.
+    pub(crate) fn frame_observed<H: Hooks + ?Sized, F: FnMut(&Simulation) -> Result<()> + ?Sized>(
         &mut self,
         mut program: Option<&mut H>,
         steps: u32,
-        after_step: &mut dyn FnMut(&Simulation) -> Result<()>,
+        after_step: &mut F,
     ) -> Result<()> {
         self.scene.frame_count += 1;
         if let Some(program) = program.as_deref_mut() {
