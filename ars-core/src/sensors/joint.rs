@@ -231,16 +231,32 @@ impl Sensor for JointReaction {
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct JointPositions {
-    joints: Vec<JointId>,
-    names: std::sync::Arc<[String]>,
-}
+pub struct JointPositions(JointList);
 
 impl JointPositions {
     /// Of `joints`, in this order (hinges, sliders, pistons, universals).
     pub fn new(scene: &Scene, joints: &[JointId]) -> Result<Self> {
+        JointList::new(scene, joints).map(JointPositions)
+    }
+}
+
+/// Joints read together, one column each named after it: what [`JointPositions`] and
+/// [`JointVelocities`] share.
+#[derive(Clone, Debug)]
+struct JointList {
+    joints: Vec<JointId>,
+    names: std::sync::Arc<[String]>,
+}
+
+impl JointList {
+    fn new(scene: &Scene, joints: &[JointId]) -> Result<Self> {
         let names = joints.iter().map(|j| Ok(scene.joint(*j)?.name().to_string())).collect::<Result<Vec<_>>>()?;
-        Ok(JointPositions { joints: joints.to_vec(), names: names.into() })
+        Ok(JointList { joints: joints.to_vec(), names: names.into() })
+    }
+
+    /// What `read` takes of each joint's state, in order.
+    fn read(&self, scene: &Scene, read: impl Fn(crate::control::JointState) -> f64) -> Result<Vec<f64>> {
+        self.joints.iter().map(|j| Ok(read(scene.joint_state(*j)?))).collect()
     }
 }
 
@@ -267,11 +283,10 @@ impl Record for Positions {
 impl Sensor for JointPositions {
     type Record = Positions;
     fn measure(&mut self, sim: &Scene) -> Result<Positions> {
-        let values = self.joints.iter().map(|j| Ok(sim.joint_state(*j)?.position)).collect::<Result<Vec<_>>>()?;
-        Ok(Positions { values, names: self.names.clone() })
+        Ok(Positions { values: self.0.read(sim, |s| s.position)?, names: self.0.names.clone() })
     }
     fn joints(&self) -> Vec<JointId> {
-        self.joints.clone()
+        self.0.joints.clone()
     }
 }
 
@@ -293,16 +308,12 @@ impl Sensor for JointPositions {
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct JointVelocities {
-    joints: Vec<JointId>,
-    names: std::sync::Arc<[String]>,
-}
+pub struct JointVelocities(JointList);
 
 impl JointVelocities {
     /// Of `joints`, in this order (hinges, sliders, pistons, universals).
     pub fn new(scene: &Scene, joints: &[JointId]) -> Result<Self> {
-        let names = joints.iter().map(|j| Ok(scene.joint(*j)?.name().to_string())).collect::<Result<Vec<_>>>()?;
-        Ok(JointVelocities { joints: joints.to_vec(), names: names.into() })
+        JointList::new(scene, joints).map(JointVelocities)
     }
 }
 
@@ -329,10 +340,9 @@ impl Record for Rates {
 impl Sensor for JointVelocities {
     type Record = Rates;
     fn measure(&mut self, sim: &Scene) -> Result<Rates> {
-        let values = self.joints.iter().map(|j| Ok(sim.joint_state(*j)?.rate)).collect::<Result<Vec<_>>>()?;
-        Ok(Rates { values, names: self.names.clone() })
+        Ok(Rates { values: self.0.read(sim, |s| s.rate)?, names: self.0.names.clone() })
     }
     fn joints(&self) -> Vec<JointId> {
-        self.joints.clone()
+        self.0.joints.clone()
     }
 }
