@@ -26,7 +26,7 @@ usage:
 
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
 Ctrl+S in the window; saved at any step, it goes on exactly where it was), a robot
-(.urdf, standing on the floor y = 0; --fixed-base bolts its root to the world) or a
+(.urdf, its root at --at over the floor y = 0; --fixed-base bolts it to the world) or a
 MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
 
   run       simulate without graphics and print a summary; --csv writes the scene's
