@@ -82,7 +82,7 @@ fn a_z_up_robot_stands_up_in_the_y_up_simulation_with_its_limits_and_damping() {
 fn load_error(text: &str) -> (String, String) {
     let mut sim = Simulation::new().unwrap();
     match sim.load_urdf_text(text, "bad.urdf", &UrdfOptions::new()) {
-        Err(Error::Format { format: "URDF", file, location: element, problem }) => {
+        Err(Error::Format { format: "URDF", file, element, problem, .. }) => {
             assert_eq!(file, "bad.urdf");
             assert_eq!(sim.objects().count(), 0, "nothing added: {element}: {problem}");
             (element, problem)
@@ -189,7 +189,7 @@ fn a_missing_mesh_is_an_error_listing_every_path_tried() {
     let file = THREE_LINK_ARM.replace("three_link_arm", "copy");
     let mut sim = Simulation::new().unwrap();
     let err = sim.load_urdf_text(&text, &file, &UrdfOptions::new()).unwrap_err();
-    let Error::Format { format: "URDF", location: element, problem, .. } = err else { panic!("{err}") };
+    let Error::Format { format: "URDF", element, problem, .. } = err else { panic!("{err}") };
     assert_eq!(element, r#"link "gripper""#);
     assert!(problem.contains("package://ars_test_robot/meshes/lost.stl"), "{problem}");
     assert!(problem.contains("ars_test_robot/meshes/lost.stl,"), "the folder-named-like-the-package rule: {problem}");
@@ -215,7 +215,7 @@ fn initial_positions_pose_the_robot_and_its_joints_read_them() {
     let gripper = sim.object("gripper").unwrap().position().unwrap();
     assert!((gripper - expected).norm() < 1e-12, "{gripper} vs {expected}");
     let err = Simulation::new().unwrap().load_urdf(THREE_LINK_ARM, &UrdfOptions::new().initial_position("knee", 1.0));
-    assert!(matches!(err, Err(Error::Format { ref location, .. }) if location == r#"joint "knee""#), "{err:?}");
+    assert!(matches!(err, Err(Error::Format { ref element, .. }) if element == r#"joint "knee""#), "{err:?}");
 }
 
 const VEHICLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/thesis_vehicle.urdf");

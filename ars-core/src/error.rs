@@ -145,15 +145,19 @@ pub enum Error {
     /// A file (or text) that was read but is not what it should be: a scene file that
     /// is not JSON, a URDF whose joint has no child, a key script line that does not
     /// parse...
-    #[error("{file}{}: {problem}", place(.location))]
+    #[error("{file}{}: {problem}", place(&format_location(.element, *.line, *.column)))]
     Format {
         /// The format, e.g. "URDF", "scene file", "key script".
         format: &'static str,
         /// The file, or `"<string>"` for text given directly.
         file: String,
-        /// Where in it, e.g. "line 3, column 7" or `joint "elbow"` (empty: the whole
-        /// file).
-        location: String,
+        /// The element (tag) or named part it is about, when there is one: `<geom>`,
+        /// `link "gripper"`, `"state"` (empty otherwise).
+        element: String,
+        /// The line in the file, from 1, when it is known.
+        line: Option<u32>,
+        /// The column in that line, from 1, when it is known.
+        column: Option<u32>,
         /// What is wrong.
         problem: String,
     },
@@ -260,6 +264,18 @@ impl Error {
 
 fn suggestion(close: &[String]) -> String {
     if close.is_empty() { String::new() } else { format!(" (did you mean {}?)", close.join(", ")) }
+}
+
+/// Where in a file a [`Error::Format`] is, as its message says it: `<geom> at line 12`,
+/// `line 3, column 7`, `line 3`, `link "gripper"`, or empty for the whole file.
+pub fn format_location(element: &str, line: Option<u32>, column: Option<u32>) -> String {
+    match (element.is_empty(), line, column) {
+        (false, Some(l), _) => format!("{element} at line {l}"),
+        (false, None, _) => element.to_string(),
+        (true, Some(l), Some(c)) => format!("line {l}, column {c}"),
+        (true, Some(l), None) => format!("line {l}"),
+        (true, None, _) => String::new(),
+    }
 }
 
 fn place(location: &str) -> String {

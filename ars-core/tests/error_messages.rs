@@ -48,9 +48,9 @@ fn a_missing_scene_file_is_an_io_error_with_its_path() {
 #[test]
 fn a_malformed_scene_is_a_format_error_with_its_position() {
     let err = Simulation::load_scene("{\n  \"format\": 3,\n").unwrap_err();
-    let Error::Format { format, file, location, .. } = &err else { panic!("{err:?}") };
-    assert_eq!((*format, file.as_str()), ("scene file", "<string>"));
-    assert!(location.starts_with("line 2, column "), "{location}");
+    let Error::Format { format, file, element, line, column, .. } = &err else { panic!("{err:?}") };
+    assert_eq!((*format, file.as_str(), element.as_str(), *line), ("scene file", "<string>", "", Some(2)));
+    assert!(column.is_some(), "{err}");
     assert!(readable(&err).starts_with("<string>, line 2, column "), "{err}");
 
     let dir = std::env::temp_dir().join(format!("ars-error-messages-{}", std::process::id()));

@@ -9,8 +9,8 @@ One class per cause, each also a Python built-in class where one fits, so that
 - ``UnknownKindError`` (``InputError``): a kind (of sensor, of controller) that does not
   exist; the message lists those that do;
 - ``FormatError`` (``InputError``): a file that was read but is malformed (a scene file
-  that is not JSON, a URDF joint without a child); ``filename`` and ``position`` say
-  where;
+  that is not JSON, a URDF joint without a child); ``filename``, ``position``,
+  ``element`` and ``line`` say where;
 - ``UnknownNameError`` (``KeyError``): no object or joint has this name (or it was
   removed);
 - ``FileError`` (``OSError``): a file or folder that cannot be read or written, with
@@ -70,11 +70,16 @@ class UnknownKindError(InputError):
 
 class FormatError(InputError):
     """A file (or text) that is not what it should be: ``filename`` is the file (or
-    ``"<string>"``), ``position`` where in it (``"line 3, column 7"``, ``'joint
-    "elbow"'``; empty for the whole file)."""
+    ``"<string>"``), ``position`` where in it as the message says (``"line 3, column
+    7"``, ``'joint "elbow"'``, ``"<geom> at line 12"``; empty for the whole file),
+    ``element`` the element or named part it is about (``"<geom>"``, ``'link
+    "gripper"'``; empty when none) and ``line`` its line, from 1 (``None`` when not
+    known)."""
 
     filename = None
     position = ""
+    element = ""
+    line = None
 
 
 class UnknownNameError(ArsError, KeyError):

@@ -36,7 +36,10 @@ pub(crate) fn to_py(py: Python<'_>, error: Error) -> PyErr {
     let class = match &error {
         Error::Interrupted { .. } => return pyo3::exceptions::PyKeyboardInterrupt::new_err(message),
         Error::Io { path, errno, .. } => return file_error(py, *errno, message, path),
-        Error::Format { file, location, .. } => return format_error(py, message, file, location),
+        Error::Format { file, element, line, column, .. } => {
+            let location = ars_core::error::format_location(element, *line, *column);
+            return format_error(py, message, file, &location, element, *line);
+        }
         Error::UnknownName { .. } | Error::StaleHandle { .. } => "UnknownNameError",
         Error::UnknownKind { .. } => "UnknownKindError",
         Error::Diverged { .. } | Error::OdeInternal { .. } | Error::Ode(_) | Error::Poisoned(_) => "SimulationError",
@@ -61,11 +64,20 @@ pub(crate) fn file_error(py: Python<'_>, errno: Option<i32>, message: String, pa
 }
 
 /// An `ars.FormatError` with its `filename` and `position`.
-fn format_error(py: Python<'_>, message: String, file: &str, location: &str) -> PyErr {
+fn format_error(
+    py: Python<'_>,
+    message: String,
+    file: &str,
+    location: &str,
+    element: &str,
+    line: Option<u32>,
+) -> PyErr {
     let made = class(py, "FormatError").and_then(|cls| {
         let error = cls.call1((message,))?;
         error.setattr("filename", file)?;
         error.setattr("position", location)?;
+        error.setattr("element", element)?;
+        error.setattr("line", line)?;
         Ok(error)
     });
     match made {

@@ -48,6 +48,7 @@ def test_file_and_format_errors_pickle_with_their_details():
     again = pickle.loads(pickle.dumps(caught.value))
     assert type(again) is ars.FormatError and str(again) == str(caught.value)
     assert (again.filename, again.position) == (caught.value.filename, caught.value.position)
+    assert (again.element, again.line) == (caught.value.element, caught.value.line)
 
 
 def test_a_missing_csv_folder_is_an_os_error_with_the_path(tmp_path):
@@ -71,7 +72,18 @@ def test_a_malformed_scene_is_a_format_error_with_its_position():
         ars.Simulation.load_scene('{\n  "format": 3,\n')
     error = caught.value
     assert error.filename == "<string>" and error.position.startswith("line 2, column ")
+    assert (error.element, error.line) == ("", 2)
     assert readable(error).startswith("<string>, line 2, column ")
+
+
+def test_a_bad_mjcf_element_is_named_with_its_line(tmp_path):
+    path = tmp_path / "bad.xml"
+    path.write_text('<mujoco>\n<worldbody>\n<body><geom size="-1"/></body>\n</worldbody></mujoco>')
+    with pytest.raises(ars.FormatError) as caught:
+        ars.Simulation().load_mjcf(path)
+    error = caught.value
+    assert (error.filename, error.element, error.line) == (str(path), "<geom>", 3)
+    assert "must be positive" in str(error)
 
 
 def test_unknown_kinds_list_the_known_ones():

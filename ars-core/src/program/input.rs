@@ -109,7 +109,9 @@ impl KeyScript {
             let bad = |why: &str| crate::Error::Format {
                 format: "key script",
                 file: "<key script>".into(),
-                location: format!("line {}", n + 1),
+                element: String::new(),
+                line: u32::try_from(n + 1).ok(),
+                column: None,
                 problem: format!("{why}: {line:?} (expected `TIME down|up KEY`)"),
             };
             let parts: Vec<&str> = line.split_whitespace().collect();

@@ -1148,7 +1148,9 @@ impl Scene {
         let model = read(file, text, options).map_err(|p| Error::Format {
             format: "MJCF",
             file: p.file.unwrap_or_else(|| file.to_string()),
-            location: format!("<{}> at line {}", p.element, p.line),
+            element: format!("<{}>", p.element),
+            line: Some(p.line),
+            column: None,
             problem: p.text,
         })?;
         // Built in one go; on an error everything made so far is removed.

@@ -362,10 +362,12 @@ impl Scene {
 
     /// Loads a robot from URDF text; `file` names it in errors.
     pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
-        let bad = |location: String, problem: String| Error::Format {
+        let bad = |element: String, problem: String| Error::Format {
             format: "URDF",
             file: file.to_string(),
-            location,
+            element,
+            line: None,
+            column: None,
             problem,
         };
         // The parser is a dependency: a panic in it must not reach the caller either.
@@ -376,11 +378,14 @@ impl Scene {
         let base_dir = Path::new(file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
         let mut meshes = Meshes { options, base_dir, loaded: HashMap::new() };
         self.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
-            Error::Format { format: "URDF", location, problem, .. } => bad(location, problem),
+            Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })
     }
 
+    // The element with the error: internal, and only on the error path, so its size
+    // costs nothing on a robot that loads.
+    #[allow(clippy::result_large_err)]
     fn build_urdf(
         &mut self,
         plan: &Plan<'_>,
@@ -522,7 +527,9 @@ impl Scene {
         let urdf_err = |problem: String| Error::Format {
             format: "URDF",
             file: String::new(),
-            location: format!("link {:?}", link.name),
+            element: format!("link {:?}", link.name),
+            line: None,
+            column: None,
             problem,
         };
         // The visuals relative to the object's pose.
@@ -713,7 +720,9 @@ fn link_geometry(
     let urdf_err = |problem: String| Error::Format {
         format: "URDF",
         file: String::new(),
-        location: format!("link {:?}", link.name),
+        element: format!("link {:?}", link.name),
+        line: None,
+        column: None,
         problem,
     };
     let mut collisions = Vec::new();

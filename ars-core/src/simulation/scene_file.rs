@@ -504,20 +504,25 @@ impl Simulation {
 
     /// [`load_scene`](Self::load_scene) of the text of `file` (named in errors).
     fn load_scene_named(text: &str, file: &str) -> Result<Simulation> {
-        let malformed = |location: String, problem: String| Error::Format {
+        let malformed = |element: String, line: Option<u32>, column: Option<u32>, problem: String| Error::Format {
             format: "scene file",
             file: file.to_string(),
-            location,
+            element,
+            line,
+            column,
             problem,
         };
         let scene: SceneFile = serde_json::from_str(text).map_err(|e| {
             let message = e.to_string();
             let position = format!(" at line {} column {}", e.line(), e.column());
             let problem = message.strip_suffix(&position).unwrap_or(&message);
-            malformed(format!("line {}, column {}", e.line(), e.column()), format!("not a scene: {problem}"))
+            let (line, column) = (u32::try_from(e.line()).ok(), u32::try_from(e.column()).ok());
+            malformed(String::new(), line, column, format!("not a scene: {problem}"))
         })?;
         Simulation::from_scene_file(&scene).map_err(|e| match e {
-            Error::Format { format: "scene file", location, problem, .. } => malformed(location, problem),
+            Error::Format { format: "scene file", element, line, column, problem, .. } => {
+                malformed(element, line, column, problem)
+            }
             other => other,
         })
     }
@@ -528,7 +533,9 @@ impl Simulation {
             return Err(Error::Format {
                 format: "scene file",
                 file: "<string>".into(),
-                location: "\"format\"".into(),
+                element: "\"format\"".into(),
+                line: None,
+                column: None,
                 problem: format!("is {:?}, expected {FORMAT:?}", file.format),
             });
         }
@@ -657,7 +664,9 @@ impl Simulation {
             let corrupt = |problem: String| Error::Format {
                 format: "scene file",
                 file: "<string>".into(),
-                location: "\"state\"".into(),
+                element: "\"state\"".into(),
+                line: None,
+                column: None,
                 problem,
             };
             let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
