@@ -215,6 +215,35 @@ impl OffscreenRenderer {
     }
 }
 
+/// The whole frames of `sim` that `duration` seconds of simulated time take (the last
+/// one may be cut short by the duration): what every recorder runs.
+pub(crate) fn frames_in(sim: &Simulation, duration: f64) -> Result<u64> {
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(ViewerError::Settings(format!("a recording's duration must be positive, got {duration} s")));
+    }
+    Ok(sim.steps_in(duration)?.div_ceil(u64::from(sim.steps_per_frame())))
+}
+
+/// The renderer a recorder draws what `driver` drives with: `view` at `size` (if
+/// given), drawing what `options` say; when it draws forces, the simulation is asked
+/// to report them (the contacts' and every joint's).
+pub(crate) fn recording_renderer<D: Driver>(
+    driver: &mut D,
+    view: &ViewSettings,
+    size: Option<(u32, u32)>,
+    options: &ViewerOptions,
+) -> Result<OffscreenRenderer> {
+    let mut view = view.clone();
+    if let Some(size) = size {
+        view.size = size;
+    }
+    let renderer = OffscreenRenderer::with_options(&view, options)?;
+    if options.forces {
+        crate::scene::report_forces(driver.simulation().world_mut());
+    }
+    Ok(renderer)
+}
+
 /// Writes numbered PNG frames (`frame_00001.png`, `frame_00002.png`...) of a running
 /// simulation into a folder: the first before any step, then one every `every`
 /// frames.
@@ -283,21 +312,10 @@ impl ScreenshotRecorder {
         if self.every == 0 {
             return Err(ViewerError::Settings("the screenshot period must be at least one frame".into()));
         }
-        let frames = {
-            let sim = driver.simulation();
-            sim.steps_in(duration)?.div_ceil(u64::from(sim.steps_per_frame()))
-        };
+        let frames = frames_in(&driver.simulation(), duration)?;
         std::fs::create_dir_all(&self.dir)
             .map_err(|e| ViewerError::Write { path: self.dir.display().to_string(), message: e.to_string() })?;
-        let mut view = view.clone();
-        if let Some(size) = self.size {
-            view.size = size;
-        }
-        let mut renderer = OffscreenRenderer::with_options(&view, &self.options)?;
-        if self.options.forces {
-            // The forces drawn are those ODE reports.
-            crate::scene::report_forces(driver.simulation().world_mut());
-        }
+        let mut renderer = recording_renderer(driver, view, self.size, &self.options)?;
         let mut writer = FrameWriter::new();
         let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
         for frame in 1..=frames {

@@ -26,7 +26,7 @@ use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
 use crate::frames::RawFrame;
 use crate::mp4::Mp4Track;
-use crate::offscreen::OffscreenRenderer;
+use crate::offscreen::{frames_in, recording_renderer};
 
 /// The largest frame rate a video can have, frames per second.
 pub const MAX_VIDEO_FPS: f64 = 1000.0;
@@ -495,11 +495,8 @@ impl VideoRecorder {
         view: &ViewSettings,
         duration: f64,
     ) -> Result<RecordedVideo> {
-        let mut view = view.clone();
-        if let Some(size) = self.size {
-            view.size = size;
-        }
-        check_video_settings(self.fps, view.size.0, view.size.1)?;
+        let (width, height) = self.size.unwrap_or(view.size);
+        check_video_settings(self.fps, width, height)?;
         let count = video_frame_count(duration, self.fps)?;
         let (frames, start) = {
             let sim = driver.simulation();
@@ -509,13 +506,10 @@ impl VideoRecorder {
                     "nothing to record: the simulation has no objects (a floor plane alone)".into(),
                 ));
             }
-            (sim.steps_in(duration)?.div_ceil(u64::from(sim.steps_per_frame())), sim.time())
+            (frames_in(&sim, duration)?, sim.time())
         };
-        let mut writer = VideoWriter::create(&self.path, view.size.0, view.size.1, self.fps)?;
-        let mut renderer = OffscreenRenderer::with_options(&view, &self.options)?;
-        if self.options.forces {
-            driver.simulation().world_mut().set_contact_feedback(true);
-        }
+        let mut writer = VideoWriter::create(&self.path, width, height, self.fps)?;
+        let mut renderer = recording_renderer(driver, view, self.size, &self.options)?;
         let fps = self.fps;
         let mut next = 0u64;
         let mut failure: Option<ViewerError> = None;

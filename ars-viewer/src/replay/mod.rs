@@ -19,6 +19,7 @@ use serde_json::{Value, json};
 use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
 use crate::look::{Look, PLANE_HALF_SIZE, look_of};
+use crate::offscreen::frames_in;
 use encode::Blob;
 
 /// The page around the player, with the places for the title, the script and the data.
@@ -233,14 +234,6 @@ impl ReplayRecorder {
         recording.file = Some(PendingFile::create(path)?);
         Ok(recording)
     }
-}
-
-/// The frames of `duration` seconds of `sim`, checked.
-fn frames_in(sim: &Simulation, duration: f64) -> Result<u64> {
-    if !(duration.is_finite() && duration > 0.0) {
-        return Err(ViewerError::Settings(format!("a replay's duration must be positive, got {duration} s")));
-    }
-    Ok(sim.steps_in(duration)?.div_ceil(u64::from(sim.steps_per_frame())))
 }
 
 /// Runs `frames` frames of what `driver` drives into `recording`, then finishes it.
