@@ -386,6 +386,7 @@ NOT_IN_PYTHON = {
     "Simulation.sensor_lines",
     "Simulation.sensor_tables",
     "Simulation.step_frame_observed",
+    "Simulation.open_at",
     "Simulation.scene_file",
     "Simulation.from_scene_file",
     "Scene.world",

@@ -213,13 +213,12 @@ impl Program for FileProgram {
     fn create_simulation(&mut self) -> ars::Result<Simulation> {
         FileFormat::of(&self.path)?;
         let mut sim = if self.is_mjcf() {
-            let mut sim = Simulation::builder().space(SpaceKind::Simple).build()?;
-            let options = ars::MjcfOptions::new().base_pose(self.urdf.base_pose).skip_unsupported(true);
-            let model = sim.load_mjcf(&self.path, &options)?;
-            for skipped in &model.skipped {
+            // As the viewer's Open button opens it (with the model's gravity).
+            let opened = Simulation::open_at(&self.path, self.urdf.base_pose)?;
+            for skipped in &opened.skipped {
                 eprintln!("skipped: {skipped}");
             }
-            sim
+            opened.simulation
         } else if self.is_urdf() {
             let mut sim = self.configure(Simulation::builder()).build()?;
             self.create_sim_objects(&mut sim)?;

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use nalgebra::Vector3;
+use nalgebra::{Isometry3, Vector3};
 
 use super::Simulation;
 use crate::error::{Error, Result};
@@ -76,18 +76,24 @@ impl Simulation {
     /// # Ok::<(), ars_core::Error>(())
     /// ```
     pub fn open(path: impl AsRef<Path>) -> Result<OpenedFile> {
+        Simulation::open_at(path, Isometry3::identity())
+    }
+
+    /// As [`open`](Self::open), a robot or model's root placed at `base` (a scene file
+    /// is where it was saved, whatever `base` says).
+    pub fn open_at(path: impl AsRef<Path>, base: Isometry3<f64>) -> Result<OpenedFile> {
         let path = path.as_ref();
         match FileFormat::of(path)? {
             FileFormat::Scene => Ok(OpenedFile { simulation: Simulation::load_scene_from(path)?, skipped: Vec::new() }),
             FileFormat::Urdf => {
                 let mut simulation =
                     Simulation::builder().space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0).build()?;
-                simulation.load_urdf(path, &UrdfOptions::new())?;
+                simulation.load_urdf(path, &UrdfOptions::new().base_pose(base))?;
                 Ok(OpenedFile { simulation, skipped: Vec::new() })
             }
             FileFormat::Mjcf => {
                 let mut simulation = Simulation::builder().space(SpaceKind::Simple).build()?;
-                let model = simulation.load_mjcf(path, &MjcfOptions::new().skip_unsupported(true))?;
+                let model = simulation.load_mjcf(path, &MjcfOptions::new().base_pose(base).skip_unsupported(true))?;
                 if let Some(gravity) = model.gravity {
                     simulation.world_mut().set_gravity(gravity)?;
                 }
