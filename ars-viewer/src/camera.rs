@@ -7,9 +7,8 @@ use std::path::Path;
 use ars_core::nalgebra::Isometry3;
 use ars_core::sensors::{DepthCamera, DepthImage, Sensor};
 use ars_core::{ObjectId, Simulation, ViewSettings};
-use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
+use kiss3d::window::OffscreenSurface;
 
-use crate::convert;
 use crate::error::{Result, ViewerError};
 use crate::offscreen::init_offscreen_context;
 use crate::scene::View;
@@ -93,11 +92,9 @@ impl Camera {
         let Intrinsics { width, height, fov_y, near, far } = intrinsics;
         let depth = DepthCamera::new(width, height, fov_y, near, far).map_err(ViewerError::from)?;
         init_offscreen_context()?;
-        let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
-        let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
         let settings = ViewSettings { size: (width, height), ..ViewSettings::default() };
-        surface.set_background_color(convert::color(settings.background));
-        let view = View::new(&settings, surface.window_mut());
+        let (surface, view) =
+            crate::offscreen::surface_with_view(&settings, (width, height), &crate::SceneMirror::new());
         Ok(Camera { intrinsics, surface, view, depth, period: None, next_frame: None })
     }
 

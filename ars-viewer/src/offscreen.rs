@@ -173,13 +173,7 @@ impl OffscreenRenderer {
         mirror.show_forces = options.forces;
         let views = (options.views > 1).then(|| OffscreenViews::new(view, options.views, &mirror));
         let (w, h) = views.as_ref().map_or((w, h), OffscreenViews::free_size);
-        // One sample: MSAA ×4 renders black on Mesa's GL path.
-        let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
-        let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(w, h, setup));
-        surface.set_background_color(convert::color(view.background));
-        let mut shown = View::new(view, surface.window_mut());
-        shown.mirror.show_axes = options.axes;
-        shown.mirror.show_forces = options.forces;
+        let (surface, shown) = surface_with_view(view, (w, h), &mirror);
         Ok(OffscreenRenderer { surface, view: shown, views })
     }
 
@@ -213,6 +207,24 @@ impl OffscreenRenderer {
             views.clear();
         }
     }
+}
+
+/// An off-screen surface of `size` pixels with `settings`' background, and the view of
+/// `settings` drawn into it, drawing what `mirror` draws (axes, forces). Needs the
+/// rendering context.
+pub(crate) fn surface_with_view(
+    settings: &ViewSettings,
+    (width, height): (u32, u32),
+    mirror: &SceneMirror,
+) -> (OffscreenSurface, View) {
+    // One sample: MSAA ×4 renders black on Mesa's GL path.
+    let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
+    let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
+    surface.set_background_color(convert::color(settings.background));
+    let mut view = View::new(settings, surface.window_mut());
+    view.mirror.show_axes = mirror.show_axes;
+    view.mirror.show_forces = mirror.show_forces;
+    (surface, view)
 }
 
 /// The whole frames of `sim` that `duration` seconds of simulated time take (the last

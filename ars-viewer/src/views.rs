@@ -349,12 +349,7 @@ impl OffscreenViews {
             .zip(VIEW_KINDS)
             .skip(1)
             .map(|(&rect, kind)| {
-                let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
-                let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(rect[2], rect[3], setup));
-                surface.set_background_color(convert::color(settings.background));
-                let mut view = View::new(settings, surface.window_mut());
-                view.mirror.show_axes = mirror.show_axes;
-                view.mirror.show_forces = mirror.show_forces;
+                let (surface, view) = crate::offscreen::surface_with_view(settings, (rect[2], rect[3]), mirror);
                 Cell { kind, rect, surface, view }
             })
             .collect();
