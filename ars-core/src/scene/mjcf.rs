@@ -206,15 +206,18 @@ pub struct MjcfSite {
 /// - `framepos`: a [`Gps`](crate::sensors::Gps) at the frame's origin (its columns, in
 ///   the simulation's world frame).
 /// - `framelinvel`: a [`Velometer`](crate::sensors::Velometer) at the frame's origin
-///   (its first three columns, world frame).
+///   (its first three columns, world frame). On a jointed body it lags MuJoCo's by
+///   about `ω² r dt` (ODE keeps a constrained body's velocity tangent to its path at
+///   the start of the step).
 /// - `framequat`: an [`Orientation`](crate::sensors::Orientation) of the frame (its
 ///   quaternion `q` is MuJoCo's `q_mj` turned with the model, `q = q_turn · q_mj`,
 ///   `q_turn` the −90° turn about X, up to the sign: ARS's has `w ≥ 0`).
 /// - `accelerometer`, `gyro`: an [`Imu`](crate::sensors::Imu) at the site, in the
 ///   site's frame as MuJoCo's (its first three columns, the specific force, are the
 ///   `accelerometer`; its last three the `gyro`). The acceleration is the change of the
-///   site's velocity over the step (MuJoCo's is the acceleration at the start of it):
-///   they agree as the step shrinks.
+///   site's velocity over the step (MuJoCo's is the acceleration at an instant): they
+///   agree as the step shrinks, on a jointed body once ODE's error correction has
+///   brought in the centripetal pull (a few steps after a state is set).
 /// - `touch`: a [`Touch`](crate::sensors::Touch) on the site's body within the site's
 ///   volume (its second column, the normal force).
 /// - `rangefinder`: a [`Laser`](crate::sensors::Laser) of [`RANGEFINDER_LENGTH`] at the

@@ -161,3 +161,27 @@ impl Sensor for Touch {
         self.zone.map(|(zone, pose)| SensorSettings::Touch { zone, pose })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::TouchZone;
+    use nalgebra::{Point3, Vector3};
+
+    #[test]
+    fn zones_hold_what_is_inside_them_with_their_axis_along_z() {
+        let inside_outside = |zone: TouchZone, inside: [f64; 3], outside: [f64; 3]| {
+            assert!(zone.contains(&Point3::from(inside)), "{zone:?} holds {inside:?}");
+            assert!(!zone.contains(&Point3::from(outside)), "{zone:?} lacks {outside:?}");
+        };
+        inside_outside(TouchZone::Sphere { radius: 1.0 }, [0.6, 0.6, 0.5], [0.6, 0.6, 0.6]);
+        let capsule = TouchZone::Capsule { radius: 0.5, half_length: 1.0 };
+        inside_outside(capsule, [0.0, 0.0, 1.45], [0.4, 0.0, 1.4]);
+        let cylinder = TouchZone::Cylinder { radius: 0.5, half_length: 1.0 };
+        inside_outside(cylinder, [0.3, 0.39, 0.99], [0.0, 0.0, 1.01]);
+        let block = TouchZone::Box { half_extents: Vector3::new(1.0, 2.0, 3.0) };
+        inside_outside(block, [-1.0, 2.0, -3.0], [0.0, 2.01, 0.0]);
+        let ellipsoid = TouchZone::Ellipsoid { radii: Vector3::new(1.0, 2.0, 3.0) };
+        inside_outside(ellipsoid, [0.0, 0.0, 2.99], [0.8, 1.4, 0.0]);
+        assert!(TouchZone::Sphere { radius: 0.0 }.validate().is_err());
+    }
+}
