@@ -156,6 +156,40 @@ fn several_joints_in_one_body_are_chained_through_light_links() {
 }
 
 #[test]
+fn a_body_chained_to_its_parent_does_not_touch_it() {
+    // A hip of two hinges, its thigh overlapping the pelvis as a humanoid's does: they
+    // are jointed through a light link, and MuJoCo ignores a body's contacts with its
+    // parent, so they must not push each other apart.
+    const HIP: &str = r#"<mujoco><worldbody>
+        <body name="pelvis" pos="0 0 1"><geom type="capsule" fromto="-0.1 0 0 0.1 0 0" size="0.09"/>
+          <body name="thigh" pos="0.05 0 -0.05">
+            <joint name="hip_x" axis="1 0 0"/><joint name="hip_y" axis="0 1 0"/>
+            <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.06"/>
+          </body>
+        </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(HIP, "hip.xml", &MjcfOptions::new()).unwrap();
+    let (pelvis, thigh) = (model.body("pelvis").unwrap(), model.body("thigh").unwrap());
+    assert_eq!(sim.excluded_contacts(), [(pelvis, thigh)]);
+    sim.run_for(0.2).unwrap();
+    assert!(sim.world().contacts().is_empty(), "the overlapping capsules do not touch");
+    // It hangs and swings from its pivot; nothing ejects it.
+    let speed = sim.body(thigh).unwrap().linear_velocity().norm();
+    assert!(speed < 2.0, "{speed}");
+}
+
+#[test]
+fn a_body_too_light_for_ars_is_refused_by_name() {
+    // 1e-5 kg/m³ in a 1 cm ball weighs 4e-11 kg, below ARS's 1e-9 kg.
+    const FEATHER: &str = r#"<mujoco><worldbody><body name="feather"><freejoint/>
+        <geom type="sphere" size="0.01" density="1e-5"/></body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let err = sim.load_mjcf_text(FEATHER, "feather.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(err.contains("\"feather\"") && err.contains("mass"), "{err}");
+    assert_eq!(sim.objects().count(), 0);
+}
+
+#[test]
 fn includes_are_read_in_place_and_their_errors_name_their_file() {
     let dir = std::env::temp_dir().join(format!("ars-mjcf-{}", std::process::id()));
     std::fs::create_dir_all(dir.join("parts")).unwrap();
@@ -176,6 +210,42 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     // The included class's density (not MuJoCo's 1000) weighs the included body.
     let mass = sim.body(model.body("bob").unwrap()).unwrap().mass();
     assert!((mass - 300.0 * 4.0 / 3.0 * std::f64::consts::PI * 1e-3).abs() < 1e-12, "{mass}");
+    // Includes below the top level: in a class, in the world body and in a body, read in
+    // place (MuJoCo allows them anywhere), and an include inside an included file.
+    write(
+        "nested.xml",
+        r#"<mujoco model="nested">
+             <default><include file="parts/heavy.xml"/></default>
+             <worldbody>
+               <include file="parts/arm.xml"/>
+             </worldbody>
+           </mujoco>"#,
+    );
+    write("parts/heavy.xml", r#"<mujoco><geom density="2000"/></mujoco>"#);
+    write(
+        "parts/arm.xml",
+        r#"<mujoco><body name="arm" pos="0 0 1"><joint name="shoulder"/>
+           <include file="hand.xml"/></body></mujoco>"#,
+    );
+    write(
+        "parts/hand.xml",
+        r#"<mujoco><geom type="sphere" size="0.1"/><body name="finger"><geom type="sphere" size="0.05" pos="0.2 0 0"/></body></mujoco>"#,
+    );
+    let mut nested = Simulation::builder().build().unwrap();
+    let model = nested.load_mjcf(dir.join("nested.xml"), &MjcfOptions::new()).unwrap();
+    let ball = |r: f64| 2000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    let arm = nested.body(model.body("arm").unwrap()).unwrap().mass();
+    let finger = nested.body(model.body("finger").unwrap()).unwrap().mass();
+    assert!((arm - ball(0.1)).abs() < 1e-12 && (finger - ball(0.05)).abs() < 1e-12, "{arm} {finger}");
+    // An error there names the deepest file.
+    write(
+        "parts/hand.xml",
+        r#"<mujoco>
+      <geom type="box" size="0.1 0.1"/></mujoco>"#,
+    );
+    let err = nested.load_mjcf(dir.join("nested.xml"), &MjcfOptions::new()).unwrap_err();
+    let Error::Format { file, element, line, .. } = &err else { panic!("{err}") };
+    assert!(file.ends_with("hand.xml") && element == "<geom>" && *line == Some(2), "{err}");
     // An error in an included file names that file and its line.
     write("parts/robot.xml", r#"<mujoco><worldbody><body><geom size="-1"/></body></worldbody></mujoco>"#);
     let err = sim.load_mjcf(dir.join("scene.xml"), &MjcfOptions::new()).unwrap_err().to_string();
@@ -199,7 +269,7 @@ const ACTUATED: &str = r#"
   <default>
     <joint type="hinge" axis="0 1 0"/>
     <geom type="capsule" size="0.03" contype="0" conaffinity="0"/>
-    <motor ctrlrange="-1 1"/>
+    <general ctrlrange="-1 1"/>
   </default>
   <worldbody>
     <body name="a"><joint name="ja"/><geom fromto="0 0 0 0.5 0 0"/></body>
@@ -209,7 +279,7 @@ const ACTUATED: &str = r#"
   <actuator>
     <motor name="push" joint="ja" gear="10"/>
     <position name="hold" joint="jb" kp="30" kv="3" forcerange="-5 5"/>
-    <velocity name="spin" joint="jc" kv="2" gear="2"/>
+    <velocity name="spin" joint="jc" kv="2" gear="2" ctrllimited="false"/>
   </actuator>
 </mujoco>"#;
 
@@ -221,7 +291,10 @@ fn actuators_drive_their_joints_as_mujoco_defines_them() {
     let names: Vec<&str> = sim.actuators().map(|(n, _)| n).collect();
     assert_eq!(names, ["push", "hold", "spin"]);
     let push = &model.actuators[0].actuator;
-    assert_eq!((push.gear(), push.ctrl_range()), (10.0, Some((-1.0, 1.0))), "the class's motor default");
+    // A class's <general> sets every actuator kind's defaults, as in MuJoCo.
+    assert_eq!((push.gear(), push.ctrl_range()), (10.0, Some((-1.0, 1.0))), "the class's default");
+    assert_eq!(model.actuators[1].actuator.ctrl_range(), Some((-1.0, 1.0)), "the class's default");
+    assert_eq!(model.actuators[2].actuator.ctrl_range(), None, "ctrllimited=\"false\" wins");
     assert_eq!(model.actuators[1].actuator.force_range(), Some((-5.0, 5.0)));
     assert_eq!(sim.control("push").unwrap(), 0.0);
 

@@ -26,18 +26,31 @@
 //!   body without joints is fixed to its parent. `range` (with `limited`, or
 //!   `<compiler autolimits>`, on by default) becomes stops, `damping` viscous friction
 //!   (explicit, from the rate at the start of the step: stable while `damping · dt`
-//!   stays below the inertia it acts on). `armature` is not modelled (ODE has no
-//!   joint-space inertia; adding it to the body's inertia breaks ODE's check of a
-//!   physical tensor when it outweighs the body, as in Gymnasium's reacher): it is
-//!   listed in [`MjcfModel::skipped`].
+//!   stays below the inertia it acts on).
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
 //!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
 //!   slide z, hinge y) are chained through light links at the body's frame (each of
 //!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
 //!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
-//!   along each joint but the first (and a free joint cannot be chained).
+//!   along each joint but the first (and a free joint cannot be chained). A chained
+//!   body and its parent never touch ([`Scene::exclude_contacts`]), as MuJoCo ignores
+//!   the contacts of a body with its parent and ODE those of two bodies one joint joins.
 //!   A joint's `ref`, `stiffness` (a spring) and `frictionloss` are unsupported (an
 //!   error, or skipped with a warning).
+//! - **Armature.** ODE has no joint-space inertia, so a joint's `armature` (MuJoCo's
+//!   rotor inertia on the joint's own degree of freedom) is added to the inertia of
+//!   the body the joint moves: `armature · n nᵀ` about a hinge's axis `n`,
+//!   `armature · 1` for a ball joint ([`MjcfModel::armature`] lists what each object
+//!   got). That is MuJoCo's armature exactly for a joint whose axis stays put in the
+//!   world (the first hinge or ball of a fixed base). Below moving joints the added
+//!   inertia also turns with the joints above it: it adds `armature · (n·m)` to their
+//!   coupling and `armature · (n·m)²` to a joint of axis `m` above, and a gyroscopic
+//!   torque MuJoCo's armature has not. When the armature outweighs the body so much
+//!   that no rigid body has the sum (a moment above the sum of the other two: links of
+//!   grams with an armature of 1, as in Gymnasium's reacher), the smallest inertia
+//!   across the axis that makes it one is added too, with a warning in
+//!   [`MjcfModel::skipped`]. A slide's or a free joint's armature (mass along some
+//!   directions only) is not modelled and is listed there.
 //! - **Contact parameters.** A geom's `friction`, `solref`, `solimp`, `condim`,
 //!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
 //!   contacts take ARS's surfaces ([`Scene::set_contact_surface`]).
@@ -48,8 +61,8 @@
 //!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
 //!   integrator is ODE's; the caller chooses to use them).
-//! - **Includes.** `<include file>` at the top level (its path relative to the file
-//!   that includes it; a cycle is refused): the included file's elements take its
+//! - **Includes.** `<include file>` anywhere (its path relative to the file that
+//!   includes it; a cycle is refused): the included file's top-level elements take its
 //!   place, and an error in it names that file.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (materials, textures, meshes not used by a geom), `<statistic>`, `<size>`,
@@ -57,8 +70,9 @@
 //! - **Actuators.** `motor`, `position` (`kp`, `kv`) and `velocity` (`kv`) on a joint
 //!   become [`Actuator`]s of the same names driving their joints, with `gear` (its
 //!   first number), `ctrlrange`/`ctrllimited` and `forcerange`/`forcelimited` (with
-//!   `autolimits`), their defaults from the element's own kind in a `<default>` class
-//!   (not from `<general>`); set a control with [`Scene::set_control`], as MuJoCo's
+//!   `autolimits`), their defaults from a `<default>` class's actuator (in a class,
+//!   `<general>`, `<motor>`, `<position>`... all set the one actuator default, as in
+//!   MuJoCo: the attributes merge in the file's order); set a control with [`Scene::set_control`], as MuJoCo's
 //!   `data.ctrl`, at 0 until set. Other kinds, and actuators on tendons or sites, are
 //!   unsupported; a second actuator on one joint is skipped (ARS drives a joint with
 //!   one controller).
@@ -159,6 +173,10 @@ pub struct MjcfModel {
     pub skipped: Vec<String>,
     /// The light links that chain several joints of one body (see the module docs).
     pub chain_links: Vec<ObjectId>,
+    /// The inertia added to an object (by name: a body, or a chain link) for the
+    /// armature of the joint that moves it, in the object's frame, kg·m² (see the module
+    /// docs): subtract it to compare the object's inertia with MuJoCo's `body_inertia`.
+    pub armature: Vec<(String, Matrix3<f64>)>,
     /// The sensors read, in the file's order: made by
     /// [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) (a scene alone has no
     /// sensors: [`Scene::load_mjcf`] lists them unmade).
@@ -202,15 +220,19 @@ struct Problem {
     element: String,
     line: u32,
     text: String,
-    /// The included file it is in, if not the main one.
+    /// The included file it is in, if not the main one (set from `document` when the
+    /// problem reaches [`read`]).
     file: Option<String>,
+    /// The address of the document its element is in: which file it is.
+    document: usize,
 }
 
 type Parsed<T> = std::result::Result<T, Problem>;
 
 fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
     let line = node.document().text_pos_at(node.range().start).row;
-    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None }
+    let document = std::ptr::from_ref(node.document()) as usize;
+    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None, document }
 }
 
 /// `<compiler>` settings.
@@ -246,18 +268,35 @@ impl Default for Compiler {
 /// The attributes an element gets from its class, by element kind.
 type Defaults = HashMap<String, HashMap<String, HashMap<String, String>>>;
 
+/// The actuator elements: in a `<default>` class they all set one actuator default, as
+/// in MuJoCo (a class's `<general ctrlrange>` applies to its `<motor>`s).
+const ACTUATOR_KINDS: [&str; 9] =
+    ["general", "motor", "position", "velocity", "intvelocity", "damper", "cylinder", "muscle", "adhesion"];
+
+/// Where an element's defaults are kept in a class: under its tag, or under
+/// `actuator` for every actuator kind.
+fn default_kind(tag: &str) -> &str {
+    if ACTUATOR_KINDS.contains(&tag) { "actuator" } else { tag }
+}
+
 /// Reads `<default>` classes (with inheritance) into `out`.
-fn read_defaults(node: roxmltree::Node<'_, '_>, parent: &HashMap<String, HashMap<String, String>>, out: &mut Defaults) {
+fn read_defaults<'a, 'input>(
+    tree: &Tree<'a, 'input>,
+    node: roxmltree::Node<'a, 'input>,
+    parent: &HashMap<String, HashMap<String, String>>,
+    out: &mut Defaults,
+) {
     let class = node.attribute("class").unwrap_or("main").to_string();
     let mut mine = parent.clone();
-    for child in node.children().filter(|c| c.is_element() && c.tag_name().name() != "default") {
-        let attrs = mine.entry(child.tag_name().name().to_string()).or_default();
+    let children = tree.elements(node);
+    for child in children.iter().filter(|c| c.tag_name().name() != "default") {
+        let attrs = mine.entry(default_kind(child.tag_name().name()).to_string()).or_default();
         for a in child.attributes() {
             attrs.insert(a.name().to_string(), a.value().to_string());
         }
     }
-    for child in node.children().filter(|c| c.is_element() && c.tag_name().name() == "default") {
-        read_defaults(child, &mine, out);
+    for child in children.into_iter().filter(|c| c.tag_name().name() == "default") {
+        read_defaults(tree, child, &mine, out);
     }
     out.insert(class, mine);
 }
@@ -271,7 +310,7 @@ struct Attrs<'a, 'input> {
 impl<'a, 'input> Attrs<'a, 'input> {
     fn new(node: roxmltree::Node<'a, 'input>, defaults: &'a Defaults, class: &str) -> Self {
         let class = node.attribute("class").unwrap_or(class);
-        let class = defaults.get(class).and_then(|c| c.get(node.tag_name().name()));
+        let class = defaults.get(class).and_then(|c| c.get(default_kind(node.tag_name().name())));
         Attrs { node, class }
     }
     fn get(&self, name: &str) -> Option<&str> {
@@ -503,8 +542,9 @@ struct Model {
     skipped: Vec<String>,
 }
 
-/// Reads the file (`include`s resolved relative to `dir`).
-struct Reader<'d> {
+/// Reads the model's elements.
+struct Reader<'d, 'a, 'input> {
+    tree: &'d Tree<'a, 'input>,
     compiler: Compiler,
     defaults: &'d Defaults,
     skip: bool,
@@ -519,7 +559,7 @@ struct Reader<'d> {
     dir: std::path::PathBuf,
 }
 
-impl Reader<'_> {
+impl<'a, 'input> Reader<'_, 'a, 'input> {
     fn unsupported(&mut self, node: &roxmltree::Node<'_, '_>, what: &str) -> Parsed<()> {
         let p = problem(node, format!("{what} is not supported"));
         if self.skip {
@@ -671,7 +711,7 @@ impl Reader<'_> {
         })
     }
 
-    fn body(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Body> {
+    fn body(&mut self, node: roxmltree::Node<'a, 'input>, class: &str) -> Parsed<Body> {
         self.bodies += 1;
         let index = self.bodies;
         let a = Attrs::new(node, self.defaults, class);
@@ -686,7 +726,7 @@ impl Reader<'_> {
             children: Vec::new(),
         };
         let mut inertial = None;
-        for child in node.children().filter(|c| c.is_element()) {
+        for child in self.tree.elements(node) {
             match child.tag_name().name() {
                 "geom" => body.geoms.extend(self.geom(child, &class)?),
                 "joint" => body.joints.push(self.joint(child, &class, false)?),
@@ -705,11 +745,16 @@ impl Reader<'_> {
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
         }
-        // ODE has no joint-space inertia: a joint's armature is not modelled.
-        if let Some(j) = body.joints.iter().find(|j| j.armature > 0.0) {
+        // A slide's or a free joint's armature would be mass along some directions
+        // only: ODE's mass is the same along all.
+        for j in body.joints.iter().filter(|j| j.armature > 0.0 && matches!(j.kind, JointKind::Slide | JointKind::Free))
+        {
             self.skipped.push(format!(
-                "<joint> {:?} in body {:?}: its armature {} is not modelled (ODE has no joint-space inertia)",
-                j.name, body.name, j.armature
+                "<joint> {:?} in body {:?}: the armature {} of a {} joint is not modelled (ODE's mass is the same in every direction)",
+                j.name,
+                body.name,
+                j.armature,
+                if j.kind == JointKind::Slide { "slide" } else { "free" }
             ));
         }
         Ok(body)
@@ -863,20 +908,75 @@ fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
     Some((mass, com, inertia))
 }
 
+/// The inertia a joint's armature adds to the object it moves, in that object's frame
+/// (whose rotation is the MJCF body's): `armature · n nᵀ` about a hinge's axis `n`,
+/// `armature · 1` for a ball; nothing for slides and free joints (listed as skipped).
+///
+/// When `inertia` plus `armature · n nᵀ` is no rigid body's (a light link with a large
+/// armature: the moment about the axis exceeds the sum of the other two), the smallest
+/// inertia `t (1 − n nᵀ)` across the axis that makes it one is added too (at most
+/// `armature`: a thin disc's is `armature / 2`); returned as the second number.
+fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64) {
+    let a = joint.armature;
+    if a <= 0.0 {
+        return (Matrix3::zeros(), 0.0);
+    }
+    match joint.kind {
+        JointKind::Ball => (Matrix3::identity() * a, 0.0),
+        JointKind::Hinge => {
+            let axial = joint.axis * joint.axis.transpose() * a;
+            let across = (Matrix3::identity() - joint.axis * joint.axis.transpose()) * a;
+            // A rigid body's principal moments: the largest at most the sum of the others.
+            let rigid = |t: f64| {
+                let moments = (inertia + axial + across * t).symmetric_eigenvalues();
+                let largest = moments.max();
+                largest <= moments.sum() - largest
+            };
+            if rigid(0.0) {
+                return (axial, 0.0);
+            }
+            // Rigid at t = 1 (an isotropic term keeps the inequality strict): bisect.
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if rigid(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            (axial + across * hi, hi * a)
+        }
+        JointKind::Slide | JointKind::Free => (Matrix3::zeros(), 0.0),
+    }
+}
+
 /// A file and its text: the model's, then those it includes, in the order met.
 type Files = Vec<(String, String)>;
+
+/// Where each `<include>` leads: (its file's index, its byte offset there) → the
+/// included file's index.
+type Includes = HashMap<(usize, usize), usize>;
 
 /// Deepest chain of `<include>`s followed.
 const MAX_INCLUDE_DEPTH: usize = 32;
 
-/// Reads the files that `text` (the file `name`) includes, depth first, into `files`
-/// after it; `stack` is the chain of files being read (a cycle is refused).
-fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) -> Parsed<()> {
+/// Reads the files that `text` (the file `name`) includes, wherever their `<include>`
+/// is, depth first, into `files` after it; `stack` is the chain of files being read (a
+/// cycle is refused). Returns the file's index.
+fn gather(
+    name: &str,
+    text: String,
+    files: &mut Files,
+    includes: &mut Includes,
+    stack: &mut Vec<String>,
+) -> Parsed<usize> {
     let document = roxmltree::Document::parse(&text).map_err(|e| Problem {
         element: "mujoco".into(),
         line: e.pos().row,
         text: format!("not XML: {e}"),
         file: Some(name.to_string()),
+        document: 0,
     })?;
     let in_file = |mut p: Problem| {
         p.file.get_or_insert_with(|| name.to_string());
@@ -886,8 +986,8 @@ fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) 
     if root.tag_name().name() != "mujoco" {
         return Err(in_file(problem(&root, "the root element must be <mujoco>")));
     }
-    let mut includes = Vec::new();
-    for node in root.children().filter(|c| c.is_element() && c.tag_name().name() == "include") {
+    let mut found = Vec::new();
+    for node in root.descendants().filter(|c| c.is_element() && c.tag_name().name() == "include") {
         let file = node.attribute("file").ok_or_else(|| in_file(problem(&node, "needs a file")))?;
         let path = Path::new(name).parent().unwrap_or(Path::new("")).join(file);
         let path_name = path.display().to_string();
@@ -896,73 +996,80 @@ fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) 
         }
         let included = std::fs::read_to_string(&path)
             .map_err(|e| in_file(problem(&node, format!("cannot read {path_name}: {e}"))))?;
-        includes.push((path_name, included));
+        found.push((node.range().start, path_name, included));
     }
     drop(document);
+    let me = files.len();
     files.push((name.to_string(), text));
-    for (path, included) in includes {
+    for (offset, path, included) in found {
         stack.push(path.clone());
-        gather(&path, included, files, stack)?;
+        let index = gather(&path, included, files, includes, stack)?;
+        includes.insert((me, offset), index);
         stack.pop();
     }
-    Ok(())
+    Ok(me)
 }
 
-/// The top-level elements of the model, in order, each `<include>` replaced by the
-/// included file's elements; each with the index of its file.
-fn top_level<'a, 'input>(
+/// The parsed files of a model, read through their `<include>`s.
+struct Tree<'a, 'input> {
     documents: &'a [roxmltree::Document<'input>],
-    index: &mut usize,
-    out: &mut Vec<(usize, roxmltree::Node<'a, 'input>)>,
-) {
-    let mine = *index;
-    for node in documents[mine].root_element().children().filter(|c| c.is_element()) {
-        if node.tag_name().name() == "include" {
-            *index += 1;
-            top_level(documents, index, out);
-        } else {
-            out.push((mine, node));
+    includes: &'a Includes,
+}
+
+impl<'a, 'input> Tree<'a, 'input> {
+    /// The index of the file `node` is in.
+    fn file_of(&self, node: &roxmltree::Node<'a, 'input>) -> usize {
+        self.documents.iter().position(|d| std::ptr::eq(d, node.document())).unwrap_or(0)
+    }
+
+    /// `node`'s child elements, each `<include>` replaced by the included file's
+    /// top-level elements (MuJoCo reads an include in place, wherever it is).
+    fn elements(&self, node: roxmltree::Node<'a, 'input>) -> Vec<roxmltree::Node<'a, 'input>> {
+        let mut out = Vec::new();
+        for child in node.children().filter(|c| c.is_element()) {
+            if child.tag_name().name() == "include" {
+                let included = self.includes[&(self.file_of(&child), child.range().start)];
+                out.extend(self.elements(self.documents[included].root_element()));
+            } else {
+                out.push(child);
+            }
         }
+        out
     }
 }
 
 /// Reads the model from the text of a file (`name` resolves its includes).
 fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Model> {
     let mut files = Files::new();
-    gather(name, text.to_string(), &mut files, &mut vec![name.to_string()])?;
+    let mut includes = Includes::new();
+    gather(name, text.to_string(), &mut files, &mut includes, &mut vec![name.to_string()])?;
     let documents = files
         .iter()
         .map(|(_, text)| roxmltree::Document::parse(text).expect("parsed once already"))
         .collect::<Vec<_>>();
-    let mut nodes = Vec::new();
-    top_level(&documents, &mut 0, &mut nodes);
-    let root = documents[0].root_element();
-    let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
-    read_nodes(root, &nodes, &names, options)
+    let tree = Tree { documents: &documents, includes: &includes };
+    read_nodes(name, &tree, options).map_err(|mut p| {
+        // A problem in an included file names it.
+        if p.file.is_none() {
+            let index = documents.iter().position(|d| std::ptr::from_ref(d) as usize == p.document);
+            if let Some(index) = index.filter(|&i| i > 0) {
+                p.file = Some(files[index].0.clone());
+            }
+        }
+        p
+    })
 }
 
-/// Reads the model from its top-level elements.
-fn read_nodes(
-    root: roxmltree::Node<'_, '_>,
-    nodes: &[(usize, roxmltree::Node<'_, '_>)],
-    names: &[&str],
-    options: &MjcfOptions,
-) -> Parsed<Model> {
-    // A problem in an included file names it.
-    let in_file = |file: usize| {
-        move |mut p: Problem| {
-            if file > 0 && p.file.is_none() {
-                p.file = Some(names[file].to_string());
-            }
-            p
-        }
-    };
+/// Reads the model from its files.
+fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<Model> {
+    let root = tree.documents[0].root_element();
+    let nodes = tree.elements(root);
     let mut compiler = Compiler::default();
     let mut defaults = Defaults::new();
     let mut timestep = None;
     let mut gravity = None;
     let mut meshes = HashMap::new();
-    for &(file, node) in nodes {
+    for &node in &nodes {
         let mut first_pass = || -> Parsed<()> {
             match node.tag_name().name() {
                 "compiler" => {
@@ -1008,9 +1115,9 @@ fn read_nodes(
                         return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
                     }
                 }
-                "default" => read_defaults(node, &HashMap::new(), &mut defaults),
+                "default" => read_defaults(tree, node, &HashMap::new(), &mut defaults),
                 "asset" => {
-                    for mesh in node.children().filter(|c| c.has_tag_name("mesh")) {
+                    for mesh in tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")) {
                         let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
                         let name = match mesh.attribute("name") {
                             Some(name) => name.to_string(),
@@ -1033,7 +1140,7 @@ fn read_nodes(
             }
             Ok(())
         };
-        first_pass().map_err(in_file(file))?;
+        first_pass()?;
     }
     let mut reader = Reader {
         compiler,
@@ -1044,7 +1151,8 @@ fn read_nodes(
         joints: 0,
         meshes,
         loaded: HashMap::new(),
-        dir: Path::new(names[0]).parent().map(Path::to_path_buf).unwrap_or_default(),
+        tree,
+        dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),
@@ -1057,11 +1165,11 @@ fn read_nodes(
         sensors: Vec::new(),
         skipped: Vec::new(),
     };
-    for &(file, node) in nodes {
+    for &node in &nodes {
         let mut second_pass = || -> Parsed<()> {
             match node.tag_name().name() {
                 "worldbody" => {
-                    for child in node.children().filter(|c| c.is_element()) {
+                    for child in tree.elements(node) {
                         match child.tag_name().name() {
                             "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
                             "body" => model.bodies.push(reader.body(child, "main")?),
@@ -1071,7 +1179,7 @@ fn read_nodes(
                     }
                 }
                 "actuator" => {
-                    for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                    for (i, child) in tree.elements(node).into_iter().enumerate() {
                         if let Some(actuator) = reader.actuator(child, i)? {
                             model.actuators.push(actuator);
                         }
@@ -1079,7 +1187,7 @@ fn read_nodes(
                 }
                 "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
                 "contact" => {
-                    for child in node.children().filter(|c| c.is_element()) {
+                    for child in tree.elements(node) {
                         match child.tag_name().name() {
                             "exclude" => {
                                 let body = |attr: &str| {
@@ -1095,7 +1203,7 @@ fn read_nodes(
                     }
                 }
                 "sensor" => {
-                    for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                    for (i, child) in tree.elements(node).into_iter().enumerate() {
                         if let Some(sensor) = reader.sensor(child, i)? {
                             model.sensors.push(sensor);
                         }
@@ -1105,7 +1213,7 @@ fn read_nodes(
             }
             Ok(())
         };
-        second_pass().map_err(in_file(file))?;
+        second_pass()?;
     }
     model.skipped = reader.skipped;
     if let Some(total) = reader.compiler.total_mass {
@@ -1258,14 +1366,39 @@ impl Scene {
         let (mass, com, inertia) = body
             .mass
             .ok_or_else(|| invalid(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+        // The body is moved by its last joint, a chain link by its joint: each carries
+        // its joint's armature.
+        let mut armature = |object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>| -> Matrix3<f64> {
+            let Some(joint) = joint.filter(|j| j.armature > 0.0) else { return Matrix3::zeros() };
+            let (added, across) = armature_inertia(inertia, joint);
+            if added != Matrix3::zeros() {
+                made.armature.push((object.to_string(), added));
+            }
+            if across > 0.0 {
+                made.skipped.push(format!(
+                    "<joint> {:?}: its armature {} outweighs {object:?}'s inertia; {across:e} kg·m² was added across its axis too, to keep {object:?} a rigid body",
+                    joint.name, joint.armature
+                ));
+            }
+            added
+        };
+        let link_inertia = inertia * CHAIN_LINK_FRACTION;
+        let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
+            .iter()
+            .map(|j| armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j)))
+            .collect();
+        let inertia = inertia + armature(&body.name, &inertia, body.joints.last());
         // The ODE body at the centre of mass, turned as the MJCF body.
         let body_frame = Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(com)), frame.rotation);
-        let handle = self.world.insert_body(
-            BodyBuilder::new()
-                .mass(MassSpec::Custom { mass, inertia })
-                .position(nalgebra::Point3::from(body_frame.translation.vector))
-                .rotation(body_frame.rotation.to_rotation_matrix()),
-        )?;
+        let handle = self
+            .world
+            .insert_body(
+                BodyBuilder::new()
+                    .mass(MassSpec::Custom { mass, inertia })
+                    .position(nalgebra::Point3::from(body_frame.translation.vector))
+                    .rotation(body_frame.rotation.to_rotation_matrix()),
+            )
+            .map_err(|e| invalid(format!("{:?}: {e}", body.name)))?;
         let mut geoms = Vec::new();
         for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
             let offset = body_frame.inverse() * frame * g.frame;
@@ -1281,6 +1414,11 @@ impl Scene {
         }
         made.bodies.push((self.object(id)?.name().to_string(), id));
         let mut end = parent.map_or(JointEnd::World, JointEnd::Object);
+        // MuJoCo ignores contacts between a body and its parent (filterparent). ODE
+        // skips them for bodies one joint joins; a chain's links hide that.
+        if let (Some(parent), true) = (parent, body.joints.len() > 1) {
+            self.exclude_contacts(parent, id)?;
+        }
         if body.joints.is_empty() {
             let name = format!("{}_weld", body.name);
             self.add_fixed_joint(&name, id, end)?;
@@ -1292,16 +1430,19 @@ impl Scene {
             // Several joints in one body: a chain through light links at the body's
             // frame, the first joint nearest the parent (MuJoCo's order).
             let child = if k + 1 < body.joints.len() {
-                let link = self.world.insert_body(
-                    BodyBuilder::new()
-                        .mass(MassSpec::Custom {
-                            mass: mass * CHAIN_LINK_FRACTION,
-                            inertia: inertia * CHAIN_LINK_FRACTION,
-                        })
-                        .position(nalgebra::Point3::from(body_frame.translation.vector))
-                        .rotation(body_frame.rotation.to_rotation_matrix()),
-                )?;
                 let name = format!("{}/{}", body.name, j.name);
+                let link = self
+                    .world
+                    .insert_body(
+                        BodyBuilder::new()
+                            .mass(MassSpec::Custom {
+                                mass: mass * CHAIN_LINK_FRACTION,
+                                inertia: link_inertia + links_armature[k],
+                            })
+                            .position(nalgebra::Point3::from(body_frame.translation.vector))
+                            .rotation(body_frame.rotation.to_rotation_matrix()),
+                    )
+                    .map_err(|e| invalid(format!("{name:?}, the light link chaining {:?}: {e}", j.name)))?;
                 self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)?
             } else {
                 id
