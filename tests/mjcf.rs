@@ -383,6 +383,44 @@ fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
 }
 
 #[test]
+fn a_contact_pair_touches_whatever_its_bits_say_and_nothing_else_does() {
+    // Two balls over a plate whose contype and conaffinity are 0: only the ball paired
+    // with it lands; the other falls through. A ball's own bits are unchanged, so the
+    // two balls, side by side and overlapping, never touch each other either way.
+    let text = r#"
+<mujoco>
+  <worldbody>
+    <geom name="plate" type="box" size="1 0.5 0.05" contype="0" conaffinity="0"/>
+    <body name="held" pos="0 0 0.5"><freejoint/><geom name="held" type="sphere" size="0.1" contype="0" conaffinity="0"/></body>
+    <body name="loose" pos="0.15 0 0.5"><freejoint/><geom type="sphere" size="0.1" contype="0" conaffinity="0"/></body>
+  </worldbody>
+  <contact><pair geom1="held" geom2="plate" condim="3" friction="1 1 0.005 0.0001 0.0001"/></contact>
+</mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(text, "pair.xml", &MjcfOptions::new()).unwrap();
+    assert!(
+        model.skipped.iter().any(|s| s.starts_with("<pair>") && s.contains("condim, friction")),
+        "{:?}",
+        model.skipped
+    );
+    sim.run_for(1.0).unwrap();
+    let y = |name: &str| sim.object(name).unwrap().position().unwrap().y;
+    assert!((y("held") - 0.15).abs() < 0.01, "the paired ball rests on the plate: {}", y("held"));
+    assert!(y("loose") < -1.0, "the other falls through: {}", y("loose"));
+
+    // An unknown geom is refused and leaves nothing; so is a contype beyond 32 bits.
+    let mut sim = Simulation::builder().build().unwrap();
+    let bad = text.replace(r#"geom2="plate""#, r#"geom2="plat""#);
+    let e = sim.load_mjcf_text(&bad, "pair.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("\"plat\""), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+    let bad = text.replace(r#"size="1 0.5 0.05" contype="0""#, r#"size="1 0.5 0.05" contype="4294967296""#);
+    let e = sim.load_mjcf_text(&bad, "pair.xml", &MjcfOptions::new()).unwrap_err();
+    let Error::Format { element, line, .. } = &e else { panic!("{e}") };
+    assert!(element == "<geom>" && *line == Some(4) && e.to_string().contains("32 bits"), "{e}");
+}
+
+#[test]
 fn a_mesh_that_encloses_nothing_is_refused() {
     let dir = std::env::temp_dir().join(format!("ars-mjcf-mesh-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

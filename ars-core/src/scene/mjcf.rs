@@ -77,7 +77,12 @@
 //!   unsupported; a second actuator on one joint is skipped (ARS drives a joint with
 //!   one controller).
 //! - **Contacts.** `<contact><exclude body1 body2>`: the two bodies never touch
-//!   ([`Scene::exclude_contacts`]); `<pair>` is unsupported.
+//!   ([`Scene::exclude_contacts`]). `<pair geom1 geom2>`: the two named geoms touch
+//!   whatever their `contype` and `conaffinity` say (each pair takes a bit of its own
+//!   among ODE's upper 32 category and collide bits, so at most [`MAX_CONTACT_PAIRS`];
+//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its contact
+//!   parameters are read and said unused. Unlike MuJoCo's, a pair does not override
+//!   an `<exclude>` or the rule that bodies one joint joins never touch.
 //! - **Sensors.** `jointpos` and `jointvel` of hinges and slides, `framepos` and
 //!   `framelinvel` of a body (`objtype="body"`: its centre of mass, as ARS's
 //!   [`Gps`](crate::sensors::Gps) and [`Velometer`](crate::sensors::Velometer) read it,
@@ -99,7 +104,7 @@ use crate::body::{BodyBuilder, MassSpec};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
-use crate::handle::{JointId, ObjectId};
+use crate::handle::{GeomHandle, JointId, ObjectId};
 use crate::mesh::MeshMass;
 use crate::sensors::AnySensorId;
 use crate::shape::Shape;
@@ -425,6 +430,8 @@ struct Geom {
     rgba: Option<[f64; 4]>,
     /// `contype` and `conaffinity`: ODE's category and collide bits, the same rule.
     bits: (u64, u64),
+    /// Its name, for `<contact><pair>`.
+    name: Option<String>,
 }
 
 impl Geom {
@@ -538,6 +545,8 @@ struct Model {
     actuators: Vec<MjcfActuator>,
     /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
     excluded: Vec<(String, String)>,
+    /// `<contact><pair>`: pairs of geoms, by name, that touch whatever their bits say.
+    pairs: Vec<(String, String)>,
     sensors: Vec<MjcfSensor>,
     skipped: Vec<String>,
 }
@@ -629,9 +638,11 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let bits = |name: &str| -> Parsed<u64> {
             match a.get(name) {
                 None => Ok(1),
-                Some(v) => {
-                    v.parse::<u64>().map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number")))
-                }
+                // MuJoCo's are 32 bits; ODE's upper 32 are left for `<contact><pair>`.
+                Some(v) => v
+                    .parse::<u32>()
+                    .map(u64::from)
+                    .map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number of at most 32 bits"))),
             }
         };
         let bits = (bits("contype")?, bits("conaffinity")?);
@@ -647,7 +658,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 contact.join(", ")
             ));
         }
-        Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits }))
+        let name = node.attribute("name").map(str::to_string);
+        Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits, name }))
     }
 
     fn joint(&mut self, node: roxmltree::Node<'_, '_>, class: &str, free: bool) -> Parsed<Joint> {
@@ -951,6 +963,10 @@ fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64
     }
 }
 
+/// Most `<contact><pair>`s a model may have: each takes one of the upper 32 of ODE's
+/// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
+pub const MAX_CONTACT_PAIRS: usize = 32;
+
 /// A file and its text: the model's, then those it includes, in the order met.
 type Files = Vec<(String, String)>;
 
@@ -1162,6 +1178,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
         gravity,
         actuators: Vec::new(),
         excluded: Vec::new(),
+        pairs: Vec::new(),
         sensors: Vec::new(),
         skipped: Vec::new(),
     };
@@ -1197,6 +1214,34 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                                         .ok_or_else(|| problem(&child, format!("needs a {attr}")))
                                 };
                                 model.excluded.push((body("body1")?, body("body2")?));
+                            }
+                            "pair" => {
+                                let geom = |attr: &str| {
+                                    child
+                                        .attribute(attr)
+                                        .map(str::to_string)
+                                        .ok_or_else(|| problem(&child, format!("needs a {attr}")))
+                                };
+                                if model.pairs.len() == MAX_CONTACT_PAIRS {
+                                    reader.unsupported(
+                                        &child,
+                                        &format!("a contact pair beyond the first {MAX_CONTACT_PAIRS}"),
+                                    )?;
+                                    continue;
+                                }
+                                model.pairs.push((geom("geom1")?, geom("geom2")?));
+                                let unused: Vec<&str> = child
+                                    .attributes()
+                                    .map(|a| a.name())
+                                    .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
+                                    .collect();
+                                if !unused.is_empty() {
+                                    reader.skipped.push(format!(
+                                        "<pair> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
+                                        problem(&child, "").line,
+                                        unused.join(", ")
+                                    ));
+                                }
                             }
                             other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
                         }
@@ -1290,6 +1335,8 @@ impl Scene {
 
     fn build_mjcf(&mut self, model: &Model, options: &MjcfOptions, made: &mut MjcfModel) -> Result<()> {
         let world = placement(options);
+        // Geoms by name, for `<contact><pair>`.
+        let mut named = HashMap::new();
         for g in &model.world_geoms {
             let pose = world * g.frame;
             let id = match g.kind {
@@ -1302,15 +1349,35 @@ impl Scene {
             if let Some(c) = g.rgba {
                 self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
             }
-            if let Some(geom) = self.object(id)?.geom_handle() {
-                let mut geom = self.world.geom_mut(geom)?;
+            if let Some(handle) = self.object(id)?.geom_handle() {
+                let mut geom = self.world.geom_mut(handle)?;
                 geom.set_category_bits(g.bits.0);
                 geom.set_collide_bits(g.bits.1);
+                if let Some(name) = &g.name {
+                    named.insert(name.clone(), (handle, g.bits));
+                }
             }
             made.world_geoms.push(id);
         }
         for body in &model.bodies {
-            self.add_mjcf_body(body, &world, None, made)?;
+            self.add_mjcf_body(body, &world, None, made, &mut named)?;
+        }
+        for (k, (a, b)) in model.pairs.iter().enumerate() {
+            let unknown = |name: &str| Error::Invalid {
+                what: "an MJCF contact pair",
+                problem: format!("names the geom {name:?}, which the model does not have"),
+            };
+            // A bit of its own in one's category and the other's collide bits: these
+            // two touch, and nothing else gains a contact.
+            let bit = 1u64 << (32 + k);
+            let (first, bits) = named.get_mut(a).ok_or_else(|| unknown(a))?;
+            bits.0 |= bit;
+            let (first, category) = (*first, bits.0);
+            let (second, bits) = named.get_mut(b).ok_or_else(|| unknown(b))?;
+            bits.1 |= bit;
+            let (second, collide) = (*second, bits.1);
+            self.world.geom_mut(first)?.set_category_bits(category);
+            self.world.geom_mut(second)?.set_collide_bits(collide);
         }
         for sensor in &model.sensors {
             let found = match sensor.kind.as_str() {
@@ -1360,6 +1427,7 @@ impl Scene {
         parent_frame: &Isometry3<f64>,
         parent: Option<ObjectId>,
         made: &mut MjcfModel,
+        named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
     ) -> Result<()> {
         let frame = parent_frame * body.frame;
         let invalid = |problem: String| Error::Invalid { what: "an MJCF body", problem };
@@ -1404,7 +1472,11 @@ impl Scene {
             let offset = body_frame.inverse() * frame * g.frame;
             let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
             let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
-            geoms.push(self.world.insert_geom(self.space(), geom)?);
+            let handle = self.world.insert_geom(self.space(), geom)?;
+            if let Some(name) = &g.name {
+                named.insert(name.clone(), (handle, g.bits));
+            }
+            geoms.push(handle);
         }
         let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
         let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
@@ -1467,7 +1539,7 @@ impl Scene {
             end = JointEnd::Object(child);
         }
         for child in &body.children {
-            self.add_mjcf_body(child, &frame, Some(id), made)?;
+            self.add_mjcf_body(child, &frame, Some(id), made, named)?;
         }
         Ok(())
     }
