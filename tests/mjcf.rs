@@ -94,12 +94,12 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
         ("<mujoco><worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>", "no <mesh> asset"),
         (
-            "<mujoco><worldbody><body><joint stiffness='3'/><geom size='.1'/></body></worldbody></mujoco>",
-            "joint spring",
+            "<mujoco><worldbody><body><joint type='ball' stiffness='3'/><geom size='.1'/></body></worldbody></mujoco>",
+            "stiffness on a ball or free joint",
         ),
         (
-            "<mujoco><worldbody><body><joint ref='30'/><geom size='.1'/></body></worldbody></mujoco>",
-            "reference position",
+            "<mujoco><worldbody><body><joint frictionloss='-1'/><geom size='.1'/></body></worldbody></mujoco>",
+            "must not be negative",
         ),
         (
             "<mujoco><asset><mesh file='/nonexistent/m.stl'/></asset>\
@@ -480,4 +480,45 @@ fn sensors_read_their_joints_and_bodies() {
     let e = sim.load_mjcf_text(&missing, "missing.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"nope\""), "{e}");
     assert_eq!(sim.objects().count(), 0);
+}
+
+#[test]
+fn reference_positions_and_springs_survive_a_scene_file_and_a_snapshot() {
+    const SPRUNG: &str = r#"<mujoco><option gravity="0 0 -9.81"/><worldbody>
+        <body name="arm" pos="0 0 2" euler="0 50 0">
+          <joint name="hinge" axis="0 1 0" ref="20" stiffness="3" springref="35" frictionloss="0.01"/>
+          <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.03"/>
+          <body name="slider" pos="0 0 -0.4">
+            <joint name="slide" type="slide" axis="0 0 1" ref="0.1" stiffness="40" springref="0.15"/>
+            <geom type="box" size="0.05 0.05 0.05"/>
+          </body>
+        </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    sim.load_mjcf_text(SPRUNG, "sprung.xml", &MjcfOptions::new()).unwrap();
+    let position = |sim: &Simulation, name: &str| sim.joint(name).unwrap().state().unwrap().position;
+    // In the file's pose each joint reads its ref, as MuJoCo's qpos0.
+    assert!((position(&sim, "hinge") - 20f64.to_radians()).abs() < 1e-12);
+    assert!((position(&sim, "slide") - 0.1).abs() < 1e-12);
+    assert_eq!(sim.joint("slide").unwrap().spring(), (40.0, 0.15));
+    assert_eq!(sim.joint("hinge").unwrap().dry_friction(), 0.01);
+    sim.run_for(0.2).unwrap();
+    let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    let snapshot = sim.snapshot().unwrap();
+    let mut restored = Simulation::builder().build().unwrap();
+    restored.load_mjcf_text(SPRUNG, "sprung.xml", &MjcfOptions::new()).unwrap();
+    restored.restore(&snapshot).unwrap();
+    sim.run_for(0.3).unwrap();
+    let expected = [position(&sim, "hinge"), position(&sim, "slide")];
+    for mut other in [copy, restored] {
+        assert_eq!(other.joint("slide").unwrap().spring(), (40.0, 0.15));
+        other.run_for(0.3).unwrap();
+        // The same bits: the references, springs and dry friction came back.
+        assert_eq!([position(&other, "hinge"), position(&other, "slide")], expected);
+    }
+    // Bad springs are refused.
+    let mut joint = sim.joint_mut("slide").unwrap();
+    for (stiffness, rest) in [(-1.0, 0.0), (f64::NAN, 0.0), (1.0, f64::INFINITY)] {
+        let e = joint.set_spring(stiffness, rest).unwrap_err().to_string();
+        assert!(e.contains("spring"), "{e}");
+    }
 }

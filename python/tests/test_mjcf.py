@@ -297,6 +297,72 @@ def test_a_root_hinge_s_armature_converges_to_mujoco_s_with_the_time_step(tmp_pa
     assert any("a1" in s and "rigid body" in s for s in model["skipped"]), model["skipped"]
 
 
+SPRUNG = """
+<mujoco model="sprung">
+  <default><geom contype="0" conaffinity="0"/></default>
+  <worldbody>
+    <body name="p1" pos="0 0 2" euler="0 50 0">
+      <joint name="a1" type="hinge" axis="0 1 0" ref="20" stiffness="3" springref="35" damping="0.05"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.03"/>
+      <body name="p2" pos="0 0 -0.4">
+        <joint name="s2" type="slide" axis="0 0 1" ref="0.1" stiffness="40" springref="0.15"/>
+        <geom type="box" size="0.05 0.05 0.05"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def test_reference_positions_and_springs_move_as_mujoco_s(tmp_path):
+    """A hinge and a slide with `ref` (their positions in the file's pose) and springs
+    (`stiffness` about `springref`): they start at MuJoCo's qpos0, and their positions
+    after 1 s approach MuJoCo's to first order in the time step."""
+    path = tmp_path / "sprung.xml"
+    path.write_text(SPRUNG)
+    sim = ars.Simulation()
+    sim.load_mjcf(path)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    assert [sim.joint("a1").angle, sim.joint("s2").position] == pytest.approx(m.qpos0, abs=1e-12)
+    assert sim.joint("a1").angle == pytest.approx(np.radians(20), abs=1e-12)
+    reference = mujoco_angles_after_one_second(path, ["a1", "s2"])
+    still = tmp_path / "still.xml"
+    still.write_text(
+        SPRUNG.replace('stiffness="3"', 'stiffness="0"').replace('stiffness="40"', 'stiffness="0"')
+    )
+    assert np.abs(reference - mujoco_angles_after_one_second(still, ["a1", "s2"])).max() > 0.1
+    gaps = [
+        np.abs(angles_after_one_second(path, ["a1", "s2"], dt) - reference).max()
+        for dt in (2e-3, 1e-3, 5e-4)
+    ]
+    assert gaps[0] > gaps[1] > gaps[2], gaps
+    for coarse, fine in zip(gaps, gaps[1:]):
+        assert 1.6 < coarse / fine < 2.5, gaps
+
+
+def test_a_range_is_of_the_positions_ref_measures(tmp_path):
+    """A slide's range is in MuJoCo's coordinates, where the file's pose is at `ref`:
+    a spring pulling past the upper end holds it there in both; and a `frictionloss`
+    above what gravity pulls with holds a pendulum still (ARS's dry friction)."""
+    path = tmp_path / "ranged.xml"
+    path.write_text(SPRUNG.replace('springref="0.15"/>', 'springref="0.4" range="0.05 0.12"/>'))
+    sim = ars.Simulation()
+    sim.load_mjcf(path)
+    sim.run(1.0)
+    ours = sim.joint("s2").position
+    theirs = mujoco_angles_after_one_second(path, ["s2"])[0]
+    # ODE's stop is hard; MuJoCo's limit is soft (solref): it sits 2 mm past.
+    assert ours == pytest.approx(0.12, abs=1e-3), ours
+    assert theirs == pytest.approx(0.12, abs=3e-3), theirs
+    held = tmp_path / "held.xml"
+    held.write_text(
+        SWINGING.replace('name="a1" type="hinge"', 'name="a1" type="hinge" frictionloss="100"')
+    )
+    sim = ars.Simulation()
+    sim.load_mjcf(held)
+    sim.run(0.5)
+    assert abs(sim.joint("a1").angle) < 1e-3
+
+
 def test_contact_free_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
     """From the same state under gravity, ARS's joint angles after 1 s approach
     MuJoCo's (RK4 at 0.1 ms) as the time step shrinks, to first order."""

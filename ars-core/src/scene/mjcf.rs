@@ -35,8 +35,15 @@
 //!   along each joint but the first (and a free joint cannot be chained). A chained
 //!   body and its parent never touch ([`Scene::exclude_contacts`]), as MuJoCo ignores
 //!   the contacts of a body with its parent and ODE those of two bodies one joint joins.
-//!   A joint's `ref`, `stiffness` (a spring) and `frictionloss` are unsupported (an
-//!   error, or skipped with a warning).
+//!   A hinge's or slide's `ref` is its position in the pose the file gives (MuJoCo's
+//!   `qpos0`): the joint is made with its child moved back by `ref`, so that ODE,
+//!   which measures a joint from where it was made, reads `ref` there, and ranges,
+//!   servos and sensors see MuJoCo's positions. `stiffness` about `springref` becomes
+//!   a spring ([`SimJoint::set_spring`](crate::SimJoint::set_spring): explicit, from
+//!   the position at the start of the step), `frictionloss` dry friction
+//!   ([`SimJoint::set_dry_friction`](crate::SimJoint::set_dry_friction): ODE's motor
+//!   at speed 0, a hard limit where MuJoCo's is soft). On ball and free joints they
+//!   are unsupported (an error, or skipped with a warning).
 //! - **Armature.** ODE has no joint-space inertia, so a joint's `armature` (MuJoCo's
 //!   rotor inertia on the joint's own degree of freedom) is added to the inertia of
 //!   the body the joint moves: `armature · n nᵀ` about a hinge's axis `n`,
@@ -521,6 +528,12 @@ struct Joint {
     range: Option<(f64, f64)>,
     damping: f64,
     armature: f64,
+    /// `ref`: its position in the pose the file gives (MuJoCo's `qpos0`).
+    reference: f64,
+    /// `stiffness` and `springref`: a spring.
+    spring: (f64, f64),
+    /// `frictionloss`: dry friction.
+    frictionloss: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -677,6 +690,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if axis.norm() == 0.0 {
             return Err(problem(&node, "axis is zero"));
         }
+        // A hinge's positions are angles, in the compiler's unit.
+        let angle = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
         let limited = match a.get("limited") {
             Some("true") => true,
             Some("false") => false,
@@ -687,8 +702,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 if lo > hi {
                     return Err(problem(&node, format!("range {lo} {hi} is reversed")));
                 }
-                let scale = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
-                Some((lo * scale, hi * scale))
+                Some((lo * angle, hi * angle))
             }
             (true, None) => return Err(problem(&node, "is limited but has no range")),
             _ => None,
@@ -701,16 +715,21 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if armature < 0.0 {
             return Err(problem(&node, "armature must not be negative"));
         }
-        // What ARS's joints cannot do: a reference position other than the frame's, a
-        // spring, dry friction.
-        for (attribute, what) in [
-            ("ref", "a reference position (ARS measures a joint from the pose the file gives)"),
-            ("stiffness", "a joint spring"),
-            ("frictionloss", "dry joint friction"),
-        ] {
-            if a.number(attribute)?.is_some_and(|v| v != 0.0) {
-                self.unsupported(&node, &format!("{attribute}: {what}"))?;
+        let mut reference = a.number("ref")?.unwrap_or(0.0) * angle;
+        let mut spring = (a.number("stiffness")?.unwrap_or(0.0), a.number("springref")?.unwrap_or(0.0) * angle);
+        let mut frictionloss = a.number("frictionloss")?.unwrap_or(0.0);
+        if spring.0 < 0.0 || frictionloss < 0.0 {
+            return Err(problem(&node, "stiffness and frictionloss must not be negative"));
+        }
+        // A ball's or a free joint's has no one position: ARS's springs, dry friction
+        // and reference positions are of hinges and slides.
+        if matches!(kind, JointKind::Ball | JointKind::Free) {
+            for (attribute, value) in [("ref", reference), ("stiffness", spring.0), ("frictionloss", frictionloss)] {
+                if value != 0.0 {
+                    self.unsupported(&node, &format!("{attribute} on a ball or free joint"))?;
+                }
             }
+            (reference, spring, frictionloss) = (0.0, (0.0, 0.0), 0.0);
         }
         Ok(Joint {
             name,
@@ -720,6 +739,9 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             range,
             damping,
             armature,
+            reference,
+            spring,
+            frictionloss,
         })
     }
 
@@ -1521,16 +1543,50 @@ impl Scene {
             };
             let anchor = frame * nalgebra::Point3::from(j.pos);
             let axis = frame.rotation * j.axis;
-            let joint = match j.kind {
-                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis)?,
-                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis)?,
-                _ => self.add_ball_joint(&j.name, child, end, Some(anchor))?,
+            // ODE measures a joint from where its bodies are when it is made: made with
+            // the child moved back by `ref`, it reads `ref` in the file's pose.
+            let moved = self.object(child)?.body_handle().filter(|_| j.reference != 0.0);
+            let before = match moved {
+                Some(b) => {
+                    let body = self.world.body(b)?;
+                    let (position, rotation) = (body.position(), body.rotation());
+                    let back = match j.kind {
+                        JointKind::Hinge => {
+                            let turn = UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), -j.reference);
+                            Isometry3::rotation_wrt_point(turn, anchor)
+                        }
+                        _ => Isometry3::from_parts(Translation3::from(axis * -j.reference), UnitQuaternion::identity()),
+                    };
+                    let mut body = self.world.body_mut(b)?;
+                    body.set_position(back * position)?;
+                    body.set_rotation(back.rotation.to_rotation_matrix() * rotation)?;
+                    Some((b, position, rotation))
+                }
+                None => None,
             };
+            let joint = match j.kind {
+                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis),
+                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis),
+                _ => self.add_ball_joint(&j.name, child, end, Some(anchor)),
+            };
+            if let Some((b, position, rotation)) = before {
+                // Put back as it was made: ODE keeps the rotation matrix as set.
+                let mut body = self.world.body_mut(b)?;
+                body.set_position(position)?;
+                body.set_rotation(rotation)?;
+            }
+            let joint = joint?;
             if let Some((lo, hi)) = j.range {
                 self.joint_mut(joint)?.set_limits(lo, hi)?;
             }
             if j.damping > 0.0 {
                 self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
+            }
+            if j.spring.0 > 0.0 {
+                self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
+            }
+            if j.frictionloss > 0.0 {
+                self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
             }
             made.joints.push((j.name.clone(), joint));
             if child != id {

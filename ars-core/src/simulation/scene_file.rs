@@ -4,7 +4,7 @@
 //! stepper, contact surface and the surfaces of pairs of objects, space), the clock, every object in creation order (name,
 //! shape, colour, visuals, and for a body its mass, inertia, pose and velocities, to the
 //! last bit), every joint (name, type, its objects, the anchors and axes it was created
-//! with, its stops, speed motor, viscous and dry friction, actuator limits and the
+//! with, its stops, speed motor, viscous and dry friction, spring, actuator limits and the
 //! joint it mimics), the joints made through the world (hinge-2 joints, motors), and the
 //! sensors ARS builds from a kind and what they read (GPS, velometer, accelerometer,
 //! inclinometer, IMU, contact, energies, joint sensors, joint positions), lidars and
@@ -230,6 +230,9 @@ pub struct JointFile {
     /// Dry friction, N·m or N (0: none).
     #[serde(default)]
     pub dry_friction: f64,
+    /// Its spring: stiffness (N·m/rad or N/m) and rest position (`None`: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spring: Option<(f64, f64)>,
     /// Effort limit of its actuator (`None`: unlimited).
     #[serde(default)]
     pub effort_limit: Option<f64>,
@@ -393,6 +396,7 @@ impl Simulation {
                 limits: data.limits,
                 friction: data.friction,
                 dry_friction: data.dry_friction,
+                spring: (data.spring.0 != 0.0).then_some(data.spring),
                 effort_limit: Some(data.actuator.effort).filter(|e| e.is_finite()),
                 velocity_limit: Some(data.actuator.velocity).filter(|v| v.is_finite()),
                 mimic: data
@@ -631,6 +635,9 @@ impl Simulation {
             }
             if j.dry_friction != 0.0 {
                 joint.set_dry_friction(j.dry_friction)?;
+            }
+            if let Some((stiffness, rest)) = j.spring {
+                joint.set_spring(stiffness, rest)?;
             }
             if let Some((speed, max_force)) = j.motor {
                 // As it was, whatever the limits (the speed was held to them when set).
