@@ -24,7 +24,7 @@
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use super::{SENSOR_KINDS, Simulation, SimulationBuilder};
+use crate::simulation::{SENSOR_KINDS, Simulation, SimulationBuilder};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
@@ -296,7 +296,7 @@ impl Simulation {
         match self.capture_state() {
             Ok(state) => {
                 let mut file = self.scene_structure(true)?;
-                file.state = Some(to_hex(&super::snapshot::encode(&state)));
+                file.state = Some(to_hex(&crate::simulation::snapshot::encode(&state)));
                 Ok(file)
             }
             Err(Error::NotCapturable { what }) => {
@@ -677,8 +677,8 @@ impl Simulation {
                 problem,
             };
             let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
-            let mut state: super::snapshot::SceneState =
-                super::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
+            let mut state: crate::simulation::snapshot::SceneState =
+                crate::simulation::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
             // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
             // no place for their state.
             state.keep_sensors(|kind| rebuilt_kind(kind).is_some());

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Vector3};
 
-use super::Simulation;
+use crate::simulation::Simulation;
 use crate::error::{Error, Result};
 use crate::scene::{MjcfOptions, UrdfOptions};
 use crate::world::SpaceKind;

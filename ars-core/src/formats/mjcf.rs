@@ -105,8 +105,8 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 
-use super::Scene;
-use super::joints::JointEnd;
+use crate::scene::JointEnd;
+use crate::scene::Scene;
 use crate::body::{BodyBuilder, MassSpec};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
