@@ -105,14 +105,14 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 
-use crate::scene::JointEnd;
-use crate::scene::Scene;
 use crate::body::{BodyBuilder, MassSpec};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{GeomHandle, JointId, ObjectId};
 use crate::mesh::MeshMass;
+use crate::scene::JointEnd;
+use crate::scene::Scene;
 use crate::sensors::AnySensorId;
 use crate::shape::Shape;
 
@@ -577,6 +577,8 @@ struct Reader<'d, 'a, 'input> {
     meshes: HashMap<String, (String, Vector3<f64>)>,
     /// The meshes loaded so far, by name.
     loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
+    /// Their files, each read once.
+    files: super::MeshCache,
     /// The main file's folder.
     dir: std::path::PathBuf,
 }
@@ -806,7 +808,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             Some(meshdir) => self.dir.join(meshdir),
             None => self.dir.clone(),
         };
-        let shape = crate::mesh::load_mesh(&dir.join(file), *scale).map_err(|e| problem(node, e.to_string()))?;
+        let path = super::first_file(file, &[dir.join(file)]).map_err(|e| problem(node, e))?;
+        let shape = self.files.load(&path, *scale).map_err(|e| problem(node, e.to_string()))?;
         let Shape::TriMesh { vertices, triangles } = &shape else {
             return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
         };
@@ -908,11 +911,11 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let frame = frame(&a, &self.compiler)?;
         let local = match (a.fixed::<3>("diaginertia")?, a.fixed::<6>("fullinertia")?) {
             (Some(d), None) => Matrix3::from_diagonal(&Vector3::from(d)),
-            (None, Some(f)) => Matrix3::new(f[0], f[3], f[4], f[3], f[1], f[5], f[4], f[5], f[2]),
+            (None, Some(f)) => super::inertia_tensor(f),
             _ => return Err(problem(&node, "needs one of diaginertia and fullinertia")),
         };
         let r = frame.rotation.to_rotation_matrix();
-        Ok((mass, frame.translation.vector, r.matrix() * local * r.matrix().transpose()))
+        Ok((mass, frame.translation.vector, super::turned_inertia(&r, &local)))
     }
 }
 
@@ -930,7 +933,7 @@ fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
         .map(|g| {
             let (centre, inertia) = g.mass_distribution();
             let r = g.frame.rotation.to_rotation_matrix();
-            (g.mass(), (g.frame * nalgebra::Point3::from(centre)).coords, r.matrix() * inertia * r.matrix().transpose())
+            (g.mass(), (g.frame * nalgebra::Point3::from(centre)).coords, super::turned_inertia(&r, &inertia))
         })
         .collect();
     let com = parts.iter().map(|(m, c, _)| c * *m).sum::<Vector3<f64>>() / mass;
@@ -1189,6 +1192,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
         joints: 0,
         meshes,
         loaded: HashMap::new(),
+        files: super::MeshCache::default(),
         tree,
         dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
     };
@@ -1306,7 +1310,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
 
 /// MuJoCo (x, y, z) → simulation (x, z, −y), then the base pose.
 fn placement(options: &MjcfOptions) -> Isometry3<f64> {
-    let turn = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), -std::f64::consts::FRAC_PI_2);
+    let turn = UnitQuaternion::from_rotation_matrix(&super::z_up_to_y_up());
     options.base_pose * Isometry3::from_parts(Translation3::identity(), turn)
 }
 

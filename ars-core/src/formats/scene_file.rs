@@ -24,7 +24,6 @@
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use crate::simulation::{SENSOR_KINDS, Simulation, SimulationBuilder};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
@@ -33,6 +32,7 @@ use crate::joint::{JointBuilder, JointKind, JointParam};
 use crate::scene::{ActuatorLimits, Color, JointEnd, JointType, Visual};
 use crate::sensors::SensorSettings;
 use crate::shape::Shape;
+use crate::simulation::{SENSOR_KINDS, Simulation, SimulationBuilder};
 use crate::world::{SpaceKind, Stepper};
 
 /// The format tag of a scene file.

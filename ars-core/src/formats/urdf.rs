@@ -54,15 +54,15 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
-use crate::scene::Scene;
-use crate::scene::JointEnd;
-use crate::scene::objects::multiply;
 use crate::body::{BodyBuilder, MassSpec};
 use crate::convert::rotation_about_axis;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{JointId, ObjectId};
 use crate::joint::JointBuilder;
+use crate::scene::JointEnd;
+use crate::scene::Scene;
+use crate::scene::objects::multiply;
 use crate::shape::Shape;
 
 /// The up axis a URDF file is written with.
@@ -152,7 +152,7 @@ struct Meshes<'o> {
     options: &'o UrdfOptions,
     /// The URDF file's folder.
     base_dir: Option<PathBuf>,
-    loaded: HashMap<(PathBuf, [u64; 3]), Shape>,
+    loaded: super::MeshCache,
 }
 
 impl Meshes<'_> {
@@ -198,16 +198,7 @@ impl Meshes<'_> {
                 tried.push(dir.join(name));
             }
         }
-        match tried.iter().find(|p| p.is_file()) {
-            Some(found) => Ok(found.clone()),
-            None => {
-                let list: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
-                Err(format!(
-                    "mesh {filename:?} not found; tried: {}",
-                    if list.is_empty() { "nothing (no folder to look in)".into() } else { list.join(", ") }
-                ))
-            }
-        }
+        super::first_file(filename, &tried)
     }
 
     fn shape(&mut self, geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
@@ -220,13 +211,7 @@ impl Meshes<'_> {
             G::Mesh { filename, scale } => {
                 let path = self.resolve(filename)?;
                 let scale = Vector3::from(scale.as_ref().map_or([1.0; 3], |s| s.0));
-                let key = (path.clone(), [scale.x, scale.y, scale.z].map(f64::to_bits));
-                if let Some(shape) = self.loaded.get(&key) {
-                    return Ok(shape.clone());
-                }
-                let shape = crate::mesh::load_mesh(&path, scale).map_err(|e| e.to_string())?;
-                self.loaded.insert(key, shape.clone());
-                shape
+                self.loaded.load(&path, scale).map_err(|e| e.to_string())?
             }
         })
     }
@@ -335,7 +320,7 @@ fn rpy_matrix([roll, pitch, yaw]: [f64; 3]) -> Option<Matrix3<f64>> {
 
 /// −90° about X, exactly: URDF (x, y, z) → simulation (x, z, −y).
 fn z_up_to_y_up() -> Frame {
-    Frame { rotation: Some(Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)), translation: Vector3::zeros() }
+    Frame { rotation: Some(super::z_up_to_y_up().into_inner()), translation: Vector3::zeros() }
 }
 
 /// A robot checked before anything is built.
@@ -376,7 +361,7 @@ impl Scene {
         let robot = parsed.map_err(|e| bad("robot".into(), format!("not valid URDF: {e}")))?;
         let plan = plan(&robot, options).map_err(|(element, problem)| bad(element, problem))?;
         let base_dir = Path::new(file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
-        let mut meshes = Meshes { options, base_dir, loaded: HashMap::new() };
+        let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default() };
         self.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
@@ -537,7 +522,11 @@ impl Scene {
             let to_object = object_pose.inverse();
             looks
                 .iter()
-                .map(|(shape, at, color)| crate::scene::Visual { shape: shape.clone(), offset: to_object * at, color: *color })
+                .map(|(shape, at, color)| crate::scene::Visual {
+                    shape: shape.clone(),
+                    offset: to_object * at,
+                    color: *color,
+                })
                 .collect()
         };
         let mass = link.inertial.mass.value;
@@ -574,7 +563,7 @@ impl Scene {
             )));
         }
         let i = &link.inertial.inertia;
-        let inertia = Matrix3::new(i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz);
+        let inertia = super::inertia_tensor([i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz]);
         let spec = MassSpec::Custom { mass, inertia };
         let mut builder = BodyBuilder::new().mass(spec).position(Point3::from(inertial.translation));
         if inertial.rotation.is_some() {
