@@ -94,12 +94,12 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
         ("<mujoco><worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>", "no <mesh> asset"),
         (
-            "<mujoco><worldbody><body><joint stiffness='3'/><geom size='.1'/></body></worldbody></mujoco>",
-            "joint spring",
+            "<mujoco><worldbody><body><joint type='ball' stiffness='3'/><geom size='.1'/></body></worldbody></mujoco>",
+            "stiffness on a ball or free joint",
         ),
         (
-            "<mujoco><worldbody><body><joint ref='30'/><geom size='.1'/></body></worldbody></mujoco>",
-            "reference position",
+            "<mujoco><worldbody><body><joint frictionloss='-1'/><geom size='.1'/></body></worldbody></mujoco>",
+            "must not be negative",
         ),
         (
             "<mujoco><asset><mesh file='/nonexistent/m.stl'/></asset>\
@@ -156,6 +156,40 @@ fn several_joints_in_one_body_are_chained_through_light_links() {
 }
 
 #[test]
+fn a_body_chained_to_its_parent_does_not_touch_it() {
+    // A hip of two hinges, its thigh overlapping the pelvis as a humanoid's does: they
+    // are jointed through a light link, and MuJoCo ignores a body's contacts with its
+    // parent, so they must not push each other apart.
+    const HIP: &str = r#"<mujoco><worldbody>
+        <body name="pelvis" pos="0 0 1"><geom type="capsule" fromto="-0.1 0 0 0.1 0 0" size="0.09"/>
+          <body name="thigh" pos="0.05 0 -0.05">
+            <joint name="hip_x" axis="1 0 0"/><joint name="hip_y" axis="0 1 0"/>
+            <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.06"/>
+          </body>
+        </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(HIP, "hip.xml", &MjcfOptions::new()).unwrap();
+    let (pelvis, thigh) = (model.body("pelvis").unwrap(), model.body("thigh").unwrap());
+    assert_eq!(sim.excluded_contacts(), [(pelvis, thigh)]);
+    sim.run_for(0.2).unwrap();
+    assert!(sim.world().contacts().is_empty(), "the overlapping capsules do not touch");
+    // It hangs and swings from its pivot; nothing ejects it.
+    let speed = sim.body(thigh).unwrap().linear_velocity().norm();
+    assert!(speed < 2.0, "{speed}");
+}
+
+#[test]
+fn a_body_too_light_for_ars_is_refused_by_name() {
+    // 1e-5 kg/m³ in a 1 cm ball weighs 4e-11 kg, below ARS's 1e-9 kg.
+    const FEATHER: &str = r#"<mujoco><worldbody><body name="feather"><freejoint/>
+        <geom type="sphere" size="0.01" density="1e-5"/></body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let err = sim.load_mjcf_text(FEATHER, "feather.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(err.contains("\"feather\"") && err.contains("mass"), "{err}");
+    assert_eq!(sim.objects().count(), 0);
+}
+
+#[test]
 fn includes_are_read_in_place_and_their_errors_name_their_file() {
     let dir = std::env::temp_dir().join(format!("ars-mjcf-{}", std::process::id()));
     std::fs::create_dir_all(dir.join("parts")).unwrap();
@@ -176,6 +210,42 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     // The included class's density (not MuJoCo's 1000) weighs the included body.
     let mass = sim.body(model.body("bob").unwrap()).unwrap().mass();
     assert!((mass - 300.0 * 4.0 / 3.0 * std::f64::consts::PI * 1e-3).abs() < 1e-12, "{mass}");
+    // Includes below the top level: in a class, in the world body and in a body, read in
+    // place (MuJoCo allows them anywhere), and an include inside an included file.
+    write(
+        "nested.xml",
+        r#"<mujoco model="nested">
+             <default><include file="parts/heavy.xml"/></default>
+             <worldbody>
+               <include file="parts/arm.xml"/>
+             </worldbody>
+           </mujoco>"#,
+    );
+    write("parts/heavy.xml", r#"<mujoco><geom density="2000"/></mujoco>"#);
+    write(
+        "parts/arm.xml",
+        r#"<mujoco><body name="arm" pos="0 0 1"><joint name="shoulder"/>
+           <include file="hand.xml"/></body></mujoco>"#,
+    );
+    write(
+        "parts/hand.xml",
+        r#"<mujoco><geom type="sphere" size="0.1"/><body name="finger"><geom type="sphere" size="0.05" pos="0.2 0 0"/></body></mujoco>"#,
+    );
+    let mut nested = Simulation::builder().build().unwrap();
+    let model = nested.load_mjcf(dir.join("nested.xml"), &MjcfOptions::new()).unwrap();
+    let ball = |r: f64| 2000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    let arm = nested.body(model.body("arm").unwrap()).unwrap().mass();
+    let finger = nested.body(model.body("finger").unwrap()).unwrap().mass();
+    assert!((arm - ball(0.1)).abs() < 1e-12 && (finger - ball(0.05)).abs() < 1e-12, "{arm} {finger}");
+    // An error there names the deepest file.
+    write(
+        "parts/hand.xml",
+        r#"<mujoco>
+      <geom type="box" size="0.1 0.1"/></mujoco>"#,
+    );
+    let err = nested.load_mjcf(dir.join("nested.xml"), &MjcfOptions::new()).unwrap_err();
+    let Error::Format { file, element, line, .. } = &err else { panic!("{err}") };
+    assert!(file.ends_with("hand.xml") && element == "<geom>" && *line == Some(2), "{err}");
     // An error in an included file names that file and its line.
     write("parts/robot.xml", r#"<mujoco><worldbody><body><geom size="-1"/></body></worldbody></mujoco>"#);
     let err = sim.load_mjcf(dir.join("scene.xml"), &MjcfOptions::new()).unwrap_err().to_string();
@@ -199,7 +269,7 @@ const ACTUATED: &str = r#"
   <default>
     <joint type="hinge" axis="0 1 0"/>
     <geom type="capsule" size="0.03" contype="0" conaffinity="0"/>
-    <motor ctrlrange="-1 1"/>
+    <general ctrlrange="-1 1"/>
   </default>
   <worldbody>
     <body name="a"><joint name="ja"/><geom fromto="0 0 0 0.5 0 0"/></body>
@@ -209,7 +279,7 @@ const ACTUATED: &str = r#"
   <actuator>
     <motor name="push" joint="ja" gear="10"/>
     <position name="hold" joint="jb" kp="30" kv="3" forcerange="-5 5"/>
-    <velocity name="spin" joint="jc" kv="2" gear="2"/>
+    <velocity name="spin" joint="jc" kv="2" gear="2" ctrllimited="false"/>
   </actuator>
 </mujoco>"#;
 
@@ -221,7 +291,10 @@ fn actuators_drive_their_joints_as_mujoco_defines_them() {
     let names: Vec<&str> = sim.actuators().map(|(n, _)| n).collect();
     assert_eq!(names, ["push", "hold", "spin"]);
     let push = &model.actuators[0].actuator;
-    assert_eq!((push.gear(), push.ctrl_range()), (10.0, Some((-1.0, 1.0))), "the class's motor default");
+    // A class's <general> sets every actuator kind's defaults, as in MuJoCo.
+    assert_eq!((push.gear(), push.ctrl_range()), (10.0, Some((-1.0, 1.0))), "the class's default");
+    assert_eq!(model.actuators[1].actuator.ctrl_range(), Some((-1.0, 1.0)), "the class's default");
+    assert_eq!(model.actuators[2].actuator.ctrl_range(), None, "ctrllimited=\"false\" wins");
     assert_eq!(model.actuators[1].actuator.force_range(), Some((-5.0, 5.0)));
     assert_eq!(sim.control("push").unwrap(), 0.0);
 
@@ -307,6 +380,44 @@ fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
     let e = sim.load_mjcf_text(&bad, "exclude.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"bal\""), "{e}");
     assert_eq!(sim.objects().count(), 0);
+}
+
+#[test]
+fn a_contact_pair_touches_whatever_its_bits_say_and_nothing_else_does() {
+    // Two balls over a plate whose contype and conaffinity are 0: only the ball paired
+    // with it lands; the other falls through. A ball's own bits are unchanged, so the
+    // two balls, side by side and overlapping, never touch each other either way.
+    let text = r#"
+<mujoco>
+  <worldbody>
+    <geom name="plate" type="box" size="1 0.5 0.05" contype="0" conaffinity="0"/>
+    <body name="held" pos="0 0 0.5"><freejoint/><geom name="held" type="sphere" size="0.1" contype="0" conaffinity="0"/></body>
+    <body name="loose" pos="0.15 0 0.5"><freejoint/><geom type="sphere" size="0.1" contype="0" conaffinity="0"/></body>
+  </worldbody>
+  <contact><pair geom1="held" geom2="plate" condim="3" friction="1 1 0.005 0.0001 0.0001"/></contact>
+</mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(text, "pair.xml", &MjcfOptions::new()).unwrap();
+    assert!(
+        model.skipped.iter().any(|s| s.starts_with("<pair>") && s.contains("condim, friction")),
+        "{:?}",
+        model.skipped
+    );
+    sim.run_for(1.0).unwrap();
+    let y = |name: &str| sim.object(name).unwrap().position().unwrap().y;
+    assert!((y("held") - 0.15).abs() < 0.01, "the paired ball rests on the plate: {}", y("held"));
+    assert!(y("loose") < -1.0, "the other falls through: {}", y("loose"));
+
+    // An unknown geom is refused and leaves nothing; so is a contype beyond 32 bits.
+    let mut sim = Simulation::builder().build().unwrap();
+    let bad = text.replace(r#"geom2="plate""#, r#"geom2="plat""#);
+    let e = sim.load_mjcf_text(&bad, "pair.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("\"plat\""), "{e}");
+    assert_eq!(sim.objects().count(), 0);
+    let bad = text.replace(r#"size="1 0.5 0.05" contype="0""#, r#"size="1 0.5 0.05" contype="4294967296""#);
+    let e = sim.load_mjcf_text(&bad, "pair.xml", &MjcfOptions::new()).unwrap_err();
+    let Error::Format { element, line, .. } = &e else { panic!("{e}") };
+    assert!(element == "<geom>" && *line == Some(4) && e.to_string().contains("32 bits"), "{e}");
 }
 
 #[test]
@@ -508,5 +619,46 @@ fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
     assert_eq!(model.sensors.len(), 9, "the supported ones only");
     for what in ["<magnetometer>", "inertial frame", "world body", "objtype geom", "cutoff"] {
         assert!(model.skipped.iter().any(|s| s.contains(what)), "{what} in {:?}", model.skipped);
+    }
+}
+
+#[test]
+fn reference_positions_and_springs_survive_a_scene_file_and_a_snapshot() {
+    const SPRUNG: &str = r#"<mujoco><option gravity="0 0 -9.81"/><worldbody>
+        <body name="arm" pos="0 0 2" euler="0 50 0">
+          <joint name="hinge" axis="0 1 0" ref="20" stiffness="3" springref="35" frictionloss="0.01"/>
+          <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.03"/>
+          <body name="slider" pos="0 0 -0.4">
+            <joint name="slide" type="slide" axis="0 0 1" ref="0.1" stiffness="40" springref="0.15"/>
+            <geom type="box" size="0.05 0.05 0.05"/>
+          </body>
+        </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    sim.load_mjcf_text(SPRUNG, "sprung.xml", &MjcfOptions::new()).unwrap();
+    let position = |sim: &Simulation, name: &str| sim.joint(name).unwrap().state().unwrap().position;
+    // In the file's pose each joint reads its ref, as MuJoCo's qpos0.
+    assert!((position(&sim, "hinge") - 20f64.to_radians()).abs() < 1e-12);
+    assert!((position(&sim, "slide") - 0.1).abs() < 1e-12);
+    assert_eq!(sim.joint("slide").unwrap().spring(), (40.0, 0.15));
+    assert_eq!(sim.joint("hinge").unwrap().dry_friction(), 0.01);
+    sim.run_for(0.2).unwrap();
+    let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    let snapshot = sim.snapshot().unwrap();
+    let mut restored = Simulation::builder().build().unwrap();
+    restored.load_mjcf_text(SPRUNG, "sprung.xml", &MjcfOptions::new()).unwrap();
+    restored.restore(&snapshot).unwrap();
+    sim.run_for(0.3).unwrap();
+    let expected = [position(&sim, "hinge"), position(&sim, "slide")];
+    for mut other in [copy, restored] {
+        assert_eq!(other.joint("slide").unwrap().spring(), (40.0, 0.15));
+        other.run_for(0.3).unwrap();
+        // The same bits: the references, springs and dry friction came back.
+        assert_eq!([position(&other, "hinge"), position(&other, "slide")], expected);
+    }
+    // Bad springs are refused.
+    let mut joint = sim.joint_mut("slide").unwrap();
+    for (stiffness, rest) in [(-1.0, 0.0), (f64::NAN, 0.0), (1.0, f64::INFINITY)] {
+        let e = joint.set_spring(stiffness, rest).unwrap_err().to_string();
+        assert!(e.contains("spring"), "{e}");
     }
 }

@@ -88,12 +88,13 @@
 pub mod control;
 pub mod convert;
 pub mod error;
+pub mod formats;
 pub mod guard;
 pub mod handle;
 mod init;
 pub mod interrupt;
 pub mod limits;
-pub mod mesh;
+pub use formats::mesh;
 mod panic;
 pub mod platform;
 pub mod program;

@@ -279,6 +279,12 @@ impl Joint {
         self.act(py, |sim, id| sim.joint_mut(id)?.set_viscous_friction(coefficient))
     }
 
+    /// A spring: `-stiffness · (angle - rest)` every step (N·m/rad or N/m; 0: off).
+    #[pyo3(signature = (stiffness, rest=0.0))]
+    fn set_spring(&self, py: Python<'_>, stiffness: f64, rest: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.joint_mut(id)?.set_spring(stiffness, rest))
+    }
+
     /// Drives the joint in native code every step: `kind` is `"torque"` (the torque
     /// follows `setpoint`), `"position"` (a PD servo to `setpoint` with gains `kp`,
     /// `kd`), `"velocity"` (a P servo to `setpoint` with gain `kp`) or `"dc_motor"` (a

@@ -372,6 +372,7 @@ PYTHON_FOR_RUST = {
     "SimJoint.set_limits": "Joint.set_limits",
     "SimJoint.set_param": "Joint.set_param",
     "SimJoint.set_viscous_friction": "Joint.set_viscous_friction",
+    "SimJoint.set_spring": "Joint.set_spring",
     "SimJoint.set_controller": "Joint.set_controller",
     "SimJoint.clear_controller": "Joint.set_controller",
 }

@@ -81,6 +81,8 @@ pub(crate) struct JointData {
     pub(crate) dry_friction: f64,
     /// The joint whose position it follows, if any.
     pub(crate) mimic: Option<Mimic>,
+    /// Its spring: stiffness and rest position (stiffness 0: none).
+    pub(crate) spring: (f64, f64),
 }
 
 /// What a joint's actuator can put out: its controller's output and its speed motor
@@ -143,9 +145,11 @@ pub struct JointEfforts {
     pub added: f64,
     /// Of the viscous friction (`−coefficient · rate` at the start of the step).
     pub friction: f64,
+    /// Of the spring (`−stiffness · (position − rest)` at the start of the step).
+    pub spring: f64,
     /// Of the attached controller.
     pub controller: f64,
-    /// Friction plus controller, as one addition after the pre-step hooks.
+    /// Friction, spring and controller, as one addition after the pre-step hooks.
     pub driven: f64,
 }
 
@@ -208,6 +212,7 @@ impl Scene {
             actuator: ActuatorLimits::default(),
             dry_friction: 0.0,
             mimic: None,
+            spring: (0.0, 0.0),
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;
@@ -366,8 +371,8 @@ impl Scene {
         self.world.remove_joint(data.handle)
     }
 
-    /// Controllers and viscous friction, from the rates at the start of the step (one
-    /// addition per driven joint, after the pre-step hooks).
+    /// Controllers, viscous friction and springs, from the state at the start of the
+    /// step (one addition per driven joint, after the pre-step hooks).
     #[inline]
     pub(crate) fn apply_joint_drives(&mut self) -> Result<()> {
         if self.driven_joints.is_empty() { Ok(()) } else { self.drive_joints() }
@@ -382,7 +387,7 @@ impl Scene {
             let data = self.joints.get_mut(id.0, JointId::KIND)?;
             let (kind, handle) = (data.kind, data.handle);
             let friction = -data.friction * state.rate;
-            let (effort, controller) = match data.controller.as_mut() {
+            let (mut effort, controller) = match data.controller.as_mut() {
                 Some(c) => {
                     let output = data.actuator.limit(c.output(time, state, dt), state.rate);
                     // Exactly the controller's output when there is no friction.
@@ -390,10 +395,23 @@ impl Scene {
                 }
                 None => (friction, 0.0),
             };
+            let (stiffness, rest) = data.spring;
+            let spring = if stiffness == 0.0 {
+                0.0
+            } else {
+                let mut stretch = state.position - rest;
+                if matches!(kind, JointType::Hinge | JointType::Universal) {
+                    // ODE's angles wrap at ±π: the spring pulls the short way round.
+                    stretch = stretch.sin().atan2(stretch.cos());
+                }
+                -stiffness * stretch
+            };
+            effort += spring;
             data.efforts.friction = friction;
+            data.efforts.spring = spring;
             data.efforts.controller = controller;
             let mimic = data.mimic;
-            if effort != 0.0 || data.friction != 0.0 || data.controller.is_some() {
+            if effort != 0.0 || data.friction != 0.0 || data.controller.is_some() || stiffness != 0.0 {
                 self.put_effort(id, handle, kind, effort, true)?;
             }
             if let Some(mimic) = mimic {
@@ -491,8 +509,9 @@ impl Scene {
 
     /// Keeps the list of joints with friction or a controller.
     fn update_driven(&mut self, id: JointId) {
-        let driven =
-            self.joint_data(id).is_ok_and(|d| d.friction != 0.0 || d.controller.is_some() || d.mimic.is_some());
+        let driven = self
+            .joint_data(id)
+            .is_ok_and(|d| d.friction != 0.0 || d.spring.0 != 0.0 || d.controller.is_some() || d.mimic.is_some());
         match (driven, self.driven_joints.iter().position(|j| *j == id)) {
             (true, None) => {
                 self.driven_joints.push(id);
@@ -722,6 +741,21 @@ impl SimJoint<'_> {
         Ok(())
     }
 
+    /// A spring: a torque (or force) of `−stiffness · (position − rest)` is added in
+    /// every step, from the position at the start of the step (for a hinge, the angle
+    /// from `rest` the short way round). Stiffness in N·m/rad or N/m; `0` turns it off.
+    pub fn set_spring(&mut self, stiffness: f64, rest: f64) -> Result<()> {
+        limits::in_range("spring stiffness", stiffness, 0.0, limits::MAX_FORCE)?;
+        limits::in_range("spring rest position", rest, -limits::MAX_COORDINATE, limits::MAX_COORDINATE)?;
+        match self.kind {
+            JointType::Fixed | JointType::Ball => return Err(self.wrong("a spring")),
+            _ => {}
+        }
+        self.data_mut().spring = (stiffness, rest);
+        self.sim.update_driven(self.id);
+        Ok(())
+    }
+
     /// Attaches a controller whose output (torque or force) is added in every step,
     /// after the pre-step hooks. Replaces any previous controller.
     pub fn set_controller(&mut self, controller: impl JointController + 'static) -> Result<()> {
@@ -780,6 +814,12 @@ pub(crate) struct JointDriveState {
     mimic: Option<(String, f64, f64)>,
     /// Added, friction, controller and driven efforts.
     efforts: (f64, f64, f64, f64),
+    /// The spring's stiffness and rest position (snapshots before springs have none).
+    #[serde(default)]
+    spring: (f64, f64),
+    /// The spring's effort.
+    #[serde(default)]
+    spring_effort: f64,
 }
 
 impl Scene {
@@ -813,6 +853,8 @@ impl Scene {
                     dry_friction: d.dry_friction,
                     mimic,
                     efforts: (e.added, e.friction, e.controller, e.driven),
+                    spring: d.spring,
+                    spring_effort: e.spring,
                 })
             })
             .collect()
@@ -853,8 +895,9 @@ impl Scene {
             d.actuator = ActuatorLimits { effort: s.actuator.0, velocity: s.actuator.1 };
             d.dry_friction = s.dry_friction;
             d.mimic = mimic;
+            d.spring = s.spring;
             let (added, friction, controller, driven) = s.efforts;
-            d.efforts = JointEfforts { added, friction, controller, driven };
+            d.efforts = JointEfforts { added, friction, spring: s.spring_effort, controller, driven };
             self.update_driven(id);
         }
         Ok(())

@@ -10,11 +10,10 @@
 pub mod colors;
 mod floor;
 pub(crate) mod joints;
-pub mod mjcf;
 mod names;
-mod objects;
+pub(crate) mod objects;
 mod surfaces;
-pub mod urdf;
+pub use crate::formats::{mjcf, urdf};
 mod views;
 
 use nalgebra::Vector3;
@@ -41,14 +40,14 @@ pub struct Scene {
     pub(crate) world: World,
     space: SpaceHandle,
     space_kind: SpaceKind,
-    objects: Arena<ObjectData>,
+    pub(crate) objects: Arena<ObjectData>,
     object_names: Names<ObjectId>,
     joints: Arena<JointData>,
     joint_names: Names<JointId>,
     /// Joints with viscous friction or a controller, in creation order.
     driven_joints: Vec<JointId>,
     /// Robots loaded so far (each gets its own collision category).
-    robots_loaded: u32,
+    pub(crate) robots_loaded: u32,
     pair_surfaces: PairSurfaces,
     pub(crate) time: f64,
     pub(crate) step_count: u64,

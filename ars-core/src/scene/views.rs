@@ -180,6 +180,11 @@ impl<'s> JointView<'s> {
     pub fn dry_friction(&self) -> f64 {
         self.data.dry_friction
     }
+    /// Its spring's stiffness (N·m/rad or N/m; 0: none) and rest position, as set with
+    /// [`SimJoint::set_spring`](crate::SimJoint::set_spring).
+    pub fn spring(&self) -> (f64, f64) {
+        self.data.spring
+    }
     /// Its viscous friction coefficient (N·m·s/rad or N·s/m; 0: none), as set with
     /// [`SimJoint::set_viscous_friction`](crate::SimJoint::set_viscous_friction).
     pub fn viscous_friction(&self) -> f64 {

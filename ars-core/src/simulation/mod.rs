@@ -23,8 +23,7 @@
 //! only (ODE clears its accumulators after each step).
 
 pub mod hooks;
-pub mod open;
-pub mod scene_file;
+pub use crate::formats::{open, scene_file};
 mod sensor_kinds;
 pub mod snapshot;
 
@@ -216,8 +215,8 @@ impl SimulationBuilder {
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 pub struct Simulation {
-    scene: Scene,
-    sensors: SensorSet,
+    pub(crate) scene: Scene,
+    pub(crate) sensors: SensorSet,
     pub(crate) hooks: HookSet,
 }
 

@@ -31,7 +31,7 @@
 //!   again where its bodies were when it was made) and its parameters; the geoms'
 //!   switches and bits, and the order ODE's spaces test them in; the clock and
 //!   QuickStep's random seed.
-//! - Every joint's drive: viscous and dry friction, actuator limits, mimic, and its
+//! - Every joint's drive: viscous and dry friction, spring, actuator limits, mimic, and its
 //!   controller with its state (a PID's integral and previous error, a DC motor's
 //!   previous rate); the efforts booked so far in the step.
 //! - Every sensor's schedule (when its next sample is due), whether it is detached, and

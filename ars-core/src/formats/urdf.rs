@@ -21,10 +21,10 @@
 //!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
 //!   the parent to the child about the negated axis); `revolute` and
 //!   `prismatic` limits become joint stops, their `effort` and `velocity` the joint's
-//!   [`ActuatorLimits`](super::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
+//!   [`ActuatorLimits`](crate::scene::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
 //!   becomes viscous friction and `friction` dry friction
-//!   ([`SimJoint::set_dry_friction`](super::SimJoint::set_dry_friction)); `<mimic>` a
-//!   [`Mimic`](super::Mimic) (multiplier 1 and offset 0 unless given); `spherical` (an
+//!   ([`SimJoint::set_dry_friction`](crate::scene::SimJoint::set_dry_friction)); `<mimic>` a
+//!   [`Mimic`](crate::scene::Mimic) (multiplier 1 and offset 0 unless given); `spherical` (an
 //!   extension some tools write) becomes a ball joint. `floating` and `planar` joints
 //!   are refused.
 //! - **Collisions.** Linked bodies never collide (ODE's rule). With
@@ -41,7 +41,7 @@
 //!
 //! - **Looks.** The viewer draws a link's `<visual>` elements (any geometry, meshes
 //!   found as above, each in its material's colour: its own `<color>` or the
-//!   robot-level material it names) as its [`Visual`](super::Visual)s; the link's
+//!   robot-level material it names) as its [`Visual`](crate::scene::Visual)s; the link's
 //!   colour is its first visual's. A link without visuals, or every link with
 //!   [`UrdfOptions::ignore_visuals`] (for files whose visual meshes ARS cannot read),
 //!   is drawn as its collision geometry.
@@ -54,15 +54,15 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
-use super::Scene;
-use super::joints::JointEnd;
-use super::objects::multiply;
 use crate::body::{BodyBuilder, MassSpec};
 use crate::convert::rotation_about_axis;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{JointId, ObjectId};
 use crate::joint::JointBuilder;
+use crate::scene::JointEnd;
+use crate::scene::Scene;
+use crate::scene::objects::multiply;
 use crate::shape::Shape;
 
 /// The up axis a URDF file is written with.
@@ -152,7 +152,7 @@ struct Meshes<'o> {
     options: &'o UrdfOptions,
     /// The URDF file's folder.
     base_dir: Option<PathBuf>,
-    loaded: HashMap<(PathBuf, [u64; 3]), Shape>,
+    loaded: super::MeshCache,
 }
 
 impl Meshes<'_> {
@@ -198,16 +198,7 @@ impl Meshes<'_> {
                 tried.push(dir.join(name));
             }
         }
-        match tried.iter().find(|p| p.is_file()) {
-            Some(found) => Ok(found.clone()),
-            None => {
-                let list: Vec<String> = tried.iter().map(|p| p.display().to_string()).collect();
-                Err(format!(
-                    "mesh {filename:?} not found; tried: {}",
-                    if list.is_empty() { "nothing (no folder to look in)".into() } else { list.join(", ") }
-                ))
-            }
-        }
+        super::first_file(filename, &tried)
     }
 
     fn shape(&mut self, geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
@@ -220,13 +211,7 @@ impl Meshes<'_> {
             G::Mesh { filename, scale } => {
                 let path = self.resolve(filename)?;
                 let scale = Vector3::from(scale.as_ref().map_or([1.0; 3], |s| s.0));
-                let key = (path.clone(), [scale.x, scale.y, scale.z].map(f64::to_bits));
-                if let Some(shape) = self.loaded.get(&key) {
-                    return Ok(shape.clone());
-                }
-                let shape = crate::mesh::load_mesh(&path, scale).map_err(|e| e.to_string())?;
-                self.loaded.insert(key, shape.clone());
-                shape
+                self.loaded.load(&path, scale).map_err(|e| e.to_string())?
             }
         })
     }
@@ -335,7 +320,7 @@ fn rpy_matrix([roll, pitch, yaw]: [f64; 3]) -> Option<Matrix3<f64>> {
 
 /// −90° about X, exactly: URDF (x, y, z) → simulation (x, z, −y).
 fn z_up_to_y_up() -> Frame {
-    Frame { rotation: Some(Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)), translation: Vector3::zeros() }
+    Frame { rotation: Some(super::z_up_to_y_up().into_inner()), translation: Vector3::zeros() }
 }
 
 /// A robot checked before anything is built.
@@ -376,7 +361,7 @@ impl Scene {
         let robot = parsed.map_err(|e| bad("robot".into(), format!("not valid URDF: {e}")))?;
         let plan = plan(&robot, options).map_err(|(element, problem)| bad(element, problem))?;
         let base_dir = Path::new(file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
-        let mut meshes = Meshes { options, base_dir, loaded: HashMap::new() };
+        let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default() };
         self.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
@@ -477,7 +462,7 @@ impl Scene {
                 let name = format!("{}/base", robot.name);
                 match self.insert_sim_joint(
                     &name,
-                    super::JointType::Fixed,
+                    crate::scene::JointType::Fixed,
                     root,
                     JointEnd::World,
                     JointBuilder::fixed(),
@@ -533,11 +518,15 @@ impl Scene {
             problem,
         };
         // The visuals relative to the object's pose.
-        let visuals = |object_pose: Isometry3<f64>| -> Vec<super::Visual> {
+        let visuals = |object_pose: Isometry3<f64>| -> Vec<crate::scene::Visual> {
             let to_object = object_pose.inverse();
             looks
                 .iter()
-                .map(|(shape, at, color)| super::Visual { shape: shape.clone(), offset: to_object * at, color: *color })
+                .map(|(shape, at, color)| crate::scene::Visual {
+                    shape: shape.clone(),
+                    offset: to_object * at,
+                    color: *color,
+                })
                 .collect()
         };
         let mass = link.inertial.mass.value;
@@ -574,7 +563,7 @@ impl Scene {
             )));
         }
         let i = &link.inertial.inertia;
-        let inertia = Matrix3::new(i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz);
+        let inertia = super::inertia_tensor([i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz]);
         let spec = MassSpec::Custom { mass, inertia };
         let mut builder = BodyBuilder::new().mass(spec).position(Point3::from(inertial.translation));
         if inertial.rotation.is_some() {
@@ -642,7 +631,7 @@ impl Scene {
             };
             let to_host = host_pose.inverse();
             let mut visuals = self.object(host)?.visuals().to_vec();
-            visuals.extend(looks.into_iter().map(|(shape, at, color)| super::Visual {
+            visuals.extend(looks.into_iter().map(|(shape, at, color)| crate::scene::Visual {
                 shape,
                 offset: to_host * at,
                 color,
@@ -674,10 +663,10 @@ impl Scene {
         };
         use urdf_rs::JointType as U;
         let (kind, builder) = match joint.joint_type {
-            U::Revolute | U::Continuous => (super::JointType::Hinge, JointBuilder::hinge(anchor, axis)),
-            U::Prismatic => (super::JointType::Slider, JointBuilder::slider(axis)),
-            U::Fixed => (super::JointType::Fixed, JointBuilder::fixed()),
-            U::Spherical => (super::JointType::Ball, JointBuilder::ball(anchor)),
+            U::Revolute | U::Continuous => (crate::scene::JointType::Hinge, JointBuilder::hinge(anchor, axis)),
+            U::Prismatic => (crate::scene::JointType::Slider, JointBuilder::slider(axis)),
+            U::Fixed => (crate::scene::JointType::Fixed, JointBuilder::fixed()),
+            U::Spherical => (crate::scene::JointType::Ball, JointBuilder::ball(anchor)),
             _ => unreachable!("refused when planned"),
         };
         let id = self.insert_sim_joint(&joint.name, kind, object1, object2, builder)?;
@@ -702,7 +691,7 @@ impl Scene {
         let positive_or_none = |x: f64| if x > 0.0 { x } else { f64::INFINITY };
         let (effort, velocity) = (positive_or_none(joint.limit.effort), positive_or_none(joint.limit.velocity));
         if moving && (effort.is_finite() || velocity.is_finite()) {
-            self.joint_mut(id)?.set_actuator_limits(super::ActuatorLimits { effort, velocity })?;
+            self.joint_mut(id)?.set_actuator_limits(crate::scene::ActuatorLimits { effort, velocity })?;
         }
         Ok(id)
     }
@@ -716,7 +705,7 @@ fn link_geometry(
     link: &urdf_rs::Link,
     frame: &Frame,
     meshes: &mut Meshes<'_>,
-) -> Result<(Vec<(Shape, Frame)>, Vec<(Shape, Isometry3<f64>, Option<super::Color>)>)> {
+) -> Result<(Vec<(Shape, Frame)>, Vec<(Shape, Isometry3<f64>, Option<crate::scene::Color>)>)> {
     let urdf_err = |problem: String| Error::Format {
         format: "URDF",
         file: String::new(),
@@ -811,12 +800,12 @@ fn frames(
 
 /// The colour of a link's first visual with a material: its own `<color>`, or that of
 /// the robot-level material it names (URDF allows both).
-fn link_color(robot: &urdf_rs::Robot, link: &urdf_rs::Link) -> Option<super::Color> {
+fn link_color(robot: &urdf_rs::Robot, link: &urdf_rs::Link) -> Option<crate::scene::Color> {
     link.visual.iter().filter_map(|v| v.material.as_ref()).find_map(|m| material_color(robot, m))
 }
 
 /// A material's colour: its own `<color>`, or that of the robot-level material it names.
-fn material_color(robot: &urdf_rs::Robot, m: &urdf_rs::Material) -> Option<super::Color> {
+fn material_color(robot: &urdf_rs::Robot, m: &urdf_rs::Material) -> Option<crate::scene::Color> {
     let rgba = match &m.color {
         Some(c) => c.rgba.0,
         None => robot.materials.iter().find(|r| r.name == m.name)?.color.as_ref()?.rgba.0,

@@ -6,9 +6,9 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Vector3};
 
-use super::Simulation;
 use crate::error::{Error, Result};
 use crate::scene::{MjcfOptions, UrdfOptions};
+use crate::simulation::Simulation;
 use crate::world::SpaceKind;
 
 /// The kinds of file [`Simulation::open`] reads.

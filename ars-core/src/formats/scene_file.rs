@@ -4,7 +4,7 @@
 //! stepper, contact surface and the surfaces of pairs of objects, space), the clock, every object in creation order (name,
 //! shape, colour, visuals, and for a body its mass, inertia, pose and velocities, to the
 //! last bit), every joint (name, type, its objects, the anchors and axes it was created
-//! with, its stops, speed motor, viscous and dry friction, actuator limits and the
+//! with, its stops, speed motor, viscous and dry friction, spring, actuator limits and the
 //! joint it mimics), the joints made through the world (hinge-2 joints, motors), and the
 //! sensors ARS builds from a kind and what they read (GPS, velometer, accelerometer,
 //! inclinometer, IMU, contact, energies, joint sensors, joint positions), lidars and
@@ -24,7 +24,6 @@
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use super::{SENSOR_KINDS, Simulation, SimulationBuilder};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
@@ -33,6 +32,7 @@ use crate::joint::{JointBuilder, JointKind, JointParam};
 use crate::scene::{ActuatorLimits, Color, JointEnd, JointType, Visual};
 use crate::sensors::SensorSettings;
 use crate::shape::Shape;
+use crate::simulation::{SENSOR_KINDS, Simulation, SimulationBuilder};
 use crate::world::{SpaceKind, Stepper};
 
 /// The format tag of a scene file.
@@ -230,6 +230,9 @@ pub struct JointFile {
     /// Dry friction, N·m or N (0: none).
     #[serde(default)]
     pub dry_friction: f64,
+    /// Its spring: stiffness (N·m/rad or N/m) and rest position (`None`: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spring: Option<(f64, f64)>,
     /// Effort limit of its actuator (`None`: unlimited).
     #[serde(default)]
     pub effort_limit: Option<f64>,
@@ -293,7 +296,7 @@ impl Simulation {
         match self.capture_state() {
             Ok(state) => {
                 let mut file = self.scene_structure(true)?;
-                file.state = Some(to_hex(&super::snapshot::encode(&state)));
+                file.state = Some(to_hex(&crate::simulation::snapshot::encode(&state)));
                 Ok(file)
             }
             Err(Error::NotCapturable { what }) => {
@@ -393,6 +396,7 @@ impl Simulation {
                 limits: data.limits,
                 friction: data.friction,
                 dry_friction: data.dry_friction,
+                spring: (data.spring.0 != 0.0).then_some(data.spring),
                 effort_limit: Some(data.actuator.effort).filter(|e| e.is_finite()),
                 velocity_limit: Some(data.actuator.velocity).filter(|v| v.is_finite()),
                 mimic: data
@@ -632,6 +636,9 @@ impl Simulation {
             if j.dry_friction != 0.0 {
                 joint.set_dry_friction(j.dry_friction)?;
             }
+            if let Some((stiffness, rest)) = j.spring {
+                joint.set_spring(stiffness, rest)?;
+            }
             if let Some((speed, max_force)) = j.motor {
                 // As it was, whatever the limits (the speed was held to them when set).
                 let handle = sim.scene.joint_data(id)?.handle;
@@ -670,8 +677,8 @@ impl Simulation {
                 problem,
             };
             let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
-            let mut state: super::snapshot::SceneState =
-                super::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
+            let mut state: crate::simulation::snapshot::SceneState =
+                crate::simulation::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
             // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
             // no place for their state.
             state.keep_sensors(|kind| rebuilt_kind(kind).is_some());

@@ -26,18 +26,38 @@
 //!   body without joints is fixed to its parent. `range` (with `limited`, or
 //!   `<compiler autolimits>`, on by default) becomes stops, `damping` viscous friction
 //!   (explicit, from the rate at the start of the step: stable while `damping · dt`
-//!   stays below the inertia it acts on). `armature` is not modelled (ODE has no
-//!   joint-space inertia; adding it to the body's inertia breaks ODE's check of a
-//!   physical tensor when it outweighs the body, as in Gymnasium's reacher): it is
-//!   listed in [`MjcfModel::skipped`].
+//!   stays below the inertia it acts on).
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
 //!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
 //!   slide z, hinge y) are chained through light links at the body's frame (each of
 //!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
 //!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
-//!   along each joint but the first (and a free joint cannot be chained).
-//!   A joint's `ref`, `stiffness` (a spring) and `frictionloss` are unsupported (an
-//!   error, or skipped with a warning).
+//!   along each joint but the first (and a free joint cannot be chained). A chained
+//!   body and its parent never touch ([`Scene::exclude_contacts`]), as MuJoCo ignores
+//!   the contacts of a body with its parent and ODE those of two bodies one joint joins.
+//!   A hinge's or slide's `ref` is its position in the pose the file gives (MuJoCo's
+//!   `qpos0`): the joint is made with its child moved back by `ref`, so that ODE,
+//!   which measures a joint from where it was made, reads `ref` there, and ranges,
+//!   servos and sensors see MuJoCo's positions. `stiffness` about `springref` becomes
+//!   a spring ([`SimJoint::set_spring`](crate::SimJoint::set_spring): explicit, from
+//!   the position at the start of the step), `frictionloss` dry friction
+//!   ([`SimJoint::set_dry_friction`](crate::SimJoint::set_dry_friction): ODE's motor
+//!   at speed 0, a hard limit where MuJoCo's is soft). On ball and free joints they
+//!   are unsupported (an error, or skipped with a warning).
+//! - **Armature.** ODE has no joint-space inertia, so a joint's `armature` (MuJoCo's
+//!   rotor inertia on the joint's own degree of freedom) is added to the inertia of
+//!   the body the joint moves: `armature · n nᵀ` about a hinge's axis `n`,
+//!   `armature · 1` for a ball joint ([`MjcfModel::armature`] lists what each object
+//!   got). That is MuJoCo's armature exactly for a joint whose axis stays put in the
+//!   world (the first hinge or ball of a fixed base). Below moving joints the added
+//!   inertia also turns with the joints above it: it adds `armature · (n·m)` to their
+//!   coupling and `armature · (n·m)²` to a joint of axis `m` above, and a gyroscopic
+//!   torque MuJoCo's armature has not. When the armature outweighs the body so much
+//!   that no rigid body has the sum (a moment above the sum of the other two: links of
+//!   grams with an armature of 1, as in Gymnasium's reacher), the smallest inertia
+//!   across the axis that makes it one is added too, with a warning in
+//!   [`MjcfModel::skipped`]. A slide's or a free joint's armature (mass along some
+//!   directions only) is not modelled and is listed there.
 //! - **Contact parameters.** A geom's `friction`, `solref`, `solimp`, `condim`,
 //!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
 //!   contacts take ARS's surfaces ([`Scene::set_contact_surface`]).
@@ -48,8 +68,8 @@
 //!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
 //!   integrator is ODE's; the caller chooses to use them).
-//! - **Includes.** `<include file>` at the top level (its path relative to the file
-//!   that includes it; a cycle is refused): the included file's elements take its
+//! - **Includes.** `<include file>` anywhere (its path relative to the file that
+//!   includes it; a cycle is refused): the included file's top-level elements take its
 //!   place, and an error in it names that file.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (materials, textures, meshes not used by a geom), `<statistic>`, `<size>`,
@@ -63,13 +83,19 @@
 //! - **Actuators.** `motor`, `position` (`kp`, `kv`) and `velocity` (`kv`) on a joint
 //!   become [`Actuator`]s of the same names driving their joints, with `gear` (its
 //!   first number), `ctrlrange`/`ctrllimited` and `forcerange`/`forcelimited` (with
-//!   `autolimits`), their defaults from the element's own kind in a `<default>` class
-//!   (not from `<general>`); set a control with [`Scene::set_control`], as MuJoCo's
+//!   `autolimits`), their defaults from a `<default>` class's actuator (in a class,
+//!   `<general>`, `<motor>`, `<position>`... all set the one actuator default, as in
+//!   MuJoCo: the attributes merge in the file's order); set a control with [`Scene::set_control`], as MuJoCo's
 //!   `data.ctrl`, at 0 until set. Other kinds, and actuators on tendons or sites, are
 //!   unsupported; a second actuator on one joint is skipped (ARS drives a joint with
 //!   one controller).
 //! - **Contacts.** `<contact><exclude body1 body2>`: the two bodies never touch
-//!   ([`Scene::exclude_contacts`]); `<pair>` is unsupported.
+//!   ([`Scene::exclude_contacts`]). `<pair geom1 geom2>`: the two named geoms touch
+//!   whatever their `contype` and `conaffinity` say (each pair takes a bit of its own
+//!   among ODE's upper 32 category and collide bits, so at most [`MAX_CONTACT_PAIRS`];
+//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its contact
+//!   parameters are read and said unused. Unlike MuJoCo's, a pair does not override
+//!   an `<exclude>` or the rule that bodies one joint joins never touch.
 //! - **Sensors.** `jointpos` and `jointvel` of hinges and slides; `framepos`,
 //!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
 //!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
@@ -90,14 +116,14 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 
-use super::Scene;
-use super::joints::JointEnd;
 use crate::body::{BodyBuilder, MassSpec};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
-use crate::handle::{JointId, ObjectId};
+use crate::handle::{GeomHandle, JointId, ObjectId};
 use crate::mesh::MeshMass;
+use crate::scene::JointEnd;
+use crate::scene::Scene;
 use crate::sensors::{AnySensorId, Mount, TouchZone};
 use crate::shape::Shape;
 
@@ -170,6 +196,10 @@ pub struct MjcfModel {
     pub skipped: Vec<String>,
     /// The light links that chain several joints of one body (see the module docs).
     pub chain_links: Vec<ObjectId>,
+    /// The inertia added to an object (by name: a body, or a chain link) for the
+    /// armature of the joint that moves it, in the object's frame, kg·m² (see the module
+    /// docs): subtract it to compare the object's inertia with MuJoCo's `body_inertia`.
+    pub armature: Vec<(String, Matrix3<f64>)>,
     /// The sensors read, in the file's order: made by
     /// [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) (a scene alone has no
     /// sensors: [`Scene::load_mjcf`] lists them unmade).
@@ -277,15 +307,19 @@ struct Problem {
     element: String,
     line: u32,
     text: String,
-    /// The included file it is in, if not the main one.
+    /// The included file it is in, if not the main one (set from `document` when the
+    /// problem reaches [`read`]).
     file: Option<String>,
+    /// The address of the document its element is in: which file it is.
+    document: usize,
 }
 
 type Parsed<T> = std::result::Result<T, Problem>;
 
 fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
     let line = node.document().text_pos_at(node.range().start).row;
-    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None }
+    let document = std::ptr::from_ref(node.document()) as usize;
+    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None, document }
 }
 
 /// `<compiler>` settings.
@@ -321,18 +355,35 @@ impl Default for Compiler {
 /// The attributes an element gets from its class, by element kind.
 type Defaults = HashMap<String, HashMap<String, HashMap<String, String>>>;
 
+/// The actuator elements: in a `<default>` class they all set one actuator default, as
+/// in MuJoCo (a class's `<general ctrlrange>` applies to its `<motor>`s).
+const ACTUATOR_KINDS: [&str; 9] =
+    ["general", "motor", "position", "velocity", "intvelocity", "damper", "cylinder", "muscle", "adhesion"];
+
+/// Where an element's defaults are kept in a class: under its tag, or under
+/// `actuator` for every actuator kind.
+fn default_kind(tag: &str) -> &str {
+    if ACTUATOR_KINDS.contains(&tag) { "actuator" } else { tag }
+}
+
 /// Reads `<default>` classes (with inheritance) into `out`.
-fn read_defaults(node: roxmltree::Node<'_, '_>, parent: &HashMap<String, HashMap<String, String>>, out: &mut Defaults) {
+fn read_defaults<'a, 'input>(
+    tree: &Tree<'a, 'input>,
+    node: roxmltree::Node<'a, 'input>,
+    parent: &HashMap<String, HashMap<String, String>>,
+    out: &mut Defaults,
+) {
     let class = node.attribute("class").unwrap_or("main").to_string();
     let mut mine = parent.clone();
-    for child in node.children().filter(|c| c.is_element() && c.tag_name().name() != "default") {
-        let attrs = mine.entry(child.tag_name().name().to_string()).or_default();
+    let children = tree.elements(node);
+    for child in children.iter().filter(|c| c.tag_name().name() != "default") {
+        let attrs = mine.entry(default_kind(child.tag_name().name()).to_string()).or_default();
         for a in child.attributes() {
             attrs.insert(a.name().to_string(), a.value().to_string());
         }
     }
-    for child in node.children().filter(|c| c.is_element() && c.tag_name().name() == "default") {
-        read_defaults(child, &mine, out);
+    for child in children.into_iter().filter(|c| c.tag_name().name() == "default") {
+        read_defaults(tree, child, &mine, out);
     }
     out.insert(class, mine);
 }
@@ -346,7 +397,7 @@ struct Attrs<'a, 'input> {
 impl<'a, 'input> Attrs<'a, 'input> {
     fn new(node: roxmltree::Node<'a, 'input>, defaults: &'a Defaults, class: &str) -> Self {
         let class = node.attribute("class").unwrap_or(class);
-        let class = defaults.get(class).and_then(|c| c.get(node.tag_name().name()));
+        let class = defaults.get(class).and_then(|c| c.get(default_kind(node.tag_name().name())));
         Attrs { node, class }
     }
     fn get(&self, name: &str) -> Option<&str> {
@@ -461,6 +512,8 @@ struct Geom {
     rgba: Option<[f64; 4]>,
     /// `contype` and `conaffinity`: ODE's category and collide bits, the same rule.
     bits: (u64, u64),
+    /// Its name, for `<contact><pair>`.
+    name: Option<String>,
 }
 
 impl Geom {
@@ -550,6 +603,12 @@ struct Joint {
     range: Option<(f64, f64)>,
     damping: f64,
     armature: f64,
+    /// `ref`: its position in the pose the file gives (MuJoCo's `qpos0`).
+    reference: f64,
+    /// `stiffness` and `springref`: a spring.
+    spring: (f64, f64),
+    /// `frictionloss`: dry friction.
+    frictionloss: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -588,6 +647,8 @@ struct Model {
     actuators: Vec<MjcfActuator>,
     /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
     excluded: Vec<(String, String)>,
+    /// `<contact><pair>`: pairs of geoms, by name, that touch whatever their bits say.
+    pairs: Vec<(String, String)>,
     sensors: Vec<MjcfSensor>,
     /// Where each sensor is in the file (for errors found once the whole file is read).
     sensor_places: Vec<Problem>,
@@ -596,8 +657,9 @@ struct Model {
     skipped: Vec<String>,
 }
 
-/// Reads the file (`include`s resolved relative to `dir`).
-struct Reader<'d> {
+/// Reads the model's elements.
+struct Reader<'d, 'a, 'input> {
+    tree: &'d Tree<'a, 'input>,
     compiler: Compiler,
     defaults: &'d Defaults,
     skip: bool,
@@ -608,11 +670,13 @@ struct Reader<'d> {
     meshes: HashMap<String, (String, Vector3<f64>)>,
     /// The meshes loaded so far, by name.
     loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
+    /// Their files, each read once.
+    files: super::MeshCache,
     /// The main file's folder.
     dir: std::path::PathBuf,
 }
 
-impl Reader<'_> {
+impl<'a, 'input> Reader<'_, 'a, 'input> {
     fn unsupported(&mut self, node: &roxmltree::Node<'_, '_>, what: &str) -> Parsed<()> {
         let p = problem(node, format!("{what} is not supported"));
         if self.skip {
@@ -682,9 +746,11 @@ impl Reader<'_> {
         let bits = |name: &str| -> Parsed<u64> {
             match a.get(name) {
                 None => Ok(1),
-                Some(v) => {
-                    v.parse::<u64>().map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number")))
-                }
+                // MuJoCo's are 32 bits; ODE's upper 32 are left for `<contact><pair>`.
+                Some(v) => v
+                    .parse::<u32>()
+                    .map(u64::from)
+                    .map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number of at most 32 bits"))),
             }
         };
         let bits = (bits("contype")?, bits("conaffinity")?);
@@ -700,7 +766,8 @@ impl Reader<'_> {
                 contact.join(", ")
             ));
         }
-        Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits }))
+        let name = node.attribute("name").map(str::to_string);
+        Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits, name }))
     }
 
     fn joint(&mut self, node: roxmltree::Node<'_, '_>, class: &str, free: bool) -> Parsed<Joint> {
@@ -718,6 +785,8 @@ impl Reader<'_> {
         if axis.norm() == 0.0 {
             return Err(problem(&node, "axis is zero"));
         }
+        // A hinge's positions are angles, in the compiler's unit.
+        let angle = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
         let limited = match a.get("limited") {
             Some("true") => true,
             Some("false") => false,
@@ -728,8 +797,7 @@ impl Reader<'_> {
                 if lo > hi {
                     return Err(problem(&node, format!("range {lo} {hi} is reversed")));
                 }
-                let scale = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
-                Some((lo * scale, hi * scale))
+                Some((lo * angle, hi * angle))
             }
             (true, None) => return Err(problem(&node, "is limited but has no range")),
             _ => None,
@@ -742,16 +810,21 @@ impl Reader<'_> {
         if armature < 0.0 {
             return Err(problem(&node, "armature must not be negative"));
         }
-        // What ARS's joints cannot do: a reference position other than the frame's, a
-        // spring, dry friction.
-        for (attribute, what) in [
-            ("ref", "a reference position (ARS measures a joint from the pose the file gives)"),
-            ("stiffness", "a joint spring"),
-            ("frictionloss", "dry joint friction"),
-        ] {
-            if a.number(attribute)?.is_some_and(|v| v != 0.0) {
-                self.unsupported(&node, &format!("{attribute}: {what}"))?;
+        let mut reference = a.number("ref")?.unwrap_or(0.0) * angle;
+        let mut spring = (a.number("stiffness")?.unwrap_or(0.0), a.number("springref")?.unwrap_or(0.0) * angle);
+        let mut frictionloss = a.number("frictionloss")?.unwrap_or(0.0);
+        if spring.0 < 0.0 || frictionloss < 0.0 {
+            return Err(problem(&node, "stiffness and frictionloss must not be negative"));
+        }
+        // A ball's or a free joint's has no one position: ARS's springs, dry friction
+        // and reference positions are of hinges and slides.
+        if matches!(kind, JointKind::Ball | JointKind::Free) {
+            for (attribute, value) in [("ref", reference), ("stiffness", spring.0), ("frictionloss", frictionloss)] {
+                if value != 0.0 {
+                    self.unsupported(&node, &format!("{attribute} on a ball or free joint"))?;
+                }
             }
+            (reference, spring, frictionloss) = (0.0, (0.0, 0.0), 0.0);
         }
         Ok(Joint {
             name,
@@ -761,10 +834,13 @@ impl Reader<'_> {
             range,
             damping,
             armature,
+            reference,
+            spring,
+            frictionloss,
         })
     }
 
-    fn body(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Body> {
+    fn body(&mut self, node: roxmltree::Node<'a, 'input>, class: &str) -> Parsed<Body> {
         self.bodies += 1;
         let index = self.bodies;
         let a = Attrs::new(node, self.defaults, class);
@@ -782,7 +858,7 @@ impl Reader<'_> {
         };
         let mut inertial = None;
         let mut principal = None;
-        for child in node.children().filter(|c| c.is_element()) {
+        for child in self.tree.elements(node) {
             match child.tag_name().name() {
                 "geom" => body.geoms.extend(self.geom(child, &class)?),
                 "joint" => body.joints.push(self.joint(child, &class, false)?),
@@ -806,11 +882,16 @@ impl Reader<'_> {
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
         }
-        // ODE has no joint-space inertia: a joint's armature is not modelled.
-        if let Some(j) = body.joints.iter().find(|j| j.armature > 0.0) {
+        // A slide's or a free joint's armature would be mass along some directions
+        // only: ODE's mass is the same along all.
+        for j in body.joints.iter().filter(|j| j.armature > 0.0 && matches!(j.kind, JointKind::Slide | JointKind::Free))
+        {
             self.skipped.push(format!(
-                "<joint> {:?} in body {:?}: its armature {} is not modelled (ODE has no joint-space inertia)",
-                j.name, body.name, j.armature
+                "<joint> {:?} in body {:?}: the armature {} of a {} joint is not modelled (ODE's mass is the same in every direction)",
+                j.name,
+                body.name,
+                j.armature,
+                if j.kind == JointKind::Slide { "slide" } else { "free" }
             ));
         }
         Ok(body)
@@ -828,7 +909,8 @@ impl Reader<'_> {
             Some(meshdir) => self.dir.join(meshdir),
             None => self.dir.clone(),
         };
-        let shape = crate::mesh::load_mesh(&dir.join(file), *scale).map_err(|e| problem(node, e.to_string()))?;
+        let path = super::first_file(file, &[dir.join(file)]).map_err(|e| problem(node, e))?;
+        let shape = self.files.load(&path, *scale).map_err(|e| problem(node, e.to_string()))?;
         let Shape::TriMesh { vertices, triangles } = &shape else {
             return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
         };
@@ -1027,11 +1109,11 @@ impl Reader<'_> {
         let frame = frame(&a, &self.compiler)?;
         let local = match (a.fixed::<3>("diaginertia")?, a.fixed::<6>("fullinertia")?) {
             (Some(d), None) => Matrix3::from_diagonal(&Vector3::from(d)),
-            (None, Some(f)) => Matrix3::new(f[0], f[3], f[4], f[3], f[1], f[5], f[4], f[5], f[2]),
+            (None, Some(f)) => super::inertia_tensor(f),
             _ => return Err(problem(&node, "needs one of diaginertia and fullinertia")),
         };
         let r = frame.rotation.to_rotation_matrix();
-        Ok((mass, frame.translation.vector, r.matrix() * local * r.matrix().transpose()))
+        Ok((mass, frame.translation.vector, super::turned_inertia(&r, &local)))
     }
 }
 
@@ -1054,7 +1136,7 @@ fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
         .map(|g| {
             let (centre, inertia) = g.mass_distribution();
             let r = g.frame.rotation.to_rotation_matrix();
-            (g.mass(), (g.frame * nalgebra::Point3::from(centre)).coords, r.matrix() * inertia * r.matrix().transpose())
+            (g.mass(), (g.frame * nalgebra::Point3::from(centre)).coords, super::turned_inertia(&r, &inertia))
         })
         .collect();
     let com = parts.iter().map(|(m, c, _)| c * *m).sum::<Vector3<f64>>() / mass;
@@ -1066,20 +1148,79 @@ fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
     Some((mass, com, inertia))
 }
 
+/// The inertia a joint's armature adds to the object it moves, in that object's frame
+/// (whose rotation is the MJCF body's): `armature · n nᵀ` about a hinge's axis `n`,
+/// `armature · 1` for a ball; nothing for slides and free joints (listed as skipped).
+///
+/// When `inertia` plus `armature · n nᵀ` is no rigid body's (a light link with a large
+/// armature: the moment about the axis exceeds the sum of the other two), the smallest
+/// inertia `t (1 − n nᵀ)` across the axis that makes it one is added too (at most
+/// `armature`: a thin disc's is `armature / 2`); returned as the second number.
+fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64) {
+    let a = joint.armature;
+    if a <= 0.0 {
+        return (Matrix3::zeros(), 0.0);
+    }
+    match joint.kind {
+        JointKind::Ball => (Matrix3::identity() * a, 0.0),
+        JointKind::Hinge => {
+            let axial = joint.axis * joint.axis.transpose() * a;
+            let across = (Matrix3::identity() - joint.axis * joint.axis.transpose()) * a;
+            // A rigid body's principal moments: the largest at most the sum of the others.
+            let rigid = |t: f64| {
+                let moments = (inertia + axial + across * t).symmetric_eigenvalues();
+                let largest = moments.max();
+                largest <= moments.sum() - largest
+            };
+            if rigid(0.0) {
+                return (axial, 0.0);
+            }
+            // Rigid at t = 1 (an isotropic term keeps the inequality strict): bisect.
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if rigid(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            (axial + across * hi, hi * a)
+        }
+        JointKind::Slide | JointKind::Free => (Matrix3::zeros(), 0.0),
+    }
+}
+
+/// Most `<contact><pair>`s a model may have: each takes one of the upper 32 of ODE's
+/// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
+pub const MAX_CONTACT_PAIRS: usize = 32;
+
 /// A file and its text: the model's, then those it includes, in the order met.
 type Files = Vec<(String, String)>;
+
+/// Where each `<include>` leads: (its file's index, its byte offset there) → the
+/// included file's index.
+type Includes = HashMap<(usize, usize), usize>;
 
 /// Deepest chain of `<include>`s followed.
 const MAX_INCLUDE_DEPTH: usize = 32;
 
-/// Reads the files that `text` (the file `name`) includes, depth first, into `files`
-/// after it; `stack` is the chain of files being read (a cycle is refused).
-fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) -> Parsed<()> {
+/// Reads the files that `text` (the file `name`) includes, wherever their `<include>`
+/// is, depth first, into `files` after it; `stack` is the chain of files being read (a
+/// cycle is refused). Returns the file's index.
+fn gather(
+    name: &str,
+    text: String,
+    files: &mut Files,
+    includes: &mut Includes,
+    stack: &mut Vec<String>,
+) -> Parsed<usize> {
     let document = roxmltree::Document::parse(&text).map_err(|e| Problem {
         element: "mujoco".into(),
         line: e.pos().row,
         text: format!("not XML: {e}"),
         file: Some(name.to_string()),
+        document: 0,
     })?;
     let in_file = |mut p: Problem| {
         p.file.get_or_insert_with(|| name.to_string());
@@ -1089,8 +1230,8 @@ fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) 
     if root.tag_name().name() != "mujoco" {
         return Err(in_file(problem(&root, "the root element must be <mujoco>")));
     }
-    let mut includes = Vec::new();
-    for node in root.children().filter(|c| c.is_element() && c.tag_name().name() == "include") {
+    let mut found = Vec::new();
+    for node in root.descendants().filter(|c| c.is_element() && c.tag_name().name() == "include") {
         let file = node.attribute("file").ok_or_else(|| in_file(problem(&node, "needs a file")))?;
         let path = Path::new(name).parent().unwrap_or(Path::new("")).join(file);
         let path_name = path.display().to_string();
@@ -1099,73 +1240,80 @@ fn gather(name: &str, text: String, files: &mut Files, stack: &mut Vec<String>) 
         }
         let included = std::fs::read_to_string(&path)
             .map_err(|e| in_file(problem(&node, format!("cannot read {path_name}: {e}"))))?;
-        includes.push((path_name, included));
+        found.push((node.range().start, path_name, included));
     }
     drop(document);
+    let me = files.len();
     files.push((name.to_string(), text));
-    for (path, included) in includes {
+    for (offset, path, included) in found {
         stack.push(path.clone());
-        gather(&path, included, files, stack)?;
+        let index = gather(&path, included, files, includes, stack)?;
+        includes.insert((me, offset), index);
         stack.pop();
     }
-    Ok(())
+    Ok(me)
 }
 
-/// The top-level elements of the model, in order, each `<include>` replaced by the
-/// included file's elements; each with the index of its file.
-fn top_level<'a, 'input>(
+/// The parsed files of a model, read through their `<include>`s.
+struct Tree<'a, 'input> {
     documents: &'a [roxmltree::Document<'input>],
-    index: &mut usize,
-    out: &mut Vec<(usize, roxmltree::Node<'a, 'input>)>,
-) {
-    let mine = *index;
-    for node in documents[mine].root_element().children().filter(|c| c.is_element()) {
-        if node.tag_name().name() == "include" {
-            *index += 1;
-            top_level(documents, index, out);
-        } else {
-            out.push((mine, node));
+    includes: &'a Includes,
+}
+
+impl<'a, 'input> Tree<'a, 'input> {
+    /// The index of the file `node` is in.
+    fn file_of(&self, node: &roxmltree::Node<'a, 'input>) -> usize {
+        self.documents.iter().position(|d| std::ptr::eq(d, node.document())).unwrap_or(0)
+    }
+
+    /// `node`'s child elements, each `<include>` replaced by the included file's
+    /// top-level elements (MuJoCo reads an include in place, wherever it is).
+    fn elements(&self, node: roxmltree::Node<'a, 'input>) -> Vec<roxmltree::Node<'a, 'input>> {
+        let mut out = Vec::new();
+        for child in node.children().filter(|c| c.is_element()) {
+            if child.tag_name().name() == "include" {
+                let included = self.includes[&(self.file_of(&child), child.range().start)];
+                out.extend(self.elements(self.documents[included].root_element()));
+            } else {
+                out.push(child);
+            }
         }
+        out
     }
 }
 
 /// Reads the model from the text of a file (`name` resolves its includes).
 fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Model> {
     let mut files = Files::new();
-    gather(name, text.to_string(), &mut files, &mut vec![name.to_string()])?;
+    let mut includes = Includes::new();
+    gather(name, text.to_string(), &mut files, &mut includes, &mut vec![name.to_string()])?;
     let documents = files
         .iter()
         .map(|(_, text)| roxmltree::Document::parse(text).expect("parsed once already"))
         .collect::<Vec<_>>();
-    let mut nodes = Vec::new();
-    top_level(&documents, &mut 0, &mut nodes);
-    let root = documents[0].root_element();
-    let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
-    read_nodes(root, &nodes, &names, options)
+    let tree = Tree { documents: &documents, includes: &includes };
+    read_nodes(name, &tree, options).map_err(|mut p| {
+        // A problem in an included file names it.
+        if p.file.is_none() {
+            let index = documents.iter().position(|d| std::ptr::from_ref(d) as usize == p.document);
+            if let Some(index) = index.filter(|&i| i > 0) {
+                p.file = Some(files[index].0.clone());
+            }
+        }
+        p
+    })
 }
 
-/// Reads the model from its top-level elements.
-fn read_nodes(
-    root: roxmltree::Node<'_, '_>,
-    nodes: &[(usize, roxmltree::Node<'_, '_>)],
-    names: &[&str],
-    options: &MjcfOptions,
-) -> Parsed<Model> {
-    // A problem in an included file names it.
-    let in_file = |file: usize| {
-        move |mut p: Problem| {
-            if file > 0 && p.file.is_none() {
-                p.file = Some(names[file].to_string());
-            }
-            p
-        }
-    };
+/// Reads the model from its files.
+fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<Model> {
+    let root = tree.documents[0].root_element();
+    let nodes = tree.elements(root);
     let mut compiler = Compiler::default();
     let mut defaults = Defaults::new();
     let mut timestep = None;
     let mut gravity = None;
     let mut meshes = HashMap::new();
-    for &(file, node) in nodes {
+    for &node in &nodes {
         let mut first_pass = || -> Parsed<()> {
             match node.tag_name().name() {
                 "compiler" => {
@@ -1211,9 +1359,9 @@ fn read_nodes(
                         return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
                     }
                 }
-                "default" => read_defaults(node, &HashMap::new(), &mut defaults),
+                "default" => read_defaults(tree, node, &HashMap::new(), &mut defaults),
                 "asset" => {
-                    for mesh in node.children().filter(|c| c.has_tag_name("mesh")) {
+                    for mesh in tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")) {
                         let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
                         let name = match mesh.attribute("name") {
                             Some(name) => name.to_string(),
@@ -1236,7 +1384,7 @@ fn read_nodes(
             }
             Ok(())
         };
-        first_pass().map_err(in_file(file))?;
+        first_pass()?;
     }
     let mut reader = Reader {
         compiler,
@@ -1247,7 +1395,9 @@ fn read_nodes(
         joints: 0,
         meshes,
         loaded: HashMap::new(),
-        dir: Path::new(names[0]).parent().map(Path::to_path_buf).unwrap_or_default(),
+        files: super::MeshCache::default(),
+        tree,
+        dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),
@@ -1257,16 +1407,17 @@ fn read_nodes(
         gravity,
         actuators: Vec::new(),
         excluded: Vec::new(),
+        pairs: Vec::new(),
         sensors: Vec::new(),
         sensor_places: Vec::new(),
         world_sites: Vec::new(),
         skipped: Vec::new(),
     };
-    for &(file, node) in nodes {
+    for &node in &nodes {
         let mut second_pass = || -> Parsed<()> {
             match node.tag_name().name() {
                 "worldbody" => {
-                    for child in node.children().filter(|c| c.is_element()) {
+                    for child in tree.elements(node) {
                         match child.tag_name().name() {
                             "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
                             "body" => model.bodies.push(reader.body(child, "main")?),
@@ -1277,7 +1428,7 @@ fn read_nodes(
                     }
                 }
                 "actuator" => {
-                    for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                    for (i, child) in tree.elements(node).into_iter().enumerate() {
                         if let Some(actuator) = reader.actuator(child, i)? {
                             model.actuators.push(actuator);
                         }
@@ -1285,7 +1436,7 @@ fn read_nodes(
                 }
                 "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
                 "contact" => {
-                    for child in node.children().filter(|c| c.is_element()) {
+                    for child in tree.elements(node) {
                         match child.tag_name().name() {
                             "exclude" => {
                                 let body = |attr: &str| {
@@ -1296,15 +1447,43 @@ fn read_nodes(
                                 };
                                 model.excluded.push((body("body1")?, body("body2")?));
                             }
+                            "pair" => {
+                                let geom = |attr: &str| {
+                                    child
+                                        .attribute(attr)
+                                        .map(str::to_string)
+                                        .ok_or_else(|| problem(&child, format!("needs a {attr}")))
+                                };
+                                if model.pairs.len() == MAX_CONTACT_PAIRS {
+                                    reader.unsupported(
+                                        &child,
+                                        &format!("a contact pair beyond the first {MAX_CONTACT_PAIRS}"),
+                                    )?;
+                                    continue;
+                                }
+                                model.pairs.push((geom("geom1")?, geom("geom2")?));
+                                let unused: Vec<&str> = child
+                                    .attributes()
+                                    .map(|a| a.name())
+                                    .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
+                                    .collect();
+                                if !unused.is_empty() {
+                                    reader.skipped.push(format!(
+                                        "<pair> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
+                                        problem(&child, "").line,
+                                        unused.join(", ")
+                                    ));
+                                }
+                            }
                             other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
                         }
                     }
                 }
                 "sensor" => {
-                    for (i, child) in node.children().filter(|c| c.is_element()).enumerate() {
+                    for (i, child) in tree.elements(node).into_iter().enumerate() {
                         if let Some(sensor) = reader.sensor(child, i)? {
                             model.sensors.push(sensor);
-                            model.sensor_places.push(in_file(file)(problem(&child, "")));
+                            model.sensor_places.push(problem(&child, ""));
                         }
                     }
                 }
@@ -1312,7 +1491,7 @@ fn read_nodes(
             }
             Ok(())
         };
-        second_pass().map_err(in_file(file))?;
+        second_pass()?;
     }
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
@@ -1339,7 +1518,7 @@ fn read_nodes(
 
 /// MuJoCo (x, y, z) → simulation (x, z, −y), then the base pose.
 fn placement(options: &MjcfOptions) -> Isometry3<f64> {
-    let turn = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), -std::f64::consts::FRAC_PI_2);
+    let turn = UnitQuaternion::from_rotation_matrix(&super::z_up_to_y_up());
     options.base_pose * Isometry3::from_parts(Translation3::identity(), turn)
 }
 
@@ -1390,6 +1569,8 @@ impl Scene {
 
     fn build_mjcf(&mut self, model: &Model, options: &MjcfOptions, made: &mut MjcfModel) -> Result<()> {
         let world = placement(options);
+        // Geoms by name, for `<contact><pair>`.
+        let mut named = HashMap::new();
         for g in &model.world_geoms {
             let pose = world * g.frame;
             let id = match g.kind {
@@ -1402,15 +1583,35 @@ impl Scene {
             if let Some(c) = g.rgba {
                 self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
             }
-            if let Some(geom) = self.object(id)?.geom_handle() {
-                let mut geom = self.world.geom_mut(geom)?;
+            if let Some(handle) = self.object(id)?.geom_handle() {
+                let mut geom = self.world.geom_mut(handle)?;
                 geom.set_category_bits(g.bits.0);
                 geom.set_collide_bits(g.bits.1);
+                if let Some(name) = &g.name {
+                    named.insert(name.clone(), (handle, g.bits));
+                }
             }
             made.world_geoms.push(id);
         }
         for body in &model.bodies {
-            self.add_mjcf_body(body, &world, None, made)?;
+            self.add_mjcf_body(body, &world, None, made, &mut named)?;
+        }
+        for (k, (a, b)) in model.pairs.iter().enumerate() {
+            let unknown = |name: &str| Error::Invalid {
+                what: "an MJCF contact pair",
+                problem: format!("names the geom {name:?}, which the model does not have"),
+            };
+            // A bit of its own in one's category and the other's collide bits: these
+            // two touch, and nothing else gains a contact.
+            let bit = 1u64 << (32 + k);
+            let (first, bits) = named.get_mut(a).ok_or_else(|| unknown(a))?;
+            bits.0 |= bit;
+            let (first, category) = (*first, bits.0);
+            let (second, bits) = named.get_mut(b).ok_or_else(|| unknown(b))?;
+            bits.1 |= bit;
+            let (second, collide) = (*second, bits.1);
+            self.world.geom_mut(first)?.set_category_bits(category);
+            self.world.geom_mut(second)?.set_collide_bits(collide);
         }
         self.place_mjcf_sensors(model, made)?;
         for (a, b) in &model.excluded {
@@ -1497,26 +1698,56 @@ impl Scene {
         parent_frame: &Isometry3<f64>,
         parent: Option<ObjectId>,
         made: &mut MjcfModel,
+        named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
     ) -> Result<()> {
         let frame = parent_frame * body.frame;
         let invalid = |problem: String| Error::Invalid { what: "an MJCF body", problem };
         let (mass, com, inertia) = body
             .mass
             .ok_or_else(|| invalid(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+        // The body is moved by its last joint, a chain link by its joint: each carries
+        // its joint's armature.
+        let mut armature = |object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>| -> Matrix3<f64> {
+            let Some(joint) = joint.filter(|j| j.armature > 0.0) else { return Matrix3::zeros() };
+            let (added, across) = armature_inertia(inertia, joint);
+            if added != Matrix3::zeros() {
+                made.armature.push((object.to_string(), added));
+            }
+            if across > 0.0 {
+                made.skipped.push(format!(
+                    "<joint> {:?}: its armature {} outweighs {object:?}'s inertia; {across:e} kg·m² was added across its axis too, to keep {object:?} a rigid body",
+                    joint.name, joint.armature
+                ));
+            }
+            added
+        };
+        let link_inertia = inertia * CHAIN_LINK_FRACTION;
+        let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
+            .iter()
+            .map(|j| armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j)))
+            .collect();
+        let inertia = inertia + armature(&body.name, &inertia, body.joints.last());
         // The ODE body at the centre of mass, turned as the MJCF body.
         let body_frame = Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(com)), frame.rotation);
-        let handle = self.world.insert_body(
-            BodyBuilder::new()
-                .mass(MassSpec::Custom { mass, inertia })
-                .position(nalgebra::Point3::from(body_frame.translation.vector))
-                .rotation(body_frame.rotation.to_rotation_matrix()),
-        )?;
+        let handle = self
+            .world
+            .insert_body(
+                BodyBuilder::new()
+                    .mass(MassSpec::Custom { mass, inertia })
+                    .position(nalgebra::Point3::from(body_frame.translation.vector))
+                    .rotation(body_frame.rotation.to_rotation_matrix()),
+            )
+            .map_err(|e| invalid(format!("{:?}: {e}", body.name)))?;
         let mut geoms = Vec::new();
         for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
             let offset = body_frame.inverse() * frame * g.frame;
             let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
             let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
-            geoms.push(self.world.insert_geom(self.space(), geom)?);
+            let handle = self.world.insert_geom(self.space(), geom)?;
+            if let Some(name) = &g.name {
+                named.insert(name.clone(), (handle, g.bits));
+            }
+            geoms.push(handle);
         }
         let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
         let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
@@ -1526,6 +1757,11 @@ impl Scene {
         }
         made.bodies.push((self.object(id)?.name().to_string(), id));
         let mut end = parent.map_or(JointEnd::World, JointEnd::Object);
+        // MuJoCo ignores contacts between a body and its parent (filterparent). ODE
+        // skips them for bodies one joint joins; a chain's links hide that.
+        if let (Some(parent), true) = (parent, body.joints.len() > 1) {
+            self.exclude_contacts(parent, id)?;
+        }
         if body.joints.is_empty() {
             let name = format!("{}_weld", body.name);
             self.add_fixed_joint(&name, id, end)?;
@@ -1537,32 +1773,69 @@ impl Scene {
             // Several joints in one body: a chain through light links at the body's
             // frame, the first joint nearest the parent (MuJoCo's order).
             let child = if k + 1 < body.joints.len() {
-                let link = self.world.insert_body(
-                    BodyBuilder::new()
-                        .mass(MassSpec::Custom {
-                            mass: mass * CHAIN_LINK_FRACTION,
-                            inertia: inertia * CHAIN_LINK_FRACTION,
-                        })
-                        .position(nalgebra::Point3::from(body_frame.translation.vector))
-                        .rotation(body_frame.rotation.to_rotation_matrix()),
-                )?;
                 let name = format!("{}/{}", body.name, j.name);
+                let link = self
+                    .world
+                    .insert_body(
+                        BodyBuilder::new()
+                            .mass(MassSpec::Custom {
+                                mass: mass * CHAIN_LINK_FRACTION,
+                                inertia: link_inertia + links_armature[k],
+                            })
+                            .position(nalgebra::Point3::from(body_frame.translation.vector))
+                            .rotation(body_frame.rotation.to_rotation_matrix()),
+                    )
+                    .map_err(|e| invalid(format!("{name:?}, the light link chaining {:?}: {e}", j.name)))?;
                 self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)?
             } else {
                 id
             };
             let anchor = frame * nalgebra::Point3::from(j.pos);
             let axis = frame.rotation * j.axis;
-            let joint = match j.kind {
-                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis)?,
-                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis)?,
-                _ => self.add_ball_joint(&j.name, child, end, Some(anchor))?,
+            // ODE measures a joint from where its bodies are when it is made: made with
+            // the child moved back by `ref`, it reads `ref` in the file's pose.
+            let moved = self.object(child)?.body_handle().filter(|_| j.reference != 0.0);
+            let before = match moved {
+                Some(b) => {
+                    let body = self.world.body(b)?;
+                    let (position, rotation) = (body.position(), body.rotation());
+                    let back = match j.kind {
+                        JointKind::Hinge => {
+                            let turn = UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), -j.reference);
+                            Isometry3::rotation_wrt_point(turn, anchor)
+                        }
+                        _ => Isometry3::from_parts(Translation3::from(axis * -j.reference), UnitQuaternion::identity()),
+                    };
+                    let mut body = self.world.body_mut(b)?;
+                    body.set_position(back * position)?;
+                    body.set_rotation(back.rotation.to_rotation_matrix() * rotation)?;
+                    Some((b, position, rotation))
+                }
+                None => None,
             };
+            let joint = match j.kind {
+                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis),
+                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis),
+                _ => self.add_ball_joint(&j.name, child, end, Some(anchor)),
+            };
+            if let Some((b, position, rotation)) = before {
+                // Put back as it was made: ODE keeps the rotation matrix as set.
+                let mut body = self.world.body_mut(b)?;
+                body.set_position(position)?;
+                body.set_rotation(rotation)?;
+            }
+            let joint = joint?;
             if let Some((lo, hi)) = j.range {
                 self.joint_mut(joint)?.set_limits(lo, hi)?;
             }
             if j.damping > 0.0 {
                 self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
+            }
+            if j.spring.0 > 0.0 {
+                self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
+            }
+            if j.frictionloss > 0.0 {
+                self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
             }
             made.joints.push((j.name.clone(), joint));
             if child != id {
@@ -1571,7 +1844,7 @@ impl Scene {
             end = JointEnd::Object(child);
         }
         for child in &body.children {
-            self.add_mjcf_body(child, &frame, Some(id), made)?;
+            self.add_mjcf_body(child, &frame, Some(id), made, named)?;
         }
         Ok(())
     }
