@@ -168,6 +168,38 @@ pub(crate) unsafe fn collide(
     if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(count.max(0) as usize) }
 }
 
+/// `dSpaceCollide` with the plain near callback of `guard.c` (ARS's near callback in
+/// C for worlds without rays, collision hooks or contact feedback), under a guard. The
+/// callback's own `dCollide` calls have nested guards: a pair's failure is not an
+/// `Err` here but `plain.stopped == ODESYS_PLAIN_PAIR_FAILED`, read with
+/// [`pair_failure`].
+///
+/// # Safety
+/// `space` must be live; every pointer in `plain` must be valid for the call (world
+/// and contact group live, `contact` initialised, `scratch` with room for
+/// `max_contacts` entries, `out` a record array that `guard.c` allocated or an empty
+/// one, `pair_failure` writable), and the space's geoms must belong to `plain.world`.
+#[inline]
+pub(crate) unsafe fn collide_plain(
+    space: ffi::dSpaceID,
+    plain: &mut ffi::odesys_plain_collision,
+) -> Result<(), OdeFailure> {
+    let mut failure = FailureSlot::uninit();
+    // SAFETY: the caller's contract; `failure` and `plain` outlive the call.
+    let r = unsafe { ffi::odesys_guarded_collide_plain(space, plain, failure.as_mut_ptr()) };
+    // SAFETY: caught: the C side filled the slot.
+    if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(()) }
+}
+
+/// The failure of the pair that stopped a plain collision.
+///
+/// # Safety
+/// `plain.stopped` is `ODESYS_PLAIN_PAIR_FAILED`, so the C side filled `plain.pair_failure`.
+pub(crate) unsafe fn pair_failure(plain: &ffi::odesys_plain_collision) -> OdeFailure {
+    // SAFETY: the caller's contract: the report was written (`record` in guard.c).
+    OdeFailure::from_raw(unsafe { &*plain.pair_failure })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -30,6 +30,46 @@ int odesys_guarded_space_collide(dSpaceID space, void *data, dNearCallback *call
                                  struct odesys_failure *failure);
 int odesys_guarded_collide(dGeomID o1, dGeomID o2, int flags, dContactGeom *contacts, int skip, int *count,
                            struct odesys_failure *failure);
+/* One contact point of the plain collision, with the geoms of its pair as ODE gave
+ * them to the near callback. */
+struct odesys_contact_record {
+    dContactGeom geom;
+    dGeomID o1;
+    dGeomID o2;
+};
+
+/* A growable array of records, allocated here (realloc) and freed with
+ * odesys_contact_records_free. */
+struct odesys_contact_records {
+    struct odesys_contact_record *items;
+    size_t len;
+    size_t capacity;
+};
+
+/* Why the plain collision stopped before the last pair (0: it did not). */
+#define ODESYS_PLAIN_PAIR_FAILED 1   /* dCollide failed: `failed`, `pair_failure` say so */
+#define ODESYS_PLAIN_OUT_OF_MEMORY 2 /* the records could not grow */
+
+/* What the plain near callback needs: filled by the Rust side, except the results. */
+struct odesys_plain_collision {
+    dWorldID world;
+    dJointGroupID group;
+    /* The default contact: its surface is used, its geometry overwritten per point. */
+    dContact *contact;
+    /* Most contact points per pair; room for that many in `scratch`. */
+    int max_contacts;
+    dContactGeom *scratch;
+    struct odesys_contact_records *out;
+    /* Results. */
+    int stopped;
+    dGeomID failed[2];
+    struct odesys_failure *pair_failure; /* written when a pair fails */
+};
+
+/* dSpaceCollide with the plain near callback (see guard.c), under a guard. */
+int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
+                                 struct odesys_failure *failure);
+void odesys_contact_records_free(struct odesys_contact_records *records);
 int odesys_guarded_debug_report(int num, const char *message, struct odesys_failure *failure);
 
 #endif

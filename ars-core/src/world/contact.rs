@@ -225,8 +225,37 @@ pub(crate) struct CollisionState {
     contacts: Vec<ContactPoint>,
     ray_hits: Vec<RayHit>,
     scratch: Vec<ffi::dContactGeom>,
+    /// The contact points the plain collision (in C) recorded.
+    records: ContactRecords,
     /// Where ODE writes the contact joints' forces, when asked.
     pub(crate) feedback: ContactFeedback,
+}
+
+/// The contact points of a plain collision, in an array that `guard.c` grows.
+pub(crate) struct ContactRecords(ffi::odesys_contact_records);
+
+impl Default for ContactRecords {
+    fn default() -> Self {
+        ContactRecords(ffi::odesys_contact_records { items: std::ptr::null_mut(), len: 0, capacity: 0 })
+    }
+}
+
+impl ContactRecords {
+    fn as_slice(&self) -> &[ffi::odesys_contact_record] {
+        if self.0.items.is_null() {
+            return &[];
+        }
+        // SAFETY: `guard.c` allocated `capacity` records at `items` and wrote the first
+        // `len`; nothing else changes them while `self` is borrowed.
+        unsafe { std::slice::from_raw_parts(self.0.items, self.0.len) }
+    }
+}
+
+impl Drop for ContactRecords {
+    fn drop(&mut self) {
+        // SAFETY: the array is `guard.c`'s (or empty), freed once here.
+        unsafe { ffi::odesys_contact_records_free(&mut self.0) };
+    }
 }
 
 /// Contact feedback buffers in blocks of this many.
@@ -347,6 +376,42 @@ fn convex_pair_ratio(a: &crate::shape::Shape, b: &crate::shape::Shape) -> Option
     Some(max / min)
 }
 
+/// The sizes of a world's cylinders and capsules, for the plain collision: while the
+/// largest over the smallest of them is within
+/// [`MAX_CONVEX_PAIR_RATIO`](crate::limits::MAX_CONVEX_PAIR_RATIO), no pair of them can
+/// be refused by [`convex_pair_ratio`]'s check. A bound: it never shrinks.
+pub(crate) struct ConvexSizes {
+    /// Whether the world has had a cylinder (the check is for pairs with one).
+    cylinders: bool,
+    smallest: f64,
+    largest: f64,
+}
+
+impl Default for ConvexSizes {
+    fn default() -> Self {
+        ConvexSizes { cylinders: false, smallest: f64::INFINITY, largest: 0.0 }
+    }
+}
+
+impl ConvexSizes {
+    /// A geom of this shape is added.
+    pub(crate) fn note(&mut self, shape: &crate::shape::Shape) {
+        use crate::shape::Shape::{Capsule, Cylinder};
+        if let Cylinder { radius, length } | Capsule { radius, length } = *shape {
+            self.cylinders |= matches!(shape, Cylinder { .. });
+            self.smallest = self.smallest.min(radius).min(length);
+            self.largest = self.largest.max(radius).max(length);
+        }
+    }
+
+    /// No pair can exceed the ratio (division is monotone: a pair's ratio is at most
+    /// this one).
+    #[inline]
+    fn all_pairs_fine(&self) -> bool {
+        !self.cylinders || self.largest / self.smallest <= crate::limits::MAX_CONVEX_PAIR_RATIO
+    }
+}
+
 /// What the near callback sees through its `void*`.
 struct NearContext<'a, H: CollisionHooks + ?Sized> {
     world: &'a mut World,
@@ -410,6 +475,9 @@ impl World {
         let needs_lock = self.trimesh_count > 0;
         // The grid is ARS's own broad phase: it lists the pairs, the near callback
         // takes them as it takes ODE's.
+        if hooks.always_default() && !matches!(kind, SpaceKind::Grid) && self.plain_collision_applies() {
+            return self.collide_plain(raw_space, needs_lock);
+        }
         let mut grid = matches!(kind, SpaceKind::Grid).then(|| std::mem::take(&mut self.grid));
         let grid_pairs = grid.as_mut().map(|g| g.candidate_pairs(self, space));
         let mut ctx = NearContext { world: self, hooks, panic: None, failure: None };
@@ -464,6 +532,92 @@ impl World {
                 })
             }
         }
+    }
+
+    /// Whether every pair would take the plain path of the near callback: the
+    /// callback in C (`guard.c`) does what [`World::near`] does for such pairs (no ray
+    /// in the world, no contact feedback, no cylinder–cylinder or capsule–cylinder
+    /// pair whose sizes need the libccd check).
+    #[inline]
+    fn plain_collision_applies(&self) -> bool {
+        self.ray_geoms == 0 && !self.collision.feedback.on && self.convex_sizes.all_pairs_fine()
+    }
+
+    /// [`World::collide_with`] for default hooks when [`Self::plain_collision_applies`]:
+    /// ODE's pairs go to the near callback in C, which creates the contact joints and
+    /// records the points; their handles are looked up here, once per pair.
+    fn collide_plain(&mut self, raw_space: ffi::dSpaceID, needs_lock: bool) -> Result<()> {
+        let state = &mut self.collision;
+        let mut pair_failure = std::mem::MaybeUninit::<ffi::odesys_failure>::uninit();
+        let mut plain = ffi::odesys_plain_collision {
+            world: self.raw,
+            group: self.contact_group,
+            contact: &mut state.default_contact.0,
+            max_contacts: state.default_surface.max_contacts as std::ffi::c_int,
+            scratch: state.scratch.as_mut_ptr(),
+            out: &mut state.records.0,
+            stopped: 0,
+            failed: [std::ptr::null_mut(); 2],
+            pair_failure: pair_failure.as_mut_ptr(),
+        };
+        let collided = {
+            let _guard = needs_lock.then(lock_ode_global_state);
+            // SAFETY: the space is live and its geoms are this world's; world and
+            // contact group are live; the default contact is initialised; `scratch`
+            // holds MAX_CONTACTS_LIMIT ≥ max_contacts entries (resized above); the
+            // records are guard.c's; `pair_failure` outlives the call.
+            unsafe { guard::collide_plain(raw_space, &mut plain) }
+        };
+        if let Err(failure) = collided {
+            self.poison = Some(Poison::Collide(failure.message.clone()));
+            return Err(Error::OdeInternal { during: "collision", message: failure.message });
+        }
+        match plain.stopped as u32 {
+            0 => {}
+            ffi::ODESYS_PLAIN_PAIR_FAILED => {
+                // SAFETY: the pair failed, so its report was written.
+                let failure = unsafe { guard::pair_failure(&plain) };
+                self.clear_contacts();
+                let name = |raw| match geom_slot_in(&self.geoms, raw) {
+                    Some((h, _)) => h.to_string(),
+                    None => String::from("a geom"),
+                };
+                return Err(Error::OdeInternal {
+                    during: "collision",
+                    message: format!("colliding {} and {}: {}", name(plain.failed[0]), name(plain.failed[1]), failure.message),
+                });
+            }
+            _ => {
+                self.clear_contacts();
+                return Err(Error::Ode("record the contact points (out of memory)"));
+            }
+        }
+        let state = &mut self.collision;
+        let mut last: Option<(ffi::dGeomID, ffi::dGeomID, GeomPair)> = None;
+        for r in state.records.as_slice() {
+            let pair = match last {
+                Some((o1, o2, pair)) if o1 == r.o1 && o2 == r.o2 => pair,
+                _ => match (geom_slot_in(&self.geoms, r.o1), geom_slot_in(&self.geoms, r.o2)) {
+                    (Some((g1, d1)), Some((g2, d2))) => {
+                        let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
+                        last = Some((r.o1, r.o2, pair));
+                        pair
+                    }
+                    _ => {
+                        log::error!("collision reported a geom that this world does not own; contact not recorded");
+                        continue;
+                    }
+                },
+            };
+            state.contacts.push(ContactPoint {
+                pair,
+                position: convert::point_from_ode(&r.geom.pos),
+                normal: convert::vector_from_ode(&r.geom.normal),
+                depth: r.geom.depth,
+                force: Vector3::zeros(),
+            });
+        }
+        Ok(())
     }
 
     /// ODE's hash space puts each geom in integer cells of size `2^level`, at least
@@ -536,14 +690,7 @@ impl World {
     /// the first checks.
     #[inline]
     fn geom_slot(&self, raw: ffi::dGeomID) -> Option<(GeomHandle, &super::geom::GeomData)> {
-        // SAFETY: ODE hands the callback live geoms of the collided space; their user
-        // data is the arena index set at creation.
-        let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
-        let (h, data) = self.geoms.get_by_index(index)?;
-        if data.raw != raw {
-            return None;
-        }
-        Some((GeomHandle(h), data))
+        geom_slot_in(&self.geoms, raw)
     }
 
     /// One candidate pair: everything the near callback does, in Rust. `Err` when the
@@ -652,6 +799,23 @@ impl World {
         }
         Ok(())
     }
+}
+
+/// The handle and data of a geom that ODE reports, in `geoms` (see
+/// [`World::geom_slot`]).
+#[inline]
+fn geom_slot_in(
+    geoms: &crate::handle::Arena<super::geom::GeomData>,
+    raw: ffi::dGeomID,
+) -> Option<(GeomHandle, &super::geom::GeomData)> {
+    // SAFETY: ODE hands the callback live geoms of the collided space; their user
+    // data is the arena index set at creation.
+    let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
+    let (h, data) = geoms.get_by_index(index)?;
+    if data.raw != raw {
+        return None;
+    }
+    Some((GeomHandle(h), data))
 }
 
 /// One contact joint per finite contact point, with `contact`'s surface, attached to

@@ -15,7 +15,7 @@ pub mod raycast;
 pub(crate) mod state;
 
 use body::BodyData;
-use contact::CollisionState;
+use contact::{CollisionState, ConvexSizes};
 use geom::GeomData;
 
 use crate::convert;
@@ -199,6 +199,11 @@ pub struct World {
     /// Triangle-mesh geoms in the world: ODE's trimesh colliders share a process-wide
     /// cache, so collision takes the global lock while there are any.
     pub(crate) trimesh_count: usize,
+    /// Ray geoms in the world: while there are none (and nothing else needs the Rust
+    /// near callback), collision runs the plain near callback in C.
+    pub(crate) ray_geoms: usize,
+    /// The sizes of the world's cylinders and capsules (see [`ConvexSizes`]).
+    pub(crate) convex_sizes: ConvexSizes,
     stepper: Stepper,
     /// Seed of ODE's process-wide random generator as this world left it: restored
     /// before each QuickStep and saved after it, under the global lock, so that a
@@ -303,6 +308,8 @@ impl World {
             collision: CollisionState::default(),
             grid: grid::Grid::default(),
             trimesh_count: 0,
+            ray_geoms: 0,
+            convex_sizes: ConvexSizes::default(),
             stepper: Stepper::Exact,
             random_seed: 0,
             time: 0.0,
