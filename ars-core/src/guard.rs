@@ -38,6 +38,15 @@
 //!   destroying or moving a geom of a locked space asserts: such a world is dropped
 //!   without calling ODE at all (its ODE objects are leaked).
 //!
+//! - **The plain collision's near callback is C.** For a world that needs nothing
+//!   of the Rust near callback (no rays, hooks or contact feedback; see
+//!   `world/contact.rs`), `guard.c` runs its own callback: no Rust frame lies between
+//!   the guard of `dSpaceCollide` and ODE at all, and each pair's `dCollide` still has
+//!   a nested guard (a pair's failure is an `Err`, not a poisoned world).
+//!   `odesys_guarded_collide_and_step` runs that collision and then `dWorldStep` under
+//!   one guard, recording which of the two was running (`phase`, in memory) so that
+//!   the world is poisoned the right way.
+//!
 //! Only ODE's self-threaded step implementation is used (each world has its own), so
 //! every stage of a step runs on the calling thread, under its target.
 
@@ -189,6 +198,47 @@ pub(crate) unsafe fn collide_plain(
     let r = unsafe { ffi::odesys_guarded_collide_plain(space, plain, failure.as_mut_ptr()) };
     // SAFETY: caught: the C side filled the slot.
     if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(()) }
+}
+
+/// What [`collide_and_step`] did.
+pub(crate) enum CollideStep {
+    /// Collided and stepped; `false` when the step ran out of memory.
+    Stepped(bool),
+    /// Collided without stepping: the collision stopped early (see
+    /// `odesys_plain_collision::stopped`) or made more contact points than the limit.
+    NotStepped,
+    /// ODE failed inside the collision (`dSpaceCollide`).
+    CollideFailed(OdeFailure),
+    /// ODE failed inside the step (`dWorldStep`).
+    StepFailed(OdeFailure),
+}
+
+/// The plain collision (see [`collide_plain`]) and then `dWorldStep`, in one guarded
+/// call: the step is taken when the collision went through and made at most
+/// `contact_limit` contact points.
+///
+/// # Safety
+/// As [`collide_plain`]; moreover `plain.world` must be a live world whose step
+/// threading implementation is self-threaded (or unset).
+#[inline]
+pub(crate) unsafe fn collide_and_step(
+    space: ffi::dSpaceID,
+    plain: &mut ffi::odesys_plain_collision,
+    dt: f64,
+    contact_limit: usize,
+) -> CollideStep {
+    let mut failure = FailureSlot::uninit();
+    // SAFETY: the caller's contract; `failure` and `plain` outlive the call.
+    let r = unsafe { ffi::odesys_guarded_collide_and_step(space, plain, dt, contact_limit, failure.as_mut_ptr()) };
+    match r {
+        // SAFETY: caught: the C side filled the slot.
+        ffi::ODESYS_CAUGHT => match unsafe { caught(&failure) } {
+            failure if plain.phase == ffi::ODESYS_PHASE_STEP as c_int => CollideStep::StepFailed(failure),
+            failure => CollideStep::CollideFailed(failure),
+        },
+        r if r == ffi::ODESYS_NOT_STEPPED as c_int => CollideStep::NotStepped,
+        r => CollideStep::Stepped(r == ffi::ODESYS_OK as c_int),
+    }
 }
 
 /// The failure of the pair that stopped a plain collision.

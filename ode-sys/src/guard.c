@@ -16,7 +16,9 @@
  * - the jump targets are per thread (ODE's handlers are process-wide);
  * - the plain collision (odesys_guarded_collide_plain) runs a near callback written
  *   here in C, so no Rust frame is ever between its guard and ODE: its dSpaceCollide
- *   and each of its dCollide calls have guards of their own, as on the Rust path.
+ *   and each of its dCollide calls have guards of their own, as on the Rust path;
+ *   odesys_guarded_collide_and_step runs that collision and then dWorldStep under one
+ *   guard, and says which of the two failed.
  *
  * Without an armed guard a failure is reported through the sink and the process
  * aborts, which is what ODE would do. */
@@ -245,6 +247,29 @@ int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *
     plain->out->len = 0;
     GUARDED(failure, return ODESYS_CAUGHT, dSpaceCollide(space, plain, plain_near));
     return ODESYS_OK;
+}
+
+/* The collision of odesys_guarded_collide_and_step, then its step when the
+ * collision went through and made at most `contact_limit` contact points: returns
+ * ODESYS_OK or ODESYS_REFUSED (the step's result) or ODESYS_NOT_STEPPED. */
+static int collide_then_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
+                             size_t contact_limit) {
+    plain->phase = ODESYS_PHASE_COLLIDE;
+    dSpaceCollide(space, plain, plain_near);
+    if (plain->stopped != 0 || plain->out->len > contact_limit) {
+        return ODESYS_NOT_STEPPED;
+    }
+    plain->phase = ODESYS_PHASE_STEP;
+    return dWorldStep(plain->world, step_size) ? ODESYS_OK : ODESYS_REFUSED;
+}
+
+int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
+                                    size_t contact_limit, struct odesys_failure *failure) {
+    int result = ODESYS_NOT_STEPPED;
+    plain->stopped = 0;
+    plain->out->len = 0;
+    GUARDED(failure, return ODESYS_CAUGHT, result = collide_then_step(space, plain, step_size, contact_limit));
+    return result;
 }
 
 void odesys_contact_records_free(struct odesys_contact_records *records) {

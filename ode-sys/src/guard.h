@@ -13,6 +13,7 @@
 #define ODESYS_OK 1      /* the call returned normally */
 #define ODESYS_REFUSED 0 /* the call returned failure (a step out of memory) */
 #define ODESYS_CAUGHT -1 /* ODE reported an internal error; `failure` says which */
+#define ODESYS_NOT_STEPPED 2 /* odesys_guarded_collide_and_step collided but did not step */
 
 struct odesys_failure {
     int kind;
@@ -64,11 +65,21 @@ struct odesys_plain_collision {
     int stopped;
     dGeomID failed[2];
     struct odesys_failure *pair_failure; /* written when a pair fails */
+    /* What odesys_guarded_collide_and_step was doing (when it caught a failure). */
+    int phase;
 };
+
+#define ODESYS_PHASE_COLLIDE 1
+#define ODESYS_PHASE_STEP 2
 
 /* dSpaceCollide with the plain near callback (see guard.c), under a guard. */
 int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
                                  struct odesys_failure *failure);
+/* The plain collision, then dWorldStep when the collision went through and made at
+ * most `contact_limit` contact points (else ODESYS_NOT_STEPPED), under one guard:
+ * a caught failure's `plain->phase` says whether it was the collision or the step. */
+int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
+                                    size_t contact_limit, struct odesys_failure *failure);
 void odesys_contact_records_free(struct odesys_contact_records *records);
 int odesys_guarded_debug_report(int num, const char *message, struct odesys_failure *failure);
 

@@ -302,6 +302,9 @@ impl World {
     /// Removes a geom.
     pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
         self.check_usable()?;
+        // The last pass's contact points are made from its records while the geoms
+        // they name are alive (the records hold ODE ids, read through ODE).
+        self.contacts();
         let data = self.geoms.remove(geom.0, GeomHandle::KIND)?;
         if matches!(data.shape, Shape::TriMesh { .. } | Shape::Cone { .. }) {
             self.trimesh_count -= 1;
