@@ -101,6 +101,12 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
             "<mujoco><worldbody><body><joint frictionloss='-1'/><geom size='.1'/></body></worldbody></mujoco>",
             "must not be negative",
         ),
+        // A typo: MuJoCo's <geom> has no such attribute (nor has MuJoCo's schema).
+        (
+            "<mujoco><worldbody><body><geom size='.1' sise='.2'/></body></worldbody></mujoco>",
+            "unknown attribute \"sise\"",
+        ),
+        ("<mujoco><default><joint dampin='1'/></default><worldbody/></mujoco>", "unknown attribute \"dampin\""),
         (
             "<mujoco><asset><mesh file='/nonexistent/m.stl'/></asset>\
              <worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>",
@@ -117,11 +123,19 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         assert!(message.contains(says) && message.contains("bad.xml") && message.contains("line"), "{message}");
         assert_eq!(sim.objects().count(), 0, "nothing left behind: {message}");
     }
-    // With skip_unsupported, what cannot be read is listed instead.
+    // With skip_unsupported, what cannot be read is listed instead; a tendon's own
+    // elements are not a body's, and their attributes are not checked as if they were.
     let mut sim = Simulation::builder().build().unwrap();
-    let text = "<mujoco><tendon/><worldbody><body><geom size='.1'/></body></worldbody></mujoco>";
+    let text = "<mujoco><tendon><fixed><joint joint='j' coef='1'/></fixed></tendon>\
+                <worldbody><body><geom size='.1' sise='1'/></body></worldbody></mujoco>";
     let model = sim.load_mjcf_text(text, "skip.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
     assert!(model.skipped.iter().any(|s| s.contains("<tendon>")), "{:?}", model.skipped);
+    assert!(
+        model.skipped.iter().any(|s| s.starts_with("<geom> at line 1") && s.contains("sise")),
+        "{:?}",
+        model.skipped
+    );
+    assert!(!model.skipped.iter().any(|s| s.contains("coef")), "{:?}", model.skipped);
     // MuJoCo's contact parameters are said unused, without skip_unsupported too.
     let text = "<mujoco><worldbody><body><geom size='.1' friction='1 0.1 0.1'/></body></worldbody></mujoco>";
     let model = Simulation::new().unwrap().load_mjcf_text(text, "friction.xml", &MjcfOptions::new()).unwrap();
@@ -179,12 +193,22 @@ fn a_body_chained_to_its_parent_does_not_touch_it() {
 }
 
 #[test]
-fn a_body_too_light_for_ars_is_refused_by_name() {
-    // 1e-5 kg/m³ in a 1 cm ball weighs 4e-11 kg, below ARS's 1e-9 kg.
+fn a_body_lighter_than_ars_allows_is_raised_and_one_too_heavy_refused_by_name() {
+    // 1e-5 kg/m³ in a 1 cm ball weighs 4e-11 kg, below ARS's 1e-9 kg (Gymnasium's
+    // pusher has such markers): raised to 1e-9 kg, its inertia scaled alike, and said.
     const FEATHER: &str = r#"<mujoco><worldbody><body name="feather"><freejoint/>
         <geom type="sphere" size="0.01" density="1e-5"/></body></worldbody></mujoco>"#;
     let mut sim = Simulation::builder().build().unwrap();
-    let err = sim.load_mjcf_text(FEATHER, "feather.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    let model = sim.load_mjcf_text(FEATHER, "feather.xml", &MjcfOptions::new()).unwrap();
+    let body = sim.body(model.body("feather").unwrap()).unwrap();
+    assert_eq!(body.mass(), ars::limits::MIN_MASS);
+    let ball = 2.0 / 5.0 * ars::limits::MIN_MASS * 0.01 * 0.01;
+    assert!((body.inertia()[(0, 0)] - ball).abs() < 1e-12 * ball, "{}", body.inertia());
+    assert!(model.skipped.iter().any(|s| s.contains("\"feather\"") && s.contains("raised")), "{:?}", model.skipped);
+    // 1e10 kg is above ARS's most: refused, naming the body, leaving nothing.
+    let mut sim = Simulation::builder().build().unwrap();
+    let heavy = FEATHER.replace(r#"density="1e-5""#, r#"mass="1e10""#);
+    let err = sim.load_mjcf_text(&heavy, "heavy.xml", &MjcfOptions::new()).unwrap_err().to_string();
     assert!(err.contains("\"feather\"") && err.contains("mass"), "{err}");
     assert_eq!(sim.objects().count(), 0);
 }
@@ -421,6 +445,24 @@ fn a_contact_pair_touches_whatever_its_bits_say_and_nothing_else_does() {
 }
 
 #[test]
+fn a_geom_takes_its_material_s_colour_unless_it_has_its_own() {
+    let text = r#"<mujoco>
+      <asset><material name="red" rgba="1 0 0 1"/><material name="green" rgba="0 1 0 1"/></asset>
+      <default><default class="blue"><geom rgba="0 0 1 1"/></default></default>
+      <worldbody>
+        <body name="red"><freejoint/><geom size=".1" material="red"/></body>
+        <body name="own" pos="1 0 0"><freejoint/><geom size=".1" material="red" rgba="1 1 0 1"/></body>
+        <body name="class" pos="2 0 0"><freejoint/><geom class="blue" size=".1" material="green"/></body>
+      </worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    sim.load_mjcf_text(text, "materials.xml", &MjcfOptions::new()).unwrap();
+    let color = |name: &str| sim.object(name).unwrap().color().unwrap();
+    assert_eq!(color("red"), [1.0, 0.0, 0.0]);
+    assert_eq!(color("own"), [1.0, 1.0, 0.0], "its own rgba wins");
+    assert_eq!(color("class"), [0.0, 0.0, 1.0], "its class's rgba wins too");
+}
+
+#[test]
 fn a_mesh_that_encloses_nothing_is_refused() {
     let dir = std::env::temp_dir().join(format!("ars-mjcf-mesh-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -610,6 +652,7 @@ fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
     <gyro site="in_the_world"/>
     <framepos objtype="geom" objname="floor"/>
     <rangefinder site="down" cutoff="1"/>
+    <rangefinder site="down" data="normal"/>
   </sensor>"#,
     );
     let mut sim = Simulation::new().unwrap();
@@ -617,7 +660,7 @@ fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
     assert!(e.contains("<magnetometer>"), "{e}");
     let model = sim.load_mjcf_text(&text, "sites.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
     assert_eq!(model.sensors.len(), 9, "the supported ones only");
-    for what in ["<magnetometer>", "inertial frame", "world body", "objtype geom", "cutoff"] {
+    for what in ["<magnetometer>", "inertial frame", "world body", "objtype geom", "cutoff", "other than \"dist\""] {
         assert!(model.skipped.iter().any(|s| s.contains(what)), "{what} in {:?}", model.skipped);
     }
 }

@@ -38,6 +38,15 @@
 //!   destroying or moving a geom of a locked space asserts: such a world is dropped
 //!   without calling ODE at all (its ODE objects are leaked).
 //!
+//! - **The plain collision's near callback is C.** For a world that needs nothing
+//!   of the Rust near callback (no rays, hooks or contact feedback; see
+//!   `world/contact.rs`), `guard.c` runs its own callback: no Rust frame lies between
+//!   the guard of `dSpaceCollide` and ODE at all, and each pair's `dCollide` still has
+//!   a nested guard (a pair's failure is an `Err`, not a poisoned world).
+//!   `odesys_guarded_collide_and_step` runs that collision and then `dWorldStep` under
+//!   one guard, recording which of the two was running (`phase`, in memory) so that
+//!   the world is poisoned the right way.
+//!
 //! Only ODE's self-threaded step implementation is used (each world has its own), so
 //! every stage of a step runs on the calling thread, under its target.
 
@@ -166,6 +175,79 @@ pub(crate) unsafe fn collide(
     let r = unsafe { ffi::odesys_guarded_collide(o1, o2, max, contacts, stride, &mut count, failure.as_mut_ptr()) };
     // SAFETY: caught: the C side filled the slot.
     if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(count.max(0) as usize) }
+}
+
+/// `dSpaceCollide` with the plain near callback of `guard.c` (ARS's near callback in
+/// C for worlds without rays, collision hooks or contact feedback), under a guard. The
+/// callback's own `dCollide` calls have nested guards: a pair's failure is not an
+/// `Err` here but `plain.stopped == ODESYS_PLAIN_PAIR_FAILED`, read with
+/// [`pair_failure`].
+///
+/// # Safety
+/// `space` must be live; every pointer in `plain` must be valid for the call (world
+/// and contact group live, `contact` initialised, `scratch` with room for
+/// `max_contacts` entries, `out` a record array that `guard.c` allocated or an empty
+/// one, `pair_failure` writable), and the space's geoms must belong to `plain.world`.
+#[inline]
+pub(crate) unsafe fn collide_plain(
+    space: ffi::dSpaceID,
+    plain: &mut ffi::odesys_plain_collision,
+) -> Result<(), OdeFailure> {
+    let mut failure = FailureSlot::uninit();
+    // SAFETY: the caller's contract; `failure` and `plain` outlive the call.
+    let r = unsafe { ffi::odesys_guarded_collide_plain(space, plain, failure.as_mut_ptr()) };
+    // SAFETY: caught: the C side filled the slot.
+    if r == ffi::ODESYS_CAUGHT { Err(unsafe { caught(&failure) }) } else { Ok(()) }
+}
+
+/// What [`collide_and_step`] did.
+pub(crate) enum CollideStep {
+    /// Collided and stepped; `false` when the step ran out of memory.
+    Stepped(bool),
+    /// Collided without stepping: the collision stopped early (see
+    /// `odesys_plain_collision::stopped`) or made more contact points than the limit.
+    NotStepped,
+    /// ODE failed inside the collision (`dSpaceCollide`).
+    CollideFailed(OdeFailure),
+    /// ODE failed inside the step (`dWorldStep`).
+    StepFailed(OdeFailure),
+}
+
+/// The plain collision (see [`collide_plain`]) and then `dWorldStep`, in one guarded
+/// call: the step is taken when the collision went through and made at most
+/// `contact_limit` contact points.
+///
+/// # Safety
+/// As [`collide_plain`]; moreover `plain.world` must be a live world whose step
+/// threading implementation is self-threaded (or unset).
+#[inline]
+pub(crate) unsafe fn collide_and_step(
+    space: ffi::dSpaceID,
+    plain: &mut ffi::odesys_plain_collision,
+    dt: f64,
+    contact_limit: usize,
+) -> CollideStep {
+    let mut failure = FailureSlot::uninit();
+    // SAFETY: the caller's contract; `failure` and `plain` outlive the call.
+    let r = unsafe { ffi::odesys_guarded_collide_and_step(space, plain, dt, contact_limit, failure.as_mut_ptr()) };
+    match r {
+        // SAFETY: caught: the C side filled the slot.
+        ffi::ODESYS_CAUGHT => match unsafe { caught(&failure) } {
+            failure if plain.phase == ffi::ODESYS_PHASE_STEP as c_int => CollideStep::StepFailed(failure),
+            failure => CollideStep::CollideFailed(failure),
+        },
+        r if r == ffi::ODESYS_NOT_STEPPED as c_int => CollideStep::NotStepped,
+        r => CollideStep::Stepped(r == ffi::ODESYS_OK as c_int),
+    }
+}
+
+/// The failure of the pair that stopped a plain collision.
+///
+/// # Safety
+/// `plain.stopped` is `ODESYS_PLAIN_PAIR_FAILED`, so the C side filled `plain.pair_failure`.
+pub(crate) unsafe fn pair_failure(plain: &ffi::odesys_plain_collision) -> OdeFailure {
+    // SAFETY: the caller's contract: the report was written (`record` in guard.c).
+    OdeFailure::from_raw(unsafe { &*plain.pair_failure })
 }
 
 #[cfg(test)]

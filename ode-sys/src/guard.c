@@ -13,12 +13,18 @@
  * - while dSpaceCollide runs the Rust near callback, the guard is disarmed (an
  *   unguarded failure aborts, as ODE itself would) and the callback's own dCollide
  *   arms a nested guard of its own;
- * - the jump targets are per thread (ODE's handlers are process-wide).
+ * - the jump targets are per thread (ODE's handlers are process-wide);
+ * - the plain collision (odesys_guarded_collide_plain) runs a near callback written
+ *   here in C, so no Rust frame is ever between its guard and ODE: its dSpaceCollide
+ *   and each of its dCollide calls have guards of their own, as on the Rust path;
+ *   odesys_guarded_collide_and_step runs that collision and then dWorldStep under one
+ *   guard, and says which of the two failed.
  *
  * Without an armed guard a failure is reported through the sink and the process
  * aborts, which is what ODE would do. */
 
 #include <ode/ode.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -105,11 +111,11 @@ void odesys_install_handlers(odesys_sink message_sink) {
 /* Arms a guard around `call`; on an ODE failure the guard's setjmp returns 1 and the
  * previous guard (if any) is armed again. `frame` is address-taken, so its contents
  * are in memory, not in registers clobbered by longjmp. */
-#define GUARDED(failure, on_fail, call)            \
+#define GUARDED(report, on_fail, call)             \
     do {                                           \
         struct guard_frame frame;                  \
         struct guard_frame *previous = armed;      \
-        frame.failure = (failure);                 \
+        frame.failure = (report);                  \
         if (GUARD_SETJMP(frame.env) != 0) {        \
             armed = previous;                      \
             on_fail;                               \
@@ -154,6 +160,123 @@ int odesys_guarded_collide(dGeomID o1, dGeomID o2, int flags, dContactGeom *cont
     GUARDED(failure, return ODESYS_CAUGHT, n = dCollide(o1, o2, flags, contacts, skip));
     *count = n;
     return ODESYS_OK;
+}
+
+/* The plain collision: ARS's near callback for the common case, in C.
+ *
+ * The Rust near callback (ars-core's world/contact.rs) takes every pair through this
+ * sequence when the world has no rays, no user collision hooks, no contact feedback
+ * and no cylinder/capsule sizes far enough apart to need the libccd check; this is the
+ * same sequence, step for step, so that the contact joints (and so the physics) are
+ * bit-identical:
+ * - two static geoms: no contact;
+ * - bodies joined by a (non-contact) joint: no contact;
+ * - dCollide under a guard of its own (a failure skips the remaining pairs and is
+ *   reported with its pair, the world stays usable);
+ * - one contact joint per finite contact point, with the default contact's surface,
+ *   each point recorded in `out` for the Rust side (sensors read the contacts). */
+
+static int contact_is_finite(const dContactGeom *c) {
+    const dReal *p = c->pos, *n = c->normal;
+    /* As contact_is_finite in contact.rs: a NaN or an infinity makes the sum so. */
+    dReal sum = p[0] + p[1] + p[2] + n[0] + n[1] + n[2] + c->depth;
+    return isfinite(sum) && n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.5;
+}
+
+/* Room for at least one more record; 0 when out of memory. */
+static int reserve_record(struct odesys_contact_records *out) {
+    if (out->len < out->capacity) {
+        return 1;
+    }
+    size_t capacity = out->capacity == 0 ? 64 : 2 * out->capacity;
+    struct odesys_contact_record *items = realloc(out->items, capacity * sizeof *items);
+    if (items == NULL) {
+        return 0;
+    }
+    out->items = items;
+    out->capacity = capacity;
+    return 1;
+}
+
+static void plain_near(void *data, dGeomID o1, dGeomID o2) {
+    struct odesys_plain_collision *p = data;
+    if (p->stopped) {
+        return;
+    }
+    dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
+    if (b1 == NULL && b2 == NULL) {
+        return;
+    }
+    if (b1 != NULL && b2 != NULL && dAreConnectedExcluding(b1, b2, dJointTypeContact)) {
+        return;
+    }
+    int n = 0;
+    GUARDED(p->pair_failure,
+            {
+                p->stopped = ODESYS_PLAIN_PAIR_FAILED;
+                p->failed[0] = o1;
+                p->failed[1] = o2;
+                return;
+            },
+            n = dCollide(o1, o2, p->max_contacts, p->scratch, sizeof(dContactGeom)));
+    if (n > p->max_contacts) {
+        n = p->max_contacts;
+    }
+    for (int i = 0; i < n; i++) {
+        const dContactGeom *c = &p->scratch[i];
+        if (!contact_is_finite(c)) {
+            continue;
+        }
+        if (!reserve_record(p->out)) {
+            p->stopped = ODESYS_PLAIN_OUT_OF_MEMORY;
+            return;
+        }
+        p->contact->geom = *c;
+        dJointID j = dJointCreateContact(p->world, p->group, p->contact);
+        dJointAttach(j, b1, b2);
+        struct odesys_contact_record *r = &p->out->items[p->out->len++];
+        r->geom = *c;
+        r->o1 = o1;
+        r->o2 = o2;
+    }
+}
+
+int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
+                                 struct odesys_failure *failure) {
+    plain->stopped = 0;
+    plain->out->len = 0;
+    GUARDED(failure, return ODESYS_CAUGHT, dSpaceCollide(space, plain, plain_near));
+    return ODESYS_OK;
+}
+
+/* The collision of odesys_guarded_collide_and_step, then its step when the
+ * collision went through and made at most `contact_limit` contact points: returns
+ * ODESYS_OK or ODESYS_REFUSED (the step's result) or ODESYS_NOT_STEPPED. */
+static int collide_then_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
+                             size_t contact_limit) {
+    plain->phase = ODESYS_PHASE_COLLIDE;
+    dSpaceCollide(space, plain, plain_near);
+    if (plain->stopped != 0 || plain->out->len > contact_limit) {
+        return ODESYS_NOT_STEPPED;
+    }
+    plain->phase = ODESYS_PHASE_STEP;
+    return dWorldStep(plain->world, step_size) ? ODESYS_OK : ODESYS_REFUSED;
+}
+
+int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
+                                    size_t contact_limit, struct odesys_failure *failure) {
+    int result = ODESYS_NOT_STEPPED;
+    plain->stopped = 0;
+    plain->out->len = 0;
+    GUARDED(failure, return ODESYS_CAUGHT, result = collide_then_step(space, plain, step_size, contact_limit));
+    return result;
+}
+
+void odesys_contact_records_free(struct odesys_contact_records *records) {
+    free(records->items);
+    records->items = NULL;
+    records->len = 0;
+    records->capacity = 0;
 }
 
 /* For tests of the guard itself: reports an ODE internal error through ODE's own

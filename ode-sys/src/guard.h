@@ -13,6 +13,7 @@
 #define ODESYS_OK 1      /* the call returned normally */
 #define ODESYS_REFUSED 0 /* the call returned failure (a step out of memory) */
 #define ODESYS_CAUGHT -1 /* ODE reported an internal error; `failure` says which */
+#define ODESYS_NOT_STEPPED 2 /* odesys_guarded_collide_and_step collided but did not step */
 
 struct odesys_failure {
     int kind;
@@ -30,6 +31,56 @@ int odesys_guarded_space_collide(dSpaceID space, void *data, dNearCallback *call
                                  struct odesys_failure *failure);
 int odesys_guarded_collide(dGeomID o1, dGeomID o2, int flags, dContactGeom *contacts, int skip, int *count,
                            struct odesys_failure *failure);
+/* One contact point of the plain collision, with the geoms of its pair as ODE gave
+ * them to the near callback. */
+struct odesys_contact_record {
+    dContactGeom geom;
+    dGeomID o1;
+    dGeomID o2;
+};
+
+/* A growable array of records, allocated here (realloc) and freed with
+ * odesys_contact_records_free. */
+struct odesys_contact_records {
+    struct odesys_contact_record *items;
+    size_t len;
+    size_t capacity;
+};
+
+/* Why the plain collision stopped before the last pair (0: it did not). */
+#define ODESYS_PLAIN_PAIR_FAILED 1   /* dCollide failed: `failed`, `pair_failure` say so */
+#define ODESYS_PLAIN_OUT_OF_MEMORY 2 /* the records could not grow */
+
+/* What the plain near callback needs: filled by the Rust side, except the results. */
+struct odesys_plain_collision {
+    dWorldID world;
+    dJointGroupID group;
+    /* The default contact: its surface is used, its geometry overwritten per point. */
+    dContact *contact;
+    /* Most contact points per pair; room for that many in `scratch`. */
+    int max_contacts;
+    dContactGeom *scratch;
+    struct odesys_contact_records *out;
+    /* Results. */
+    int stopped;
+    dGeomID failed[2];
+    struct odesys_failure *pair_failure; /* written when a pair fails */
+    /* What odesys_guarded_collide_and_step was doing (when it caught a failure). */
+    int phase;
+};
+
+#define ODESYS_PHASE_COLLIDE 1
+#define ODESYS_PHASE_STEP 2
+
+/* dSpaceCollide with the plain near callback (see guard.c), under a guard. */
+int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
+                                 struct odesys_failure *failure);
+/* The plain collision, then dWorldStep when the collision went through and made at
+ * most `contact_limit` contact points (else ODESYS_NOT_STEPPED), under one guard:
+ * a caught failure's `plain->phase` says whether it was the collision or the step. */
+int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
+                                    size_t contact_limit, struct odesys_failure *failure);
+void odesys_contact_records_free(struct odesys_contact_records *records);
 int odesys_guarded_debug_report(int num, const char *message, struct odesys_failure *failure);
 
 #endif

@@ -6,7 +6,9 @@
 //! message handlers that turn an internal error (which ODE answers with `abort`)
 //! into a return code of the guarded call that was running (`dWorldStep`,
 //! `dWorldQuickStep`, `dSpaceCollide`, `dCollide`), by `longjmp` over ODE's own frames
-//! only. There is no safe API here: that lives in `ars-core`.
+//! only; and the plain collision, ARS's near callback in C for the common case
+//! (`odesys_guarded_collide_plain`, `odesys_guarded_collide_and_step`). There is no
+//! safe API here: that lives in `ars-core`.
 #![allow(non_upper_case_globals, non_camel_case_types, non_snake_case, missing_docs)]
 #![allow(clippy::all, clippy::undocumented_unsafe_blocks)]
 

@@ -406,9 +406,11 @@ NOT_IN_PYTHON = {
 def rust_methods():
     """`Type.method` for every `pub fn` in the `impl` blocks of the four types."""
     found = set()
-    files = sorted((ROOT / "ars-core/src/scene").glob("*.rs")) + sorted(
-        (ROOT / "ars-core/src/simulation").glob("*.rs")
-    )
+    files = [
+        path
+        for folder in ("scene", "simulation", "formats")
+        for path in sorted((ROOT / "ars-core/src" / folder).glob("*.rs"))
+    ]
     for path in files:
         owner = None
         for line in path.read_text().splitlines():

@@ -19,7 +19,8 @@
 //!   `mesh` (an `<asset><mesh>`'s STL or OBJ file, with its `scale`, in `<compiler
 //!   meshdir>` or `assetdir`, as a triangle mesh; its mass and inertia those of the
 //!   closed solid it bounds, as MuJoCo's for a convex mesh);
-//!   `fromto` for capsules and cylinders; `rgba` for the colour; `contype` and
+//!   `fromto` for capsules and cylinders; `rgba` for the colour (else its
+//!   `material`'s, as MuJoCo draws it); `contype` and
 //!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
 //!   when one's type meets the other's affinity).
 //! - **Joints.** `hinge` (a hinge), `slide` (a slider), `ball`, `free` (a free body); a
@@ -72,14 +73,18 @@
 //!   includes it; a cycle is refused): the included file's top-level elements take its
 //!   place, and an error in it names that file.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
-//!   (materials, textures, meshes not used by a geom), `<statistic>`, `<size>`,
-//!   `<custom>`, `<light>`, `<camera>`, unnamed `<site>`s (nothing can name them), and
-//!   the geoms' material.
+//!   (textures, materials beyond their colour, meshes not used by a geom),
+//!   `<statistic>`, `<size>`, `<custom>`, `<light>`, `<camera>`, unnamed `<site>`s
+//!   (nothing can name them).
 //! - **Sites.** A body's named `<site>`s (`pos` and orientation, `type` `sphere`,
 //!   `capsule`, `cylinder`, `box` or `ellipsoid` with its `size`, MuJoCo's 0.005 m
 //!   where not given; classes as other elements) are listed in [`MjcfModel::sites`]
 //!   with their frames relative to their body's object; `fromto` is unsupported. Sites
 //!   of the world body are read for their names only: a sensor on one is unsupported.
+//! - **Attributes.** Every attribute of the elements read is checked against MuJoCo's
+//!   schema (`mjcf_schema.rs`): one MuJoCo does not know (a typo) is an error naming it,
+//!   its element and line (or skipped with a warning); one it knows and ARS does not
+//!   use is accepted (and said unused where it changes the physics).
 //! - **Actuators.** `motor`, `position` (`kp`, `kv`) and `velocity` (`kv`) on a joint
 //!   become [`Actuator`]s of the same names driving their joints, with `gear` (its
 //!   first number), `ctrlrange`/`ctrllimited` and `forcerange`/`forcelimited` (with
@@ -670,6 +675,8 @@ struct Reader<'d, 'a, 'input> {
     meshes: HashMap<String, (String, Vector3<f64>)>,
     /// The meshes loaded so far, by name.
     loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
+    /// The `<asset><material>`s' colours, by name.
+    materials: HashMap<String, [f64; 4]>,
     /// Their files, each read once.
     files: super::MeshCache,
     /// The main file's folder.
@@ -767,7 +774,12 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             ));
         }
         let name = node.attribute("name").map(str::to_string);
-        Ok(Some(Geom { kind, frame, mass, density, rgba: a.fixed::<4>("rgba")?, bits, name }))
+        // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
+        let rgba = match a.fixed::<4>("rgba")? {
+            Some(rgba) => Some(rgba),
+            None => a.get("material").and_then(|m| self.materials.get(m)).copied(),
+        };
+        Ok(Some(Geom { kind, frame, mass, density, rgba, bits, name }))
     }
 
     fn joint(&mut self, node: roxmltree::Node<'_, '_>, class: &str, free: bool) -> Parsed<Joint> {
@@ -991,6 +1003,12 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 return Ok(None);
             }
         };
+        // A rangefinder reads its distance from a site (MuJoCo's can cast from a camera
+        // and give other data).
+        if kind == "rangefinder" && (a.get("camera").is_some() || a.get("data").is_some_and(|d| d != "dist")) {
+            self.unsupported(&node, "a rangefinder on a camera or with data other than \"dist\"")?;
+            return Ok(None);
+        }
         // MuJoCo's noise is not applied in simulation either; a cutoff clamps readings.
         if a.number("cutoff")?.is_some_and(|c| c != 0.0) {
             self.unsupported(&node, "a sensor's cutoff")?;
@@ -1191,6 +1209,77 @@ fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64
     }
 }
 
+/// Checks every element ARS reads against MuJoCo's schema
+/// ([`mjcf_schema`](super::mjcf_schema)): an unknown attribute is an error naming it, its
+/// element and line (with `skip`, a line in `skipped`).
+fn check_attributes(
+    tree: &Tree<'_, '_>,
+    root: roxmltree::Node<'_, '_>,
+    skip: bool,
+    skipped: &mut Vec<String>,
+) -> Parsed<()> {
+    fn walk(
+        tree: &Tree<'_, '_>,
+        node: roxmltree::Node<'_, '_>,
+        in_sensor: bool,
+        skip: bool,
+        skipped: &mut Vec<String>,
+    ) -> Parsed<()> {
+        let tag = node.tag_name().name();
+        for attribute in node.attributes() {
+            let name = attribute.name();
+            if super::mjcf_schema::is_unknown(tag, name, in_sensor) {
+                {
+                    let p =
+                        problem(&node, format!("unknown attribute {name:?} (MuJoCo's <{tag}> has no such attribute)"));
+                    if !skip {
+                        return Err(p);
+                    }
+                    skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
+                }
+            }
+        }
+        // Into the sections ARS reads, and the bodies and classes in them; not into the
+        // others (a tendon's <joint> is not a body's) nor below the elements read.
+        let holds_elements = match tag {
+            "mujoco" => node.parent().is_some_and(|p| p.is_root()),
+            "body" | "worldbody" | "default" => true,
+            _ => {
+                super::mjcf_schema::READ_SECTIONS.contains(&tag)
+                    && node.parent_element().is_some_and(|p| p.has_tag_name("mujoco"))
+            }
+        };
+        if holds_elements {
+            for child in tree.elements(node) {
+                walk(tree, child, in_sensor || tag == "sensor", skip, skipped)?;
+            }
+        }
+        Ok(())
+    }
+    walk(tree, root, false, skip, skipped)?;
+    Ok(())
+}
+
+/// A mass below ARS's least ([`MIN_MASS`](crate::limits::MIN_MASS): a marker of a
+/// few milligrams, as in Gymnasium's pusher) raised to it, the inertia scaled alike,
+/// with a warning in `skipped`; any other mass as it is.
+fn at_least_ars_least_mass(
+    what: &str,
+    mass: f64,
+    inertia: Matrix3<f64>,
+    skipped: &mut Vec<String>,
+) -> (f64, Matrix3<f64>) {
+    let least = crate::limits::MIN_MASS;
+    if mass > 0.0 && mass < least {
+        skipped.push(format!(
+            "{what}: a mass of {mass:e} kg is below ARS's least ({least:e} kg): raised to it, the inertia scaled alike"
+        ));
+        (least, inertia * (least / mass))
+    } else {
+        (mass, inertia)
+    }
+}
+
 /// Most `<contact><pair>`s a model may have: each takes one of the upper 32 of ODE's
 /// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
 pub const MAX_CONTACT_PAIRS: usize = 32;
@@ -1313,6 +1402,9 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
     let mut timestep = None;
     let mut gravity = None;
     let mut meshes = HashMap::new();
+    let mut material_nodes = Vec::new();
+    let mut schema_skips = Vec::new();
+    check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
     for &node in &nodes {
         let mut first_pass = || -> Parsed<()> {
             match node.tag_name().name() {
@@ -1374,6 +1466,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                         let scale = a.fixed::<3>("scale")?.map_or(Vector3::repeat(1.0), Vector3::from);
                         meshes.insert(name, (file.to_string(), scale));
                     }
+                    material_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("material")));
                 }
                 "option" => {
                     let a = Attrs { node, class: None };
@@ -1386,14 +1479,23 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
         };
         first_pass()?;
     }
+    // Materials' colours, with their classes' defaults (read by now, wherever they are).
+    let mut materials = HashMap::new();
+    for node in material_nodes {
+        let a = Attrs::new(node, &defaults, "main");
+        if let (Some(name), Some(rgba)) = (node.attribute("name"), a.fixed::<4>("rgba")?) {
+            materials.insert(name.to_string(), rgba);
+        }
+    }
     let mut reader = Reader {
         compiler,
         defaults: &defaults,
         skip: options.skip_unsupported,
-        skipped: Vec::new(),
+        skipped: schema_skips,
         bodies: 0,
         joints: 0,
         meshes,
+        materials,
         loaded: HashMap::new(),
         files: super::MeshCache::default(),
         tree,
@@ -1705,6 +1807,13 @@ impl Scene {
         let (mass, com, inertia) = body
             .mass
             .ok_or_else(|| invalid(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+        let (link_mass, link_inertia) = if body.joints.len() > 1 {
+            let what = format!("the light links chaining {:?}", body.name);
+            at_least_ars_least_mass(&what, mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION, &mut made.skipped)
+        } else {
+            (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
+        };
+        let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
         // The body is moved by its last joint, a chain link by its joint: each carries
         // its joint's armature.
         let mut armature = |object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>| -> Matrix3<f64> {
@@ -1721,7 +1830,6 @@ impl Scene {
             }
             added
         };
-        let link_inertia = inertia * CHAIN_LINK_FRACTION;
         let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
             .iter()
             .map(|j| armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j)))
@@ -1778,10 +1886,7 @@ impl Scene {
                     .world
                     .insert_body(
                         BodyBuilder::new()
-                            .mass(MassSpec::Custom {
-                                mass: mass * CHAIN_LINK_FRACTION,
-                                inertia: link_inertia + links_armature[k],
-                            })
+                            .mass(MassSpec::Custom { mass: link_mass, inertia: link_inertia + links_armature[k] })
                             .position(nalgebra::Point3::from(body_frame.translation.vector))
                             .rotation(body_frame.rotation.to_rotation_matrix()),
                     )

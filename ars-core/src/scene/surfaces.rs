@@ -182,14 +182,16 @@ impl Scene {
         pairs
     }
 
-    /// Collides the scene's space: the pairs with a surface of their own get it, every
-    /// other pair the world's default.
-    pub(crate) fn collide(&mut self) -> Result<()> {
-        let space = self.space;
+    /// Collides the scene's space (the pairs with a surface of their own get it, every
+    /// other pair the world's default) and steps the world by the scene's time step:
+    /// the outer `Err` is the collision's, the inner result the step's.
+    pub(crate) fn collide_and_step(&mut self) -> Result<Result<()>> {
+        let (space, dt) = (self.space, self.time_step());
         if self.pair_surfaces.is_empty() {
-            self.world.collide(space)
+            self.world.collide_and_step(space, dt)
         } else {
-            self.world.collide_with(space, &mut self.pair_surfaces)
+            self.world.collide_with(space, &mut self.pair_surfaces)?;
+            Ok(self.world.step(dt))
         }
     }
 }

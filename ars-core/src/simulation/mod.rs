@@ -340,10 +340,9 @@ impl Simulation {
         self.run_added_hooks(HookPoint::PreStep)?;
         self.scene.apply_joint_drives()?;
         self.sensors.before_step(&self.scene)?;
-        self.scene.collide().map_err(|e| self.scene.name_handles(e))?;
         let scene = &mut self.scene;
         let time_before = scene.world.time();
-        let stepped = scene.world.step(scene.time_step());
+        let stepped = scene.collide_and_step().map_err(|e| scene.name_handles(e))?;
         scene.world.clear_contacts();
         if scene.world.time() != time_before {
             scene.time += scene.time_step();

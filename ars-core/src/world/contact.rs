@@ -13,8 +13,20 @@
 //!
 //! A panic in user hooks never unwinds into ODE: the callback catches it, ignores the
 //! remaining pairs, and re-raises it once `dSpaceCollide` has returned.
+//!
+//! **The plain collision.** A world without rays, collision hooks (the default
+//! surface for every pair), contact feedback, or cylinders and capsules whose sizes
+//! are far enough apart to need the libccd check (see `ConvexSizes`) needs none of
+//! the Rust callback's branches: its pairs go to the same callback written in C
+//! (`plain_near` in ode-sys's `guard.c`), the same checks in the same order, so the
+//! contact joints and every later bit are the same. It records each point with its two
+//! ODE geoms; [`World::contacts`] turns the records into [`ContactPoint`]s when first
+//! read (a geom is removed only after that). A
+//! [`Simulation`](crate::Simulation) step collides and steps in one guarded C call
+//! (`World::collide_and_step`).
 
 use std::any::Any;
+use std::cell::{Cell, OnceCell};
 use std::ffi::c_void;
 use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
 
@@ -222,11 +234,47 @@ pub(crate) struct CollisionState {
     /// A contact joint's parameters with `default_surface` as ODE takes it (computed
     /// once); each contact point of a default pair writes its geometry into it.
     default_contact: DefaultContact,
-    contacts: Vec<ContactPoint>,
+    /// The contact points of the last pass: set when the Rust near callback ends, or
+    /// made from the plain collision's `records` when first read (most steps nobody
+    /// reads them). A geom is removed only once they are made (`World::remove_geom`).
+    points: OnceCell<Vec<ContactPoint>>,
+    /// The points the Rust near callback is making.
+    building: Vec<ContactPoint>,
+    /// An emptied vector of points whose allocation the next pass reuses.
+    spare_points: Cell<Vec<ContactPoint>>,
     ray_hits: Vec<RayHit>,
     scratch: Vec<ffi::dContactGeom>,
+    /// The contact points the plain collision (in C) recorded.
+    records: ContactRecords,
     /// Where ODE writes the contact joints' forces, when asked.
     pub(crate) feedback: ContactFeedback,
+}
+
+/// The contact points of a plain collision, in an array that `guard.c` grows.
+pub(crate) struct ContactRecords(ffi::odesys_contact_records);
+
+impl Default for ContactRecords {
+    fn default() -> Self {
+        ContactRecords(ffi::odesys_contact_records { items: std::ptr::null_mut(), len: 0, capacity: 0 })
+    }
+}
+
+impl ContactRecords {
+    fn as_slice(&self) -> &[ffi::odesys_contact_record] {
+        if self.0.items.is_null() {
+            return &[];
+        }
+        // SAFETY: `guard.c` allocated `capacity` records at `items` and wrote the first
+        // `len`; nothing else changes them while `self` is borrowed.
+        unsafe { std::slice::from_raw_parts(self.0.items, self.0.len) }
+    }
+}
+
+impl Drop for ContactRecords {
+    fn drop(&mut self) {
+        // SAFETY: the array is `guard.c`'s (or empty), freed once here.
+        unsafe { ffi::odesys_contact_records_free(&mut self.0) };
+    }
 }
 
 /// Contact feedback buffers in blocks of this many.
@@ -259,7 +307,9 @@ impl CollisionState {
         if !self.feedback.on {
             return;
         }
-        for (i, c) in self.contacts.iter_mut().enumerate() {
+        // Feedback is on only on the Rust path, which sets the points.
+        let Some(points) = self.points.get_mut() else { return };
+        for (i, c) in points.iter_mut().enumerate() {
             let Some(block) = self.feedback.blocks.get(i / FEEDBACK_BLOCK) else { break };
             let f = convert::vector_from_ode(&block[i % FEEDBACK_BLOCK].f1);
             // ODE attaches a joint whose first body is static to the second body
@@ -273,7 +323,7 @@ impl CollisionState {
     /// Number of contact points of the last collision pass.
     #[inline]
     pub(crate) fn contact_count(&self) -> usize {
-        self.contacts.len()
+        self.points.get().map_or(self.records.0.len, Vec::len)
     }
 }
 
@@ -347,6 +397,42 @@ fn convex_pair_ratio(a: &crate::shape::Shape, b: &crate::shape::Shape) -> Option
     Some(max / min)
 }
 
+/// The sizes of a world's cylinders and capsules, for the plain collision: while the
+/// largest over the smallest of them is within
+/// [`MAX_CONVEX_PAIR_RATIO`](crate::limits::MAX_CONVEX_PAIR_RATIO), no pair of them can
+/// be refused by [`convex_pair_ratio`]'s check. A bound: it never shrinks.
+pub(crate) struct ConvexSizes {
+    /// Whether the world has had a cylinder (the check is for pairs with one).
+    cylinders: bool,
+    smallest: f64,
+    largest: f64,
+}
+
+impl Default for ConvexSizes {
+    fn default() -> Self {
+        ConvexSizes { cylinders: false, smallest: f64::INFINITY, largest: 0.0 }
+    }
+}
+
+impl ConvexSizes {
+    /// A geom of this shape is added.
+    pub(crate) fn note(&mut self, shape: &crate::shape::Shape) {
+        use crate::shape::Shape::{Capsule, Cylinder};
+        if let Cylinder { radius, length } | Capsule { radius, length } = *shape {
+            self.cylinders |= matches!(shape, Cylinder { .. });
+            self.smallest = self.smallest.min(radius).min(length);
+            self.largest = self.largest.max(radius).max(length);
+        }
+    }
+
+    /// No pair can exceed the ratio (division is monotone: a pair's ratio is at most
+    /// this one).
+    #[inline]
+    fn all_pairs_fine(&self) -> bool {
+        !self.cylinders || self.largest / self.smallest <= crate::limits::MAX_CONVEX_PAIR_RATIO
+    }
+}
+
 /// What the near callback sees through its `void*`.
 struct NearContext<'a, H: CollisionHooks + ?Sized> {
     world: &'a mut World,
@@ -386,32 +472,18 @@ impl World {
     /// reported ([`Error::OdeInternal`], the world stays usable); a failure of the
     /// space itself poisons the world.
     pub fn collide_with<H: CollisionHooks + ?Sized>(&mut self, space: SpaceHandle, hooks: &mut H) -> Result<()> {
-        self.check_usable()?;
-        ensure_ode_ready();
-        let data = self.space_data(space)?;
-        let (raw_space, kind) = (data.raw, data.kind);
-        if let SpaceKind::Hash { min_level, .. } = kind {
-            // SAFETY: the space is live.
-            let geoms = unsafe { ffi::dSpaceGetNumGeoms(raw_space) };
-            if usize::try_from(geoms).unwrap_or(usize::MAX) > crate::limits::MAX_HASH_SPACE_GEOMS {
-                return Err(too_many_hash_geoms(geoms));
-            }
-            if self.coordinate_bound() >= 0.5 * hash_limit(min_level) {
-                self.check_hash_bounds(space, min_level)?;
-            }
-        }
-        self.collision.contacts.clear();
-        self.collision.ray_hits.clear();
-        if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
-            self.collision.scratch.resize(MAX_CONTACTS_LIMIT, ffi::dContactGeom::default());
-        }
+        let (raw_space, kind) = self.begin_collision(space)?;
         // ODE's trimesh colliders share one process-wide cache in this build of ODE;
         // every other collider only touches the geoms it is given.
         let needs_lock = self.trimesh_count > 0;
         // The grid is ARS's own broad phase: it lists the pairs, the near callback
         // takes them as it takes ODE's.
+        if hooks.always_default() && !matches!(kind, SpaceKind::Grid) && self.plain_collision_applies() {
+            return self.collide_plain(raw_space, needs_lock);
+        }
         let mut grid = matches!(kind, SpaceKind::Grid).then(|| std::mem::take(&mut self.grid));
         let grid_pairs = grid.as_mut().map(|g| g.candidate_pairs(self, space));
+        self.collision.building = self.collision.spare_points.take();
         let mut ctx = NearContext { world: self, hooks, panic: None, failure: None };
         let collided = {
             let _guard = needs_lock.then(lock_ode_global_state);
@@ -433,6 +505,9 @@ impl World {
             }
         };
         let (panic, pair_failure) = (ctx.panic, ctx.failure);
+        let built = std::mem::take(&mut self.collision.building);
+        // The points were taken out when the pass began: the cell is empty.
+        let _ = self.collision.points.set(built);
         if let Some(grid) = grid {
             self.grid = grid;
         }
@@ -463,6 +538,122 @@ impl World {
                     ),
                 })
             }
+        }
+    }
+
+    /// The checks before ODE collides `space` (a usable world; a hash space's size and
+    /// bounds), then the start of a pass: no contact points, no ray hits, room for a
+    /// pair's contact points. The space's ODE id and kind.
+    #[inline(always)]
+    pub(crate) fn begin_collision(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
+        self.check_usable()?;
+        ensure_ode_ready();
+        let data = self.space_data(space)?;
+        let (raw_space, kind) = (data.raw, data.kind);
+        if let SpaceKind::Hash { min_level, .. } = kind {
+            // SAFETY: the space is live.
+            let geoms = unsafe { ffi::dSpaceGetNumGeoms(raw_space) };
+            if usize::try_from(geoms).unwrap_or(usize::MAX) > crate::limits::MAX_HASH_SPACE_GEOMS {
+                return Err(too_many_hash_geoms(geoms));
+            }
+            if self.coordinate_bound() >= 0.5 * hash_limit(min_level) {
+                self.check_hash_bounds(space, min_level)?;
+            }
+        }
+        if let Some(mut old) = self.collision.points.take() {
+            old.clear();
+            self.collision.spare_points.set(old);
+        }
+        self.collision.records.0.len = 0;
+        self.collision.ray_hits.clear();
+        if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
+            self.collision.scratch.resize(MAX_CONTACTS_LIMIT, ffi::dContactGeom::default());
+        }
+        Ok((raw_space, kind))
+    }
+
+    /// Whether every pair would take the plain path of the near callback: the
+    /// callback in C (`guard.c`) does what [`World::near`] does for such pairs (no ray
+    /// in the world, no contact feedback, no cylinder–cylinder or capsule–cylinder
+    /// pair whose sizes need the libccd check).
+    #[inline]
+    pub(crate) fn plain_collision_applies(&self) -> bool {
+        self.ray_geoms == 0 && !self.collision.feedback.on && self.convex_sizes.all_pairs_fine()
+    }
+
+    /// [`World::collide_with`] for default hooks when [`Self::plain_collision_applies`]:
+    /// ODE's pairs go to the near callback in C, which creates the contact joints and
+    /// records the points; their handles are looked up here, once per pair.
+    fn collide_plain(&mut self, raw_space: ffi::dSpaceID, needs_lock: bool) -> Result<()> {
+        let mut pair_failure = std::mem::MaybeUninit::uninit();
+        let mut plain = self.plain_collision(&mut pair_failure);
+        let collided = {
+            let _guard = needs_lock.then(lock_ode_global_state);
+            // SAFETY: the space is live and its geoms are this world's; world and
+            // contact group are live; the default contact is initialised; `scratch`
+            // holds MAX_CONTACTS_LIMIT ≥ max_contacts entries (resized above); the
+            // records are guard.c's; `pair_failure` outlives the call.
+            unsafe { guard::collide_plain(raw_space, &mut plain) }
+        };
+        if let Err(failure) = collided {
+            return Err(self.collision_failed(failure));
+        }
+        self.end_plain_collision(&plain)
+    }
+
+    /// The parameters of the plain near callback for this world (pointers into it,
+    /// valid until it is next changed); a failing pair's report goes to `pair_failure`.
+    #[inline]
+    pub(crate) fn plain_collision(
+        &mut self,
+        pair_failure: &mut std::mem::MaybeUninit<ffi::odesys_failure>,
+    ) -> ffi::odesys_plain_collision {
+        let state = &mut self.collision;
+        ffi::odesys_plain_collision {
+            world: self.raw,
+            group: self.contact_group,
+            contact: &mut state.default_contact.0,
+            max_contacts: state.default_surface.max_contacts as std::ffi::c_int,
+            scratch: state.scratch.as_mut_ptr(),
+            out: &mut state.records.0,
+            stopped: 0,
+            failed: [std::ptr::null_mut(); 2],
+            pair_failure: pair_failure.as_mut_ptr(),
+            phase: 0,
+        }
+    }
+
+    /// A failure inside `dSpaceCollide`: the space stays locked, the world is poisoned.
+    #[cold]
+    pub(crate) fn collision_failed(&mut self, failure: OdeFailure) -> Error {
+        self.poison = Some(Poison::Collide(failure.message.clone()));
+        Error::OdeInternal { during: "collision", message: failure.message }
+    }
+
+    /// After a plain collision that ODE finished: an `Err` (and no contact joint) when
+    /// a pair stopped it; else its recorded points become [`ContactPoint`]s.
+    #[inline(always)]
+    pub(crate) fn end_plain_collision(&mut self, plain: &ffi::odesys_plain_collision) -> Result<()> {
+        if plain.stopped == 0 { Ok(()) } else { Err(self.plain_collision_stopped(plain)) }
+    }
+
+    /// The error of a plain collision that a pair stopped; its contact joints are
+    /// destroyed.
+    #[cold]
+    fn plain_collision_stopped(&mut self, plain: &ffi::odesys_plain_collision) -> Error {
+        self.clear_contacts();
+        if plain.stopped as u32 != ffi::ODESYS_PLAIN_PAIR_FAILED {
+            return Error::Ode("record the contact points (out of memory)");
+        }
+        // SAFETY: the pair failed, so its report was written.
+        let failure = unsafe { guard::pair_failure(plain) };
+        let name = |raw| match geom_slot_in(&self.geoms, raw) {
+            Some((h, _)) => h.to_string(),
+            None => String::from("a geom"),
+        };
+        Error::OdeInternal {
+            during: "collision",
+            message: format!("colliding {} and {}: {}", name(plain.failed[0]), name(plain.failed[1]), failure.message),
         }
     }
 
@@ -513,7 +704,11 @@ impl World {
 
     /// The contact points created by the last collision pass.
     pub fn contacts(&self) -> &[ContactPoint] {
-        &self.collision.contacts
+        self.collision.points.get_or_init(|| {
+            let mut points = self.collision.spare_points.take();
+            points_from_records(&self.geoms, self.collision.records.as_slice(), &mut points);
+            points
+        })
     }
 
     /// The ray hits found by the last collision pass, in the order ODE reported them.
@@ -536,14 +731,7 @@ impl World {
     /// the first checks.
     #[inline]
     fn geom_slot(&self, raw: ffi::dGeomID) -> Option<(GeomHandle, &super::geom::GeomData)> {
-        // SAFETY: ODE hands the callback live geoms of the collided space; their user
-        // data is the arena index set at creation.
-        let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
-        let (h, data) = self.geoms.get_by_index(index)?;
-        if data.raw != raw {
-            return None;
-        }
-        Some((GeomHandle(h), data))
+        geom_slot_in(&self.geoms, raw)
     }
 
     /// One candidate pair: everything the near callback does, in Rust. `Err` when the
@@ -644,7 +832,7 @@ impl World {
                         (b1, b2),
                         contact,
                         &state.scratch[..n],
-                        &mut state.contacts,
+                        &mut state.building,
                         state.feedback.on.then_some(&mut state.feedback),
                     )
                 };
@@ -652,6 +840,56 @@ impl World {
         }
         Ok(())
     }
+}
+
+/// The contact points of a plain collision's records, appended to `points`; the
+/// handles are looked up once per pair.
+fn points_from_records(
+    geoms: &crate::handle::Arena<super::geom::GeomData>,
+    records: &[ffi::odesys_contact_record],
+    points: &mut Vec<ContactPoint>,
+) {
+    let mut last: Option<(ffi::dGeomID, ffi::dGeomID, GeomPair)> = None;
+    for r in records {
+        let pair = match last {
+            Some((o1, o2, pair)) if o1 == r.o1 && o2 == r.o2 => pair,
+            _ => match (geom_slot_in(geoms, r.o1), geom_slot_in(geoms, r.o2)) {
+                (Some((g1, d1)), Some((g2, d2))) => {
+                    let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
+                    last = Some((r.o1, r.o2, pair));
+                    pair
+                }
+                _ => {
+                    log::error!("collision reported a geom that this world does not own; contact not recorded");
+                    continue;
+                }
+            },
+        };
+        points.push(ContactPoint {
+            pair,
+            position: convert::point_from_ode(&r.geom.pos),
+            normal: convert::vector_from_ode(&r.geom.normal),
+            depth: r.geom.depth,
+            force: Vector3::zeros(),
+        });
+    }
+}
+
+/// The handle and data of a geom that ODE reports, in `geoms` (see
+/// [`World::geom_slot`]).
+#[inline]
+fn geom_slot_in(
+    geoms: &crate::handle::Arena<super::geom::GeomData>,
+    raw: ffi::dGeomID,
+) -> Option<(GeomHandle, &super::geom::GeomData)> {
+    // SAFETY: ODE hands the callback live geoms of the collided space; their user
+    // data is the arena index set at creation.
+    let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
+    let (h, data) = geoms.get_by_index(index)?;
+    if data.raw != raw {
+        return None;
+    }
+    Some((GeomHandle(h), data))
 }
 
 /// One contact joint per finite contact point, with `contact`'s surface, attached to

@@ -254,6 +254,10 @@ impl World {
         if mesh.is_some() {
             self.trimesh_count += 1;
         }
+        if matches!(shape, Shape::Ray { .. }) {
+            self.ray_geoms += 1;
+        }
+        self.convex_sizes.note(&shape);
         let serial = self.next_serial();
         let handle = GeomHandle(self.geoms.insert(GeomData {
             serial,
@@ -298,9 +302,15 @@ impl World {
     /// Removes a geom.
     pub fn remove_geom(&mut self, geom: GeomHandle) -> Result<()> {
         self.check_usable()?;
+        // The last pass's contact points are made from its records while the geoms
+        // they name are alive (the records hold ODE ids, read through ODE).
+        self.contacts();
         let data = self.geoms.remove(geom.0, GeomHandle::KIND)?;
         if matches!(data.shape, Shape::TriMesh { .. } | Shape::Cone { .. }) {
             self.trimesh_count -= 1;
+        }
+        if matches!(data.shape, Shape::Ray { .. }) {
+            self.ray_geoms -= 1;
         }
         // SAFETY: the geom was created by this world and is destroyed once; its
         // trimesh storage (if any) is dropped after it.

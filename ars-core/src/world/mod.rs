@@ -15,7 +15,7 @@ pub mod raycast;
 pub(crate) mod state;
 
 use body::BodyData;
-use contact::CollisionState;
+use contact::{CollisionState, ConvexSizes};
 use geom::GeomData;
 
 use crate::convert;
@@ -199,6 +199,11 @@ pub struct World {
     /// Triangle-mesh geoms in the world: ODE's trimesh colliders share a process-wide
     /// cache, so collision takes the global lock while there are any.
     pub(crate) trimesh_count: usize,
+    /// Ray geoms in the world: while there are none (and nothing else needs the Rust
+    /// near callback), collision runs the plain near callback in C.
+    pub(crate) ray_geoms: usize,
+    /// The sizes of the world's cylinders and capsules (see [`ConvexSizes`]).
+    pub(crate) convex_sizes: ConvexSizes,
     stepper: Stepper,
     /// Seed of ODE's process-wide random generator as this world left it: restored
     /// before each QuickStep and saved after it, under the global lock, so that a
@@ -303,6 +308,8 @@ impl World {
             collision: CollisionState::default(),
             grid: grid::Grid::default(),
             trimesh_count: 0,
+            ray_geoms: 0,
+            convex_sizes: ConvexSizes::default(),
             stepper: Stepper::Exact,
             random_seed: 0,
             time: 0.0,
@@ -477,6 +484,13 @@ impl World {
                 }
             }
         };
+        self.finish_step(dt, stepped)
+    }
+
+    /// After ODE's step: its failure, or the time, the contact forces and the check of
+    /// the new state.
+    #[inline(always)]
+    fn finish_step(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
         match stepped {
             Ok(true) => {}
             Ok(false) => return Err(Error::Ode("step the world (out of memory)")),
@@ -491,8 +505,60 @@ impl World {
         self.check_after_step()
     }
 
+    /// [`World::collide`] on `space`, then [`World::step`] by `dt`: the outer `Err` is
+    /// the collision's (nothing stepped), the inner result the step's. Every check of
+    /// the two is made, in the same order. With the exact stepper, a world the plain
+    /// near callback serves (see [`World::plain_collision_applies`]) and a step whose
+    /// checks before ODE pass, ODE collides and steps in one guarded call (`guard.c`).
+    #[inline(always)]
+    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: f64) -> Result<Result<()>> {
+        let one_call = matches!(self.stepper, Stepper::Exact)
+            && self.plain_collision_applies()
+            // The step's checks that read the bodies only (a collision changes none):
+            // when one fails, the separate calls below report it as they always do.
+            && limits::time_step(dt).is_ok()
+            && self.check_before_step().is_ok();
+        if !one_call {
+            self.collide(space)?;
+            return Ok(self.step(dt));
+        }
+        let (raw_space, kind) = self.begin_collision(space)?;
+        if matches!(kind, SpaceKind::Grid) {
+            // ARS's own broad phase lists the pairs in Rust.
+            self.collide(space)?;
+            return Ok(self.step(dt));
+        }
+        let needs_lock = self.trimesh_count > 0;
+        let mut pair_failure = std::mem::MaybeUninit::uninit();
+        let mut plain = self.plain_collision(&mut pair_failure);
+        let done = {
+            let _guard = needs_lock.then(lock_ode_global_state);
+            // SAFETY: as in `collide_plain` (the space is live and its geoms are this
+            // world's, the parameters point into this world); the world's step
+            // threading implementation is its own self-threaded one.
+            unsafe { guard::collide_and_step(raw_space, &mut plain, dt, self.exact_step_contacts) }
+        };
+        match done {
+            guard::CollideStep::CollideFailed(failure) => Err(self.collision_failed(failure)),
+            guard::CollideStep::NotStepped => {
+                self.end_plain_collision(&plain)?;
+                // More contact points than the exact stepper's limit: the island check
+                // decides, in the separate step.
+                Ok(self.step(dt))
+            }
+            guard::CollideStep::StepFailed(failure) => {
+                self.end_plain_collision(&plain)?;
+                Ok(self.finish_step(dt, Err(failure)))
+            }
+            guard::CollideStep::Stepped(stepped) => {
+                self.end_plain_collision(&plain)?;
+                Ok(self.finish_step(dt, Ok(stepped)))
+            }
+        }
+    }
+
     /// The accumulators (and, after a divergence, the whole state) of every body.
-    #[inline]
+    #[inline(always)]
     fn check_before_step(&mut self) -> Result<()> {
         if self.diverged.is_some() {
             self.check_after_step()?;
