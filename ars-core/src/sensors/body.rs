@@ -358,8 +358,12 @@ impl Sensor for Imu {
     fn measure(&mut self, sim: &Scene) -> Result<ImuReading> {
         let a = self.inner.measure(sim)?.linear;
         let b = sim.body(self.inner.object)?;
-        let to_imu = (b.quaternion() * self.turn).inverse();
-        Ok(ImuReading { specific_force: to_imu * (a - sim.gravity()), angular_velocity: to_imu * b.angular_velocity() })
+        // Into the body's frame, then the IMU's (the identity, exactly, unless mounted).
+        let (to_body, to_imu) = (b.rotation().inverse(), self.turn.inverse());
+        Ok(ImuReading {
+            specific_force: to_imu * (to_body * (a - sim.gravity())),
+            angular_velocity: to_imu * (to_body * b.angular_velocity()),
+        })
     }
     fn objects(&self) -> Vec<ObjectId> {
         vec![self.inner.object]
