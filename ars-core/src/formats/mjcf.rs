@@ -100,7 +100,9 @@
 //!   among ODE's upper 32 category and collide bits, so at most [`MAX_CONTACT_PAIRS`];
 //!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its contact
 //!   parameters are read and said unused. Unlike MuJoCo's, a pair does not override
-//!   an `<exclude>` or the rule that bodies one joint joins never touch.
+//!   an `<exclude>` or the rule that bodies one joint joins never touch; and a paired
+//!   geom also touches what was made outside the model (ARS's own shapes and floors,
+//!   URDF robots), whose collide bits take in ODE's upper 32.
 //! - **Sensors.** `jointpos` and `jointvel` of hinges and slides; `framepos`,
 //!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
 //!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
