@@ -514,14 +514,155 @@ fn sensors_read_their_joints_and_bodies() {
     assert!(ja.rate.abs() > 0.1);
 
     // What ARS cannot read is said, naming the element and line.
-    let site = ACTUATED.replace("</mujoco>", r#"<sensor><framepos objtype="site" objname="s"/></sensor></mujoco>"#);
-    let e = Simulation::new().unwrap().load_mjcf_text(&site, "site.xml", &MjcfOptions::new()).unwrap_err();
-    assert!(e.to_string().contains("objtype site") && e.to_string().contains("<framepos>"), "{e}");
+    let geom = ACTUATED.replace("</mujoco>", r#"<sensor><framepos objtype="geom" objname="g"/></sensor></mujoco>"#);
+    let e = Simulation::new().unwrap().load_mjcf_text(&geom, "geom.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("objtype geom") && e.to_string().contains("<framepos>"), "{e}");
     let missing = ACTUATED.replace("</mujoco>", r#"<sensor><jointpos joint="nope"/></sensor></mujoco>"#);
     let mut sim = Simulation::new().unwrap();
     let e = sim.load_mjcf_text(&missing, "missing.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"nope\""), "{e}");
     assert_eq!(sim.objects().count(), 0);
+}
+
+/// A box resting on the floor with sites for every sensor read on sites, and a free
+/// ball above it.
+const SITES: &str = r#"
+<mujoco model="sites">
+  <default><site type="sphere" size="0.01"/><default class="pad"><site type="box"/></default></default>
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+    <site name="in_the_world" pos="0 0 2"/>
+    <body name="box" pos="0 0 0.05">
+      <freejoint/>
+      <geom type="box" size="0.2 0.1 0.05" mass="2"/>
+      <geom type="sphere" size="0.02" pos="0.15 0 0.05" mass="0.5"/>
+      <site name="top" pos="0 0.08 0.05" euler="0 0 90"/>
+      <site name="bottom" class="pad" size="0.21 0.11 0.01" pos="0 0 -0.05"/>
+      <site name="down" pos="0.1 0 0" zaxis="0 0 -1"/>
+      <site/>
+    </body>
+    <body name="ball" pos="0 0 1"><freejoint/><geom type="sphere" size="0.05" mass="1"/>
+      <site name="ball_pad" size="0.06"/>
+    </body>
+  </worldbody>
+  <sensor>
+    <accelerometer name="acc" site="top"/>
+    <gyro name="gyro" site="top"/>
+    <touch name="touch" site="bottom"/>
+    <touch name="ball_touch" site="ball_pad"/>
+    <rangefinder name="range" site="down"/>
+    <rangefinder name="sky" site="top"/>
+    <framepos name="top_at" objtype="site" objname="top"/>
+    <framequat name="box_turn" objtype="xbody" objname="box"/>
+    <framelinvel name="ball_v" objtype="xbody" objname="ball"/>
+  </sensor>
+</mujoco>"#;
+
+#[test]
+fn sites_carry_sensors_that_read_a_resting_box_as_mujoco_would() {
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(SITES, "sites.xml", &MjcfOptions::new()).unwrap();
+    // Named sites only; each placed relative to its body's centre of mass.
+    let names: Vec<&str> = model.sites.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["top", "bottom", "down", "ball_pad"]);
+    // The box's centre of mass: 2 kg at 0 and 0.5 kg at x = 0.15, z = 0.05.
+    let com = Vector3::new(0.5 * 0.15 / 2.5, 0.0, 0.5 * 0.05 / 2.5);
+    let top = model.site("top").unwrap();
+    assert_eq!(top.body, "box");
+    assert!((top.offset.translation.vector - (Vector3::new(0.0, 0.08, 0.05) - com)).norm() < 1e-12);
+    assert!((top.offset.rotation.angle() - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    assert_eq!(
+        model.site("bottom").unwrap().zone,
+        ars::sensors::TouchZone::Box { half_extents: Vector3::new(0.21, 0.11, 0.01) },
+        "the class's type, the site's size"
+    );
+    assert!(
+        matches!(model.site("ball_pad").unwrap().zone, ars::sensors::TouchZone::Sphere { radius } if radius == 0.06)
+    );
+    let kinds: Vec<&str> = model.sensors.iter().map(|s| s.kind.as_str()).collect();
+    assert_eq!(
+        kinds,
+        [
+            "accelerometer",
+            "gyro",
+            "touch",
+            "touch",
+            "rangefinder",
+            "rangefinder",
+            "framepos",
+            "framequat",
+            "framelinvel"
+        ]
+    );
+    assert!(model.sensors.iter().all(|s| s.id.is_some() && s.mount.is_some()));
+
+    sim.run_for(1.0).unwrap();
+    let tables = sim.sensor_tables();
+    let last = |name: &str| {
+        let i = model.sensors.iter().position(|s| s.name == name).unwrap();
+        let table = tables[i].1;
+        table.cells(table.len() - 1)
+    };
+    let g = 9.81;
+    // At rest: the accelerometer feels g up the box's Z, which is the site's Z (the site
+    // is turned about Z only); the gyro reads nothing.
+    let acc: Vec<f64> = last("acc")[..3].iter().map(|v| v.unwrap()).collect();
+    assert!((acc[0].abs() + acc[1].abs()) < 1e-3 && (acc[2] - g).abs() < 1e-3, "{acc:?}");
+    let gyro: Vec<f64> = last("gyro")[3..].iter().map(|v| v.unwrap()).collect();
+    assert!(gyro.iter().all(|w| w.abs() < 1e-3), "{gyro:?}");
+    // The floor carries the box and the ball on it: the pad under the box feels both.
+    let touch = last("touch")[1].unwrap();
+    assert!((touch - 3.5 * g).abs() < 1e-3 * 3.5 * g, "{touch}");
+    assert!(last("touch")[0].unwrap() >= 3.0, "the box rests on several contact points");
+    // The ball, fallen on the box, is pressed by it from below and presses nothing.
+    let ball_touch = last("ball_touch")[1].unwrap();
+    assert!((ball_touch - g).abs() < 1e-2 * g, "{ball_touch}");
+    // The ray down from the box's mid-height, not seeing the box, meets the floor.
+    let range = last("range")[0].unwrap();
+    assert!((range - 0.05).abs() < 1e-3, "{range}");
+    // Up from the top, nothing: MuJoCo's −1, an empty cell here.
+    assert_eq!(last("sky")[0], None);
+    // The site's position is the box's pose applied to its offset.
+    let pose = sim.pose(model.body("box").unwrap()).unwrap();
+    let at = pose * ars::nalgebra::Point3::from(top.offset.translation.vector);
+    let read: Vec<f64> = last("top_at").iter().map(|v| v.unwrap()).collect();
+    assert!((Vector3::from_column_slice(&read) - at.coords).norm() < 1e-12);
+    // The box's frame (xbody) has the model's turn: −90° about X.
+    let q: Vec<f64> = last("box_turn").iter().map(|v| v.unwrap()).collect();
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    assert!((q[0] - half).abs() < 1e-3 && (q[1] + half).abs() < 1e-3, "{q:?}");
+}
+
+#[test]
+fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
+    let text = SITES.replace(r#"<gyro name="gyro" site="top"/>"#, r#"<accelerometer site="nowhere"/>"#);
+    let mut sim = Simulation::new().unwrap();
+    let e = sim.load_mjcf_text(&text, "sites.xml", &MjcfOptions::new()).unwrap_err();
+    let line = text.lines().position(|l| l.contains("nowhere")).unwrap() + 1;
+    let Error::Format { element, line: Some(at), problem, .. } = &e else { panic!("{e:?}") };
+    assert_eq!((element.as_str(), *at as usize), ("<accelerometer>", line), "{e}");
+    assert!(problem.contains("site \"nowhere\""), "{e}");
+    assert_eq!(sim.objects().count(), 0, "nothing is left behind");
+
+    // What is not supported is refused, or skipped and said.
+    let text = SITES.replace(
+        "</sensor>",
+        r#"<magnetometer site="top"/>
+    <framequat objtype="body" objname="box"/>
+    <gyro site="in_the_world"/>
+    <framepos objtype="geom" objname="floor"/>
+    <rangefinder site="down" cutoff="1"/>
+    <rangefinder site="down" data="normal"/>
+  </sensor>"#,
+    );
+    let mut sim = Simulation::new().unwrap();
+    let e = sim.load_mjcf_text(&text, "sites.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(e.contains("<magnetometer>"), "{e}");
+    let model = sim.load_mjcf_text(&text, "sites.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
+    assert_eq!(model.sensors.len(), 9, "the supported ones only");
+    for what in ["<magnetometer>", "inertial frame", "world body", "objtype geom", "cutoff", "other than \"dist\""] {
+        assert!(model.skipped.iter().any(|s| s.contains(what)), "{what} in {:?}", model.skipped);
+    }
 }
 
 #[test]

@@ -162,3 +162,44 @@ fn a_scene_keeps_its_space_and_a_file_without_one_has_the_simple_space() {
     let old = Simulation::load_scene(&without).unwrap();
     assert_eq!(old.space_kind(), SpaceKind::Simple);
 }
+
+#[test]
+fn sensors_at_an_offset_and_touch_zones_are_saved_with_them() {
+    use ars::nalgebra::{Isometry3, UnitQuaternion, Vector3};
+    use ars::sensors::{Gps, Imu, Orientation, SensorSettings, Touch, TouchZone};
+    let mut original = ConicalPendulum::default().create_simulation().unwrap();
+    let pole = original.object("cylinder").unwrap().id();
+    let turn = UnitQuaternion::from_euler_angles(0.1, 0.2, 0.3);
+    let mount = Isometry3::from_parts(Vector3::new(0.0, 0.2, 0.05).into(), turn);
+    original.add_sensor(Gps::new(pole).at(Vector3::new(0.0, 0.2, 0.0))).unwrap();
+    original.add_sensor(Imu::new(pole).at(mount)).unwrap();
+    original.add_sensor(Orientation::new(pole).at(turn)).unwrap();
+    original.add_sensor(Orientation::new(pole)).unwrap();
+    let zone = TouchZone::Sphere { radius: 0.1 };
+    original.add_sensor(Touch::new(pole).within(zone, mount)).unwrap();
+    let file = original.scene_file().unwrap();
+    let kept: Vec<(&str, Option<&SensorSettings>)> =
+        file.sensors.iter().map(|s| (s.kind.as_str(), s.settings.as_ref())).collect();
+    assert_eq!(kept[0], ("Gps", Some(&SensorSettings::Offset { pose: Isometry3::translation(0.0, 0.2, 0.0) })));
+    assert_eq!(kept[1], ("Imu", Some(&SensorSettings::Offset { pose: mount })));
+    assert_eq!(kept[3], ("Orientation", None), "no offset, nothing kept");
+    assert_eq!(kept[4], ("Touch", Some(&SensorSettings::Touch { zone, pose: mount })));
+    let mut loaded = Simulation::from_scene_file(&file).unwrap();
+    let (a, b) = (driver(&original), driver(&loaded));
+    original.add_hooks(a).unwrap();
+    loaded.add_hooks(b).unwrap();
+    original.run_for(0.2).unwrap();
+    loaded.run_for(0.2).unwrap();
+    // The same readings: the offsets came back.
+    let (ours, theirs) = (loaded.sensor_tables(), original.sensor_tables());
+    for (i, (name, table)) in ours.iter().enumerate() {
+        let other = theirs[i + 1].1;
+        let last = table.len() - 1;
+        assert_eq!(table.cells(last), other.cells(last), "{name}");
+    }
+    // Settings a kind cannot take are refused.
+    let mut wrong = file.clone();
+    wrong.sensors[0].kind = "Inclinometer".into();
+    let e = Simulation::from_scene_file(&wrong).unwrap_err().to_string();
+    assert!(e.contains("Inclinometer") && e.contains("cannot take"), "{e}");
+}

@@ -782,10 +782,12 @@ impl PySimulation {
 
     /// Loads a MuJoCo model from an MJCF file (see the Rust `Scene::load_mjcf` for what
     /// is read). Returns `{"name", "bodies", "joints", "timestep", "gravity",
-    /// "actuators", "sensors", "armature", "skipped"}`: bodies and joints by their MJCF
-    /// names in file order, the file's time step and gravity (not applied), the file's
-    /// sensors made (`ars.Sensor`s by name), the inertia (3×3, body frame) each object
-    /// carries for its joint's armature, what was skipped.
+    /// "actuators", "sensors", "sites", "armature", "skipped"}`: bodies and joints by
+    /// their MJCF names in file order, the file's time step and gravity (not applied),
+    /// the file's sensors made (`ars.Sensor`s by name; see the Rust `MjcfSensor` for the
+    /// columns that hold MuJoCo's values), the bodies' named sites (`{name: body}`), the
+    /// inertia (3×3, body frame) each object carries for its joint's armature, what was
+    /// skipped.
     #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false))]
     fn load_mjcf<'py>(
         slf: Bound<'py, Self>,
@@ -815,12 +817,21 @@ impl PySimulation {
                 "jointpos" => "joint_positions",
                 "jointvel" => "joint_velocities",
                 "framepos" => "gps",
-                _ => "velometer",
+                "framelinvel" => "velometer",
+                "framequat" => "orientation",
+                "accelerometer" | "gyro" => "imu",
+                "touch" => "touch",
+                _ => "laser",
             };
             let typed = crate::sensors::Typed::Table(id);
             sensors.set_item(&sensor.name, crate::sensors::PySensor::new(slf.clone().unbind(), kind.into(), typed))?;
         }
         dict.set_item("sensors", sensors)?;
+        let sites = pyo3::types::PyDict::new(py);
+        for site in &model.sites {
+            sites.set_item(&site.name, &site.body)?;
+        }
+        dict.set_item("sites", sites)?;
         let armature = pyo3::types::PyDict::new(py);
         for (name, inertia) in &model.armature {
             let rows: Vec<Vec<f64>> = (0..3).map(|r| (0..3).map(|c| inertia[(r, c)]).collect()).collect();

@@ -501,3 +501,218 @@ def test_sensors_read_what_mujoco_s_read(tmp_path):
         "gps",
         "joint_velocities",
     ]
+
+
+SITE_SENSORS = """
+<mujoco model="site sensors">
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+    <body name="arm" pos="0 0 1.5">
+      <joint name="hinge" type="hinge" axis="0 1 0"/>
+      <inertial pos="0.1 0 -0.2" quat="0.9 0.1 0.3 0.2" mass="1.5" diaginertia="0.02 0.03 0.04"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -0.5" size="0.03"/>
+      <site name="tip" pos="0.05 0.02 -0.5" euler="10 20 30"/>
+      <site name="down" pos="0.2 0 -0.5" zaxis="0.3 0 -1"/>
+      <site name="up" zaxis="0 0 1"/>
+    </body>
+    <body name="box" pos="1 0 1" euler="20 -10 40">
+      <freejoint/>
+      <geom type="box" size="0.1 0.08 0.05"/>
+      <site name="corner" pos="0.1 0.08 0.05" euler="0 30 0"/>
+    </body>
+  </worldbody>
+  <sensor>
+    <gyro name="arm_gyro" site="tip"/>
+    <accelerometer name="arm_acc" site="tip"/>
+    <framepos name="tip_at" objtype="site" objname="tip"/>
+    <framequat name="tip_turn" objtype="site" objname="tip"/>
+    <framelinvel name="tip_v" objtype="site" objname="tip"/>
+    <framepos name="arm_at" objtype="xbody" objname="arm"/>
+    <framequat name="arm_turn" objtype="xbody" objname="arm"/>
+    <framequat name="arm_inertia" objtype="body" objname="arm"/>
+    <rangefinder name="floor_range" site="down"/>
+    <rangefinder name="sky_range" site="up"/>
+    <gyro name="box_gyro" site="corner"/>
+    <accelerometer name="box_acc" site="corner"/>
+    <framepos name="corner_at" objtype="site" objname="corner"/>
+    <framelinvel name="corner_v" objtype="site" objname="corner"/>
+    <framequat name="box_turn" objtype="xbody" objname="box"/>
+  </sensor>
+</mujoco>"""
+
+# MuJoCo's world (x, y, z) is ARS's (x, z, -y): this turn (-90 degrees about X).
+TURN = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+TURN_QUAT = np.array([np.sqrt(0.5), -np.sqrt(0.5), 0.0, 0.0])
+
+
+def quat_mul(a, b):
+    w1, x1, y1, z1 = a
+    w2, x2, y2, z2 = b
+    return np.array([
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ])  # fmt: skip
+
+
+def moving_site_sensors(path, dt, duration=None):
+    """The model in ARS and in MuJoCo, the arm swinging at 1.5 rad/s and the box flying
+    and tumbling, in ARS after `duration` (one step of `dt` by default); MuJoCo's at
+    the start (forward)."""
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    d.qvel[0] = 1.5
+    d.qvel[1:4] = [0.3, -0.2, 0.5]  # the box's origin (its centre), world frame
+    d.qvel[4:7] = [1.0, -2.0, 0.7]  # its angular velocity, its frame
+    mujoco.mj_forward(m, d)
+    sim = ars.Simulation(time_step=dt)
+    model = sim.load_mjcf(path)
+    arm, box = sim.body("arm"), sim.body("box")
+    spin = TURN @ np.array([0.0, 1.5, 0.0])
+    arm.set_angular_velocity(spin)
+    arm.set_linear_velocity(np.cross(spin, np.array(arm.position) - TURN @ [0.0, 0.0, 1.5]))
+    box.set_linear_velocity(TURN @ d.qvel[1:4])
+    box.set_angular_velocity(TURN @ d.xmat[2].reshape(3, 3) @ d.qvel[4:7])
+    if duration is None:
+        sim.step()
+    else:
+        sim.run(duration)
+    return m, d, sim, model
+
+
+def last_row(sensor):
+    row = sensor.records()[-1]
+    return np.array([float(row[field]) for field in row.dtype.names[2:]])
+
+
+def test_site_sensors_read_what_mujoco_s_read(tmp_path):
+    """gyro, framepos, framequat, framelinvel on sites and body frames, and
+    rangefinders, as MuJoCo computes them: after one step of a microsecond, ARS's
+    records equal MuJoCo's sensordata after the same step to 1e-9 (MuJoCo's (x, y, z)
+    being ARS's (x, z, -y); a quaternion turned the same way, up to its sign)."""
+    path = tmp_path / "sites.xml"
+    path.write_text(SITE_SENSORS)
+    m, d, _, model = moving_site_sensors(path, 1e-6)
+    assert model["sites"] == {"tip": "arm", "down": "arm", "up": "arm", "corner": "box"}
+    # ARS's rays are cast in the collision pass at the start of the step, as MuJoCo's
+    # sensordata after mj_step are computed before it integrates.
+    ranges = {name: d.sensor(name).data[0] for name in ["floor_range", "sky_range"]}
+    # MuJoCo's sensors at the end of the same step.
+    m.opt.timestep = 1e-6
+    mujoco.mj_step(m, d)
+    mujoco.mj_forward(m, d)
+
+    def theirs(name):
+        return np.array(d.sensor(name).data)
+
+    ours = {name: last_row(sensor) for name, sensor in model["sensors"].items()}
+    kinds = {name: sensor.kind for name, sensor in model["sensors"].items()}
+    assert (
+        kinds["arm_gyro"] == "imu"
+        and kinds["tip_turn"] == "orientation"
+        and kinds["floor_range"] == "laser"
+    )
+    for name in ["arm_gyro", "box_gyro"]:
+        # The site's angular velocity in its own frame: the IMU's last three columns.
+        assert ours[name][3:] == pytest.approx(theirs(name), abs=1e-9), name
+        assert np.abs(theirs(name)).max() > 1.0, name
+    for name in ["tip_at", "arm_at", "corner_at"]:
+        assert ours[name] == pytest.approx(TURN @ theirs(name), abs=1e-9), name
+    # The free box's corner moves as MuJoCo's to 1e-9. The arm's tip not quite: ODE
+    # keeps a hinged body's velocity tangent to its path at the start of the step, so
+    # it lags MuJoCo's (tangent at the end) by the centripetal acceleration times the
+    # step, w^2 r dt (1.5^2 * 0.6 m * 1 us = 1.35e-6 m/s at most on this arm).
+    assert ours["corner_v"][:3] == pytest.approx(TURN @ theirs("corner_v"), abs=1e-9)
+    assert ours["tip_v"][:3] == pytest.approx(TURN @ theirs("tip_v"), abs=1.5**2 * 0.6 * 1e-6)
+    for name in ["tip_turn", "arm_turn", "arm_inertia", "box_turn"]:
+        q = quat_mul(TURN_QUAT, theirs(name))
+        q = q if q[0] >= 0 else -q
+        assert ours[name] == pytest.approx(q, abs=1e-9), name
+    # The inertial frame is not the body's: the two quaternions differ.
+    assert np.abs(ours["arm_turn"] - ours["arm_inertia"]).max() > 0.1
+    # The ray down meets the floor; the one up meets nothing (MuJoCo's -1, NaN here).
+    assert ours["floor_range"][0] == pytest.approx(ranges["floor_range"], abs=1e-9)
+    assert ranges["floor_range"] > 0.9
+    assert ranges["sky_range"] == -1.0 and np.isnan(ours["sky_range"][0])
+
+
+def test_accelerometers_converge_to_mujoco_s(tmp_path):
+    """MuJoCo's accelerometer is the site's acceleration at an instant, minus gravity,
+    in the site's frame (mj_rnePostConstraint: with its centripetal and tangential
+    terms); ARS's is the change of the site's velocity over a step, minus gravity.
+
+    On the free box, over one step from the same state, they differ by about the jerk
+    times half the step: the gap shrinks tenfold with the step. On the hinged arm, ODE
+    keeps the body's velocity tangent to its path at the start of each step and its
+    error correction brings the centripetal pull back over the next steps: after a
+    quarter second of swinging, the gap to MuJoCo's (run with a 10 us step) halves
+    with the step."""
+    path = tmp_path / "sites.xml"
+    path.write_text(SITE_SENSORS)
+    gaps = []
+    for dt in [1e-3, 1e-4, 1e-5]:
+        m, d, sim, model = moving_site_sensors(path, dt)
+        theirs = np.array(d.sensor("box_acc").data)
+        gaps.append(np.abs(last_row(model["sensors"]["box_acc"])[:3] - theirs).max())
+    for coarse, fine in zip(gaps, gaps[1:]):
+        assert 8 < coarse / fine < 12, gaps
+    # The free box feels no gravity: what it reads is its spin's.
+    assert gaps[2] < 1e-4 * np.abs(theirs).max() and np.abs(theirs).max() > 0.1, (gaps, theirs)
+
+    m, d, _, _ = moving_site_sensors(path, 1e-5)
+    m.opt.timestep = 1e-5
+    mujoco.mj_step(m, d, nstep=25000)
+    mujoco.mj_forward(m, d)
+    theirs = np.array(d.sensor("arm_acc").data)
+    gaps = []
+    for dt in [1e-3, 5e-4, 2.5e-4]:
+        _, _, sim, model = moving_site_sensors(path, dt, duration=0.25)
+        assert sim.time == pytest.approx(0.25)
+        gaps.append(np.abs(last_row(model["sensors"]["arm_acc"])[:3] - theirs).max())
+    for coarse, fine in zip(gaps, gaps[1:]):
+        assert 1.6 < coarse / fine < 2.5, gaps
+    assert gaps[2] < 2e-3 * np.abs(theirs).max(), (gaps, theirs)
+
+
+TOUCHED = """
+<mujoco model="touched">
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+    <body name="box" pos="0 0 0.3" euler="0 0 30">
+      <freejoint/>
+      <geom type="box" size="0.1 0.08 0.05" mass="2"/>
+      <site name="pad" type="box" size="0.11 0.09 0.01" pos="0 0 -0.05"/>
+      <site name="lid" type="box" size="0.11 0.09 0.01" pos="0 0 0.05"/>
+    </body>
+  </worldbody>
+  <sensor>
+    <touch name="pad" site="pad"/>
+    <touch name="lid" site="lid"/>
+  </sensor>
+</mujoco>"""
+
+
+def test_touch_reads_a_resting_box_s_weight(tmp_path):
+    """A box falls on the floor: its pad (a site around its bottom face) feels nothing
+    in the air, then its weight m·g at rest, as MuJoCo's touch does; its lid nothing."""
+    path = tmp_path / "touched.xml"
+    path.write_text(TOUCHED)
+    sim = ars.Simulation(time_step=1e-3)
+    model = sim.load_mjcf(path)
+    pad, lid = model["sensors"]["pad"], model["sensors"]["lid"]
+    sim.step()
+    assert list(last_row(pad)) == [0.0, 0.0]
+    sim.run(2.0)
+    weight = 2.0 * 9.81
+    contacts, force = last_row(pad)
+    # At rest, ODE's contact impulses balance gravity over each step: the weight to
+    # rounding (19.62 N read); MuJoCo's soft contacts settle to it too (19.62000001 N).
+    assert force == pytest.approx(weight, rel=1e-6)
+    assert contacts >= 4
+    assert list(last_row(lid)) == [0.0, 0.0]
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    mujoco.mj_step(m, d, nstep=int(2.0 / m.opt.timestep))
+    assert d.sensor("pad").data[0] == pytest.approx(force, rel=1e-6)
+    assert d.sensor("lid").data[0] == 0.0

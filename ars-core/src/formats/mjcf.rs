@@ -74,7 +74,13 @@
 //!   place, and an error in it names that file.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (textures, materials beyond their colour, meshes not used by a geom),
-//!   `<statistic>`, `<size>`, `<custom>`, `<light>`, `<camera>`, `<site>`.
+//!   `<statistic>`, `<size>`, `<custom>`, `<light>`, `<camera>`, unnamed `<site>`s
+//!   (nothing can name them).
+//! - **Sites.** A body's named `<site>`s (`pos` and orientation, `type` `sphere`,
+//!   `capsule`, `cylinder`, `box` or `ellipsoid` with its `size`, MuJoCo's 0.005 m
+//!   where not given; classes as other elements) are listed in [`MjcfModel::sites`]
+//!   with their frames relative to their body's object; `fromto` is unsupported. Sites
+//!   of the world body are read for their names only: a sensor on one is unsupported.
 //! - **Attributes.** Every attribute of the elements read is checked against MuJoCo's
 //!   schema (`mjcf_schema.rs`): one MuJoCo does not know (a typo) is an error naming it,
 //!   its element and line (or skipped with a warning); one it knows and ARS does not
@@ -97,12 +103,17 @@
 //!   an `<exclude>` or the rule that bodies one joint joins never touch; and a paired
 //!   geom also touches what was made outside the model (ARS's own shapes and floors,
 //!   URDF robots), whose collide bits take in ODE's upper 32.
-//! - **Sensors.** `jointpos` and `jointvel` of hinges and slides, `framepos` and
-//!   `framelinvel` of a body (`objtype="body"`: its centre of mass, as ARS's
-//!   [`Gps`](crate::sensors::Gps) and [`Velometer`](crate::sensors::Velometer) read it,
-//!   in the simulation's Y-up frame), made by
-//!   [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) and listed in
-//!   [`MjcfModel::sensors`]; other kinds and frames are unsupported.
+//! - **Sensors.** `jointpos` and `jointvel` of hinges and slides; `framepos`,
+//!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
+//!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
+//!   (`xbody`) or a site; `accelerometer`, `gyro`, `touch` and `rangefinder` on a site:
+//!   made by [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) and listed in
+//!   [`MjcfModel::sensors`] ([`MjcfSensor`] says which ARS sensor each becomes and
+//!   which of its columns hold MuJoCo's value, in the simulation's Y-up frame). Other
+//!   kinds and frames, `reftype`, a `cutoff`, and sensors on the world body's sites are
+//!   unsupported; a sensor naming a joint, body or site the model lacks is an error at
+//!   its line. A `touch` counts the contacts whose point lies inside the site's volume
+//!   (MuJoCo also counts those whose normal, cast as a ray from the point, crosses it).
 //!
 //! Unnamed bodies and joints are named `body{N}` and `joint{N}` with N MuJoCo's id (the
 //! world body is 0, bodies are numbered in the file's order).
@@ -120,7 +131,7 @@ use crate::handle::{GeomHandle, JointId, ObjectId};
 use crate::mesh::MeshMass;
 use crate::scene::JointEnd;
 use crate::scene::Scene;
-use crate::sensors::AnySensorId;
+use crate::sensors::{AnySensorId, Mount, TouchZone};
 use crate::shape::Shape;
 
 /// How an MJCF model is loaded.
@@ -200,24 +211,83 @@ pub struct MjcfModel {
     /// [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) (a scene alone has no
     /// sensors: [`Scene::load_mjcf`] lists them unmade).
     pub sensors: Vec<MjcfSensor>,
+    /// The named `<site>`s of the bodies, in the file's order.
+    pub sites: Vec<MjcfSite>,
+}
+
+/// A `<site>` of a body: a frame fixed on it (where sensors sit) and the volume a
+/// `touch` sensor feels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfSite {
+    /// Its name.
+    pub name: String,
+    /// The body it is on, by name.
+    pub body: String,
+    /// The body's object.
+    pub object: ObjectId,
+    /// The site's frame relative to the object's: ARS keeps a body's frame at its centre
+    /// of mass, turned as the MJCF body, so this is the site's `pos` and orientation in
+    /// its body less the body's centre of mass (`(site.pos − com, site.quat)` in the MJCF
+    /// body's axes).
+    pub offset: Isometry3<f64>,
+    /// Its volume (`type` and `size`, MuJoCo's half sizes), centred on its frame.
+    pub zone: TouchZone,
 }
 
 /// A sensor of the file and the ARS sensor made of it.
+///
+/// Each kind becomes (its record's columns that hold MuJoCo's value; MuJoCo's world
+/// (x, y, z) is the simulation's (x, z, −y)):
+/// - `jointpos`, `jointvel`: a [`JointPositions`](crate::sensors::JointPositions) or
+///   [`JointVelocities`](crate::sensors::JointVelocities) of its joint (its one column).
+/// - `framepos`: a [`Gps`](crate::sensors::Gps) at the frame's origin (its columns, in
+///   the simulation's world frame).
+/// - `framelinvel`: a [`Velometer`](crate::sensors::Velometer) at the frame's origin
+///   (its first three columns, world frame). On a jointed body it lags MuJoCo's by
+///   about `ω² r dt` (ODE keeps a constrained body's velocity tangent to its path at
+///   the start of the step).
+/// - `framequat`: an [`Orientation`](crate::sensors::Orientation) of the frame (its
+///   quaternion `q` is MuJoCo's `q_mj` turned with the model, `q = q_turn · q_mj`,
+///   `q_turn` the −90° turn about X, up to the sign: ARS's has `w ≥ 0`).
+/// - `accelerometer`, `gyro`: an [`Imu`](crate::sensors::Imu) at the site, in the
+///   site's frame as MuJoCo's (its first three columns, the specific force, are the
+///   `accelerometer`; its last three the `gyro`). The acceleration is the change of the
+///   site's velocity over the step (MuJoCo's is the acceleration at an instant): they
+///   agree as the step shrinks, on a jointed body once ODE's error correction has
+///   brought in the centripetal pull (a few steps after a state is set).
+/// - `touch`: a [`Touch`](crate::sensors::Touch) on the site's body within the site's
+///   volume (its second column, the normal force).
+/// - `rangefinder`: a [`Laser`](crate::sensors::Laser) of [`RANGEFINDER_LENGTH`] at the
+///   site along its +Z, not seeing the site's body (its first column; empty where MuJoCo
+///   reads −1, nothing hit).
+///
+/// The frame of `objtype="body"` is the body's inertial frame (its centre of mass,
+/// turned as its `<inertial>`), of `xbody` the body's own frame, of `site` the site's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MjcfSensor {
     /// Its name (`sensor{N}` when unnamed, N its index among the sensors).
     pub name: String,
-    /// `jointpos`, `jointvel`, `framepos` or `framelinvel`.
+    /// Its element: `jointpos`, `jointvel`, `framepos`, `framelinvel`, `framequat`,
+    /// `accelerometer`, `gyro`, `touch` or `rangefinder`.
     pub kind: String,
-    /// The joint or body it reads, by name.
+    /// What its target is: `joint`, `body` (its inertial frame), `xbody` (its frame) or
+    /// `site`.
+    pub objtype: String,
+    /// The joint, body or site it reads, by name.
     pub target: String,
-    /// The ARS sensor: a [`JointPositions`](crate::sensors::JointPositions) or
-    /// [`JointVelocities`](crate::sensors::JointVelocities) of its joint, a
-    /// [`Gps`](crate::sensors::Gps) or [`Velometer`](crate::sensors::Velometer) (whose
-    /// first three columns are MuJoCo's `framelinvel`) of its body (its centre of mass,
-    /// in the simulation's Y-up frame); `None` until made.
+    /// Where it reads, once the model is built: its object and the frame's offset from
+    /// the object's origin (the body's centre of mass, turned as the body); `None` for
+    /// a joint's sensor.
+    pub mount: Option<Mount>,
+    /// The ARS sensor made of it (see above); `None` until made.
     pub id: Option<AnySensorId>,
 }
+
+/// The length of the ray of a `rangefinder` (MuJoCo's has none), m.
+pub const RANGEFINDER_LENGTH: f64 = 1e4;
+
+/// MuJoCo's default size of a site, m.
+const SITE_SIZE: f64 = 0.005;
 
 impl MjcfModel {
     /// The object of a body, by name.
@@ -228,6 +298,10 @@ impl MjcfModel {
     pub fn joint(&self, name: &str) -> Option<JointId> {
         self.joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
     }
+    /// A site, by name.
+    pub fn site(&self, name: &str) -> Option<&MjcfSite> {
+        self.sites.iter().find(|s| s.name == name)
+    }
 }
 
 /// The mass (and inertia) of each light link that chains several joints of one body,
@@ -235,6 +309,7 @@ impl MjcfModel {
 pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
 
 /// A problem at a place of the file (or of a file it includes).
+#[derive(Clone)]
 struct Problem {
     element: String,
     line: u32,
@@ -553,6 +628,20 @@ struct Body {
     geoms: Vec<Geom>,
     joints: Vec<Joint>,
     children: Vec<Body>,
+    /// Its named sites.
+    sites: Vec<Site>,
+    /// The turn of its inertial frame from its frame, when its `<inertial>` gives it
+    /// (`diaginertia`, used for its mass).
+    principal: Option<UnitQuaternion<f64>>,
+}
+
+/// A named `<site>`.
+#[derive(Clone, Debug)]
+struct Site {
+    name: String,
+    /// Relative to its body.
+    frame: Isometry3<f64>,
+    zone: TouchZone,
 }
 
 /// Everything read from the file before anything is built.
@@ -568,6 +657,10 @@ struct Model {
     /// `<contact><pair>`: pairs of geoms, by name, that touch whatever their bits say.
     pairs: Vec<(String, String)>,
     sensors: Vec<MjcfSensor>,
+    /// Where each sensor is in the file (for errors found once the whole file is read).
+    sensor_places: Vec<Problem>,
+    /// The sites of the world body, by name.
+    world_sites: Vec<String>,
     skipped: Vec<String>,
 }
 
@@ -774,16 +867,23 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             geoms: Vec::new(),
             joints: Vec::new(),
             children: Vec::new(),
+            sites: Vec::new(),
+            principal: None,
         };
         let mut inertial = None;
+        let mut principal = None;
         for child in self.tree.elements(node) {
             match child.tag_name().name() {
                 "geom" => body.geoms.extend(self.geom(child, &class)?),
                 "joint" => body.joints.push(self.joint(child, &class, false)?),
                 "freejoint" => body.joints.push(self.joint(child, &class, true)?),
                 "body" => body.children.push(self.body(child, &class)?),
-                "inertial" => inertial = Some(self.inertial(child, &class)?),
-                "site" | "camera" | "light" => {}
+                "inertial" => {
+                    inertial = Some(self.inertial(child, &class)?);
+                    principal = self.principal_axes(child, &class)?;
+                }
+                "site" => body.sites.extend(self.site(child, &class)?),
+                "camera" | "light" => {}
                 other => self.unsupported(&child, &format!("<{other}> in a body"))?,
             }
         }
@@ -792,6 +892,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             None => inertial.is_none(),
         };
         body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial };
+        body.principal = if from_geoms { None } else { principal };
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
         }
@@ -835,39 +936,142 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         Ok(mesh)
     }
 
+    /// A `<site>`, or `None` when it has no name (no sensor can name it) or is skipped.
+    fn site(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Site>> {
+        let a = Attrs::new(node, self.defaults, class);
+        let Some(name) = node.attribute("name") else { return Ok(None) };
+        if a.get("fromto").is_some() {
+            self.unsupported(&node, "a site placed by fromto")?;
+            return Ok(None);
+        }
+        let size = a.numbers("size")?.unwrap_or_default();
+        if let Some(s) = size.iter().find(|s| **s <= 0.0) {
+            return Err(problem(&node, format!("size {s} must be positive")));
+        }
+        let at = |i: usize| size.get(i).copied().unwrap_or(SITE_SIZE);
+        let zone = match a.get("type").unwrap_or("sphere") {
+            "sphere" => TouchZone::Sphere { radius: at(0) },
+            "capsule" => TouchZone::Capsule { radius: at(0), half_length: at(1) },
+            "cylinder" => TouchZone::Cylinder { radius: at(0), half_length: at(1) },
+            "box" => TouchZone::Box { half_extents: Vector3::new(at(0), at(1), at(2)) },
+            "ellipsoid" => TouchZone::Ellipsoid { radii: Vector3::new(at(0), at(1), at(2)) },
+            other => {
+                self.unsupported(&node, &format!("a site of type {other:?}"))?;
+                return Ok(None);
+            }
+        };
+        Ok(Some(Site { name: name.to_string(), frame: frame(&a, &self.compiler)?, zone }))
+    }
+
+    /// The turn of an `<inertial>`'s principal axes from its body's frame: its
+    /// orientation when it gives `diaginertia` (MuJoCo's `body_iquat`), `None` for a
+    /// `fullinertia` (MuJoCo diagonalises it).
+    fn principal_axes(&self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<UnitQuaternion<f64>>> {
+        let a = Attrs::new(node, self.defaults, class);
+        if a.get("diaginertia").is_none() {
+            return Ok(None);
+        }
+        Ok(Some(orientation(&a, &self.compiler)?))
+    }
+
     /// A sensor (the `index`-th), or `None` when skipped.
     fn sensor(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfSensor>> {
         let kind = node.tag_name().name();
         let a = Attrs::new(node, self.defaults, "main");
-        let target = match kind {
-            "jointpos" | "jointvel" => a.get("joint").ok_or_else(|| problem(&node, "needs a joint"))?,
-            "framepos" | "framelinvel" => {
-                match a.get("objtype") {
-                    Some("body") => {}
+        let needs = |what: &str| a.get(what).ok_or_else(|| problem(&node, format!("needs a {what}")));
+        let (objtype, target) = match kind {
+            "jointpos" | "jointvel" => ("joint", needs("joint")?),
+            "accelerometer" | "gyro" | "touch" | "rangefinder" => ("site", needs("site")?),
+            "framepos" | "framelinvel" | "framequat" => {
+                let objtype = match a.get("objtype") {
+                    Some(t @ ("body" | "xbody" | "site")) => t,
                     other => {
                         let what = other.unwrap_or("(none)");
                         self.unsupported(
                             &node,
-                            &format!(
-                                "a {kind} of objtype {what} (ARS reads a body's centre of mass: objtype=\"body\")"
-                            ),
+                            &format!("a {kind} of objtype {what} (ARS reads objtype body, xbody and site)"),
                         )?;
                         return Ok(None);
                     }
-                }
+                };
                 if a.get("reftype").is_some() {
                     self.unsupported(&node, &format!("a {kind} relative to another frame (reftype)"))?;
                     return Ok(None);
                 }
-                a.get("objname").ok_or_else(|| problem(&node, "needs an objname"))?
+                (objtype, needs("objname")?)
             }
             other => {
                 self.unsupported(&node, &format!("a sensor of kind <{other}>"))?;
                 return Ok(None);
             }
         };
+        // A rangefinder reads its distance from a site (MuJoCo's can cast from a camera
+        // and give other data).
+        if kind == "rangefinder" && (a.get("camera").is_some() || a.get("data").is_some_and(|d| d != "dist")) {
+            self.unsupported(&node, "a rangefinder on a camera or with data other than \"dist\"")?;
+            return Ok(None);
+        }
+        // MuJoCo's noise is not applied in simulation either; a cutoff clamps readings.
+        if a.number("cutoff")?.is_some_and(|c| c != 0.0) {
+            self.unsupported(&node, "a sensor's cutoff")?;
+            return Ok(None);
+        }
         let name = node.attribute("name").map_or_else(|| format!("sensor{index}"), str::to_string);
-        Ok(Some(MjcfSensor { name, kind: kind.to_string(), target: target.to_string(), id: None }))
+        Ok(Some(MjcfSensor {
+            name,
+            kind: kind.to_string(),
+            objtype: objtype.to_string(),
+            target: target.to_string(),
+            mount: None,
+            id: None,
+        }))
+    }
+
+    /// Checks that the sensors' targets are in the model, once it is read; a sensor ARS
+    /// cannot make there is skipped (with a warning) or refused.
+    fn check_sensors(&mut self, model: &mut Model) -> Parsed<()> {
+        let mut kept = Vec::new();
+        let places = std::mem::take(&mut model.sensor_places);
+        for (sensor, place) in std::mem::take(&mut model.sensors).into_iter().zip(places) {
+            let at = |text: String| Problem { text, ..place.clone() };
+            let missing =
+                || at(format!("reads the {} {:?}, which the model does not have", sensor.objtype, sensor.target));
+            let body = |name: &str| find_body(&model.bodies, &|b| b.name == name);
+            let unsupported = match sensor.objtype.as_str() {
+                "joint" => {
+                    find_body(&model.bodies, &|b| b.joints.iter().any(|j| j.name == sensor.target))
+                        .ok_or_else(missing)?;
+                    None
+                }
+                "site" => match find_body(&model.bodies, &|b| b.sites.iter().any(|s| s.name == sensor.target)) {
+                    Some(_) => None,
+                    None if model.world_sites.contains(&sensor.target) => {
+                        Some(format!("a {} on a site of the world body (ARS reads sites on bodies)", sensor.kind))
+                    }
+                    None => return Err(missing()),
+                },
+                _ => match body(&sensor.target).ok_or_else(missing)? {
+                    b if sensor.kind == "framequat" && sensor.objtype == "body" && b.principal.is_none() => Some(
+                        "a framequat of a body's inertial frame when its <inertial> gives no diaginertia (the \
+                         principal axes MuJoCo computes are not read; objtype=\"xbody\" reads the body's frame)"
+                            .to_string(),
+                    ),
+                    _ => None,
+                },
+            };
+            match unsupported {
+                None => kept.push(sensor),
+                Some(what) => {
+                    let p = at(format!("{what} is not supported"));
+                    if !self.skip {
+                        return Err(p);
+                    }
+                    self.skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
+                }
+            }
+        }
+        model.sensors = kept;
+        Ok(())
     }
 
     /// An actuator (the `index`-th), or `None` when skipped.
@@ -931,6 +1135,11 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let r = frame.rotation.to_rotation_matrix();
         Ok((mass, frame.translation.vector, super::turned_inertia(&r, &local)))
     }
+}
+
+/// The first body of the tree (depth first, in the file's order) that `wanted` accepts.
+fn find_body<'b>(bodies: &'b [Body], wanted: &dyn Fn(&Body) -> bool) -> Option<&'b Body> {
+    bodies.iter().find_map(|b| if wanted(b) { Some(b) } else { find_body(&b.children, wanted) })
 }
 
 /// The mass, centre of mass and inertia about it (body frame) of `geoms`, as MuJoCo's
@@ -1304,6 +1513,8 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
         excluded: Vec::new(),
         pairs: Vec::new(),
         sensors: Vec::new(),
+        sensor_places: Vec::new(),
+        world_sites: Vec::new(),
         skipped: Vec::new(),
     };
     for &node in &nodes {
@@ -1314,7 +1525,8 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                         match child.tag_name().name() {
                             "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
                             "body" => model.bodies.push(reader.body(child, "main")?),
-                            "site" | "camera" | "light" => {}
+                            "site" => model.world_sites.extend(reader.site(child, "main")?.map(|s| s.name)),
+                            "camera" | "light" => {}
                             other => reader.unsupported(&child, &format!("<{other}> in the world body"))?,
                         }
                     }
@@ -1375,6 +1587,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                     for (i, child) in tree.elements(node).into_iter().enumerate() {
                         if let Some(sensor) = reader.sensor(child, i)? {
                             model.sensors.push(sensor);
+                            model.sensor_places.push(problem(&child, ""));
                         }
                     }
                 }
@@ -1384,6 +1597,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
         };
         second_pass()?;
     }
+    reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
     if let Some(total) = reader.compiler.total_mass {
         fn sum(bodies: &[Body]) -> f64 {
@@ -1503,19 +1717,7 @@ impl Scene {
             self.world.geom_mut(first)?.set_category_bits(category);
             self.world.geom_mut(second)?.set_collide_bits(collide);
         }
-        for sensor in &model.sensors {
-            let found = match sensor.kind.as_str() {
-                "jointpos" | "jointvel" => made.joint(&sensor.target).is_some(),
-                _ => made.body(&sensor.target).is_some(),
-            };
-            if !found {
-                return Err(Error::Invalid {
-                    what: "an MJCF sensor",
-                    problem: format!("{:?} reads {:?}, which the model does not have", sensor.name, sensor.target),
-                });
-            }
-        }
-        made.sensors = model.sensors.clone();
+        self.place_mjcf_sensors(model, made)?;
         for (a, b) in &model.excluded {
             let body = |name: &str| {
                 made.body(name).ok_or_else(|| Error::Invalid {
@@ -1542,6 +1744,55 @@ impl Scene {
                 problem: format!("{:?} on the joint {:?}: {e}", a.name, a.joint),
             })?;
         }
+        Ok(())
+    }
+
+    /// Lists the bodies' sites and places the sensors on their objects (their targets
+    /// were checked when the file was read).
+    fn place_mjcf_sensors(&self, model: &Model, made: &mut MjcfModel) -> Result<()> {
+        fn sites(bodies: &[Body], made: &mut MjcfModel) -> Result<()> {
+            for body in bodies {
+                let object = made.body(&body.name).ok_or_else(|| unknown_target(&body.name))?;
+                // From the body's frame to the object's (at the centre of mass, turned
+                // as the body).
+                let com = body.mass.map_or(Vector3::zeros(), |(_, com, _)| com);
+                for site in &body.sites {
+                    made.sites.push(MjcfSite {
+                        name: site.name.clone(),
+                        body: body.name.clone(),
+                        object,
+                        offset: Isometry3::from(-com) * site.frame,
+                        zone: site.zone,
+                    });
+                }
+                sites(&body.children, made)?;
+            }
+            Ok(())
+        }
+        sites(&model.bodies, made)?;
+        let mut sensors = model.sensors.clone();
+        for sensor in &mut sensors {
+            sensor.mount = match sensor.objtype.as_str() {
+                "joint" => None,
+                "site" => {
+                    let site = made.sites.iter().find(|s| s.name == sensor.target);
+                    let site = site.ok_or_else(|| unknown_target(&sensor.target))?;
+                    Some(Mount::Object(site.object, site.offset))
+                }
+                objtype => {
+                    let body = find_body(&model.bodies, &|b| b.name == sensor.target);
+                    let (body, object) =
+                        body.zip(made.body(&sensor.target)).ok_or_else(|| unknown_target(&sensor.target))?;
+                    let offset = if objtype == "xbody" {
+                        Isometry3::from(-body.mass.map_or(Vector3::zeros(), |(_, com, _)| com))
+                    } else {
+                        Isometry3::from_parts(Translation3::identity(), body.principal.unwrap_or_default())
+                    };
+                    Some(Mount::Object(object, offset))
+                }
+            };
+        }
+        made.sensors = sensors;
         Ok(())
     }
 
@@ -1723,13 +1974,18 @@ impl crate::Simulation {
     }
 
     fn make_mjcf_sensors(&mut self, mut model: MjcfModel) -> Result<MjcfModel> {
-        use crate::sensors::{Gps, JointPositions, JointVelocities, Velometer};
+        use crate::sensors::{Gps, Imu, JointPositions, JointVelocities, Laser, Orientation, Touch, Velometer};
         for i in 0..model.sensors.len() {
-            let (kind, target) = (model.sensors[i].kind.clone(), model.sensors[i].target.clone());
-            // The targets were checked while the model was built.
-            let id: AnySensorId = match kind.as_str() {
+            let sensor = &model.sensors[i];
+            let (kind, target) = (sensor.kind.as_str(), sensor.target.as_str());
+            // The targets were checked while the model was read and placed while it was built.
+            let mounted = || match sensor.mount {
+                Some(Mount::Object(object, offset)) => Ok((object, offset)),
+                _ => Err(unknown_target(target)),
+            };
+            let id: AnySensorId = match kind {
                 "jointpos" | "jointvel" => {
-                    let joint = model.joint(&target).ok_or_else(|| unknown_target(&target))?;
+                    let joint = model.joint(target).ok_or_else(|| unknown_target(target))?;
                     if kind == "jointpos" {
                         self.add_sensor(JointPositions::new(self, &[joint])?)?.into()
                     } else {
@@ -1737,11 +1993,18 @@ impl crate::Simulation {
                     }
                 }
                 _ => {
-                    let body = model.body(&target).ok_or_else(|| unknown_target(&target))?;
-                    if kind == "framepos" {
-                        self.add_sensor(Gps::new(body))?.into()
-                    } else {
-                        self.add_sensor(Velometer::new(body))?.into()
+                    let (object, offset) = mounted()?;
+                    let point = offset.translation.vector;
+                    match kind {
+                        "framepos" => self.add_sensor(Gps::new(object).at(point))?.into(),
+                        "framelinvel" => self.add_sensor(Velometer::new(object).at(point))?.into(),
+                        "framequat" => self.add_sensor(Orientation::new(object).at(offset.rotation))?.into(),
+                        "accelerometer" | "gyro" => self.add_sensor(Imu::new(object).at(offset))?.into(),
+                        "touch" => {
+                            let zone = model.site(target).ok_or_else(|| unknown_target(target))?.zone;
+                            self.add_sensor(Touch::new(object).within(zone, offset))?.into()
+                        }
+                        _ => self.add_sensor(Laser::new(RANGEFINDER_LENGTH).mounted_on(object, offset))?.into(),
                     }
                 }
             };

@@ -1,26 +1,51 @@
-//! Sensors on one body: position, velocity, acceleration, inclination, IMU, contacts.
+//! Sensors on one body: position, velocity, acceleration, orientation, inclination,
+//! IMU, contacts. Those that read a point or a frame fixed on the body (a GPS, a
+//! velometer, an accelerometer, an IMU, an orientation sensor) read its origin (the
+//! centre of mass, where ODE keeps the body's frame) unless given an offset from it.
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
-use super::{Record, Sensor};
+use super::{Record, Sensor, SensorSettings};
+use crate::BodyRef;
+use crate::ContactPoint;
 use crate::error::Result;
 use crate::handle::ObjectId;
+use crate::scene::ObjectView;
 use crate::scene::Scene;
 
 fn xyz(v: &Vector3<f64>) -> [Option<f64>; 3] {
     [Some(v.x), Some(v.y), Some(v.z)]
 }
 
-/// Position of a body's centre of mass, world frame (the original's GPS).
+/// The world velocity of the point at `offset` (body frame) from a body's origin:
+/// `v + ω × R·offset`.
+fn point_velocity(body: &BodyRef<'_>, offset: &Vector3<f64>) -> Vector3<f64> {
+    body.linear_velocity() + body.angular_velocity().cross(&(body.rotation() * offset))
+}
+
+/// What a scene file keeps of a sensor's offset: nothing when it has none.
+fn offset_settings(pose: Isometry3<f64>) -> Option<SensorSettings> {
+    (pose != Isometry3::identity()).then_some(SensorSettings::Offset { pose })
+}
+
+/// Position of a point fixed on a body, world frame (the original's GPS): its centre
+/// of mass, or the point at [`at`](Self::at) from it.
 #[derive(Clone, Debug)]
 pub struct Gps {
     object: ObjectId,
+    offset: Vector3<f64>,
 }
 
 impl Gps {
-    /// A GPS on `object`.
+    /// A GPS on `object`, at its centre of mass.
     pub fn new(object: ObjectId) -> Self {
-        Gps { object }
+        Gps { object, offset: Vector3::zeros() }
+    }
+
+    /// At `offset` from the object's origin (its centre of mass), in the object's frame.
+    pub fn at(mut self, offset: Vector3<f64>) -> Self {
+        self.offset = offset;
+        self
     }
 }
 
@@ -43,30 +68,43 @@ impl Record for Position {
 impl Sensor for Gps {
     type Record = Position;
     fn measure(&mut self, sim: &Scene) -> Result<Position> {
-        Ok(Position { position: sim.body(self.object)?.position() })
+        let b = sim.body(self.object)?;
+        Ok(Position { position: b.position() + b.rotation() * self.offset })
     }
     fn objects(&self) -> Vec<ObjectId> {
         vec![self.object]
     }
+    fn settings(&self) -> Option<SensorSettings> {
+        offset_settings(Isometry3::translation(self.offset.x, self.offset.y, self.offset.z))
+    }
 }
 
-/// Linear and angular velocity of a body, world frame.
+/// Linear velocity of a point fixed on a body (its centre of mass, or the point at
+/// [`at`](Self::at) from it) and the body's angular velocity, world frame.
 #[derive(Clone, Debug)]
 pub struct Velometer {
     object: ObjectId,
+    offset: Vector3<f64>,
 }
 
 impl Velometer {
-    /// A velometer on `object`.
+    /// A velometer on `object`, at its centre of mass.
     pub fn new(object: ObjectId) -> Self {
-        Velometer { object }
+        Velometer { object, offset: Vector3::zeros() }
+    }
+
+    /// At `offset` from the object's origin (its centre of mass), in the object's
+    /// frame: it reads that point's velocity, `v + ω × R·offset`.
+    pub fn at(mut self, offset: Vector3<f64>) -> Self {
+        self.offset = offset;
+        self
     }
 }
 
 /// A [`Velometer`] measurement.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Velocity {
-    /// Linear velocity of the centre of mass, m/s.
+    /// Linear velocity of the point read (the centre of mass by default), m/s.
     pub linear: Vector3<f64>,
     /// Angular velocity, rad/s.
     pub angular: Vector3<f64>,
@@ -85,15 +123,22 @@ impl Sensor for Velometer {
     type Record = Velocity;
     fn measure(&mut self, sim: &Scene) -> Result<Velocity> {
         let b = sim.body(self.object)?;
-        Ok(Velocity { linear: b.linear_velocity(), angular: b.angular_velocity() })
+        Ok(Velocity { linear: point_velocity(&b, &self.offset), angular: b.angular_velocity() })
     }
     fn objects(&self) -> Vec<ObjectId> {
         vec![self.object]
     }
+    fn settings(&self) -> Option<SensorSettings> {
+        offset_settings(Isometry3::translation(self.offset.x, self.offset.y, self.offset.z))
+    }
 }
 
-/// Linear and angular acceleration of a body, world frame: the change of velocity over
-/// the step divided by the time step, `(v_end − v_start) / dt`.
+/// Linear acceleration of a point fixed on a body (its centre of mass, or the point at
+/// [`at`](Self::at) from it) and the body's angular acceleration, world frame: the
+/// change of velocity over the step divided by the time step, `(v_end − v_start) / dt`.
+/// Off the centre of mass the point's velocity is `v + ω × R·offset`, so the reading
+/// converges to the point's acceleration with its centripetal and tangential terms as
+/// the step shrinks.
 ///
 /// The sensor keeps its own state (the velocity at the start of each step, noted just
 /// before collision), so several accelerometers on one body do not interfere, and its
@@ -102,13 +147,20 @@ impl Sensor for Velometer {
 #[derive(Clone, Debug)]
 pub struct Accelerometer {
     object: ObjectId,
+    offset: Vector3<f64>,
     start: Option<(Vector3<f64>, Vector3<f64>)>,
 }
 
 impl Accelerometer {
-    /// An accelerometer on `object`.
+    /// An accelerometer on `object`, at its centre of mass.
     pub fn new(object: ObjectId) -> Self {
-        Accelerometer { object, start: None }
+        Accelerometer { object, offset: Vector3::zeros(), start: None }
+    }
+
+    /// At `offset` from the object's origin (its centre of mass), in the object's frame.
+    pub fn at(mut self, offset: Vector3<f64>) -> Self {
+        self.offset = offset;
+        self
     }
 }
 
@@ -134,17 +186,79 @@ impl Sensor for Accelerometer {
     type Record = Acceleration;
     fn before_step(&mut self, sim: &Scene) -> Result<()> {
         let b = sim.body(self.object)?;
-        self.start = Some((b.linear_velocity(), b.angular_velocity()));
+        self.start = Some((point_velocity(&b, &self.offset), b.angular_velocity()));
         Ok(())
     }
     fn measure(&mut self, sim: &Scene) -> Result<Acceleration> {
         let b = sim.body(self.object)?;
         let (v0, w0) = self.start.expect("before_step runs before every measurement");
         let dt = sim.time_step();
-        Ok(Acceleration { linear: (b.linear_velocity() - v0) / dt, angular: (b.angular_velocity() - w0) / dt })
+        Ok(Acceleration {
+            linear: (point_velocity(&b, &self.offset) - v0) / dt,
+            angular: (b.angular_velocity() - w0) / dt,
+        })
     }
     fn objects(&self) -> Vec<ObjectId> {
         vec![self.object]
+    }
+    fn settings(&self) -> Option<SensorSettings> {
+        offset_settings(Isometry3::translation(self.offset.x, self.offset.y, self.offset.z))
+    }
+}
+
+/// The orientation of a frame fixed on a body, world frame: the body's own (turned as
+/// its frame: for a body from an MJCF file, the MJCF body's frame), or that of the frame
+/// at [`at`](Self::at) from it.
+#[derive(Clone, Debug)]
+pub struct Orientation {
+    object: ObjectId,
+    offset: UnitQuaternion<f64>,
+}
+
+impl Orientation {
+    /// An orientation sensor on `object`, reading the object's own frame.
+    pub fn new(object: ObjectId) -> Self {
+        Orientation { object, offset: UnitQuaternion::identity() }
+    }
+
+    /// Reads the frame turned by `offset` from the object's (in the object's frame).
+    pub fn at(mut self, offset: UnitQuaternion<f64>) -> Self {
+        self.offset = offset;
+        self
+    }
+}
+
+/// An [`Orientation`] measurement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attitude {
+    /// The frame's rotation from the world's, as a unit quaternion with `w ≥ 0` (of `q`
+    /// and `−q`, the same rotation, the one with the non-negative scalar part).
+    pub rotation: UnitQuaternion<f64>,
+}
+
+impl Record for Attitude {
+    fn columns() -> Vec<&'static str> {
+        vec!["qw [1]", "qx [1]", "qy [1]", "qz [1]"]
+    }
+    fn values(&self) -> Vec<Option<f64>> {
+        let q = self.rotation.quaternion();
+        vec![Some(q.w), Some(q.i), Some(q.j), Some(q.k)]
+    }
+}
+
+impl Sensor for Orientation {
+    type Record = Attitude;
+    fn measure(&mut self, sim: &Scene) -> Result<Attitude> {
+        let b = sim.body(self.object)?;
+        let q = b.quaternion() * self.offset;
+        let q = if q.w < 0.0 { UnitQuaternion::new_unchecked(-q.into_inner()) } else { q };
+        Ok(Attitude { rotation: q })
+    }
+    fn objects(&self) -> Vec<ObjectId> {
+        vec![self.object]
+    }
+    fn settings(&self) -> Option<SensorSettings> {
+        offset_settings(Isometry3::from_parts(nalgebra::Translation3::identity(), self.offset))
     }
 }
 
@@ -193,23 +307,32 @@ impl Sensor for Inclinometer {
     }
 }
 
-/// An inertial measurement unit fixed at a body's centre of mass, reading in the body
-/// frame: the specific force `Rᵀ (a − g)` (what a real accelerometer feels: +9.81 m/s²
-/// up at rest) and the angular velocity `Rᵀ ω`. The acceleration is the change of
+/// An inertial measurement unit fixed on a body, at its centre of mass and turned as
+/// the body unless mounted at an offset ([`at`](Self::at)), reading in its own frame:
+/// the specific force `Rᵀ (a − g)` (what a real accelerometer feels: +9.81 m/s² up at
+/// rest; `a` the acceleration of the IMU's point) and the angular velocity `Rᵀ ω`, `R`
+/// the IMU's rotation in the world. The acceleration is the change of the point's
 /// velocity over the step, as for [`Accelerometer`].
 #[derive(Clone, Debug)]
 pub struct Imu {
     inner: Accelerometer,
+    turn: UnitQuaternion<f64>,
 }
 
 impl Imu {
-    /// An IMU on `object`.
+    /// An IMU on `object`, at its centre of mass, turned as the object.
     pub fn new(object: ObjectId) -> Self {
-        Imu { inner: Accelerometer::new(object) }
+        Imu { inner: Accelerometer::new(object), turn: UnitQuaternion::identity() }
+    }
+
+    /// Mounted at `offset` from the object's origin (its centre of mass), in the
+    /// object's frame: it reads at that point, in that frame.
+    pub fn at(self, offset: Isometry3<f64>) -> Self {
+        Imu { inner: self.inner.at(offset.translation.vector), turn: offset.rotation }
     }
 }
 
-/// An [`Imu`] measurement, body frame.
+/// An [`Imu`] measurement, in the IMU's frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImuReading {
     /// Specific force, m/s².
@@ -235,14 +358,18 @@ impl Sensor for Imu {
     fn measure(&mut self, sim: &Scene) -> Result<ImuReading> {
         let a = self.inner.measure(sim)?.linear;
         let b = sim.body(self.inner.object)?;
-        let to_body = b.rotation().inverse();
+        // Into the body's frame, then the IMU's (the identity, exactly, unless mounted).
+        let (to_body, to_imu) = (b.rotation().inverse(), self.turn.inverse());
         Ok(ImuReading {
-            specific_force: to_body * (a - sim.gravity()),
-            angular_velocity: to_body * b.angular_velocity(),
+            specific_force: to_imu * (to_body * (a - sim.gravity())),
+            angular_velocity: to_imu * (to_body * b.angular_velocity()),
         })
     }
     fn objects(&self) -> Vec<ObjectId> {
         vec![self.inner.object]
+    }
+    fn settings(&self) -> Option<SensorSettings> {
+        offset_settings(Isometry3::from_parts(self.inner.offset.into(), self.turn))
     }
 }
 
@@ -303,6 +430,18 @@ impl Sensor for ContactSensor {
     }
 }
 
+/// Whether a contact's geom 1 and its geom 2 are `object`'s: on a body, every geom of
+/// the object; without one, its geom.
+pub(super) fn sides_touched(c: &ContactPoint, object: &ObjectView<'_>) -> (bool, bool) {
+    match object.body_handle() {
+        Some(b) => (c.pair.body1 == Some(b), c.pair.body2 == Some(b)),
+        None => {
+            let geom = object.geom_handle();
+            (Some(c.pair.geom1) == geom, Some(c.pair.geom2) == geom)
+        }
+    }
+}
+
 /// The forces of the contacts on an object in the last step: their sum (world frame,
 /// N) and how many contact points there were. Attaching it turns on the world's contact
 /// feedback ([`World::set_contact_feedback`](crate::World::set_contact_feedback)): ODE
@@ -346,14 +485,9 @@ impl Sensor for ContactForces {
     }
     fn measure(&mut self, sim: &Scene) -> Result<ContactForceReading> {
         let object = sim.object(self.object)?;
-        let (body, geom) = (object.body_handle(), object.geom_handle());
         let mut reading = ContactForceReading { contacts: 0, force: Vector3::zeros() };
         for c in sim.world().contacts() {
-            // On a body, every geom of the object; without one, its geom.
-            let (first, second) = match body {
-                Some(b) => (c.pair.body1 == Some(b), c.pair.body2 == Some(b)),
-                None => (Some(c.pair.geom1) == geom, Some(c.pair.geom2) == geom),
-            };
+            let (first, second) = sides_touched(c, &object);
             if first {
                 reading.force += c.force;
             } else if second {

@@ -28,14 +28,15 @@ mod lidar;
 mod mount;
 mod noise;
 mod probe;
+mod touch;
 
 use std::any::Any;
 use std::io::{self, Write};
 use std::marker::PhantomData;
 
 pub use body::{
-    Acceleration, Accelerometer, ContactForceReading, ContactForces, ContactReading, ContactSensor, Gps, Imu,
-    ImuReading, Inclination, Inclinometer, Position, Velocity, Velometer,
+    Acceleration, Accelerometer, Attitude, ContactForceReading, ContactForces, ContactReading, ContactSensor, Gps, Imu,
+    ImuReading, Inclination, Inclinometer, Orientation, Position, Velocity, Velometer,
 };
 pub use depth_camera::{DepthCamera, DepthImage};
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};
@@ -48,6 +49,7 @@ pub use lidar::{Lidar, Scan};
 pub use mount::Mount;
 pub use noise::{Noisy, Perturb};
 pub use probe::Probe;
+pub use touch::{Touch, TouchReading, TouchZone};
 
 use nalgebra::Point3;
 
@@ -174,6 +176,20 @@ pub enum SensorSettings {
         /// Farthest depth seen, m.
         far: f64,
         /// Where it is.
+        pose: nalgebra::Isometry3<f64>,
+    },
+    /// A sensor that reads a point or a frame fixed on its object at an offset from the
+    /// object's origin: a [`Gps`], [`Velometer`] or [`Accelerometer`] (the offset's
+    /// translation), an [`Orientation`] (its rotation) or an [`Imu`] (both).
+    Offset {
+        /// The offset, in the object's frame.
+        pose: nalgebra::Isometry3<f64>,
+    },
+    /// A [`Touch`] sensor that feels only a zone of its object.
+    Touch {
+        /// The zone.
+        zone: TouchZone,
+        /// Where the zone is, in the object's frame.
         pose: nalgebra::Isometry3<f64>,
     },
 }

@@ -2,10 +2,13 @@
 
 use nalgebra::{Point3, Vector3};
 
-use super::body::{Acceleration, ContactForceReading, ContactReading, ImuReading, Inclination, Position, Velocity};
+use super::body::{
+    Acceleration, Attitude, ContactForceReading, ContactReading, ImuReading, Inclination, Position, Velocity,
+};
 use super::energy::{Energy, Kinetic, Potential};
 use super::joint::{Effort, Power, Reaction};
 use super::laser::LaserReading;
+use super::touch::TouchReading;
 use super::{Record, Sensor};
 use crate::control::JointState;
 use crate::error::Result;
@@ -55,6 +58,15 @@ perturb_fields!(Inclination, |r, n| {
     r.pitch += n();
     r.roll += n()
 });
+perturb_fields!(Attitude, |r, n| {
+    let q = r.rotation.into_inner();
+    let noisy = nalgebra::Quaternion::new(q.w + n(), q.i + n(), q.j + n(), q.k + n());
+    // Renormalised (a zero quaternion, improbable, keeps the reading).
+    if noisy.norm() > 0.0 {
+        r.rotation = nalgebra::UnitQuaternion::from_quaternion(noisy);
+    }
+});
+perturb_fields!(TouchReading, |r, n| { r.normal_force = (r.normal_force + n()).max(0.0) });
 perturb_fields!(ContactReading, |r, n| { r.max_depth += n() });
 perturb_fields!(ContactForceReading, |r, n| { v3(&mut r.force, n) });
 perturb_fields!(LaserReading, |r, n| {

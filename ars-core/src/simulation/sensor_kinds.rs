@@ -7,20 +7,23 @@ use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
     Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
     Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, JointVelocities, KineticEnergy,
-    Lidar, Noisy, Perturb, PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Velometer,
+    Lidar, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Touch,
+    Velometer,
 };
 
 /// The kinds [`Simulation::add_sensor_of_kind`] makes (the sensors' type names): on
 /// one object, on one joint, on a list of joints (`JointPositions`, `JointVelocities`), or on the whole
 /// simulation (`SystemTotalEnergy`).
-pub const SENSOR_KINDS: [&str; 18] = [
+pub const SENSOR_KINDS: [&str; 20] = [
     "Gps",
     "Velometer",
     "Accelerometer",
+    "Orientation",
     "Inclinometer",
     "Imu",
     "ContactSensor",
     "ContactForces",
+    "Touch",
     "KineticEnergy",
     "PotentialEnergy",
     "TotalEnergy",
@@ -99,11 +102,35 @@ impl Simulation {
                 };
                 self.add_any(camera, period)
             }
+            ("Gps", Some(SensorSettings::Offset { pose })) => {
+                self.add_noisy(Gps::new(object()?).at(pose.translation.vector), period, noise)
+            }
+            ("Velometer", Some(SensorSettings::Offset { pose })) => {
+                self.add_noisy(Velometer::new(object()?).at(pose.translation.vector), period, noise)
+            }
+            ("Accelerometer", Some(SensorSettings::Offset { pose })) => {
+                self.add_noisy(Accelerometer::new(object()?).at(pose.translation.vector), period, noise)
+            }
+            ("Orientation", Some(SensorSettings::Offset { pose })) => {
+                self.add_noisy(Orientation::new(object()?).at(pose.rotation), period, noise)
+            }
+            ("Imu", Some(SensorSettings::Offset { pose })) => {
+                self.add_noisy(Imu::new(object()?).at(*pose), period, noise)
+            }
+            ("Touch", Some(SensorSettings::Touch { zone, pose })) => {
+                self.add_noisy(Touch::new(object()?).within(*zone, *pose), period, noise)
+            }
+            (_, Some(settings)) => Err(Error::Invalid {
+                what: "a sensor",
+                problem: format!("of kind {kind} cannot take the settings {settings:?}"),
+            }),
             ("Gps", _) => self.add_noisy(Gps::new(object()?), period, noise),
             ("Velometer", _) => self.add_noisy(Velometer::new(object()?), period, noise),
             ("Accelerometer", _) => self.add_noisy(Accelerometer::new(object()?), period, noise),
             ("Inclinometer", _) => self.add_noisy(Inclinometer::new(object()?), period, noise),
             ("Imu", _) => self.add_noisy(Imu::new(object()?), period, noise),
+            ("Orientation", _) => self.add_noisy(Orientation::new(object()?), period, noise),
+            ("Touch", _) => self.add_noisy(Touch::new(object()?), period, noise),
             ("ContactSensor", _) => self.add_noisy(ContactSensor::new(object()?), period, noise),
             ("ContactForces", _) => self.add_noisy(ContactForces::new(object()?), period, noise),
             ("KineticEnergy", _) => self.add_noisy(KineticEnergy::new(object()?), period, noise),
