@@ -300,6 +300,18 @@ def mujoco_angles_after_one_second(path, joints, controls=None):
     )
 
 
+def assert_first_order(path, joints, reference, controls=None, what=""):
+    """ARS's joint positions after 1 s approach `reference` (MuJoCo's) as the time
+    step halves, to first order: each halving about halves the gap."""
+    gaps = [
+        np.abs(angles_after_one_second(path, joints, dt, controls) - reference).max()
+        for dt in (2e-3, 1e-3, 5e-4)
+    ]
+    assert gaps[0] > gaps[1] > gaps[2], (what, gaps)
+    for coarse, fine in zip(gaps, gaps[1:]):
+        assert 1.6 < coarse / fine < 2.5, (what, gaps)
+
+
 def test_actuated_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
     """The swinging pendulum with a position servo (kp, kv) on its first joint and a
     geared motor, its control clamped by its range, on the second: the joint angles
@@ -314,13 +326,7 @@ def test_actuated_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
     reference = mujoco_angles_after_one_second(path, ["a1", "a2"], controls)
     passive = mujoco_angles_after_one_second(path, ["a1", "a2"])
     assert np.abs(reference - passive).max() > 0.1, "the actuators change the motion"
-    gaps = [
-        np.abs(angles_after_one_second(path, ["a1", "a2"], dt, controls) - reference).max()
-        for dt in (2e-3, 1e-3, 5e-4)
-    ]
-    assert gaps[0] > gaps[1] > gaps[2], gaps
-    for coarse, fine in zip(gaps, gaps[1:]):
-        assert 1.6 < coarse / fine < 2.5, gaps
+    assert_first_order(path, ["a1", "a2"], reference, controls)
     sim = ars.Simulation()
     sim.load_mjcf(path)
     assert sim.actuators == ["hold", "push"]
@@ -343,13 +349,7 @@ def test_a_root_hinge_s_armature_converges_to_mujoco_s_with_the_time_step(tmp_pa
     )
     reference = mujoco_angles_after_one_second(path, ["a1", "a2"])
     assert np.abs(reference - mujoco_angles_after_one_second(plain, ["a1", "a2"])).max() > 0.1
-    gaps = [
-        np.abs(angles_after_one_second(path, ["a1", "a2"], dt) - reference).max()
-        for dt in (2e-3, 1e-3, 5e-4)
-    ]
-    assert gaps[0] > gaps[1] > gaps[2], gaps
-    for coarse, fine in zip(gaps, gaps[1:]):
-        assert 1.6 < coarse / fine < 2.5, gaps
+    assert_first_order(path, ["a1", "a2"], reference)
     # 0.05 about the hinge's axis (MuJoCo's y, in p1's frame). p1 is a thin rod: with
     # that alone its moment about y would exceed the sum of the other two, which no
     # rigid body has, so the least inertia t across the axis that makes it one is added
@@ -398,13 +398,7 @@ def test_reference_positions_and_springs_move_as_mujoco_s(tmp_path):
         SPRUNG.replace('stiffness="3"', 'stiffness="0"').replace('stiffness="40"', 'stiffness="0"')
     )
     assert np.abs(reference - mujoco_angles_after_one_second(still, ["a1", "s2"])).max() > 0.1
-    gaps = [
-        np.abs(angles_after_one_second(path, ["a1", "s2"], dt) - reference).max()
-        for dt in (2e-3, 1e-3, 5e-4)
-    ]
-    assert gaps[0] > gaps[1] > gaps[2], gaps
-    for coarse, fine in zip(gaps, gaps[1:]):
-        assert 1.6 < coarse / fine < 2.5, gaps
+    assert_first_order(path, ["a1", "s2"], reference)
 
 
 def test_a_range_is_of_the_positions_ref_measures(tmp_path):
@@ -454,13 +448,7 @@ def test_contact_free_motion_converges_to_mujoco_s_with_the_time_step(tmp_path):
                 for j in joints
             ]
         )
-        gaps = [
-            np.abs(angles_after_one_second(path, joints, dt) - reference).max()
-            for dt in (2e-3, 1e-3, 5e-4)
-        ]
-        assert gaps[0] > gaps[1] > gaps[2], (name, gaps)
-        for coarse, fine in zip(gaps, gaps[1:]):
-            assert 1.6 < coarse / fine < 2.5, (name, gaps)
+        assert_first_order(path, joints, reference, what=name)
         assert np.abs(reference).max() > 0.1, (name, reference)
 
 

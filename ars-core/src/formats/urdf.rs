@@ -318,6 +318,18 @@ fn rpy_matrix([roll, pitch, yaw]: [f64; 3]) -> Option<Matrix3<f64>> {
     })
 }
 
+/// A problem with a link (the file is named by the caller; urdf-rs gives no line).
+fn link_error(link: &urdf_rs::Link, problem: String) -> Error {
+    Error::Format {
+        format: "URDF",
+        file: String::new(),
+        element: format!("link {:?}", link.name),
+        line: None,
+        column: None,
+        problem,
+    }
+}
+
 /// −90° about X, exactly: URDF (x, y, z) → simulation (x, z, −y).
 fn z_up_to_y_up() -> Frame {
     Frame { rotation: Some(super::z_up_to_y_up().into_inner()), translation: Vector3::zeros() }
@@ -509,14 +521,7 @@ impl Scene {
         meshes: &mut Meshes<'_>,
     ) -> Result<(ObjectId, Option<crate::handle::BodyHandle>)> {
         let (collisions, looks) = link_geometry(robot, link, frame, meshes)?;
-        let urdf_err = |problem: String| Error::Format {
-            format: "URDF",
-            file: String::new(),
-            element: format!("link {:?}", link.name),
-            line: None,
-            column: None,
-            problem,
-        };
+        let urdf_err = |problem: String| link_error(link, problem);
         // The visuals relative to the object's pose.
         let visuals = |object_pose: Isometry3<f64>| -> Vec<crate::scene::Visual> {
             let to_object = object_pose.inverse();
@@ -706,14 +711,7 @@ fn link_geometry(
     frame: &Frame,
     meshes: &mut Meshes<'_>,
 ) -> Result<(Vec<(Shape, Frame)>, Vec<(Shape, Isometry3<f64>, Option<crate::scene::Color>)>)> {
-    let urdf_err = |problem: String| Error::Format {
-        format: "URDF",
-        file: String::new(),
-        element: format!("link {:?}", link.name),
-        line: None,
-        column: None,
-        problem,
-    };
+    let urdf_err = |problem: String| link_error(link, problem);
     let mut collisions = Vec::new();
     for c in &link.collision {
         let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
