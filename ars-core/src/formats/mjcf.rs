@@ -768,13 +768,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             .into_iter()
             .filter(|k| a.get(k).is_some())
             .collect();
-        if !contact.is_empty() {
-            self.skipped.push(format!(
-                "<geom> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
-                problem(&node, "").line,
-                contact.join(", ")
-            ));
-        }
+        contact_parameters_unused(&node, &contact, &mut self.skipped);
         let name = node.attribute("name").map(str::to_string);
         // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
         let rgba = match a.fixed::<4>("rgba")? {
@@ -1282,6 +1276,19 @@ fn at_least_ars_least_mass(
     }
 }
 
+/// Says which of a geom's or a pair's contact parameters (MuJoCo's contact model, not
+/// ODE's) are read and not used, if any.
+fn contact_parameters_unused(node: &roxmltree::Node<'_, '_>, names: &[&str], skipped: &mut Vec<String>) {
+    if !names.is_empty() {
+        skipped.push(format!(
+            "<{}> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
+            node.tag_name().name(),
+            problem(node, "").line,
+            names.join(", ")
+        ));
+    }
+}
+
 /// Most `<contact><pair>`s a model may have: each takes one of the upper 32 of ODE's
 /// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
 pub const MAX_CONTACT_PAIRS: usize = 32;
@@ -1571,13 +1578,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                                     .map(|a| a.name())
                                     .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
                                     .collect();
-                                if !unused.is_empty() {
-                                    reader.skipped.push(format!(
-                                        "<pair> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
-                                        problem(&child, "").line,
-                                        unused.join(", ")
-                                    ));
-                                }
+                                contact_parameters_unused(&child, &unused, &mut reader.skipped);
                             }
                             other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
                         }
