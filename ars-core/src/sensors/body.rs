@@ -17,15 +17,31 @@ fn xyz(v: &Vector3<f64>) -> [Option<f64>; 3] {
     [Some(v.x), Some(v.y), Some(v.z)]
 }
 
+/// The world position of the point at `offset` (body frame) from a body's origin:
+/// `p + R·offset`; the origin itself, as read, without an offset (the sensors' default,
+/// on every sample).
+fn point_position(body: &BodyRef<'_>, offset: &Vector3<f64>) -> Point3<f64> {
+    if *offset == Vector3::zeros() { body.position() } else { body.position() + body.rotation() * offset }
+}
+
 /// The world velocity of the point at `offset` (body frame) from a body's origin:
-/// `v + ω × R·offset`.
+/// `v + ω × R·offset`; the body's own, as read, without an offset.
 fn point_velocity(body: &BodyRef<'_>, offset: &Vector3<f64>) -> Vector3<f64> {
-    body.linear_velocity() + body.angular_velocity().cross(&(body.rotation() * offset))
+    if *offset == Vector3::zeros() {
+        body.linear_velocity()
+    } else {
+        body.linear_velocity() + body.angular_velocity().cross(&(body.rotation() * offset))
+    }
 }
 
 /// What a scene file keeps of a sensor's offset: nothing when it has none.
 fn offset_settings(pose: Isometry3<f64>) -> Option<SensorSettings> {
     (pose != Isometry3::identity()).then_some(SensorSettings::Offset { pose })
+}
+
+/// [`offset_settings`] of a point's offset.
+fn point_settings(offset: &Vector3<f64>) -> Option<SensorSettings> {
+    offset_settings(Isometry3::translation(offset.x, offset.y, offset.z))
 }
 
 /// Position of a point fixed on a body, world frame (the original's GPS): its centre
@@ -69,13 +85,13 @@ impl Sensor for Gps {
     type Record = Position;
     fn measure(&mut self, sim: &Scene) -> Result<Position> {
         let b = sim.body(self.object)?;
-        Ok(Position { position: b.position() + b.rotation() * self.offset })
+        Ok(Position { position: point_position(&b, &self.offset) })
     }
     fn objects(&self) -> Vec<ObjectId> {
         vec![self.object]
     }
     fn settings(&self) -> Option<SensorSettings> {
-        offset_settings(Isometry3::translation(self.offset.x, self.offset.y, self.offset.z))
+        point_settings(&self.offset)
     }
 }
 
@@ -129,7 +145,7 @@ impl Sensor for Velometer {
         vec![self.object]
     }
     fn settings(&self) -> Option<SensorSettings> {
-        offset_settings(Isometry3::translation(self.offset.x, self.offset.y, self.offset.z))
+        point_settings(&self.offset)
     }
 }
 
@@ -202,7 +218,7 @@ impl Sensor for Accelerometer {
         vec![self.object]
     }
     fn settings(&self) -> Option<SensorSettings> {
-        offset_settings(Isometry3::translation(self.offset.x, self.offset.y, self.offset.z))
+        point_settings(&self.offset)
     }
 }
 
