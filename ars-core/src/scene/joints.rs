@@ -396,17 +396,17 @@ impl Scene {
                 None => (friction, 0.0),
             };
             let (stiffness, rest) = data.spring;
-            let spring = if stiffness == 0.0 {
-                0.0
-            } else {
+            let mut spring = 0.0;
+            if stiffness != 0.0 {
                 let mut stretch = state.position - rest;
                 if matches!(kind, JointType::Hinge | JointType::Universal) {
                     // ODE's angles wrap at ±π: the spring pulls the short way round.
                     stretch = stretch.sin().atan2(stretch.cos());
                 }
-                -stiffness * stretch
-            };
-            effort += spring;
+                spring = -stiffness * stretch;
+                // Without a spring, the effort stays exactly the friction and controller's.
+                effort += spring;
+            }
             data.efforts.friction = friction;
             data.efforts.spring = spring;
             data.efforts.controller = controller;
