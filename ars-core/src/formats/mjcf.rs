@@ -323,6 +323,16 @@ struct Problem {
 
 type Parsed<T> = std::result::Result<T, Problem>;
 
+/// What cannot be read: with `skip` (`MjcfOptions::skip_unsupported`) a line in
+/// `skipped` naming its element and line, else the error.
+fn skip_or_refuse(p: Problem, skip: bool, skipped: &mut Vec<String>) -> Parsed<()> {
+    if !skip {
+        return Err(p);
+    }
+    skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
+    Ok(())
+}
+
 fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
     let line = node.document().text_pos_at(node.range().start).row;
     let document = std::ptr::from_ref(node.document()) as usize;
@@ -687,13 +697,7 @@ struct Reader<'d, 'a, 'input> {
 
 impl<'a, 'input> Reader<'_, 'a, 'input> {
     fn unsupported(&mut self, node: &roxmltree::Node<'_, '_>, what: &str) -> Parsed<()> {
-        let p = problem(node, format!("{what} is not supported"));
-        if self.skip {
-            self.skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
-            Ok(())
-        } else {
-            Err(p)
-        }
+        skip_or_refuse(problem(node, format!("{what} is not supported")), self.skip, &mut self.skipped)
     }
 
     fn geom(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Geom>> {
@@ -1055,13 +1059,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             };
             match unsupported {
                 None => kept.push(sensor),
-                Some(what) => {
-                    let p = at(format!("{what} is not supported"));
-                    if !self.skip {
-                        return Err(p);
-                    }
-                    self.skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
-                }
+                Some(what) => skip_or_refuse(at(format!("{what} is not supported")), self.skip, &mut self.skipped)?,
             }
         }
         model.sensors = kept;
@@ -1180,7 +1178,9 @@ fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64
         JointKind::Hinge => {
             let axial = joint.axis * joint.axis.transpose() * a;
             let across = (Matrix3::identity() - joint.axis * joint.axis.transpose()) * a;
-            // A rigid body's principal moments: the largest at most the sum of the others.
+            // A rigid body's principal moments: the largest at most the sum of the
+            // others, without the rounding slack of ARS's own check (`limits::inertia`),
+            // so that the body made with the sum passes it whatever the rounding.
             let rigid = |t: f64| {
                 let moments = (inertia + axial + across * t).symmetric_eigenvalues();
                 let largest = moments.max();
@@ -1228,10 +1228,7 @@ fn check_attributes(
                 {
                     let p =
                         problem(&node, format!("unknown attribute {name:?} (MuJoCo's <{tag}> has no such attribute)"));
-                    if !skip {
-                        return Err(p);
-                    }
-                    skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
+                    skip_or_refuse(p, skip, skipped)?;
                 }
             }
         }
@@ -1361,7 +1358,12 @@ struct Tree<'a, 'input> {
 impl<'a, 'input> Tree<'a, 'input> {
     /// The index of the file `node` is in.
     fn file_of(&self, node: &roxmltree::Node<'a, 'input>) -> usize {
-        self.documents.iter().position(|d| std::ptr::eq(d, node.document())).unwrap_or(0)
+        self.file_at(std::ptr::from_ref(node.document()) as usize).unwrap_or(0)
+    }
+
+    /// The index of the file whose document is at `address` (a [`Problem`]'s).
+    fn file_at(&self, address: usize) -> Option<usize> {
+        self.documents.iter().position(|d| std::ptr::from_ref(d) as usize == address)
     }
 
     /// `node`'s child elements, each `<include>` replaced by the included file's
@@ -1392,11 +1394,10 @@ fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Model> {
     let tree = Tree { documents: &documents, includes: &includes };
     read_nodes(name, &tree, options).map_err(|mut p| {
         // A problem in an included file names it.
-        if p.file.is_none() {
-            let index = documents.iter().position(|d| std::ptr::from_ref(d) as usize == p.document);
-            if let Some(index) = index.filter(|&i| i > 0) {
-                p.file = Some(files[index].0.clone());
-            }
+        if p.file.is_none()
+            && let Some(index) = tree.file_at(p.document).filter(|&i| i > 0)
+        {
+            p.file = Some(files[index].0.clone());
         }
         p
     })
@@ -1548,23 +1549,15 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                 "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
                 "contact" => {
                     for child in tree.elements(node) {
+                        let needs = |attr: &str| {
+                            child
+                                .attribute(attr)
+                                .map(str::to_string)
+                                .ok_or_else(|| problem(&child, format!("needs a {attr}")))
+                        };
                         match child.tag_name().name() {
-                            "exclude" => {
-                                let body = |attr: &str| {
-                                    child
-                                        .attribute(attr)
-                                        .map(str::to_string)
-                                        .ok_or_else(|| problem(&child, format!("needs a {attr}")))
-                                };
-                                model.excluded.push((body("body1")?, body("body2")?));
-                            }
+                            "exclude" => model.excluded.push((needs("body1")?, needs("body2")?)),
                             "pair" => {
-                                let geom = |attr: &str| {
-                                    child
-                                        .attribute(attr)
-                                        .map(str::to_string)
-                                        .ok_or_else(|| problem(&child, format!("needs a {attr}")))
-                                };
                                 if model.pairs.len() == MAX_CONTACT_PAIRS {
                                     reader.unsupported(
                                         &child,
@@ -1572,7 +1565,7 @@ fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<
                                     )?;
                                     continue;
                                 }
-                                model.pairs.push((geom("geom1")?, geom("geom2")?));
+                                model.pairs.push((needs("geom1")?, needs("geom2")?));
                                 let unused: Vec<&str> = child
                                     .attributes()
                                     .map(|a| a.name())
