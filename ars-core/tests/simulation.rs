@@ -703,3 +703,22 @@ fn sensors_are_removed_and_cleared_whatever_their_type() -> Result<()> {
     assert_eq!(sim.sensor_table(gps)?.1.len(), 0, "a detached sensor samples no more");
     Ok(())
 }
+
+#[test]
+fn a_joint_position_is_its_state_s_position_without_the_rate() {
+    let mut sim = Simulation::new().unwrap();
+    let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let hinge = sim.add_hinge_joint("hinge", ball, JointEnd::World, Some(Point3::origin()), Vector3::z()).unwrap();
+    let block = sim.add_box([0.2, 0.2, 0.2], [0.0, 3.0, 0.0], Mass::Total(1.0)).unwrap();
+    let rail = sim.add_slider_joint("rail", block, JointEnd::World, Vector3::new(1.0, 1.0, 0.0)).unwrap();
+    let other = sim.add_sphere(0.1, [0.0, -3.0, 0.0], Mass::Total(1.0)).unwrap();
+    let socket = sim.add_ball_joint("socket", other, JointEnd::World, None).unwrap();
+    sim.run_for(0.3).unwrap();
+    for joint in [hinge, rail] {
+        let position = sim.joint_position(joint).unwrap();
+        assert_ne!(position, 0.0, "it moved");
+        assert_eq!(position.to_bits(), sim.joint_state(joint).unwrap().position.to_bits());
+    }
+    let err = sim.joint_position(socket).unwrap_err();
+    assert!(matches!(err, Error::WrongJointKind { kind: "ball", .. }), "{err}");
+}

@@ -321,6 +321,7 @@ PYTHON_FOR_RUST = {
     "Scene.joint_controller": "Joint.set_controller",
     "Scene.joint_rate": "Joint.rate",
     "Scene.joint_state": "Joint.angle",
+    "Scene.joint_position": "Joint.angle",
     "Scene.space": "Simulation.space",
     "Scene.space_kind": "Simulation.space",
     "Scene.time": "Simulation.time",

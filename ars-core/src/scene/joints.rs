@@ -546,6 +546,21 @@ impl Scene {
         }
     }
 
+    /// Position (angle, rad, or slider position, m) of the joint's first degree of
+    /// freedom: the `position` of [`joint_state`](Self::joint_state), without computing
+    /// the rate.
+    pub fn joint_position(&self, id: JointId) -> Result<f64> {
+        let d = self.joint_data(id)?;
+        let j = self.world.joint(d.handle)?;
+        match d.kind {
+            JointType::Hinge | JointType::Universal => j.angle(),
+            JointType::Slider | JointType::Piston => j.position(),
+            JointType::Fixed | JointType::Ball => {
+                Err(Error::WrongJointKind { operation: "reading a joint position", kind: d.kind.default_name() })
+            }
+        }
+    }
+
     /// Position (angle, rad, or slider position, m) and its rate of the joint's first
     /// degree of freedom.
     pub fn joint_state(&self, id: JointId) -> Result<JointState> {
