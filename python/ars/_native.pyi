@@ -5,12 +5,11 @@ checks it); the docstrings are in the module itself (`help(ars.Simulation)`).
 """
 
 import os
-from collections.abc import Iterable, Mapping, Sequence
-from typing import Any, Callable, Literal, TypedDict, final
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import Any, Literal, TypeAlias, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
-from typing_extensions import TypeAlias
 
 from ars.display import Image, Replay
 
@@ -21,6 +20,7 @@ __all__ = [
     "Sensor",
     "Simulation",
     "VideoWriter",
+    "_JointTorque",
     "__version__",
     "_panic_for_tests",
     "_release_viewer",
@@ -290,6 +290,7 @@ class Simulation:
     def add_pre_step(self, function: Callable[[], object]) -> int: ...
     def add_post_step(self, function: Callable[[], object]) -> int: ...
     def remove_hook(self, hook: int) -> None: ...
+    def _enable_hook(self, hook: int, enabled: bool) -> None: ...
     # Scene files.
     def save_scene(self) -> str: ...
     def save_scene_to(self, path: _Path) -> None: ...
@@ -380,6 +381,23 @@ class Body:
     def offset_by_position(self, offset: _Vec3) -> None: ...
     def offset_by_object(self, other: str) -> None: ...
     def set_color(self, color: _Vec3) -> None: ...
+    # For ars.model (the original API): tuples, no numpy array made.
+    def _position(self) -> tuple[float, float, float]: ...
+    def _rotation(self) -> tuple[float, float, float, float, float, float, float, float, float]: ...
+    def _linear_velocity(self) -> tuple[float, float, float]: ...
+    def _angular_velocity(self) -> tuple[float, float, float]: ...
+    def _inertia(
+        self,
+    ) -> tuple[
+        tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]
+    ]: ...
+
+@final
+class _JointTorque:
+    def __new__(
+        cls, joint: Joint, heard: set[Any], signals: list[Any], fallback: Callable[[float], None]
+    ) -> _JointTorque: ...
+    def __call__(self, torque: float) -> None: ...
 
 @final
 class Joint:

@@ -29,23 +29,23 @@ import multiprocessing
 import os
 import pickle
 import sys
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor
-from typing import TYPE_CHECKING, Any, Callable, Optional, Union
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
 # What ``sweep`` runs: ``build(params)`` returning an ``ars.Simulation`` or an
 # ``ars.app.Program``, or a ``Program`` subclass.
-Build = Union[Callable[[dict[str, Any]], Any], type]
+Build = Callable[[dict[str, Any]], Any] | type
 # One run's samples: ``time`` then one field per recorded ``"NAME.ATTRIBUTE"``.
 Table = npt.NDArray[np.void]
 # What a run gives back: its table, the exception that stopped it, if any, and the
 # platform it ran on (``_native._platform()``; empty if its worker died).
-Outcome = tuple[Table, Optional[BaseException], dict[str, str]]
+Outcome = tuple[Table, BaseException | None, dict[str, str]]
 # What every run is given besides its parameters: duration, record, every, seed.
-Args = tuple[float, list[str], int, Optional[int]]
+Args = tuple[float, list[str], int, int | None]
 
 if TYPE_CHECKING:
     from ars._native import Body, Joint, Simulation

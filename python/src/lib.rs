@@ -8,6 +8,7 @@
 // Python methods take the original's positional and keyword arguments one by one.
 #![allow(clippy::too_many_arguments)]
 
+mod classic;
 mod errors;
 mod kinds;
 mod many;
@@ -27,6 +28,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::PySimulation>()?;
     m.add_class::<views::Body>()?;
     m.add_class::<views::Joint>()?;
+    m.add_class::<classic::JointTorque>()?;
     m.add_class::<sensors::PySensor>()?;
     m.add_class::<viewer::PyRenderer>()?;
     m.add_class::<video::PyVideoWriter>()?;

@@ -2,14 +2,15 @@
 //! released, with Python callables as hooks.
 //!
 //! The simulation sits in a mutex. While it steps, the thread stepping holds the lock
-//! and runs without the GIL; a Python hook takes the GIL back and may call this same
+//! and runs without the GIL (or, when a Python hook runs at every step, with it: see
+//! `PySimulation::advance`); a Python hook takes the GIL back and may call this same
 //! object (to read a body or push a joint): such calls, on the stepping thread, reach
 //! the simulation through the reference the hook was handed (see [`HookContext`]).
 //! Other threads wait for the step to end, without holding the GIL.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
-use std::thread::ThreadId;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError, TryLockError};
 use std::time::{Duration, Instant};
 
 use ars_core::body::MassSpec;
@@ -31,8 +32,11 @@ type RayHit = (f64, (f64, f64, f64));
 /// thread.
 #[derive(Default)]
 pub(crate) struct HookContext {
-    /// The thread running a Python hook and the simulation it was handed (its address).
-    active: Mutex<Option<(ThreadId, usize)>>,
+    /// The thread running a Python hook ([`thread_mark`]; 0: none) and the simulation
+    /// it was handed (its address). Only the thread that wrote them can find its own
+    /// mark here, so plain atomics do: no lock on every call from a hook.
+    thread: AtomicUsize,
+    sim: AtomicUsize,
     /// The exception a Python hook raised, to re-raise unchanged from `step`/`run`.
     raised: Mutex<Option<PyErr>>,
 }
@@ -42,11 +46,36 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
+thread_local! {
+    static THREAD_MARK: u8 = const { 0 };
+}
+
+/// A number naming the calling thread while it runs (the address of its own
+/// thread-local byte): cheaper than `std::thread::current().id()`, and never 0.
+fn thread_mark() -> usize {
+    THREAD_MARK.with(|mark| mark as *const u8 as usize)
+}
+
 impl HookContext {
     /// The simulation handed to the hook running on this thread, if any.
+    #[inline]
     fn current(&self) -> Option<*mut Simulation> {
-        let active = *lock(&self.active);
-        active.and_then(|(thread, addr)| (thread == std::thread::current().id()).then_some(addr as *mut Simulation))
+        (self.thread.load(Ordering::Relaxed) == thread_mark())
+            .then(|| self.sim.load(Ordering::Relaxed) as *mut Simulation)
+    }
+
+    /// Publishes `sim` as the simulation a hook on this thread was handed, until the
+    /// returned guard is dropped.
+    fn publish(&self, sim: &mut Simulation) -> impl Drop + '_ {
+        self.sim.store(sim as *mut Simulation as usize, Ordering::Relaxed);
+        self.thread.store(thread_mark(), Ordering::Relaxed);
+        struct Clear<'a>(&'a HookContext);
+        impl Drop for Clear<'_> {
+            fn drop(&mut self) {
+                self.0.thread.store(0, Ordering::Relaxed);
+            }
+        }
+        Clear(self)
     }
 }
 
@@ -77,25 +106,26 @@ pub(crate) fn python_signals(raised: &Mutex<Option<PyErr>>) -> impl FnMut() -> b
     }
 }
 
-/// A Python callable run before or after every step.
+/// A Python hook as the simulation keeps it: its id in the core, and its switch.
+type AddedHook = (HookId<PyHook>, Arc<AtomicBool>);
+
+/// A Python callable run before or after every step, while enabled.
 struct PyHook {
     callable: Py<PyAny>,
     after_step: bool,
     context: Arc<HookContext>,
+    /// Off: skipped without taking the GIL (`Simulation._enable_hook`).
+    enabled: Arc<AtomicBool>,
 }
 
 impl PyHook {
     fn call(&self, sim: &mut Simulation) -> ars_core::Result<()> {
-        let context = &self.context;
-        *lock(&context.active) = Some((std::thread::current().id(), sim as *mut Simulation as usize));
-        // Cleared however the call ends.
-        struct Clear<'a>(&'a HookContext);
-        impl Drop for Clear<'_> {
-            fn drop(&mut self) {
-                *lock(&self.0.active) = None;
-            }
+        if !self.enabled.load(Ordering::Relaxed) {
+            return Ok(());
         }
-        let _clear = Clear(context);
+        let context = &self.context;
+        // Cleared however the call ends.
+        let _published = context.publish(sim);
         // While Python runs, `sim` is reached only through the address published above
         // (by calls on this thread); it is not used here until the call returns.
         Python::attach(|py| match self.callable.call0(py) {
@@ -129,11 +159,17 @@ impl Hooks for PyHook {
 pub struct PySimulation {
     sim: Mutex<Simulation>,
     context: Arc<HookContext>,
-    hooks: Mutex<HashMap<u64, HookId<PyHook>>>,
+    /// The Python hooks by the id Python knows them by.
+    hooks: Mutex<HashMap<u64, AddedHook>>,
     next_hook: Mutex<u64>,
 }
 
 impl PySimulation {
+    /// Whether a Python hook is on (runs at every step).
+    fn runs_python_every_step(&self) -> bool {
+        lock(&self.hooks).values().any(|(_, enabled)| enabled.load(Ordering::Relaxed))
+    }
+
     fn wrap(sim: Simulation) -> Self {
         PySimulation {
             sim: Mutex::new(sim),
@@ -178,7 +214,13 @@ impl PySimulation {
         lock(&self.sim)
     }
 
-    /// Steps with the GIL released; a Python hook's exception comes back unchanged.
+    /// Steps with the GIL released, unless a Python hook runs at every step; a Python
+    /// hook's exception comes back unchanged.
+    ///
+    /// A Python hook takes the GIL back at every step: stepping while holding it then
+    /// spares two hand-overs of the GIL per step, and other Python threads still run
+    /// during the hooks' Python code (the interpreter switches threads there). When
+    /// the simulation is busy on another thread, this waits for it without the GIL.
     pub(crate) fn advance(
         &self,
         py: Python<'_>,
@@ -187,7 +229,19 @@ impl PySimulation {
         if self.context.current().is_some() {
             return Err(raise(py, "BusyError", "a hook cannot step the simulation it runs in".into()));
         }
-        let result = self.with(py, f);
+        let held = if self.runs_python_every_step() {
+            match self.sim.try_lock() {
+                Ok(sim) => Some(sim),
+                Err(TryLockError::Poisoned(poisoned)) => Some(poisoned.into_inner()),
+                Err(TryLockError::WouldBlock) => None,
+            }
+        } else {
+            None
+        };
+        let result = match held {
+            Some(mut sim) => guarded(py, || f(&mut sim)),
+            None => self.with(py, f),
+        };
         match lock(&self.context.raised).take() {
             Some(e) => Err(e),
             None => result,
@@ -1203,14 +1257,22 @@ impl PySimulation {
 
     /// Removes a hook added with `add_pre_step` or `add_post_step`.
     fn remove_hook(&self, py: Python<'_>, hook: i64) -> PyResult<()> {
-        let Some(id) = u64::try_from(hook).ok().and_then(|key| lock(&self.hooks).remove(&key)) else {
-            return Err(raise(
-                py,
-                "UnknownNameError",
-                format!("no hook {hook} in this simulation (removed, or never added)"),
-            ));
+        let Some((id, _)) = u64::try_from(hook).ok().and_then(|key| lock(&self.hooks).remove(&key)) else {
+            return Err(unknown_hook(py, hook));
         };
         self.with(py, move |sim| sim.remove_hooks(id).map(drop))
+    }
+
+    /// Turns a hook added with `add_pre_step` or `add_post_step` off (skipped at each
+    /// step without taking the GIL) or back on; for `ars.model`, whose post-step hook
+    /// is off while no one listens to its post-step signal.
+    fn _enable_hook(&self, py: Python<'_>, hook: i64, enabled: bool) -> PyResult<()> {
+        let hooks = lock(&self.hooks);
+        let Some((_, switch)) = u64::try_from(hook).ok().and_then(|key| hooks.get(&key)) else {
+            return Err(unknown_hook(py, hook));
+        };
+        switch.store(enabled, Ordering::Relaxed);
+        Ok(())
     }
 
     /// The scene as JSON text (objects, joints, parameters, state).
@@ -1231,12 +1293,18 @@ impl PySimulation {
         if !function.bind(py).is_callable() {
             return Err(raise(py, "InputError", "a hook must be callable".into()));
         }
-        let hook = PyHook { callable: function, after_step, context: self.context.clone() };
+        let enabled = Arc::new(AtomicBool::new(true));
+        let hook = PyHook { callable: function, after_step, context: self.context.clone(), enabled: enabled.clone() };
         let id = self.with(py, move |sim| sim.add_hooks(hook))?;
         let mut next = lock(&self.next_hook);
         let key = *next;
         *next += 1;
-        lock(&self.hooks).insert(key, id);
+        lock(&self.hooks).insert(key, (id, enabled));
         Ok(key)
     }
+}
+
+/// The error for a hook id this simulation does not have.
+fn unknown_hook(py: Python<'_>, hook: i64) -> PyErr {
+    raise(py, "UnknownNameError", format!("no hook {hook} in this simulation (removed, or never added)"))
 }

@@ -2,7 +2,9 @@
 //! asked and returned as a copy (numpy arrays the caller owns), never a live view.
 
 use ars_core::nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
-use ars_core::{ObjectId, Simulation};
+use std::sync::{Mutex, PoisonError};
+
+use ars_core::{JointId, ObjectId, Simulation};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
@@ -20,11 +22,13 @@ pub(crate) enum Setpoint {
 pub struct Body {
     sim: Py<PySimulation>,
     name: String,
+    /// The id its name had when last looked up (see [`by_name`]).
+    id: Mutex<Option<ObjectId>>,
 }
 
 impl Body {
     pub(crate) fn new(sim: Py<PySimulation>, name: String) -> Self {
-        Body { sim, name }
+        Body { sim, name, id: Mutex::default() }
     }
 
     fn read<R: Send>(
@@ -32,12 +36,33 @@ impl Body {
         py: Python<'_>,
         f: impl FnOnce(&mut Simulation, ObjectId) -> ars_core::Result<R> + Send,
     ) -> PyResult<R> {
-        let name = self.name.as_str();
+        let (name, cached) = (self.name.as_str(), &self.id);
         self.sim.get().with(py, |sim| {
-            let id = sim.object(name)?.id();
+            let id =
+                by_name(cached, |id| sim.object(id).is_ok_and(|o| o.name() == name), || Ok(sim.object(name)?.id()))?;
             f(sim, id)
         })
     }
+}
+
+/// The id a view's name has now: the `cached` one while it still has it
+/// (`still_named`: alive, with that name; a name removed and made again is another
+/// object), else `look_up`'s, then kept. A program reads its bodies and joints every step, and checking an id is
+/// cheaper than finding a name.
+fn by_name<Id: Copy>(
+    cached: &Mutex<Option<Id>>,
+    still_named: impl FnOnce(Id) -> bool,
+    look_up: impl FnOnce() -> ars_core::Result<Id>,
+) -> ars_core::Result<Id> {
+    let mut cached = cached.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(id) = *cached
+        && still_named(id)
+    {
+        return Ok(id);
+    }
+    let id = look_up()?;
+    *cached = Some(id);
+    Ok(id)
 }
 
 /// A rotation from a 3×3 matrix given in Python: refused unless it is one, so that
@@ -51,6 +76,11 @@ pub(crate) fn pose(position: Vec3, rot: Option<[[f64; 3]; 3]>) -> ars_core::Resu
     let r = rot.map(rotation).transpose()?.unwrap_or_else(Rotation3::identity);
     Ok(Isometry3::from_parts(Translation3::from(Vector3::from(position)), UnitQuaternion::from_rotation_matrix(&r)))
 }
+
+/// Three numbers as a Python tuple.
+type Tuple3 = (f64, f64, f64);
+/// A 3×3 matrix, row by row, as a flat Python tuple.
+type Tuple9 = (f64, f64, f64, f64, f64, f64, f64, f64, f64);
 
 fn array3<'py>(py: Python<'py>, v: &Vector3<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v.as_slice())
@@ -106,6 +136,44 @@ impl Body {
         let i = self.read(py, |sim, id| Ok(sim.body(id)?.inertia()))?;
         let rows: Vec<Vec<f64>> = (0..3).map(|r| (0..3).map(|c| i[(r, c)]).collect()).collect();
         Ok(PyArray2::from_vec2(py, &rows).expect("3 rows of 3"))
+    }
+
+    /// Position of its centre, m, as a tuple: what the original API (`ars.model`)
+    /// returns, and no numpy array is made. Methods, not getters, so that `ars.model`
+    /// can hand them out as its own bound methods.
+    #[pyo3(name = "_position")]
+    fn position_tuple(&self, py: Python<'_>) -> PyResult<Tuple3> {
+        let p = self.read(py, |sim, id| sim.position(id))?;
+        Ok((p.x, p.y, p.z))
+    }
+
+    /// Rotation matrix (body to world) as a tuple of 9, row by row (the original API's).
+    #[pyo3(name = "_rotation")]
+    fn rotation_tuple(&self, py: Python<'_>) -> PyResult<Tuple9> {
+        let r = self.read(py, |sim, id| sim.rotation(id))?;
+        Ok((r[(0, 0)], r[(0, 1)], r[(0, 2)], r[(1, 0)], r[(1, 1)], r[(1, 2)], r[(2, 0)], r[(2, 1)], r[(2, 2)]))
+    }
+
+    /// Linear velocity, m/s, as a tuple (the original API's).
+    #[pyo3(name = "_linear_velocity")]
+    fn linear_velocity_tuple(&self, py: Python<'_>) -> PyResult<Tuple3> {
+        let v = self.read(py, |sim, id| Ok(sim.body(id)?.linear_velocity()))?;
+        Ok((v.x, v.y, v.z))
+    }
+
+    /// Angular velocity, rad/s, as a tuple (the original API's).
+    #[pyo3(name = "_angular_velocity")]
+    fn angular_velocity_tuple(&self, py: Python<'_>) -> PyResult<Tuple3> {
+        let w = self.read(py, |sim, id| Ok(sim.body(id)?.angular_velocity()))?;
+        Ok((w.x, w.y, w.z))
+    }
+
+    /// Inertia tensor (as `inertia`) as a tuple of three row tuples (the original API's).
+    #[pyo3(name = "_inertia")]
+    fn inertia_tuple(&self, py: Python<'_>) -> PyResult<(Tuple3, Tuple3, Tuple3)> {
+        let i = self.read(py, |sim, id| Ok(sim.body(id)?.inertia()))?;
+        let row = |r: usize| (i[(r, 0)], i[(r, 1)], i[(r, 2)]);
+        Ok((row(0), row(1), row(2)))
     }
 
     /// Moves it to `position` (m).
@@ -175,21 +243,23 @@ impl Body {
 pub struct Joint {
     sim: Py<PySimulation>,
     name: String,
+    /// The id its name had when last looked up (see [`by_name`]).
+    id: Mutex<Option<JointId>>,
 }
 
 impl Joint {
     pub(crate) fn new(sim: Py<PySimulation>, name: String) -> Self {
-        Joint { sim, name }
+        Joint { sim, name, id: Mutex::default() }
     }
 
     fn act<R: Send>(
         &self,
         py: Python<'_>,
-        f: impl FnOnce(&mut Simulation, ars_core::JointId) -> ars_core::Result<R> + Send,
+        f: impl FnOnce(&mut Simulation, JointId) -> ars_core::Result<R> + Send,
     ) -> PyResult<R> {
-        let name = self.name.as_str();
+        let (name, cached) = (self.name.as_str(), &self.id);
         self.sim.get().with(py, |sim| {
-            let id = sim.joint(name)?.id();
+            let id = by_name(cached, |id| sim.joint(id).is_ok_and(|j| j.name() == name), || Ok(sim.joint(name)?.id()))?;
             f(sim, id)
         })
     }
@@ -207,7 +277,7 @@ impl Joint {
     /// freedom.
     #[getter]
     fn angle(&self, py: Python<'_>) -> PyResult<f64> {
-        self.act(py, |sim, id| Ok(sim.joint_state(id)?.position))
+        self.act(py, |sim, id| sim.joint_position(id))
     }
 
     /// Same as `angle` (the word for sliders).
@@ -223,7 +293,7 @@ impl Joint {
     }
 
     /// Adds a torque (N·m) about a rotary joint's axis for the next step.
-    fn add_torque(&self, py: Python<'_>, torque: f64) -> PyResult<()> {
+    pub(crate) fn add_torque(&self, py: Python<'_>, torque: f64) -> PyResult<()> {
         self.act(py, |sim, id| sim.joint_mut(id)?.add_torque(torque))
     }
 

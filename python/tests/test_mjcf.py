@@ -2,6 +2,7 @@
 and principal moments of inertia equal to MuJoCo's to 1e-9 relative; models written
 by others (Gymnasium's) load and run."""
 
+import itertools
 import os
 import pathlib
 import re
@@ -308,7 +309,7 @@ def assert_first_order(path, joints, reference, controls=None, what=""):
         for dt in (2e-3, 1e-3, 5e-4)
     ]
     assert gaps[0] > gaps[1] > gaps[2], (what, gaps)
-    for coarse, fine in zip(gaps, gaps[1:]):
+    for coarse, fine in itertools.pairwise(gaps):
         assert 1.6 < coarse / fine < 2.5, (what, gaps)
 
 
@@ -643,7 +644,7 @@ def test_accelerometers_converge_to_mujoco_s(tmp_path):
         m, d, sim, model = moving_site_sensors(path, dt)
         theirs = np.array(d.sensor("box_acc").data)
         gaps.append(np.abs(last_row(model["sensors"]["box_acc"])[:3] - theirs).max())
-    for coarse, fine in zip(gaps, gaps[1:]):
+    for coarse, fine in itertools.pairwise(gaps):
         assert 8 < coarse / fine < 12, gaps
     # The free box feels no gravity: what it reads is its spin's.
     assert gaps[2] < 1e-4 * np.abs(theirs).max() and np.abs(theirs).max() > 0.1, (gaps, theirs)
@@ -658,7 +659,7 @@ def test_accelerometers_converge_to_mujoco_s(tmp_path):
         _, _, sim, model = moving_site_sensors(path, dt, duration=0.25)
         assert sim.time == pytest.approx(0.25)
         gaps.append(np.abs(last_row(model["sensors"]["arm_acc"])[:3] - theirs).max())
-    for coarse, fine in zip(gaps, gaps[1:]):
+    for coarse, fine in itertools.pairwise(gaps):
         assert 1.6 < coarse / fine < 2.5, gaps
     assert gaps[2] < 2e-3 * np.abs(theirs).max(), (gaps, theirs)
 
