@@ -11,7 +11,9 @@ True
 """
 
 import atexit
+import importlib
 import os
+from typing import TYPE_CHECKING
 
 from ars import _native
 from ars._errors import (
@@ -42,8 +44,36 @@ from ars._native import (
     has_display,
     step_many,
 )
-from ars.display import Image, Replay
-from ars.sweeps import RunResult, SweepResults, load_sweep, rerun, sweep
+
+if TYPE_CHECKING:
+    from ars.display import Image, Replay
+    from ars.sweeps import RunResult, SweepResults, load_sweep, rerun, sweep
+
+# Imported when first used: both import numpy, which takes longer than the rest of
+# the package (a program that never makes an image or a sweep does not wait for it).
+_LATER = {
+    "Image": "ars.display",
+    "Replay": "ars.display",
+    "RunResult": "ars.sweeps",
+    "SweepResults": "ars.sweeps",
+    "load_sweep": "ars.sweeps",
+    "rerun": "ars.sweeps",
+    "sweep": "ars.sweeps",
+}
+
+
+def __getattr__(name: str) -> object:
+    module = _LATER.get(name)
+    if module is None:
+        raise AttributeError(f"module 'ars' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LATER))
+
 
 # Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
 # lists its devices; with no Wayland display and no XDG_RUNTIME_DIR (Xvfb, CI, ssh -X)

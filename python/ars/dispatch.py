@@ -17,6 +17,7 @@ space), never those of another program's simulation created later in the same pr
 
 import inspect
 import weakref
+from types import MethodType
 
 __all__ = ["Anonymous", "Any", "DispatcherError", "connect", "disconnect", "heard", "send"]
 
@@ -41,29 +42,41 @@ class DispatcherError(Exception):
 
 
 class _Receiver:
-    """A registered callable: held weakly (or not), with the names it accepts."""
+    """A registered callable: held weakly (or not), with the names it accepts. A method
+    is held as a weak reference to its object and its function (what
+    ``weakref.WeakMethod`` does, without a Python-level call to reach it)."""
 
-    __slots__ = ("_ref", "_strong", "accepted", "accepts_all", "key", "owner")
+    __slots__ = ("_func", "_ref", "_strong", "accepted", "accepts_all", "bare", "key", "owner")
 
     def __init__(self, receiver, weak):
         self.key = _key(receiver)
         self._strong = None
         self._ref = None
+        self._func = None
         if not weak:
             self._strong = receiver
         elif inspect.ismethod(receiver):
-            self._ref = weakref.WeakMethod(receiver)
+            self._ref = weakref.ref(receiver.__self__)
+            self._func = receiver.__func__
         else:
             try:
                 self._ref = weakref.ref(receiver)
             except TypeError:
                 self._strong = receiver  # builtins cannot be referenced weakly
         self.accepts_all, self.accepted = _parameters(receiver)
+        # Takes none of the values a signal carries: called with none.
+        self.bare = not self.accepts_all and not self.accepted & {"signal", "sender"}
         owner = getattr(receiver, "__self__", None)
         self.owner = weakref.ref(owner) if _is_program(owner) else None
 
     def get(self):
-        return self._strong if self._ref is None else self._ref()
+        """The receiver, or ``None`` once it is gone."""
+        if self._ref is None:
+            return self._strong
+        target = self._ref()
+        if target is None or self._func is None:
+            return target
+        return MethodType(self._func, target)
 
 
 def _key(receiver):
@@ -97,11 +110,34 @@ _registry = {}
 # The signals some receiver is registered for (``Any`` among them if one hears every
 # signal): a signal outside it has no receiver, whoever sends it.
 _heard = set()
+# (sender key, signal) -> the receivers a send of it reaches, before the program
+# filter: what ``send`` found the last time, kept until the registry changes (a
+# simulation sends its step signals thousands of times a second).
+_resolved = {}
+
+
+# Told (held weakly) whenever the heard signals may have changed.
+_watchers = []
+
+
+def _watch_heard(method):
+    """Calls the bound ``method`` whenever a receiver is connected or goes away, for
+    as long as its object lives: a sender may then turn off what prepares a signal no
+    one hears."""
+    _watchers.append(weakref.WeakMethod(method))
 
 
 def _registry_changed():
     _heard.clear()
     _heard.update(signal for (_, signal), receivers in _registry.items() if receivers)
+    _resolved.clear()
+    if _watchers:
+        live = [ref for ref in _watchers if ref() is not None]
+        _watchers[:] = live
+        for ref in live:
+            watcher = ref()
+            if watcher is not None:
+                watcher()
 
 
 def heard(signal):
@@ -198,6 +234,47 @@ def _program_of(sender):
 _UNKNOWN = object()
 
 
+def _direct_calls(signal, sender):
+    """What ``send(signal, sender)`` (with no values) calls now, as ``(reference,
+    function)`` pairs a sender can call itself, in order: ``function(reference())`` for
+    a method, ``reference()()`` for a function held weakly, ``function()`` for one held
+    strongly (``reference`` is ``None``); a reference that returns ``None`` is a
+    receiver gone since. ``None`` when some receiver takes the signal's values (then
+    ``send`` it). What it returns holds until a receiver is connected or goes away
+    (``_watch_heard``) or the sender's program changes."""
+    if signal not in _heard and Any not in _heard:
+        return []
+    program = _UNKNOWN
+    calls = []
+    for entry in _resolve(_sender_key(sender), signal):
+        if not entry.bare:
+            return None
+        if entry.owner is not None:
+            if program is _UNKNOWN:
+                program = _program_of(sender)
+            if program is not None and entry.owner() is not program:
+                continue
+        calls.append((entry._ref, entry._func if entry._ref is not None else entry._strong))
+    return calls
+
+
+def _resolve(sender_key, signal):
+    """The live receivers of ``signal`` from ``sender_key``, each once, in the order
+    they are called (the sender's own first, then everyone's)."""
+    if sender_key is Any:
+        keys = ((Any, signal), (Any, Any))
+    else:
+        keys = ((sender_key, signal), (sender_key, Any), (Any, signal), (Any, Any))
+    seen = set()
+    found = []
+    for key in keys:
+        for entry, _ in _live(key):
+            if entry.key not in seen:
+                seen.add(entry.key)
+                found.append(entry)
+    return found
+
+
 def send(signal, sender=Anonymous, *args, **named):
     """Sends ``signal`` from ``sender``; returns ``[(receiver, response), ...]``. An
     exception raised by a receiver stops the sending and propagates."""
@@ -206,32 +283,35 @@ def send(signal, sender=Anonymous, *args, **named):
     if signal not in _heard and Any not in _heard:
         return []
     sender_key = _sender_key(sender)
-    registry = _registry
-    mine, mine_any = (sender_key, signal), (sender_key, Any)
-    everyones, everyones_any = (Any, signal), (Any, Any)
-    keys = (mine, mine_any) if sender_key is Any else (mine, mine_any, everyones, everyones_any)
-    seen = set()
+    resolved = _resolved.get((sender_key, signal))
+    if resolved is None:
+        resolved = _resolve(sender_key, signal)
+        # (Resolving may prune dead receivers, which empties the cache: store after.)
+        _resolved[(sender_key, signal)] = resolved
     responses = []
     program = _UNKNOWN  # the sender's program, found when a receiver needs it
-    for key in keys:
-        if key not in registry:
+    for entry in resolved:
+        fn = entry.get()
+        if fn is None:
+            # Gone since it was resolved (maybe during this send): skipped, and
+            # forgotten when the next send resolves again.
+            _resolved.pop((sender_key, signal), None)
             continue
-        for entry, fn in _live(key):
-            if entry.key in seen:
+        if entry.owner is not None:
+            if program is _UNKNOWN:
+                program = _program_of(sender)
+            if program is not None and entry.owner() is not program:
                 continue
-            seen.add(entry.key)
-            if entry.owner is not None:
-                if program is _UNKNOWN:
-                    program = _program_of(sender)
-                if program is not None and entry.owner() is not program:
-                    continue
-            if entry.accepts_all:
-                values = dict(named, signal=signal, sender=sender)
-            else:
-                values = {k: v for k, v in named.items() if k in entry.accepted}
-                if "signal" in entry.accepted:
-                    values["signal"] = signal
-                if "sender" in entry.accepted:
-                    values["sender"] = sender
-            responses.append((fn, fn(*args, **values)))
+        if entry.bare and not named:
+            responses.append((fn, fn(*args)))
+            continue
+        if entry.accepts_all:
+            values = dict(named, signal=signal, sender=sender)
+        else:
+            values = {k: v for k, v in named.items() if k in entry.accepted}
+            if "signal" in entry.accepted:
+                values["signal"] = signal
+            if "sender" in entry.accepted:
+                values["sender"] = sender
+        responses.append((fn, fn(*args, **values)))
     return responses

@@ -142,3 +142,121 @@ def test_the_original_helpers():
     assert cts.COLOR_RED == (0.99609375, 0.0, 0.0)
     assert issubclass(ars.app.exc.JointError, ars.ArsError)
     assert math.isclose(cts.G_VECTOR[1], -9.81)
+
+
+class Counting(Program):
+    """Counts its steps in a pre-step handler that takes nothing (what the original's
+    programs connect: the one the simulation calls without sending the signal)."""
+
+    FPS = 50
+    STEPS_PER_FRAME = 10
+
+    def __init__(self):
+        Program.__init__(self)
+        self.steps = 0
+        dispatcher.connect(self.on_pre_step, signals.SIM_PRE_STEP)
+
+    def create_sim_objects(self):
+        self.box = self.sim.add_box((0.2, 0.2, 0.2), (0, 2, 0), mass=1000.0)
+        self.ball = self.sim.add_sphere(0.1, (1, 2, 0), mass=1.0)
+        self.sim.add_fixed_joint("anchor", self.sim.get_object(self.box), None)
+        self.sim.add_rotary_joint(
+            "hinge", self.sim.get_object(self.ball), self.sim.get_object(self.box), None, cts.Z_AXIS
+        )
+
+    def on_pre_step(self):
+        self.steps += 1
+
+
+def test_handlers_connected_or_gone_during_a_run_are_heard_from_the_next_step():
+    program = Counting()
+    after = []
+
+    def on_post_step():
+        after.append(program.sim.num_iter)
+
+    class Late:
+        def __init__(self):
+            self.steps = 0
+
+        def on_pre_step(self):
+            self.steps += 1
+
+    late = [Late()]  # (a list, so that the test can let it go)
+
+    def connect_late():
+        if program.steps == 20:
+            dispatcher.connect(late[0].on_pre_step, signals.SIM_PRE_STEP)
+            dispatcher.connect(on_post_step, signals.SIM_POST_STEP)
+
+    dispatcher.connect(connect_late, signals.SIM_PRE_STEP)
+    program.run(0.1)  # 50 steps
+    assert program.steps == 50 and program.sim.num_iter == 50
+    # Connected in the 20th step: heard from the 21st; the post-step handler from the
+    # 20th step's end.
+    assert late[0].steps == 30
+    assert after == list(range(20, 51))
+    dispatcher.disconnect(on_post_step, signals.SIM_POST_STEP)
+    late.clear()  # gone: no longer called, and nothing fails
+    program.run(0.1)
+    assert program.steps == 100 and program.sim.num_iter == 100 and len(after) == 31
+    dispatcher.disconnect(connect_late, signals.SIM_PRE_STEP)
+
+
+def test_handlers_that_take_nothing_hear_their_own_programs_simulation_only():
+    first = Counting()
+    first.run(0.1)
+    second = Counting()
+    second.run(0.1)
+    first.run(0.1)
+    assert (first.steps, second.steps) == (100, 50)
+
+
+class Pushing(Counting):
+    """Puts a torque on its hinge at every step, as the IROS programs do."""
+
+    TORQUE = 0.5
+
+    def on_pre_step(self):
+        Counting.on_pre_step(self)
+        self.sim.get_joint("hinge").add_torque(self.TORQUE)
+
+
+def test_torques_act_the_same_heard_or_not_and_a_bad_one_is_logged(caplog):
+    from ars.model.robot import signals as joint_signals
+
+    quiet = Pushing()
+    quiet.run(0.2)
+    heard = []
+
+    def on_torque(torque):
+        heard.append(torque)
+
+    listened = Pushing()
+    dispatcher.connect(on_torque, joint_signals.JOINT_PRE_ADD_TORQUE)
+    listened.run(0.2)
+    dispatcher.disconnect(on_torque, joint_signals.JOINT_PRE_ADD_TORQUE)
+    assert heard == [0.5] * 100
+    angle = [p.sim.get_joint("hinge").joint.angle for p in (quiet, listened)]
+    assert angle[0] == angle[1] and angle[0] != 0.0
+
+    class Failing(Pushing):
+        TORQUE = math.nan
+
+    failing = Failing()
+    failing.run(0.02)
+    assert failing.steps == 10 and "Exception when adding torque to joint 'hinge'" in caplog.text
+    with pytest.raises(ars.app.exc.JointError):
+        failing.sim.get_joint("hinge").joint.add_torque(math.nan)
+
+
+def test_importing_ars_leaves_numpy_until_it_is_needed():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, ars, ars.app, ars.utils.mathematical\n"
+        "assert 'numpy' not in sys.modules, 'numpy imported early'\n"
+        "assert ars.sweep.__name__ == 'sweep' and 'numpy' in sys.modules\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -95,12 +95,17 @@ class Program:
             cam_position=self.CAMERA_POSITION,
         )
         self.create_simulation()
+        self._own_simulation()
 
-    def __setattr__(self, name, value):
-        # A simulation knows its program: the program's handlers then hear it alone.
-        if name == "sim" and isinstance(value, Simulation):
-            value._program = weakref.ref(self)
-        object.__setattr__(self, name, value)
+    def _own_simulation(self):
+        """Tells the simulation it is this program's, so that the program's handlers
+        hear it alone (see ``ars.dispatch``). Done when it is made and whenever the
+        program runs it, not on every attribute set: a program sets its own
+        attributes every step."""
+        sim = self.__dict__.get("sim")
+        if isinstance(sim, Simulation) and (sim._program is None or sim._program() is not self):
+            sim._program = weakref.ref(self)
+            sim._signals_changed()
 
     # -- building -------------------------------------------------------------------
 
@@ -132,6 +137,7 @@ class Program:
         """Runs headless for ``duration`` seconds of simulated time (whole frames of
         ``1/FPS`` s) and returns the simulation."""
         frames = max(0, math.ceil(duration * self.FPS - 1e-9))
+        self._own_simulation()
         for _ in range(frames):
             self.sim.on_idle()
         return self.sim
@@ -237,6 +243,7 @@ class Program:
     def _viewed(self):
         """The viewer's driver of this program; while it is in use, the screenshot
         recorder writes through it."""
+        self._own_simulation()
         driver = _ViewerDriver(self)
         self.gAdapter.snapshot = driver.snapshot
         try:
@@ -261,6 +268,7 @@ class Program:
         self.do_create_window = True
         self.gAdapter.reset()
         self.create_simulation()
+        self._own_simulation()
 
     def on_action_selection(self, key):
         """What a key press does: a held key's action runs in every step of the next

@@ -5,8 +5,6 @@ the original's."""
 
 from math import acos, cos, pi, sin, sqrt  # noqa: F401  (re-exported, as the original did)
 
-import numpy as np
-
 
 def radians_to_degrees(radians_):
     return radians_ * 180.0 / pi
@@ -134,6 +132,8 @@ def matrix_as_tuple(matrix):
 
 
 def matrix_multiply(a, b):
+    import numpy as np  # here, not above: most programs never multiply matrices
+
     return matrix_as_tuple(np.dot(np.array(a), np.array(b)))
 
 
@@ -150,5 +150,7 @@ def calc_acceleration(time_step, vel0, vel1):
 
 def vector_matrix_vector(v, m):
     """``vᵀ M v``."""
+    import numpy as np  # here, not above: most programs never need it
+
     a = np.array(v)
     return np.dot(np.dot(a.T, np.array(m)), a)

@@ -1,7 +1,10 @@
 """Joints of the original ARS API, reached as ``sim.get_joint(name).joint``: each sends
 its signals around the torques, forces and speeds put on it."""
 
-from ars.dispatch import heard, send
+from operator import attrgetter
+
+from ars.dispatch import Any, send
+from ars.dispatch import _heard as _heard_signals
 from ars.exceptions import JointError
 from ars.model.robot import signals
 
@@ -30,17 +33,21 @@ class Universal(Joint):
 
 
 class _Actuated(Joint):
+    def _refused(self, key, value, error):
+        return JointError(self, f"could not {key} {value!r}: {error}")
+
     def _act(self, pre, post, key, value, action):
         """``action(value)``, between the signals ``pre`` and ``post`` (sent with
         ``key=value``) when someone hears either: a torque put every step with nobody
-        listening costs the native call alone."""
-        listened = heard(pre) or heard(post)
+        listening costs the native call and three set lookups."""
+        heard = _heard_signals  # (``ars.dispatch.heard``, inlined: this runs every step)
+        listened = pre in heard or post in heard or Any in heard
         if listened:
             send(pre, sender=self, **{key: value})
         try:
             action(value)
         except Exception as e:
-            raise JointError(self, f"could not {key} {value!r}: {e}") from e
+            raise self._refused(key, value, e) from e
         if listened:
             send(post, sender=self, **{key: value})
 
@@ -48,25 +55,26 @@ class _Actuated(Joint):
 class Rotary(_Actuated):
     """A hinge."""
 
-    @property
-    def angle(self):
-        """Angle, rad, in (−π, π]."""
-        return self._native.angle
-
-    @property
-    def angle_rate(self):
-        """Rate of the angle, rad/s."""
-        return self._native.rate
+    # Read by the native getters through ``attrgetter``, with no Python frame between:
+    # a program reads its joints every step.
+    angle = property(attrgetter("_native.angle"), doc="Angle, rad, in (−π, π].")
+    angle_rate = property(attrgetter("_native.rate"), doc="Rate of the angle, rad/s.")
 
     def add_torque(self, torque):
         """Adds ``torque`` (N·m) about the axis for the next step."""
-        self._act(
+        pre, post, heard = (
             signals.JOINT_PRE_ADD_TORQUE,
             signals.JOINT_POST_ADD_TORQUE,
-            "torque",
-            torque,
-            self._native.add_torque,
+            _heard_signals,
         )
+        if pre in heard or post in heard or Any in heard:
+            self._act(pre, post, "torque", torque, self._native.add_torque)
+            return
+        # Nobody listens (every step of most programs): the native call alone.
+        try:
+            self._native.add_torque(torque)
+        except Exception as e:
+            raise self._refused("torque", torque, e) from e
 
     def set_speed(self, speed, max_force=None):
         """Drives the joint at ``speed`` (rad/s), with at most ``max_force`` (N·m; left

@@ -13,25 +13,22 @@ Objects are kept by name: ``add_sphere`` and friends return the name (``'sphere'
 (``get_joint(name).joint`` is the :mod:`ars.model.robot.joints` object).
 """
 
+import functools
 import logging
 import weakref
 
-from ars import _native
+from ars import _native, dispatch
 from ars.constants import G_VECTOR
 from ars.dispatch import send
 from ars.exceptions import ArsError
 from ars.model.robot import joints as jo
+from ars.model.robot import signals as robot_signals
 from ars.model.simulator import signals
 from ars.utils import mathematical as mut
 
 __all__ = ["SimulatedBody", "SimulatedJoint", "SimulatedObject", "Simulation", "signals"]
 
 logger = logging.getLogger("ars.app")
-
-
-def _floats(values):
-    """A numpy array's values as a tuple of Python floats (``tolist`` converts in C)."""
-    return tuple(values.tolist())
 
 
 class SimulatedObject:
@@ -74,23 +71,25 @@ class PhysicsBody:
         self._native = native
         self._saved_velocities = (None, None)
 
+    # The native tuples (``_position``...) are what the original returned: Python
+    # floats, no numpy array made on the way.
     def get_position(self):
-        return _floats(self._native.position)
+        return self._native._position()
 
     def get_rotation(self):
-        return _floats(self._native.rotation.reshape(9))
+        return self._native._rotation()
 
     def get_linear_velocity(self):
-        return _floats(self._native.linear_velocity)
+        return self._native._linear_velocity()
 
     def get_angular_velocity(self):
-        return _floats(self._native.angular_velocity)
+        return self._native._angular_velocity()
 
     def get_mass(self):
         return float(self._native.mass)
 
     def get_inertia_tensor(self):
-        return tuple(map(tuple, self._native.inertia.tolist()))
+        return self._native._inertia()
 
     def set_position(self, pos):
         self._native.set_position(pos)
@@ -138,10 +137,10 @@ class SimulatedPhysicsObject(SimulatedObject):
         self.offset_by_position(obj.get_position())
 
     def get_position(self):
-        return _floats(self._native.position)
+        return self._native._position()
 
     def get_rotation(self):
-        return _floats(self._native.rotation.reshape(9))
+        return self._native._rotation()
 
     def get_pose(self):
         return (self.get_position(), self.get_rotation())
@@ -152,8 +151,25 @@ class SimulatedBody(SimulatedPhysicsObject):
 
     def __init__(self, name, native, actor=None, dynamic=True):
         super().__init__(name, actor)
+        self._native = None
+        self._body = None
+        if native is not None:
+            self._attach(native, dynamic)
+
+    def _attach(self, native, dynamic=True):
+        """Makes it the object ``native`` (an ``ars.Body``)."""
         self._native = native
         self._body = PhysicsBody(native) if dynamic else None
+        # Its pose and velocities are read by the native calls themselves, with no
+        # Python frame between (programs read them every step), unless a subclass
+        # reads them its own way.
+        cls = type(self)
+        if cls.get_position is SimulatedPhysicsObject.get_position:
+            self.get_position = native._position
+        if dynamic and cls.get_linear_velocity is SimulatedBody.get_linear_velocity:
+            self.get_linear_velocity = native._linear_velocity
+        if dynamic and cls.get_angular_velocity is SimulatedBody.get_angular_velocity:
+            self.get_angular_velocity = native._angular_velocity
 
     @property
     def body(self):
@@ -167,6 +183,18 @@ class SimulatedBody(SimulatedPhysicsObject):
         if self._actor is not None and hasattr(self._actor, "set_pose"):
             self._actor.set_pose(self.get_position(), self.get_rotation())
 
+    # The physics body's velocities, read here directly: programs read them every step,
+    # and reaching them through ``__getattr__`` costs a failed look-up first.
+    def get_linear_velocity(self):
+        if self._body is None:
+            raise AttributeError("get_linear_velocity")
+        return self._native._linear_velocity()
+
+    def get_angular_velocity(self):
+        if self._body is None:
+            raise AttributeError("get_angular_velocity")
+        return self._native._angular_velocity()
+
     def __getattr__(self, attr):
         # The original forwards anything else to the physics body.
         body = self.__dict__.get("_body")
@@ -175,25 +203,45 @@ class SimulatedBody(SimulatedPhysicsObject):
         return getattr(body, attr)
 
 
+def _add_torque_logged(joint, name, torque):
+    """``joint.add_torque(torque)``; a failure is logged, not raised (as the original)."""
+    try:
+        joint.add_torque(torque)
+    except Exception:
+        logger.exception("Exception when adding torque to joint %r", name)
+
+
 class SimulatedJoint(SimulatedObject):
     """A joint of the simulation; ``joint`` is its :mod:`ars.model.robot.joints`
     object."""
 
     def __init__(self, name, joint, actor=None):
         super().__init__(name, actor)
-        self._joint = joint
-
-    @property
-    def joint(self):
-        return self._joint
+        # Its :mod:`ars.model.robot.joints` object: a plain attribute, read every step.
+        self.joint = joint
+        # A rotary joint's torque is put by one native call while no one listens to the
+        # torque signals (programs put torques every step), unless a subclass puts
+        # them its own way.
+        if (
+            type(joint) is jo.Rotary
+            and joint._native is not None
+            and type(self).add_torque is SimulatedJoint.add_torque
+        ):
+            self.add_torque = _native._JointTorque(
+                joint._native,
+                dispatch._heard,
+                [
+                    robot_signals.JOINT_PRE_ADD_TORQUE,
+                    robot_signals.JOINT_POST_ADD_TORQUE,
+                    dispatch.Any,
+                ],
+                functools.partial(_add_torque_logged, joint, name),
+            )
 
     def add_torque(self, torque):
         """Adds a torque to a rotary joint; a failure is logged, not raised (as the
         original)."""
-        try:
-            self._joint.add_torque(torque)
-        except Exception:
-            logger.exception("Exception when adding torque to joint %r", self._name)
+        _add_torque_logged(self.joint, self._name, torque)
 
     def get_position(self):
         raise NotImplementedError
@@ -217,17 +265,29 @@ class Space:
 class Simulation:
     """A simulation run in frames of ``STEPS_PF`` steps, ``1/FPS`` seconds each."""
 
+    # The program it belongs to (a weak reference), set by ``ars.app.Program``: the
+    # program's handlers hear this simulation alone (see ``ars.dispatch``).
+    _program = None
+
     def __init__(self, FPS, STEPS_PF):
         self._FPS = FPS
         self._DT = 1.0 / FPS
         self._STEPS_PF = STEPS_PF
         self.paused = False
-        self.num_iter = 0
+        self._num_iter_offset = 0  # num_iter minus the native steps taken
+        self._pre_step_calls = None  # see _signals_changed
         self.num_frame = 0
         self._native = None
         self._space = None
         self._objects = {}
         self._joints = {}
+        # Looked up by the dicts themselves, with no Python frame between: programs
+        # look their objects and joints up by name many times a step (unless a
+        # subclass looks them up its own way).
+        if type(self).get_object is Simulation.get_object:
+            self.get_object = self._objects.__getitem__
+        if type(self).get_joint is Simulation.get_joint:
+            self.get_joint = self._joints.__getitem__
         self.all_frame_steps_callbacks = []
         self.graph_adapter = None
         self._shown_colors = {}  # the colours given to the viewer, by object
@@ -250,8 +310,28 @@ class Simulation:
 
         def pre_step():
             sim = me()
-            if sim is not None:
+            if sim is None:
+                return
+            calls = sim._pre_step_calls
+            if calls is None or sim.all_frame_steps_callbacks or sim._space.rays:
                 sim._pre_step()
+                return
+            # What sending SIM_PRE_STEP would call, called here: every step of every
+            # program goes through this.
+            try:
+                for target, function in calls:
+                    if target is None:
+                        function()
+                        continue
+                    target = target()
+                    if target is None:  # gone: found out again at the next step
+                        sim._pre_step_calls = None
+                    elif function is None:
+                        target()
+                    else:
+                        function(target)
+            except Exception:
+                logger.exception("Exception when executing the pre-step actions")
 
         def post_step():
             sim = me()
@@ -259,7 +339,29 @@ class Simulation:
                 sim._post_step()
 
         self._native.add_pre_step(pre_step)
-        self._native.add_post_step(post_step)
+        self._post_step_hook = self._native.add_post_step(post_step)
+        dispatch._watch_heard(self._signals_changed)
+        self._signals_changed()
+
+    def _signals_changed(self):
+        """A receiver was connected or went away, or the simulation's program changed:
+        what a step sends is found out again (``_pre_step_calls``), and the post-step
+        hook is on only while someone listens to SIM_POST_STEP (a step then costs no
+        call into Python after it)."""
+        self._pre_step_calls = None
+        if self._native is not None:
+            self._native._enable_hook(self._post_step_hook, dispatch.heard(signals.SIM_POST_STEP))
+
+    @property
+    def num_iter(self):
+        """Steps taken."""
+        steps = 0 if self._native is None else self._native.step_count
+        return steps + self._num_iter_offset
+
+    @num_iter.setter
+    def num_iter(self, value):
+        steps = 0 if self._native is None else self._native.step_count
+        self._num_iter_offset = value - steps
 
     @property
     def native(self):
@@ -279,9 +381,10 @@ class Simulation:
             logger.exception("Exception when executing the pre-step actions")
         for laser in self._space.rays:
             laser._cast()
+        # The next step calls SIM_PRE_STEP's receivers directly, when it can.
+        self._pre_step_calls = dispatch._direct_calls(signals.SIM_PRE_STEP, self)
 
     def _post_step(self):
-        self.num_iter += 1
         try:
             send(signals.SIM_POST_STEP, sender=self)
         except Exception:
@@ -382,8 +485,7 @@ class Simulation:
         obj = SimulatedBody(base, None, actor)
         key = self._key(base, obj)
         name = native_add(*args, mass, density, name=key)
-        obj._native = self.native.body(name)
-        obj._body = PhysicsBody(obj._native)
+        obj._attach(self.native.body(name))
         return self._register(key, obj)
 
     def add_axes(self):
@@ -417,7 +519,7 @@ class Simulation:
         obj = SimulatedBody("floor", None, actor, dynamic=False)
         key = self._key("floor", obj)
         self.native.add_trimesh(vertices, faces, tuple(center), name=key)
-        obj._native = self.native.body(key)
+        obj._attach(self.native.body(key), dynamic=False)
         return self._register(key, obj)
 
     def add_sphere(self, radius, center, mass=None, density=None):
