@@ -16,6 +16,7 @@ Objects are kept by name: ``add_sphere`` and friends return the name (``'sphere'
 import functools
 import logging
 import weakref
+from operator import attrgetter
 
 from ars import _native, dispatch
 from ars.constants import G_VECTOR
@@ -262,12 +263,20 @@ class Space:
         return self._sim()
 
 
+class _BeforeTheWorld:
+    """The clock of a simulation whose world is not made yet."""
+
+    time = 0.0
+
+
 class Simulation:
     """A simulation run in frames of ``STEPS_PF`` steps, ``1/FPS`` seconds each."""
 
     # The program it belongs to (a weak reference), set by ``ars.app.Program``: the
     # program's handlers hear this simulation alone (see ``ars.dispatch``).
     _program = None
+    # What ``sim_time`` reads: the native simulation, once made.
+    _clock = _BeforeTheWorld
 
     def __init__(self, FPS, STEPS_PF):
         self._FPS = FPS
@@ -305,6 +314,7 @@ class Simulation:
             steps_per_frame=self._STEPS_PF,
             space="simple",
         )
+        self._clock = self._native
         self._space = Space(self)
         me = weakref.ref(self)  # the native hooks must not keep this object alive
 
@@ -436,10 +446,12 @@ class Simulation:
         """Seconds per step: ``1/FPS/STEPS_PF``."""
         return self._DT / self._STEPS_PF
 
-    @property
-    def sim_time(self):
-        """Simulated time, s (accumulated step by step, as the original)."""
-        return 0.0 if self._native is None else self._native.time
+    # Read by the native getter through ``attrgetter``, with no Python frame between
+    # (programs read it every step); ``_clock`` is the native simulation once made.
+    sim_time = property(
+        attrgetter("_clock.time"),
+        doc="Simulated time, s (accumulated step by step, as the original).",
+    )
 
     @property
     def gravity(self):
