@@ -16,6 +16,15 @@ from ars.model.simulator import signals
 from ars.utils.geometry import calc_rotation_matrix
 
 
+def hinged_ball(sim):
+    """A ball hinged (``"hinge"``) to a box fixed to the world; their names."""
+    box = sim.add_box((0.2, 0.2, 0.2), (0, 2, 0), mass=1000.0)
+    ball = sim.add_sphere(0.1, (1, 2, 0), mass=1.0)
+    sim.add_fixed_joint("anchor", sim.get_object(box), None)
+    sim.add_rotary_joint("hinge", sim.get_object(ball), sim.get_object(box), None, cts.Z_AXIS)
+    return box, ball
+
+
 class Pendulum(Program):
     """A ball on a massless rod hinged to a fixed box, recording its angle."""
 
@@ -32,12 +41,7 @@ class Pendulum(Program):
         self.torques = sensors.JointTorque(self.sim.get_joint("hinge"), self.sim)
 
     def create_sim_objects(self):
-        self.box = self.sim.add_box((0.2, 0.2, 0.2), (0, 2, 0), mass=1000.0)
-        self.ball = self.sim.add_sphere(0.1, (1, 2, 0), mass=1.0)
-        self.sim.add_fixed_joint("anchor", self.sim.get_object(self.box), None)
-        self.sim.add_rotary_joint(
-            "hinge", self.sim.get_object(self.ball), self.sim.get_object(self.box), None, cts.Z_AXIS
-        )
+        self.box, self.ball = hinged_ball(self.sim)
 
     def on_pre_step(self, sender):
         self.heard.append(sender)
@@ -157,12 +161,7 @@ class Counting(Program):
         dispatcher.connect(self.on_pre_step, signals.SIM_PRE_STEP)
 
     def create_sim_objects(self):
-        self.box = self.sim.add_box((0.2, 0.2, 0.2), (0, 2, 0), mass=1000.0)
-        self.ball = self.sim.add_sphere(0.1, (1, 2, 0), mass=1.0)
-        self.sim.add_fixed_joint("anchor", self.sim.get_object(self.box), None)
-        self.sim.add_rotary_joint(
-            "hinge", self.sim.get_object(self.ball), self.sim.get_object(self.box), None, cts.Z_AXIS
-        )
+        self.box, self.ball = hinged_ball(self.sim)
 
     def on_pre_step(self):
         self.steps += 1

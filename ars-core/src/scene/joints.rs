@@ -10,7 +10,7 @@ use super::views::JointKey;
 use crate::control::{Actuator, JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
-use crate::joint::{JointBuilder, JointKind, JointParam};
+use crate::joint::{JointBuilder, JointKind, JointParam, JointRef};
 use crate::{limits, validate};
 
 /// The kinds of joint a simulation offers.
@@ -531,50 +531,48 @@ impl Scene {
         }
     }
 
+    /// The joint's first degree of freedom read with `rotary` (hinge, universal) or
+    /// `linear` (slider, piston); a ball or fixed joint has none to read (`operation`
+    /// says what was asked).
+    fn first_freedom<T>(
+        &self,
+        id: JointId,
+        operation: &'static str,
+        rotary: impl FnOnce(&JointRef<'_>) -> Result<T>,
+        linear: impl FnOnce(&JointRef<'_>) -> Result<T>,
+    ) -> Result<T> {
+        let d = self.joint_data(id)?;
+        let j = self.world.joint(d.handle)?;
+        match d.kind {
+            JointType::Hinge | JointType::Universal => rotary(&j),
+            JointType::Slider | JointType::Piston => linear(&j),
+            JointType::Fixed | JointType::Ball => Err(Error::WrongJointKind { operation, kind: d.kind.default_name() }),
+        }
+    }
+
     /// Rate (rad/s or m/s) of the joint's first degree of freedom: the `rate` of
     /// [`joint_state`](Self::joint_state), without computing the position (a hinge's
     /// angle costs an `atan2` and a quaternion product in ODE).
     pub fn joint_rate(&self, id: JointId) -> Result<f64> {
-        let d = self.joint_data(id)?;
-        let j = self.world.joint(d.handle)?;
-        match d.kind {
-            JointType::Hinge | JointType::Universal => j.angle_rate(),
-            JointType::Slider | JointType::Piston => j.position_rate(),
-            JointType::Fixed | JointType::Ball => {
-                Err(Error::WrongJointKind { operation: "reading a joint rate", kind: d.kind.default_name() })
-            }
-        }
+        self.first_freedom(id, "reading a joint rate", |j| j.angle_rate(), |j| j.position_rate())
     }
 
     /// Position (angle, rad, or slider position, m) of the joint's first degree of
     /// freedom: the `position` of [`joint_state`](Self::joint_state), without computing
     /// the rate.
     pub fn joint_position(&self, id: JointId) -> Result<f64> {
-        let d = self.joint_data(id)?;
-        let j = self.world.joint(d.handle)?;
-        match d.kind {
-            JointType::Hinge | JointType::Universal => j.angle(),
-            JointType::Slider | JointType::Piston => j.position(),
-            JointType::Fixed | JointType::Ball => {
-                Err(Error::WrongJointKind { operation: "reading a joint position", kind: d.kind.default_name() })
-            }
-        }
+        self.first_freedom(id, "reading a joint position", |j| j.angle(), |j| j.position())
     }
 
     /// Position (angle, rad, or slider position, m) and its rate of the joint's first
     /// degree of freedom.
     pub fn joint_state(&self, id: JointId) -> Result<JointState> {
-        let d = self.joint_data(id)?;
-        let j = self.world.joint(d.handle)?;
-        match d.kind {
-            JointType::Hinge | JointType::Universal => Ok(JointState { position: j.angle()?, rate: j.angle_rate()? }),
-            JointType::Slider | JointType::Piston => {
-                Ok(JointState { position: j.position()?, rate: j.position_rate()? })
-            }
-            JointType::Fixed | JointType::Ball => {
-                Err(Error::WrongJointKind { operation: "reading a joint state", kind: d.kind.default_name() })
-            }
-        }
+        self.first_freedom(
+            id,
+            "reading a joint state",
+            |j| Ok(JointState { position: j.angle()?, rate: j.angle_rate()? }),
+            |j| Ok(JointState { position: j.position()?, rate: j.position_rate()? }),
+        )
     }
 }
 
