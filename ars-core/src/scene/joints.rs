@@ -525,7 +525,16 @@ impl Scene {
         }
     }
 
+    /// The efforts of the step are over: every joint's are zero again.
+    #[inline]
     pub(crate) fn end_joint_step(&mut self) {
+        if self.joints.len() != 0 {
+            self.clear_joint_efforts();
+        }
+    }
+
+    #[inline(never)]
+    fn clear_joint_efforts(&mut self) {
         for d in self.joints.values_mut() {
             d.efforts = JointEfforts::default();
         }

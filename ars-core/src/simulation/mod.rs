@@ -39,7 +39,7 @@ use crate::handle::{JointId, ObjectId};
 use crate::limits;
 use crate::scene::Scene;
 use crate::sensors::{Sensor, SensorId, SensorLog, SensorSet};
-use crate::world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
+use crate::world::{CollideStepError, DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 use hooks::{HookPoint, HookSet, Hooks};
 
 /// The ARS default time step: 0.4 ms (the original's 1 / (50 frames/s × 50 steps/frame)).
@@ -274,6 +274,7 @@ impl Simulation {
     ///   the step nothing happened; after it, time has advanced but the sensors did not
     ///   sample the diverged state. Steps are refused until the body is reset or
     ///   removed; the records so far stay readable.
+    #[inline]
     pub fn step(&mut self) -> Result<()> {
         self.step_driven(None::<&mut ()>)
     }
@@ -342,13 +343,11 @@ impl Simulation {
         self.sensors.before_step(&self.scene)?;
         let scene = &mut self.scene;
         let time_before = scene.world.time();
-        let stepped = scene.collide_and_step().map_err(|e| scene.name_handles(e))?;
-        scene.world.clear_contacts();
-        if scene.world.time() != time_before {
-            scene.time += scene.time_step();
-            scene.step_count += 1;
+        // The contact joints are destroyed once the world has stepped.
+        if let Err(failed) = scene.collide_and_step() {
+            return Err(failed_step(scene, *failed, time_before));
         }
-        stepped.map_err(|e| scene.name_handles(e))?;
+        advance_clock(scene, time_before);
         let sampled = self.sensors.after_step(&self.scene);
         self.scene.end_joint_step();
         sampled?;
@@ -493,5 +492,30 @@ impl Simulation {
     /// Whether a sensor stopped sampling because an object or joint it reads was removed.
     pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         self.sensors.is_detached(id)
+    }
+}
+
+/// The clock after a step: the scene's time advances by its time step when the
+/// world's did (a failed step may not have advanced it).
+#[inline(always)]
+fn advance_clock(scene: &mut Scene, world_time_before: f64) {
+    if scene.world.time() != world_time_before {
+        scene.time += scene.time_step();
+        scene.step_count += 1;
+    }
+}
+
+/// The error of a step whose collision or step failed, with the scene's names: after
+/// a failed collision nothing changed; after a failed step the contact joints are
+/// destroyed and the clock is where the world's is.
+#[cold]
+fn failed_step(scene: &mut Scene, failed: CollideStepError, world_time_before: f64) -> Error {
+    match failed {
+        CollideStepError::Collide(e) => scene.name_handles(e),
+        CollideStepError::Step(e) => {
+            scene.world.clear_contacts();
+            advance_clock(scene, world_time_before);
+            scene.name_handles(e)
+        }
     }
 }

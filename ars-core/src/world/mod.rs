@@ -21,7 +21,7 @@ use geom::GeomData;
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::guard;
-use crate::handle::{Arena, BodyHandle, SpaceHandle, WorldId};
+use crate::handle::{Arena, BodyHandle, RawHandle, SpaceHandle, WorldId};
 use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::limits;
 use crate::validate;
@@ -221,6 +221,9 @@ pub struct World {
     /// (unknown), so that a hash space created later checks exactly until a step has
     /// measured it.
     max_body_coordinate: f64,
+    /// The space of the last collision ([`RawHandle::NONE`] before the first), with its
+    /// ODE id and kind (see [`World::collision_space`]).
+    collided_space: (SpaceHandle, ffi::dSpaceID, SpaceKind),
     /// Whether the world has a hash space (spaces are never removed).
     has_hash_space: bool,
     /// Whether a force or torque was added through the API since the last step (ODE
@@ -235,6 +238,30 @@ pub struct World {
     /// body, from the origin); it never decreases. With `max_body_coordinate` it lets
     /// a hash space skip its exact bounds check when everything is well inside.
     geom_reach: f64,
+}
+
+/// A failed [`World::collide_and_step`]: the collision's error (nothing was stepped)
+/// or the step's.
+#[derive(Debug)]
+pub(crate) enum CollideStepError {
+    /// The collision failed; the world did not step.
+    Collide(Error),
+    /// The collision went through and the step failed.
+    Step(Error),
+}
+
+/// What [`World::collide_and_step`] returns: the rare failure is boxed, so that a step
+/// that goes through returns one word.
+pub(crate) type CollideStepResult = std::result::Result<(), Box<CollideStepError>>;
+
+#[cold]
+fn collide_failed(error: Error) -> Box<CollideStepError> {
+    Box::new(CollideStepError::Collide(error))
+}
+
+#[cold]
+fn step_failed(error: Error) -> Box<CollideStepError> {
+    Box::new(CollideStepError::Step(error))
 }
 
 /// Why a world refuses to go on after an ODE internal error.
@@ -296,6 +323,8 @@ impl World {
             (w, ffi::dJointGroupCreate(0), threading)
         };
         let id = WorldId::next();
+        let mut collision = CollisionState::default();
+        (collision.plain.0.world, collision.plain.0.group) = (raw, contact_group);
         World {
             id,
             raw,
@@ -305,7 +334,7 @@ impl World {
             geoms: Arena::new(id),
             joints: Arena::new(id),
             spaces: Arena::new(id),
-            collision: CollisionState::default(),
+            collision,
             grid: grid::Grid::default(),
             trimesh_count: 0,
             ray_geoms: 0,
@@ -317,6 +346,7 @@ impl World {
             poison: None,
             max_body_coordinate: 0.0,
             has_hash_space: false,
+            collided_space: (SpaceHandle(RawHandle::NONE), std::ptr::null_mut(), SpaceKind::Simple),
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
             forces_added: false,
             geom_reach: 0.0,
@@ -505,13 +535,16 @@ impl World {
         self.check_after_step()
     }
 
-    /// [`World::collide`] on `space`, then [`World::step`] by `dt`: the outer `Err` is
-    /// the collision's (nothing stepped), the inner result the step's. Every check of
-    /// the two is made, in the same order. With the exact stepper, a world the plain
-    /// near callback serves (see [`World::plain_collision_applies`]) and a step whose
-    /// checks before ODE pass, ODE collides and steps in one guarded call (`guard.c`).
+    /// [`World::collide`] on `space`, then [`World::step`] by `dt`, then (once the world
+    /// has stepped) [`World::clear_contacts`]: the error says which of the two failed
+    /// (a failed collision stepped nothing; after a failed step the contact joints may
+    /// be left). Every check of the two is made, in the same order. With the exact
+    /// stepper, a world the plain near callback serves (see
+    /// [`World::plain_collision_applies`]) and a step whose checks before ODE pass,
+    /// ODE collides, steps and destroys the contact joints in one guarded call
+    /// (`guard.c`).
     #[inline(always)]
-    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: f64) -> Result<Result<()>> {
+    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
         let one_call = matches!(self.stepper, Stepper::Exact)
             && self.plain_collision_applies()
             // The step's checks that read the bodies only (a collision changes none):
@@ -519,42 +552,58 @@ impl World {
             && limits::time_step(dt).is_ok()
             && self.check_before_step().is_ok();
         if !one_call {
-            self.collide(space)?;
-            return Ok(self.step(dt));
+            return self.collide_then_step(space, dt);
         }
-        let (raw_space, kind) = self.begin_collision(space)?;
+        let (raw_space, kind) = self.begin_collision(space).map_err(collide_failed)?;
         if matches!(kind, SpaceKind::Grid) {
             // ARS's own broad phase lists the pairs in Rust.
-            self.collide(space)?;
-            return Ok(self.step(dt));
+            return self.collide_then_step(space, dt);
         }
-        let needs_lock = self.trimesh_count > 0;
-        let mut pair_failure = std::mem::MaybeUninit::uninit();
-        let mut plain = self.plain_collision(&mut pair_failure);
-        let done = {
-            let _guard = needs_lock.then(lock_ode_global_state);
+        let (plain, limit) = (&mut self.collision.plain.0, self.exact_step_contacts);
+        // Two calls rather than an optional lock guard, whose drop is not free.
+        let done = if self.trimesh_count > 0 {
+            let _guard = lock_ode_global_state();
             // SAFETY: as in `collide_plain` (the space is live and its geoms are this
-            // world's, the parameters point into this world); the world's step
-            // threading implementation is its own self-threaded one.
-            unsafe { guard::collide_and_step(raw_space, &mut plain, dt, self.exact_step_contacts) }
+            // world's, the parameters are this world's); the world's step threading
+            // implementation is its own self-threaded one.
+            unsafe { guard::collide_and_step(raw_space, plain, dt, limit) }
+        } else {
+            // SAFETY: as above.
+            unsafe { guard::collide_and_step(raw_space, plain, dt, limit) }
         };
         match done {
-            guard::CollideStep::CollideFailed(failure) => Err(self.collision_failed(failure)),
+            guard::CollideStep::Stepped(stepped) => {
+                self.end_plain_collision().map_err(collide_failed)?;
+                self.finish_step(dt, Ok(stepped)).map_err(step_failed)
+            }
+            guard::CollideStep::CollideFailed => {
+                let failure = guard::collide_and_step_failure(&self.collision.plain.0);
+                Err(collide_failed(self.collision_failed(failure)))
+            }
             guard::CollideStep::NotStepped => {
-                self.end_plain_collision(&plain)?;
+                self.end_plain_collision().map_err(collide_failed)?;
                 // More contact points than the exact stepper's limit: the island check
                 // decides, in the separate step.
-                Ok(self.step(dt))
+                self.step(dt).map_err(step_failed)?;
+                self.clear_contacts();
+                Ok(())
             }
-            guard::CollideStep::StepFailed(failure) => {
-                self.end_plain_collision(&plain)?;
-                Ok(self.finish_step(dt, Err(failure)))
-            }
-            guard::CollideStep::Stepped(stepped) => {
-                self.end_plain_collision(&plain)?;
-                Ok(self.finish_step(dt, Ok(stepped)))
+            guard::CollideStep::StepFailed => {
+                self.end_plain_collision().map_err(collide_failed)?;
+                let failure = guard::collide_and_step_failure(&self.collision.plain.0);
+                self.finish_step(dt, Err(failure)).map_err(step_failed)
             }
         }
+    }
+
+    /// [`World::collide`], then [`World::step`]: what [`World::collide_and_step`] does
+    /// when ODE cannot do both in one call.
+    #[inline(never)]
+    fn collide_then_step(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
+        self.collide(space).map_err(collide_failed)?;
+        self.step(dt).map_err(step_failed)?;
+        self.clear_contacts();
+        Ok(())
     }
 
     /// The accumulators (and, after a divergence, the whole state) of every body.
