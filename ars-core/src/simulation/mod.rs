@@ -334,6 +334,7 @@ impl Simulation {
 
     /// One step driven by `program` (a [`Program`](crate::Program) with its held keys),
     /// whose hooks run before the added ones.
+    #[inline]
     pub(crate) fn step_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>) -> Result<()> {
         if let Some(program) = program.as_deref_mut() {
             HookPoint::PreStep.run(program, self, &"the program")?;
@@ -348,9 +349,13 @@ impl Simulation {
             return Err(failed_step(scene, *failed, time_before));
         }
         advance_clock(scene, time_before);
-        let sampled = self.sensors.after_step(&self.scene);
-        self.scene.end_joint_step();
-        sampled?;
+        if self.sensors.sample_after_step() {
+            let sampled = self.sensors.after_step(&self.scene);
+            self.scene.end_joint_step();
+            sampled?;
+        } else {
+            self.scene.end_joint_step();
+        }
         if let Some(program) = program {
             HookPoint::PostStep.run(program, self, &"the program")?;
         }

@@ -571,7 +571,10 @@ impl World {
     pub(crate) fn begin_collision(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
         self.check_usable()?;
         ensure_ode_ready();
-        let (raw_space, kind) = self.collision_space(space)?;
+        if self.collided_space != space {
+            self.look_up_collision_space(space)?;
+        }
+        let (raw_space, kind) = (self.collided_space_raw, self.collided_space_kind);
         if let SpaceKind::Hash { min_level, .. } = kind {
             // SAFETY: the space is live.
             let geoms = unsafe { ffi::dSpaceGetNumGeoms(raw_space) };
@@ -596,20 +599,14 @@ impl World {
         Ok((raw_space, kind))
     }
 
-    /// The ODE id and kind of `space`, looked up in the arena the first time only:
-    /// spaces are never removed, so a handle found once is found for good.
-    #[inline(always)]
-    fn collision_space(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
-        let (handle, raw, kind) = self.collided_space;
-        if handle == space { Ok((raw, kind)) } else { self.look_up_collision_space(space) }
-    }
-
+    /// Looks `space` up in the arena and keeps its ODE id and kind for the next
+    /// collisions (in `collided_space`): spaces are never removed, so a handle found
+    /// once is found for good, and the collisions that follow only compare handles.
     #[inline(never)]
-    fn look_up_collision_space(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
+    fn look_up_collision_space(&mut self, space: SpaceHandle) -> Result<()> {
         let data = self.space_data(space)?;
-        let (raw, kind) = (data.raw, data.kind);
-        self.collided_space = (space, raw, kind);
-        Ok((raw, kind))
+        (self.collided_space, self.collided_space_raw, self.collided_space_kind) = (space, data.raw, data.kind);
+        Ok(())
     }
 
     /// Whether every pair would take the plain path of the near callback: the

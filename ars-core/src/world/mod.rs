@@ -222,8 +222,10 @@ pub struct World {
     /// measured it.
     max_body_coordinate: f64,
     /// The space of the last collision ([`RawHandle::NONE`] before the first), with its
-    /// ODE id and kind (see [`World::collision_space`]).
-    collided_space: (SpaceHandle, ffi::dSpaceID, SpaceKind),
+    /// ODE id and kind (see [`World::look_up_collision_space`]).
+    collided_space: SpaceHandle,
+    collided_space_raw: ffi::dSpaceID,
+    collided_space_kind: SpaceKind,
     /// Whether the world has a hash space (spaces are never removed).
     has_hash_space: bool,
     /// Whether a force or torque was added through the API since the last step (ODE
@@ -346,7 +348,9 @@ impl World {
             poison: None,
             max_body_coordinate: 0.0,
             has_hash_space: false,
-            collided_space: (SpaceHandle(RawHandle::NONE), std::ptr::null_mut(), SpaceKind::Simple),
+            collided_space: SpaceHandle(RawHandle::NONE),
+            collided_space_raw: std::ptr::null_mut(),
+            collided_space_kind: SpaceKind::Simple,
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
             forces_added: false,
             geom_reach: 0.0,
