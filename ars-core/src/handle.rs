@@ -36,6 +36,14 @@ impl RawHandle {
     /// A handle no arena issues (of no world): what a cache of a looked-up handle
     /// holds before the first look-up.
     pub(crate) const NONE: RawHandle = RawHandle { world: WorldId::NONE, index: u32::MAX, generation: u32::MAX };
+
+    /// `self == other`, compared as two words rather than field by field (for a
+    /// handle checked at every step).
+    #[inline(always)]
+    pub(crate) fn same_as(self, other: RawHandle) -> bool {
+        let slot = |h: RawHandle| u64::from(h.index) | u64::from(h.generation) << 32;
+        (slot(self) == slot(other)) & (self.world == other.world)
+    }
 }
 
 macro_rules! handle_type {

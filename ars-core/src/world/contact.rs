@@ -571,7 +571,7 @@ impl World {
     pub(crate) fn begin_collision(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
         self.check_usable()?;
         ensure_ode_ready();
-        if self.collided_space != space {
+        if !self.collided_space.0.same_as(space.0) {
             self.look_up_collision_space(space)?;
         }
         let (raw_space, kind) = (self.collided_space_raw, self.collided_space_kind);

@@ -643,10 +643,8 @@ impl World {
             }
             self.max_body_coordinate = far;
         } else {
-            for b in self.bodies.values() {
-                // SAFETY: every body in the arena is live, so are its state pointers.
-                fine &= unsafe { state_fine(&b.state) };
-            }
+            // SAFETY: every body in the arena is live, so are its state pointers.
+            fine = self.bodies.values().all(|b| unsafe { state_fine(&b.state) });
             self.max_body_coordinate = f64::INFINITY;
         }
         if fine {
@@ -838,13 +836,22 @@ unsafe fn accumulators_fine(s: &crate::body::StatePointers) -> bool {
 #[inline(always)]
 unsafe fn state_fine(s: &crate::body::StatePointers) -> bool {
     // SAFETY: the caller's contract.
-    unsafe {
-        within(&*s.position, limits::MAX_COORDINATE)
-            & within(&*s.quaternion, 1.5)
-            & within(&*s.linear_velocity, limits::MAX_SPEED)
-            & within(&*s.angular_velocity, limits::MAX_ANGULAR_SPEED)
+    let (p, q, v, w) = unsafe { (&*s.position, &*s.quaternion, &*s.linear_velocity, &*s.angular_velocity) };
+    // The 13 components side by side (the last repeated to an even count), each
+    // against its own bound: the comparisons go two at a time.
+    let values = [p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2], w[2]];
+    let mut outside = 0_u64;
+    for (x, max) in values.iter().zip(STATE_LIMITS) {
+        outside |= u64::from(!(x.abs() <= max));
     }
+    outside == 0
 }
+
+/// The bound of each component of [`state_fine`]'s values.
+const STATE_LIMITS: [f64; 14] = {
+    let (c, s, a) = (limits::MAX_COORDINATE, limits::MAX_SPEED, limits::MAX_ANGULAR_SPEED);
+    [c, c, c, 1.5, 1.5, 1.5, 1.5, s, s, s, a, a, a, a]
+};
 
 impl Drop for World {
     fn drop(&mut self) {
