@@ -231,8 +231,9 @@ pub(crate) unsafe fn collide_and_step(
     dt: f64,
     contact_limit: usize,
 ) -> CollideStep {
+    (plain.space, plain.step_size, plain.contact_limit) = (space, dt, contact_limit);
     // SAFETY: the caller's contract; `plain` outlives the call.
-    let r = unsafe { ffi::odesys_guarded_collide_and_step(space, plain, dt, contact_limit) };
+    let r = unsafe { ffi::odesys_guarded_collide_and_step(plain) };
     match r {
         r if r == ffi::ODESYS_OK as c_int => CollideStep::Stepped(true),
         ffi::ODESYS_CAUGHT if plain.phase == ffi::ODESYS_PHASE_STEP as c_int => CollideStep::StepFailed,

@@ -250,28 +250,26 @@ int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *
 }
 
 /* The collision of odesys_guarded_collide_and_step, then its step when the
- * collision went through and made at most `contact_limit` contact points, then the
+ * collision went through and made at most `plain->contact_limit` contact points, then the
  * contact joints destroyed (as the Rust side would right after the step): returns
  * ODESYS_OK or ODESYS_REFUSED (the step's result) or ODESYS_NOT_STEPPED. */
-static int collide_then_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
-                             size_t contact_limit) {
+static int collide_then_step(struct odesys_plain_collision *plain) {
     plain->phase = ODESYS_PHASE_COLLIDE;
-    dSpaceCollide(space, plain, plain_near);
-    if (plain->stopped != 0 || plain->out.len > contact_limit) {
+    dSpaceCollide(plain->space, plain, plain_near);
+    if (plain->stopped != 0 || plain->out.len > plain->contact_limit) {
         return ODESYS_NOT_STEPPED;
     }
     plain->phase = ODESYS_PHASE_STEP;
-    int stepped = dWorldStep(plain->world, step_size);
+    int stepped = dWorldStep(plain->world, plain->step_size);
     dJointGroupEmpty(plain->group);
     return stepped ? ODESYS_OK : ODESYS_REFUSED;
 }
 
-int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
-                                    size_t contact_limit) {
+int odesys_guarded_collide_and_step(struct odesys_plain_collision *plain) {
     int result = ODESYS_NOT_STEPPED;
     plain->stopped = 0;
     plain->out.len = 0;
-    GUARDED(&plain->failure, return ODESYS_CAUGHT, result = collide_then_step(space, plain, step_size, contact_limit));
+    GUARDED(&plain->failure, return ODESYS_CAUGHT, result = collide_then_step(plain));
     return result;
 }
 

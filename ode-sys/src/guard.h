@@ -68,6 +68,11 @@ struct odesys_plain_collision {
     int stopped;
     dGeomID failed[2];
     struct odesys_failure pair_failure; /* written when a pair fails */
+    /* What odesys_guarded_collide_and_step does: collide `space`, then step by
+     * `step_size` when the collision made at most `contact_limit` contact points. */
+    dSpaceID space;
+    dReal step_size;
+    size_t contact_limit;
     /* What odesys_guarded_collide_and_step was doing when it caught a failure, and
      * the failure. */
     int phase;
@@ -80,13 +85,12 @@ struct odesys_plain_collision {
 /* dSpaceCollide with the plain near callback (see guard.c), under a guard. */
 int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
                                  struct odesys_failure *failure);
-/* The plain collision, then dWorldStep when the collision went through and made at
- * most `contact_limit` contact points (else ODESYS_NOT_STEPPED), then (once the world
- * has stepped) the contact joints destroyed, under one guard: a caught failure is
- * reported in `plain->failure`, and `plain->phase` says whether it was the
- * collision or the step. */
-int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
-                                    size_t contact_limit);
+/* The plain collision of `plain->space`, then dWorldStep by `plain->step_size` when
+ * the collision went through and made at most `plain->contact_limit` contact points
+ * (else ODESYS_NOT_STEPPED), then (once the world has stepped) the contact joints
+ * destroyed, under one guard: a caught failure is reported in `plain->failure`, and
+ * `plain->phase` says whether it was the collision or the step. */
+int odesys_guarded_collide_and_step(struct odesys_plain_collision *plain);
 void odesys_contact_records_free(struct odesys_contact_records *records);
 int odesys_guarded_debug_report(int num, const char *message, struct odesys_failure *failure);
 

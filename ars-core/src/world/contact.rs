@@ -261,7 +261,7 @@ impl Default for PlainCollision {
     fn default() -> Self {
         let surface = ContactSurface::default();
         PlainCollision(ffi::odesys_plain_collision {
-            // Set by `World::new`, and `scratch` when it is first made.
+            // Set by `CollisionState::new`.
             world: std::ptr::null_mut(),
             group: std::ptr::null_mut(),
             contact: contact_with(&surface),
@@ -271,6 +271,9 @@ impl Default for PlainCollision {
             stopped: 0,
             failed: [std::ptr::null_mut(); 2],
             pair_failure: ffi::odesys_failure::default(),
+            space: std::ptr::null_mut(),
+            step_size: 0.0,
+            contact_limit: 0,
             phase: 0,
             failure: ffi::odesys_failure::default(),
         })
@@ -352,6 +355,19 @@ impl CollisionState {
 }
 
 impl CollisionState {
+    /// The collision state of a new world: room for a pair's contact points (made once
+    /// and never resized, so that the plain collision keeps its address), and the
+    /// plain collision's world and contact group.
+    pub(crate) fn new(world: ffi::dWorldID, group: ffi::dJointGroupID) -> Self {
+        let mut state = CollisionState {
+            scratch: vec![ffi::dContactGeom::default(); MAX_CONTACTS_LIMIT],
+            ..CollisionState::default()
+        };
+        let plain = &mut state.plain.0;
+        (plain.world, plain.group, plain.scratch) = (world, group, state.scratch.as_mut_ptr());
+        state
+    }
+
     /// Number of contact points of the last collision pass.
     #[inline]
     pub(crate) fn contact_count(&self) -> usize {
@@ -565,8 +581,8 @@ impl World {
     }
 
     /// The checks before ODE collides `space` (a usable world; a hash space's size and
-    /// bounds), then the start of a pass: no contact points, no ray hits, room for a
-    /// pair's contact points. The space's ODE id and kind.
+    /// bounds), then the start of a pass: no contact points, no ray hits. The space's
+    /// ODE id and kind.
     #[inline(always)]
     pub(crate) fn begin_collision(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
         self.check_usable()?;
@@ -591,11 +607,6 @@ impl World {
         }
         self.collision.plain.0.out.len = 0;
         self.collision.ray_hits.clear();
-        if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
-            // Made once, never resized again: the plain collision keeps its address.
-            self.collision.scratch.resize(MAX_CONTACTS_LIMIT, ffi::dContactGeom::default());
-            self.collision.plain.0.scratch = self.collision.scratch.as_mut_ptr();
-        }
         Ok((raw_space, kind))
     }
 
@@ -626,8 +637,8 @@ impl World {
             let _guard = needs_lock.then(lock_ode_global_state);
             // SAFETY: the space is live and its geoms are this world's; the parameters
             // hold this world and its contact group (live), the default contact, and
-            // `scratch` with MAX_CONTACTS_LIMIT ≥ max_contacts entries (made by
-            // `begin_collision`); the records are guard.c's.
+            // `scratch` with MAX_CONTACTS_LIMIT ≥ max_contacts entries (made with the
+            // world); the records are guard.c's.
             unsafe { guard::collide_plain(raw_space, &mut self.collision.plain.0) }
         };
         if let Err(failure) = collided {

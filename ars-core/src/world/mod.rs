@@ -325,8 +325,7 @@ impl World {
             (w, ffi::dJointGroupCreate(0), threading)
         };
         let id = WorldId::next();
-        let mut collision = CollisionState::default();
-        (collision.plain.0.world, collision.plain.0.group) = (raw, contact_group);
+        let collision = CollisionState::new(raw, contact_group);
         World {
             id,
             raw,
