@@ -189,11 +189,11 @@ impl Scene {
     /// [`World::collide_and_step`](crate::World)).
     #[inline(always)]
     pub(crate) fn collide_and_step(&mut self) -> CollideStepResult {
-        let (space, dt) = (self.space, self.time_step());
+        let (space, dt) = (self.space, self.time_step);
         if self.pair_surfaces.is_empty() {
             self.world.collide_and_step(space, dt)
         } else {
-            self.collide_with_surfaces_and_step(space, dt)
+            self.collide_with_surfaces_and_step(space, dt.get())
         }
     }
 

@@ -172,7 +172,7 @@ impl SimulationBuilder {
 
     /// Creates the simulation: world, contact group, space, then the floor.
     pub fn build(self) -> Result<Simulation> {
-        limits::time_step(self.time_step)?;
+        let time_step = limits::TimeStep::new(self.time_step)?;
         if self.steps_per_frame == 0 {
             return Err(Error::OutOfRange { what: "steps per frame", detail: "must be at least 1, got 0".into() });
         }
@@ -189,7 +189,7 @@ impl SimulationBuilder {
         let space = world.create_space(self.space)?;
         let id = world.id();
         let mut sim = Simulation {
-            scene: Scene::new(world, (space, self.space), self.time_step, self.steps_per_frame),
+            scene: Scene::new(world, (space, self.space), time_step, self.steps_per_frame),
             sensors: SensorSet::new(id),
             hooks: HookSet::new(id),
         };

@@ -547,12 +547,14 @@ impl World {
     /// ODE collides, steps and destroys the contact joints in one guarded call
     /// (`guard.c`).
     #[inline(always)]
-    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
+    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: limits::TimeStep) -> CollideStepResult {
+        // The time step was checked when it was made (`World::step` checks it again on
+        // the separate path, as it always does).
+        let dt = dt.get();
         let one_call = matches!(self.stepper, Stepper::Exact)
             && self.plain_collision_applies()
             // The step's checks that read the bodies only (a collision changes none):
             // when one fails, the separate calls below report it as they always do.
-            && limits::time_step(dt).is_ok()
             && self.check_before_step().is_ok();
         if !one_call {
             return self.collide_then_step(space, dt);
