@@ -467,7 +467,7 @@ impl ConvexSizes {
     /// No pair can exceed the ratio (division is monotone: a pair's ratio is at most
     /// this one).
     #[inline]
-    fn all_pairs_fine(&self) -> bool {
+    pub(crate) fn all_pairs_fine(&self) -> bool {
         !self.cylinders || self.largest / self.smallest <= crate::limits::MAX_CONVEX_PAIR_RATIO
     }
 }
@@ -552,6 +552,7 @@ impl World {
         }
         if let Err(failure) = collided {
             self.poison = Some(Poison::Collide(failure.message.clone()));
+            self.gate.poisoned = true;
             return Err(Error::OdeInternal { during: "collision", message: failure.message });
         }
         if let Some(payload) = panic {
@@ -601,13 +602,19 @@ impl World {
                 self.check_hash_bounds(space, min_level)?;
             }
         }
+        self.start_collision_pass();
+        Ok((raw_space, kind))
+    }
+
+    /// The start of a collision pass: no contact points, no ray hits.
+    #[inline(always)]
+    pub(crate) fn start_collision_pass(&mut self) {
         if let Some(mut old) = self.collision.points.take() {
             old.clear();
             self.collision.spare_points.set(old);
         }
         self.collision.plain.0.out.len = 0;
         self.collision.ray_hits.clear();
-        Ok((raw_space, kind))
     }
 
     /// Looks `space` up in the arena and keeps its ODE id and kind for the next
@@ -615,8 +622,10 @@ impl World {
     /// once is found for good, and the collisions that follow only compare handles.
     #[inline(never)]
     fn look_up_collision_space(&mut self, space: SpaceHandle) -> Result<()> {
-        let data = self.space_data(space)?;
-        (self.collided_space, self.collided_space_raw, self.collided_space_kind) = (space, data.raw, data.kind);
+        let (raw, kind) = self.space_data(space).map(|d| (d.raw, d.kind))?;
+        (self.collided_space, self.collided_space_raw, self.collided_space_kind) = (space, raw, kind);
+        let plain = matches!(kind, SpaceKind::Simple | SpaceKind::SweepAndPrune { .. });
+        self.plain_space = if plain { space } else { SpaceHandle(crate::handle::RawHandle::NONE) };
         Ok(())
     }
 
@@ -651,6 +660,7 @@ impl World {
     #[cold]
     pub(crate) fn collision_failed(&mut self, failure: OdeFailure) -> Error {
         self.poison = Some(Poison::Collide(failure.message.clone()));
+        self.gate.poisoned = true;
         Error::OdeInternal { during: "collision", message: failure.message }
     }
 
@@ -720,6 +730,7 @@ impl World {
     /// every contact.
     pub fn set_contact_feedback(&mut self, on: bool) {
         self.collision.feedback.on = on;
+        self.refresh_gate();
     }
 
     /// Whether contact forces are reported (see [`World::set_contact_feedback`]).

@@ -226,11 +226,15 @@ pub struct World {
     collided_space: SpaceHandle,
     collided_space_raw: ffi::dSpaceID,
     collided_space_kind: SpaceKind,
+    /// The same space when it is a simple or sweep-and-prune one, which the plain path
+    /// collides as it is (a hash space's size and bounds are checked at every
+    /// collision; the grid lists its pairs in Rust), else [`RawHandle::NONE`].
+    plain_space: SpaceHandle,
     /// Whether the world has a hash space (spaces are never removed).
     has_hash_space: bool,
-    /// Whether a force or torque was added through the API since the last step (ODE
-    /// clears the accumulators after each step; nothing else fills them).
-    pub(crate) forces_added: bool,
+    /// Why a step cannot take the plain one-call path, if it cannot (see
+    /// [`StepGate`]); among them whether a force or torque was added.
+    pub(crate) gate: StepGate,
     /// Most contacts in one island that the exact stepper takes.
     exact_step_contacts: usize,
     /// Bodies, geoms and joints created so far (each gets the next number: their
@@ -264,6 +268,51 @@ fn collide_failed(error: Error) -> Box<CollideStepError> {
 #[cold]
 fn step_failed(error: Error) -> Box<CollideStepError> {
     Box::new(CollideStepError::Step(error))
+}
+
+/// One byte for each reason a step cannot take the plain one-call path of
+/// [`World::collide_and_step`], side by side so that the path is one test. Each mirrors
+/// fields of the world and is written with them ([`World::refresh_gate`], or directly
+/// on the hot paths), except `forces_added`, which is the world's own flag; debug builds
+/// check the mirror at every plain step.
+#[repr(C, align(8))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct StepGate {
+    /// The stepper is QuickStep.
+    quick: bool,
+    /// The world has rays (the Rust near callback records their hits).
+    rays: bool,
+    /// Contact forces are reported (the Rust near callback sets up the feedback).
+    feedback: bool,
+    /// Cylinders or capsules whose sizes need libccd's check, pair by pair.
+    convex: bool,
+    /// A body failed the state check (every step checks it first).
+    pub(crate) diverged: bool,
+    /// A force or torque was added through the API since the last step (ODE clears the
+    /// accumulators after each step; nothing else fills them): the step checks them.
+    pub(crate) forces_added: bool,
+    /// An ODE internal error poisoned the world.
+    pub(crate) poisoned: bool,
+    /// The world has triangle meshes (the collision takes the global lock).
+    trimesh: bool,
+}
+
+impl StepGate {
+    /// Nothing keeps a step off the plain path.
+    #[inline(always)]
+    fn is_open(&self) -> bool {
+        let reasons = [
+            self.quick,
+            self.rays,
+            self.feedback,
+            self.convex,
+            self.diverged,
+            self.forces_added,
+            self.poisoned,
+            self.trimesh,
+        ];
+        u64::from_ne_bytes(reasons.map(u8::from)) == 0
+    }
 }
 
 /// Why a world refuses to go on after an ODE internal error.
@@ -350,8 +399,9 @@ impl World {
             collided_space: SpaceHandle(RawHandle::NONE),
             collided_space_raw: std::ptr::null_mut(),
             collided_space_kind: SpaceKind::Simple,
+            plain_space: SpaceHandle(RawHandle::NONE),
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
-            forces_added: false,
+            gate: StepGate::default(),
             geom_reach: 0.0,
             serials: 0,
         }
@@ -478,6 +528,7 @@ impl World {
             unsafe { ffi::dWorldSetQuickStepNumIterations(self.raw, n) };
         }
         self.stepper = stepper;
+        self.refresh_gate();
         Ok(())
     }
 
@@ -524,18 +575,35 @@ impl World {
     /// the new state.
     #[inline(always)]
     fn finish_step(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
+        self.step_taken(dt, stepped)?;
+        self.collision.read_contact_forces();
+        self.check_after_step()
+    }
+
+    /// [`World::finish_step`] after the plain collision's step, which runs without
+    /// contact feedback: no contact forces to read.
+    #[inline(always)]
+    fn finish_plain_step(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
+        self.step_taken(dt, stepped)?;
+        debug_assert!(!self.collision.feedback.on, "the plain collision runs without contact feedback");
+        self.check_after_step()
+    }
+
+    /// ODE's failure, or the time and the accumulators (ODE cleared them) after its step.
+    #[inline(always)]
+    fn step_taken(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
         match stepped {
             Ok(true) => {}
             Ok(false) => return Err(Error::Ode("step the world (out of memory)")),
             Err(failure) => {
                 self.poison = Some(Poison::Step(failure.message.clone()));
+                self.gate.poisoned = true;
                 return Err(Error::OdeInternal { during: "step", message: failure.message });
             }
         }
         self.time += dt;
-        self.forces_added = false;
-        self.collision.read_contact_forces();
-        self.check_after_step()
+        self.gate.forces_added = false;
+        Ok(())
     }
 
     /// [`World::collide`] on `space`, then [`World::step`] by `dt`, then (once the world
@@ -551,6 +619,29 @@ impl World {
         // The time step was checked when it was made (`World::step` checks it again on
         // the separate path, as it always does).
         let dt = dt.get();
+        if !(self.gate.is_open() && self.plain_space.0.same_as(space.0)) {
+            return self.collide_and_step_gated(space, dt);
+        }
+        // Nothing in the gate: the exact stepper, a world the plain near callback serves
+        // and no triangle mesh (no lock), not poisoned, no diverged body and no force
+        // added (the step's checks before ODE pass), and `space` is the last collision's
+        // space, a simple or sweep-and-prune one (nothing to check before colliding it).
+        debug_assert_eq!(self.gate, self.gate_from_fields(), "the step gate mirrors the world");
+        ensure_ode_ready();
+        self.start_collision_pass();
+        // SAFETY: as in `collide_plain` (the space is live and its geoms are this
+        // world's, the parameters are this world's); the world's step threading
+        // implementation is its own self-threaded one.
+        let done = unsafe {
+            guard::collide_and_step(self.collided_space_raw, &mut self.collision.plain.0, dt, self.exact_step_contacts)
+        };
+        self.end_collide_and_step(done, dt)
+    }
+
+    /// [`World::collide_and_step`] when something in the gate is set: every check
+    /// decides which way the step goes.
+    #[inline(never)]
+    fn collide_and_step_gated(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
         let one_call = matches!(self.stepper, Stepper::Exact)
             && self.plain_collision_applies()
             // The step's checks that read the bodies only (a collision changes none):
@@ -576,10 +667,17 @@ impl World {
             // SAFETY: as above.
             unsafe { guard::collide_and_step(raw_space, plain, dt, limit) }
         };
+        self.end_collide_and_step(done, dt)
+    }
+
+    /// After the guarded collide-and-step: its result, the world's state checked.
+    #[inline(always)]
+    fn end_collide_and_step(&mut self, done: guard::CollideStep, dt: f64) -> CollideStepResult {
         match done {
             guard::CollideStep::Stepped(stepped) => {
-                self.end_plain_collision().map_err(collide_failed)?;
-                self.finish_step(dt, Ok(stepped)).map_err(step_failed)
+                // The C side steps only after a collision that no pair stopped.
+                debug_assert_eq!(self.collision.plain.0.stopped, 0, "a stepped world's collision went through");
+                self.finish_plain_step(dt, Ok(stepped)).map_err(step_failed)
             }
             guard::CollideStep::CollideFailed => {
                 let failure = guard::collide_and_step_failure(&self.collision.plain.0);
@@ -596,7 +694,7 @@ impl World {
             guard::CollideStep::StepFailed => {
                 self.end_plain_collision().map_err(collide_failed)?;
                 let failure = guard::collide_and_step_failure(&self.collision.plain.0);
-                self.finish_step(dt, Err(failure)).map_err(step_failed)
+                self.finish_plain_step(dt, Err(failure)).map_err(step_failed)
             }
         }
     }
@@ -611,13 +709,32 @@ impl World {
         Ok(())
     }
 
+    /// The gate as the world's fields say (see [`StepGate`]).
+    fn gate_from_fields(&self) -> StepGate {
+        StepGate {
+            quick: !matches!(self.stepper, Stepper::Exact),
+            rays: self.ray_geoms > 0,
+            feedback: self.collision.feedback.on,
+            convex: !self.convex_sizes.all_pairs_fine(),
+            diverged: self.diverged.is_some(),
+            forces_added: self.gate.forces_added,
+            poisoned: self.poison.is_some(),
+            trimesh: self.trimesh_count > 0,
+        }
+    }
+
+    /// Brings the gate in line with the fields it mirrors, after one of them changed.
+    pub(crate) fn refresh_gate(&mut self) {
+        self.gate = self.gate_from_fields();
+    }
+
     /// The accumulators (and, after a divergence, the whole state) of every body.
     #[inline(always)]
     fn check_before_step(&mut self) -> Result<()> {
         if self.diverged.is_some() {
             self.check_after_step()?;
         }
-        if !self.forces_added {
+        if !self.gate.forces_added {
             return Ok(());
         }
         // SAFETY: every body in the arena is live, so are its state pointers.
@@ -650,6 +767,7 @@ impl World {
         }
         if fine {
             self.diverged = None;
+            self.gate.diverged = false;
             Ok(())
         } else {
             Err(self.divergence(state_fine, false))
@@ -675,6 +793,7 @@ impl World {
                 .map(|d| format!("{d} (clear it with BodyMut::clear_forces)"))
         } else {
             self.diverged = Some(body);
+            self.gate.diverged = true;
             limits::state_problem("position", &p, limits::MAX_COORDINATE, "m")
                 .or_else(|| limits::state_problem("orientation quaternion", &q, 1.5, ""))
                 .or_else(|| limits::state_problem("linear velocity", &v, limits::MAX_SPEED, "m/s"))
