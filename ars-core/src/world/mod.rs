@@ -954,6 +954,8 @@ unsafe fn accumulators_fine(s: &crate::body::StatePointers) -> bool {
 /// # Safety
 /// The pointers belong to a live body.
 #[inline(always)]
+// `!(x <= max)` is meant: a NaN is outside (as in `within`).
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 unsafe fn state_fine(s: &crate::body::StatePointers) -> bool {
     // SAFETY: the caller's contract.
     let (p, q, v, w) = unsafe { (&*s.position, &*s.quaternion, &*s.linear_velocity, &*s.angular_velocity) };
@@ -962,6 +964,7 @@ unsafe fn state_fine(s: &crate::body::StatePointers) -> bool {
     let values = [p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2], w[2]];
     let mut outside = 0_u64;
     for (x, max) in values.iter().zip(STATE_LIMITS) {
+        // Not `x.abs() > max`, which a NaN passes.
         outside |= u64::from(!(x.abs() <= max));
     }
     outside == 0
