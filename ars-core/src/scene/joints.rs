@@ -525,12 +525,6 @@ impl Scene {
         }
     }
 
-    /// Whether the scene has joints.
-    #[inline]
-    pub(crate) fn has_joints(&self) -> bool {
-        self.joints.len() != 0
-    }
-
     /// The efforts of the step are over: every joint's are zero again.
     #[inline]
     pub(crate) fn end_joint_step(&mut self) {

@@ -189,11 +189,11 @@ impl Scene {
     /// [`World::collide_and_step`](crate::World)).
     #[inline(always)]
     pub(crate) fn collide_and_step(&mut self) -> CollideStepResult {
-        let (space, dt) = (self.space, self.time_step);
         if self.pair_surfaces.is_empty() {
-            self.world.collide_and_step(space, dt)
+            // The handle by reference: read where it is compared, not kept from here.
+            self.world.collide_and_step(&self.space, self.time_step)
         } else {
-            self.collide_with_surfaces_and_step(space, dt.get())
+            self.collide_with_surfaces_and_step(self.space, self.time_step.get())
         }
     }
 

@@ -340,12 +340,7 @@ impl Simulation {
             HookPoint::PreStep.run(program, self, &"the program")?;
         }
         self.run_added_hooks(HookPoint::PreStep)?;
-        // Without joints there is nothing to drive (driven joints are joints) and no
-        // effort to end; no hook runs before the efforts end, so this holds for the step.
-        let joints = self.scene.has_joints();
-        if joints {
-            self.scene.apply_joint_drives()?;
-        }
+        self.scene.apply_joint_drives()?;
         self.sensors.before_step(&self.scene)?;
         let scene = &mut self.scene;
         let time_before = scene.world.time();
@@ -356,11 +351,9 @@ impl Simulation {
         advance_clock(scene, time_before);
         if self.sensors.sample_after_step() {
             let sampled = self.sensors.after_step(&self.scene);
-            if joints {
-                self.scene.end_joint_step();
-            }
+            self.scene.end_joint_step();
             sampled?;
-        } else if joints {
+        } else {
             self.scene.end_joint_step();
         }
         if let Some(program) = program {

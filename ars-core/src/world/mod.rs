@@ -615,12 +615,12 @@ impl World {
     /// ODE collides, steps and destroys the contact joints in one guarded call
     /// (`guard.c`).
     #[inline(always)]
-    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: limits::TimeStep) -> CollideStepResult {
+    pub(crate) fn collide_and_step(&mut self, space: &SpaceHandle, dt: limits::TimeStep) -> CollideStepResult {
         // The time step was checked when it was made (`World::step` checks it again on
         // the separate path, as it always does).
         let dt = dt.get();
         if !(self.gate.is_open() && self.plain_space.0.same_as(space.0)) {
-            return self.collide_and_step_gated(space, dt);
+            return self.collide_and_step_gated(*space, dt);
         }
         // Nothing in the gate: the exact stepper, a world the plain near callback serves
         // and no triangle mesh (no lock), not poisoned, no diverged body and no force
