@@ -65,7 +65,8 @@ pub(crate) struct OdeFailure {
 }
 
 impl OdeFailure {
-    fn from_raw(raw: &ffi::odesys_failure) -> Self {
+    /// The failure a guard (or the plain near callback) recorded in `raw`.
+    pub(crate) fn from_raw(raw: &ffi::odesys_failure) -> Self {
         // SAFETY: the C side always NUL-terminates the message within its buffer
         // (snprintf/vsnprintf); the buffer was zero-initialised before the call.
         let message = unsafe { CStr::from_ptr(raw.message.as_ptr()) }.to_string_lossy().into_owned();
@@ -180,14 +181,14 @@ pub(crate) unsafe fn collide(
 /// `dSpaceCollide` with the plain near callback of `guard.c` (ARS's near callback in
 /// C for worlds without rays, collision hooks or contact feedback), under a guard. The
 /// callback's own `dCollide` calls have nested guards: a pair's failure is not an
-/// `Err` here but `plain.stopped == ODESYS_PLAIN_PAIR_FAILED`, read with
-/// [`pair_failure`].
+/// `Err` here but `plain.stopped == ODESYS_PLAIN_PAIR_FAILED`, with the pair in
+/// `plain.failed` and ODE's report in `plain.pair_failure`.
 ///
 /// # Safety
 /// `space` must be live; every pointer in `plain` must be valid for the call (world
-/// and contact group live, `contact` initialised, `scratch` with room for
-/// `max_contacts` entries, `out` a record array that `guard.c` allocated or an empty
-/// one, `pair_failure` writable), and the space's geoms must belong to `plain.world`.
+/// and contact group live, `scratch` with room for `max_contacts` entries, `out` a
+/// record array that `guard.c` allocated or an empty one), and the space's geoms must
+/// belong to `plain.world`.
 #[inline]
 pub(crate) unsafe fn collide_plain(
     space: ffi::dSpaceID,
@@ -201,21 +202,24 @@ pub(crate) unsafe fn collide_plain(
 }
 
 /// What [`collide_and_step`] did.
+#[derive(Clone, Copy, PartialEq, Eq)]
 pub(crate) enum CollideStep {
     /// Collided and stepped; `false` when the step ran out of memory.
     Stepped(bool),
     /// Collided without stepping: the collision stopped early (see
     /// `odesys_plain_collision::stopped`) or made more contact points than the limit.
     NotStepped,
-    /// ODE failed inside the collision (`dSpaceCollide`).
-    CollideFailed(OdeFailure),
-    /// ODE failed inside the step (`dWorldStep`).
-    StepFailed(OdeFailure),
+    /// ODE failed inside the collision (`dSpaceCollide`): [`collide_and_step_failure`]
+    /// says how.
+    CollideFailed,
+    /// ODE failed inside the step (`dWorldStep`): [`collide_and_step_failure`] says
+    /// how.
+    StepFailed,
 }
 
 /// The plain collision (see [`collide_plain`]) and then `dWorldStep`, in one guarded
 /// call: the step is taken when the collision went through and made at most
-/// `contact_limit` contact points.
+/// `contact_limit` contact points, and then the contact joints are destroyed.
 ///
 /// # Safety
 /// As [`collide_plain`]; moreover `plain.world` must be a live world whose step
@@ -227,27 +231,25 @@ pub(crate) unsafe fn collide_and_step(
     dt: f64,
     contact_limit: usize,
 ) -> CollideStep {
-    let mut failure = FailureSlot::uninit();
-    // SAFETY: the caller's contract; `failure` and `plain` outlive the call.
-    let r = unsafe { ffi::odesys_guarded_collide_and_step(space, plain, dt, contact_limit, failure.as_mut_ptr()) };
+    (plain.space, plain.step_size, plain.contact_limit) = (space, dt, contact_limit);
+    // SAFETY: the caller's contract; `plain` outlives the call.
+    let r = unsafe { ffi::odesys_guarded_collide_and_step(plain) };
     match r {
-        // SAFETY: caught: the C side filled the slot.
-        ffi::ODESYS_CAUGHT => match unsafe { caught(&failure) } {
-            failure if plain.phase == ffi::ODESYS_PHASE_STEP as c_int => CollideStep::StepFailed(failure),
-            failure => CollideStep::CollideFailed(failure),
-        },
+        r if r == ffi::ODESYS_OK as c_int => CollideStep::Stepped(true),
+        ffi::ODESYS_CAUGHT if plain.phase == ffi::ODESYS_PHASE_STEP as c_int => CollideStep::StepFailed,
+        ffi::ODESYS_CAUGHT => CollideStep::CollideFailed,
         r if r == ffi::ODESYS_NOT_STEPPED as c_int => CollideStep::NotStepped,
-        r => CollideStep::Stepped(r == ffi::ODESYS_OK as c_int),
+        _ => CollideStep::Stepped(false),
     }
 }
 
-/// The failure of the pair that stopped a plain collision.
-///
-/// # Safety
-/// `plain.stopped` is `ODESYS_PLAIN_PAIR_FAILED`, so the C side filled `plain.pair_failure`.
-pub(crate) unsafe fn pair_failure(plain: &ffi::odesys_plain_collision) -> OdeFailure {
-    // SAFETY: the caller's contract: the report was written (`record` in guard.c).
-    OdeFailure::from_raw(unsafe { &*plain.pair_failure })
+/// The failure that [`collide_and_step`] caught (when it returned
+/// [`CollideStep::CollideFailed`] or [`CollideStep::StepFailed`]).
+#[cold]
+pub(crate) fn collide_and_step_failure(plain: &ffi::odesys_plain_collision) -> OdeFailure {
+    // The C side wrote the report when it caught the failure (`record` in guard.c);
+    // before any, the report is zeroed (an empty message).
+    OdeFailure::from_raw(&plain.failure)
 }
 
 #[cfg(test)]

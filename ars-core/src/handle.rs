@@ -15,6 +15,9 @@ use crate::error::{Error, Result};
 pub struct WorldId(u32);
 
 impl WorldId {
+    /// The id of no world (worlds are numbered from 1).
+    const NONE: WorldId = WorldId(0);
+
     pub(crate) fn next() -> Self {
         static NEXT: AtomicU32 = AtomicU32::new(1);
         WorldId(NEXT.fetch_add(1, Ordering::Relaxed))
@@ -27,6 +30,20 @@ pub(crate) struct RawHandle {
     pub(crate) world: WorldId,
     pub(crate) index: u32,
     pub(crate) generation: u32,
+}
+
+impl RawHandle {
+    /// A handle no arena issues (of no world): what a cache of a looked-up handle
+    /// holds before the first look-up.
+    pub(crate) const NONE: RawHandle = RawHandle { world: WorldId::NONE, index: u32::MAX, generation: u32::MAX };
+
+    /// `self == other`, compared as two words rather than field by field (for a
+    /// handle checked at every step).
+    #[inline(always)]
+    pub(crate) fn same_as(self, other: RawHandle) -> bool {
+        let slot = |h: RawHandle| u64::from(h.index) | u64::from(h.generation) << 32;
+        (slot(self) == slot(other)) & (self.world == other.world)
+    }
 }
 
 macro_rules! handle_type {

@@ -21,13 +21,28 @@ static INIT: Once = Once::new();
 static GLOBAL_STATE: Mutex<()> = Mutex::new(());
 
 thread_local! {
+    /// Set once ODE is initialised and this thread's data is allocated.
     static THREAD_READY: Cell<bool> = const { Cell::new(false) };
 }
 
 /// Makes ODE ready for use on the calling thread: initialises the library once per
 /// process and allocates ODE's per-thread data once per thread. Cheap after the first
-/// call; every constructor of the safe layer calls it.
+/// call (one thread-local flag, read at every collision); every constructor of the
+/// safe layer calls it.
+#[inline]
 pub fn ensure_ode_ready() {
+    // The flag is set only once both are done, so that the process-wide `Once` is not
+    // consulted again on a thread that is ready.
+    if !THREAD_READY.get() {
+        prepare_thread();
+    }
+}
+
+/// The slow path of [`ensure_ode_ready`]: the process-wide initialisation (once), then
+/// this thread's data.
+#[cold]
+#[inline(never)]
+fn prepare_thread() {
     INIT.call_once(|| {
         // SAFETY: first and only initialisation of the library.
         let ok = unsafe { ffi::dInitODE2(0) };
@@ -37,15 +52,11 @@ pub fn ensure_ode_ready() {
         let double = unsafe { ffi::dCheckConfiguration(c"ODE_double_precision".as_ptr()) };
         assert!(double == 1, "the loaded libode is not double precision");
     });
-    THREAD_READY.with(|ready| {
-        if !ready.get() {
-            // SAFETY: ODE is initialised (above); allocating the current thread's data
-            // is what ODE requires before a thread uses it.
-            let ok = unsafe { ffi::dAllocateODEDataForThread(ffi::dAllocateODEDataFlags_dAllocateMaskAll as u32) };
-            assert!(ok != 0, "ODE failed to allocate its per-thread data");
-            ready.set(true);
-        }
-    });
+    // SAFETY: ODE is initialised (above); allocating the current thread's data is what
+    // ODE requires before a thread uses it.
+    let ok = unsafe { ffi::dAllocateODEDataForThread(ffi::dAllocateODEDataFlags_dAllocateMaskAll as u32) };
+    assert!(ok != 0, "ODE failed to allocate its per-thread data");
+    THREAD_READY.set(true);
 }
 
 /// Serialises the ODE calls that touch process-wide state (the trimesh collider cache,

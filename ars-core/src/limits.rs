@@ -164,6 +164,24 @@ pub(crate) fn time_step(value: f64) -> Result<f64> {
     in_range("time step", value, MIN_TIME_STEP, MAX_TIME_STEP)
 }
 
+/// A time step checked by [`time_step`] when it was made: a scene's steps take it
+/// without checking it again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TimeStep(f64);
+
+impl TimeStep {
+    /// `value` if it is within [`MIN_TIME_STEP`], [`MAX_TIME_STEP`] (see [`time_step`]).
+    pub(crate) fn new(value: f64) -> Result<TimeStep> {
+        time_step(value).map(TimeStep)
+    }
+
+    /// The time step, s.
+    #[inline]
+    pub(crate) fn get(self) -> f64 {
+        self.0
+    }
+}
+
 /// An inertia tensor (about the centre of mass, body frame) of a physical body:
 /// symmetric, principal moments within [`MIN_INERTIA`], [`MAX_INERTIA`], and each
 /// moment at most the sum of the other two (the triangle inequality every real mass

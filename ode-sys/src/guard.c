@@ -211,7 +211,7 @@ static void plain_near(void *data, dGeomID o1, dGeomID o2) {
         return;
     }
     int n = 0;
-    GUARDED(p->pair_failure,
+    GUARDED(&p->pair_failure,
             {
                 p->stopped = ODESYS_PLAIN_PAIR_FAILED;
                 p->failed[0] = o1;
@@ -227,14 +227,14 @@ static void plain_near(void *data, dGeomID o1, dGeomID o2) {
         if (!contact_is_finite(c)) {
             continue;
         }
-        if (!reserve_record(p->out)) {
+        if (!reserve_record(&p->out)) {
             p->stopped = ODESYS_PLAIN_OUT_OF_MEMORY;
             return;
         }
-        p->contact->geom = *c;
-        dJointID j = dJointCreateContact(p->world, p->group, p->contact);
+        p->contact.geom = *c;
+        dJointID j = dJointCreateContact(p->world, p->group, &p->contact);
         dJointAttach(j, b1, b2);
-        struct odesys_contact_record *r = &p->out->items[p->out->len++];
+        struct odesys_contact_record *r = &p->out.items[p->out.len++];
         r->geom = *c;
         r->o1 = o1;
         r->o2 = o2;
@@ -244,31 +244,32 @@ static void plain_near(void *data, dGeomID o1, dGeomID o2) {
 int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
                                  struct odesys_failure *failure) {
     plain->stopped = 0;
-    plain->out->len = 0;
+    plain->out.len = 0;
     GUARDED(failure, return ODESYS_CAUGHT, dSpaceCollide(space, plain, plain_near));
     return ODESYS_OK;
 }
 
 /* The collision of odesys_guarded_collide_and_step, then its step when the
- * collision went through and made at most `contact_limit` contact points: returns
+ * collision went through and made at most `plain->contact_limit` contact points, then the
+ * contact joints destroyed (as the Rust side would right after the step): returns
  * ODESYS_OK or ODESYS_REFUSED (the step's result) or ODESYS_NOT_STEPPED. */
-static int collide_then_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
-                             size_t contact_limit) {
+static int collide_then_step(struct odesys_plain_collision *plain) {
     plain->phase = ODESYS_PHASE_COLLIDE;
-    dSpaceCollide(space, plain, plain_near);
-    if (plain->stopped != 0 || plain->out->len > contact_limit) {
+    dSpaceCollide(plain->space, plain, plain_near);
+    if (plain->stopped != 0 || plain->out.len > plain->contact_limit) {
         return ODESYS_NOT_STEPPED;
     }
     plain->phase = ODESYS_PHASE_STEP;
-    return dWorldStep(plain->world, step_size) ? ODESYS_OK : ODESYS_REFUSED;
+    int stepped = dWorldStep(plain->world, plain->step_size);
+    dJointGroupEmpty(plain->group);
+    return stepped ? ODESYS_OK : ODESYS_REFUSED;
 }
 
-int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
-                                    size_t contact_limit, struct odesys_failure *failure) {
+int odesys_guarded_collide_and_step(struct odesys_plain_collision *plain) {
     int result = ODESYS_NOT_STEPPED;
     plain->stopped = 0;
-    plain->out->len = 0;
-    GUARDED(failure, return ODESYS_CAUGHT, result = collide_then_step(space, plain, step_size, contact_limit));
+    plain->out.len = 0;
+    GUARDED(&plain->failure, return ODESYS_CAUGHT, result = collide_then_step(plain));
     return result;
 }
 

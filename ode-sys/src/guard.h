@@ -51,22 +51,32 @@ struct odesys_contact_records {
 #define ODESYS_PLAIN_PAIR_FAILED 1   /* dCollide failed: `failed`, `pair_failure` say so */
 #define ODESYS_PLAIN_OUT_OF_MEMORY 2 /* the records could not grow */
 
-/* What the plain near callback needs: filled by the Rust side, except the results. */
+/* What the plain near callback needs: filled by the Rust side, except the results.
+ * The Rust side keeps one for a world from one collision to the next (its parameters
+ * change only with the world's default surface), so that a collision passes one
+ * pointer; nothing in it points into itself. */
 struct odesys_plain_collision {
     dWorldID world;
     dJointGroupID group;
     /* The default contact: its surface is used, its geometry overwritten per point. */
-    dContact *contact;
+    dContact contact;
     /* Most contact points per pair; room for that many in `scratch`. */
     int max_contacts;
     dContactGeom *scratch;
-    struct odesys_contact_records *out;
+    struct odesys_contact_records out;
     /* Results. */
     int stopped;
     dGeomID failed[2];
-    struct odesys_failure *pair_failure; /* written when a pair fails */
-    /* What odesys_guarded_collide_and_step was doing (when it caught a failure). */
+    struct odesys_failure pair_failure; /* written when a pair fails */
+    /* What odesys_guarded_collide_and_step does: collide `space`, then step by
+     * `step_size` when the collision made at most `contact_limit` contact points. */
+    dSpaceID space;
+    dReal step_size;
+    size_t contact_limit;
+    /* What odesys_guarded_collide_and_step was doing when it caught a failure, and
+     * the failure. */
     int phase;
+    struct odesys_failure failure;
 };
 
 #define ODESYS_PHASE_COLLIDE 1
@@ -75,11 +85,12 @@ struct odesys_plain_collision {
 /* dSpaceCollide with the plain near callback (see guard.c), under a guard. */
 int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *plain,
                                  struct odesys_failure *failure);
-/* The plain collision, then dWorldStep when the collision went through and made at
- * most `contact_limit` contact points (else ODESYS_NOT_STEPPED), under one guard:
- * a caught failure's `plain->phase` says whether it was the collision or the step. */
-int odesys_guarded_collide_and_step(dSpaceID space, struct odesys_plain_collision *plain, dReal step_size,
-                                    size_t contact_limit, struct odesys_failure *failure);
+/* The plain collision of `plain->space`, then dWorldStep by `plain->step_size` when
+ * the collision went through and made at most `plain->contact_limit` contact points
+ * (else ODESYS_NOT_STEPPED), then (once the world has stepped) the contact joints
+ * destroyed, under one guard: a caught failure is reported in `plain->failure`, and
+ * `plain->phase` says whether it was the collision or the step. */
+int odesys_guarded_collide_and_step(struct odesys_plain_collision *plain);
 void odesys_contact_records_free(struct odesys_contact_records *records);
 int odesys_guarded_debug_report(int num, const char *message, struct odesys_failure *failure);
 

@@ -380,7 +380,7 @@ impl Scene {
 
     #[inline(never)]
     fn drive_joints(&mut self) -> Result<()> {
-        let (time, dt) = (self.time, self.time_step);
+        let (time, dt) = (self.time, self.time_step.get());
         for i in 0..self.driven_joints.len() {
             let id = self.driven_joints[i];
             let state = self.joint_state(id)?;
@@ -436,7 +436,7 @@ impl Scene {
             // ODE's angles wrap at ±π: correct the short way round.
             error = error.sin().atan2(error.cos());
         }
-        let speed = mimic.multiplier * leader.rate + self.world.erp() * error / self.time_step;
+        let speed = mimic.multiplier * leader.rate + self.world.erp() * error / self.time_step.get();
         let max_force = self.joint_data(id)?.actuator.motor_force();
         let speed = speed.clamp(-crate::limits::MAX_SPEED, crate::limits::MAX_SPEED);
         self.world.joint_mut(handle)?.set_motor(0, speed, max_force)
@@ -525,7 +525,16 @@ impl Scene {
         }
     }
 
+    /// The efforts of the step are over: every joint's are zero again.
+    #[inline]
     pub(crate) fn end_joint_step(&mut self) {
+        if self.joints.len() != 0 {
+            self.clear_joint_efforts();
+        }
+    }
+
+    #[inline(never)]
+    fn clear_joint_efforts(&mut self) {
         for d in self.joints.values_mut() {
             d.efforts = JointEfforts::default();
         }

@@ -52,7 +52,7 @@ pub struct Scene {
     pub(crate) time: f64,
     pub(crate) step_count: u64,
     pub(crate) frame_count: u64,
-    time_step: f64,
+    time_step: limits::TimeStep,
     pub(crate) steps_per_frame: u32,
 }
 
@@ -69,7 +69,12 @@ impl std::fmt::Debug for Scene {
 
 impl Scene {
     /// A scene on `world` (already configured) colliding in `space`.
-    pub(crate) fn new(world: World, space: (SpaceHandle, SpaceKind), time_step: f64, steps_per_frame: u32) -> Scene {
+    pub(crate) fn new(
+        world: World,
+        space: (SpaceHandle, SpaceKind),
+        time_step: limits::TimeStep,
+        steps_per_frame: u32,
+    ) -> Scene {
         let (space, space_kind) = space;
         let id = world.id();
         Scene {
@@ -119,12 +124,12 @@ impl Scene {
 
     /// Time step, s.
     pub fn time_step(&self) -> f64 {
-        self.time_step
+        self.time_step.get()
     }
 
     /// Changes the time step for the next steps.
     pub fn set_time_step(&mut self, dt: f64) -> Result<()> {
-        self.time_step = limits::time_step(dt)?;
+        self.time_step = limits::TimeStep::new(dt)?;
         Ok(())
     }
 
@@ -162,7 +167,7 @@ impl Scene {
     /// Number of whole steps in `duration` seconds (rounded to the nearest).
     pub fn steps_in(&self, duration: f64) -> Result<u64> {
         crate::validate::non_negative("duration", duration)?;
-        Ok((duration / self.time_step).round() as u64)
+        Ok((duration / self.time_step.get()).round() as u64)
     }
 
     /// `error` from the world with the handles its message shows (a diverged body, two

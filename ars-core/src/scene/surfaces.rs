@@ -7,7 +7,8 @@ use std::collections::{HashMap, HashSet};
 use super::Scene;
 use crate::contact::{CollisionHooks, ContactSurface, GeomPair};
 use crate::error::{Error, Result};
-use crate::handle::{GeomHandle, ObjectId};
+use crate::handle::{GeomHandle, ObjectId, SpaceHandle};
+use crate::world::{CollideStepError, CollideStepResult};
 
 /// The surfaces chosen for pairs of objects, and which object each of their geoms
 /// belongs to (only the geoms of those objects: the lookup during collision).
@@ -183,15 +184,26 @@ impl Scene {
     }
 
     /// Collides the scene's space (the pairs with a surface of their own get it, every
-    /// other pair the world's default) and steps the world by the scene's time step:
-    /// the outer `Err` is the collision's, the inner result the step's.
-    pub(crate) fn collide_and_step(&mut self) -> Result<Result<()>> {
-        let (space, dt) = (self.space, self.time_step());
+    /// other pair the world's default), steps the world by the scene's time step and
+    /// destroys the contact joints: the error says which of the two failed (see
+    /// [`World::collide_and_step`](crate::World)).
+    #[inline(always)]
+    pub(crate) fn collide_and_step(&mut self) -> CollideStepResult {
         if self.pair_surfaces.is_empty() {
-            self.world.collide_and_step(space, dt)
+            // The handle by reference: read where it is compared, not kept from here.
+            self.world.collide_and_step(&self.space, self.time_step)
         } else {
-            self.world.collide_with(space, &mut self.pair_surfaces)?;
-            Ok(self.world.step(dt))
+            self.collide_with_surfaces_and_step(self.space, self.time_step.get())
         }
+    }
+
+    #[inline(never)]
+    fn collide_with_surfaces_and_step(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
+        if let Err(e) = self.world.collide_with(space, &mut self.pair_surfaces) {
+            return Err(Box::new(CollideStepError::Collide(e)));
+        }
+        self.world.step(dt).map_err(|e| Box::new(CollideStepError::Step(e)))?;
+        self.world.clear_contacts();
+        Ok(())
     }
 }

@@ -617,6 +617,11 @@ impl SensorSet {
         }
         self.each(|_| true, |s| s.before_step(scene))
     }
+    /// Whether any sensor samples at the end of a step.
+    #[inline]
+    pub(crate) fn sample_after_step(&self) -> bool {
+        self.end_of_step != 0
+    }
     /// Every sensor samples; as [`SensorSet::before_step`].
     #[inline]
     pub(crate) fn after_step(&mut self, scene: &Scene) -> Result<()> {

@@ -39,7 +39,7 @@ use crate::handle::{JointId, ObjectId};
 use crate::limits;
 use crate::scene::Scene;
 use crate::sensors::{Sensor, SensorId, SensorLog, SensorSet};
-use crate::world::{DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
+use crate::world::{CollideStepError, DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 use hooks::{HookPoint, HookSet, Hooks};
 
 /// The ARS default time step: 0.4 ms (the original's 1 / (50 frames/s × 50 steps/frame)).
@@ -172,7 +172,7 @@ impl SimulationBuilder {
 
     /// Creates the simulation: world, contact group, space, then the floor.
     pub fn build(self) -> Result<Simulation> {
-        limits::time_step(self.time_step)?;
+        let time_step = limits::TimeStep::new(self.time_step)?;
         if self.steps_per_frame == 0 {
             return Err(Error::OutOfRange { what: "steps per frame", detail: "must be at least 1, got 0".into() });
         }
@@ -189,7 +189,7 @@ impl SimulationBuilder {
         let space = world.create_space(self.space)?;
         let id = world.id();
         let mut sim = Simulation {
-            scene: Scene::new(world, (space, self.space), self.time_step, self.steps_per_frame),
+            scene: Scene::new(world, (space, self.space), time_step, self.steps_per_frame),
             sensors: SensorSet::new(id),
             hooks: HookSet::new(id),
         };
@@ -274,6 +274,7 @@ impl Simulation {
     ///   the step nothing happened; after it, time has advanced but the sensors did not
     ///   sample the diverged state. Steps are refused until the body is reset or
     ///   removed; the records so far stay readable.
+    #[inline]
     pub fn step(&mut self) -> Result<()> {
         self.step_driven(None::<&mut ()>)
     }
@@ -333,6 +334,7 @@ impl Simulation {
 
     /// One step driven by `program` (a [`Program`](crate::Program) with its held keys),
     /// whose hooks run before the added ones.
+    #[inline]
     pub(crate) fn step_driven<H: Hooks + ?Sized>(&mut self, mut program: Option<&mut H>) -> Result<()> {
         if let Some(program) = program.as_deref_mut() {
             HookPoint::PreStep.run(program, self, &"the program")?;
@@ -342,16 +344,18 @@ impl Simulation {
         self.sensors.before_step(&self.scene)?;
         let scene = &mut self.scene;
         let time_before = scene.world.time();
-        let stepped = scene.collide_and_step().map_err(|e| scene.name_handles(e))?;
-        scene.world.clear_contacts();
-        if scene.world.time() != time_before {
-            scene.time += scene.time_step();
-            scene.step_count += 1;
+        // The contact joints are destroyed once the world has stepped.
+        if let Err(failed) = scene.collide_and_step() {
+            return Err(failed_step(scene, *failed, time_before));
         }
-        stepped.map_err(|e| scene.name_handles(e))?;
-        let sampled = self.sensors.after_step(&self.scene);
-        self.scene.end_joint_step();
-        sampled?;
+        advance_clock(scene, time_before);
+        if self.sensors.sample_after_step() {
+            let sampled = self.sensors.after_step(&self.scene);
+            self.scene.end_joint_step();
+            sampled?;
+        } else {
+            self.scene.end_joint_step();
+        }
         if let Some(program) = program {
             HookPoint::PostStep.run(program, self, &"the program")?;
         }
@@ -493,5 +497,30 @@ impl Simulation {
     /// Whether a sensor stopped sampling because an object or joint it reads was removed.
     pub fn is_sensor_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         self.sensors.is_detached(id)
+    }
+}
+
+/// The clock after a step: the scene's time advances by its time step when the
+/// world's did (a failed step may not have advanced it).
+#[inline(always)]
+fn advance_clock(scene: &mut Scene, world_time_before: f64) {
+    if scene.world.time() != world_time_before {
+        scene.time += scene.time_step();
+        scene.step_count += 1;
+    }
+}
+
+/// The error of a step whose collision or step failed, with the scene's names: after
+/// a failed collision nothing changed; after a failed step the contact joints are
+/// destroyed and the clock is where the world's is.
+#[cold]
+fn failed_step(scene: &mut Scene, failed: CollideStepError, world_time_before: f64) -> Error {
+    match failed {
+        CollideStepError::Collide(e) => scene.name_handles(e),
+        CollideStepError::Step(e) => {
+            scene.world.clear_contacts();
+            advance_clock(scene, world_time_before);
+            scene.name_handles(e)
+        }
     }
 }

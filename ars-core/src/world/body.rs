@@ -358,6 +358,7 @@ impl World {
         let data = self.bodies.remove(body.0, BodyHandle::KIND)?;
         if self.diverged == Some(body) {
             self.diverged = None;
+            self.refresh_gate();
         }
         // SAFETY: the body was created by this world; its geoms and joints are gone and
         // contact joints only live within a step.
@@ -587,7 +588,7 @@ impl BodyMut<'_> {
     /// Adds a force (world frame, N) at the centre of mass, for the next step.
     pub fn add_force(&mut self, f: Vector3<f64>) -> Result<()> {
         let f = force(&f)?;
-        self.world.forces_added = true;
+        self.world.gate.forces_added = true;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddForce(self.raw, f.x, f.y, f.z) };
         Ok(())
@@ -596,7 +597,7 @@ impl BodyMut<'_> {
     /// Adds a force given in the body frame, at the centre of mass.
     pub fn add_relative_force(&mut self, f: Vector3<f64>) -> Result<()> {
         let f = force(&f)?;
-        self.world.forces_added = true;
+        self.world.gate.forces_added = true;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddRelForce(self.raw, f.x, f.y, f.z) };
         Ok(())
@@ -605,7 +606,7 @@ impl BodyMut<'_> {
     /// Adds a torque (world frame, N·m), for the next step.
     pub fn add_torque(&mut self, t: Vector3<f64>) -> Result<()> {
         let t = torque(&t)?;
-        self.world.forces_added = true;
+        self.world.gate.forces_added = true;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddTorque(self.raw, t.x, t.y, t.z) };
         Ok(())
@@ -614,7 +615,7 @@ impl BodyMut<'_> {
     /// Adds a torque given in the body frame.
     pub fn add_relative_torque(&mut self, t: Vector3<f64>) -> Result<()> {
         let t = torque(&t)?;
-        self.world.forces_added = true;
+        self.world.gate.forces_added = true;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddRelTorque(self.raw, t.x, t.y, t.z) };
         Ok(())
@@ -624,7 +625,7 @@ impl BodyMut<'_> {
     pub fn add_force_at_point(&mut self, f: Vector3<f64>, point: Point3<f64>) -> Result<()> {
         let f = force(&f)?;
         let p = limits::point("force application point", &point)?;
-        self.world.forces_added = true;
+        self.world.gate.forces_added = true;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddForceAtPos(self.raw, f.x, f.y, f.z, p.x, p.y, p.z) };
         Ok(())
@@ -634,7 +635,7 @@ impl BodyMut<'_> {
     pub fn add_relative_force_at_relative_point(&mut self, f: Vector3<f64>, point: Point3<f64>) -> Result<()> {
         let f = force(&f)?;
         let p = limits::point("force application point", &point)?;
-        self.world.forces_added = true;
+        self.world.gate.forces_added = true;
         // SAFETY: the body is live.
         unsafe { ffi::dBodyAddRelForceAtRelPos(self.raw, f.x, f.y, f.z, p.x, p.y, p.z) };
         Ok(())

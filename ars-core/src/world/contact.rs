@@ -231,9 +231,6 @@ pub struct RayHit {
 #[derive(Default)]
 pub(crate) struct CollisionState {
     pub(crate) default_surface: ContactSurface,
-    /// A contact joint's parameters with `default_surface` as ODE takes it (computed
-    /// once); each contact point of a default pair writes its geometry into it.
-    default_contact: DefaultContact,
     /// The contact points of the last pass: set when the Rust near callback ends, or
     /// made from the plain collision's `records` when first read (most steps nobody
     /// reads them). A geom is removed only once they are made (`World::remove_geom`).
@@ -244,36 +241,68 @@ pub(crate) struct CollisionState {
     spare_points: Cell<Vec<ContactPoint>>,
     ray_hits: Vec<RayHit>,
     scratch: Vec<ffi::dContactGeom>,
-    /// The contact points the plain collision (in C) recorded.
-    records: ContactRecords,
+    /// The plain collision's parameters (among them the contact joint's parameters
+    /// with `default_surface` as ODE takes it, which each contact point of a default
+    /// pair writes its geometry into) and the contact points it recorded.
+    pub(crate) plain: PlainCollision,
     /// Where ODE writes the contact joints' forces, when asked.
     pub(crate) feedback: ContactFeedback,
 }
 
-/// The contact points of a plain collision, in an array that `guard.c` grows.
-pub(crate) struct ContactRecords(ffi::odesys_contact_records);
+/// What the plain near callback (in C, `guard.c`) works with: the world, its contact
+/// group, the default contact and the scratch buffer, and what it leaves: the contact
+/// points it recorded (in an array that `guard.c` grows) and why it stopped. Kept from
+/// one collision to the next, so that a collision passes one pointer; nothing in it
+/// points into it (the contact, the records and the failure report are inline), so
+/// it moves with the world.
+pub(crate) struct PlainCollision(pub(crate) ffi::odesys_plain_collision);
 
-impl Default for ContactRecords {
+impl Default for PlainCollision {
     fn default() -> Self {
-        ContactRecords(ffi::odesys_contact_records { items: std::ptr::null_mut(), len: 0, capacity: 0 })
+        let surface = ContactSurface::default();
+        PlainCollision(ffi::odesys_plain_collision {
+            // Set by `CollisionState::new`.
+            world: std::ptr::null_mut(),
+            group: std::ptr::null_mut(),
+            contact: contact_with(&surface),
+            max_contacts: surface.max_contacts as std::ffi::c_int,
+            scratch: std::ptr::null_mut(),
+            out: ffi::odesys_contact_records { items: std::ptr::null_mut(), len: 0, capacity: 0 },
+            stopped: 0,
+            failed: [std::ptr::null_mut(); 2],
+            pair_failure: ffi::odesys_failure::default(),
+            space: std::ptr::null_mut(),
+            step_size: 0.0,
+            contact_limit: 0,
+            phase: 0,
+            failure: ffi::odesys_failure::default(),
+        })
     }
 }
 
-impl ContactRecords {
-    fn as_slice(&self) -> &[ffi::odesys_contact_record] {
-        if self.0.items.is_null() {
+impl PlainCollision {
+    /// Contacts of default pairs get `surface` from now on.
+    fn set_surface(&mut self, surface: &ContactSurface) {
+        self.0.contact = contact_with(surface);
+        self.0.max_contacts = surface.max_contacts as std::ffi::c_int;
+    }
+
+    /// The contact points recorded by the last plain collision.
+    fn records(&self) -> &[ffi::odesys_contact_record] {
+        let out = &self.0.out;
+        if out.items.is_null() {
             return &[];
         }
         // SAFETY: `guard.c` allocated `capacity` records at `items` and wrote the first
         // `len`; nothing else changes them while `self` is borrowed.
-        unsafe { std::slice::from_raw_parts(self.0.items, self.0.len) }
+        unsafe { std::slice::from_raw_parts(out.items, out.len) }
     }
 }
 
-impl Drop for ContactRecords {
+impl Drop for PlainCollision {
     fn drop(&mut self) {
         // SAFETY: the array is `guard.c`'s (or empty), freed once here.
-        unsafe { ffi::odesys_contact_records_free(&mut self.0) };
+        unsafe { ffi::odesys_contact_records_free(&mut self.0.out) };
     }
 }
 
@@ -302,11 +331,17 @@ impl ContactFeedback {
 }
 
 impl CollisionState {
-    /// Copies the forces ODE wrote during the step into the contact points.
+    /// Copies the forces ODE wrote during the step into the contact points (when
+    /// asked for: the test is inlined into every step).
+    #[inline]
     pub(crate) fn read_contact_forces(&mut self) {
-        if !self.feedback.on {
-            return;
+        if self.feedback.on {
+            self.copy_contact_forces();
         }
+    }
+
+    #[inline(never)]
+    fn copy_contact_forces(&mut self) {
         // Feedback is on only on the Rust path, which sets the points.
         let Some(points) = self.points.get_mut() else { return };
         for (i, c) in points.iter_mut().enumerate() {
@@ -320,25 +355,29 @@ impl CollisionState {
 }
 
 impl CollisionState {
+    /// The collision state of a new world: room for a pair's contact points (made once
+    /// and never resized, so that the plain collision keeps its address), and the
+    /// plain collision's world and contact group.
+    pub(crate) fn new(world: ffi::dWorldID, group: ffi::dJointGroupID) -> Self {
+        let mut state = CollisionState {
+            scratch: vec![ffi::dContactGeom::default(); MAX_CONTACTS_LIMIT],
+            ..CollisionState::default()
+        };
+        let plain = &mut state.plain.0;
+        (plain.world, plain.group, plain.scratch) = (world, group, state.scratch.as_mut_ptr());
+        state
+    }
+
     /// Number of contact points of the last collision pass.
     #[inline]
     pub(crate) fn contact_count(&self) -> usize {
-        self.points.get().map_or(self.records.0.len, Vec::len)
+        self.points.get().map_or(self.plain.0.out.len, Vec::len)
     }
 }
 
-struct DefaultContact(ffi::dContact);
-
-impl DefaultContact {
-    fn new(surface: &ContactSurface) -> Self {
-        DefaultContact(ffi::dContact { surface: surface.to_ode(), geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] })
-    }
-}
-
-impl Default for DefaultContact {
-    fn default() -> Self {
-        DefaultContact::new(&ContactSurface::default())
-    }
+/// A contact joint's parameters with `surface` (its geometry to be written per point).
+fn contact_with(surface: &ContactSurface) -> ffi::dContact {
+    ffi::dContact { surface: surface.to_ode(), geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] }
 }
 
 /// The surface of a pair's contacts.
@@ -428,7 +467,7 @@ impl ConvexSizes {
     /// No pair can exceed the ratio (division is monotone: a pair's ratio is at most
     /// this one).
     #[inline]
-    fn all_pairs_fine(&self) -> bool {
+    pub(crate) fn all_pairs_fine(&self) -> bool {
         !self.cylinders || self.largest / self.smallest <= crate::limits::MAX_CONVEX_PAIR_RATIO
     }
 }
@@ -452,7 +491,7 @@ impl World {
     pub fn set_default_surface(&mut self, surface: ContactSurface) -> Result<()> {
         surface.validate()?;
         self.collision.default_surface = surface;
-        self.collision.default_contact = DefaultContact::new(&surface);
+        self.collision.plain.set_surface(&surface);
         Ok(())
     }
 
@@ -513,6 +552,7 @@ impl World {
         }
         if let Err(failure) = collided {
             self.poison = Some(Poison::Collide(failure.message.clone()));
+            self.gate.poisoned = true;
             return Err(Error::OdeInternal { during: "collision", message: failure.message });
         }
         if let Some(payload) = panic {
@@ -542,14 +582,16 @@ impl World {
     }
 
     /// The checks before ODE collides `space` (a usable world; a hash space's size and
-    /// bounds), then the start of a pass: no contact points, no ray hits, room for a
-    /// pair's contact points. The space's ODE id and kind.
+    /// bounds), then the start of a pass: no contact points, no ray hits. The space's
+    /// ODE id and kind.
     #[inline(always)]
     pub(crate) fn begin_collision(&mut self, space: SpaceHandle) -> Result<(ffi::dSpaceID, SpaceKind)> {
         self.check_usable()?;
         ensure_ode_ready();
-        let data = self.space_data(space)?;
-        let (raw_space, kind) = (data.raw, data.kind);
+        if !self.collided_space.0.same_as(space.0) {
+            self.look_up_collision_space(space)?;
+        }
+        let (raw_space, kind) = (self.collided_space_raw, self.collided_space_kind);
         if let SpaceKind::Hash { min_level, .. } = kind {
             // SAFETY: the space is live.
             let geoms = unsafe { ffi::dSpaceGetNumGeoms(raw_space) };
@@ -560,16 +602,31 @@ impl World {
                 self.check_hash_bounds(space, min_level)?;
             }
         }
+        self.start_collision_pass();
+        Ok((raw_space, kind))
+    }
+
+    /// The start of a collision pass: no contact points, no ray hits.
+    #[inline(always)]
+    pub(crate) fn start_collision_pass(&mut self) {
         if let Some(mut old) = self.collision.points.take() {
             old.clear();
             self.collision.spare_points.set(old);
         }
-        self.collision.records.0.len = 0;
+        self.collision.plain.0.out.len = 0;
         self.collision.ray_hits.clear();
-        if self.collision.scratch.len() < MAX_CONTACTS_LIMIT {
-            self.collision.scratch.resize(MAX_CONTACTS_LIMIT, ffi::dContactGeom::default());
-        }
-        Ok((raw_space, kind))
+    }
+
+    /// Looks `space` up in the arena and keeps its ODE id and kind for the next
+    /// collisions (in `collided_space`): spaces are never removed, so a handle found
+    /// once is found for good, and the collisions that follow only compare handles.
+    #[inline(never)]
+    fn look_up_collision_space(&mut self, space: SpaceHandle) -> Result<()> {
+        let (raw, kind) = self.space_data(space).map(|d| (d.raw, d.kind))?;
+        (self.collided_space, self.collided_space_raw, self.collided_space_kind) = (space, raw, kind);
+        let plain = matches!(kind, SpaceKind::Simple | SpaceKind::SweepAndPrune { .. });
+        self.plain_space = if plain { space } else { SpaceHandle(crate::handle::RawHandle::NONE) };
+        Ok(())
     }
 
     /// Whether every pair would take the plain path of the near callback: the
@@ -585,68 +642,46 @@ impl World {
     /// ODE's pairs go to the near callback in C, which creates the contact joints and
     /// records the points; their handles are looked up here, once per pair.
     fn collide_plain(&mut self, raw_space: ffi::dSpaceID, needs_lock: bool) -> Result<()> {
-        let mut pair_failure = std::mem::MaybeUninit::uninit();
-        let mut plain = self.plain_collision(&mut pair_failure);
         let collided = {
             let _guard = needs_lock.then(lock_ode_global_state);
-            // SAFETY: the space is live and its geoms are this world's; world and
-            // contact group are live; the default contact is initialised; `scratch`
-            // holds MAX_CONTACTS_LIMIT ≥ max_contacts entries (resized above); the
-            // records are guard.c's; `pair_failure` outlives the call.
-            unsafe { guard::collide_plain(raw_space, &mut plain) }
+            // SAFETY: the space is live and its geoms are this world's; the parameters
+            // hold this world and its contact group (live), the default contact, and
+            // `scratch` with MAX_CONTACTS_LIMIT ≥ max_contacts entries (made with the
+            // world); the records are guard.c's.
+            unsafe { guard::collide_plain(raw_space, &mut self.collision.plain.0) }
         };
         if let Err(failure) = collided {
             return Err(self.collision_failed(failure));
         }
-        self.end_plain_collision(&plain)
-    }
-
-    /// The parameters of the plain near callback for this world (pointers into it,
-    /// valid until it is next changed); a failing pair's report goes to `pair_failure`.
-    #[inline]
-    pub(crate) fn plain_collision(
-        &mut self,
-        pair_failure: &mut std::mem::MaybeUninit<ffi::odesys_failure>,
-    ) -> ffi::odesys_plain_collision {
-        let state = &mut self.collision;
-        ffi::odesys_plain_collision {
-            world: self.raw,
-            group: self.contact_group,
-            contact: &mut state.default_contact.0,
-            max_contacts: state.default_surface.max_contacts as std::ffi::c_int,
-            scratch: state.scratch.as_mut_ptr(),
-            out: &mut state.records.0,
-            stopped: 0,
-            failed: [std::ptr::null_mut(); 2],
-            pair_failure: pair_failure.as_mut_ptr(),
-            phase: 0,
-        }
+        self.end_plain_collision()
     }
 
     /// A failure inside `dSpaceCollide`: the space stays locked, the world is poisoned.
     #[cold]
     pub(crate) fn collision_failed(&mut self, failure: OdeFailure) -> Error {
         self.poison = Some(Poison::Collide(failure.message.clone()));
+        self.gate.poisoned = true;
         Error::OdeInternal { during: "collision", message: failure.message }
     }
 
     /// After a plain collision that ODE finished: an `Err` (and no contact joint) when
     /// a pair stopped it; else its recorded points become [`ContactPoint`]s.
     #[inline(always)]
-    pub(crate) fn end_plain_collision(&mut self, plain: &ffi::odesys_plain_collision) -> Result<()> {
-        if plain.stopped == 0 { Ok(()) } else { Err(self.plain_collision_stopped(plain)) }
+    pub(crate) fn end_plain_collision(&mut self) -> Result<()> {
+        if self.collision.plain.0.stopped == 0 { Ok(()) } else { Err(self.plain_collision_stopped()) }
     }
 
     /// The error of a plain collision that a pair stopped; its contact joints are
     /// destroyed.
     #[cold]
-    fn plain_collision_stopped(&mut self, plain: &ffi::odesys_plain_collision) -> Error {
+    fn plain_collision_stopped(&mut self) -> Error {
         self.clear_contacts();
+        let plain = &self.collision.plain.0;
         if plain.stopped as u32 != ffi::ODESYS_PLAIN_PAIR_FAILED {
             return Error::Ode("record the contact points (out of memory)");
         }
-        // SAFETY: the pair failed, so its report was written.
-        let failure = unsafe { guard::pair_failure(plain) };
+        // The pair failed, so its report was written.
+        let failure = OdeFailure::from_raw(&plain.pair_failure);
         let name = |raw| match geom_slot_in(&self.geoms, raw) {
             Some((h, _)) => h.to_string(),
             None => String::from("a geom"),
@@ -695,6 +730,7 @@ impl World {
     /// every contact.
     pub fn set_contact_feedback(&mut self, on: bool) {
         self.collision.feedback.on = on;
+        self.refresh_gate();
     }
 
     /// Whether contact forces are reported (see [`World::set_contact_feedback`]).
@@ -706,7 +742,7 @@ impl World {
     pub fn contacts(&self) -> &[ContactPoint] {
         self.collision.points.get_or_init(|| {
             let mut points = self.collision.spare_points.take();
-            points_from_records(&self.geoms, self.collision.records.as_slice(), &mut points);
+            points_from_records(&self.geoms, self.collision.plain.records(), &mut points);
             points
         })
     }
@@ -820,7 +856,7 @@ impl World {
                         chosen = ffi::dContact { surface, geom: ffi::dContactGeom::default(), fdir1: [0.0; 4] };
                         &mut chosen
                     }
-                    _ => &mut state.default_contact.0,
+                    _ => &mut state.plain.0.contact,
                 };
                 // SAFETY: world and contact group are live; the bodies are those of the
                 // pair's geoms, live or null (static environment).

@@ -258,6 +258,7 @@ impl World {
             self.ray_geoms += 1;
         }
         self.convex_sizes.note(&shape);
+        self.refresh_gate();
         let serial = self.next_serial();
         let handle = GeomHandle(self.geoms.insert(GeomData {
             serial,
@@ -312,6 +313,7 @@ impl World {
         if matches!(data.shape, Shape::Ray { .. }) {
             self.ray_geoms -= 1;
         }
+        self.refresh_gate();
         // SAFETY: the geom was created by this world and is destroyed once; its
         // trimesh storage (if any) is dropped after it.
         unsafe { ffi::dGeomDestroy(data.raw) };

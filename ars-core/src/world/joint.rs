@@ -566,7 +566,7 @@ impl World {
         Ok(JointMut {
             handle: joint,
             data: self.joints.get_mut(joint.0, JointHandle::KIND)?,
-            forces_added: &mut self.forces_added,
+            forces_added: &mut self.gate.forces_added,
         })
     }
 

@@ -21,7 +21,7 @@ use geom::GeomData;
 use crate::convert;
 use crate::error::{Error, Result};
 use crate::guard;
-use crate::handle::{Arena, BodyHandle, SpaceHandle, WorldId};
+use crate::handle::{Arena, BodyHandle, RawHandle, SpaceHandle, WorldId};
 use crate::init::{ensure_ode_ready, lock_ode_global_state};
 use crate::limits;
 use crate::validate;
@@ -221,11 +221,20 @@ pub struct World {
     /// (unknown), so that a hash space created later checks exactly until a step has
     /// measured it.
     max_body_coordinate: f64,
+    /// The space of the last collision ([`RawHandle::NONE`] before the first), with its
+    /// ODE id and kind (see [`World::look_up_collision_space`]).
+    collided_space: SpaceHandle,
+    collided_space_raw: ffi::dSpaceID,
+    collided_space_kind: SpaceKind,
+    /// The same space when it is a simple or sweep-and-prune one, which the plain path
+    /// collides as it is (a hash space's size and bounds are checked at every
+    /// collision; the grid lists its pairs in Rust), else [`RawHandle::NONE`].
+    plain_space: SpaceHandle,
     /// Whether the world has a hash space (spaces are never removed).
     has_hash_space: bool,
-    /// Whether a force or torque was added through the API since the last step (ODE
-    /// clears the accumulators after each step; nothing else fills them).
-    pub(crate) forces_added: bool,
+    /// Why a step cannot take the plain one-call path, if it cannot (see
+    /// [`StepGate`]); among them whether a force or torque was added.
+    pub(crate) gate: StepGate,
     /// Most contacts in one island that the exact stepper takes.
     exact_step_contacts: usize,
     /// Bodies, geoms and joints created so far (each gets the next number: their
@@ -235,6 +244,75 @@ pub struct World {
     /// body, from the origin); it never decreases. With `max_body_coordinate` it lets
     /// a hash space skip its exact bounds check when everything is well inside.
     geom_reach: f64,
+}
+
+/// A failed [`World::collide_and_step`]: the collision's error (nothing was stepped)
+/// or the step's.
+#[derive(Debug)]
+pub(crate) enum CollideStepError {
+    /// The collision failed; the world did not step.
+    Collide(Error),
+    /// The collision went through and the step failed.
+    Step(Error),
+}
+
+/// What [`World::collide_and_step`] returns: the rare failure is boxed, so that a step
+/// that goes through returns one word.
+pub(crate) type CollideStepResult = std::result::Result<(), Box<CollideStepError>>;
+
+#[cold]
+fn collide_failed(error: Error) -> Box<CollideStepError> {
+    Box::new(CollideStepError::Collide(error))
+}
+
+#[cold]
+fn step_failed(error: Error) -> Box<CollideStepError> {
+    Box::new(CollideStepError::Step(error))
+}
+
+/// One byte for each reason a step cannot take the plain one-call path of
+/// [`World::collide_and_step`], side by side so that the path is one test. Each mirrors
+/// fields of the world and is written with them ([`World::refresh_gate`], or directly
+/// on the hot paths), except `forces_added`, which is the world's own flag; debug builds
+/// check the mirror at every plain step.
+#[repr(C, align(8))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct StepGate {
+    /// The stepper is QuickStep.
+    quick: bool,
+    /// The world has rays (the Rust near callback records their hits).
+    rays: bool,
+    /// Contact forces are reported (the Rust near callback sets up the feedback).
+    feedback: bool,
+    /// Cylinders or capsules whose sizes need libccd's check, pair by pair.
+    convex: bool,
+    /// A body failed the state check (every step checks it first).
+    pub(crate) diverged: bool,
+    /// A force or torque was added through the API since the last step (ODE clears the
+    /// accumulators after each step; nothing else fills them): the step checks them.
+    pub(crate) forces_added: bool,
+    /// An ODE internal error poisoned the world.
+    pub(crate) poisoned: bool,
+    /// The world has triangle meshes (the collision takes the global lock).
+    trimesh: bool,
+}
+
+impl StepGate {
+    /// Nothing keeps a step off the plain path.
+    #[inline(always)]
+    fn is_open(&self) -> bool {
+        let reasons = [
+            self.quick,
+            self.rays,
+            self.feedback,
+            self.convex,
+            self.diverged,
+            self.forces_added,
+            self.poisoned,
+            self.trimesh,
+        ];
+        u64::from_ne_bytes(reasons.map(u8::from)) == 0
+    }
 }
 
 /// Why a world refuses to go on after an ODE internal error.
@@ -296,6 +374,7 @@ impl World {
             (w, ffi::dJointGroupCreate(0), threading)
         };
         let id = WorldId::next();
+        let collision = CollisionState::new(raw, contact_group);
         World {
             id,
             raw,
@@ -305,7 +384,7 @@ impl World {
             geoms: Arena::new(id),
             joints: Arena::new(id),
             spaces: Arena::new(id),
-            collision: CollisionState::default(),
+            collision,
             grid: grid::Grid::default(),
             trimesh_count: 0,
             ray_geoms: 0,
@@ -317,8 +396,12 @@ impl World {
             poison: None,
             max_body_coordinate: 0.0,
             has_hash_space: false,
+            collided_space: SpaceHandle(RawHandle::NONE),
+            collided_space_raw: std::ptr::null_mut(),
+            collided_space_kind: SpaceKind::Simple,
+            plain_space: SpaceHandle(RawHandle::NONE),
             exact_step_contacts: limits::DEFAULT_EXACT_STEP_CONTACTS,
-            forces_added: false,
+            gate: StepGate::default(),
             geom_reach: 0.0,
             serials: 0,
         }
@@ -445,6 +528,7 @@ impl World {
             unsafe { ffi::dWorldSetQuickStepNumIterations(self.raw, n) };
         }
         self.stepper = stepper;
+        self.refresh_gate();
         Ok(())
     }
 
@@ -491,70 +575,157 @@ impl World {
     /// the new state.
     #[inline(always)]
     fn finish_step(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
+        self.step_taken(dt, stepped)?;
+        self.collision.read_contact_forces();
+        self.check_after_step()
+    }
+
+    /// [`World::finish_step`] after the plain collision's step, which runs without
+    /// contact feedback: no contact forces to read.
+    #[inline(always)]
+    fn finish_plain_step(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
+        self.step_taken(dt, stepped)?;
+        debug_assert!(!self.collision.feedback.on, "the plain collision runs without contact feedback");
+        self.check_after_step()
+    }
+
+    /// ODE's failure, or the time and the accumulators (ODE cleared them) after its step.
+    #[inline(always)]
+    fn step_taken(&mut self, dt: f64, stepped: std::result::Result<bool, guard::OdeFailure>) -> Result<()> {
         match stepped {
             Ok(true) => {}
             Ok(false) => return Err(Error::Ode("step the world (out of memory)")),
             Err(failure) => {
                 self.poison = Some(Poison::Step(failure.message.clone()));
+                self.gate.poisoned = true;
                 return Err(Error::OdeInternal { during: "step", message: failure.message });
             }
         }
         self.time += dt;
-        self.forces_added = false;
-        self.collision.read_contact_forces();
-        self.check_after_step()
+        self.gate.forces_added = false;
+        Ok(())
     }
 
-    /// [`World::collide`] on `space`, then [`World::step`] by `dt`: the outer `Err` is
-    /// the collision's (nothing stepped), the inner result the step's. Every check of
-    /// the two is made, in the same order. With the exact stepper, a world the plain
-    /// near callback serves (see [`World::plain_collision_applies`]) and a step whose
-    /// checks before ODE pass, ODE collides and steps in one guarded call (`guard.c`).
+    /// [`World::collide`] on `space`, then [`World::step`] by `dt`, then (once the world
+    /// has stepped) [`World::clear_contacts`]: the error says which of the two failed
+    /// (a failed collision stepped nothing; after a failed step the contact joints may
+    /// be left). Every check of the two is made, in the same order. With the exact
+    /// stepper, a world the plain near callback serves (see
+    /// [`World::plain_collision_applies`]) and a step whose checks before ODE pass,
+    /// ODE collides, steps and destroys the contact joints in one guarded call
+    /// (`guard.c`).
     #[inline(always)]
-    pub(crate) fn collide_and_step(&mut self, space: SpaceHandle, dt: f64) -> Result<Result<()>> {
+    pub(crate) fn collide_and_step(&mut self, space: &SpaceHandle, dt: limits::TimeStep) -> CollideStepResult {
+        // The time step was checked when it was made (`World::step` checks it again on
+        // the separate path, as it always does).
+        let dt = dt.get();
+        if !(self.gate.is_open() && self.plain_space.0.same_as(space.0)) {
+            return self.collide_and_step_gated(*space, dt);
+        }
+        // Nothing in the gate: the exact stepper, a world the plain near callback serves
+        // and no triangle mesh (no lock), not poisoned, no diverged body and no force
+        // added (the step's checks before ODE pass), and `space` is the last collision's
+        // space, a simple or sweep-and-prune one (nothing to check before colliding it).
+        debug_assert_eq!(self.gate, self.gate_from_fields(), "the step gate mirrors the world");
+        ensure_ode_ready();
+        self.start_collision_pass();
+        // SAFETY: as in `collide_plain` (the space is live and its geoms are this
+        // world's, the parameters are this world's); the world's step threading
+        // implementation is its own self-threaded one.
+        let done = unsafe {
+            guard::collide_and_step(self.collided_space_raw, &mut self.collision.plain.0, dt, self.exact_step_contacts)
+        };
+        self.end_collide_and_step(done, dt)
+    }
+
+    /// [`World::collide_and_step`] when something in the gate is set: every check
+    /// decides which way the step goes.
+    #[inline(never)]
+    fn collide_and_step_gated(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
         let one_call = matches!(self.stepper, Stepper::Exact)
             && self.plain_collision_applies()
             // The step's checks that read the bodies only (a collision changes none):
             // when one fails, the separate calls below report it as they always do.
-            && limits::time_step(dt).is_ok()
             && self.check_before_step().is_ok();
         if !one_call {
-            self.collide(space)?;
-            return Ok(self.step(dt));
+            return self.collide_then_step(space, dt);
         }
-        let (raw_space, kind) = self.begin_collision(space)?;
+        let (raw_space, kind) = self.begin_collision(space).map_err(collide_failed)?;
         if matches!(kind, SpaceKind::Grid) {
             // ARS's own broad phase lists the pairs in Rust.
-            self.collide(space)?;
-            return Ok(self.step(dt));
+            return self.collide_then_step(space, dt);
         }
-        let needs_lock = self.trimesh_count > 0;
-        let mut pair_failure = std::mem::MaybeUninit::uninit();
-        let mut plain = self.plain_collision(&mut pair_failure);
-        let done = {
-            let _guard = needs_lock.then(lock_ode_global_state);
+        let (plain, limit) = (&mut self.collision.plain.0, self.exact_step_contacts);
+        // Two calls rather than an optional lock guard, whose drop is not free.
+        let done = if self.trimesh_count > 0 {
+            let _guard = lock_ode_global_state();
             // SAFETY: as in `collide_plain` (the space is live and its geoms are this
-            // world's, the parameters point into this world); the world's step
-            // threading implementation is its own self-threaded one.
-            unsafe { guard::collide_and_step(raw_space, &mut plain, dt, self.exact_step_contacts) }
+            // world's, the parameters are this world's); the world's step threading
+            // implementation is its own self-threaded one.
+            unsafe { guard::collide_and_step(raw_space, plain, dt, limit) }
+        } else {
+            // SAFETY: as above.
+            unsafe { guard::collide_and_step(raw_space, plain, dt, limit) }
         };
+        self.end_collide_and_step(done, dt)
+    }
+
+    /// After the guarded collide-and-step: its result, the world's state checked.
+    #[inline(always)]
+    fn end_collide_and_step(&mut self, done: guard::CollideStep, dt: f64) -> CollideStepResult {
         match done {
-            guard::CollideStep::CollideFailed(failure) => Err(self.collision_failed(failure)),
+            guard::CollideStep::Stepped(stepped) => {
+                // The C side steps only after a collision that no pair stopped.
+                debug_assert_eq!(self.collision.plain.0.stopped, 0, "a stepped world's collision went through");
+                self.finish_plain_step(dt, Ok(stepped)).map_err(step_failed)
+            }
+            guard::CollideStep::CollideFailed => {
+                let failure = guard::collide_and_step_failure(&self.collision.plain.0);
+                Err(collide_failed(self.collision_failed(failure)))
+            }
             guard::CollideStep::NotStepped => {
-                self.end_plain_collision(&plain)?;
+                self.end_plain_collision().map_err(collide_failed)?;
                 // More contact points than the exact stepper's limit: the island check
                 // decides, in the separate step.
-                Ok(self.step(dt))
+                self.step(dt).map_err(step_failed)?;
+                self.clear_contacts();
+                Ok(())
             }
-            guard::CollideStep::StepFailed(failure) => {
-                self.end_plain_collision(&plain)?;
-                Ok(self.finish_step(dt, Err(failure)))
-            }
-            guard::CollideStep::Stepped(stepped) => {
-                self.end_plain_collision(&plain)?;
-                Ok(self.finish_step(dt, Ok(stepped)))
+            guard::CollideStep::StepFailed => {
+                self.end_plain_collision().map_err(collide_failed)?;
+                let failure = guard::collide_and_step_failure(&self.collision.plain.0);
+                self.finish_plain_step(dt, Err(failure)).map_err(step_failed)
             }
         }
+    }
+
+    /// [`World::collide`], then [`World::step`]: what [`World::collide_and_step`] does
+    /// when ODE cannot do both in one call.
+    #[inline(never)]
+    fn collide_then_step(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
+        self.collide(space).map_err(collide_failed)?;
+        self.step(dt).map_err(step_failed)?;
+        self.clear_contacts();
+        Ok(())
+    }
+
+    /// The gate as the world's fields say (see [`StepGate`]).
+    fn gate_from_fields(&self) -> StepGate {
+        StepGate {
+            quick: !matches!(self.stepper, Stepper::Exact),
+            rays: self.ray_geoms > 0,
+            feedback: self.collision.feedback.on,
+            convex: !self.convex_sizes.all_pairs_fine(),
+            diverged: self.diverged.is_some(),
+            forces_added: self.gate.forces_added,
+            poisoned: self.poison.is_some(),
+            trimesh: self.trimesh_count > 0,
+        }
+    }
+
+    /// Brings the gate in line with the fields it mirrors, after one of them changed.
+    pub(crate) fn refresh_gate(&mut self) {
+        self.gate = self.gate_from_fields();
     }
 
     /// The accumulators (and, after a divergence, the whole state) of every body.
@@ -563,7 +734,7 @@ impl World {
         if self.diverged.is_some() {
             self.check_after_step()?;
         }
-        if !self.forces_added {
+        if !self.gate.forces_added {
             return Ok(());
         }
         // SAFETY: every body in the arena is live, so are its state pointers.
@@ -590,14 +761,13 @@ impl World {
             }
             self.max_body_coordinate = far;
         } else {
-            for b in self.bodies.values() {
-                // SAFETY: every body in the arena is live, so are its state pointers.
-                fine &= unsafe { state_fine(&b.state) };
-            }
+            // SAFETY: every body in the arena is live, so are its state pointers.
+            fine = self.bodies.values().all(|b| unsafe { state_fine(&b.state) });
             self.max_body_coordinate = f64::INFINITY;
         }
         if fine {
             self.diverged = None;
+            self.gate.diverged = false;
             Ok(())
         } else {
             Err(self.divergence(state_fine, false))
@@ -623,6 +793,7 @@ impl World {
                 .map(|d| format!("{d} (clear it with BodyMut::clear_forces)"))
         } else {
             self.diverged = Some(body);
+            self.gate.diverged = true;
             limits::state_problem("position", &p, limits::MAX_COORDINATE, "m")
                 .or_else(|| limits::state_problem("orientation quaternion", &q, 1.5, ""))
                 .or_else(|| limits::state_problem("linear velocity", &v, limits::MAX_SPEED, "m/s"))
@@ -783,15 +954,27 @@ unsafe fn accumulators_fine(s: &crate::body::StatePointers) -> bool {
 /// # Safety
 /// The pointers belong to a live body.
 #[inline(always)]
+// `!(x <= max)` is meant: a NaN is outside (as in `within`).
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 unsafe fn state_fine(s: &crate::body::StatePointers) -> bool {
     // SAFETY: the caller's contract.
-    unsafe {
-        within(&*s.position, limits::MAX_COORDINATE)
-            & within(&*s.quaternion, 1.5)
-            & within(&*s.linear_velocity, limits::MAX_SPEED)
-            & within(&*s.angular_velocity, limits::MAX_ANGULAR_SPEED)
+    let (p, q, v, w) = unsafe { (&*s.position, &*s.quaternion, &*s.linear_velocity, &*s.angular_velocity) };
+    // The 13 components side by side (the last repeated to an even count), each
+    // against its own bound: the comparisons go two at a time.
+    let values = [p[0], p[1], p[2], q[0], q[1], q[2], q[3], v[0], v[1], v[2], w[0], w[1], w[2], w[2]];
+    let mut outside = 0_u64;
+    for (x, max) in values.iter().zip(STATE_LIMITS) {
+        // Not `x.abs() > max`, which a NaN passes.
+        outside |= u64::from(!(x.abs() <= max));
     }
+    outside == 0
 }
+
+/// The bound of each component of [`state_fine`]'s values.
+const STATE_LIMITS: [f64; 14] = {
+    let (c, s, a) = (limits::MAX_COORDINATE, limits::MAX_SPEED, limits::MAX_ANGULAR_SPEED);
+    [c, c, c, 1.5, 1.5, 1.5, 1.5, s, s, s, a, a, a, a]
+};
 
 impl Drop for World {
     fn drop(&mut self) {

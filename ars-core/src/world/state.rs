@@ -535,8 +535,9 @@ impl World {
         }
         self.random_seed = state.random_seed;
         self.time = state.time;
-        self.forces_added = true;
+        self.gate.forces_added = true;
         self.diverged = None;
+        self.refresh_gate();
         self.restored_coordinates();
         Ok(())
     }
