@@ -15,9 +15,8 @@ own simulation only (sent by the simulation, or by a sensor of its bodies, joint
 space), never those of another program's simulation created later in the same process.
 """
 
-import inspect
 import weakref
-from types import MethodType
+from types import FunctionType, MethodType
 
 __all__ = ["Anonymous", "Any", "DispatcherError", "connect", "disconnect", "heard", "send"]
 
@@ -55,7 +54,7 @@ class _Receiver:
         self._func = None
         if not weak:
             self._strong = receiver
-        elif inspect.ismethod(receiver):
+        elif isinstance(receiver, MethodType):
             self._ref = weakref.ref(receiver.__self__)
             self._func = receiver.__func__
         else:
@@ -80,12 +79,31 @@ class _Receiver:
 
 
 def _key(receiver):
-    if inspect.ismethod(receiver):
+    if isinstance(receiver, MethodType):
         return (id(receiver.__self__), id(receiver.__func__))
     return id(receiver)
 
 
+_CO_VARKEYWORDS = 0x08  # inspect.CO_VARKEYWORDS: the code takes **kwargs
+
+
 def _parameters(receiver):
+    """``(accepts every name, the names it accepts)`` of a receiver's parameters."""
+    function = receiver.__func__ if isinstance(receiver, MethodType) else receiver
+    if isinstance(function, FunctionType) and not hasattr(function, "__wrapped__"):
+        # A plain function's names are in its code: no need for ``inspect.signature``
+        # (whose module takes longer to import than the rest of ``ars.app``).
+        code = function.__code__
+        if code.co_flags & _CO_VARKEYWORDS:
+            return True, frozenset()
+        named = code.co_varnames[
+            code.co_posonlyargcount : code.co_argcount + code.co_kwonlyargcount
+        ]
+        if isinstance(receiver, MethodType):
+            named = named[1:] if code.co_posonlyargcount == 0 else named  # its ``self``
+        return False, frozenset(named)
+    import inspect  # anything else: builtins, callable objects, wrapped functions
+
     try:
         params = inspect.signature(receiver).parameters.values()
     except (TypeError, ValueError):

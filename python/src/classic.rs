@@ -6,8 +6,9 @@ use pyo3::types::PySet;
 
 use crate::views::Joint;
 
-/// `add_torque(torque)` of a rotary joint of `ars.model`, as one native call: while no
-/// one listens (`heard`, `ars.dispatch`'s set of heard signals, holds none of
+/// `add_torque(torque)` of a rotary joint of `ars.model`, as one native call (a
+/// method, so that Python calls it with its fast calling convention): while no one
+/// listens (`heard`, `ars.dispatch`'s set of heard signals, holds none of
 /// `signals`) the torque goes straight to `joint`; otherwise, or when the joint
 /// refuses it (nothing is then applied), `fallback(torque)` runs the Python method
 /// with its signals, its `JointError` and its logging.
@@ -26,7 +27,7 @@ impl JointTorque {
         JointTorque { joint, heard, signals, fallback }
     }
 
-    fn __call__(&self, py: Python<'_>, torque: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+    fn add_torque(&self, py: Python<'_>, torque: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
         let heard = self.heard.bind(py);
         let mut listened = false;
         for signal in &self.signals {

@@ -21,7 +21,6 @@ import logging
 import math
 import os
 import sys
-import tempfile
 import weakref
 
 from ars import _native
@@ -161,6 +160,8 @@ class Program:
             return
         duration = float(os.environ.get("ARS_DURATION", "10"))
         stem = "".join(c if c.isalnum() else "_" for c in self.WINDOW_TITLE.lower())
+        import tempfile  # here: most programs never record without a display
+
         folder = os.path.join(tempfile.gettempdir(), f"ars-frames-{stem}")
         print(
             f"ars: no display (DISPLAY and WAYLAND_DISPLAY are unset): recording {duration:g} s "

@@ -237,7 +237,7 @@ class SimulatedJoint(SimulatedObject):
                     dispatch.Any,
                 ],
                 functools.partial(_add_torque_logged, joint, name),
-            )
+            ).add_torque
 
     def add_torque(self, torque):
         """Adds a torque to a rotary joint; a failure is logged, not raised (as the
