@@ -212,6 +212,22 @@ def test_a_thread_reads_while_another_steps_with_python_hooks():
     assert reads == sorted(reads) and reads
 
 
+def test_other_threads_run_while_a_simulation_with_a_python_hook_steps():
+    # With a Python hook at every step, the stepping thread keeps the GIL between
+    # steps; the interpreter still hands it over while the hook's Python runs.
+    sim, _ = falling_ball()
+    steps = []
+    sim.add_pre_step(lambda: steps.append(None))
+    seen = []
+    thread = threading.Thread(target=lambda: sim.run(20.0))  # 50,000 steps
+    thread.start()
+    while thread.is_alive():
+        seen.append(len(steps))
+    thread.join()
+    assert len(steps) == 50_000
+    assert any(0 < n < 50_000 for n in seen), "the main thread ran during the run"
+
+
 def test_the_package_docs_examples_run():
     import doctest
 

@@ -261,3 +261,24 @@ def test_importing_ars_leaves_numpy_until_it_is_needed():
         "assert ars.sweep.__name__ == 'sweep' and 'numpy' in sys.modules\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_a_handler_gone_during_a_send_is_not_called():
+    called = []
+
+    class Handler:
+        def __init__(self, name):
+            self.name = name
+
+        def on_signal(self):
+            called.append(self.name)
+            handlers.pop("second", None)  # the second handler goes away
+
+    handlers = {"first": Handler("first"), "second": Handler("second")}
+    for handler in handlers.values():
+        dispatcher.connect(handler.on_signal, "a test signal")
+    del handler  # (the loop's variable would keep the second alive)
+    dispatcher.send("a test signal")
+    assert called == ["first"]
+    dispatcher.send("a test signal")
+    assert called == ["first", "first"]
