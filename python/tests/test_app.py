@@ -282,3 +282,23 @@ def test_a_handler_gone_during_a_send_is_not_called():
     assert called == ["first"]
     dispatcher.send("a test signal")
     assert called == ["first", "first"]
+
+
+def test_a_step_finds_its_handlers_once_not_at_every_step(monkeypatch):
+    from ars import dispatch
+
+    found = []
+    direct_calls = dispatch._direct_calls
+
+    def counted(signal, sender):
+        found.append(signal)
+        return direct_calls(signal, sender)
+
+    monkeypatch.setattr(dispatch, "_direct_calls", counted)
+    # Handlers that take the sender are sent the signal, those that take nothing are
+    # called directly: either way the step finds out which once.
+    for program_class in (Pendulum, Counting):
+        program = program_class()
+        found.clear()
+        program.run(0.1)
+        assert program.steps == 50 and found == [signals.SIM_PRE_STEP]

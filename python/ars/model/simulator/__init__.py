@@ -263,6 +263,10 @@ class Space:
         return self._sim()
 
 
+# What a simulation's step calls for SIM_PRE_STEP before it is found out.
+_UNRESOLVED = object()
+
+
 class _BeforeTheWorld:
     """The clock of a simulation whose world is not made yet."""
 
@@ -284,7 +288,7 @@ class Simulation:
         self._STEPS_PF = STEPS_PF
         self.paused = False
         self._num_iter_offset = 0  # num_iter minus the native steps taken
-        self._pre_step_calls = None  # see _signals_changed
+        self._pre_step_calls = _UNRESOLVED  # see _signals_changed
         self.num_frame = 0
         self._native = None
         self._space = None
@@ -323,6 +327,10 @@ class Simulation:
             if sim is None:
                 return
             calls = sim._pre_step_calls
+            if calls is _UNRESOLVED:
+                # Found out once, then at every change (``_signals_changed``); ``None``
+                # when some handler takes the signal's values (then it is sent).
+                calls = sim._pre_step_calls = dispatch._direct_calls(signals.SIM_PRE_STEP, sim)
             if calls is None or sim.all_frame_steps_callbacks or sim._space.rays:
                 sim._pre_step()
                 return
@@ -335,7 +343,7 @@ class Simulation:
                         continue
                     target = target()
                     if target is None:  # gone: found out again at the next step
-                        sim._pre_step_calls = None
+                        sim._pre_step_calls = _UNRESOLVED
                     elif function is None:
                         target()
                     else:
@@ -358,7 +366,7 @@ class Simulation:
         what a step sends is found out again (``_pre_step_calls``), and the post-step
         hook is on only while someone listens to SIM_POST_STEP (a step then costs no
         call into Python after it)."""
-        self._pre_step_calls = None
+        self._pre_step_calls = _UNRESOLVED
         if self._native is not None:
             self._native._enable_hook(self._post_step_hook, dispatch.heard(signals.SIM_POST_STEP))
 
@@ -391,8 +399,6 @@ class Simulation:
             logger.exception("Exception when executing the pre-step actions")
         for laser in self._space.rays:
             laser._cast()
-        # The next step calls SIM_PRE_STEP's receivers directly, when it can.
-        self._pre_step_calls = dispatch._direct_calls(signals.SIM_PRE_STEP, self)
 
     def _post_step(self):
         try:
