@@ -3,8 +3,7 @@ its signals around the torques, forces and speeds put on it."""
 
 from operator import attrgetter
 
-from ars.dispatch import Any, send
-from ars.dispatch import _heard as _heard_signals
+from ars.dispatch import heard, send
 from ars.exceptions import JointError
 from ars.model.robot import signals
 
@@ -33,21 +32,17 @@ class Universal(Joint):
 
 
 class _Actuated(Joint):
-    def _refused(self, key, value, error):
-        return JointError(self, f"could not {key} {value!r}: {error}")
-
     def _act(self, pre, post, key, value, action):
         """``action(value)``, between the signals ``pre`` and ``post`` (sent with
         ``key=value``) when someone hears either: a torque put every step with nobody
-        listening costs the native call and three set lookups."""
-        heard = _heard_signals  # (``ars.dispatch.heard``, inlined: this runs every step)
-        listened = pre in heard or post in heard or Any in heard
+        listening costs the native call alone."""
+        listened = heard(pre) or heard(post)
         if listened:
             send(pre, sender=self, **{key: value})
         try:
             action(value)
         except Exception as e:
-            raise self._refused(key, value, e) from e
+            raise JointError(self, f"could not {key} {value!r}: {e}") from e
         if listened:
             send(post, sender=self, **{key: value})
 
@@ -62,19 +57,15 @@ class Rotary(_Actuated):
 
     def add_torque(self, torque):
         """Adds ``torque`` (N·m) about the axis for the next step."""
-        pre, post, heard = (
+        # (A program's ``sim.get_joint(name).add_torque`` is one native call instead,
+        # while nobody listens: see ``ars.model.simulator.SimulatedJoint``.)
+        self._act(
             signals.JOINT_PRE_ADD_TORQUE,
             signals.JOINT_POST_ADD_TORQUE,
-            _heard_signals,
+            "torque",
+            torque,
+            self._native.add_torque,
         )
-        if pre in heard or post in heard or Any in heard:
-            self._act(pre, post, "torque", torque, self._native.add_torque)
-            return
-        # Nobody listens (every step of most programs): the native call alone.
-        try:
-            self._native.add_torque(torque)
-        except Exception as e:
-            raise self._refused("torque", torque, e) from e
 
     def set_speed(self, speed, max_force=None):
         """Drives the joint at ``speed`` (rad/s), with at most ``max_force`` (N·m; left
