@@ -357,8 +357,7 @@ impl World {
         }
         let data = self.bodies.remove(body.0, BodyHandle::KIND)?;
         if self.diverged == Some(body) {
-            self.diverged = None;
-            self.refresh_gate();
+            self.set_diverged(None);
         }
         // SAFETY: the body was created by this world; its geoms and joints are gone and
         // contact joints only live within a step.

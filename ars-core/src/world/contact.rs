@@ -551,9 +551,7 @@ impl World {
             self.grid = grid;
         }
         if let Err(failure) = collided {
-            self.poison = Some(Poison::Collide(failure.message.clone()));
-            self.gate.poisoned = true;
-            return Err(Error::OdeInternal { during: "collision", message: failure.message });
+            return Err(self.collision_failed(failure));
         }
         if let Some(payload) = panic {
             self.clear_contacts();
@@ -659,8 +657,7 @@ impl World {
     /// A failure inside `dSpaceCollide`: the space stays locked, the world is poisoned.
     #[cold]
     pub(crate) fn collision_failed(&mut self, failure: OdeFailure) -> Error {
-        self.poison = Some(Poison::Collide(failure.message.clone()));
-        self.gate.poisoned = true;
+        self.poison(Poison::Collide(failure.message.clone()));
         Error::OdeInternal { during: "collision", message: failure.message }
     }
 

@@ -272,9 +272,10 @@ fn step_failed(error: Error) -> Box<CollideStepError> {
 
 /// One byte for each reason a step cannot take the plain one-call path of
 /// [`World::collide_and_step`], side by side so that the path is one test. Each mirrors
-/// fields of the world and is written with them ([`World::refresh_gate`], or directly
-/// on the hot paths), except `forces_added`, which is the world's own flag; debug builds
-/// check the mirror at every plain step.
+/// fields of the world and is written with them ([`World::poison`],
+/// [`World::set_diverged`], [`World::refresh_gate`] after the rarer changes), except
+/// `forces_added`, which is the world's own flag; debug builds check the mirror at
+/// every plain step.
 #[repr(C, align(8))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct StepGate {
@@ -596,8 +597,7 @@ impl World {
             Ok(true) => {}
             Ok(false) => return Err(Error::Ode("step the world (out of memory)")),
             Err(failure) => {
-                self.poison = Some(Poison::Step(failure.message.clone()));
-                self.gate.poisoned = true;
+                self.poison(Poison::Step(failure.message.clone()));
                 return Err(Error::OdeInternal { during: "step", message: failure.message });
             }
         }
@@ -728,6 +728,20 @@ impl World {
         self.gate = self.gate_from_fields();
     }
 
+    /// Refuses everything from now on, for `why` (the gate with it).
+    #[cold]
+    pub(crate) fn poison(&mut self, why: Poison) {
+        self.poison = Some(why);
+        self.gate.poisoned = true;
+    }
+
+    /// The body that failed the state check, if one did (the gate with it).
+    #[inline(always)]
+    pub(crate) fn set_diverged(&mut self, body: Option<BodyHandle>) {
+        self.diverged = body;
+        self.gate.diverged = body.is_some();
+    }
+
     /// The accumulators (and, after a divergence, the whole state) of every body.
     #[inline(always)]
     fn check_before_step(&mut self) -> Result<()> {
@@ -766,8 +780,7 @@ impl World {
             self.max_body_coordinate = f64::INFINITY;
         }
         if fine {
-            self.diverged = None;
-            self.gate.diverged = false;
+            self.set_diverged(None);
             Ok(())
         } else {
             Err(self.divergence(state_fine, false))
@@ -792,8 +805,7 @@ impl World {
                 .or_else(|| limits::state_problem("accumulated torque", &t, limits::MAX_TORQUE, "N·m"))
                 .map(|d| format!("{d} (clear it with BodyMut::clear_forces)"))
         } else {
-            self.diverged = Some(body);
-            self.gate.diverged = true;
+            self.set_diverged(Some(body));
             limits::state_problem("position", &p, limits::MAX_COORDINATE, "m")
                 .or_else(|| limits::state_problem("orientation quaternion", &q, 1.5, ""))
                 .or_else(|| limits::state_problem("linear velocity", &v, limits::MAX_SPEED, "m/s"))

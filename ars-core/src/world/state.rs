@@ -536,8 +536,7 @@ impl World {
         self.random_seed = state.random_seed;
         self.time = state.time;
         self.gate.forces_added = true;
-        self.diverged = None;
-        self.refresh_gate();
+        self.set_diverged(None);
         self.restored_coordinates();
         Ok(())
     }
