@@ -164,7 +164,29 @@ def breakdown(module, name, seconds, work):
     )
 
 
+def interpreters():
+    """``(ours, the original's)``: the interpreter each runs on, its path and version. Ours
+    is this one (a virtual environment's is its base's), the original's Debian's, which
+    has PyODE."""
+    probe = "import os, sys; print(os.path.realpath(sys.executable), sys.version.split()[0])"
+    original = subprocess.run(
+        [original_ars.ORIGINAL_PYTHON, "-c", probe], capture_output=True, text=True, check=True
+    ).stdout.split()
+    ours = [os.path.realpath(getattr(sys, "_base_executable", sys.executable))]
+    return " ".join(ours + [sys.version.split()[0]]), " ".join(original)
+
+
 def original_against_ours():
+    # On one interpreter: another build of the same Python version (pyenv's, say: no
+    # profile-guided optimisation, libpython a shared library) ran our example 3 8%
+    # slower than Debian's. Make the virtual environment from Debian's python3, as
+    # `make python` does on a fresh Debian machine.
+    ours, original = interpreters()
+    if ours != original:
+        print(
+            f"3. NOT LIKE FOR LIKE: ours runs on {ours}, the original on {original}; "
+            f"make .venv with {original_ars.ORIGINAL_PYTHON} -m venv"
+        )
     # As a user runs them: Python's default output buffering (PYTHONUNBUFFERED, set in
     # some shells, makes every print two system calls in both, about 0.4 s here).
     env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}

@@ -251,13 +251,14 @@ def test_torques_act_the_same_heard_or_not_and_a_bad_one_is_logged(caplog):
         failing.sim.get_joint("hinge").joint.add_torque(math.nan)
 
 
-def test_importing_ars_leaves_numpy_until_it_is_needed():
+def test_importing_ars_leaves_numpy_and_typing_until_they_are_needed():
     import subprocess
     import sys
 
     code = (
         "import sys, ars, ars.app, ars.utils.mathematical\n"
         "assert 'numpy' not in sys.modules, 'numpy imported early'\n"
+        "assert 'typing' not in sys.modules, 'typing imported early'\n"
         "assert ars.sweep.__name__ == 'sweep' and 'numpy' in sys.modules\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
