@@ -87,20 +87,44 @@ def hook_cost(steps=200_000):
 
 
 # Where a step of an original program goes in our package, measured inside one process:
-# the program's own pre-step method (its Python, with the calls it makes into ours) and
-# the rest of the run (the native steps: physics, the same ODE calls as the original's,
-# and our hooks and dispatch); then the floor: the program's pre-step method alone, with
-# the calls it makes into ARS answered at once by stand-ins (C-level callables and plain
-# attributes), which no implementation of ours can beat. Printed as one line of numbers.
+# 1. the run as it is;
+# 2. the run again, timing the program's own pre-step method (its Python, with the calls
+#    it makes into ours) apart from the rest (the native steps: physics, the same ODE
+#    calls as the original's, and our hooks), and noting the torques it puts;
+# 3. the floor in place: a new program whose pre-step puts those torques again (the same
+#    calls in the same order: the same bits, checked on every body's final position) and
+#    then runs the program's pre-step method on stand-ins of the simulation, its joints
+#    and its bodies (C-level callables and plain attributes), which no implementation of
+#    ours can beat. It is what ours would take if every call into it cost nothing, give
+#    or take the torque calls and the hook that puts them: those are ours (about 0.3 µs
+#    a step for four torques), so the floor is slightly high;
+# 4. the program's pre-step method on the stand-ins in a loop of its own (its Python in
+#    hot caches, without physics between).
+# Printed as one line of numbers.
 _BREAKDOWN = """
 import importlib, itertools, os, sys, time, timeit
 start = time.perf_counter()
 import ars  # noqa: F401
-from ars.model.simulator import Simulation
+from ars.app import dispatcher
+from ars.model.simulator import signals
 imported = time.perf_counter() - start
 module, name, seconds = sys.argv[1], sys.argv[2], float(sys.argv[3])
 cls = getattr(importlib.import_module("demos." + module), name)
-spent = [0.0]
+stdout, sys.stdout = sys.stdout, open(os.devnull, "w")
+
+def positions(program):
+    return [o.get_position() for o in program.sim._objects.values() if hasattr(o, "body")]
+
+def timed_run(program):
+    begin = time.perf_counter()
+    program.run(seconds)
+    return time.perf_counter() - begin
+
+program = cls()
+run = timed_run(program)
+final = positions(program)
+
+spent, torques = [0.0], []
 on_pre_step = cls.on_pre_step
 
 def timed(self):
@@ -110,13 +134,16 @@ def timed(self):
 
 cls.on_pre_step = timed
 program = cls()
-stdout, sys.stdout = sys.stdout, open(os.devnull, "w")
-begin = time.perf_counter()
-program.run(seconds)
-run = time.perf_counter() - begin
+for joint_name, joint in program.sim._joints.items():
+    def noting(torque, put=joint.add_torque, joint_name=joint_name):
+        torques.append((joint_name, torque, program.sim.native.step_count))
+        put(torque)
+    joint.add_torque = noting
+parts = timed_run(program)
+cls.on_pre_step = on_pre_step
 steps = program.sim.native.step_count
 
-# The floor: the same method on stand-ins of the simulation, its joints and its chassis.
+# The stand-ins.
 class Joint:
     angle, angle_rate = 0.1, 0.2
 
@@ -136,15 +163,35 @@ class StandIn:
     get_joint = dict.fromkeys(("r1", "r2", "w1", "w2"), joint).__getitem__
     get_object = {getattr(program, "chassis", None): body}.__getitem__
 
+# 3: the same torques, each put by the same native call as before, step by step.
+again = cls()
+by_step = [[] for _ in range(steps)]
+for joint_name, torque, step in torques:
+    by_step[step].append((again.sim.get_joint(joint_name).add_torque, torque))
+dispatcher.disconnect(again.on_pre_step, signals.SIM_PRE_STEP)
+puts = iter(by_step).__next__
+on_stand_ins = program.on_pre_step
 program.sim = StandIn()
+
+def pre_step():
+    for put, torque in puts():
+        put(torque)
+    joint.add_torque = [].append
+    on_stand_ins()
+
+dispatcher.connect(pre_step, signals.SIM_PRE_STEP)
+floor_run = timed_run(again)
+same = positions(again) == final
+
 calls = 20000
-floor = min(timeit.repeat(lambda: on_pre_step(program), number=calls, repeat=5)) / calls
+alone = min(timeit.repeat(on_stand_ins, number=calls, repeat=5)) / calls
 sys.stdout = stdout
-print(imported, run, spent[0], steps, floor)
+print(imported, run, parts, spent[0], steps, floor_run, int(same), alone)
 """
 
 
 def breakdown(module, name, seconds, work):
+    """The breakdown's line, and what the run's own calls into ours cost in all (s)."""
     out = subprocess.run(
         [sys.executable, "-c", _BREAKDOWN, module, name, str(seconds)],
         cwd=original_ars.demos_only(work),
@@ -153,15 +200,18 @@ def breakdown(module, name, seconds, work):
         text=True,
         check=True,
     )
-    imported, run, program, steps, floor = map(float, out.stdout.split())
+    imported, run, parts, program, steps, floor, same, alone = map(float, out.stdout.split())
     per = 1e6 / steps
-    return (
-        f"   in one process: importing ars {imported:.2f} s; the run {run:.2f} s = the program's "
-        f"on_pre_step {program:.2f} s ({program * per:.1f} µs/step: its Python and the calls it "
-        f"makes into ours) + the native steps {run - program:.2f} s ({(run - program) * per:.1f} "
-        f"µs/step: physics, the same ODE calls as the original's, and our hooks); the floor, "
-        f"the program's own Python with ARS's calls answered at once: {floor * 1e6:.1f} µs/step"
+    line = (
+        f"   in one process: importing ars {imported:.2f} s; the run {run:.3f} s; timed in parts: "
+        f"the program's on_pre_step {program * per:.1f} µs/step (its Python and the calls it "
+        f"makes into ours), the native steps {(parts - program) * per:.1f} µs/step (physics, "
+        f"the same ODE calls as the original's, and our hooks); the floor in place, the same "
+        f"physics with the program's Python on stand-ins: {floor:.3f} s "
+        f"({'the same bits' if same else 'DIFFERENT BITS'}), so calls into ours cost "
+        f"{(run - floor) * per:.1f} µs/step; the program's Python alone: {alone * 1e6:.1f} µs/step"
     )
+    return line, run - floor
 
 
 def interpreters():
@@ -217,7 +267,12 @@ def original_against_ours():
                 f"{'the same' if same else 'DIFFERENT'} output): original on PyODE {original:.2f} s, "
                 f"ours {ours:.2f} s, original/ours {original / ours:.2f} (medians of three)"
             )
-            print(breakdown(module, name, seconds, work))
+            line, calls = breakdown(module, name, seconds, work)
+            print(line)
+            print(
+                f"   with every call into ours free (ours less {calls:.3f} s): original/ours "
+                f"{original / (ours - calls):.2f}, the most any implementation of ours could reach"
+            )
 
 
 def sweep_on_ray(seconds=20.0):
