@@ -1,6 +1,6 @@
 //! What the window and the recorder run: a simulation advanced frame by frame, which
 //! the viewer's keys and panel can step, rebuild and send keys to. A Rust
-//! [`Program`](ars_core::Program) is driven by its [`ProgramRunner`]; other front ends
+//! [`Program`] is driven by its [`ProgramRunner`]; other front ends
 //! (the Python package) implement [`Driver`] themselves.
 
 use std::ops::{Deref, DerefMut};

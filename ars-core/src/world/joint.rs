@@ -166,7 +166,7 @@ impl JointKind {
 /// Creates an ODE joint of `kind` between `b1` and `b2` (null: the world) and sets its
 /// anchors and axes from the bodies' poses as they are now. What
 /// [`World::insert_joint`] does before the parameters, and what
-/// [`World::remake_joint`] does again.
+/// [`World::restore_state`] does again.
 ///
 /// # Safety
 /// `w` is a live world; `b1` a live body of it, `b2` null or another live body of it;
@@ -453,7 +453,7 @@ pub(crate) struct JointData {
     pub(crate) serial: u64,
     /// Where its bodies were when its anchors and axes were set: ODE keeps them in the
     /// bodies' frames then, so a joint made again with the bodies there is the same
-    /// joint to the bit (see [`World::remake_joint`]).
+    /// joint to the bit (see [`World::restore_state`]).
     pub(crate) reference: JointReference,
 }
 
