@@ -181,7 +181,7 @@ def pre_step():
 
 dispatcher.connect(pre_step, signals.SIM_PRE_STEP)
 floor_run = timed_run(again)
-same = positions(again) == final
+same = bool(final) and positions(again) == final
 
 calls = 20000
 alone = min(timeit.repeat(on_stand_ins, number=calls, repeat=5)) / calls
