@@ -90,15 +90,17 @@ def hook_cost(steps=200_000):
 # 1. the run as it is;
 # 2. the run again, timing the program's own pre-step method (its Python, with the calls
 #    it makes into ours) apart from the rest (the native steps: physics, the same ODE
-#    calls as the original's, and our hooks), and noting the torques it puts;
-# 3. the floor in place: a new program whose pre-step puts those torques again (the same
+#    calls as the original's, and our hooks);
+# 3. the run again, untimed, noting the torques it puts (apart from 2: noting costs a
+#    Python call per torque, inside the pre-step method);
+# 4. the floor in place: a new program whose pre-step puts those torques again (the same
 #    calls in the same order: the same bits, checked on every body's final position) and
 #    then runs the program's pre-step method on stand-ins of the simulation, its joints
 #    and its bodies (C-level callables and plain attributes), which no implementation of
 #    ours can beat. It is what ours would take if every call into it cost nothing, give
 #    or take the torque calls and the hook that puts them: those are ours (about 0.3 µs
 #    a step for four torques), so the floor is slightly high;
-# 4. the program's pre-step method on the stand-ins in a loop of its own (its Python in
+# 5. the program's pre-step method on the stand-ins in a loop of its own (its Python in
 #    hot caches, without physics between).
 # Printed as one line of numbers.
 _BREAKDOWN = """
@@ -124,7 +126,7 @@ program = cls()
 run = timed_run(program)
 final = positions(program)
 
-spent, torques = [0.0], []
+spent = [0.0]
 on_pre_step = cls.on_pre_step
 
 def timed(self):
@@ -133,14 +135,17 @@ def timed(self):
     spent[0] += time.perf_counter() - begin
 
 cls.on_pre_step = timed
+parts = timed_run(cls())
+cls.on_pre_step = on_pre_step
+
+torques = []
 program = cls()
 for joint_name, joint in program.sim._joints.items():
     def noting(torque, put=joint.add_torque, joint_name=joint_name):
         torques.append((joint_name, torque, program.sim.native.step_count))
         put(torque)
     joint.add_torque = noting
-parts = timed_run(program)
-cls.on_pre_step = on_pre_step
+program.run(seconds)
 steps = program.sim.native.step_count
 
 # The stand-ins.
@@ -163,7 +168,7 @@ class StandIn:
     get_joint = dict.fromkeys(("r1", "r2", "w1", "w2"), joint).__getitem__
     get_object = {getattr(program, "chassis", None): body}.__getitem__
 
-# 3: the same torques, each put by the same native call as before, step by step.
+# 4: the same torques, each put by the same native call as before, step by step.
 again = cls()
 by_step = [[] for _ in range(steps)]
 for joint_name, torque, step in torques:
