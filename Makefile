@@ -1,7 +1,7 @@
 # ARS: one entry point for newcomers, developers and CI.
-#   make demo   install what is missing (Debian packages), show the conical pendulum
+#   make demo   install what the demo needs if missing (Debian packages), show the conical pendulum
 #               (a window where there is a display; frames, CSV and plots otherwise)
-#   make test   install what is missing, run the whole test suite (Rust, then the
+#   make test   install what the tests need if missing, run the whole test suite (Rust, then the
 #               Python package's, in the virtual environment .venv it creates)
 #   make python install the Python package `ars` into .venv (pip install ./python)
 #   make check  everything CI checks: fmt, clippy, tests, docs, benchmarks compile
@@ -10,31 +10,49 @@
 #   make figures       the thesis' figures (PNG) and their CSVs, into figures/
 #   make readme-table  regenerate the README's table of thesis numbers
 
-DEB_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
-	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri xvfb \
-	python3 python3-venv python3-pyode python3-numpy xdotool chromium \
-	ffmpeg
+# What the demo needs: ODE and its bindings, the plots' font, and off-screen rendering on
+# Mesa's software rasteriser. `make demo` installs only these.
+DEMO_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
+	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri
+# The Python package's virtual environment (`make python`).
+PYTHON_PACKAGES := python3 python3-venv
+# What only the tests need: a display server and a pointer driver for the window tests,
+# Chromium for the browser replay, ffmpeg to read videos back, and the original ARS's
+# PyODE and numpy for the comparison with it. `make test` and CI install these too.
+TEST_PACKAGES := xvfb xdotool chromium ffmpeg python3-pyode python3-numpy
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps demo test check bench figures readme-table python python-test
-
-# The Python package is built by pip (maturin, release profile) into this environment.
-VENV := .venv
-PYTHON := $(VENV)/bin/python
-
-deps:
+# Installs the Debian packages in $(1) that are missing.
+define install_missing
 	@missing=""; \
-	for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	for p in $(1); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then \
 		echo "Installing Debian packages:$$missing"; \
 		$(SUDO) apt-get update -qq && \
 		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
 	fi
 	@command -v cargo >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs) first"; exit 1; }
+endef
+
+.PHONY: deps demo-deps python-deps demo test check bench figures readme-table python python-test
+
+# The Python package is built by pip (maturin, release profile) into this environment.
+VENV := .venv
+PYTHON := $(VENV)/bin/python
+
+# Everything: what the demo, the Python package and the tests need.
+deps:
+	$(call install_missing,$(DEMO_PACKAGES) $(PYTHON_PACKAGES) $(TEST_PACKAGES))
+
+demo-deps:
+	$(call install_missing,$(DEMO_PACKAGES))
+
+python-deps:
+	$(call install_missing,$(DEMO_PACKAGES) $(PYTHON_PACKAGES))
 
 # Where there is a display: the conical pendulum in a window. Otherwise: off-screen
 # frames, the CSV and the plots of the conical pendulum into demo-output/.
-demo: deps
+demo: demo-deps
 	cargo build --release --example conical_pendulum
 	@if [ -n "$${DISPLAY}$${WAYLAND_DISPLAY}" ]; then \
 		cargo run --release --example conical_pendulum -- --window; \
@@ -52,7 +70,7 @@ $(PYTHON):
 	python3 -m venv $(VENV)
 	$(PYTHON) -m pip install --quiet --upgrade pip
 
-python: deps $(PYTHON)
+python: python-deps $(PYTHON)
 	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0" nbclient ipykernel
 	$(PYTHON) -m pip install --quiet --force-reinstall --no-deps ./python
 
@@ -73,7 +91,7 @@ bench: deps
 	cargo bench -p ars-benches --no-default-features --bench native_comparison
 	cargo bench -p ars-benches --no-default-features --bench step_cost
 
-figures: deps
+figures: demo-deps
 	cargo build --release --examples
 	cargo run --release --example falling_ball_sensors -- --csv figures/falling_ball.csv --plot figures
 	cargo run --release --example laser -- --csv figures/laser.csv --plot figures
@@ -83,5 +101,5 @@ figures: deps
 	cargo run --release --example user_driven -- --paper --csv figures/user_driven.csv --plot figures
 	@echo "figures written to $(CURDIR)/figures"
 
-readme-table: deps
+readme-table: demo-deps
 	cargo run --release --example thesis_table -- --write-readme
