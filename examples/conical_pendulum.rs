@@ -22,7 +22,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let log = sim.records(program.record.expect("created"))?;
     let last = log.last().expect("at least one step").record;
     let params = ArmParameters::IROS_EXAMPLE_2;
-    println!("after {:.2} s of simulated time ({} steps of {} s):", sim.time(), sim.step_count(), sim.time_step());
+    println!(
+        "after {:.2} s of simulated time ({} steps of {} s):",
+        sim.scene().time(),
+        sim.scene().step_count(),
+        sim.scene().time_step()
+    );
     println!("  waist rate     {:.4} rad/s   (thesis: almost 4 rad/s; ODE reference 3.9994)", last.q1_rate);
     println!(
         "  shoulder angle {:.4} rad     (ODE reference 0.7115; uniform-rod formula {:.4})",
@@ -39,7 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(dir) = &args.plot {
         let model = ReducedArmModel::trajectory(params, args.duration, 0.01, 0.001);
-        let every = (0.01 / sim.time_step()).round() as usize;
+        let every = (0.01 / sim.scene().time_step()).round() as usize;
         let ars_rate = log.iter().step_by(every).map(|s| (s.time, s.record.q1_rate)).collect();
         let ars_angle = log.iter().step_by(every).map(|s| (s.time, s.record.q2)).collect();
         line_chart(

@@ -17,14 +17,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let logs: Vec<_> =
         program.balls.iter().map(|(_, gps)| sim.records(*gps).map(|l| l.samples())).collect::<Result<_, _>>()?;
     for ((ball, _), log) in program.balls.iter().zip(&logs) {
-        let object = sim.object(*ball)?;
+        let object = sim.scene().object(*ball)?;
         let (name, radius) = (object.name(), object.shape().clone());
         let r = match radius {
             ars::Shape::Sphere { radius } => radius,
             _ => unreachable!("the balls are spheres"),
         };
         let landed = log.iter().find(|s| s.record.position.y < r + 1e-3).map(|s| s.time);
-        let mass = sim.body(*ball)?.mass();
+        let mass = sim.scene().body(*ball)?.mass();
         match landed {
             Some(t) => println!("{name}: radius {r} m, mass {mass:.4} kg, touches the floor at {t:.4} s"),
             None => println!("{name}: radius {r} m, mass {mass:.4} kg, still falling"),

@@ -27,7 +27,7 @@ impl Program for HelloWorld {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+        let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
         self.sensors = Some((sim.add_sensor(Gps::new(ball))?, sim.add_sensor(Velometer::new(ball))?));
         Ok(())
     }
@@ -40,7 +40,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let (gps, velometer) = program.sensors.expect("created with the simulation");
     let (gps_log, velometer_log) = (sim.records(gps)?, sim.records(velometer)?);
     let (gps, velometer) = (gps_log.samples(), velometer_log.samples());
-    let every_10_ms = (0.01 / sim.time_step()).round() as usize;
+    let every_10_ms = (0.01 / sim.scene().time_step()).round() as usize;
     println!("{:>6} {:>10} {:>11}", "t [s]", "y [m]", "vy [m/s]");
     for (p, v) in gps.iter().zip(velometer).skip(every_10_ms - 1).step_by(every_10_ms) {
         println!("{:>6.3} {:>10.6} {:>11.6}", p.time, p.record.position.y, v.record.linear.y);

@@ -25,14 +25,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let parts = runner.program().parts.expect("built");
     let waist = runner.simulation_mut().add_sensor(HingeSensor::new(parts.r1))?;
     let shoulder = runner.simulation_mut().add_sensor(HingeSensor::new(parts.r2))?;
-    let steps = runner.simulation().steps_in(args.duration)?;
+    let steps = runner.simulation().scene().steps_in(args.duration)?;
     let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
-    let spf = u64::from(runner.simulation().steps_per_frame());
+    let spf = u64::from(runner.simulation().scene().steps_per_frame());
     for step in 0..steps {
         if step % spf == 0 {
             capture.frame(runner.simulation())?;
         }
-        if step % u64::from(runner.simulation().steps_per_frame()) == 0 && runner.simulation().time() < 0.2 {
+        if step % u64::from(runner.simulation().scene().steps_per_frame()) == 0
+            && runner.simulation().scene().time() < 0.2
+        {
             runner.key_down(Key::Char('a'))?;
         }
         runner.step()?;
@@ -40,7 +42,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     capture.finish(runner.simulation())?;
     let sim = runner.simulation();
     let (q1, q2) = (sim.records(waist)?, sim.records(shoulder)?);
-    let every_half_second = (0.5 / sim.time_step()).round() as usize;
+    let every_half_second = (0.5 / sim.scene().time_step()).round() as usize;
     for (a, b) in q1.iter().zip(q2).skip(every_half_second - 1).step_by(every_half_second) {
         let (t, q1, q2) = (a.time, a.record.position, b.record.position);
         println!("t = {t:.2} s: waist q1 = {q1:+.4} rad, shoulder q2 = {q2:+.4} rad");

@@ -52,10 +52,10 @@ impl Program for UrdfProgram {
         let moving: Vec<_> = robot
             .joints
             .iter()
-            .filter(|(_, id)| sim.joint(*id).is_ok_and(|j| j.joint_type() != JointType::Fixed))
+            .filter(|(_, id)| sim.scene().joint(*id).is_ok_and(|j| j.joint_type() != JointType::Fixed))
             .map(|(_, id)| *id)
             .collect();
-        self.positions = Some(sim.add_sensor(JointPositions::new(sim, &moving)?)?);
+        self.positions = Some(sim.add_sensor(JointPositions::new(sim.scene(), &moving)?)?);
         self.summary = format!(
             "robot {:?}: {} links, {} joints ({} moving){}",
             robot.name,

@@ -43,15 +43,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let start = {
             let mut probe = UserDriven { paper_friction: paper, ..Default::default() };
             let sim = ars::Program::create_simulation(&mut probe)?;
-            sim.position(probe.vehicle.expect("built").chassis)?
+            sim.scene().position(probe.vehicle.expect("built").chassis)?
         };
         let sim = common::args::run(&mut program, &args)?;
         let chassis = program.vehicle.expect("built").chassis;
-        let x = sim.rotation(chassis)? * ars::nalgebra::Vector3::x();
-        let p = sim.position(chassis)?;
+        let x = sim.scene().rotation(chassis)? * ars::nalgebra::Vector3::x();
+        let p = sim.scene().position(chassis)?;
         println!(
             "after {:.1} s: chassis from ({:.2}, {:.2}) to ({:.2}, {:.2}) m, heading {:.1} deg",
-            sim.time(),
+            sim.scene().time(),
             start.x,
             start.z,
             p.x,
@@ -63,15 +63,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut runner = ProgramRunner::new(&mut program)?;
     let chassis = runner.program().vehicle.expect("built").chassis;
     let mut heading = Vec::new();
-    let steps_per_frame = u64::from(runner.simulation().steps_per_frame());
-    let frames = runner.simulation().steps_in(args.duration)? / steps_per_frame;
+    let steps_per_frame = u64::from(runner.simulation().scene().steps_per_frame());
+    let frames = runner.simulation().scene().steps_in(args.duration)? / steps_per_frame;
     let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
     for _ in 0..frames {
         capture.frame(runner.simulation())?;
         runner.run_script_frame(&script)?;
-        let r = runner.simulation().rotation(chassis)?;
+        let r = runner.simulation().scene().rotation(chassis)?;
         let x = r * ars::nalgebra::Vector3::x();
-        heading.push((runner.simulation().time(), (-x.z).atan2(x.x)));
+        heading.push((runner.simulation().scene().time(), (-x.z).atan2(x.x)));
     }
     capture.finish(runner.simulation())?;
     let turned = unwrapped(heading.clone()).last().map_or(0.0, |h| h.1);

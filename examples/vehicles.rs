@@ -42,9 +42,9 @@ fn drive<P: Program>(
     let mut runner = ProgramRunner::new(&mut program)?;
     let body = chassis(runner.program());
     let sim = runner.simulation_mut();
-    let frame = sim.time_step() * f64::from(sim.steps_per_frame());
+    let frame = sim.scene().time_step() * f64::from(sim.scene().steps_per_frame());
     let gps = sim.add_sensor_every(Gps::new(body), frame)?;
-    let frames = sim.steps_in(duration)? / u64::from(sim.steps_per_frame());
+    let frames = sim.scene().steps_in(duration)? / u64::from(sim.scene().steps_per_frame());
     for _ in 0..frames {
         capture.frame(runner.simulation())?;
         runner.run_script_frame(script)?;

@@ -12,9 +12,9 @@ const ARS: &str = env!("CARGO_BIN_EXE_ars");
 /// A pendulum knocking a ball along the floor, with a GPS on the ball.
 fn scene() -> Simulation {
     let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
-    let bob = sim.add_sphere(0.1, [0.6, 0.8, 0.0], Mass::Total(2.0)).unwrap();
-    sim.add_hinge_joint("pivot", bob, JointEnd::World, Some([0.0, 0.8, 0.0].into()), Vector3::z()).unwrap();
-    let ball = sim.add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).unwrap();
+    let bob = sim.scene_mut().add_sphere(0.1, [0.6, 0.8, 0.0], Mass::Total(2.0)).unwrap();
+    sim.scene_mut().add_hinge_joint("pivot", bob, JointEnd::World, Some([0.0, 0.8, 0.0].into()), Vector3::z()).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).unwrap();
     sim.add_sensor_every(Gps::new(ball), 0.01).unwrap();
     sim
 }
@@ -35,10 +35,10 @@ fn a_scene_saved_mid_run_goes_on_to_the_same_bits_under_ars_run() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     let last: Vec<f64> = text.lines().last().unwrap().split(',').map(|c| c.parse().unwrap()).collect();
-    let ball = sim.object("sphere/1").unwrap().id();
-    let here = sim.body(ball).unwrap().position();
+    let ball = sim.scene().object("sphere/1").unwrap().id();
+    let here = sim.scene().body(ball).unwrap().position();
     // time, step, x, y, z: the CSV's numbers are written to round-trip.
-    assert_eq!(last[1] as u64, sim.step_count());
+    assert_eq!(last[1] as u64, sim.scene().step_count());
     assert_eq!([last[2], last[3], last[4]].map(f64::to_bits), [here.x, here.y, here.z].map(f64::to_bits));
     assert!(here.x.abs() > 0.05, "the ball was knocked: {here}");
     std::fs::remove_dir_all(&dir).unwrap();

@@ -25,7 +25,7 @@ impl Program for AtTimeStep {
 fn run(dt: f64, seconds: f64) -> Vec<Sample<PendulumRow>> {
     let mut program = AtTimeStep(ConicalPendulum::default(), dt);
     let sim = program.run_headless(seconds).unwrap();
-    assert!((sim.time() - seconds).abs() < 1e-6);
+    assert!((sim.scene().time() - seconds).abs() < 1e-6);
     sim.records(program.0.record.unwrap()).unwrap().samples().to_vec()
 }
 

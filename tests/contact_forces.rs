@@ -11,15 +11,15 @@ const G: f64 = 9.81;
 /// A 2 kg box resting on the floor plane, and a 1 kg box on it.
 fn stack() -> Simulation {
     let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
-    sim.add_box([0.4, 0.2, 0.4], [0.0, 0.1, 0.0], Mass::Total(2.0)).unwrap();
-    sim.add_box([0.2, 0.2, 0.2], [0.0, 0.3, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().add_box([0.4, 0.2, 0.4], [0.0, 0.1, 0.0], Mass::Total(2.0)).unwrap();
+    sim.scene_mut().add_box([0.2, 0.2, 0.2], [0.0, 0.3, 0.0], Mass::Total(1.0)).unwrap();
     sim
 }
 
 #[test]
 fn a_resting_box_s_contacts_carry_its_weight() {
     let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
-    let box_ = sim.add_box([0.4, 0.2, 0.4], [0.0, 0.1, 0.0], Mass::Total(2.0)).unwrap();
+    let box_ = sim.scene_mut().add_box([0.4, 0.2, 0.4], [0.0, 0.1, 0.0], Mass::Total(2.0)).unwrap();
     let forces = sim.add_sensor(ContactForces::new(box_)).unwrap();
     sim.run_for(1.0).unwrap();
     let last = sim.records(forces).unwrap().last().unwrap().record;
@@ -33,7 +33,7 @@ fn a_resting_box_s_contacts_carry_its_weight() {
 #[test]
 fn a_stacked_box_s_weight_passes_through_the_box_below() {
     let mut sim = stack();
-    let (lower, upper) = (sim.object("box").unwrap().id(), sim.object("box/1").unwrap().id());
+    let (lower, upper) = (sim.scene().object("box").unwrap().id(), sim.scene().object("box/1").unwrap().id());
     let on_lower = sim.add_sensor(ContactForces::new(lower)).unwrap();
     let on_upper = sim.add_sensor(ContactForces::new(upper)).unwrap();
     sim.run_for(1.0).unwrap();
@@ -44,7 +44,7 @@ fn a_stacked_box_s_weight_passes_through_the_box_below() {
     assert!((lower.force.y - 2.0 * G).abs() < 0.02 * G, "{:?}", lower.force);
     assert!((upper.force.y - G).abs() < 0.01 * G, "{:?}", upper.force);
     assert_eq!(lower.contacts, 8, "four corners on the floor, four under the upper box");
-    let floor = sim.world().contacts().iter().filter(|c| c.pair.body1.is_none() || c.pair.body2.is_none());
+    let floor = sim.scene().world().contacts().iter().filter(|c| c.pair.body1.is_none() || c.pair.body2.is_none());
     let from_floor: f64 = floor.map(|c| if c.pair.body1.is_none() { -c.force.y } else { c.force.y }).sum();
     assert!((from_floor - 3.0 * G).abs() < 0.03 * G, "the floor carries both: {from_floor} N");
 }
@@ -52,20 +52,21 @@ fn a_stacked_box_s_weight_passes_through_the_box_below() {
 #[test]
 fn asking_for_contact_forces_changes_nothing_of_the_motion() {
     let states = |sim: &Simulation| -> Vec<u64> {
-        sim.bodies()
+        sim.scene()
+            .bodies()
             .flat_map(|(_, h)| {
-                let b = sim.world().body(h).unwrap();
+                let b = sim.scene().world().body(h).unwrap();
                 let (p, v) = (b.position(), b.linear_velocity());
                 [p.x, p.y, p.z, v.x, v.y, v.z].map(f64::to_bits)
             })
             .collect()
     };
     let (mut plain, mut measured) = (stack(), stack());
-    let upper = measured.object("box/1").unwrap().id();
+    let upper = measured.scene().object("box/1").unwrap().id();
     measured.add_sensor(ContactForces::new(upper)).unwrap();
     plain.run_for(0.5).unwrap();
     measured.run_for(0.5).unwrap();
     assert_eq!(states(&plain), states(&measured));
-    assert!(plain.world().contacts().iter().all(|c| c.force == Vector3::zeros()), "off unless asked");
-    assert!(measured.world().contacts().iter().any(|c| c.force != Vector3::zeros()));
+    assert!(plain.scene().world().contacts().iter().all(|c| c.force == Vector3::zeros()), "off unless asked");
+    assert!(measured.scene().world().contacts().iter().any(|c| c.force != Vector3::zeros()));
 }

@@ -22,18 +22,18 @@ const RADIUS: f64 = 0.2;
 /// first-order response over three time constants, at time step `dt`.
 fn largest_error(dt: f64) -> (f64, f64) {
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).time_step(dt).build().unwrap();
-    let wheel = sim.add_cylinder(RADIUS, 0.05, [0.0, 1.0, 0.0], Mass::Total(MASS)).unwrap();
-    let hinge = sim.add_hinge_joint("axle", wheel, JointEnd::World, None, Vector3::z()).unwrap();
+    let wheel = sim.scene_mut().add_cylinder(RADIUS, 0.05, [0.0, 1.0, 0.0], Mass::Total(MASS)).unwrap();
+    let hinge = sim.scene_mut().add_hinge_joint("axle", wheel, JointEnd::World, None, Vector3::z()).unwrap();
     let motor = DcMotor::new(Profile::constant(V).unwrap(), KT, KE, R, N, 0.0).unwrap().with_friction(B).unwrap();
-    sim.joint_mut(hinge).unwrap().set_controller(motor).unwrap();
+    sim.scene_mut().joint_mut(hinge).unwrap().set_controller(motor).unwrap();
     let inertia = MASS * RADIUS * RADIUS / 2.0;
     let damping = N * N * (KT * KE + R * B);
     let (final_rate, tau) = (N * KT * V / damping, inertia * R / damping);
     let mut worst: f64 = 0.0;
-    while sim.time() < 3.0 * tau {
+    while sim.scene().time() < 3.0 * tau {
         sim.step().unwrap();
-        let analytic = final_rate * (1.0 - (-sim.time() / tau).exp());
-        worst = worst.max((sim.joint_rate(hinge).unwrap() - analytic).abs());
+        let analytic = final_rate * (1.0 - (-sim.scene().time() / tau).exp());
+        worst = worst.max((sim.scene().joint_rate(hinge).unwrap() - analytic).abs());
     }
     (worst / final_rate, tau)
 }

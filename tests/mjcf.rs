@@ -43,21 +43,21 @@ fn a_double_pendulum_loads_with_its_names_masses_and_limits() {
     assert!(model.joint("shoulder").is_some() && model.joint("elbow").is_some());
     assert_eq!(model.actuators.len(), 1);
     // Capsule: ρ·(π r² L + 4/3 π r³) with the default density 500.
-    let upper = sim.body(model.body("upper").unwrap()).unwrap().mass();
+    let upper = sim.scene().body(model.body("upper").unwrap()).unwrap().mass();
     let expected = 500.0 * std::f64::consts::PI * (0.03f64.powi(2) * 0.5 + 4.0 / 3.0 * 0.03f64.powi(3));
     assert!((upper - expected).abs() < 1e-12 * expected, "{upper} vs {expected}");
     // The class "heavy" (childclass) makes the lower link four times as dense.
-    let lower = sim.body(model.body("body2").unwrap()).unwrap().mass();
+    let lower = sim.scene().body(model.body("body2").unwrap()).unwrap().mass();
     let capsule = 2000.0 * std::f64::consts::PI * (0.03f64.powi(2) * 0.4 + 4.0 / 3.0 * 0.03f64.powi(3));
     assert!((lower - (capsule + 2000.0 * 0.001)).abs() < 1e-9, "{lower}");
-    let shoulder = sim.joint("shoulder").unwrap().ode().unwrap();
+    let shoulder = sim.scene().joint("shoulder").unwrap().ode().unwrap();
     let (lo, hi) =
         (shoulder.param(ars::JointParam::LoStop, 0).unwrap(), shoulder.param(ars::JointParam::HiStop, 0).unwrap());
     assert!((lo + std::f64::consts::FRAC_PI_2).abs() < 1e-12 && (hi - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
     // It swings and the ball falls to the floor.
     sim.run_for(1.0).unwrap();
-    assert!(sim.joint("elbow").unwrap().state().unwrap().position.abs() > 0.01);
-    let ball = sim.body(model.body("ball").unwrap()).unwrap().position();
+    assert!(sim.scene().joint("elbow").unwrap().state().unwrap().position.abs() > 0.01);
+    let ball = sim.scene().body(model.body("ball").unwrap()).unwrap().position();
     assert!((ball.y - 0.1).abs() < 0.01 && (ball.x - 1.0).abs() < 1e-6, "{ball}");
 }
 
@@ -69,8 +69,8 @@ fn a_base_pose_places_the_model() {
     let mut at_origin = Simulation::builder().build().unwrap();
     let there = at_origin.load_mjcf_text(DOUBLE_PENDULUM, "pendulum.xml", &MjcfOptions::new()).unwrap();
     for name in ["upper", "body2", "ball"] {
-        let moved = sim.body(model.body(name).unwrap()).unwrap().position();
-        let origin = at_origin.body(there.body(name).unwrap()).unwrap().position();
+        let moved = sim.scene().body(model.body(name).unwrap()).unwrap().position();
+        let origin = at_origin.scene().body(there.body(name).unwrap()).unwrap().position();
         assert!((moved - origin - Vector3::new(2.0, 0.0, 0.0)).norm() < 1e-12, "{name}: {moved} vs {origin}");
     }
 }
@@ -121,7 +121,7 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         // A caller can match the element and the line, not only read them.
         assert!(element.starts_with('<') && line.is_some_and(|l| l >= 1), "{element:?} {line:?}: {message}");
         assert!(message.contains(says) && message.contains("bad.xml") && message.contains("line"), "{message}");
-        assert_eq!(sim.objects().count(), 0, "nothing left behind: {message}");
+        assert_eq!(sim.scene().objects().count(), 0, "nothing left behind: {message}");
     }
     // With skip_unsupported, what cannot be read is listed instead; a tendon's own
     // elements are not a body's, and their attributes are not checked as if they were.
@@ -140,7 +140,7 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
     let text = "<mujoco><worldbody><body><geom size='.1' friction='1 0.1 0.1'/></body></worldbody></mujoco>";
     let model = Simulation::new().unwrap().load_mjcf_text(text, "friction.xml", &MjcfOptions::new()).unwrap();
     assert!(model.skipped.iter().any(|s| s.contains("friction not used")), "{:?}", model.skipped);
-    assert_eq!(sim.objects().count(), 1);
+    assert_eq!(sim.scene().objects().count(), 1);
     let missing = sim.load_mjcf("/nonexistent/model.xml", &MjcfOptions::new()).unwrap_err();
     assert!(matches!(missing, Error::Io { .. }), "{missing}");
 }
@@ -159,14 +159,14 @@ fn several_joints_in_one_body_are_chained_through_light_links() {
     assert_eq!(model.joints.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), ["rootx", "rootz", "rooty"]);
     assert_eq!(model.chain_links.len(), 2);
     let torso = model.body("torso").unwrap();
-    let link = sim.body(model.chain_links[0]).unwrap().mass();
-    assert!((link - sim.body(torso).unwrap().mass() * ars::scene::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
+    let link = sim.scene().body(model.chain_links[0]).unwrap().mass();
+    assert!((link - sim.scene().body(torso).unwrap().mass() * ars::scene::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
     // The tilted capsule falls, lands and tips over in its plane: it moves along x and
     // turns about the hinge, and never leaves the plane z = 0.
     sim.run_for(1.5).unwrap();
-    let p = sim.body(torso).unwrap().position();
+    let p = sim.scene().body(torso).unwrap().position();
     assert!(p.z.abs() < 1e-6, "{p}");
-    assert!(sim.joint("rooty").unwrap().state().unwrap().position.abs() > 0.3);
+    assert!(sim.scene().joint("rooty").unwrap().state().unwrap().position.abs() > 0.3);
 }
 
 #[test]
@@ -184,11 +184,11 @@ fn a_body_chained_to_its_parent_does_not_touch_it() {
     let mut sim = Simulation::builder().build().unwrap();
     let model = sim.load_mjcf_text(HIP, "hip.xml", &MjcfOptions::new()).unwrap();
     let (pelvis, thigh) = (model.body("pelvis").unwrap(), model.body("thigh").unwrap());
-    assert_eq!(sim.excluded_contacts(), [(pelvis, thigh)]);
+    assert_eq!(sim.scene().excluded_contacts(), [(pelvis, thigh)]);
     sim.run_for(0.2).unwrap();
-    assert!(sim.world().contacts().is_empty(), "the overlapping capsules do not touch");
+    assert!(sim.scene().world().contacts().is_empty(), "the overlapping capsules do not touch");
     // It hangs and swings from its pivot; nothing ejects it.
-    let speed = sim.body(thigh).unwrap().linear_velocity().norm();
+    let speed = sim.scene().body(thigh).unwrap().linear_velocity().norm();
     assert!(speed < 2.0, "{speed}");
 }
 
@@ -200,7 +200,7 @@ fn a_body_lighter_than_ars_allows_is_raised_and_one_too_heavy_refused_by_name() 
         <geom type="sphere" size="0.01" density="1e-5"/></body></worldbody></mujoco>"#;
     let mut sim = Simulation::builder().build().unwrap();
     let model = sim.load_mjcf_text(FEATHER, "feather.xml", &MjcfOptions::new()).unwrap();
-    let body = sim.body(model.body("feather").unwrap()).unwrap();
+    let body = sim.scene().body(model.body("feather").unwrap()).unwrap();
     assert_eq!(body.mass(), ars::limits::MIN_MASS);
     let ball = 2.0 / 5.0 * ars::limits::MIN_MASS * 0.01 * 0.01;
     assert!((body.inertia()[(0, 0)] - ball).abs() < 1e-12 * ball, "{}", body.inertia());
@@ -210,7 +210,7 @@ fn a_body_lighter_than_ars_allows_is_raised_and_one_too_heavy_refused_by_name() 
     let heavy = FEATHER.replace(r#"density="1e-5""#, r#"mass="1e10""#);
     let err = sim.load_mjcf_text(&heavy, "heavy.xml", &MjcfOptions::new()).unwrap_err().to_string();
     assert!(err.contains("\"feather\"") && err.contains("mass"), "{err}");
-    assert_eq!(sim.objects().count(), 0);
+    assert_eq!(sim.scene().objects().count(), 0);
 }
 
 #[test]
@@ -232,7 +232,7 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     let model = sim.load_mjcf(dir.join("scene.xml"), &MjcfOptions::new()).unwrap();
     assert_eq!(model.name, "scene");
     // The included class's density (not MuJoCo's 1000) weighs the included body.
-    let mass = sim.body(model.body("bob").unwrap()).unwrap().mass();
+    let mass = sim.scene().body(model.body("bob").unwrap()).unwrap().mass();
     assert!((mass - 300.0 * 4.0 / 3.0 * std::f64::consts::PI * 1e-3).abs() < 1e-12, "{mass}");
     // Includes below the top level: in a class, in the world body and in a body, read in
     // place (MuJoCo allows them anywhere), and an include inside an included file.
@@ -258,8 +258,8 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     let mut nested = Simulation::builder().build().unwrap();
     let model = nested.load_mjcf(dir.join("nested.xml"), &MjcfOptions::new()).unwrap();
     let ball = |r: f64| 2000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
-    let arm = nested.body(model.body("arm").unwrap()).unwrap().mass();
-    let finger = nested.body(model.body("finger").unwrap()).unwrap().mass();
+    let arm = nested.scene().body(model.body("arm").unwrap()).unwrap().mass();
+    let finger = nested.scene().body(model.body("finger").unwrap()).unwrap().mass();
     assert!((arm - ball(0.1)).abs() < 1e-12 && (finger - ball(0.05)).abs() < 1e-12, "{arm} {finger}");
     // An error there names the deepest file.
     write(
@@ -282,7 +282,7 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     write("c.xml", r#"<mujoco><include file="nowhere.xml"/></mujoco>"#);
     let err = sim.load_mjcf(dir.join("c.xml"), &MjcfOptions::new()).unwrap_err().to_string();
     assert!(err.contains("nowhere.xml") && err.contains("<include>"), "{err}");
-    assert_eq!(sim.objects().count(), 1, "only the first model's body");
+    assert_eq!(sim.scene().objects().count(), 1, "only the first model's body");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -312,7 +312,7 @@ fn actuators_drive_their_joints_as_mujoco_defines_them() {
     // The file's gravity (none) is returned, not applied: the simulation is built so.
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
     let model = sim.load_mjcf_text(ACTUATED, "actuated.xml", &MjcfOptions::new()).unwrap();
-    let names: Vec<&str> = sim.actuators().map(|(n, _)| n).collect();
+    let names: Vec<&str> = sim.scene().actuators().map(|(n, _)| n).collect();
     assert_eq!(names, ["push", "hold", "spin"]);
     let push = &model.actuators[0].actuator;
     // A class's <general> sets every actuator kind's defaults, as in MuJoCo.
@@ -320,17 +320,17 @@ fn actuators_drive_their_joints_as_mujoco_defines_them() {
     assert_eq!(model.actuators[1].actuator.ctrl_range(), Some((-1.0, 1.0)), "the class's default");
     assert_eq!(model.actuators[2].actuator.ctrl_range(), None, "ctrllimited=\"false\" wins");
     assert_eq!(model.actuators[1].actuator.force_range(), Some((-5.0, 5.0)));
-    assert_eq!(sim.control("push").unwrap(), 0.0);
+    assert_eq!(sim.scene().control("push").unwrap(), 0.0);
 
     // The motor: 5 is clamped to 1, a torque of gear × 1 = 10 N·m from rest.
-    sim.set_control("push", 5.0).unwrap();
-    assert_eq!(sim.control("push").unwrap(), 1.0);
-    sim.set_control("hold", 0.4).unwrap();
-    sim.set_control("spin", 3.0).unwrap();
+    sim.scene_mut().set_control("push", 5.0).unwrap();
+    assert_eq!(sim.scene().control("push").unwrap(), 1.0);
+    sim.scene_mut().set_control("hold", 0.4).unwrap();
+    sim.scene_mut().set_control("spin", 3.0).unwrap();
     // The inertia of arm a about its hinge: MuJoCo's Y axis through the origin is the
     // simulation's −Z; the capsule's centre is 0.25 m out along X.
     let i_a = {
-        let b = sim.body(model.body("a").unwrap()).unwrap();
+        let b = sim.scene().body(model.body("a").unwrap()).unwrap();
         let axis = Vector3::z();
         let p = b.position().coords;
         let r = (p - axis * p.dot(&axis)).norm();
@@ -338,30 +338,30 @@ fn actuators_drive_their_joints_as_mujoco_defines_them() {
         axis.dot(&(about_centre * axis)) + b.mass() * r * r
     };
     sim.step().unwrap();
-    let rate = sim.joint("ja").unwrap().state().unwrap().rate;
+    let rate = sim.scene().joint("ja").unwrap().state().unwrap().rate;
     // MuJoCo's qacc for this model is 75.2208 rad/s² (mj_forward).
-    let expected = 10.0 / i_a * sim.time_step();
+    let expected = 10.0 / i_a * sim.scene().time_step();
     assert!((rate.abs() - expected).abs() < 1e-6 * expected, "{rate} vs {expected}");
-    assert!((expected / sim.time_step() - 75.2208).abs() < 1e-3);
+    assert!((expected / sim.scene().time_step() - 75.2208).abs() < 1e-3);
 
     // The position servo settles at its control (gear 1), the velocity servo at
     // ctrl / gear.
     sim.run_for(5.0).unwrap();
-    let hold = sim.joint("jb").unwrap().state().unwrap().position;
+    let hold = sim.scene().joint("jb").unwrap().state().unwrap().position;
     assert!((hold.abs() - 0.4).abs() < 1e-3, "held at {hold}");
-    let spin = sim.joint("jc").unwrap().state().unwrap().rate;
+    let spin = sim.scene().joint("jc").unwrap().state().unwrap().rate;
     assert!((spin.abs() - 1.5).abs() < 1e-3, "spins at {spin}");
 
     // Kept by scene files and snapshots.
     let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
-    assert_eq!(copy.control("push").unwrap(), 1.0);
-    assert_eq!(copy.control("spin").unwrap(), 3.0);
+    assert_eq!(copy.scene().control("push").unwrap(), 1.0);
+    assert_eq!(copy.scene().control("spin").unwrap(), 3.0);
 
     // Unknown names and bad values are said.
-    let e = sim.set_control("pusj", 0.0).unwrap_err();
+    let e = sim.scene_mut().set_control("pusj", 0.0).unwrap_err();
     assert!(e.to_string().contains("push"), "a close match is suggested: {e}");
-    assert!(sim.set_control("hold", f64::NAN).is_err());
-    assert_eq!(sim.control("hold").unwrap(), 0.4);
+    assert!(sim.scene_mut().set_control("hold", f64::NAN).is_err());
+    assert_eq!(sim.scene().control("hold").unwrap(), 0.4);
 }
 
 #[test]
@@ -370,8 +370,8 @@ fn an_actuator_on_a_missing_joint_is_refused_and_leaves_nothing() {
     let text = ACTUATED.replace(r#"joint="jc""#, r#"joint="jz""#);
     let e = sim.load_mjcf_text(&text, "actuated.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"jz\""), "{e}");
-    assert_eq!(sim.objects().count(), 0);
-    assert_eq!(sim.joints().count(), 0);
+    assert_eq!(sim.scene().objects().count(), 0);
+    assert_eq!(sim.scene().joints().count(), 0);
 }
 
 #[test]
@@ -391,11 +391,11 @@ fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
     let mut sim = Simulation::builder().build().unwrap();
     let model = sim.load_mjcf_text(text, "exclude.xml", &MjcfOptions::new()).unwrap();
     let (plate, ball) = (model.body("plate").unwrap(), model.body("ball").unwrap());
-    assert_eq!(sim.excluded_contacts(), [(ball, plate)]);
+    assert_eq!(sim.scene().excluded_contacts(), [(ball, plate)]);
     let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
     for mut s in [sim, copy] {
         s.run_for(1.0).unwrap();
-        let y = |name: &str| s.object(name).unwrap().position().unwrap().y;
+        let y = |name: &str| s.scene().object(name).unwrap().position().unwrap().y;
         assert!(y("ball") < -1.0, "the excluded ball fell through its plate: {}", y("ball"));
         assert!((y("ball2") - 0.15).abs() < 0.01, "the other rests on its plate: {}", y("ball2"));
     }
@@ -403,7 +403,7 @@ fn excluded_bodies_pass_through_each_other_and_files_keep_it() {
     let mut sim = Simulation::builder().build().unwrap();
     let e = sim.load_mjcf_text(&bad, "exclude.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"bal\""), "{e}");
-    assert_eq!(sim.objects().count(), 0);
+    assert_eq!(sim.scene().objects().count(), 0);
 }
 
 #[test]
@@ -428,7 +428,7 @@ fn a_contact_pair_touches_whatever_its_bits_say_and_nothing_else_does() {
         model.skipped
     );
     sim.run_for(1.0).unwrap();
-    let y = |name: &str| sim.object(name).unwrap().position().unwrap().y;
+    let y = |name: &str| sim.scene().object(name).unwrap().position().unwrap().y;
     assert!((y("held") - 0.15).abs() < 0.01, "the paired ball rests on the plate: {}", y("held"));
     assert!(y("loose") < -1.0, "the other falls through: {}", y("loose"));
 
@@ -437,7 +437,7 @@ fn a_contact_pair_touches_whatever_its_bits_say_and_nothing_else_does() {
     let bad = text.replace(r#"geom2="plate""#, r#"geom2="plat""#);
     let e = sim.load_mjcf_text(&bad, "pair.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"plat\""), "{e}");
-    assert_eq!(sim.objects().count(), 0);
+    assert_eq!(sim.scene().objects().count(), 0);
     let bad = text.replace(r#"size="1 0.5 0.05" contype="0""#, r#"size="1 0.5 0.05" contype="4294967296""#);
     let e = sim.load_mjcf_text(&bad, "pair.xml", &MjcfOptions::new()).unwrap_err();
     let Error::Format { element, line, .. } = &e else { panic!("{e}") };
@@ -456,7 +456,7 @@ fn a_geom_takes_its_material_s_colour_unless_it_has_its_own() {
       </worldbody></mujoco>"#;
     let mut sim = Simulation::builder().build().unwrap();
     sim.load_mjcf_text(text, "materials.xml", &MjcfOptions::new()).unwrap();
-    let color = |name: &str| sim.object(name).unwrap().color().unwrap();
+    let color = |name: &str| sim.scene().object(name).unwrap().color().unwrap();
     assert_eq!(color("red"), [1.0, 0.0, 0.0]);
     assert_eq!(color("own"), [1.0, 1.0, 0.0], "its own rgba wins");
     assert_eq!(color("class"), [0.0, 0.0, 1.0], "its class's rgba wins too");
@@ -475,7 +475,7 @@ fn a_mesh_that_encloses_nothing_is_refused() {
     let mut sim = Simulation::builder().build().unwrap();
     let e = sim.load_mjcf(&path, &MjcfOptions::new()).unwrap_err().to_string();
     assert!(e.contains("encloses no volume") && e.contains("line 1"), "{e}");
-    assert_eq!(sim.objects().count(), 0);
+    assert_eq!(sim.scene().objects().count(), 0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -495,8 +495,8 @@ fn sensors_read_their_joints_and_bodies() {
     let names: Vec<&str> = model.sensors.iter().map(|s| s.name.as_str()).collect();
     assert_eq!(names, ["a_angle", "sensor1", "c_at", "sensor3"]);
     assert!(model.sensors.iter().all(|s| s.id.is_some()));
-    sim.set_control("push", 0.5).unwrap();
-    sim.set_control("spin", 3.0).unwrap();
+    sim.scene_mut().set_control("push", 0.5).unwrap();
+    sim.scene_mut().set_control("spin", 3.0).unwrap();
     sim.run_for(0.2).unwrap();
     // Each sensor's last row is the joint's or body's state after the last step.
     let tables = sim.sensor_tables();
@@ -504,10 +504,10 @@ fn sensors_read_their_joints_and_bodies() {
         let table = tables[i].1;
         table.cells(table.len() - 1).into_iter().map(|v| v.unwrap()).collect::<Vec<f64>>()
     };
-    let ja = sim.joint("ja").unwrap().state().unwrap();
+    let ja = sim.scene().joint("ja").unwrap().state().unwrap();
     assert_eq!(last(0), [ja.position]);
     assert_eq!(last(1), [ja.rate]);
-    let c = sim.body(model.body("c").unwrap()).unwrap();
+    let c = sim.scene().body(model.body("c").unwrap()).unwrap();
     assert_eq!(last(2), c.position().coords.as_slice());
     // A velometer reads the angular velocity too, after the linear one.
     assert_eq!(last(3)[..3], *c.linear_velocity().as_slice());
@@ -521,7 +521,7 @@ fn sensors_read_their_joints_and_bodies() {
     let mut sim = Simulation::new().unwrap();
     let e = sim.load_mjcf_text(&missing, "missing.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("\"nope\""), "{e}");
-    assert_eq!(sim.objects().count(), 0);
+    assert_eq!(sim.scene().objects().count(), 0);
 }
 
 /// A box resting on the floor with sites for every sensor read on sites, and a free
@@ -623,7 +623,7 @@ fn sites_carry_sensors_that_read_a_resting_box_as_mujoco_would() {
     // Up from the top, nothing: MuJoCo's −1, an empty cell here.
     assert_eq!(last("sky")[0], None);
     // The site's position is the box's pose applied to its offset.
-    let pose = sim.pose(model.body("box").unwrap()).unwrap();
+    let pose = sim.scene().pose(model.body("box").unwrap()).unwrap();
     let at = pose * ars::nalgebra::Point3::from(top.offset.translation.vector);
     let read: Vec<f64> = last("top_at").iter().map(|v| v.unwrap()).collect();
     assert!((Vector3::from_column_slice(&read) - at.coords).norm() < 1e-12);
@@ -642,7 +642,7 @@ fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
     let Error::Format { element, line: Some(at), problem, .. } = &e else { panic!("{e:?}") };
     assert_eq!((element.as_str(), *at as usize), ("<accelerometer>", line), "{e}");
     assert!(problem.contains("site \"nowhere\""), "{e}");
-    assert_eq!(sim.objects().count(), 0, "nothing is left behind");
+    assert_eq!(sim.scene().objects().count(), 0, "nothing is left behind");
 
     // What is not supported is refused, or skipped and said.
     let text = SITES.replace(
@@ -678,12 +678,12 @@ fn reference_positions_and_springs_survive_a_scene_file_and_a_snapshot() {
         </body></worldbody></mujoco>"#;
     let mut sim = Simulation::builder().build().unwrap();
     sim.load_mjcf_text(SPRUNG, "sprung.xml", &MjcfOptions::new()).unwrap();
-    let position = |sim: &Simulation, name: &str| sim.joint(name).unwrap().state().unwrap().position;
+    let position = |sim: &Simulation, name: &str| sim.scene().joint(name).unwrap().state().unwrap().position;
     // In the file's pose each joint reads its ref, as MuJoCo's qpos0.
     assert!((position(&sim, "hinge") - 20f64.to_radians()).abs() < 1e-12);
     assert!((position(&sim, "slide") - 0.1).abs() < 1e-12);
-    assert_eq!(sim.joint("slide").unwrap().spring(), (40.0, 0.15));
-    assert_eq!(sim.joint("hinge").unwrap().dry_friction(), 0.01);
+    assert_eq!(sim.scene().joint("slide").unwrap().spring(), (40.0, 0.15));
+    assert_eq!(sim.scene().joint("hinge").unwrap().dry_friction(), 0.01);
     sim.run_for(0.2).unwrap();
     let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
     let snapshot = sim.snapshot().unwrap();
@@ -693,13 +693,13 @@ fn reference_positions_and_springs_survive_a_scene_file_and_a_snapshot() {
     sim.run_for(0.3).unwrap();
     let expected = [position(&sim, "hinge"), position(&sim, "slide")];
     for mut other in [copy, restored] {
-        assert_eq!(other.joint("slide").unwrap().spring(), (40.0, 0.15));
+        assert_eq!(other.scene().joint("slide").unwrap().spring(), (40.0, 0.15));
         other.run_for(0.3).unwrap();
         // The same bits: the references, springs and dry friction came back.
         assert_eq!([position(&other, "hinge"), position(&other, "slide")], expected);
     }
     // Bad springs are refused.
-    let mut joint = sim.joint_mut("slide").unwrap();
+    let mut joint = sim.scene_mut().joint_mut("slide").unwrap();
     for (stiffness, rest) in [(-1.0, 0.0), (f64::NAN, 0.0), (1.0, f64::INFINITY)] {
         let e = joint.set_spring(stiffness, rest).unwrap_err().to_string();
         assert!(e.contains("spring"), "{e}");

@@ -71,7 +71,7 @@ fn example_4_crosses_the_terrain_with_its_arm_upright() {
 }
 
 fn heading(sim: &ars::Simulation, chassis: ars::ObjectId) -> f64 {
-    let x = sim.rotation(chassis).unwrap() * ars::nalgebra::Vector3::x();
+    let x = sim.scene().rotation(chassis).unwrap() * ars::nalgebra::Vector3::x();
     (-x.z).atan2(x.x)
 }
 
@@ -113,16 +113,16 @@ fn two_vehicles_share_a_simulation_and_a_box_comes_and_goes() {
     let mut runner = ProgramRunner::new(&mut program).unwrap();
     runner.run_for(3.0).unwrap();
     let sim = runner.simulation();
-    assert!(sim.joint("left/w1").is_ok() && sim.joint("right/w1").is_ok());
-    let obstacle = sim.object("obstacle").expect("dropped at 2 s").id();
-    assert!(sim.position(obstacle).unwrap().y < 0.25, "it has landed");
+    assert!(sim.scene().joint("left/w1").is_ok() && sim.scene().joint("right/w1").is_ok());
+    let obstacle = sim.scene().object("obstacle").expect("dropped at 2 s").id();
+    assert!(sim.scene().position(obstacle).unwrap().y < 0.25, "it has landed");
     let chassis: Vec<_> = [0, 1].map(|i| runner.program().vehicles[i].chassis).into();
     let sim = runner.simulation();
-    let [left, right] = [0, 1].map(|i| sim.position(chassis[i]).unwrap());
+    let [left, right] = [0, 1].map(|i| sim.scene().position(chassis[i]).unwrap());
     assert!(left.x > 1.0 && right.x > 1.0, "both drive +X: {left} {right}");
     runner.run_for(3.0).unwrap();
     let sim = runner.simulation();
-    assert!(sim.object("obstacle").is_err(), "removed at 5 s");
+    assert!(sim.scene().object("obstacle").is_err(), "removed at 5 s");
     assert!(runner.program().obstacle.is_none() && runner.program().events == (true, true));
 }
 

@@ -53,7 +53,7 @@ fn the_simulation_layer_bench_scenes_are_bit_identical_to_native_ode() {
     ];
     for (name, c, sim, steps) in cases {
         let (mut c, mut sim) = (c(), sim());
-        assert_eq!(c.body_count(), sim.sim.bodies().count(), "{name}: body count");
+        assert_eq!(c.body_count(), sim.sim.scene().bodies().count(), "{name}: body count");
         for step in 1..=steps {
             c.step(1);
             sim.step(1);
@@ -80,7 +80,7 @@ fn the_comparison_notices_a_difference_of_one_part_in_a_trillion() {
 }
 
 fn body_state(sim: &ars::Simulation, object: ars::ObjectId) -> BodyState {
-    let b = sim.body(object).unwrap();
+    let b = sim.scene().body(object).unwrap();
     let (p, q, v, w) = (b.position(), b.quaternion(), b.linear_velocity(), b.angular_velocity());
     [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z]
 }
@@ -108,7 +108,7 @@ fn two_ball_laser_program_is_bit_identical_to_native_ode_for_two_seconds() {
         }
         let reading = sim.records(laser).unwrap().last().unwrap().record.distance;
         assert_eq!(reading.map(f64::to_bits), c.ray_distance().map(f64::to_bits), "laser after step {step}");
-        assert_eq!(sim.time().to_bits(), c.time().to_bits());
+        assert_eq!(sim.scene().time().to_bits(), c.time().to_bits());
         hits += usize::from(reading.is_some());
     }
     assert!(hits > 4000, "the laser sees the balls most of the time ({hits} steps)");
@@ -159,15 +159,15 @@ fn assert_rows_bit_identical<P: ars::Program>(
     row: impl Fn(&ars::Simulation, &P) -> [f64; 9],
 ) {
     let mut runner = ars::ProgramRunner::new(&mut program).unwrap();
-    let steps = runner.simulation().steps_in(seconds).unwrap();
+    let steps = runner.simulation().scene().steps_in(seconds).unwrap();
     for step in 1..=steps {
         runner.step().unwrap();
         c.step(1);
         let (rust, native) = (row(runner.simulation(), runner.program()), c.row());
         assert!(same_bits(&rust, &native), "{name}: CSV row of step {step} differs:\n C    {native:?}\n Rust {rust:?}");
         for i in 0..c.body_count() {
-            let b = runner.simulation().world().bodies().nth(i).unwrap();
-            let body = runner.simulation().world().body(b).unwrap();
+            let b = runner.simulation().scene().world().bodies().nth(i).unwrap();
+            let body = runner.simulation().scene().world().body(b).unwrap();
             let (p, v) = (body.position(), body.linear_velocity());
             let rs = [p.x, p.y, p.z, v.x, v.y, v.z];
             let cs = c.body_state(i);
@@ -213,9 +213,9 @@ fn every_thesis_program_builds_the_simple_space_from_any_builder() {
     fn check<P: Program>(name: &str, mut program: P) {
         for builder in [Simulation::builder(), Simulation::builder().space(SpaceKind::SWEEP_AND_PRUNE)] {
             let sim = program.configure(builder).build().unwrap();
-            assert_eq!(sim.space_kind(), SpaceKind::Simple, "{name}");
+            assert_eq!(sim.scene().space_kind(), SpaceKind::Simple, "{name}");
         }
-        assert_eq!(program.create_simulation().unwrap().space_kind(), SpaceKind::Simple, "{name}");
+        assert_eq!(program.create_simulation().unwrap().scene().space_kind(), SpaceKind::Simple, "{name}");
     }
     check("HelloWorld", HelloWorld::default());
     check("FallingBallSensors", FallingBallSensors::default());

@@ -16,9 +16,9 @@ fn falling_balls_land_when_free_fall_says() {
         // Every ball lands within the 1.5 s run (the highest at 1.08 s).
         let landed = landed.unwrap_or_else(|| panic!("ball from {y0} never landed"));
         assert!((landed - expected).abs() < 0.01, "ball from {y0}: {landed} vs {expected}");
-        assert!(sim.body(*ball).is_ok());
+        assert!(sim.scene().body(*ball).is_ok());
     }
-    let masses: Vec<f64> = program.balls.iter().map(|(b, _)| sim.body(*b).unwrap().mass()).collect();
+    let masses: Vec<f64> = program.balls.iter().map(|(b, _)| sim.scene().body(*b).unwrap().mass()).collect();
     assert!((masses[0] - 0.1131).abs() < 1e-4 && (masses[1] - 0.2618).abs() < 1e-4 && masses[2] == 5.0, "{masses:?}");
 }
 
@@ -49,12 +49,12 @@ fn the_simple_arm_turns_when_a_key_pushes_it() {
     let mut runner = ProgramRunner::new(&mut program).unwrap();
     runner.run_for(0.5).unwrap();
     let r1 = runner.program().parts.unwrap().r1;
-    let still = runner.simulation().joint_state(r1).unwrap().rate;
+    let still = runner.simulation().scene().joint_state(r1).unwrap().rate;
     for _ in 0..10 {
         runner.key_down(Key::Char('a')).unwrap();
         runner.step_frame().unwrap();
     }
-    let turned = runner.simulation().joint_state(r1).unwrap().rate;
+    let turned = runner.simulation().scene().joint_state(r1).unwrap().rate;
     assert!(still.abs() < 1e-6 && turned.abs() > 0.1, "waist rate {still} then {turned}");
 }
 
@@ -64,13 +64,13 @@ fn the_controlled_arm_holds_and_follows_its_shoulder_set_point() {
     let mut runner = ProgramRunner::new(&mut program).unwrap();
     runner.run_for(3.0).unwrap();
     let r2 = runner.program().parts.unwrap().r2;
-    let q = runner.simulation().joint_state(r2).unwrap().position;
+    let q = runner.simulation().scene().joint_state(r2).unwrap().position;
     assert!(q.abs() < 0.05, "held near upright: {q}");
     for _ in 0..3 {
         runner.key_down(Key::Char('d')).unwrap();
     }
     runner.run_for(10.0).unwrap();
-    let q = runner.simulation().joint_state(r2).unwrap().position;
+    let q = runner.simulation().scene().joint_state(r2).unwrap().position;
     let record = runner.program().record.unwrap();
     let last = runner.simulation().records(record).unwrap().last().unwrap().record;
     assert!((last.setpoint - 0.3).abs() < 1e-12, "three 'd' presses: {last:?}");

@@ -25,17 +25,35 @@ impl Program for Pendulums {
         builder
     }
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let arm = sim.add_box([0.8, 0.08, 0.08], [0.4, 1.8, 0.0], Mass::Total(0.5))?;
-        let ball = sim.add_sphere(0.18, [0.85, 1.8, 0.0], Mass::Total(1.0))?;
-        sim.set_color(ball, [0.9, 0.2, 0.1])?;
-        sim.add_fixed_joint("weld", arm, ball)?;
-        sim.add_hinge_joint("pivot", arm, JointEnd::World, Some(Point3::new(0.0, 1.8, 0.0)), Vector3::z())?;
-        let drum = sim.add_cylinder(0.15, 0.3, [-0.7, 1.5, 0.0], Mass::Total(1.0))?;
-        let tip = sim.add_cone(0.12, 0.3, [-0.7, 1.5, 0.3], Mass::Total(0.2))?;
-        sim.add_fixed_joint("cap", drum, tip)?;
-        sim.add_hinge_joint("swing", drum, JointEnd::World, Some(Point3::new(-0.3, 1.8, 0.0)), Vector3::z())?;
-        let capsule = sim.add_capsule(0.1, 0.4, [0.0, 0.8, 0.0], Mass::Total(1.0))?;
-        sim.add_hinge_joint("hang", capsule, JointEnd::World, Some(Point3::new(0.3, 1.1, 0.0)), Vector3::z())?;
+        let arm = sim.scene_mut().add_box([0.8, 0.08, 0.08], [0.4, 1.8, 0.0], Mass::Total(0.5))?;
+        let ball = sim.scene_mut().add_sphere(0.18, [0.85, 1.8, 0.0], Mass::Total(1.0))?;
+        sim.scene_mut().set_color(ball, [0.9, 0.2, 0.1])?;
+        sim.scene_mut().add_fixed_joint("weld", arm, ball)?;
+        sim.scene_mut().add_hinge_joint(
+            "pivot",
+            arm,
+            JointEnd::World,
+            Some(Point3::new(0.0, 1.8, 0.0)),
+            Vector3::z(),
+        )?;
+        let drum = sim.scene_mut().add_cylinder(0.15, 0.3, [-0.7, 1.5, 0.0], Mass::Total(1.0))?;
+        let tip = sim.scene_mut().add_cone(0.12, 0.3, [-0.7, 1.5, 0.3], Mass::Total(0.2))?;
+        sim.scene_mut().add_fixed_joint("cap", drum, tip)?;
+        sim.scene_mut().add_hinge_joint(
+            "swing",
+            drum,
+            JointEnd::World,
+            Some(Point3::new(-0.3, 1.8, 0.0)),
+            Vector3::z(),
+        )?;
+        let capsule = sim.scene_mut().add_capsule(0.1, 0.4, [0.0, 0.8, 0.0], Mass::Total(1.0))?;
+        sim.scene_mut().add_hinge_joint(
+            "hang",
+            capsule,
+            JointEnd::World,
+            Some(Point3::new(0.3, 1.1, 0.0)),
+            Vector3::z(),
+        )?;
         sim.add_sensor(Gps::new(ball)).map(drop)
     }
     fn view_settings(&self) -> ViewSettings {
@@ -150,7 +168,7 @@ fn chromium_plays_the_replay_and_shows_the_bodies_where_the_simulation_had_them(
     let dir = temp_dir("silhouette");
     let page = dir.join("pendulums.html");
     let (sim, replay) = ReplayRecorder::new().plot("Gps 1: y").record_to(&mut Pendulums, 3.0, &page).unwrap();
-    assert!((sim.time() - 3.0).abs() < 1e-9);
+    assert!((sim.scene().time() - 3.0).abs() < 1e-9);
     let html = std::fs::read_to_string(&page).unwrap();
     assert_eq!(html, replay.html());
     // Nothing to fetch: no address, no external script or style.
@@ -158,7 +176,7 @@ fn chromium_plays_the_replay_and_shows_the_bodies_where_the_simulation_had_them(
         assert!(!html.contains(outside), "the page refers to something outside it: {outside:?}");
     }
     // The simulation's frame rate: 50 frames a second.
-    assert_eq!(sim.time_step() * f64::from(sim.steps_per_frame()), 0.02);
+    assert_eq!(sim.scene().time_step() * f64::from(sim.scene().steps_per_frame()), 0.02);
     assert_eq!(replay.frames(), 151);
 
     let view = Pendulums.view_settings();
@@ -169,7 +187,7 @@ fn chromium_plays_the_replay_and_shows_the_bodies_where_the_simulation_had_them(
     for _ in 0..78 {
         runner.step_frame().unwrap();
     }
-    let t = runner.simulation().time();
+    let t = runner.simulation().scene().time();
     assert!((t - 1.56).abs() < 1e-9);
     let mut renderer = OffscreenRenderer::new(&view).unwrap();
     let offscreen = renderer.render(runner.simulation()).unwrap();

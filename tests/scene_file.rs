@@ -5,9 +5,10 @@ use ars::{Hooks, Program, Simulation};
 use ars_programs::{ConicalPendulum, SpeedProfile};
 
 fn states(sim: &Simulation) -> Vec<u64> {
-    sim.bodies()
+    sim.scene()
+        .bodies()
         .flat_map(|(_, h)| {
-            let b = sim.world().body(h).unwrap();
+            let b = sim.scene().world().body(h).unwrap();
             let (p, q, v, w) = (b.position(), b.quaternion(), b.linear_velocity(), b.angular_velocity());
             [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z].map(f64::to_bits)
         })
@@ -17,7 +18,7 @@ fn states(sim: &Simulation) -> Vec<u64> {
 /// The pendulum's scene and the hooks that drive it, for a simulation of it.
 fn driver(sim: &Simulation) -> ConicalPendulum {
     let mut d = ConicalPendulum::default();
-    (d.waist, d.shoulder) = (Some(sim.joint("r1").unwrap().id()), Some(sim.joint("r2").unwrap().id()));
+    (d.waist, d.shoulder) = (Some(sim.scene().joint("r1").unwrap().id()), Some(sim.scene().joint("r2").unwrap().id()));
     d
 }
 
@@ -68,12 +69,13 @@ fn a_scene_saved_mid_run_brings_every_body_back_to_the_bit() {
     let loaded = Simulation::load_scene_from(&path).unwrap();
     std::fs::remove_file(&path).unwrap();
     assert_eq!(states(&sim), states(&loaded), "bodies, exactly");
-    assert_eq!((loaded.time(), loaded.step_count()), (sim.time(), sim.step_count()));
-    assert_eq!(loaded.objects().count(), sim.objects().count());
-    assert_eq!(loaded.joints().count(), sim.joints().count());
+    assert_eq!((loaded.scene().time(), loaded.scene().step_count()), (sim.scene().time(), sim.scene().step_count()));
+    assert_eq!(loaded.scene().objects().count(), sim.scene().objects().count());
+    assert_eq!(loaded.scene().joints().count(), sim.scene().joints().count());
     // Joints are rebuilt where they are now: the same anchors and axes.
-    for (name, id) in sim.joints() {
-        let (a, b) = (sim.joint(id).unwrap().ode().unwrap(), loaded.joint(name).unwrap().ode().unwrap());
+    for (name, id) in sim.scene().joints() {
+        let (a, b) =
+            (sim.scene().joint(id).unwrap().ode().unwrap(), loaded.scene().joint(name).unwrap().ode().unwrap());
         if let (Ok(p), Ok(q)) = (a.anchor(), b.anchor()) {
             assert!((p - q).norm() < 1e-12, "{name}: anchor {p} vs {q}");
         }
@@ -89,11 +91,11 @@ fn motors_friction_actuator_limits_and_mimics_are_saved() {
     const GRIPPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gripper.urdf");
     let mut original = Simulation::new().unwrap();
     original.load_urdf(GRIPPER, &ars::UrdfOptions::new().fixed_base(true)).unwrap();
-    original.joint_mut("left_finger_joint").unwrap().set_speed(0.05, 10.0).unwrap();
+    original.scene_mut().joint_mut("left_finger_joint").unwrap().set_speed(0.05, 10.0).unwrap();
     let text = original.save_scene().unwrap();
     let mut loaded = Simulation::load_scene(&text).unwrap();
     for name in ["left_finger_joint", "right_finger_joint"] {
-        let (a, b) = (original.joint(name).unwrap(), loaded.joint(name).unwrap());
+        let (a, b) = (original.scene().joint(name).unwrap(), loaded.scene().joint(name).unwrap());
         assert_eq!(a.actuator_limits(), b.actuator_limits(), "{name}");
         assert_eq!(a.dry_friction(), b.dry_friction(), "{name}");
         assert_eq!(a.mimic().is_some(), b.mimic().is_some(), "{name}");
@@ -103,17 +105,17 @@ fn motors_friction_actuator_limits_and_mimics_are_saved() {
         loaded.step().unwrap();
         assert_eq!(states(&original), states(&loaded), "after step {step}");
     }
-    assert!(original.joint("left_finger_joint").unwrap().state().unwrap().position > 0.01, "it moved");
+    assert!(original.scene().joint("left_finger_joint").unwrap().state().unwrap().position > 0.01, "it moved");
 }
 
 #[test]
 fn sensors_are_saved_by_kind_and_what_they_read() {
     use ars::sensors::{Gps, JointPositions, Noisy};
     let mut original = ConicalPendulum::default().create_simulation().unwrap();
-    let pole = original.object("cylinder").unwrap().id();
-    let (r1, r2) = (original.joint("r1").unwrap().id(), original.joint("r2").unwrap().id());
+    let pole = original.scene().object("cylinder").unwrap().id();
+    let (r1, r2) = (original.scene().joint("r1").unwrap().id(), original.scene().joint("r2").unwrap().id());
     let gps = original.add_sensor_every(Gps::new(pole), 0.01).unwrap();
-    let positions = JointPositions::new(&original, &[r1, r2]).unwrap();
+    let positions = JointPositions::new(original.scene(), &[r1, r2]).unwrap();
     let joints = original.add_sensor(positions).unwrap();
     original.add_sensor(Noisy::new(Gps::new(pole), 0.01, 3).unwrap()).unwrap();
     let file = original.scene_file().unwrap();
@@ -148,19 +150,19 @@ fn a_scene_keeps_its_space_and_a_file_without_one_has_the_simple_space() {
         [SpaceKind::Simple, SpaceKind::HASH, SpaceKind::SweepAndPrune { axes: AxisOrder::Zyx }, SpaceKind::Grid]
     {
         let mut sim = Simulation::builder().space(space).build().unwrap();
-        sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+        sim.scene_mut().add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
         let loaded = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
-        assert_eq!(loaded.space_kind(), space);
+        assert_eq!(loaded.scene().space_kind(), space);
     }
     // The default space is saved too: a loaded scene does not fall back to simple.
     let text = Simulation::new().unwrap().save_scene().unwrap();
     assert!(text.contains("\"space\": \"Grid\""), "{text}");
-    assert_eq!(Simulation::load_scene(&text).unwrap().space_kind(), SpaceKind::Grid);
+    assert_eq!(Simulation::load_scene(&text).unwrap().scene().space_kind(), SpaceKind::Grid);
     // A file that names no space: the original's simple space.
     let without = text.replace("  \"space\": \"Grid\",\n", "");
     assert!(!without.contains("space") && without.contains("\"time\""), "{without}");
     let old = Simulation::load_scene(&without).unwrap();
-    assert_eq!(old.space_kind(), SpaceKind::Simple);
+    assert_eq!(old.scene().space_kind(), SpaceKind::Simple);
 }
 
 #[test]
@@ -168,7 +170,7 @@ fn sensors_at_an_offset_and_touch_zones_are_saved_with_them() {
     use ars::nalgebra::{Isometry3, UnitQuaternion, Vector3};
     use ars::sensors::{Gps, Imu, Orientation, SensorSettings, Touch, TouchZone};
     let mut original = ConicalPendulum::default().create_simulation().unwrap();
-    let pole = original.object("cylinder").unwrap().id();
+    let pole = original.scene().object("cylinder").unwrap().id();
     let turn = UnitQuaternion::from_euler_angles(0.1, 0.2, 0.3);
     let mount = Isometry3::from_parts(Vector3::new(0.0, 0.2, 0.05).into(), turn);
     original.add_sensor(Gps::new(pole).at(Vector3::new(0.0, 0.2, 0.0))).unwrap();

@@ -9,9 +9,10 @@ use ars_programs::ConicalPendulum;
 
 /// Every body's position, quaternion, rotation matrix and velocities, as bits.
 fn states(sim: &Simulation) -> Vec<u64> {
-    sim.bodies()
+    sim.scene()
+        .bodies()
         .flat_map(|(_, h)| {
-            let b = sim.world().body(h).unwrap();
+            let b = sim.scene().world().body(h).unwrap();
             let (p, q, r, v, w) =
                 (b.position(), b.quaternion(), b.rotation(), b.linear_velocity(), b.angular_velocity());
             [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z]
@@ -100,7 +101,8 @@ fn resumes_exactly(name: &str, build: impl Fn() -> Simulation, at: &[u64], run: 
 fn conical_pendulum() -> Simulation {
     let mut sim = ConicalPendulum::default().create_simulation().unwrap();
     let mut driver = ConicalPendulum::default();
-    (driver.waist, driver.shoulder) = (Some(sim.joint("r1").unwrap().id()), Some(sim.joint("r2").unwrap().id()));
+    (driver.waist, driver.shoulder) =
+        (Some(sim.scene().joint("r1").unwrap().id()), Some(sim.scene().joint("r2").unwrap().id()));
     sim.add_hooks(driver).unwrap();
     sim
 }
@@ -150,7 +152,7 @@ fn urdf_arm() -> Simulation {
         let target = 0.3 * (i as f64 + 1.0);
         let setpoint = Profile::new(vec![(0.0, 0.0), (1.0, target), (2.0, -target)]).unwrap();
         let servo = PositionServo { setpoint, pid: Pid::new(40.0, 5.0, 2.0) };
-        sim.joint_mut(name).unwrap().set_controller(servo).unwrap();
+        sim.scene_mut().joint_mut(name).unwrap().set_controller(servo).unwrap();
     }
     sim
 }
@@ -168,27 +170,31 @@ fn every_joint_kind_in(builder: ars::SimulationBuilder) -> Simulation {
     use ars::{DcMotor, JointBuilder, JointEnd, Mass, Pid, PositionServo, Profile, TorqueMotor, VelocityServo};
     let mut sim = builder.floor_plane(Vector3::y(), 0.0).build().unwrap();
     let m = Mass::Total(1.0);
-    let base = sim.add_box([0.4, 0.2, 0.4], [0.0, 1.5, 0.0], m).unwrap();
-    sim.add_fixed_joint("anchor", base, JointEnd::World).unwrap();
-    let a = sim.add_box([0.1, 0.4, 0.1], [0.3, 1.3, 0.0], m).unwrap();
-    let b = sim.add_sphere(0.08, [0.3, 0.9, 0.0], m).unwrap();
-    let c = sim.add_capsule(0.05, 0.3, [-0.3, 1.2, 0.0], m).unwrap();
-    let d = sim.add_cylinder(0.3, 0.06, [-0.3, 0.8, 0.0], m).unwrap();
-    let e = sim.add_box([0.1, 0.1, 0.3], [0.0, 1.0, 0.4], m).unwrap();
-    let f = sim.add_sphere(0.1, [0.0, 0.6, 0.4], m).unwrap();
-    let g = sim.add_box([0.2, 0.1, 0.2], [0.6, 0.3, 0.6], m).unwrap();
-    let h = sim.add_sphere(0.1, [0.0, 0.2, -0.6], m).unwrap();
+    let base = sim.scene_mut().add_box([0.4, 0.2, 0.4], [0.0, 1.5, 0.0], m).unwrap();
+    sim.scene_mut().add_fixed_joint("anchor", base, JointEnd::World).unwrap();
+    let a = sim.scene_mut().add_box([0.1, 0.4, 0.1], [0.3, 1.3, 0.0], m).unwrap();
+    let b = sim.scene_mut().add_sphere(0.08, [0.3, 0.9, 0.0], m).unwrap();
+    let c = sim.scene_mut().add_capsule(0.05, 0.3, [-0.3, 1.2, 0.0], m).unwrap();
+    let d = sim.scene_mut().add_cylinder(0.3, 0.06, [-0.3, 0.8, 0.0], m).unwrap();
+    let e = sim.scene_mut().add_box([0.1, 0.1, 0.3], [0.0, 1.0, 0.4], m).unwrap();
+    let f = sim.scene_mut().add_sphere(0.1, [0.0, 0.6, 0.4], m).unwrap();
+    let g = sim.scene_mut().add_box([0.2, 0.1, 0.2], [0.6, 0.3, 0.6], m).unwrap();
+    let h = sim.scene_mut().add_sphere(0.1, [0.0, 0.2, -0.6], m).unwrap();
     let y = Vector3::y();
-    let hinge = sim.add_hinge_joint("hinge", a, base, Some(Point3::new(0.3, 1.5, 0.0)), Vector3::z()).unwrap();
-    let slider = sim.add_slider_joint("slider", b, a, y).unwrap();
-    let universal =
-        sim.add_universal_joint("universal", c, base, Point3::new(-0.3, 1.4, 0.0), Vector3::x(), Vector3::z()).unwrap();
-    sim.add_ball_joint("ball", d, c, Some(Point3::new(-0.3, 1.0, 0.0))).unwrap();
-    let piston = sim.add_piston_joint("piston", e, base, Point3::new(0.0, 1.2, 0.4), y).unwrap();
-    sim.add_fixed_joint("weld", f, e).unwrap();
-    let (bf, bh) = (sim.object(f).unwrap().body_handle().unwrap(), sim.object(h).unwrap().body_handle().unwrap());
-    let bg = sim.object(g).unwrap().body_handle().unwrap();
-    let world = sim.world_mut();
+    let hinge =
+        sim.scene_mut().add_hinge_joint("hinge", a, base, Some(Point3::new(0.3, 1.5, 0.0)), Vector3::z()).unwrap();
+    let slider = sim.scene_mut().add_slider_joint("slider", b, a, y).unwrap();
+    let universal = sim
+        .scene_mut()
+        .add_universal_joint("universal", c, base, Point3::new(-0.3, 1.4, 0.0), Vector3::x(), Vector3::z())
+        .unwrap();
+    sim.scene_mut().add_ball_joint("ball", d, c, Some(Point3::new(-0.3, 1.0, 0.0))).unwrap();
+    let piston = sim.scene_mut().add_piston_joint("piston", e, base, Point3::new(0.0, 1.2, 0.4), y).unwrap();
+    sim.scene_mut().add_fixed_joint("weld", f, e).unwrap();
+    let (bf, bh) =
+        (sim.scene().object(f).unwrap().body_handle().unwrap(), sim.scene().object(h).unwrap().body_handle().unwrap());
+    let bg = sim.scene().object(g).unwrap().body_handle().unwrap();
+    let world = sim.scene_mut().world_mut();
     world.insert_joint(JointBuilder::hinge2(Point3::new(0.0, 0.4, 0.0), y, Vector3::x()).between(bf, bh)).unwrap();
     world
         .insert_joint(
@@ -198,23 +204,29 @@ fn every_joint_kind_in(builder: ars::SimulationBuilder) -> Simulation {
         )
         .unwrap();
     let profile = |v: f64| Profile::new(vec![(0.0, 0.0), (0.5, v), (1.5, -v)]).unwrap();
-    sim.joint_mut(hinge)
+    sim.scene_mut()
+        .joint_mut(hinge)
         .unwrap()
         .set_controller(PositionServo { setpoint: profile(0.8), pid: Pid::new(30.0, 4.0, 1.0) })
         .unwrap();
-    sim.joint_mut(slider).unwrap().set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 }).unwrap();
-    sim.joint_mut(slider).unwrap().set_limits(-0.2, 0.2).unwrap();
-    sim.joint_mut(universal)
+    sim.scene_mut()
+        .joint_mut(slider)
+        .unwrap()
+        .set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 })
+        .unwrap();
+    sim.scene_mut().joint_mut(slider).unwrap().set_limits(-0.2, 0.2).unwrap();
+    sim.scene_mut()
+        .joint_mut(universal)
         .unwrap()
         .set_controller(DcMotor::new(profile(6.0), 0.05, 0.05, 2.0, 10.0, 1e-5).unwrap().with_inductance(1e-3).unwrap())
         .unwrap();
-    sim.joint_mut(universal).unwrap().set_viscous_friction(0.01).unwrap();
-    sim.joint_mut(piston).unwrap().set_controller(TorqueMotor { torque: profile(3.0) }).unwrap();
+    sim.scene_mut().joint_mut(universal).unwrap().set_viscous_friction(0.01).unwrap();
+    sim.scene_mut().joint_mut(piston).unwrap().set_controller(TorqueMotor { torque: profile(3.0) }).unwrap();
     sim.add_sensor(Noisy::new(Gps::new(b), 0.01, 7).unwrap()).unwrap();
     sim.add_sensor_every(Noisy::new(Imu::new(d), 0.02, 8).unwrap(), 0.01).unwrap();
     sim.add_sensor(Accelerometer::new(h)).unwrap();
     sim.add_sensor(ContactSensor::new(g)).unwrap();
-    let positions = JointPositions::new(&sim, &[hinge, slider, universal, piston]).unwrap();
+    let positions = JointPositions::new(sim.scene(), &[hinge, slider, universal, piston]).unwrap();
     sim.add_sensor_every(positions, 0.005).unwrap();
     let lidar = Lidar::new(90, std::f64::consts::TAU, 3.0).unwrap().on(base, Isometry3::translation(0.0, 0.2, 0.0));
     sim.add_sensor_every(Noisy::new(lidar, 0.005, 9).unwrap(), 0.02).unwrap();
@@ -257,24 +269,31 @@ fn scene_joints() -> Simulation {
     use ars::{JointEnd, Mass, Pid, PositionServo, Profile, VelocityServo};
     let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
     let m = Mass::Total(1.0);
-    let base = sim.add_box([0.4, 0.2, 0.4], [0.0, 1.5, 0.0], m).unwrap();
-    sim.add_fixed_joint("anchor", base, JointEnd::World).unwrap();
-    let a = sim.add_box([0.1, 0.4, 0.1], [0.3, 1.3, 0.0], m).unwrap();
-    let b = sim.add_sphere(0.08, [0.3, 0.9, 0.0], m).unwrap();
-    let c = sim.add_capsule(0.05, 0.3, [-0.3, 1.2, 0.0], m).unwrap();
-    let d = sim.add_cylinder(0.3, 0.06, [-0.3, 0.8, 0.0], m).unwrap();
-    let e = sim.add_box([0.1, 0.1, 0.3], [0.0, 1.0, 0.4], m).unwrap();
+    let base = sim.scene_mut().add_box([0.4, 0.2, 0.4], [0.0, 1.5, 0.0], m).unwrap();
+    sim.scene_mut().add_fixed_joint("anchor", base, JointEnd::World).unwrap();
+    let a = sim.scene_mut().add_box([0.1, 0.4, 0.1], [0.3, 1.3, 0.0], m).unwrap();
+    let b = sim.scene_mut().add_sphere(0.08, [0.3, 0.9, 0.0], m).unwrap();
+    let c = sim.scene_mut().add_capsule(0.05, 0.3, [-0.3, 1.2, 0.0], m).unwrap();
+    let d = sim.scene_mut().add_cylinder(0.3, 0.06, [-0.3, 0.8, 0.0], m).unwrap();
+    let e = sim.scene_mut().add_box([0.1, 0.1, 0.3], [0.0, 1.0, 0.4], m).unwrap();
     let y = Vector3::y();
-    let hinge = sim.add_hinge_joint("hinge", a, base, Some(Point3::new(0.3, 1.5, 0.0)), Vector3::z()).unwrap();
-    let slider = sim.add_slider_joint("slider", b, a, y).unwrap();
-    sim.add_universal_joint("universal", c, base, Point3::new(-0.3, 1.4, 0.0), Vector3::x(), Vector3::z()).unwrap();
-    sim.add_ball_joint("ball", d, c, Some(Point3::new(-0.3, 1.0, 0.0))).unwrap();
-    sim.add_piston_joint("piston", e, base, Point3::new(0.0, 1.2, 0.4), y).unwrap();
+    let hinge =
+        sim.scene_mut().add_hinge_joint("hinge", a, base, Some(Point3::new(0.3, 1.5, 0.0)), Vector3::z()).unwrap();
+    let slider = sim.scene_mut().add_slider_joint("slider", b, a, y).unwrap();
+    sim.scene_mut()
+        .add_universal_joint("universal", c, base, Point3::new(-0.3, 1.4, 0.0), Vector3::x(), Vector3::z())
+        .unwrap();
+    sim.scene_mut().add_ball_joint("ball", d, c, Some(Point3::new(-0.3, 1.0, 0.0))).unwrap();
+    sim.scene_mut().add_piston_joint("piston", e, base, Point3::new(0.0, 1.2, 0.4), y).unwrap();
     let profile = |v: f64| Profile::new(vec![(0.0, 0.0), (0.5, v), (1.5, -v)]).unwrap();
     let servo = PositionServo { setpoint: profile(0.8), pid: Pid::new(30.0, 4.0, 1.0) };
-    sim.joint_mut(hinge).unwrap().set_controller(servo).unwrap();
-    sim.joint_mut(slider).unwrap().set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 }).unwrap();
-    sim.joint_mut("universal").unwrap().set_viscous_friction(0.05).unwrap();
+    sim.scene_mut().joint_mut(hinge).unwrap().set_controller(servo).unwrap();
+    sim.scene_mut()
+        .joint_mut(slider)
+        .unwrap()
+        .set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 })
+        .unwrap();
+    sim.scene_mut().joint_mut("universal").unwrap().set_viscous_friction(0.05).unwrap();
     for (kind, object) in [("Gps", b), ("Accelerometer", d), ("ContactSensor", e)] {
         sim.add_sensor_of_kind(kind, &[object], &[], Some(0.01)).unwrap();
     }
@@ -304,8 +323,8 @@ fn urdf_with_offset_shapes() -> Simulation {
     let mut sim = Simulation::builder().floor_plane(ars::nalgebra::Vector3::y(), 0.0).build().unwrap();
     let options = ars::UrdfOptions::new().base_pose(ars::nalgebra::Isometry3::translation(0.0, 0.3, 0.0));
     sim.load_urdf_text(URDF, "cart.urdf", &options).unwrap();
-    sim.joint_mut("axle").unwrap().set_speed(4.0, 2.0).unwrap();
-    sim.add_sensor_of_kind("Gps", &[sim.object("wheel").unwrap().id()], &[], Some(0.01)).unwrap();
+    sim.scene_mut().joint_mut("axle").unwrap().set_speed(4.0, 2.0).unwrap();
+    sim.add_sensor_of_kind("Gps", &[sim.scene().object("wheel").unwrap().id()], &[], Some(0.01)).unwrap();
     sim
 }
 
@@ -383,10 +402,10 @@ fn plank_on_supports() -> Simulation {
     let mut sim = Simulation::builder().space(SpaceKind::Simple).build().unwrap();
     for x in [-0.5, 0.5] {
         let support = Shape::Box { edges: ars::nalgebra::Vector3::new(0.2, 0.4, 0.3) };
-        sim.add_static(support, Isometry3::translation(x, 0.2, 0.0)).unwrap();
+        sim.scene_mut().add_static(support, Isometry3::translation(x, 0.2, 0.0)).unwrap();
     }
-    let plank = sim.add_box([1.4, 0.05, 0.2], [0.02, 0.43, 0.01], Mass::Total(2.0)).unwrap();
-    sim.body_mut(plank).unwrap().set_angular_velocity([0.3, 0.0, 0.8].into()).unwrap();
+    let plank = sim.scene_mut().add_box([1.4, 0.05, 0.2], [0.02, 0.43, 0.01], Mass::Total(2.0)).unwrap();
+    sim.scene_mut().body_mut(plank).unwrap().set_angular_velocity([0.3, 0.0, 0.8].into()).unwrap();
     sim
 }
 
@@ -397,11 +416,12 @@ fn plank_on_supports() -> Simulation {
 fn the_order_of_a_space_s_geoms_is_restored() {
     let mut original = plank_on_supports();
     original.step_n(500).unwrap();
-    let statics: Vec<_> = original.objects().map(|(_, id)| id).filter(|id| original.body(*id).is_err()).collect();
+    let statics: Vec<_> =
+        original.scene().objects().map(|(_, id)| id).filter(|id| original.scene().body(*id).is_err()).collect();
     assert_eq!(statics.len(), 2);
     for id in statics.iter().rev() {
-        let pose = original.pose(*id).unwrap();
-        original.set_pose(*id, pose).unwrap();
+        let pose = original.scene().pose(*id).unwrap();
+        original.scene_mut().set_pose(*id, pose).unwrap();
     }
     let snapshot = original.snapshot().unwrap();
     let mut restored = plank_on_supports();
@@ -417,16 +437,16 @@ fn the_order_of_a_space_s_geoms_is_restored() {
 fn forces_queued_before_a_snapshot_act_after_the_restore() {
     let mut original = scene_joints();
     original.step_n(300).unwrap();
-    let ball = original.object("sphere").unwrap().id();
-    original.body_mut(ball).unwrap().add_force([0.0, 30.0, 5.0].into()).unwrap();
-    original.joint_mut("hinge").unwrap().add_torque(2.5).unwrap();
+    let ball = original.scene().object("sphere").unwrap().id();
+    original.scene_mut().body_mut(ball).unwrap().add_force([0.0, 30.0, 5.0].into()).unwrap();
+    original.scene_mut().joint_mut("hinge").unwrap().add_torque(2.5).unwrap();
     let snapshot = original.snapshot().unwrap();
     let mut restored = scene_joints();
     restored.restore(&snapshot).unwrap();
     let mut without = scene_joints();
     without.restore(&snapshot).unwrap();
-    let theirs = without.object("sphere").unwrap().id();
-    without.body_mut(theirs).unwrap().clear_forces();
+    let theirs = without.scene().object("sphere").unwrap().id();
+    without.scene_mut().body_mut(theirs).unwrap().clear_forces();
     for _ in 0..1000 {
         original.step().unwrap();
         restored.step().unwrap();
@@ -449,9 +469,9 @@ fn a_diverged_simulation_is_brought_back_by_a_snapshot() {
     };
     // A light sphere pushed with the largest force the API takes, step after step,
     // runs away: the step that finds it too fast is refused, and so are later ones.
-    let ball = sim.object("sphere").unwrap().id();
+    let ball = sim.scene().object("sphere").unwrap().id();
     let diverged = (0..100).find_map(|_| {
-        sim.body_mut(ball).unwrap().add_force([1e9, 0.0, 0.0].into()).unwrap();
+        sim.scene_mut().body_mut(ball).unwrap().add_force([1e9, 0.0, 0.0].into()).unwrap();
         sim.step().err()
     });
     assert!(matches!(diverged, Some(ars::Error::Diverged { .. })), "{diverged:?}");

@@ -9,8 +9,8 @@ use ars_programs::ConicalPendulum;
 const ARM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/conical_pendulum_arm.urdf");
 
 fn body_state(sim: &Simulation, i: usize) -> [u64; 13] {
-    let (_, handle) = sim.bodies().nth(i).unwrap();
-    let b = sim.world().body(handle).unwrap();
+    let (_, handle) = sim.scene().bodies().nth(i).unwrap();
+    let b = sim.scene().world().body(handle).unwrap();
     let (p, q, v, w) = (b.position(), b.quaternion(), b.linear_velocity(), b.angular_velocity());
     [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z].map(f64::to_bits)
 }
@@ -38,7 +38,7 @@ fn the_thesis_arm_from_urdf_steps_bit_for_bit_as_the_arm_built_in_code() {
             assert_eq!(body_state(runner.simulation(), i), body_state(&sim, i), "body {i} after step {step}");
         }
     }
-    let rate = sim.joint("r1").unwrap().state().unwrap().rate;
+    let rate = sim.scene().joint("r1").unwrap().state().unwrap().rate;
     assert!(rate > 1.0, "the waist spun up: {rate} rad/s");
 }
 
@@ -57,26 +57,26 @@ fn a_z_up_robot_stands_up_in_the_y_up_simulation_with_its_limits_and_damping() {
     let options = UrdfOptions::new().fixed_base(true).base_pose(Isometry3::translation(0.0, 1.0, 0.0));
     let robot = sim.load_urdf_text(TWO_LINKS, "two.urdf", &options).unwrap();
     // Link b's centre of mass is 0.6 m up the URDF's Z: the simulation's Y.
-    let b = sim.object("b").unwrap().position().unwrap();
+    let b = sim.scene().object("b").unwrap().position().unwrap();
     assert!((b - ars::nalgebra::Point3::new(0.0, 1.6, 0.0)).norm() < 1e-12, "{b}");
     // The hinge axis, URDF Y, is the simulation's −Z (ODE's joint runs from the parent
     // to the child about the negated axis, so that its angle is the URDF position).
-    let axis = sim.joint("j").unwrap().ode().unwrap().axis().unwrap();
+    let axis = sim.scene().joint("j").unwrap().ode().unwrap().axis().unwrap();
     assert!((axis - Vector3::new(0.0, 0.0, 1.0)).norm() < 1e-12, "{axis}");
     // A positive torque turns the child positively about the URDF axis.
     let mut probe = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
     probe.load_urdf_text(TWO_LINKS, "two.urdf", &UrdfOptions::new().fixed_base(true)).unwrap();
-    probe.joint_mut("j").unwrap().add_torque(1.0).unwrap();
+    probe.scene_mut().joint_mut("j").unwrap().add_torque(1.0).unwrap();
     probe.step().unwrap();
-    assert!(probe.joint("j").unwrap().state().unwrap().rate > 0.0);
-    let w = probe.object("b").unwrap().body().unwrap().angular_velocity();
+    assert!(probe.scene().joint("j").unwrap().state().unwrap().rate > 0.0);
+    let w = probe.scene().object("b").unwrap().body().unwrap().angular_velocity();
     assert!(w.z < 0.0 && w.x.abs() < 1e-12, "about URDF +Y = simulation -Z: {w}");
     assert!(robot.base_joint.is_some(), "fixed to the world");
     // Gravity pulls the free link over to its limit, no further, and the damping slows it.
     sim.run_for(3.0).unwrap();
-    let q = sim.joint("j").unwrap().state().unwrap().position;
+    let q = sim.scene().joint("j").unwrap().state().unwrap().position;
     assert!(q.abs() < 0.5 + 0.02, "stops at the limit: {q}");
-    assert!(sim.object("a").unwrap().position().unwrap().y > 0.99, "the base stays where it was fixed");
+    assert!(sim.scene().object("a").unwrap().position().unwrap().y > 0.99, "the base stays where it was fixed");
 }
 
 fn load_error(text: &str) -> (String, String) {
@@ -84,7 +84,7 @@ fn load_error(text: &str) -> (String, String) {
     match sim.load_urdf_text(text, "bad.urdf", &UrdfOptions::new()) {
         Err(Error::Format { format: "URDF", file, element, problem, .. }) => {
             assert_eq!(file, "bad.urdf");
-            assert_eq!(sim.objects().count(), 0, "nothing added: {element}: {problem}");
+            assert_eq!(sim.scene().objects().count(), 0, "nothing added: {element}: {problem}");
             (element, problem)
         }
         other => panic!("expected a URDF error, got {other:?}"),
@@ -165,22 +165,22 @@ fn a_robot_with_a_mesh_and_several_collision_elements_loads_and_moves() {
     let robot = sim.load_urdf(THREE_LINK_ARM, &UrdfOptions::new().fixed_base(true)).unwrap();
     assert_eq!(robot.joints.len(), 3);
     // The gripper's mesh, found through package://, welded: a box of 8 corners, 12 triangles.
-    let gripper = sim.object("gripper").unwrap();
+    let gripper = sim.scene().object("gripper").unwrap();
     match gripper.shape() {
         ars::Shape::TriMesh { vertices, triangles } => assert_eq!((vertices.len(), triangles.len()), (8, 12)),
         other => panic!("the gripper is a mesh, not {other:?}"),
     }
     // The upper arm has its cylinder and its sphere, the sphere offset from the body.
-    assert_eq!(sim.object("upper_arm").unwrap().geoms().count(), 2);
+    assert_eq!(sim.scene().object("upper_arm").unwrap().geoms().count(), 2);
     // Z-up → Y-up: the straight arm stands along +Y, the gripper's centre 1.2 m up.
-    let top = sim.object("gripper").unwrap().position().unwrap();
+    let top = sim.scene().object("gripper").unwrap().position().unwrap();
     assert!((top - ars::nalgebra::Point3::new(0.0, 1.2, 0.0)).norm() < 1e-12, "{top}");
     // Tipped over a little, gravity folds it; the shoulder stops at its limit.
-    sim.joint_mut("shoulder").unwrap().add_torque(5.0).unwrap();
+    sim.scene_mut().joint_mut("shoulder").unwrap().add_torque(5.0).unwrap();
     sim.run_for(2.0).unwrap();
-    let shoulder = sim.joint("shoulder").unwrap().state().unwrap().position;
+    let shoulder = sim.scene().joint("shoulder").unwrap().state().unwrap().position;
     assert!(shoulder > 0.5 && shoulder < 2.0 + 0.05, "fell towards its limit: {shoulder}");
-    assert!(sim.object("base").unwrap().position().unwrap().y.abs() < 1e-6, "the fixed base stays");
+    assert!(sim.scene().object("base").unwrap().position().unwrap().y.abs() < 1e-6, "the fixed base stays");
 }
 
 #[test]
@@ -193,7 +193,7 @@ fn a_missing_mesh_is_an_error_listing_every_path_tried() {
     assert_eq!(element, r#"link "gripper""#);
     assert!(problem.contains("package://ars_test_robot/meshes/lost.stl"), "{problem}");
     assert!(problem.contains("ars_test_robot/meshes/lost.stl,"), "the folder-named-like-the-package rule: {problem}");
-    assert_eq!(sim.objects().count(), 0, "nothing stays behind");
+    assert_eq!(sim.scene().objects().count(), 0, "nothing stays behind");
 }
 
 #[test]
@@ -201,7 +201,7 @@ fn initial_positions_pose_the_robot_and_its_joints_read_them() {
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
     let options = UrdfOptions::new().fixed_base(true).initial_position("shoulder", 0.3).initial_position("elbow", -0.7);
     sim.load_urdf(THREE_LINK_ARM, &options).unwrap();
-    let q = |name: &str| sim.joint(name).unwrap().state().unwrap().position;
+    let q = |name: &str| sim.scene().joint(name).unwrap().state().unwrap().position;
     assert!(
         (q("shoulder") - 0.3).abs() < 1e-12 && (q("elbow") + 0.7).abs() < 1e-12,
         "{} {}",
@@ -212,7 +212,7 @@ fn initial_positions_pose_the_robot_and_its_joints_read_them() {
     // the gripper's centre 0.6 m along the forearm direction (URDF Y axis = −Z here).
     let (a, b) = (0.3f64, 0.3f64 - 0.7);
     let expected = ars::nalgebra::Point3::new(0.5 * a.sin() + 0.6 * b.sin(), 0.1 + 0.5 * a.cos() + 0.6 * b.cos(), 0.0);
-    let gripper = sim.object("gripper").unwrap().position().unwrap();
+    let gripper = sim.scene().object("gripper").unwrap().position().unwrap();
     assert!((gripper - expected).norm() < 1e-12, "{gripper} vs {expected}");
     let err = Simulation::new().unwrap().load_urdf(THREE_LINK_ARM, &UrdfOptions::new().initial_position("knee", 1.0));
     assert!(matches!(err, Err(Error::Format { ref element, .. }) if element == r#"joint "knee""#), "{err:?}");
@@ -232,19 +232,19 @@ fn the_thesis_vehicle_from_urdf_drives_bit_for_bit_as_the_vehicle_built_in_code(
     let robot = urdf.load_urdf(VEHICLE, &options).unwrap();
     // As the scene function does: joined where built, then moved by the offset.
     for (_, object) in &robot.links {
-        urdf.offset_by_position(*object, spec.offset).unwrap();
+        urdf.scene_mut().offset_by_position(*object, spec.offset).unwrap();
     }
     for step in 1..=2500 {
         for sim in [&mut code, &mut urdf] {
-            sim.joint_mut("w1").unwrap().add_torque(3.0).unwrap();
-            sim.joint_mut("w2").unwrap().add_torque(3.0).unwrap();
+            sim.scene_mut().joint_mut("w1").unwrap().add_torque(3.0).unwrap();
+            sim.scene_mut().joint_mut("w2").unwrap().add_torque(3.0).unwrap();
             sim.step().unwrap();
         }
         for i in 0..4 {
             assert_eq!(body_state(&code, i), body_state(&urdf, i), "body {i} after step {step}");
         }
     }
-    let x = urdf.object("chassis").unwrap().position().unwrap().x;
+    let x = urdf.scene().object("chassis").unwrap().position().unwrap().x;
     assert!((x - 2.5).abs() > 0.1, "it drove: chassis x {x}");
 }
 
@@ -270,11 +270,11 @@ fn links_are_drawn_as_their_visuals_in_their_materials_colours() {
 </robot>"#;
     let mut sim = Simulation::new().unwrap();
     sim.load_urdf_text(text, "painted.urdf", &UrdfOptions::new()).unwrap();
-    assert_eq!(sim.object("a").unwrap().color(), Some([1.0, 0.5, 0.0]), "its own colour");
-    assert_eq!(sim.object("b").unwrap().color(), Some([0.5, 0.5, 0.6]), "the robot-level material it names");
-    assert_eq!(sim.object("c").unwrap().color(), None, "no visual: the viewer's default");
+    assert_eq!(sim.scene().object("a").unwrap().color(), Some([1.0, 0.5, 0.0]), "its own colour");
+    assert_eq!(sim.scene().object("b").unwrap().color(), Some([0.5, 0.5, 0.6]), "the robot-level material it names");
+    assert_eq!(sim.scene().object("c").unwrap().color(), None, "no visual: the viewer's default");
     // Each visual, relative to the body (the inertial frame, 0.1 m up the link's Z).
-    let visuals = sim.object("a").unwrap().visuals().to_vec();
+    let visuals = sim.scene().object("a").unwrap().visuals().to_vec();
     assert_eq!(visuals.len(), 2);
     assert_eq!(
         (&visuals[0].shape, visuals[0].color),
@@ -292,13 +292,13 @@ fn links_are_drawn_as_their_visuals_in_their_materials_colours() {
         visuals[1].offset
     );
     assert!(visuals[1].offset.rotation.angle() < 1e-12);
-    assert!(sim.object("c").unwrap().visuals().is_empty(), "drawn as its collision geometry");
+    assert!(sim.scene().object("c").unwrap().visuals().is_empty(), "drawn as its collision geometry");
     // Ignored on request; and saved in scene files.
     let mut plain = Simulation::new().unwrap();
     plain.load_urdf_text(text, "painted.urdf", &UrdfOptions::new().ignore_visuals(true)).unwrap();
-    assert!(plain.object("a").unwrap().visuals().is_empty());
+    assert!(plain.scene().object("a").unwrap().visuals().is_empty());
     let loaded = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
-    assert_eq!(loaded.object("a").unwrap().visuals(), &visuals[..]);
+    assert_eq!(loaded.scene().object("a").unwrap().visuals(), &visuals[..]);
 }
 
 #[test]
@@ -306,30 +306,30 @@ fn joint_limits_friction_and_mimic_come_from_the_file() {
     const GRIPPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gripper.urdf");
     let mut sim = Simulation::new().unwrap();
     sim.load_urdf(GRIPPER, &UrdfOptions::new().fixed_base(true)).unwrap();
-    let left = sim.joint("left_finger_joint").unwrap();
+    let left = sim.scene().joint("left_finger_joint").unwrap();
     assert_eq!(left.actuator_limits(), ars::ActuatorLimits { effort: 20.0, velocity: 0.1 });
     assert_eq!(left.dry_friction(), 0.5);
     let left_id = left.id();
-    let mimic = sim.joint("right_finger_joint").unwrap().mimic().unwrap();
+    let mimic = sim.scene().joint("right_finger_joint").unwrap().mimic().unwrap();
     assert_eq!((mimic.leader, mimic.multiplier, mimic.offset), (left_id, 1.0, 0.0));
 
     // Held by its friction, the left finger stays shut under a push it cannot beat.
-    sim.joint_mut("left_finger_joint").unwrap().add_force(0.4).unwrap();
+    sim.scene_mut().joint_mut("left_finger_joint").unwrap().add_force(0.4).unwrap();
     sim.step().unwrap();
-    assert!(sim.joint("left_finger_joint").unwrap().state().unwrap().position.abs() < 1e-9);
+    assert!(sim.scene().joint("left_finger_joint").unwrap().state().unwrap().position.abs() < 1e-9);
 
     // Opened at 1 m/s with 100 N, it goes at its 0.1 m/s limit (with at most 20 N),
     // and the right finger opens with it, the other way in the world.
-    sim.joint_mut("left_finger_joint").unwrap().set_speed(1.0, 100.0).unwrap();
+    sim.scene_mut().joint_mut("left_finger_joint").unwrap().set_speed(1.0, 100.0).unwrap();
     sim.run_for(0.3).unwrap();
-    let l = sim.joint("left_finger_joint").unwrap().state().unwrap();
-    let r = sim.joint("right_finger_joint").unwrap().state().unwrap();
+    let l = sim.scene().joint("left_finger_joint").unwrap().state().unwrap();
+    let r = sim.scene().joint("right_finger_joint").unwrap().state().unwrap();
     assert!((l.rate - 0.1).abs() < 1e-9, "{l:?}");
     assert!((l.position - 0.03).abs() < 1e-3, "{l:?}");
     assert!((r.position - l.position).abs() < 1e-6, "{r:?} follows {l:?}");
     let (lx, rx) = (
-        sim.object("left_finger").unwrap().position().unwrap(),
-        sim.object("right_finger").unwrap().position().unwrap(),
+        sim.scene().object("left_finger").unwrap().position().unwrap(),
+        sim.scene().object("right_finger").unwrap().position().unwrap(),
     );
     assert!((lx.z + rx.z).abs() < 1e-6 && lx.z < -0.05, "apart along the URDF's Y (simulation −Z): {lx} {rx}");
 
@@ -367,7 +367,7 @@ fn massless_links_fixed_to_their_parent_are_merged_into_it() {
         </robot>"#
     );
     let mut sim = Simulation::new().unwrap();
-    let robot = sim.scene_mut().load_urdf_text(&text, "merged.urdf", &UrdfOptions::new()).unwrap();
+    let robot = sim.load_urdf_text(&text, "merged.urdf", &UrdfOptions::new()).unwrap();
     let arm = robot.link("arm").unwrap();
     assert_eq!(robot.link("flange"), Some(arm));
     assert_eq!(robot.link("tool"), Some(arm));
@@ -375,26 +375,26 @@ fn massless_links_fixed_to_their_parent_are_merged_into_it() {
     assert!(robot.joint("flange_mount").is_none() && robot.joint("tool_mount").is_none());
     let knuckle = robot.joint("knuckle").unwrap();
     // The arm's object: its box and the flange's ball; the flange's look, in red.
-    let view = sim.object(arm).unwrap();
+    let view = sim.scene().object(arm).unwrap();
     assert_eq!(view.geoms().count(), 2);
     assert_eq!(view.body().unwrap().mass(), 1.0);
     assert_eq!(view.visuals().len(), 1);
     assert_eq!(view.visuals()[0].color, Some([1.0, 0.0, 0.0]));
     // URDF (x, y, z) is (x, z, -y) here: the flange at (1, 1, 0), the ball on it.
     let ball = view.geoms().nth(1).unwrap();
-    assert_eq!(sim.world().geom(ball).unwrap().body(), view.body_handle());
-    let at = ars::nalgebra::Point3::from(sim.world().geom(ball).unwrap().pose().translation.vector);
+    assert_eq!(sim.scene().world().geom(ball).unwrap().body(), view.body_handle());
+    let at = ars::nalgebra::Point3::from(sim.scene().world().geom(ball).unwrap().pose().translation.vector);
     assert!((at - ars::nalgebra::Point3::new(1.0, 1.0, 0.0)).norm() < 1e-12, "{at}");
     // The finger hangs from the tool frame, 0.1 m below the flange, on the arm's body.
     let finger = robot.link("finger").unwrap();
-    let finger_at = sim.object(finger).unwrap().position().unwrap();
+    let finger_at = sim.scene().object(finger).unwrap().position().unwrap();
     assert!((finger_at - ars::nalgebra::Point3::new(1.0, 0.8, 0.0)).norm() < 1e-12, "{finger_at}");
-    let joint = sim.joint(knuckle).unwrap();
+    let joint = sim.scene().joint(knuckle).unwrap();
     assert_eq!(joint.objects().0, arm);
     // Hanging straight down from the knuckle, the finger stays (gravity has no arm
     // about the knuckle's axis), and the whole arm does not fall: its base is static.
     sim.run_for(0.2).unwrap();
-    assert!(sim.joint(knuckle).unwrap().state().unwrap().position.abs() < 1e-6);
-    let finger_after = sim.object(finger).unwrap().position().unwrap();
+    assert!(sim.scene().joint(knuckle).unwrap().state().unwrap().position.abs() < 1e-6);
+    let finger_after = sim.scene().object(finger).unwrap().position().unwrap();
     assert!((finger_after - finger_at).norm() < 1e-3, "{finger_after}");
 }

@@ -138,7 +138,7 @@ fn ars(seconds: f64, dt: f64) -> Vec<f64> {
     }
     sim.load_urdf(ARM, &options).unwrap();
     sim.run_for(seconds).unwrap();
-    ["j1", "j2", "j3"].iter().map(|j| sim.joint(*j).unwrap().state().unwrap().position).collect()
+    ["j1", "j2", "j3"].iter().map(|j| sim.scene().joint(*j).unwrap().state().unwrap().position).collect()
 }
 
 #[test]

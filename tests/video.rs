@@ -67,7 +67,7 @@ fn five_seconds_of_the_conical_pendulum_make_150_frames_and_the_frame_at_2_s_mat
     let (sim, video) = recorder.record(&mut ConicalPendulum::default(), 5.0).unwrap();
     assert_eq!(video.frames, 150);
     assert_eq!(video.duration, 5.0);
-    assert!((sim.time() - 5.0).abs() < 1e-9, "the simulation ran {} s", sim.time());
+    assert!((sim.scene().time() - 5.0).abs() < 1e-9, "the simulation ran {} s", sim.scene().time());
     assert_eq!(files_in(&dir), ["pendulum.mp4"], "only the video is left");
     assert_eq!(std::fs::metadata(&path).unwrap().len(), video.bytes);
 

@@ -20,8 +20,8 @@ impl Hooks for RedBall {}
 
 impl Program for RedBall {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
-        sim.set_color(ball, [1.0, 0.0, 0.0])
+        let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+        sim.scene_mut().set_color(ball, [1.0, 0.0, 0.0])
     }
     fn view_settings(&self) -> ViewSettings {
         ViewSettings { size: (320, 240), ..ViewSettings::default() }
@@ -63,8 +63,8 @@ fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), Strin
     let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
     let start = renderer.render(runner.simulation()).map_err(|e| e.to_string())?;
     runner.run_for(1.0).map_err(|e| e.to_string())?;
-    let ball = runner.simulation().object("sphere").unwrap().id();
-    let rest_center = runner.simulation().position(ball).unwrap();
+    let ball = runner.simulation().scene().object("sphere").unwrap().id();
+    let rest_center = runner.simulation().scene().position(ball).unwrap();
     let rest = renderer.render(runner.simulation()).map_err(|e| e.to_string())?;
     let _ = start.save(std::env::temp_dir().join("ars_viewer_test_start.png"));
     let _ = rest.save(std::env::temp_dir().join("ars_viewer_test_rest.png"));
@@ -188,8 +188,8 @@ fn offscreen_contact_forces_are_drawn_when_asked() -> std::result::Result<(), St
     impl Hooks for Resting {}
     impl Program for Resting {
         fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-            let id = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.5, 0.0], Mass::Total(2.0))?;
-            sim.set_color(id, [0.8, 0.1, 0.1])
+            let id = sim.scene_mut().add_box([1.0, 1.0, 1.0], [0.0, 0.5, 0.0], Mass::Total(2.0))?;
+            sim.scene_mut().set_color(id, [0.8, 0.1, 0.1])
         }
         fn view_settings(&self) -> ViewSettings {
             ViewSettings { size: (320, 240), camera_position: Point3::new(4.0, 3.0, 5.0), ..ViewSettings::default() }
@@ -202,7 +202,7 @@ fn offscreen_contact_forces_are_drawn_when_asked() -> std::result::Result<(), St
     let recorded = |options: ViewerOptions| -> std::result::Result<RgbImage, String> {
         let recorder = ScreenshotRecorder::new(&dir).every(25).options(options);
         let (sim, written) = recorder.record(&mut Resting, 1.0).map_err(|e| e.to_string())?;
-        if options.forces && !sim.world().contact_feedback() {
+        if options.forces && !sim.scene().world().contact_feedback() {
             return Err("the recorder drew forces without asking ODE for them".into());
         }
         let last = written.last().ok_or("no frame")?;
@@ -436,7 +436,7 @@ fn a_window_records_a_video() -> std::result::Result<bool, String> {
     );
     stop_xvfb(xvfb);
     let (report, video) = recorded.map_err(|e| e.to_string())?;
-    let shown = runner.simulation().time();
+    let shown = runner.simulation().scene().time();
     let probe = Command::new("ffprobe")
         .args(["-v", "error", "-count_frames", "-show_entries", "stream=codec_name,nb_read_frames,width,height"])
         .args(["-of", "csv=p=0", path.to_str().unwrap_or_default()])
@@ -534,8 +534,9 @@ fn the_arrow_keys_drive_the_vehicle_and_escape_quits() -> std::result::Result<bo
 fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> {
     use ars::viewer::{Camera, Intrinsics};
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().map_err(|e| e.to_string())?;
-    let cube = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.0, -3.0], Mass::Total(1.0)).map_err(|e| e.to_string())?;
-    sim.set_color(cube, [1.0, 0.0, 0.0]).map_err(|e| e.to_string())?;
+    let cube =
+        sim.scene_mut().add_box([1.0, 1.0, 1.0], [0.0, 0.0, -3.0], Mass::Total(1.0)).map_err(|e| e.to_string())?;
+    sim.scene_mut().set_color(cube, [1.0, 0.0, 0.0]).map_err(|e| e.to_string())?;
     let intrinsics = Intrinsics { width: 160, height: 120, fov_y: 0.8, near: 0.1, far: 20.0 };
     let mut camera = Camera::new(intrinsics).map_err(|e| e.to_string())?;
     let frame = camera.capture(&sim).map_err(|e| e.to_string())?;
@@ -561,8 +562,9 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
     // Rolled 90° about its optical axis (its up is the world's −X): a box to the world's
     // right (+X) is below the middle of both images, and nothing is above it.
     let mut side = Simulation::builder().gravity(Vector3::zeros()).build().map_err(|e| e.to_string())?;
-    let right = side.add_box([1.0, 1.0, 1.0], [1.2, 0.0, -3.0], Mass::Total(1.0)).map_err(|e| e.to_string())?;
-    side.set_color(right, [1.0, 0.0, 0.0]).map_err(|e| e.to_string())?;
+    let right =
+        side.scene_mut().add_box([1.0, 1.0, 1.0], [1.2, 0.0, -3.0], Mass::Total(1.0)).map_err(|e| e.to_string())?;
+    side.scene_mut().set_color(right, [1.0, 0.0, 0.0]).map_err(|e| e.to_string())?;
     let roll = ars::nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_2);
     let mut rolled = Camera::new(intrinsics)
         .map_err(|e| e.to_string())?
@@ -578,7 +580,8 @@ fn a_camera_sees_a_box_in_colour_and_depth() -> std::result::Result<(), String> 
 
     // At a rate: the box moving away at 1 m/s, a frame every 20 ms for 50 ms.
     let mut camera = camera.every(0.02).map_err(|e| e.to_string())?;
-    sim.body_mut(cube)
+    sim.scene_mut()
+        .body_mut(cube)
         .and_then(|mut b| b.set_linear_velocity(Vector3::new(0.0, 0.0, -1.0)))
         .map_err(|e| e.to_string())?;
     let mut seen = Vec::new();
@@ -620,11 +623,11 @@ fn offscreen_views_split_the_frame_and_the_camera_view_sees_as_the_camera() -> s
     use ars::viewer::{Camera, Intrinsics, ViewerOptions};
     let e = |e: ars::Error| e.to_string();
     let mut sim = Simulation::new().map_err(e)?;
-    let cube = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.0, -3.0], Mass::Total(1.0)).map_err(e)?;
-    sim.set_color(cube, [1.0, 0.0, 0.0]).map_err(e)?;
-    sim.body_mut(cube).map(|mut b| b.set_kinematic(true)).map_err(e)?;
-    let ball = sim.add_sphere(0.4, [2.0, 2.0, 1.0], Mass::Total(1.0)).map_err(e)?;
-    sim.set_color(ball, [0.1, 0.2, 0.9]).map_err(e)?;
+    let cube = sim.scene_mut().add_box([1.0, 1.0, 1.0], [0.0, 0.0, -3.0], Mass::Total(1.0)).map_err(e)?;
+    sim.scene_mut().set_color(cube, [1.0, 0.0, 0.0]).map_err(e)?;
+    sim.scene_mut().body_mut(cube).map(|mut b| b.set_kinematic(true)).map_err(e)?;
+    let ball = sim.scene_mut().add_sphere(0.4, [2.0, 2.0, 1.0], Mass::Total(1.0)).map_err(e)?;
+    sim.scene_mut().set_color(ball, [0.1, 0.2, 0.9]).map_err(e)?;
     let (fov_y, near, far) = (0.9, 0.1, 30.0);
     sim.add_sensor(ars::sensors::DepthCamera::new(32, 24, fov_y, near, far).map_err(e)?).map_err(e)?;
     for _ in 0..100 {
@@ -682,9 +685,9 @@ impl Hooks for Crate {}
 
 impl Program for Crate {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let id = sim.add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(1.0))?;
-        sim.set_name(id, "crate")?;
-        sim.set_color(id, [0.2, 0.4, 0.9])?;
+        let id = sim.scene_mut().add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(1.0))?;
+        sim.scene_mut().set_name(id, "crate")?;
+        sim.scene_mut().set_color(id, [0.2, 0.4, 0.9])?;
         // A depth camera 3 m in front of the crate, looking at it (along −Z), sampled
         // once a second: what the fourth view shows.
         let camera = ars::sensors::DepthCamera::new(64, 48, 1.0, 0.1, 20.0)?
@@ -741,10 +744,10 @@ impl ars::viewer::Driver for Watched<'_> {
     }
     fn viewer_state(&mut self, state: &ars::viewer::ViewerState) {
         let sim = self.runner.simulation_mut();
-        let object = sim.object("crate").expect("the crate");
+        let object = sim.scene().object("crate").expect("the crate");
         let body = object.body().expect("a body");
         let mut seen = self.seen.lock().unwrap();
-        (seen.position, seen.mass, seen.time) = (body.position(), body.mass(), sim.time());
+        (seen.position, seen.mass, seen.time) = (body.position(), body.mass(), sim.scene().time());
         seen.rotation = body.quaternion();
         seen.frames += 1;
         seen.state = Some(state.clone());
@@ -978,7 +981,7 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     wait(700);
     let saved = state().unwrap().saved.ok_or("Ctrl+S saved nothing")?;
     let loaded = Simulation::load_scene_from(&saved).map_err(|e| format!("{}: {e}", saved.display()))?;
-    let there = loaded.object("crate").and_then(|o| o.position()).map_err(|e| e.to_string())?;
+    let there = loaded.scene().object("crate").and_then(|o| o.position()).map_err(|e| e.to_string())?;
     lines.push(format!("Ctrl+S wrote {}: the crate at {:.2?} in it", saved.display(), there.coords.as_slice()));
     if there != p1 {
         return Err(format!("the saved crate is at {there}, the window's at {p1}"));
@@ -1179,9 +1182,15 @@ impl Program for Knock {
         builder.floor_plane(Vector3::y(), 0.0)
     }
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let bob = sim.add_sphere(0.1, [0.6, 0.8, 0.0], Mass::Total(2.0))?;
-        sim.add_hinge_joint("pivot", bob, ars::JointEnd::World, Some([0.0, 0.8, 0.0].into()), Vector3::z())?;
-        sim.add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).map(drop)
+        let bob = sim.scene_mut().add_sphere(0.1, [0.6, 0.8, 0.0], Mass::Total(2.0))?;
+        sim.scene_mut().add_hinge_joint(
+            "pivot",
+            bob,
+            ars::JointEnd::World,
+            Some([0.0, 0.8, 0.0].into()),
+            Vector3::z(),
+        )?;
+        sim.scene_mut().add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).map(drop)
     }
     fn view_settings(&self) -> ViewSettings {
         ViewSettings {
@@ -1216,8 +1225,9 @@ impl ars::viewer::Driver for Kept<'_> {
     fn step_frame(&mut self) -> Result<()> {
         ars::viewer::Driver::step_frame(&mut self.runner)?;
         let sim = self.runner.simulation();
-        let positions = sim.bodies().filter_map(|(id, _)| sim.body(id).ok().map(|b| b.position())).collect();
-        self.history.lock().unwrap().positions.push((sim.step_count(), positions));
+        let positions =
+            sim.scene().bodies().filter_map(|(id, _)| sim.scene().body(id).ok().map(|b| b.position())).collect();
+        self.history.lock().unwrap().positions.push((sim.scene().step_count(), positions));
         Ok(())
     }
     fn step(&mut self) -> Result<()> {
@@ -1315,7 +1325,7 @@ fn a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view() -> std::result::R
         acted??;
         let history = history.lock().unwrap();
         let saved = history.saved.clone().ok_or("nothing saved")?;
-        let at_save = Simulation::load_scene_from(&saved).map_err(|e| e.to_string())?.step_count();
+        let at_save = Simulation::load_scene_from(&saved).map_err(|e| e.to_string())?.scene().step_count();
         let then = at_save + 2500;
         let (_, expected) = history
             .positions

@@ -19,12 +19,12 @@
 //! impl Hooks for HelloWorld {}
 //! impl Program for HelloWorld {
 //!     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-//!         sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
+//!         sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
 //!     }
 //! }
 //!
 //! let sim = HelloWorld.run_headless(1.0)?;
-//! let y = sim.object("sphere")?.position()?.y; // named access returns a view
+//! let y = sim.scene().object("sphere")?.position()?.y; // named access returns a view
 //! assert!((y - 0.5).abs() < 1e-3, "the ball rests on the floor, y = {y}");
 //! # Ok::<(), ars_core::Error>(())
 //! ```

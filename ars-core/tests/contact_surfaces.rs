@@ -7,11 +7,11 @@ use ars_core::*;
 /// A floor and two boxes side by side on it, both sliding along +X at 1 m/s.
 fn two_sliding_boxes() -> Result<(Simulation, ObjectId, ObjectId, ObjectId)> {
     let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build()?;
-    let floor = sim.object("floor")?.id();
-    let slippery = sim.add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
-    let grippy = sim.add_box([0.2, 0.1, 0.2], [0.0, 0.05, 1.0], Mass::Total(1.0))?;
+    let floor = sim.scene().object("floor")?.id();
+    let slippery = sim.scene_mut().add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
+    let grippy = sim.scene_mut().add_box([0.2, 0.1, 0.2], [0.0, 0.05, 1.0], Mass::Total(1.0))?;
     for b in [slippery, grippy] {
-        sim.body_mut(b)?.set_linear_velocity(Vector3::x())?;
+        sim.scene_mut().body_mut(b)?.set_linear_velocity(Vector3::x())?;
     }
     Ok((sim, floor, slippery, grippy))
 }
@@ -20,14 +20,14 @@ fn two_sliding_boxes() -> Result<(Simulation, ObjectId, ObjectId, ObjectId)> {
 fn a_pair_slides_on_its_own_surface_and_the_others_keep_the_default() -> Result<()> {
     let (mut sim, floor, slippery, grippy) = two_sliding_boxes()?;
     let ice = ContactSurface { mu: 0.0, bounce: None, ..Default::default() };
-    sim.set_contact_surface(slippery, floor, ice)?;
-    assert_eq!(sim.contact_surface(floor, slippery)?, ice, "either order");
-    assert_eq!(sim.contact_surface(floor, grippy)?, ContactSurface::default());
+    sim.scene_mut().set_contact_surface(slippery, floor, ice)?;
+    assert_eq!(sim.scene().contact_surface(floor, slippery)?, ice, "either order");
+    assert_eq!(sim.scene().contact_surface(floor, grippy)?, ContactSurface::default());
     sim.run_for(0.5)?;
-    let (x_ice, x_grip) = (sim.position(slippery)?.x, sim.position(grippy)?.x);
+    let (x_ice, x_grip) = (sim.scene().position(slippery)?.x, sim.scene().position(grippy)?.x);
     assert!((x_ice - 0.5).abs() < 1e-3, "no friction: 0.5 m in 0.5 s, got {x_ice}");
     assert!(x_grip < 0.01, "500 N friction stops a 1 kg box at once: {x_grip}");
-    assert!(sim.body(grippy)?.linear_velocity().norm() < 1e-3);
+    assert!(sim.scene().body(grippy)?.linear_velocity().norm() < 1e-3);
     Ok(())
 }
 
@@ -35,12 +35,12 @@ fn a_pair_slides_on_its_own_surface_and_the_others_keep_the_default() -> Result<
 fn clearing_a_pair_gives_it_the_default_surface_again() -> Result<()> {
     let (mut plain, ..) = two_sliding_boxes()?;
     let (mut cleared, floor, slippery, _) = two_sliding_boxes()?;
-    cleared.set_contact_surface(slippery, floor, ContactSurface { mu: 0.0, ..Default::default() })?;
-    cleared.clear_contact_surface(floor, slippery)?;
-    assert!(cleared.contact_surfaces().is_empty());
+    cleared.scene_mut().set_contact_surface(slippery, floor, ContactSurface { mu: 0.0, ..Default::default() })?;
+    cleared.scene_mut().clear_contact_surface(floor, slippery)?;
+    assert!(cleared.scene().contact_surfaces().is_empty());
     plain.run_for(0.2)?;
     cleared.run_for(0.2)?;
-    let (a, b) = (plain.position(plain.object("box")?.id())?, cleared.position(slippery)?);
+    let (a, b) = (plain.scene().position(plain.scene().object("box")?.id())?, cleared.scene().position(slippery)?);
     assert_eq!(a.coords.map(f64::to_bits), b.coords.map(f64::to_bits), "the default surface again, to the bit");
     Ok(())
 }
@@ -50,11 +50,14 @@ fn a_run_with_only_default_pairs_is_bit_identical_whether_or_not_a_pair_was_ever
     // Setting a pair to the default surface goes through the hooks' path: same bits.
     let (mut plain, ..) = two_sliding_boxes()?;
     let (mut hooked, floor, slippery, _) = two_sliding_boxes()?;
-    hooked.set_contact_surface(slippery, floor, ContactSurface::default())?;
+    hooked.scene_mut().set_contact_surface(slippery, floor, ContactSurface::default())?;
     plain.run_for(0.3)?;
     hooked.run_for(0.3)?;
     for name in ["box", "box/1"] {
-        let (a, b) = (plain.position(plain.object(name)?.id())?, hooked.position(hooked.object(name)?.id())?);
+        let (a, b) = (
+            plain.scene().position(plain.scene().object(name)?.id())?,
+            hooked.scene().position(hooked.scene().object(name)?.id())?,
+        );
         assert_eq!(a.coords.map(f64::to_bits), b.coords.map(f64::to_bits), "{name}");
     }
     Ok(())
@@ -64,33 +67,37 @@ fn a_run_with_only_default_pairs_is_bit_identical_whether_or_not_a_pair_was_ever
 fn pair_surfaces_are_saved_in_scene_files_and_checked() -> Result<()> {
     let (mut sim, floor, slippery, grippy) = two_sliding_boxes()?;
     let ice = ContactSurface { mu: 0.0, bounce: None, max_contacts: 4, ..Default::default() };
-    sim.set_contact_surface(floor, slippery, ice)?;
+    sim.scene_mut().set_contact_surface(floor, slippery, ice)?;
     let mut loaded = Simulation::load_scene(&sim.save_scene()?)?;
     let (f, s, g) = (
-        loaded.object("floor")?.id(),
-        loaded.object(sim.object(slippery)?.name())?.id(),
-        loaded.object(sim.object(grippy)?.name())?.id(),
+        loaded.scene().object("floor")?.id(),
+        loaded.scene().object(sim.scene().object(slippery)?.name())?.id(),
+        loaded.scene().object(sim.scene().object(grippy)?.name())?.id(),
     );
-    assert_eq!(loaded.contact_surface(s, f)?, ice);
-    assert_eq!(loaded.contact_surface(g, f)?, ContactSurface::default());
+    assert_eq!(loaded.scene().contact_surface(s, f)?, ice);
+    assert_eq!(loaded.scene().contact_surface(g, f)?, ContactSurface::default());
     sim.run_for(0.2)?;
     loaded.run_for(0.2)?;
-    assert_eq!(sim.position(slippery)?.x.to_bits(), loaded.position(s)?.x.to_bits());
+    assert_eq!(sim.scene().position(slippery)?.x.to_bits(), loaded.scene().position(s)?.x.to_bits());
 
     let bad = ContactSurface { mu: -1.0, ..Default::default() };
-    assert!(sim.set_contact_surface(floor, grippy, bad).is_err());
-    assert_eq!(sim.contact_surface(floor, grippy)?, ContactSurface::default(), "a refused surface changes nothing");
+    assert!(sim.scene_mut().set_contact_surface(floor, grippy, bad).is_err());
+    assert_eq!(
+        sim.scene().contact_surface(floor, grippy)?,
+        ContactSurface::default(),
+        "a refused surface changes nothing"
+    );
     Ok(())
 }
 
 #[test]
 fn a_removed_object_takes_its_pair_surfaces_with_it() -> Result<()> {
     let (mut sim, floor, slippery, grippy) = two_sliding_boxes()?;
-    sim.set_contact_surface(floor, slippery, ContactSurface { mu: 0.0, ..Default::default() })?;
+    sim.scene_mut().set_contact_surface(floor, slippery, ContactSurface { mu: 0.0, ..Default::default() })?;
     sim.remove_object(slippery)?;
-    assert!(sim.contact_surfaces().is_empty());
-    assert!(sim.contact_surface(floor, slippery).is_err(), "a removed object has no surface");
+    assert!(sim.scene().contact_surfaces().is_empty());
+    assert!(sim.scene().contact_surface(floor, slippery).is_err(), "a removed object has no surface");
     sim.run_for(0.1)?;
-    assert!(sim.position(grippy)?.x < 0.01);
+    assert!(sim.scene().position(grippy)?.x < 0.01);
     Ok(())
 }

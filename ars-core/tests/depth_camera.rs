@@ -10,7 +10,8 @@ use ars_core::{Mass, Shape, Simulation};
 fn a_wall_at_a_known_distance_fills_the_image_with_that_depth() {
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
     // A wall whose face is the plane z = -2.5, much wider than the view.
-    sim.add_static(Shape::Box { edges: Vector3::new(40.0, 40.0, 1.0) }, Isometry3::translation(0.0, 0.0, -3.0))
+    sim.scene_mut()
+        .add_static(Shape::Box { edges: Vector3::new(40.0, 40.0, 1.0) }, Isometry3::translation(0.0, 0.0, -3.0))
         .unwrap();
     let camera = sim.add_sensor(DepthCamera::new(40, 30, 1.2, 0.05, 20.0).unwrap()).unwrap();
     sim.step().unwrap();
@@ -24,9 +25,9 @@ fn a_wall_at_a_known_distance_fills_the_image_with_that_depth() {
 #[test]
 fn a_sphere_is_seen_where_it_is_and_a_mounted_camera_moves_with_its_body() {
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
-    sim.add_sphere(0.5, [0.0, 0.0, -4.0], Mass::Total(1.0)).unwrap();
-    let robot = sim.add_box([0.2, 0.2, 0.2], [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    sim.body_mut(robot).unwrap().set_linear_velocity(Vector3::new(0.0, 0.0, -1.0)).unwrap();
+    sim.scene_mut().add_sphere(0.5, [0.0, 0.0, -4.0], Mass::Total(1.0)).unwrap();
+    let robot = sim.scene_mut().add_box([0.2, 0.2, 0.2], [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().body_mut(robot).unwrap().set_linear_velocity(Vector3::new(0.0, 0.0, -1.0)).unwrap();
     let camera = DepthCamera::new(41, 41, 0.8, 0.05, 10.0).unwrap().on(robot, Isometry3::identity());
     let camera = sim.add_sensor_every(camera, 0.5).unwrap();
     sim.run_for(1.0).unwrap();

@@ -65,25 +65,25 @@ fn a_malformed_scene_is_a_format_error_with_its_position() {
 #[test]
 fn a_static_object_has_no_body_and_the_message_names_it() {
     let mut sim = sim_with_floor();
-    let err = sim.body(sim.object("floor").unwrap().id()).map(drop).unwrap_err();
+    let err = sim.scene().body(sim.scene().object("floor").unwrap().id()).map(drop).unwrap_err();
     assert!(matches!(&err, Error::NoBody { object, .. } if object == "floor"), "{err:?}");
     assert!(readable(&err).starts_with(r#"object "floor" is static (it has no body)"#), "{err}");
 
-    let ball = sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
-    let floor = sim.object("floor").unwrap().id();
-    let err = sim.add_fixed_joint("j", floor, JointEnd::Object(ball)).unwrap_err();
+    let ball = sim.scene_mut().add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let floor = sim.scene().object("floor").unwrap().id();
+    let err = sim.scene_mut().add_fixed_joint("j", floor, JointEnd::Object(ball)).unwrap_err();
     assert_eq!(readable(&err), r#"object "floor" is static (it has no body); the first object of a joint needs one"#);
 }
 
 #[test]
 fn messages_read_as_sentences() {
     let mut sim = Simulation::new().unwrap();
-    let err = sim.add_box([1e12, 1.0, 1.0], [0.0; 3], Mass::Total(1.0)).unwrap_err();
+    let err = sim.scene_mut().add_box([1e12, 1.0, 1.0], [0.0; 3], Mass::Total(1.0)).unwrap_err();
     assert!(matches!(err, Error::OutOfRange { what: "box edges", .. }), "{err:?}");
     assert!(readable(&err).starts_with("box edges must be within ["), "{err}");
 
-    let ball = sim.add_sphere(0.1, [0.0; 3], Mass::Total(1.0)).unwrap();
-    let err = sim.add_fixed_joint("self", ball, JointEnd::Object(ball)).unwrap_err();
+    let ball = sim.scene_mut().add_sphere(0.1, [0.0; 3], Mass::Total(1.0)).unwrap();
+    let err = sim.scene_mut().add_fixed_joint("self", ball, JointEnd::Object(ball)).unwrap_err();
     assert_eq!(readable(&err), r#"a fixed joint cannot connect object "sphere" to itself"#);
 
     let err = Profile::new(vec![(1.0, 0.0), (0.0, 0.0)]).unwrap_err();
@@ -93,9 +93,9 @@ fn messages_read_as_sentences() {
 #[test]
 fn removed_things_are_named_as_removed_not_by_handle() {
     let mut sim = Simulation::new().unwrap();
-    let ball = sim.add_sphere(0.1, [0.0; 3], Mass::Total(1.0)).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.1, [0.0; 3], Mass::Total(1.0)).unwrap();
     sim.remove_object(ball).unwrap();
-    let err = sim.object(ball).map(drop).unwrap_err();
+    let err = sim.scene().object(ball).map(drop).unwrap_err();
     assert_eq!(err, Error::StaleHandle { kind: "object" });
     assert_eq!(readable(&err), "the object was removed: its handle no longer refers to anything");
 
@@ -105,7 +105,7 @@ fn removed_things_are_named_as_removed_not_by_handle() {
     assert_eq!(readable(&err), "the hook was removed: its handle no longer refers to anything");
 
     let other = Simulation::new().unwrap();
-    let err = other.object(ball).map(drop).unwrap_err();
+    let err = other.scene().object(ball).map(drop).unwrap_err();
     assert_eq!(readable(&err), "the object belongs to another world or simulation");
 }
 
@@ -134,11 +134,11 @@ fn a_hook_reaching_itself_is_busy() {
 #[test]
 fn a_diverged_body_is_named_by_its_object() {
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
-    let ball = sim.add_sphere(0.1, Point3::origin(), Mass::Total(1.0)).unwrap();
-    sim.set_name(ball, "ball").unwrap();
+    let ball = sim.scene_mut().add_sphere(0.1, Point3::origin(), Mass::Total(1.0)).unwrap();
+    sim.scene_mut().set_name(ball, "ball").unwrap();
     let mut result = Ok(());
     for _ in 0..1000 {
-        sim.body_mut(ball).unwrap().add_force(Vector3::new(MAX_FORCE, 0.0, 0.0)).unwrap();
+        sim.scene_mut().body_mut(ball).unwrap().add_force(Vector3::new(MAX_FORCE, 0.0, 0.0)).unwrap();
         result = sim.step();
         if result.is_err() {
             break;

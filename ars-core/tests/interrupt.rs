@@ -5,7 +5,7 @@ use ars_core::{Error, Hooks, Mass, Program, ProgramRunner, Result, Simulation, i
 
 fn ball() -> Simulation {
     let mut sim = Simulation::builder().floor_plane(ars_core::nalgebra::Vector3::y(), 0.0).build().unwrap();
-    sim.add_sphere(0.2, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().add_sphere(0.2, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
     sim
 }
 
@@ -13,7 +13,7 @@ struct Ball;
 impl Hooks for Ball {}
 impl Program for Ball {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        sim.add_sphere(0.2, [0.0, 1.0, 0.0], Mass::Total(1.0)).map(drop)
+        sim.scene_mut().add_sphere(0.2, [0.0, 1.0, 0.0], Mass::Total(1.0)).map(drop)
     }
 }
 
@@ -21,21 +21,21 @@ impl Program for Ball {
 fn runs_stop_between_frames_when_asked_and_go_on_after() {
     // Until a condition: here, after 30 frames asked.
     let mut sim = ball();
-    let per_frame = u64::from(sim.steps_per_frame());
+    let per_frame = u64::from(sim.scene().steps_per_frame());
     let mut asked = 0;
     let stopped = sim.run_for_until(1000.0, || {
         asked += 1;
         asked > 30
     });
     assert!(matches!(stopped, Err(Error::Interrupted { steps, .. }) if steps == 30 * per_frame), "{stopped:?}");
-    assert_eq!(sim.step_count(), 30 * per_frame);
+    assert_eq!(sim.scene().step_count(), 30 * per_frame);
     // The simulation is whole: it runs on, and reaches the same state as one that was
     // never stopped.
     sim.run_for(1.0).unwrap();
     let mut straight = ball();
-    straight.step_n(sim.step_count()).unwrap();
-    let (a, b) = (sim.objects().next().unwrap().1, straight.objects().next().unwrap().1);
-    assert_eq!(sim.position(a).unwrap(), straight.position(b).unwrap());
+    straight.step_n(sim.scene().step_count()).unwrap();
+    let (a, b) = (sim.scene().objects().next().unwrap().1, straight.scene().objects().next().unwrap().1);
+    assert_eq!(sim.scene().position(a).unwrap(), straight.scene().position(b).unwrap());
 
     // Steps, asked before each one.
     let mut sim = ball();
@@ -64,5 +64,5 @@ fn runs_stop_between_frames_when_asked_and_go_on_after() {
     assert!(interrupt::clear());
     assert!(!interrupt::clear());
     runner.run_for(0.1).unwrap();
-    assert!(runner.simulation().time() > 0.1);
+    assert!(runner.simulation().scene().time() > 0.1);
 }

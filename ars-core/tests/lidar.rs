@@ -13,7 +13,7 @@ fn a_lidar_in_a_square_room_sees_the_walls_where_they_are() {
     // Walls 2 m away on every side of the origin (static boxes).
     let (along_z, along_x) = (Vector3::new(1.0, 2.0, 11.0), Vector3::new(11.0, 2.0, 1.0));
     for (x, z, edges) in [(2.5, 0.0, along_z), (-2.5, 0.0, along_z), (0.0, 2.5, along_x), (0.0, -2.5, along_x)] {
-        sim.add_static(ars_core::Shape::Box { edges }, Isometry3::translation(x, 0.0, z)).unwrap();
+        sim.scene_mut().add_static(ars_core::Shape::Box { edges }, Isometry3::translation(x, 0.0, z)).unwrap();
     }
     let lidar = sim.add_sensor(Lidar::new(8, TAU, 10.0).unwrap()).unwrap();
     sim.step().unwrap();
@@ -35,9 +35,9 @@ fn a_lidar_in_a_square_room_sees_the_walls_where_they_are() {
 #[test]
 fn a_mounted_lidar_moves_with_its_object_ignores_it_and_scans_several_planes() {
     let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
-    let robot = sim.add_box([0.4, 0.4, 0.4], [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    sim.add_sphere(0.5, [3.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    sim.body_mut(robot).unwrap().set_linear_velocity(Vector3::new(1.0, 0.0, 0.0)).unwrap();
+    let robot = sim.scene_mut().add_box([0.4, 0.4, 0.4], [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().add_sphere(0.5, [3.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().body_mut(robot).unwrap().set_linear_velocity(Vector3::new(1.0, 0.0, 0.0)).unwrap();
     let lidar = Lidar::new(3, FRAC_PI_2, 20.0).unwrap().planes(&[0.0, 0.3]).unwrap().min_range(0.1).unwrap();
     let lidar = sim.add_sensor(lidar.on(robot, Isometry3::translation(0.0, 0.0, 0.0))).unwrap();
     sim.run_for(1.0).unwrap();
@@ -63,8 +63,8 @@ fn a_mounted_lidar_moves_with_its_object_ignores_it_and_scans_several_planes() {
 fn noisy_scans_are_seeded_and_a_blind_zone_hides_near_hits() {
     let scan = |seed: u64| {
         let mut sim = Simulation::new().unwrap();
-        sim.add_sphere(1.0, [3.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-        sim.add_sphere(0.1, [0.0, 0.0, -0.3], Mass::Total(1.0)).unwrap(); // 0.2 m away, along azimuth π/2
+        sim.scene_mut().add_sphere(1.0, [3.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+        sim.scene_mut().add_sphere(0.1, [0.0, 0.0, -0.3], Mass::Total(1.0)).unwrap(); // 0.2 m away, along azimuth π/2
         let lidar = Lidar::new(4, TAU, 10.0).unwrap().min_range(0.5).unwrap();
         let id = sim.add_sensor(Noisy::new(lidar, 0.01, seed).unwrap()).unwrap();
         sim.step().unwrap();

@@ -19,10 +19,10 @@ fn all_kinds() -> Vec<SpaceKind> {
 fn a_new_simulation_has_a_grid_and_a_program_the_simple_space() {
     assert_eq!(DEFAULT_SPACE, SpaceKind::Grid);
     let sim = Simulation::new().unwrap();
-    assert_eq!(sim.space_kind(), DEFAULT_SPACE);
-    assert_eq!(sim.world().space_kind(sim.space()).unwrap(), DEFAULT_SPACE);
-    assert_eq!(Simulation::builder().build().unwrap().space_kind(), DEFAULT_SPACE);
-    assert_eq!(Simulation::builder().space(SpaceKind::Simple).build().unwrap().space_kind(), SpaceKind::Simple);
+    assert_eq!(sim.scene().space_kind(), DEFAULT_SPACE);
+    assert_eq!(sim.scene().world().space_kind(sim.scene().space()).unwrap(), DEFAULT_SPACE);
+    assert_eq!(Simulation::builder().build().unwrap().scene().space_kind(), DEFAULT_SPACE);
+    assert_eq!(Simulation::builder().space(SpaceKind::Simple).build().unwrap().scene().space_kind(), SpaceKind::Simple);
 
     struct Plain;
     impl Hooks for Plain {}
@@ -31,7 +31,7 @@ fn a_new_simulation_has_a_grid_and_a_program_the_simple_space() {
             Ok(())
         }
     }
-    assert_eq!(Plain.create_simulation().unwrap().space_kind(), SpaceKind::Simple);
+    assert_eq!(Plain.create_simulation().unwrap().scene().space_kind(), SpaceKind::Simple);
 }
 
 #[test]
@@ -98,15 +98,15 @@ fn every_space_finds_the_pairs_the_simple_space_finds() {
 fn a_ball_dropped_on_the_floor_bounces_and_rests_on_it_in_every_space() {
     for kind in all_kinds() {
         let mut sim = Simulation::builder().space(kind).floor_plane(Vector3::y(), 0.0).build().unwrap();
-        let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).unwrap();
+        let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).unwrap();
         let (mut lowest, mut rose) = (f64::INFINITY, false);
         for _ in 0..2500 {
             sim.step().unwrap();
-            let b = sim.body(ball).unwrap();
+            let b = sim.scene().body(ball).unwrap();
             lowest = lowest.min(b.position().y);
             rose |= b.linear_velocity().y > 0.5;
         }
-        let b = sim.body(ball).unwrap();
+        let b = sim.scene().body(ball).unwrap();
         assert!(rose, "{kind:?}: the ball bounced");
         assert!(lowest > 0.49, "{kind:?}: the ball sank to {lowest}");
         assert!((b.position().y - 0.5).abs() < 1e-3, "{kind:?}: rests at {}", b.position().y);
@@ -119,12 +119,12 @@ fn a_ball_dropped_on_the_floor_bounces_and_rests_on_it_in_every_space() {
 fn head_on(kind: SpaceKind, axis: Vector3<f64>) -> (f64, f64) {
     let mut sim = Simulation::builder().space(kind).gravity(Vector3::zeros()).build().unwrap();
     let centre = Point3::new(0.3, 0.7, -0.2);
-    let a = sim.add_sphere(0.25, centre - 0.5 * axis, Mass::Total(1.0)).unwrap();
-    let b = sim.add_sphere(0.25, centre + 0.5 * axis, Mass::Total(1.0)).unwrap();
-    sim.body_mut(a).unwrap().set_linear_velocity(axis).unwrap();
-    sim.body_mut(b).unwrap().set_linear_velocity(-axis).unwrap();
+    let a = sim.scene_mut().add_sphere(0.25, centre - 0.5 * axis, Mass::Total(1.0)).unwrap();
+    let b = sim.scene_mut().add_sphere(0.25, centre + 0.5 * axis, Mass::Total(1.0)).unwrap();
+    sim.scene_mut().body_mut(a).unwrap().set_linear_velocity(axis).unwrap();
+    sim.scene_mut().body_mut(b).unwrap().set_linear_velocity(-axis).unwrap();
     sim.run_for(0.5).unwrap();
-    let (va, vb) = (sim.body(a).unwrap().linear_velocity(), sim.body(b).unwrap().linear_velocity());
+    let (va, vb) = (sim.scene().body(a).unwrap().linear_velocity(), sim.scene().body(b).unwrap().linear_velocity());
     assert!((va - axis * va.dot(&axis)).norm() < 1e-9, "{kind:?}: no sideways motion");
     (va.dot(&axis), vb.dot(&axis))
 }

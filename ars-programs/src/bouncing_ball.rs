@@ -57,7 +57,7 @@ impl Program for BouncingBall {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let ball = sim.add_sphere(0.01, [1.0, 1.01, 1.0], Mass::Total(1.0))?;
+        let ball = sim.scene_mut().add_sphere(0.01, [1.0, 1.01, 1.0], Mass::Total(1.0))?;
         let probe = Probe::at_step_start(move |scene: &Scene| {
             let b = scene.body(ball)?;
             Ok(BallHeight { y: b.position().y, vy: b.linear_velocity().y })

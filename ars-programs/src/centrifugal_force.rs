@@ -88,9 +88,9 @@ impl CentrifugalForce {
 impl Hooks for CentrifugalForce {
     fn pre_frame(&mut self, sim: &mut Simulation) -> Result<()> {
         let (r1, r2) = self.joints.expect("built");
-        sim.joint_mut(r1)?.set_speed(self.speed, 100.0)?;
-        let rate = sim.joint_rate(r2)?;
-        sim.joint_mut(r2)?.add_torque(-500.0 * rate)
+        sim.scene_mut().joint_mut(r1)?.set_speed(self.speed, 100.0)?;
+        let rate = sim.scene().joint_rate(r2)?;
+        sim.scene_mut().joint_mut(r2)?.add_torque(-500.0 * rate)
     }
 }
 
@@ -112,20 +112,27 @@ impl Program for CentrifugalForce {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let offset = Vector3::new(2.0, 0.5, 2.0);
-        let base = sim.add_box([5.0, 0.5, 5.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(1.0))?;
-        let pole = sim.add_cylinder(0.05, 2.0, [0.0, 1.0, 0.0], Mass::Density(1.0))?;
-        sim.rotate(pole, Vector3::x(), FRAC_PI_2)?;
-        sim.offset_by_position(pole, offset)?;
+        let base =
+            sim.scene_mut().add_box([5.0, 0.5, 5.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(1.0))?;
+        let pole = sim.scene_mut().add_cylinder(0.05, 2.0, [0.0, 1.0, 0.0], Mass::Density(1.0))?;
+        sim.scene_mut().rotate(pole, Vector3::x(), FRAC_PI_2)?;
+        sim.scene_mut().offset_by_position(pole, offset)?;
         let density = 1.0 / (4.0 / 3.0 * std::f64::consts::PI * 0.01f64.powi(3));
-        let ball = sim.add_sphere(0.01, Point3::new(0.0, 1.0, 1.0) + offset, Mass::Density(density))?;
-        let r1 = sim.add_hinge_joint("r1", base, pole, None, Vector3::y())?;
-        let r2 = sim.add_hinge_joint("r2", pole, ball, Some(Point3::new(0.0, 2.0, 1.0) + offset), Vector3::x())?;
+        let ball = sim.scene_mut().add_sphere(0.01, Point3::new(0.0, 1.0, 1.0) + offset, Mass::Density(density))?;
+        let r1 = sim.scene_mut().add_hinge_joint("r1", base, pole, None, Vector3::y())?;
+        let r2 = sim.scene_mut().add_hinge_joint(
+            "r2",
+            pole,
+            ball,
+            Some(Point3::new(0.0, 2.0, 1.0) + offset),
+            Vector3::x(),
+        )?;
         self.sensors = Some((
             sim.add_sensor(JointTorque::new(r2))?,
             sim.add_sensor(JointPower::new(r2))?,
             sim.add_sensor_every(HingeSensor::new(r2), 1.0 / 50.0)?,
         ));
-        let frame = sim.time_step() * f64::from(sim.steps_per_frame());
+        let frame = sim.scene().time_step() * f64::from(sim.scene().steps_per_frame());
         let probe = Probe::at_step_start(move |scene: &Scene| {
             let b = scene.body(ball)?;
             let (position, velocity, angular_velocity) = (b.position(), b.linear_velocity(), b.angular_velocity());

@@ -80,16 +80,16 @@ impl ConicalPendulum {
 impl Hooks for ConicalPendulum {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let (waist, shoulder) = (self.waist.expect("created"), self.shoulder.expect("created"));
-        let time = sim.time();
+        let time = sim.scene().time();
         let torque = Self::waist_torque(time);
         let (q1_prev, q2_prev) = self.previous_rates;
         {
-            let mut r1 = sim.joint_mut(waist)?;
+            let mut r1 = sim.scene_mut().joint_mut(waist)?;
             r1.add_torque(torque)?;
             r1.add_torque(-Self::FRICTION * q1_prev)?;
         }
-        sim.joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
-        self.previous_rates = (sim.joint_rate(waist)?, sim.joint_rate(shoulder)?);
+        sim.scene_mut().joint_mut(shoulder)?.add_torque(-Self::FRICTION * q2_prev)?;
+        self.previous_rates = (sim.scene().joint_rate(waist)?, sim.scene().joint_rate(shoulder)?);
         Ok(())
     }
     /// Only the pre-step hook does something (added hooks are not called elsewhere).
@@ -130,19 +130,25 @@ impl Program for ConicalPendulum {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let offset = Vector3::new(1.0, 0.0, 2.0);
         let radius = 0.141421;
-        let base = sim.add_box([10.0, 0.5, 10.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(100.0))?;
-        let pole = sim.add_cylinder(radius, 1.0, [0.0, 0.51, 0.0], Mass::Total(10.0))?;
-        let arm = sim.add_cylinder(radius, 1.0, [0.0, 0.51, 0.1], Mass::Total(10.0))?;
+        let base =
+            sim.scene_mut().add_box([10.0, 0.5, 10.0], Point3::new(0.0, -0.25, 0.0) + offset, Mass::Density(100.0))?;
+        let pole = sim.scene_mut().add_cylinder(radius, 1.0, [0.0, 0.51, 0.0], Mass::Total(10.0))?;
+        let arm = sim.scene_mut().add_cylinder(radius, 1.0, [0.0, 0.51, 0.1], Mass::Total(10.0))?;
         for link in [pole, arm] {
-            sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
-            sim.offset_by_position(link, offset)?;
+            sim.scene_mut().rotate(link, Vector3::x(), FRAC_PI_2)?;
+            sim.scene_mut().offset_by_position(link, offset)?;
         }
-        sim.set_color(base, [0.55, 0.6, 0.65])?;
-        sim.set_color(pole, ars_core::colors::YELLOW)?;
-        sim.set_color(arm, ars_core::colors::NAVY)?;
-        let waist = sim.add_hinge_joint("r1", base, pole, None, Vector3::y())?;
-        let shoulder =
-            sim.add_hinge_joint("r2", pole, arm, Some(Point3::new(0.0, 1.01, 0.1) + offset), Vector3::x())?;
+        sim.scene_mut().set_color(base, [0.55, 0.6, 0.65])?;
+        sim.scene_mut().set_color(pole, ars_core::colors::YELLOW)?;
+        sim.scene_mut().set_color(arm, ars_core::colors::NAVY)?;
+        let waist = sim.scene_mut().add_hinge_joint("r1", base, pole, None, Vector3::y())?;
+        let shoulder = sim.scene_mut().add_hinge_joint(
+            "r2",
+            pole,
+            arm,
+            Some(Point3::new(0.0, 1.01, 0.1) + offset),
+            Vector3::x(),
+        )?;
         (self.base, self.pole, self.arm) = (Some(base), Some(pole), Some(arm));
         (self.waist, self.shoulder) = (Some(waist), Some(shoulder));
         let probe = Probe::at_step_start(move |scene: &Scene| {

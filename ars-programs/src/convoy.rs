@@ -44,11 +44,11 @@ impl Default for Convoy {
 
 impl Hooks for Convoy {
     fn post_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        let t = sim.time();
+        let t = sim.scene().time();
         if !self.events.0 && t >= self.drop_time {
-            let front = sim.position(self.vehicles[0].chassis)?;
-            let b = sim.add_box([0.4, 0.4, 0.4], [front.x + 1.5, 1.0, front.z], Mass::Total(2.0))?;
-            sim.set_name(b, "obstacle")?;
+            let front = sim.scene().position(self.vehicles[0].chassis)?;
+            let b = sim.scene_mut().add_box([0.4, 0.4, 0.4], [front.x + 1.5, 1.0, front.z], Mass::Total(2.0))?;
+            sim.scene_mut().set_name(b, "obstacle")?;
             self.obstacle = Some(b);
             self.events.0 = true;
         }
@@ -74,7 +74,7 @@ impl Program for Convoy {
             let v = build_vehicle(sim, &spec)?;
             for wheel in [v.w1, v.w2] {
                 let setpoint = Profile::ramp(0.0, 1.0, 0.0, self.wheel_speed)?;
-                sim.joint_mut(wheel)?.set_controller(VelocityServo { setpoint, gain: 5.0 })?;
+                sim.scene_mut().joint_mut(wheel)?.set_controller(VelocityServo { setpoint, gain: 5.0 })?;
             }
             self.vehicles.push(v);
         }

@@ -20,7 +20,7 @@ impl Program for HelloWorld {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        self.ball = Some(sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?);
+        self.ball = Some(sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?);
         Ok(())
     }
 }
@@ -62,7 +62,7 @@ impl Program for FallingBallSensors {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+        let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
         self.ball = Some(ball);
         self.gps = Some(sim.add_sensor(Gps::new(ball))?);
         self.velometer = Some(sim.add_sensor(Velometer::new(ball))?);

@@ -27,7 +27,7 @@ impl Program for FallingBalls {
             (0.2, [3.0, 2.0, 3.0], Mass::Total(5.0)),
         ];
         for (radius, center, mass) in specs {
-            let ball = sim.add_sphere(radius, center, mass)?;
+            let ball = sim.scene_mut().add_sphere(radius, center, mass)?;
             let gps = sim.add_sensor(Gps::new(ball))?;
             self.balls.push((ball, gps));
         }

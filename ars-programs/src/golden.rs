@@ -149,9 +149,9 @@ fn urdf_arm(duration: f64) -> Result<Vec<u8>> {
     for (k, id) in joints.iter().enumerate() {
         let target = 0.3 * (k as f64 + 1.0);
         let profile = Profile::new(vec![(0.0, 0.0), (1.0, target), (2.0, -target)])?;
-        sim.joint_mut(*id)?.set_controller(PositionServo::pd(profile, 40.0, 4.0))?;
+        sim.scene_mut().joint_mut(*id)?.set_controller(PositionServo::pd(profile, 40.0, 4.0))?;
     }
-    let positions = JointPositions::new(&sim, &joints)?;
+    let positions = JointPositions::new(sim.scene(), &joints)?;
     let positions = sim.add_sensor(positions)?;
     let torque = sim.add_sensor(JointTorque::new(joints[0]))?;
     sim.run_for(duration)?;
@@ -160,9 +160,9 @@ fn urdf_arm(duration: f64) -> Result<Vec<u8>> {
 
 fn noisy_sensors(duration: f64) -> Result<Vec<u8>> {
     let mut sim = Simulation::builder().space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0).seed(7).build()?;
-    let ball = sim.add_sphere(0.2, [0.0, 1.5, 0.0], Mass::Total(1.0))?;
-    sim.body_mut(ball)?.set_linear_velocity(Vector3::new(0.8, 0.0, 0.3))?;
-    sim.add_box([0.5, 0.5, 0.5], [2.0, 0.25, 0.0], Mass::Total(5.0))?;
+    let ball = sim.scene_mut().add_sphere(0.2, [0.0, 1.5, 0.0], Mass::Total(1.0))?;
+    sim.scene_mut().body_mut(ball)?.set_linear_velocity(Vector3::new(0.8, 0.0, 0.3))?;
+    sim.scene_mut().add_box([0.5, 0.5, 0.5], [2.0, 0.25, 0.0], Mass::Total(5.0))?;
     let gps = sim.add_sensor(Noisy::new(Gps::new(ball), 0.01, 1)?)?;
     let velometer = sim.add_sensor(Noisy::new(Velometer::new(ball), 0.02, 2)?)?;
     let accelerometer = sim.add_sensor(Noisy::new(Accelerometer::new(ball), 0.1, 3)?)?;

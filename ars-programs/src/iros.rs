@@ -139,20 +139,20 @@ impl SpeedProfile {
 impl Hooks for SpeedProfile {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
-        let time = sim.time();
-        let speed = signed_ground_speed(sim, v.chassis)?;
+        let time = sim.scene().time();
+        let speed = signed_ground_speed(sim.scene(), v.chassis)?;
         let setpoint = self.profile.value(time);
         let error = setpoint - speed;
         let mut torque = self.gain * error;
         if self.derivative_gain != 0.0 {
-            torque += self.derivative_gain * (error - self.previous_error) / sim.time_step();
+            torque += self.derivative_gain * (error - self.previous_error) / sim.scene().time_step();
         }
         self.previous_error = error;
-        sim.joint_mut(v.w1)?.add_torque(torque)?;
-        sim.joint_mut(v.w2)?.add_torque(torque)?;
-        let (rate1, rate2) = (sim.joint_rate(a.r1)?, sim.joint_rate(a.r2)?);
-        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
-        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
+        sim.scene_mut().joint_mut(v.w1)?.add_torque(torque)?;
+        sim.scene_mut().joint_mut(v.w2)?.add_torque(torque)?;
+        let (rate1, rate2) = (sim.scene().joint_rate(a.r1)?, sim.scene().joint_rate(a.r2)?);
+        sim.scene_mut().joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
+        sim.scene_mut().joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
     }
     /// Only the pre-step hook does something (added hooks are not called elsewhere).
     fn runs_at(&self, point: HookPoint) -> bool {
@@ -301,15 +301,15 @@ impl SinusoidalTerrain {
 impl Hooks for SinusoidalTerrain {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let (v, a) = (self.vehicle.expect("built"), self.arm.expect("built"));
-        let vel = sim.body(v.chassis)?.linear_velocity();
+        let vel = sim.scene().body(v.chassis)?.linear_velocity();
         let speed = (vel.x * vel.x + vel.y * vel.y + vel.z * vel.z).sqrt();
         let wheel_torque = if speed < Self::MAX_SPEED { Self::WHEEL_TORQUE } else { 0.0 };
-        sim.joint_mut(v.w1)?.add_torque(wheel_torque)?;
-        sim.joint_mut(v.w2)?.add_torque(wheel_torque)?;
-        let (rate1, rate2) = (sim.joint_rate(a.r1)?, sim.joint_rate(a.r2)?);
-        sim.joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
+        sim.scene_mut().joint_mut(v.w1)?.add_torque(wheel_torque)?;
+        sim.scene_mut().joint_mut(v.w2)?.add_torque(wheel_torque)?;
+        let (rate1, rate2) = (sim.scene().joint_rate(a.r1)?, sim.scene().joint_rate(a.r2)?);
+        sim.scene_mut().joint_mut(a.r1)?.add_torque(-Self::ARM_FRICTION * rate1)?;
         // The servos add their PD torques after this hook.
-        sim.joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
+        sim.scene_mut().joint_mut(a.r2)?.add_torque(-Self::ARM_FRICTION * rate2)
     }
     /// Only the pre-step hook does something (added hooks are not called elsewhere).
     fn runs_at(&self, point: HookPoint) -> bool {
@@ -334,8 +334,8 @@ impl Program for SinusoidalTerrain {
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
         let terrain = Self::terrain()?;
-        let floor = sim.add_trimesh_floor(terrain.vertices(), terrain.triangles(), Self::TERRAIN_CENTER)?;
-        sim.set_color(floor, [0.7, 0.7, 0.7])?;
+        let floor = sim.scene_mut().add_trimesh_floor(terrain.vertices(), terrain.triangles(), Self::TERRAIN_CENTER)?;
+        sim.scene_mut().set_color(floor, [0.7, 0.7, 0.7])?;
         let (vehicle, arm) = build_mobile_manipulator(
             sim,
             &VehicleSpec { offset: Self::OFFSET, ..Default::default() },
@@ -343,7 +343,7 @@ impl Program for SinusoidalTerrain {
         )?;
         let (kp, kd) = Self::GAINS;
         for joint in [arm.r1, arm.r2] {
-            sim.joint_mut(joint)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
+            sim.scene_mut().joint_mut(joint)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
         }
         let (chassis, wheel_r, wheel_l, w1, r1, r2) =
             (vehicle.chassis, vehicle.wheel_r, vehicle.wheel_l, vehicle.w1, arm.r1, arm.r2);
@@ -425,14 +425,14 @@ impl UserDriven {
 
     fn drive(&mut self, sim: &mut Simulation, right: f64, left: f64) -> Result<()> {
         let v = self.vehicle.expect("built");
-        sim.joint_mut(v.w1)?.add_torque(right)?;
-        sim.joint_mut(v.w2)?.add_torque(left)
+        sim.scene_mut().joint_mut(v.w1)?.add_torque(right)?;
+        sim.scene_mut().joint_mut(v.w2)?.add_torque(left)
     }
 }
 
 impl Hooks for UserDriven {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        sim.joint_mut(self.arm.expect("built").r1)?.add_torque(0.0)
+        sim.scene_mut().joint_mut(self.arm.expect("built").r1)?.add_torque(0.0)
     }
 }
 
@@ -458,7 +458,7 @@ impl Program for UserDriven {
             Mass::Density(1.0),
         )?;
         let (kp, kd) = Self::GAINS;
-        sim.joint_mut(arm.r2)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
+        sim.scene_mut().joint_mut(arm.r2)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
         let (chassis, w1, w2, r1, r2) = (vehicle.chassis, vehicle.w1, vehicle.w2, arm.r1, arm.r2);
         let probe = Probe::at_step_start(move |scene: &Scene| {
             let p = scene.position(chassis)?;

@@ -62,8 +62,8 @@ fn shift_setpoint(
     joint: Option<ars_core::JointId>,
     delta: f64,
 ) -> ars_core::Result<()> {
-    let now = sim.time();
-    let mut joint = sim.joint_mut(joint.expect("built"))?;
+    let now = sim.scene().time();
+    let mut joint = sim.scene_mut().joint_mut(joint.expect("built"))?;
     let servo = joint.controller_mut::<ars_core::PositionServo>().expect("the shoulder has a position servo");
     servo.setpoint = ars_core::Profile::constant(servo.setpoint.value(now) + delta)?;
     Ok(())
@@ -79,7 +79,7 @@ pub(crate) fn hold_shoulder(
     kd: f64,
 ) -> ars_core::Result<ars_core::SensorId<ars_core::Probe<ControlRow>>> {
     use ars_core::{PositionServo, Probe, Profile, Scene};
-    sim.joint_mut(shoulder)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
+    sim.scene_mut().joint_mut(shoulder)?.set_controller(PositionServo::pd(Profile::constant(0.0)?, kp, kd))?;
     let probe = Probe::at_step_start(move |scene: &Scene| servo_reading(scene, shoulder));
     sim.add_sensor(probe.reads_joints([shoulder]))
 }

@@ -31,16 +31,16 @@ pub struct ArmParts {
 /// (2.5, 1, 2.5); waist about Y at link1's centre, shoulder about Z at (2.5, 1.4, 2.7).
 pub fn build_simple_arm(sim: &mut Simulation) -> Result<ArmParts> {
     let offset = Vector3::new(2.5, 1.0, 2.5);
-    let base = sim.add_box([3.0, 0.5, 3.0], Point3::new(0.0, -0.75, 0.0) + offset, Mass::Density(1.0))?;
-    let link1 = sim.add_capsule(0.1, 0.8, [0.0, 0.0, 0.0], Mass::Density(1.0))?;
-    let link2 = sim.add_capsule(0.1, 0.6, [0.0, 0.7, 0.2], Mass::Density(1.0))?;
+    let base = sim.scene_mut().add_box([3.0, 0.5, 3.0], Point3::new(0.0, -0.75, 0.0) + offset, Mass::Density(1.0))?;
+    let link1 = sim.scene_mut().add_capsule(0.1, 0.8, [0.0, 0.0, 0.0], Mass::Density(1.0))?;
+    let link2 = sim.scene_mut().add_capsule(0.1, 0.6, [0.0, 0.7, 0.2], Mass::Density(1.0))?;
     for link in [link1, link2] {
-        sim.rotate(link, Vector3::x(), FRAC_PI_2)?;
-        sim.offset_by_position(link, offset)?;
+        sim.scene_mut().rotate(link, Vector3::x(), FRAC_PI_2)?;
+        sim.scene_mut().offset_by_position(link, offset)?;
     }
-    let r1 = sim.add_hinge_joint("r1", base, link1, None, Vector3::y())?;
-    let anchor = sim.position(link2)? - Vector3::new(0.0, 0.3, 0.0);
-    let r2 = sim.add_hinge_joint("r2", link1, link2, Some(anchor), Vector3::z())?;
+    let r1 = sim.scene_mut().add_hinge_joint("r1", base, link1, None, Vector3::y())?;
+    let anchor = sim.scene().position(link2)? - Vector3::new(0.0, 0.3, 0.0);
+    let r2 = sim.scene_mut().add_hinge_joint("r2", link1, link2, Some(anchor), Vector3::z())?;
     Ok(ArmParts { base, link1, link2, r1, r2 })
 }
 
@@ -58,7 +58,7 @@ impl SimpleArm {
 
 fn push_waist(parts: Option<ArmParts>, sim: &mut Simulation, torque: f64) -> Result<()> {
     let r1 = parts.expect("built").r1;
-    sim.joint_mut(r1)?.add_torque(torque)
+    sim.scene_mut().joint_mut(r1)?.add_torque(torque)
 }
 
 impl Hooks for SimpleArm {}
@@ -126,10 +126,10 @@ impl ControlledSimpleArm {
 impl Hooks for ControlledSimpleArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let p = self.parts.expect("built");
-        sim.joint_mut(p.r1)?.add_torque(0.0)?;
-        let (q1, q2) = (sim.joint_rate(p.r1)?, sim.joint_rate(p.r2)?);
-        sim.joint_mut(p.r1)?.add_torque(-Self::FRICTION * q1)?;
-        sim.joint_mut(p.r2)?.add_torque(-Self::FRICTION * q2)
+        sim.scene_mut().joint_mut(p.r1)?.add_torque(0.0)?;
+        let (q1, q2) = (sim.scene().joint_rate(p.r1)?, sim.scene().joint_rate(p.r2)?);
+        sim.scene_mut().joint_mut(p.r1)?.add_torque(-Self::FRICTION * q1)?;
+        sim.scene_mut().joint_mut(p.r2)?.add_torque(-Self::FRICTION * q2)
     }
 }
 

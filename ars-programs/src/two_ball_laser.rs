@@ -48,8 +48,8 @@ impl Program for TwoBallLaser {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-        let b1 = sim.add_sphere(1.0, [3.0, 4.0, 1.0], Mass::Total(1.0))?;
-        let b2 = sim.add_sphere(1.0, [5.0, 3.0, 1.0], Mass::Total(1.0))?;
+        let b1 = sim.scene_mut().add_sphere(1.0, [3.0, 4.0, 1.0], Mass::Total(1.0))?;
+        let b2 = sim.scene_mut().add_sphere(1.0, [5.0, 3.0, 1.0], Mass::Total(1.0))?;
         let along_x = rotation_about_axis(&Vector3::y(), FRAC_PI_2);
         self.laser = Some(sim.add_sensor(Laser::new(1000.0).at(Self::LASER_POSITION, along_x))?);
         self.gps = Some((sim.add_sensor(Gps::new(b1))?, sim.add_sensor(Gps::new(b2))?));

@@ -13,7 +13,7 @@ use crate::simple_arm::ControlRow;
 use crate::vehicles::{VehicleArm, VehicleParts, VehicleSpec, build_mobile_manipulator, build_vehicle};
 
 fn torques(sim: &mut Simulation, pairs: &[(JointId, f64)]) -> Result<()> {
-    pairs.iter().try_for_each(|&(j, t)| sim.joint_mut(j)?.add_torque(t))
+    pairs.iter().try_for_each(|&(j, t)| sim.scene_mut().joint_mut(j)?.add_torque(t))
 }
 
 /// `Vehicle1`: four thin cylinder wheels (length 0.1, radius 0.2, density 1) hinged
@@ -50,16 +50,16 @@ impl Program for Vehicle1 {
         let offsets = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]];
         let mut wheels = Vec::new();
         for o in offsets {
-            wheels.push(sim.add_cylinder(
+            wheels.push(sim.scene_mut().add_cylinder(
                 0.2,
                 0.1,
                 [o[0] + first.x, o[1] + first.y, o[2] + first.z],
                 Mass::Density(1.0),
             )?);
         }
-        let chassis = sim.add_box([1.3, 0.2, 0.6], [1.5, 1.0, 1.5], Mass::Density(10.0))?;
+        let chassis = sim.scene_mut().add_box([1.3, 0.2, 0.6], [1.5, 1.0, 1.5], Mass::Density(10.0))?;
         for (i, w) in wheels.iter().enumerate() {
-            let j = sim.add_hinge_joint(&format!("r{}", i + 1), chassis, *w, None, Vector3::z())?;
+            let j = sim.scene_mut().add_hinge_joint(&format!("r{}", i + 1), chassis, *w, None, Vector3::z())?;
             self.wheels.push(j);
         }
         self.chassis = Some(chassis);
@@ -220,7 +220,7 @@ pub(crate) use arm_vehicle_bindings;
 impl Hooks for VehicleWithArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         let a = self.arm.expect("built");
-        let (q1, q2) = (sim.joint_rate(a.r1)?, sim.joint_rate(a.r2)?);
+        let (q1, q2) = (sim.scene().joint_rate(a.r1)?, sim.scene().joint_rate(a.r2)?);
         if self.arm_friction {
             torques(sim, &[(a.r1, -0.01 * q1), (a.r2, -0.01 * q2)])?;
         }
@@ -271,7 +271,7 @@ pub struct VehicleWithControlledArm {
 
 impl Hooks for VehicleWithControlledArm {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
-        sim.joint_mut(self.arm.expect("built").r1)?.add_torque(0.0)
+        sim.scene_mut().joint_mut(self.arm.expect("built").r1)?.add_torque(0.0)
     }
 }
 

@@ -59,32 +59,32 @@ pub struct VehicleParts {
 /// Builds a vehicle: ball, chassis, right and left wheel, wheel hinges about Z at the
 /// wheel centres, the caster's ball joint, then everything moved by `spec.offset`.
 pub fn build_vehicle(sim: &mut Simulation, spec: &VehicleSpec) -> Result<VehicleParts> {
-    let ball = sim.add_sphere(0.3, [1.0, 0.0, 0.0], Mass::Density(1.0))?;
-    let chassis = sim.add_box([2.0, 0.2, 1.5], [0.5, 0.45, 0.0], spec.chassis_mass)?;
+    let ball = sim.scene_mut().add_sphere(0.3, [1.0, 0.0, 0.0], Mass::Density(1.0))?;
+    let chassis = sim.scene_mut().add_box([2.0, 0.2, 1.5], [0.5, 0.45, 0.0], spec.chassis_mass)?;
     // Named, for the viewer's camera to follow ("chassis", then "chassis/1"...).
     let mut name = "chassis".to_string();
     for i in 1.. {
-        if sim.object(name.as_str()).is_err() {
+        if sim.scene().object(name.as_str()).is_err() {
             break;
         }
         name = format!("chassis/{i}");
     }
-    sim.set_name(chassis, &name)?;
+    sim.scene_mut().set_name(chassis, &name)?;
     let wheel = if spec.capsule_wheels {
         Shape::Capsule { length: 0.4, radius: 0.3 }
     } else {
         Shape::Cylinder { length: 0.4, radius: 0.3 }
     };
-    let wheel_r = sim.add_body(wheel.clone(), [0.0, 0.0, -0.5], spec.wheel_mass)?;
-    let wheel_l = sim.add_body(wheel, [0.0, 0.0, 0.5], spec.wheel_mass)?;
+    let wheel_r = sim.scene_mut().add_body(wheel.clone(), [0.0, 0.0, -0.5], spec.wheel_mass)?;
+    let wheel_l = sim.scene_mut().add_body(wheel, [0.0, 0.0, 0.5], spec.wheel_mass)?;
     let p = &spec.prefix;
-    let w1 = sim.add_hinge_joint(&format!("{p}w1"), chassis, wheel_r, None, Vector3::z())?;
-    let w2 = sim.add_hinge_joint(&format!("{p}w2"), chassis, wheel_l, None, Vector3::z())?;
-    let bs = sim.add_ball_joint(&format!("{p}bs"), chassis, ball, None)?;
+    let w1 = sim.scene_mut().add_hinge_joint(&format!("{p}w1"), chassis, wheel_r, None, Vector3::z())?;
+    let w2 = sim.scene_mut().add_hinge_joint(&format!("{p}w2"), chassis, wheel_l, None, Vector3::z())?;
+    let bs = sim.scene_mut().add_ball_joint(&format!("{p}bs"), chassis, ball, None)?;
     for object in [ball, chassis, wheel_r, wheel_l] {
-        sim.offset_by_position(object, spec.offset)?;
+        sim.scene_mut().offset_by_position(object, spec.offset)?;
     }
-    sim.set_color(chassis, [0.8, 0.0, 0.0])?;
+    sim.scene_mut().set_color(chassis, [0.8, 0.0, 0.0])?;
     Ok(VehicleParts { chassis, wheel_r, wheel_l, ball, w1, w2, bs })
 }
 
@@ -105,18 +105,18 @@ pub struct VehicleArm {
 /// the chassis centre, link2 (capsule 0.6 × 0.1) on top of it and 0.2 m to +Z; waist
 /// about Y at link1's centre, shoulder about Z 0.3 m below link2's centre.
 pub fn build_vehicle_arm(sim: &mut Simulation, chassis: ObjectId, link_mass: Mass, prefix: &str) -> Result<VehicleArm> {
-    let link1 = sim.add_capsule(0.1, 0.8, [0.0, 0.0, 0.0], link_mass)?;
-    let link2 = sim.add_capsule(0.1, 0.6, [0.0, 0.7, 0.2], link_mass)?;
-    sim.rotate(link1, Vector3::x(), FRAC_PI_2)?;
-    sim.rotate(link2, Vector3::x(), FRAC_PI_2)?;
-    sim.offset_by_object(link1, chassis)?;
-    sim.offset_by_position(link1, [0.0, 0.5, 0.0])?;
-    sim.offset_by_object(link2, link1)?;
-    let r1 = sim.add_hinge_joint(&format!("{prefix}r1"), chassis, link1, None, Vector3::y())?;
-    let anchor: Point3<f64> = sim.position(link2)? - Vector3::new(0.0, 0.3, 0.0);
-    let r2 = sim.add_hinge_joint(&format!("{prefix}r2"), link1, link2, Some(anchor), Vector3::z())?;
-    sim.set_color(link1, [1.0, 1.0, 0.0])?;
-    sim.set_color(link2, [0.0, 0.0, 0.5])?;
+    let link1 = sim.scene_mut().add_capsule(0.1, 0.8, [0.0, 0.0, 0.0], link_mass)?;
+    let link2 = sim.scene_mut().add_capsule(0.1, 0.6, [0.0, 0.7, 0.2], link_mass)?;
+    sim.scene_mut().rotate(link1, Vector3::x(), FRAC_PI_2)?;
+    sim.scene_mut().rotate(link2, Vector3::x(), FRAC_PI_2)?;
+    sim.scene_mut().offset_by_object(link1, chassis)?;
+    sim.scene_mut().offset_by_position(link1, [0.0, 0.5, 0.0])?;
+    sim.scene_mut().offset_by_object(link2, link1)?;
+    let r1 = sim.scene_mut().add_hinge_joint(&format!("{prefix}r1"), chassis, link1, None, Vector3::y())?;
+    let anchor: Point3<f64> = sim.scene().position(link2)? - Vector3::new(0.0, 0.3, 0.0);
+    let r2 = sim.scene_mut().add_hinge_joint(&format!("{prefix}r2"), link1, link2, Some(anchor), Vector3::z())?;
+    sim.scene_mut().set_color(link1, [1.0, 1.0, 0.0])?;
+    sim.scene_mut().set_color(link2, [0.0, 0.0, 0.5])?;
     Ok(VehicleArm { link1, link2, r1, r2 })
 }
 

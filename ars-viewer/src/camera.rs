@@ -123,11 +123,11 @@ impl Camera {
     /// A frame of `sim` as it is now if one is due (always, without a period), with its
     /// simulated time.
     pub fn capture_if_due(&mut self, sim: &Simulation) -> Result<Option<(f64, CameraFrame)>> {
-        let time = sim.time();
+        let time = sim.scene().time();
         if let (Some(period), Some(next)) = (self.period, self.next_frame) {
             // Half a step of slack absorbs the drift of the accumulated time, as for
             // the simulation's sensors.
-            if time + 0.5 * sim.time_step() < next {
+            if time + 0.5 * sim.scene().time_step() < next {
                 return Ok(None);
             }
             self.next_frame = Some(next + period);
@@ -145,7 +145,7 @@ impl Camera {
         duration: f64,
         mut on_frame: impl FnMut(f64, CameraFrame) -> Result<()>,
     ) -> Result<()> {
-        let steps = sim.steps_in(duration).map_err(ViewerError::from)?;
+        let steps = sim.scene().steps_in(duration).map_err(ViewerError::from)?;
         if let Some((t, frame)) = self.capture_if_due(sim)? {
             on_frame(t, frame)?;
         }

@@ -176,7 +176,7 @@ mod tests {
     }
     impl Program for Drop {
         fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-            sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0)).map(drop)
+            sim.scene_mut().add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0)).map(drop)
         }
     }
 
@@ -186,27 +186,27 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("three.json");
         let mut three = Simulation::new().unwrap();
-        three.add_sphere(0.1, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
-        three.add_sphere(0.1, [1.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
-        three.add_sphere(0.1, [2.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        three.scene_mut().add_sphere(0.1, [0.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        three.scene_mut().add_sphere(0.1, [1.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
+        three.scene_mut().add_sphere(0.1, [2.0, 2.0, 0.0], Mass::Total(1.0)).unwrap();
         three.save_scene_to(&path).unwrap();
 
         let mut program = Drop { frames: 0 };
         let mut runner = ProgramRunner::new(&mut program).unwrap();
         let mut shown = Shown::new(&mut runner);
         shown.step_frame().unwrap();
-        let of_program = shown.simulation().objects().count();
+        let of_program = shown.simulation().scene().objects().count();
         shown.open(path.clone(), Simulation::open(&path).unwrap().simulation);
-        assert_eq!(shown.simulation().objects().count(), 3, "the file's scene is shown");
+        assert_eq!(shown.simulation().scene().objects().count(), 3, "the file's scene is shown");
         shown.step_frame().unwrap();
         shown.key_down(Key::Up).unwrap();
-        let frame_time = shown.simulation().time();
+        let frame_time = shown.simulation().scene().time();
         assert!(frame_time > 0.0);
         shown.reset().unwrap();
-        assert_eq!(shown.simulation().time(), 0.0, "r opens the file again");
-        assert_eq!(shown.simulation().objects().count(), 3);
+        assert_eq!(shown.simulation().scene().time(), 0.0, "r opens the file again");
+        assert_eq!(shown.simulation().scene().objects().count(), 3);
         drop(shown);
-        assert_eq!(runner.simulation().objects().count(), of_program, "the program's simulation is kept");
+        assert_eq!(runner.simulation().scene().objects().count(), of_program, "the program's simulation is kept");
         drop(runner);
         assert_eq!(program.frames, 1, "the program's hooks ran only before the file was opened");
         std::fs::remove_dir_all(&dir).unwrap();

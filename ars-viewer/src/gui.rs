@@ -153,8 +153,8 @@ impl Panel {
             ui.heading(status.title);
             ui.label(format!(
                 "t = {:.3} s, step {}   ×{:.2} real time",
-                sim.time(),
-                sim.step_count(),
+                sim.scene().time(),
+                sim.scene().step_count(),
                 status.real_time_factor
             ));
             ui.horizontal(|ui| {
@@ -268,7 +268,7 @@ impl Panel {
             self.joint_editor(ui, sim, status.selected.map(|(s, _)| s.id), commands);
         });
         egui::CollapsingHeader::new("Simulation").default_open(false).show(ui, |ui| {
-            let g = sim.gravity();
+            let g = sim.scene().gravity();
             egui::Grid::new("ars-edit-sim").show(ui, |ui| {
                 for (axis, label) in ["gravity x", "gravity y", "gravity z"].into_iter().enumerate() {
                     ui.label(label);
@@ -279,10 +279,10 @@ impl Panel {
                     }
                     ui.end_row();
                 }
-                let world = sim.world();
+                let world = sim.scene().world();
                 type Make = fn(f64) -> Edit;
                 let settings: [(&str, f64, Make); 3] = [
-                    ("time step", sim.time_step(), Edit::TimeStep),
+                    ("time step", sim.scene().time_step(), Edit::TimeStep),
                     ("ERP", world.erp(), Edit::Erp),
                     ("CFM", world.cfm(), Edit::Cfm),
                 ];
@@ -402,18 +402,18 @@ impl Panel {
         selected: Option<ObjectId>,
         commands: &mut Vec<Command>,
     ) {
-        let joints: Vec<(String, JointId)> = sim.joints().map(|(n, id)| (n.to_string(), id)).collect();
+        let joints: Vec<(String, JointId)> = sim.scene().joints().map(|(n, id)| (n.to_string(), id)).collect();
         if joints.is_empty() {
             ui.label("No joints.");
             return;
         }
         let of_selected = |id: JointId| {
-            sim.joint(id).is_ok_and(|j| {
+            sim.scene().joint(id).is_ok_and(|j| {
                 let (a, b) = j.objects();
                 Some(a) == selected || b == selected
             })
         };
-        if self.joint.is_none_or(|j| sim.joint(j).is_err()) {
+        if self.joint.is_none_or(|j| sim.scene().joint(j).is_err()) {
             self.joint = joints.iter().map(|(_, id)| *id).find(|id| of_selected(*id)).or(Some(joints[0].1));
         }
         let Some(id) = self.joint else { return };
@@ -449,17 +449,17 @@ impl Panel {
             });
             ui.end_row();
             ui.label("viscous friction");
-            let friction = sim.joint(id).map_or(0.0, |j| j.viscous_friction());
+            let friction = sim.scene().joint(id).map_or(0.0, |j| j.viscous_friction());
             if let Some(v) = self.number(ui, "viscous friction", friction) {
                 commands.push(Command::Edit(Edit::ViscousFriction(id, v)));
             }
             ui.end_row();
-            let now = sim.time();
-            let controller = if let Ok(Some(s)) = sim.joint_controller::<PositionServo>(id) {
+            let now = sim.scene().time();
+            let controller = if let Ok(Some(s)) = sim.scene().joint_controller::<PositionServo>(id) {
                 Some(("position", s.setpoint.value(now), vec![("kp", s.pid.kp), ("ki", s.pid.ki), ("kd", s.pid.kd)]))
-            } else if let Ok(Some(s)) = sim.joint_controller::<VelocityServo>(id) {
+            } else if let Ok(Some(s)) = sim.scene().joint_controller::<VelocityServo>(id) {
                 Some(("speed", s.setpoint.value(now), vec![("gain", s.gain)]))
-            } else if let Ok(Some(m)) = sim.joint_controller::<DcMotor>(id) {
+            } else if let Ok(Some(m)) = sim.scene().joint_controller::<DcMotor>(id) {
                 Some(("voltage", m.voltage.value(now), vec![]))
             } else {
                 None
@@ -544,7 +544,7 @@ impl Panel {
         ui.add(egui::Slider::new(&mut self.span, 1.0..=60.0).text("s shown"));
         // The samples of the last `span` seconds (found by bisection: the log is
         // not copied), at most about 2,000 of them.
-        let from = sim.time() - self.span;
+        let from = sim.scene().time() - self.span;
         let (mut first, mut end) = (0, log.len());
         while first < end {
             let mid = (first + end) / 2;
@@ -566,11 +566,11 @@ impl Panel {
 fn setpoints(ui: &mut egui::Ui, sim: &Simulation, commands: &mut Vec<Command>) {
     let mut any = false;
     let pi = std::f64::consts::PI;
-    for (name, id) in sim.joints() {
+    for (name, id) in sim.scene().joints() {
         // A position servo's set-point, or an actuator's control over its range.
-        let (mut value, range, label) = if let Ok(Some(servo)) = sim.joint_controller::<PositionServo>(id) {
-            (servo.setpoint.value(sim.time()), -pi..=pi, name)
-        } else if let Ok(Some(actuator)) = sim.joint_controller::<Actuator>(id) {
+        let (mut value, range, label) = if let Ok(Some(servo)) = sim.scene().joint_controller::<PositionServo>(id) {
+            (servo.setpoint.value(sim.scene().time()), -pi..=pi, name)
+        } else if let Ok(Some(actuator)) = sim.scene().joint_controller::<Actuator>(id) {
             let (lo, hi) = actuator.ctrl_range().unwrap_or((-1.0, 1.0));
             (actuator.ctrl(), lo..=hi, actuator.name())
         } else {
@@ -595,8 +595,8 @@ fn state_table(ui: &mut egui::Ui, sim: &Simulation) {
             ui.strong("x, y, z [m]");
             ui.strong("speed [m/s]");
             ui.end_row();
-            for (name, id) in sim.objects() {
-                let Ok(object) = sim.object(id) else { continue };
+            for (name, id) in sim.scene().objects() {
+                let Ok(object) = sim.scene().object(id) else { continue };
                 let Ok(body) = object.body() else { continue };
                 let p = body.position();
                 name_label(ui, name);
@@ -613,8 +613,8 @@ fn state_table(ui: &mut egui::Ui, sim: &Simulation) {
             ui.strong("position");
             ui.strong("rate");
             ui.end_row();
-            for (name, id) in sim.joints() {
-                let Ok(joint) = sim.joint(id) else { continue };
+            for (name, id) in sim.scene().joints() {
+                let Ok(joint) = sim.scene().joint(id) else { continue };
                 name_label(ui, name);
                 ui.label(joint.joint_type().default_name());
                 match joint.state() {
@@ -671,7 +671,7 @@ fn name_label(ui: &mut egui::Ui, name: &str) {
 /// Applies a set-point from the panel to the joint's position servo.
 pub(crate) fn set_setpoint(sim: &mut Simulation, joint: JointId, value: f64) -> ars_core::Result<()> {
     let profile = Profile::constant(value)?;
-    if let Some(servo) = sim.joint_mut(joint)?.controller_mut::<PositionServo>() {
+    if let Some(servo) = sim.scene_mut().joint_mut(joint)?.controller_mut::<PositionServo>() {
         servo.setpoint = profile;
     }
     Ok(())

@@ -31,8 +31,8 @@ const MIN_LEVER: f64 = 0.1;
 /// use ars_core::{Mass, Simulation};
 ///
 /// let mut sim = Simulation::new()?;
-/// sim.add_floor_plane(Vector3::y(), 0.0)?;
-/// let ball = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
+/// sim.scene_mut().add_floor_plane(Vector3::y(), 0.0)?;
+/// let ball = sim.scene_mut().add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
 /// let hit = ars_viewer::pick(&sim, Point3::new(0.0, 1.0, 5.0), -Vector3::z());
 /// assert_eq!(hit.map(|(id, _)| id), Some(ball));
 /// assert!((hit.unwrap().1.z - 0.5).abs() < 1e-9);
@@ -40,10 +40,10 @@ const MIN_LEVER: f64 = 0.1;
 /// ```
 pub fn pick(sim: &Simulation, origin: Point3<f64>, direction: Vector3<f64>) -> Option<(ObjectId, Point3<f64>)> {
     let direction = direction.try_normalize(1e-12)?;
-    let world = sim.world();
+    let world = sim.scene().world();
     let hit = world.cast_ray(Ray { origin, direction }, PICK_DISTANCE, None).ok()??;
     let body = world.geom(hit.geom).ok()?.body()?;
-    let (id, _) = sim.bodies().find(|(_, b)| *b == body)?;
+    let (id, _) = sim.scene().bodies().find(|(_, b)| *b == body)?;
     Some((id, hit.position))
 }
 
@@ -124,7 +124,7 @@ impl Grab {
         view: Vector3<f64>,
         mode: DragMode,
     ) -> Result<Self> {
-        let body = sim.body(object)?;
+        let body = sim.scene().body(object)?;
         let normal = (-view).try_normalize(1e-12).unwrap_or_else(Vector3::y);
         Ok(Grab {
             object,
@@ -146,7 +146,7 @@ impl Grab {
 
     /// The grabbed point where it is now, world frame.
     pub fn point(&self, sim: &Simulation) -> Result<Point3<f64>> {
-        Ok(sim.body(self.object)?.pose() * self.local)
+        Ok(sim.scene().body(self.object)?.pose() * self.local)
     }
 
     /// The orientation a torque drag turns the body toward: the start orientation
@@ -162,18 +162,18 @@ impl Grab {
     /// Pushes the body for the next step, through the safe API: the spring force at the
     /// grabbed point ([`spring_force`]), or the spring torque ([`spring_torque`]).
     pub fn push(&self, sim: &mut Simulation) -> Result<()> {
-        let body = sim.body(self.object)?;
+        let body = sim.scene().body(self.object)?;
         match self.mode {
             DragMode::Force => {
                 let point = body.pose() * self.local;
                 let force = spring_force(body.mass(), point, body.point_velocity(point), self.target);
-                sim.body_mut(self.object)?.add_force_at_point(force, point)
+                sim.scene_mut().body_mut(self.object)?.add_force_at_point(force, point)
             }
             DragMode::Torque => {
                 let goal = self.target_rotation(body.position());
                 let error = (goal * body.quaternion().inverse()).scaled_axis();
                 let torque = spring_torque(&body.inertia_world(), error, body.angular_velocity());
-                sim.body_mut(self.object)?.add_torque(torque)
+                sim.scene_mut().body_mut(self.object)?.add_torque(torque)
             }
         }
     }
@@ -181,15 +181,15 @@ impl Grab {
     /// Moves the body at once (paused): the grabbed point onto the target, or the body
     /// turned to the target rotation.
     pub fn place(&self, sim: &mut Simulation) -> Result<()> {
-        let pose = sim.body(self.object)?.pose();
+        let pose = sim.scene().body(self.object)?.pose();
         match self.mode {
             DragMode::Force => {
                 let centre = self.target - pose.rotation * self.local.coords;
-                sim.set_position(self.object, centre)
+                sim.scene_mut().set_position(self.object, centre)
             }
             DragMode::Torque => {
                 let goal = self.target_rotation(pose.translation.vector.into());
-                sim.set_rotation(self.object, goal.to_rotation_matrix())
+                sim.scene_mut().set_rotation(self.object, goal.to_rotation_matrix())
             }
         }
     }
@@ -202,7 +202,7 @@ pub(crate) struct Push(pub(crate) Grab);
 impl Hooks for Push {
     fn pre_step(&mut self, sim: &mut Simulation) -> Result<()> {
         // The body may have been removed by the program: then there is nothing to push.
-        if sim.body(self.0.object).is_ok() { self.0.push(sim) } else { Ok(()) }
+        if sim.scene().body(self.0.object).is_ok() { self.0.push(sim) } else { Ok(()) }
     }
     fn runs_at(&self, point: ars_core::HookPoint) -> bool {
         point == ars_core::HookPoint::PreStep
@@ -216,9 +216,9 @@ mod tests {
 
     fn scene() -> (Simulation, ObjectId, ObjectId) {
         let mut sim = Simulation::new().unwrap();
-        sim.add_floor_plane(Vector3::y(), 0.0).unwrap();
-        let light = sim.add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(1.0)).unwrap();
-        let heavy = sim.add_sphere(0.5, [3.0, 0.5, 0.0], Mass::Total(50.0)).unwrap();
+        sim.scene_mut().add_floor_plane(Vector3::y(), 0.0).unwrap();
+        let light = sim.scene_mut().add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(1.0)).unwrap();
+        let heavy = sim.scene_mut().add_sphere(0.5, [3.0, 0.5, 0.0], Mass::Total(50.0)).unwrap();
         (sim, light, heavy)
     }
 
@@ -273,14 +273,14 @@ mod tests {
     fn light_and_heavy_bodies_both_follow_the_spring() {
         let (mut sim, light, heavy) = scene();
         for id in [light, heavy] {
-            let start = sim.body(id).unwrap().position();
+            let start = sim.scene().body(id).unwrap().position();
             let mut grab = Grab::new(&sim, id, start, -Vector3::z(), DragMode::Force).unwrap();
             grab.aim(Point3::new(start.x, start.y + 1.0, 10.0), -Vector3::z());
             assert!((grab.target - Point3::new(start.x, start.y + 1.0, 0.0)).norm() < 1e-9);
             let hook = sim.add_hooks(Push(grab)).unwrap();
             sim.run_for(2.0).unwrap();
             sim.remove_hooks(hook).unwrap();
-            let p = sim.body(id).unwrap().position();
+            let p = sim.scene().body(id).unwrap().position();
             let sag = 9.81 / SPRING_STIFFNESS;
             assert!((p.y - (start.y + 1.0 - sag)).abs() < 0.05, "{id:?} at {p}, from {start}");
             assert!((p.x - start.x).abs() < 0.05 && p.z.abs() < 0.05, "{id:?} at {p}");
@@ -291,7 +291,7 @@ mod tests {
     fn a_torque_drag_turns_the_body_toward_the_mouse() {
         let mut sim = Simulation::new().unwrap();
         sim.scene_mut().world_mut().set_gravity(Vector3::zeros()).unwrap();
-        let cube = sim.add_box([1.0, 1.0, 1.0], [0.0, 0.0, 0.0], Mass::Total(3.0)).unwrap();
+        let cube = sim.scene_mut().add_box([1.0, 1.0, 1.0], [0.0, 0.0, 0.0], Mass::Total(3.0)).unwrap();
         // Grabbed on its front face (toward the camera on +Z), dragged 0.5 m right:
         // a quarter of a radian… about +Y, the front face turning right.
         let mut grab = Grab::new(&sim, cube, Point3::new(0.0, 0.0, 0.5), -Vector3::z(), DragMode::Torque).unwrap();
@@ -301,9 +301,9 @@ mod tests {
         let hook = sim.add_hooks(Push(grab)).unwrap();
         sim.run_for(2.0).unwrap();
         sim.remove_hooks(hook).unwrap();
-        let turned = sim.body(cube).unwrap().quaternion().scaled_axis();
+        let turned = sim.scene().body(cube).unwrap().quaternion().scaled_axis();
         assert!((turned - Vector3::y()).norm() < 0.02, "turned by {turned}");
-        assert!(sim.body(cube).unwrap().position().coords.norm() < 1e-6, "a pure torque moved the centre");
+        assert!(sim.scene().body(cube).unwrap().position().coords.norm() < 1e-6, "a pure torque moved the centre");
     }
 
     #[test]
@@ -315,6 +315,6 @@ mod tests {
         grab.place(&mut sim).unwrap();
         let moved = grab.point(&sim).unwrap();
         assert!((moved - Point3::new(2.25, 1.4, 0.1)).norm() < 1e-9, "{moved}");
-        assert_eq!(sim.time(), 0.0);
+        assert_eq!(sim.scene().time(), 0.0);
     }
 }

@@ -15,7 +15,7 @@
 //! impl Hooks for HelloWorld {}
 //! impl Program for HelloWorld {
 //!     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-//!         sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
+//!         sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
 //!     }
 //! }
 //! // A window where there is a display; off-screen frames into a folder otherwise.

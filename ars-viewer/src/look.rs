@@ -41,16 +41,16 @@ pub(crate) struct Look {
 /// How `id` is drawn, `index` being the number of objects drawn before it (objects
 /// without a colour take the palette's in that order).
 pub(crate) fn look_of(sim: &Simulation, id: ObjectId, index: usize) -> ars_core::Result<Look> {
-    let object = sim.object(id)?;
+    let object = sim.scene().object(id)?;
     let dynamic = object.body_handle().is_some();
     let flat = matches!(object.shape(), Shape::Plane { .. } | Shape::TriMesh { .. });
     let default = if flat { FLOOR } else { PALETTE[index % PALETTE.len()] };
     let color = object.color().unwrap_or(default);
-    let pose = sim.pose(id).unwrap_or(Isometry3::identity());
+    let pose = sim.scene().pose(id).unwrap_or(Isometry3::identity());
     // Its visuals if it has any (a robot link's <visual>s), else each of its geoms
     // where it is relative to the object (a robot link may have several, offset from
     // its body); an object without either is drawn as its shape.
-    let world = sim.world();
+    let world = sim.scene().world();
     let mut parts: Vec<Part> = if object.visuals().is_empty() {
         object
             .geoms()

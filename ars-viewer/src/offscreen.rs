@@ -233,7 +233,7 @@ pub(crate) fn frames_in(sim: &Simulation, duration: f64) -> Result<u64> {
     if !(duration.is_finite() && duration > 0.0) {
         return Err(ViewerError::Settings(format!("a recording's duration must be positive, got {duration} s")));
     }
-    Ok(sim.steps_in(duration)?.div_ceil(u64::from(sim.steps_per_frame())))
+    Ok(sim.scene().steps_in(duration)?.div_ceil(u64::from(sim.scene().steps_per_frame())))
 }
 
 /// The renderer a recorder draws what `driver` drives with: `view` at `size` (if
@@ -251,7 +251,7 @@ pub(crate) fn recording_renderer<D: Driver>(
     }
     let renderer = OffscreenRenderer::with_options(&view, options)?;
     if options.forces {
-        crate::scene::report_forces(driver.simulation().world_mut());
+        crate::scene::report_forces(driver.simulation().scene_mut().world_mut());
     }
     Ok(renderer)
 }

@@ -97,7 +97,7 @@ impl SceneMirror {
     /// Creates nodes for new objects, removes those of removed objects, and poses
     /// every dynamic one.
     pub fn sync(&mut self, sim: &Simulation, scene: &mut SceneNode3d) -> ars_core::Result<()> {
-        let live: Vec<(String, ObjectId)> = sim.objects().map(|(n, id)| (n.to_string(), id)).collect();
+        let live: Vec<(String, ObjectId)> = sim.scene().objects().map(|(n, id)| (n.to_string(), id)).collect();
         self.nodes.retain(|id, node| {
             let keep = live.iter().any(|(_, l)| l == id);
             if !keep {
@@ -114,7 +114,7 @@ impl SceneMirror {
         }
         for (id, node) in &mut self.nodes {
             if node.dynamic {
-                node.group.set_pose(convert::pose(&sim.pose(*id)?));
+                node.group.set_pose(convert::pose(&sim.scene().pose(*id)?));
             }
         }
         Ok(())
@@ -130,7 +130,7 @@ impl SceneMirror {
             window.draw_line(o, Vec3::Y, Color::new(0.0, 0.7, 0.0, 1.0), 3.0, false);
             window.draw_line(o, Vec3::Z, Color::new(0.0, 0.0, 1.0, 1.0), 3.0, false);
         }
-        let world = sim.world();
+        let world = sim.scene().world();
         for g in world.geoms() {
             let Ok(geom) = world.geom(g) else { continue };
             let (Shape::Ray { length }, Some((start, dir))) = (geom.shape(), geom.ray()) else { continue };
@@ -142,7 +142,7 @@ impl SceneMirror {
                 }
                 // Before the first step no hit has been computed yet: draw nothing
                 // rather than a ray through what it will hit.
-                None if sim.step_count() == 0 => {}
+                None if sim.scene().step_count() == 0 => {}
                 None => {
                     let end = start + dir * length.min(50.0);
                     window.draw_line(convert::point(&start), convert::point(&end), red, 1.0, false);
@@ -177,8 +177,8 @@ impl SceneMirror {
             }
         }
         if self.show_joints {
-            for (_, j) in sim.joints() {
-                let Ok(joint) = sim.joint(j).and_then(|j| j.ode()) else { continue };
+            for (_, j) in sim.scene().joints() {
+                let Ok(joint) = sim.scene().joint(j).and_then(|j| j.ode()) else { continue };
                 if let Ok(anchor) = joint.anchor() {
                     // A big magenta dot at the anchor and the axis through it, both ways.
                     window.draw_point(convert::point(&anchor), Color::new(1.0, 0.0, 1.0, 1.0), 16.0);
@@ -348,7 +348,7 @@ impl View {
         self.mirror.sync(sim, &mut self.scene)?;
         if self.following
             && let Some(name) = &self.follow
-            && let Ok(p) = sim.object(name.as_str()).and_then(|o| o.position())
+            && let Ok(p) = sim.scene().object(name.as_str()).and_then(|o| o.position())
         {
             self.camera.orbit.set_at(convert::point(&p));
         }
@@ -360,7 +360,7 @@ impl View {
     /// moving object.
     pub(crate) fn toggle_follow(&mut self, sim: &Simulation) {
         if self.follow.is_none() {
-            let first = sim.bodies().next().and_then(|(id, _)| sim.object(id).ok());
+            let first = sim.scene().bodies().next().and_then(|(id, _)| sim.scene().object(id).ok());
             self.follow = first.map(|o| o.name().to_string());
         }
         self.following = !self.following && self.follow.is_some();
@@ -409,11 +409,11 @@ mod tests {
     #[test]
     fn force_arrows_point_from_the_contacts_by_the_force_on_the_body() {
         let mut sim = Simulation::new().unwrap();
-        let floor = sim.add_floor_plane(Vector3::y(), 0.0).unwrap();
-        sim.add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(2.0)).unwrap();
-        sim.world_mut().set_contact_feedback(true);
+        let floor = sim.scene_mut().add_floor_plane(Vector3::y(), 0.0).unwrap();
+        sim.scene_mut().add_box([0.5, 0.5, 0.5], [0.0, 0.25, 0.0], Mass::Total(2.0)).unwrap();
+        sim.scene_mut().world_mut().set_contact_feedback(true);
         sim.run_for(1.0).unwrap();
-        let contacts = sim.world().contacts().to_vec();
+        let contacts = sim.scene().world().contacts().to_vec();
         assert!(!contacts.is_empty());
         let mut total = 0.0;
         for c in &contacts {
@@ -429,11 +429,11 @@ mod tests {
                 assert!(((tip - end).y - 0.2 * (tip - start).y).abs() < 1e-9);
             }
         }
-        let g = sim.gravity().norm();
+        let g = sim.scene().gravity().norm();
         assert!((total - 2.0 * g * 0.05).abs() < 0.01 * 2.0 * g * 0.05, "arrows add up to {total} m");
         // The floor's id is not a body: whichever geom comes first, the arrow is the
         // force on the box.
-        assert!(sim.object(floor).unwrap().body_handle().is_none());
+        assert!(sim.scene().object(floor).unwrap().body_handle().is_none());
         // No force reported, no arrow.
         let mut quiet = contacts[0];
         quiet.force = Vector3::zeros();
@@ -444,20 +444,22 @@ mod tests {
     fn a_hanging_pendulum_pulls_its_pivot_by_its_weight() {
         use ars_core::JointEnd;
         let mut sim = Simulation::new().unwrap();
-        let bob = sim.add_sphere(0.1, [0.0, 0.5, 0.0], Mass::Total(3.0)).unwrap();
-        let pivot =
-            sim.add_hinge_joint("pivot", bob, JointEnd::World, Some([0.0, 1.0, 0.0].into()), Vector3::z()).unwrap();
-        let handle = sim.joint(pivot).unwrap().ode().unwrap().handle();
-        assert!(joint_force_arrow(sim.world(), handle, 0.05).is_empty(), "no feedback asked for: no arrow");
-        sim.world_mut().joint_mut(handle).unwrap().enable_feedback();
+        let bob = sim.scene_mut().add_sphere(0.1, [0.0, 0.5, 0.0], Mass::Total(3.0)).unwrap();
+        let pivot = sim
+            .scene_mut()
+            .add_hinge_joint("pivot", bob, JointEnd::World, Some([0.0, 1.0, 0.0].into()), Vector3::z())
+            .unwrap();
+        let handle = sim.scene().joint(pivot).unwrap().ode().unwrap().handle();
+        assert!(joint_force_arrow(sim.scene().world(), handle, 0.05).is_empty(), "no feedback asked for: no arrow");
+        sim.scene_mut().world_mut().joint_mut(handle).unwrap().enable_feedback();
         sim.run_for(0.5).unwrap();
-        let arrow = joint_force_arrow(sim.world(), handle, 0.05);
+        let arrow = joint_force_arrow(sim.scene().world(), handle, 0.05);
         assert_eq!(arrow.len(), 3);
         let (start, tip) = arrow[0];
         // From the anchor, as ODE reports it from the bob (the joint's error: 1e-11 m).
         assert!((start - Point3::new(0.0, 1.0, 0.0)).norm() < 1e-9, "from the anchor: {start}");
         // The joint holds the bob up: 3 kg × g, upwards, at rest.
-        let expected = 3.0 * sim.gravity().norm() * 0.05;
+        let expected = 3.0 * sim.scene().gravity().norm() * 0.05;
         assert!(((tip - start).y - expected).abs() < 1e-6 * expected, "{start} to {tip}");
         assert!((tip - start).xz().norm() < 1e-9);
     }

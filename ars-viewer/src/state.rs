@@ -37,7 +37,7 @@ pub struct Selected {
 impl Selected {
     /// The body `id` of `sim` as it is now (`None` when it has no body, or is gone).
     pub fn of(sim: &Simulation, id: ObjectId) -> Option<Self> {
-        let object = sim.object(id).ok()?;
+        let object = sim.scene().object(id).ok()?;
         let body = object.body().ok()?;
         Some(Selected {
             id,

@@ -425,7 +425,7 @@ fn rgb_to_yuv420(rgb: &[u8], width: usize, height: usize, bottom_up: bool, out: 
 /// # struct P; impl ars_core::Hooks for P {}
 /// # impl ars_core::Program for P {
 /// #     fn create_sim_objects(&mut self, sim: &mut ars_core::Simulation) -> ars_core::Result<()> {
-/// #         sim.add_sphere(0.5, [1.0, 1.0, 1.0], ars_core::Mass::Total(1.0)).map(drop)
+/// #         sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], ars_core::Mass::Total(1.0)).map(drop)
 /// #     }
 /// # }
 /// let recorder = ars_viewer::VideoRecorder::new("pendulum.mp4").fps(30.0).size(800, 600);
@@ -500,13 +500,13 @@ impl VideoRecorder {
         let count = video_frame_count(duration, self.fps)?;
         let (frames, start) = {
             let sim = driver.simulation();
-            let shown = |id| sim.object(id).is_ok_and(|o| !matches!(o.shape(), ars_core::Shape::Plane { .. }));
-            if !sim.objects().any(|(_, id)| shown(id)) {
+            let shown = |id| sim.scene().object(id).is_ok_and(|o| !matches!(o.shape(), ars_core::Shape::Plane { .. }));
+            if !sim.scene().objects().any(|(_, id)| shown(id)) {
                 return Err(ViewerError::Settings(
                     "nothing to record: the simulation has no objects (a floor plane alone)".into(),
                 ));
             }
-            (frames_in(&sim, duration)?, sim.time())
+            (frames_in(&sim, duration)?, sim.scene().time())
         };
         let mut writer = VideoWriter::create(&self.path, width, height, self.fps)?;
         let mut renderer = recording_renderer(driver, view, self.size, &self.options)?;
@@ -515,7 +515,7 @@ impl VideoRecorder {
         let mut failure: Option<ViewerError> = None;
         // Pictures for every video frame due by the simulation's time now.
         let mut take = |sim: &Simulation, next: &mut u64| -> Result<()> {
-            while *next < count && sim.time() - start >= *next as f64 / fps - TIME_TOLERANCE {
+            while *next < count && sim.scene().time() - start >= *next as f64 / fps - TIME_TOLERANCE {
                 writer.add_raw(renderer.render_raw(sim)?)?;
                 *next += 1;
             }

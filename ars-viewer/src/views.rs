@@ -54,11 +54,11 @@ pub fn viewports(width: f32, height: f32, count: usize) -> Vec<Rect> {
 /// The point a follow view looks at: the selected body, else the followed object,
 /// else the first moving body.
 pub(crate) fn followed(sim: &Simulation, selected: Option<ObjectId>, follow: Option<&str>) -> Option<Point3<f64>> {
-    let by_id = |id: ObjectId| sim.body(id).ok().map(|b| b.position());
+    let by_id = |id: ObjectId| sim.scene().body(id).ok().map(|b| b.position());
     selected
         .and_then(by_id)
-        .or_else(|| follow.and_then(|name| sim.object(name).ok()).and_then(|o| o.position().ok()))
-        .or_else(|| sim.bodies().next().and_then(|(id, _)| by_id(id)))
+        .or_else(|| follow.and_then(|name| sim.scene().object(name).ok()).and_then(|o| o.position().ok()))
+        .or_else(|| sim.scene().bodies().next().and_then(|(id, _)| by_id(id)))
 }
 
 /// What a view shows.
@@ -448,9 +448,9 @@ mod tests {
         use ars_core::Mass;
         let mut sim = Simulation::new().unwrap();
         assert_eq!(followed(&sim, None, None), None);
-        let a = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-        let b = sim.add_sphere(0.1, [2.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-        sim.set_name(b, "b").unwrap();
+        let a = sim.scene_mut().add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+        let b = sim.scene_mut().add_sphere(0.1, [2.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+        sim.scene_mut().set_name(b, "b").unwrap();
         assert_eq!(followed(&sim, None, None), Some(Point3::new(1.0, 0.0, 0.0)));
         assert_eq!(followed(&sim, None, Some("b")), Some(Point3::new(2.0, 0.0, 0.0)));
         assert_eq!(followed(&sim, Some(a), Some("b")), Some(Point3::new(1.0, 0.0, 0.0)));

@@ -161,7 +161,7 @@ impl Hand {
         let (Some(mode), Some(id)) = (drag_mode(modifiers), self.selected) else { return false };
         let at = match pick(sim, ray.0, ray.1) {
             Some((hit, at)) if hit == id => at,
-            _ => match sim.body(id) {
+            _ => match sim.scene().body(id) {
                 Ok(b) => b.position(),
                 Err(_) => return false,
             },
@@ -200,7 +200,7 @@ impl Hand {
     /// body toward it at every step; paused, the body is moved there now.
     fn drag(&mut self, sim: &mut Simulation, ray: (Point3<f64>, Vector3<f64>), paused: bool) -> ars_core::Result<()> {
         let Some(grab) = self.grab.as_mut() else { return Ok(()) };
-        if sim.body(grab.object).is_err() {
+        if sim.scene().body(grab.object).is_err() {
             self.deselect(sim);
             return Ok(());
         }
@@ -220,9 +220,9 @@ impl Hand {
     /// The selected body outlined (its bounding box), and the drag's line.
     fn draw(&self, sim: &Simulation, window: &mut Window) {
         if let Some(id) = self.selected
-            && let Ok(object) = sim.object(id)
+            && let Ok(object) = sim.scene().object(id)
         {
-            let world = sim.world();
+            let world = sim.scene().world();
             let boxes: Vec<_> = object.geoms().filter_map(|g| world.geom(g).ok()).map(|g| g.aabb()).collect();
             if let Some((mut low, mut high)) = boxes.first().copied() {
                 for (l, h) in &boxes {
@@ -276,7 +276,7 @@ struct Feedback {
 impl Feedback {
     /// Forces drawn (`on`) or not from now on.
     fn show(&mut self, sim: &mut Simulation, on: bool) {
-        let world = sim.world_mut();
+        let world = sim.scene_mut().world_mut();
         if on {
             self.before = world.contact_feedback();
             crate::scene::report_forces(world);
@@ -528,7 +528,7 @@ pub(crate) fn drive_window<D: Driver>(
         }
         let font = Font::default();
         let mut paused = false;
-        let mut pacer = Pacer::new(runner.simulation().time());
+        let mut pacer = Pacer::new(runner.simulation().scene().time());
         let mut panel = gui::Panel::default();
         let started = Instant::now();
         let mut report = WindowReport::default();
@@ -551,7 +551,7 @@ pub(crate) fn drive_window<D: Driver>(
                 report.frames += 1;
                 // The first frame is drawn before the scene is (see `shown.update`).
                 if let Some(video) = video.as_deref_mut().filter(|_| report.frames > 1) {
-                    let time = runner.simulation().time();
+                    let time = runner.simulation().scene().time();
                     video.shown(time, || window.snap_image())?;
                 }
                 if wall.as_secs_f64() >= report.resident_mb.len() as f64 {
@@ -643,7 +643,7 @@ pub(crate) fn drive_window<D: Driver>(
                     match (key, action) {
                         (WindowKey::Space, Action::Press) => {
                             paused = !paused;
-                            pacer = Pacer::new(runner.simulation().time());
+                            pacer = Pacer::new(runner.simulation().scene().time());
                         }
                         (WindowKey::N, Action::Press) if paused => runner.step()?,
                         (WindowKey::R, Action::Press) => {
@@ -652,7 +652,7 @@ pub(crate) fn drive_window<D: Driver>(
                             shown.mirror.clear();
                             views.clear();
                             feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
-                            pacer = Pacer::new(runner.simulation().time());
+                            pacer = Pacer::new(runner.simulation().scene().time());
                         }
                         (WindowKey::J, Action::Press) => shown.mirror.show_joints = !shown.mirror.show_joints,
                         (WindowKey::Key1, Action::Press) => views.count = 1,
@@ -690,7 +690,7 @@ pub(crate) fn drive_window<D: Driver>(
                     }
                 }
                 if panel.speed != pacer.speed {
-                    pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                    pacer = Pacer::with_speed(runner.simulation().scene().time(), panel.speed);
                 }
                 if !paused && panel.fastest {
                     // As fast as the machine can: frames for about 30 ms, then draw.
@@ -698,20 +698,20 @@ pub(crate) fn drive_window<D: Driver>(
                     while budget.elapsed() < Duration::from_millis(30) {
                         runner.step_frame()?;
                     }
-                    pacer.measure(runner.simulation().time());
+                    pacer.measure(runner.simulation().scene().time());
                 } else if !paused {
                     let mut frames = 0;
-                    while runner.simulation().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
+                    while runner.simulation().scene().time() < pacer.target() && frames < MAX_CATCH_UP_FRAMES {
                         runner.step_frame()?;
                         frames += 1;
                     }
-                    pacer.behind = runner.simulation().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
+                    pacer.behind = runner.simulation().scene().time() < pacer.target() - 0.1 * pacer.speed.max(1.0);
                     if pacer.behind {
                         // Give up on the lost time rather than spiral: keep pacing from now.
                         pacer.wall_origin = Instant::now();
-                        pacer.sim_origin = runner.simulation().time();
+                        pacer.sim_origin = runner.simulation().scene().time();
                     }
-                    pacer.measure(runner.simulation().time());
+                    pacer.measure(runner.simulation().scene().time());
                 }
                 let status = gui::Status {
                     title: &title,
@@ -766,7 +766,7 @@ pub(crate) fn drive_window<D: Driver>(
                     match command {
                         gui::Command::TogglePause => {
                             paused = !paused;
-                            pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                            pacer = Pacer::with_speed(runner.simulation().scene().time(), panel.speed);
                         }
                         gui::Command::StepFrame => runner.step_frame()?,
                         gui::Command::StepPhysics => runner.step()?,
@@ -776,7 +776,7 @@ pub(crate) fn drive_window<D: Driver>(
                             shown.mirror.clear();
                             views.clear();
                             feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
-                            pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                            pacer = Pacer::with_speed(runner.simulation().scene().time(), panel.speed);
                         }
                         gui::Command::Screenshot => screenshot(&window, &title),
                         gui::Command::ToggleFollow => shown.toggle_follow(&runner.simulation()),
@@ -813,7 +813,7 @@ pub(crate) fn drive_window<D: Driver>(
                                 shown.mirror.clear();
                                 views.clear();
                                 feedback.rebuilt(&mut runner.simulation(), shown.mirror.show_forces);
-                                pacer = Pacer::with_speed(runner.simulation().time(), panel.speed);
+                                pacer = Pacer::with_speed(runner.simulation().scene().time(), panel.speed);
                                 title = format!("ARS: {}", path.display());
                                 panel.opened = Some(path.display().to_string());
                                 panel.error = opened.skipped.first().map(|first| {
@@ -861,7 +861,7 @@ pub(crate) fn drive_window<D: Driver>(
                 };
                 // Both lines wrap to the window's width (10 px margins).
                 let width = window.width() as f32 - 20.0;
-                let text = format!("t = {:.3} s   {status}", sim.time());
+                let text = format!("t = {:.3} s   {status}", sim.scene().time());
                 let (text, lines) = wrapped(&font, STATUS_SIZE, &text, "   ", width);
                 window.draw_text(
                     &text,
@@ -887,7 +887,7 @@ pub(crate) fn drive_window<D: Driver>(
         hand.deselect(&mut runner.simulation());
         outcome?;
         report.wall_seconds = started.elapsed().as_secs_f64();
-        report.simulated_seconds = runner.simulation().time();
+        report.simulated_seconds = runner.simulation().scene().time();
         Ok(report)
     })
 }

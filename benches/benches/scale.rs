@@ -45,7 +45,7 @@ fn spaced_spheres(space: SpaceKind, n: usize) -> Simulation {
     for k in 0..n {
         let (i, j) = (k % side, k / side);
         let p = [0.5 * i as f64, 2.0, 0.5 * j as f64];
-        sim.add_sphere(RADIUS, p, Mass::Total(1.0)).unwrap();
+        sim.scene_mut().add_sphere(RADIUS, p, Mass::Total(1.0)).unwrap();
     }
     sim
 }
@@ -68,7 +68,7 @@ fn pile(space: SpaceKind, layers: usize, settle: usize) -> Simulation {
         (0.0, -half - 0.05, [2.0 * half + 0.2, 4.0 * RADIUS, 0.1]),
     ] {
         let pose = Isometry3::translation(x, 2.0 * RADIUS, z);
-        sim.add_static(Shape::Box { edges: edges.into() }, pose).unwrap();
+        sim.scene_mut().add_static(Shape::Box { edges: edges.into() }, pose).unwrap();
     }
     for layer in 0..layers {
         let n = layers - layer;
@@ -76,7 +76,7 @@ fn pile(space: SpaceKind, layers: usize, settle: usize) -> Simulation {
         for i in 0..n {
             for j in 0..n {
                 let centre = |k: usize| 2.0 * RADIUS * (k as f64 - (n as f64 - 1.0) / 2.0);
-                sim.add_sphere(RADIUS, [centre(i), y, centre(j)], Mass::Total(1.0)).unwrap();
+                sim.scene_mut().add_sphere(RADIUS, [centre(i), y, centre(j)], Mass::Total(1.0)).unwrap();
             }
         }
     }
@@ -126,7 +126,7 @@ fn main() {
             ms_per_step(&mut sim, 1);
             let mut sim = pile(space, 3, 2);
             ms_per_step(&mut sim, 1);
-            assert!(sim.world().contacts().len() >= 14, "the pile rests on its contacts");
+            assert!(sim.scene().world().contacts().len() >= 14, "the pile rests on its contacts");
         }
         return;
     }
@@ -165,9 +165,9 @@ fn main() {
             row.sizes.push(Some(ms));
         }
         let mut sim = pile(space, 14, 250);
-        assert_eq!(sim.world().body_count(), 1015);
+        assert_eq!(sim.scene().world().body_count(), 1015);
         row.pile = ms_per_step(&mut sim, 15);
-        let contacts = sim.world().contacts().len();
+        let contacts = sim.scene().world().contacts().len();
         eprintln!("{name}: pile of 1,015 spheres: {:.2} ms/step, {contacts} contacts", row.pile);
         rows.push(row);
     }

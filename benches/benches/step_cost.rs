@@ -95,7 +95,7 @@ fn lidar_scan_seconds(scans: usize) -> f64 {
     let mut t: Vec<f64> = (0..scans)
         .map(|_| {
             let start = std::time::Instant::now();
-            black_box(lidar.measure(&pile.sim).unwrap());
+            black_box(lidar.measure(pile.sim.scene()).unwrap());
             start.elapsed().as_secs_f64()
         })
         .collect();
@@ -132,12 +132,12 @@ fn mesh_lidar_scan_seconds(scans: usize) -> f64 {
         }
     }
     let mut sim = Simulation::builder().space(SpaceKind::HASH).build().unwrap();
-    sim.add_trimesh_floor(vertices, triangles, [0.0, 0.0, 0.0]).unwrap();
+    sim.scene_mut().add_trimesh_floor(vertices, triangles, [0.0, 0.0, 0.0]).unwrap();
     let mut lidar = Lidar::new(360, std::f64::consts::TAU, 20.0).unwrap();
     let mut t: Vec<f64> = (0..scans)
         .map(|_| {
             let start = std::time::Instant::now();
-            black_box(lidar.measure(&sim).unwrap());
+            black_box(lidar.measure(sim.scene()).unwrap());
             start.elapsed().as_secs_f64()
         })
         .collect();
@@ -164,7 +164,7 @@ fn creation_seconds(n: usize) -> (f64, f64) {
     let sim = median(&|| {
         let mut sim = Simulation::builder().space(SpaceKind::HASH).build().unwrap();
         for i in 0..n {
-            sim.add_sphere(0.1, [i as f64, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+            sim.scene_mut().add_sphere(0.1, [i as f64, 1.0, 0.0], Mass::Total(1.0)).unwrap();
         }
         black_box(sim);
     });

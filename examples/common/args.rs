@@ -277,7 +277,7 @@ fn record<P: ars::Program>(
     }
     let (sim, written) = recorder.record(program, args.duration)?;
     if ars::interrupt::requested() {
-        eprintln!("interrupted (Ctrl-C) at t = {} s", sim.time());
+        eprintln!("interrupted (Ctrl-C) at t = {} s", sim.scene().time());
     }
     eprintln!("wrote {} frames into {}", written.len(), dir.display());
     Ok(sim)
@@ -379,8 +379,8 @@ struct CapturedVideo {
 impl CapturedVideo {
     /// Takes the video frames due by the simulation's time now.
     fn take(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
-        let start = *self.start.get_or_insert(sim.time());
-        while self.taken < self.count && sim.time() - start >= self.taken as f64 / self.fps - 1e-9 {
+        let start = *self.start.get_or_insert(sim.scene().time());
+        while self.taken < self.count && sim.scene().time() - start >= self.taken as f64 / self.fps - 1e-9 {
             self.writer.add_frame(self.renderer.render(sim)?)?;
             self.taken += 1;
         }

@@ -59,9 +59,9 @@ pub(crate) fn declare(
     let (mut objects, mut joints) = (Vec::new(), Vec::new());
     for name in targets {
         if reads_joints {
-            joints.push(sim.joint(name.as_str())?.id());
+            joints.push(sim.scene().joint(name.as_str())?.id());
         } else {
-            objects.push(sim.object(name.as_str())?.id());
+            objects.push(sim.scene().object(name.as_str())?.id());
         }
     }
     sim.add_sensor_of_kind(kind, &objects, &joints, every)
@@ -132,7 +132,7 @@ impl LidarSpec {
             lidar = lidar.planes(planes)?;
         }
         let lidar = match self.on {
-            Some(name) => lidar.on(sim.object(name.as_str())?.id(), self.offset),
+            Some(name) => lidar.on(sim.scene().object(name.as_str())?.id(), self.offset),
             None => lidar.at(self.offset),
         };
         match self.noise {

@@ -289,13 +289,13 @@ impl PySimulation {
             (None, None) => MassSpec::Custom { mass: 1.0, inertia: Matrix3::identity() },
         };
         self.with(py, move |sim| {
-            let id = sim.add_body_with_mass(shape, Point3::from(center), spec)?;
+            let id = sim.scene_mut().add_body_with_mass(shape, Point3::from(center), spec)?;
             name_object(sim, id, name)
         })
     }
 
     fn object_id(sim: &Simulation, name: &str) -> ars_core::Result<ObjectId> {
-        Ok(sim.object(name)?.id())
+        Ok(sim.scene().object(name)?.id())
     }
 
     fn end(sim: &Simulation, name: Option<&str>) -> ars_core::Result<JointEnd> {
@@ -309,12 +309,12 @@ impl PySimulation {
 /// Renames a new object if a name is given; returns its name.
 fn name_object(sim: &mut Simulation, id: ObjectId, name: Option<String>) -> ars_core::Result<String> {
     if let Some(name) = name
-        && let Err(e) = sim.set_name(id, &name)
+        && let Err(e) = sim.scene_mut().set_name(id, &name)
     {
         sim.remove_object(id)?;
         return Err(e);
     }
-    Ok(sim.object(id)?.name().to_string())
+    Ok(sim.scene().object(id)?.name().to_string())
 }
 
 #[pymethods]
@@ -380,9 +380,9 @@ impl PySimulation {
         self.with(py, |sim| {
             Ok(format!(
                 "<ars.Simulation t={} s, {} objects, {} joints>",
-                sim.time(),
-                sim.objects().count(),
-                sim.joints().count()
+                sim.scene().time(),
+                sim.scene().objects().count(),
+                sim.scene().joints().count()
             ))
         })
     }
@@ -390,26 +390,26 @@ impl PySimulation {
     /// Simulated time, s.
     #[getter]
     fn time(&self, py: Python<'_>) -> PyResult<f64> {
-        self.with(py, |sim| Ok(sim.time()))
+        self.with(py, |sim| Ok(sim.scene().time()))
     }
 
     /// Steps taken.
     #[getter]
     fn step_count(&self, py: Python<'_>) -> PyResult<u64> {
-        self.with(py, |sim| Ok(sim.step_count()))
+        self.with(py, |sim| Ok(sim.scene().step_count()))
     }
 
     /// The time step, s.
     #[getter]
     fn time_step(&self, py: Python<'_>) -> PyResult<f64> {
-        self.with(py, |sim| Ok(sim.time_step()))
+        self.with(py, |sim| Ok(sim.scene().time_step()))
     }
 
     /// Gravity, m/s², as a tuple.
     #[getter]
     fn gravity(&self, py: Python<'_>) -> PyResult<(f64, f64, f64)> {
         self.with(py, |sim| {
-            let g = sim.world().gravity();
+            let g = sim.scene().world().gravity();
             Ok((g.x, g.y, g.z))
         })
     }
@@ -417,47 +417,47 @@ impl PySimulation {
     /// Sets gravity, m/s².
     #[setter]
     fn set_gravity(&self, py: Python<'_>, gravity: Vec3) -> PyResult<()> {
-        self.with(py, move |sim| sim.world_mut().set_gravity(Vector3::from(gravity)))
+        self.with(py, move |sim| sim.scene_mut().world_mut().set_gravity(Vector3::from(gravity)))
     }
 
     /// Changes the time step for the next steps, s.
     #[setter]
     fn set_time_step(&self, py: Python<'_>, dt: f64) -> PyResult<()> {
-        self.with(py, move |sim| sim.set_time_step(dt))
+        self.with(py, move |sim| sim.scene_mut().set_time_step(dt))
     }
 
     /// Steps per frame (of `show`, of the original's programs and of hooks per frame).
     #[getter]
     fn steps_per_frame(&self, py: Python<'_>) -> PyResult<u32> {
-        self.with(py, |sim| Ok(sim.steps_per_frame()))
+        self.with(py, |sim| Ok(sim.scene().steps_per_frame()))
     }
 
     /// Frames started so far.
     #[getter]
     fn frame_count(&self, py: Python<'_>) -> PyResult<u64> {
-        self.with(py, |sim| Ok(sim.frame_count()))
+        self.with(py, |sim| Ok(sim.scene().frame_count()))
     }
 
     /// The global error reduction parameter (ERP), in [0, 1].
     #[getter]
     fn erp(&self, py: Python<'_>) -> PyResult<f64> {
-        self.with(py, |sim| Ok(sim.world().erp()))
+        self.with(py, |sim| Ok(sim.scene().world().erp()))
     }
 
     #[setter]
     fn set_erp(&self, py: Python<'_>, erp: f64) -> PyResult<()> {
-        self.with(py, move |sim| sim.world_mut().set_erp(erp))
+        self.with(py, move |sim| sim.scene_mut().world_mut().set_erp(erp))
     }
 
     /// The global constraint force mixing (CFM), ≥ 0.
     #[getter]
     fn cfm(&self, py: Python<'_>) -> PyResult<f64> {
-        self.with(py, |sim| Ok(sim.world().cfm()))
+        self.with(py, |sim| Ok(sim.scene().world().cfm()))
     }
 
     #[setter]
     fn set_cfm(&self, py: Python<'_>, cfm: f64) -> PyResult<()> {
-        self.with(py, move |sim| sim.world_mut().set_cfm(cfm))
+        self.with(py, move |sim| sim.scene_mut().world_mut().set_cfm(cfm))
     }
 
     /// The broad phase that finds the pairs of geoms that may touch, chosen when the
@@ -468,14 +468,14 @@ impl PySimulation {
     /// it, to give the original's numbers bit for bit).
     #[getter]
     fn space(&self, py: Python<'_>) -> PyResult<String> {
-        self.with(py, |sim| Ok(crate::kinds::space_name(sim.space_kind())))
+        self.with(py, |sim| Ok(crate::kinds::space_name(sim.scene().space_kind())))
     }
 
     /// The stepper: `"exact"` (`dWorldStep`, the ARS default) or `"quick"`
     /// (`dWorldQuickStep`, iterative, faster on large scenes, approximate).
     #[getter]
     fn stepper(&self, py: Python<'_>) -> PyResult<String> {
-        self.with(py, |sim| Ok(crate::kinds::stepper_name(sim.world().stepper())))
+        self.with(py, |sim| Ok(crate::kinds::stepper_name(sim.scene().world().stepper())))
     }
 
     /// Chooses the stepper for the next steps: `"exact"` or `"quick"` with
@@ -485,7 +485,7 @@ impl PySimulation {
         let quick_iterations: Option<u32> = quick_iterations.map(|n| count(py, "quick_iterations", n)).transpose()?;
         let stepper =
             crate::kinds::stepper(Some(stepper), quick_iterations).map_err(|(class, e)| raise(py, class, e))?;
-        self.with(py, move |sim| sim.world_mut().set_stepper(stepper))
+        self.with(py, move |sim| sim.scene_mut().world_mut().set_stepper(stepper))
     }
 
     /// Seeds the world's own random generator (used by ODE's QuickStep; each world
@@ -493,7 +493,7 @@ impl PySimulation {
     fn set_seed(&self, py: Python<'_>, seed: i64) -> PyResult<()> {
         let seed: u32 = count(py, "the seed", seed)?;
         self.with(py, move |sim| {
-            sim.world_mut().set_random_seed(seed);
+            sim.scene_mut().world_mut().set_random_seed(seed);
             Ok(())
         })
     }
@@ -657,7 +657,7 @@ impl PySimulation {
     #[pyo3(signature = (normal=[0.0, 1.0, 0.0], dist=0.0, *, name=None))]
     fn add_floor(&self, py: Python<'_>, normal: Vec3, dist: f64, name: Option<String>) -> PyResult<String> {
         self.with(py, move |sim| {
-            let id = sim.add_floor_plane(Vector3::from(normal), dist)?;
+            let id = sim.scene_mut().add_floor_plane(Vector3::from(normal), dist)?;
             name_object(sim, id, name)
         })
     }
@@ -678,7 +678,7 @@ impl PySimulation {
         self.with(py, move |sim| {
             let shape = Shape::TriMesh { vertices: vertices.into_iter().map(Point3::from).collect(), triangles: faces };
             let pose = ars_core::nalgebra::Isometry3::translation(center[0], center[1], center[2]);
-            let id = sim.add_static(shape, pose)?;
+            let id = sim.scene_mut().add_static(shape, pose)?;
             name_object(sim, id, name)
         })
     }
@@ -698,8 +698,8 @@ impl PySimulation {
     ) -> PyResult<String> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
-            let id = sim.add_hinge_joint(name, a, b, anchor.map(Point3::from), Vector3::from(axis))?;
-            Ok(sim.joint(id)?.name().to_string())
+            let id = sim.scene_mut().add_hinge_joint(name, a, b, anchor.map(Point3::from), Vector3::from(axis))?;
+            Ok(sim.scene().joint(id)?.name().to_string())
         })
     }
 
@@ -714,8 +714,8 @@ impl PySimulation {
     ) -> PyResult<String> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
-            let id = sim.add_slider_joint(name, a, b, Vector3::from(axis))?;
-            Ok(sim.joint(id)?.name().to_string())
+            let id = sim.scene_mut().add_slider_joint(name, a, b, Vector3::from(axis))?;
+            Ok(sim.scene().joint(id)?.name().to_string())
         })
     }
 
@@ -731,8 +731,8 @@ impl PySimulation {
     ) -> PyResult<String> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
-            let id = sim.add_ball_joint(name, a, b, anchor.map(Point3::from))?;
-            Ok(sim.joint(id)?.name().to_string())
+            let id = sim.scene_mut().add_ball_joint(name, a, b, anchor.map(Point3::from))?;
+            Ok(sim.scene().joint(id)?.name().to_string())
         })
     }
 
@@ -750,9 +750,15 @@ impl PySimulation {
     ) -> PyResult<String> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
-            let id =
-                sim.add_universal_joint(name, a, b, Point3::from(anchor), Vector3::from(axis1), Vector3::from(axis2))?;
-            Ok(sim.joint(id)?.name().to_string())
+            let id = sim.scene_mut().add_universal_joint(
+                name,
+                a,
+                b,
+                Point3::from(anchor),
+                Vector3::from(axis1),
+                Vector3::from(axis2),
+            )?;
+            Ok(sim.scene().joint(id)?.name().to_string())
         })
     }
 
@@ -760,8 +766,8 @@ impl PySimulation {
     fn add_fixed_joint(&self, py: Python<'_>, name: &str, obj1: &str, obj2: Option<&str>) -> PyResult<String> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
-            let id = sim.add_fixed_joint(name, a, b)?;
-            Ok(sim.joint(id)?.name().to_string())
+            let id = sim.scene_mut().add_fixed_joint(name, a, b)?;
+            Ok(sim.scene().joint(id)?.name().to_string())
         })
     }
 
@@ -773,7 +779,7 @@ impl PySimulation {
             let norm = direction.norm();
             let direction = if norm > 0.0 { direction / norm } else { direction };
             let ray = ars_core::world::raycast::Ray { origin: Point3::from(origin), direction };
-            let hit = sim.world().cast_ray(ray, length, None)?;
+            let hit = sim.scene().world().cast_ray(ray, length, None)?;
             Ok(hit.map(|h| (h.distance, (h.position.x, h.position.y, h.position.z))))
         })
     }
@@ -821,7 +827,7 @@ impl PySimulation {
         }
         let (name, links, joints, base) = self.with(py, move |sim| {
             let robot = sim.load_urdf(&path, &options)?;
-            let base = robot.base_joint.map(|id| sim.joint(id).map(|j| j.name().to_string())).transpose()?;
+            let base = robot.base_joint.map(|id| sim.scene().joint(id).map(|j| j.name().to_string())).transpose()?;
             let links: Vec<String> = robot.links.into_iter().map(|(n, _)| n).collect();
             let joints: Vec<String> = robot.joints.into_iter().map(|(n, _)| n).collect();
             Ok((robot.name, links, joints, base))
@@ -900,18 +906,18 @@ impl PySimulation {
     /// `<position>` or `<velocity>`), clamped to its control range and held until set
     /// again: MuJoCo's `data.ctrl`.
     fn set_control(&self, py: Python<'_>, name: &str, ctrl: f64) -> PyResult<()> {
-        self.with(py, |sim| sim.set_control(name, ctrl))
+        self.with(py, |sim| sim.scene_mut().set_control(name, ctrl))
     }
 
     /// The control of the actuator called `name`.
     fn control(&self, py: Python<'_>, name: &str) -> PyResult<f64> {
-        self.with(py, |sim| sim.control(name))
+        self.with(py, |sim| sim.scene().control(name))
     }
 
     /// The names of the actuators, in joint order.
     #[getter]
     fn actuators(&self, py: Python<'_>) -> PyResult<Vec<String>> {
-        self.with(py, |sim| Ok(sim.actuators().map(|(name, _)| name.to_string()).collect()))
+        self.with(py, |sim| Ok(sim.scene().actuators().map(|(name, _)| name.to_string()).collect()))
     }
 
     /// A piston: slides along and turns about the world `axis` through `anchor`.
@@ -927,8 +933,8 @@ impl PySimulation {
     ) -> PyResult<String> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
-            let id = sim.add_piston_joint(name, a, b, Point3::from(anchor), Vector3::from(axis))?;
-            Ok(sim.joint(id)?.name().to_string())
+            let id = sim.scene_mut().add_piston_joint(name, a, b, Point3::from(anchor), Vector3::from(axis))?;
+            Ok(sim.scene().joint(id)?.name().to_string())
         })
     }
 
@@ -945,7 +951,7 @@ impl PySimulation {
     /// Removes the joint `name`; the sensors reading it stop sampling.
     fn remove_joint(&self, py: Python<'_>, name: &str) -> PyResult<()> {
         self.with(py, |sim| {
-            let id = sim.joint(name)?.id();
+            let id = sim.scene().joint(name)?.id();
             sim.remove_joint(id)
         })
     }
@@ -984,10 +990,10 @@ impl PySimulation {
             max_contacts,
         };
         self.with(py, move |sim| match between {
-            None => sim.world_mut().set_default_surface(surface),
+            None => sim.scene_mut().world_mut().set_default_surface(surface),
             Some((a, b)) => {
                 let (a, b) = (Self::object_id(sim, &a)?, Self::object_id(sim, &b)?);
-                sim.set_contact_surface(a, b, surface)
+                sim.scene_mut().set_contact_surface(a, b, surface)
             }
         })
     }
@@ -1001,10 +1007,10 @@ impl PySimulation {
         between: Option<(String, String)>,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let s = self.with(py, move |sim| match between {
-            None => Ok(sim.world().default_surface()),
+            None => Ok(sim.scene().world().default_surface()),
             Some((a, b)) => {
                 let (a, b) = (Self::object_id(sim, &a)?, Self::object_id(sim, &b)?);
-                sim.contact_surface(a, b)
+                sim.scene().contact_surface(a, b)
             }
         })?;
         let dict = pyo3::types::PyDict::new(py);
@@ -1024,7 +1030,7 @@ impl PySimulation {
     fn clear_contact_surface(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
-            sim.clear_contact_surface(a, b)
+            sim.scene_mut().clear_contact_surface(a, b)
         })
     }
 
@@ -1032,7 +1038,7 @@ impl PySimulation {
     fn exclude_contacts(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
-            sim.exclude_contacts(a, b)
+            sim.scene_mut().exclude_contacts(a, b)
         })
     }
 
@@ -1040,15 +1046,15 @@ impl PySimulation {
     fn include_contacts(&self, py: Python<'_>, a: &str, b: &str) -> PyResult<()> {
         self.with(py, |sim| {
             let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
-            sim.include_contacts(a, b)
+            sim.scene_mut().include_contacts(a, b)
         })
     }
 
     /// The pairs of objects that never touch, by name.
     fn excluded_contacts(&self, py: Python<'_>) -> PyResult<Vec<(String, String)>> {
         self.with(py, |sim| {
-            let name = |id| sim.object(id).map(|o| o.name().to_string());
-            sim.excluded_contacts().into_iter().map(|(a, b)| Ok((name(a)?, name(b)?))).collect()
+            let name = |id| sim.scene().object(id).map(|o| o.name().to_string());
+            sim.scene().excluded_contacts().into_iter().map(|(a, b)| Ok((name(a)?, name(b)?))).collect()
         })
     }
 
@@ -1188,7 +1194,7 @@ impl PySimulation {
         let id = slf.get().with(slf.py(), move |sim| {
             let camera = ars_core::sensors::DepthCamera::new(width, height, fov_y, near, far)?;
             let camera = match on {
-                Some(name) => camera.on(sim.object(name.as_str())?.id(), offset),
+                Some(name) => camera.on(sim.scene().object(name.as_str())?.id(), offset),
                 None => camera.at(offset),
             };
             crate::sensors::Typed::add(sim, camera, every, crate::sensors::Typed::Depth)
@@ -1199,13 +1205,13 @@ impl PySimulation {
     /// The names of the objects, in alphabetical order.
     #[getter]
     fn objects(&self, py: Python<'_>) -> PyResult<Vec<String>> {
-        self.with(py, |sim| Ok(sim.objects().map(|(n, _)| n.to_string()).collect()))
+        self.with(py, |sim| Ok(sim.scene().objects().map(|(n, _)| n.to_string()).collect()))
     }
 
     /// The names of the joints, in alphabetical order.
     #[getter]
     fn joints(&self, py: Python<'_>) -> PyResult<Vec<String>> {
-        self.with(py, |sim| Ok(sim.joints().map(|(n, _)| n.to_string()).collect()))
+        self.with(py, |sim| Ok(sim.scene().joints().map(|(n, _)| n.to_string()).collect()))
     }
 
     /// The object named `name` (an unknown name raises `ars.UnknownNameError`, with the
@@ -1217,7 +1223,7 @@ impl PySimulation {
 
     /// The joint named `name`; see `body`.
     fn joint(slf: Bound<'_, Self>, name: &str) -> PyResult<Joint> {
-        slf.get().with(slf.py(), |sim| sim.joint(name).map(|_| ()))?;
+        slf.get().with(slf.py(), |sim| sim.scene().joint(name).map(|_| ()))?;
         Ok(Joint::new(slf.unbind(), name.to_string()))
     }
 

@@ -38,8 +38,11 @@ impl Body {
     ) -> PyResult<R> {
         let (name, cached) = (self.name.as_str(), &self.id);
         self.sim.get().with(py, |sim| {
-            let id =
-                by_name(cached, |id| sim.object(id).is_ok_and(|o| o.name() == name), || Ok(sim.object(name)?.id()))?;
+            let id = by_name(
+                cached,
+                |id| sim.scene().object(id).is_ok_and(|o| o.name() == name),
+                || Ok(sim.scene().object(name)?.id()),
+            )?;
             f(sim, id)
         })
     }
@@ -97,14 +100,14 @@ impl Body {
     /// Position of its centre (of mass), m: a new array.
     #[getter]
     fn position<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let p = self.read(py, |sim, id| sim.position(id))?;
+        let p = self.read(py, |sim, id| sim.scene().position(id))?;
         Ok(array3(py, &p.coords))
     }
 
     /// Rotation matrix (body to world), 3×3: a new array.
     #[getter]
     fn rotation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let r = self.read(py, |sim, id| sim.rotation(id))?;
+        let r = self.read(py, |sim, id| sim.scene().rotation(id))?;
         let rows: Vec<Vec<f64>> = (0..3).map(|i| (0..3).map(|j| r[(i, j)]).collect()).collect();
         Ok(PyArray2::from_vec2(py, &rows).expect("3 rows of 3"))
     }
@@ -112,28 +115,28 @@ impl Body {
     /// Linear velocity, m/s: a new array.
     #[getter]
     fn linear_velocity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let v = self.read(py, |sim, id| Ok(sim.body(id)?.linear_velocity()))?;
+        let v = self.read(py, |sim, id| Ok(sim.scene().body(id)?.linear_velocity()))?;
         Ok(array3(py, &v))
     }
 
     /// Angular velocity, rad/s: a new array.
     #[getter]
     fn angular_velocity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let w = self.read(py, |sim, id| Ok(sim.body(id)?.angular_velocity()))?;
+        let w = self.read(py, |sim, id| Ok(sim.scene().body(id)?.angular_velocity()))?;
         Ok(array3(py, &w))
     }
 
     /// Mass, kg.
     #[getter]
     fn mass(&self, py: Python<'_>) -> PyResult<f64> {
-        self.read(py, |sim, id| Ok(sim.body(id)?.mass()))
+        self.read(py, |sim, id| Ok(sim.scene().body(id)?.mass()))
     }
 
     /// Inertia tensor about its centre of mass in its own frame, kg·m²: a new 3×3
     /// array.
     #[getter]
     fn inertia<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let i = self.read(py, |sim, id| Ok(sim.body(id)?.inertia()))?;
+        let i = self.read(py, |sim, id| Ok(sim.scene().body(id)?.inertia()))?;
         let rows: Vec<Vec<f64>> = (0..3).map(|r| (0..3).map(|c| i[(r, c)]).collect()).collect();
         Ok(PyArray2::from_vec2(py, &rows).expect("3 rows of 3"))
     }
@@ -143,94 +146,94 @@ impl Body {
     /// can hand them out as its own bound methods.
     #[pyo3(name = "_position")]
     fn position_tuple(&self, py: Python<'_>) -> PyResult<Tuple3> {
-        let p = self.read(py, |sim, id| sim.position(id))?;
+        let p = self.read(py, |sim, id| sim.scene().position(id))?;
         Ok((p.x, p.y, p.z))
     }
 
     /// Rotation matrix (body to world) as a tuple of 9, row by row (the original API's).
     #[pyo3(name = "_rotation")]
     fn rotation_tuple(&self, py: Python<'_>) -> PyResult<Tuple9> {
-        let r = self.read(py, |sim, id| sim.rotation(id))?;
+        let r = self.read(py, |sim, id| sim.scene().rotation(id))?;
         Ok((r[(0, 0)], r[(0, 1)], r[(0, 2)], r[(1, 0)], r[(1, 1)], r[(1, 2)], r[(2, 0)], r[(2, 1)], r[(2, 2)]))
     }
 
     /// Linear velocity, m/s, as a tuple (the original API's).
     #[pyo3(name = "_linear_velocity")]
     fn linear_velocity_tuple(&self, py: Python<'_>) -> PyResult<Tuple3> {
-        let v = self.read(py, |sim, id| Ok(sim.body(id)?.linear_velocity()))?;
+        let v = self.read(py, |sim, id| Ok(sim.scene().body(id)?.linear_velocity()))?;
         Ok((v.x, v.y, v.z))
     }
 
     /// Angular velocity, rad/s, as a tuple (the original API's).
     #[pyo3(name = "_angular_velocity")]
     fn angular_velocity_tuple(&self, py: Python<'_>) -> PyResult<Tuple3> {
-        let w = self.read(py, |sim, id| Ok(sim.body(id)?.angular_velocity()))?;
+        let w = self.read(py, |sim, id| Ok(sim.scene().body(id)?.angular_velocity()))?;
         Ok((w.x, w.y, w.z))
     }
 
     /// Inertia tensor (as `inertia`) as a tuple of three row tuples (the original API's).
     #[pyo3(name = "_inertia")]
     fn inertia_tuple(&self, py: Python<'_>) -> PyResult<(Tuple3, Tuple3, Tuple3)> {
-        let i = self.read(py, |sim, id| Ok(sim.body(id)?.inertia()))?;
+        let i = self.read(py, |sim, id| Ok(sim.scene().body(id)?.inertia()))?;
         let row = |r: usize| (i[(r, 0)], i[(r, 1)], i[(r, 2)]);
         Ok((row(0), row(1), row(2)))
     }
 
     /// Moves it to `position` (m).
     fn set_position(&self, py: Python<'_>, position: Vec3) -> PyResult<()> {
-        self.read(py, |sim, id| sim.set_position(id, Point3::from(position)))
+        self.read(py, |sim, id| sim.scene_mut().set_position(id, Point3::from(position)))
     }
 
     /// Sets its linear velocity (m/s).
     fn set_linear_velocity(&self, py: Python<'_>, velocity: Vec3) -> PyResult<()> {
-        self.read(py, |sim, id| sim.body_mut(id)?.set_linear_velocity(Vector3::from(velocity)))
+        self.read(py, |sim, id| sim.scene_mut().body_mut(id)?.set_linear_velocity(Vector3::from(velocity)))
     }
 
     /// Sets its angular velocity (rad/s).
     fn set_angular_velocity(&self, py: Python<'_>, velocity: Vec3) -> PyResult<()> {
-        self.read(py, |sim, id| sim.body_mut(id)?.set_angular_velocity(Vector3::from(velocity)))
+        self.read(py, |sim, id| sim.scene_mut().body_mut(id)?.set_angular_velocity(Vector3::from(velocity)))
     }
 
     /// Adds a force (N, world frame) at its centre of mass for the next step.
     fn add_force(&self, py: Python<'_>, force: Vec3) -> PyResult<()> {
-        self.read(py, |sim, id| sim.body_mut(id)?.add_force(Vector3::from(force)))
+        self.read(py, |sim, id| sim.scene_mut().body_mut(id)?.add_force(Vector3::from(force)))
     }
 
     /// Sets its orientation to `rotation` (a 3×3 rotation matrix, world frame), about
     /// its centre; refused (`ars.InputError`) if it is not a rotation.
     fn set_rotation(&self, py: Python<'_>, rotation: [[f64; 3]; 3]) -> PyResult<()> {
-        self.read(py, move |sim, id| sim.set_rotation(id, self::rotation(rotation)?))
+        self.read(py, move |sim, id| sim.scene_mut().set_rotation(id, self::rotation(rotation)?))
     }
 
     /// Moves and turns it at once: its centre to `position`, its orientation to
     /// `rotation` (3×3, identity if not given); velocities are kept.
     #[pyo3(signature = (position, rotation=None))]
     fn set_pose(&self, py: Python<'_>, position: Vec3, rotation: Option<[[f64; 3]; 3]>) -> PyResult<()> {
-        self.read(py, move |sim, id| sim.set_pose(id, pose(position, rotation)?))
+        self.read(py, move |sim, id| sim.scene_mut().set_pose(id, pose(position, rotation)?))
     }
 
     /// Moves it by the position of the object `other` (the original's
     /// `offset_by_object`).
     fn offset_by_object(&self, py: Python<'_>, other: &str) -> PyResult<()> {
         self.read(py, move |sim, id| {
-            let other = sim.object(other)?.id();
-            sim.offset_by_object(id, other)
+            let other = sim.scene().object(other)?.id();
+            sim.scene_mut().offset_by_object(id, other)
         })
     }
 
     /// Turns it by `angle` (rad) about the world `axis`, about its centre.
     fn rotate(&self, py: Python<'_>, axis: Vec3, angle: f64) -> PyResult<()> {
-        self.read(py, |sim, id| sim.rotate(id, Vector3::from(axis), angle))
+        self.read(py, |sim, id| sim.scene_mut().rotate(id, Vector3::from(axis), angle))
     }
 
     /// Moves it by `offset` (m).
     fn offset_by_position(&self, py: Python<'_>, offset: Vec3) -> PyResult<()> {
-        self.read(py, |sim, id| sim.offset_by_position(id, Vector3::from(offset)))
+        self.read(py, |sim, id| sim.scene_mut().offset_by_position(id, Vector3::from(offset)))
     }
 
     /// The colour the viewer draws it with (RGB, each in [0, 1]).
     fn set_color(&self, py: Python<'_>, color: [f32; 3]) -> PyResult<()> {
-        self.read(py, |sim, id| sim.set_color(id, color))
+        self.read(py, |sim, id| sim.scene_mut().set_color(id, color))
     }
 
     fn __repr__(&self) -> String {
@@ -259,7 +262,11 @@ impl Joint {
     ) -> PyResult<R> {
         let (name, cached) = (self.name.as_str(), &self.id);
         self.sim.get().with(py, |sim| {
-            let id = by_name(cached, |id| sim.joint(id).is_ok_and(|j| j.name() == name), || Ok(sim.joint(name)?.id()))?;
+            let id = by_name(
+                cached,
+                |id| sim.scene().joint(id).is_ok_and(|j| j.name() == name),
+                || Ok(sim.scene().joint(name)?.id()),
+            )?;
             f(sim, id)
         })
     }
@@ -277,7 +284,7 @@ impl Joint {
     /// freedom.
     #[getter]
     fn angle(&self, py: Python<'_>) -> PyResult<f64> {
-        self.act(py, |sim, id| sim.joint_position(id))
+        self.act(py, |sim, id| sim.scene().joint_position(id))
     }
 
     /// Same as `angle` (the word for sliders).
@@ -289,23 +296,23 @@ impl Joint {
     /// Rate of `angle`, rad/s (or m/s).
     #[getter]
     fn rate(&self, py: Python<'_>) -> PyResult<f64> {
-        self.act(py, |sim, id| sim.joint_rate(id))
+        self.act(py, |sim, id| sim.scene().joint_rate(id))
     }
 
     /// Adds a torque (N·m) about a rotary joint's axis for the next step.
     pub(crate) fn add_torque(&self, py: Python<'_>, torque: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.add_torque(torque))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.add_torque(torque))
     }
 
     /// Adds a force (N) along a slider's axis for the next step.
     fn add_force(&self, py: Python<'_>, force: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.add_force(force))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.add_force(force))
     }
 
     /// Drives the joint at `speed` (rad/s or m/s) with at most `max_force` (N·m or N);
     /// `max_force = 0` turns the motor off.
     fn set_speed(&self, py: Python<'_>, speed: f64, max_force: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_speed(speed, max_force))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_speed(speed, max_force))
     }
 
     /// Sets one of ODE's parameters of its first axis, by name: `"lo_stop"`,
@@ -341,18 +348,18 @@ impl Joint {
                 return Err(crate::errors::to_py(py, error));
             }
         };
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_param(param, value))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_param(param, value))
     }
 
     /// Viscous friction: `-coefficient · rate` every step (N·m·s/rad or N·s/m; 0: off).
     fn set_viscous_friction(&self, py: Python<'_>, coefficient: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_viscous_friction(coefficient))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_viscous_friction(coefficient))
     }
 
     /// A spring: `-stiffness · (angle - rest)` every step (N·m/rad or N/m; 0: off).
     #[pyo3(signature = (stiffness, rest=0.0))]
     fn set_spring(&self, py: Python<'_>, stiffness: f64, rest: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_spring(stiffness, rest))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_spring(stiffness, rest))
     }
 
     /// Drives the joint in native code every step: `kind` is `"torque"` (the torque
@@ -396,7 +403,7 @@ impl Joint {
         };
         let kind = kind.map(str::to_string);
         self.act(py, move |sim, id| {
-            let mut joint = sim.joint_mut(id)?;
+            let mut joint = sim.scene_mut().joint_mut(id)?;
             match kind.as_deref() {
                 None => {
                     joint.clear_controller();
@@ -431,32 +438,34 @@ impl Joint {
     /// `"fixed"`.
     #[getter]
     fn kind(&self, py: Python<'_>) -> PyResult<String> {
-        self.act(py, |sim, id| Ok(format!("{:?}", sim.joint(id)?.joint_type()).to_lowercase()))
+        self.act(py, |sim, id| Ok(format!("{:?}", sim.scene().joint(id)?.joint_type()).to_lowercase()))
     }
 
     /// Dry (Coulomb) friction: the joint resists motion with up to `max_effort` (N·m
     /// or N; 0: off).
     fn set_dry_friction(&self, py: Python<'_>, max_effort: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_dry_friction(max_effort))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_dry_friction(max_effort))
     }
 
     /// Limits of its actuator: the largest `effort` (N·m or N) and `velocity` (rad/s
     /// or m/s) its motor and controller may use (`math.inf`: none).
     #[pyo3(signature = (effort=f64::INFINITY, velocity=f64::INFINITY))]
     fn set_actuator_limits(&self, py: Python<'_>, effort: f64, velocity: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_actuator_limits(ars_core::ActuatorLimits { effort, velocity }))
+        self.act(py, |sim, id| {
+            sim.scene_mut().joint_mut(id)?.set_actuator_limits(ars_core::ActuatorLimits { effort, velocity })
+        })
     }
 
     /// Makes it follow the joint `leader`: its position is held at `multiplier ·
     /// leader + offset` (URDF's `<mimic>`).
     #[pyo3(signature = (leader, multiplier=1.0, offset=0.0))]
     fn set_mimic(&self, py: Python<'_>, leader: &str, multiplier: f64, offset: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_mimic(leader, multiplier, offset))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_mimic(leader, multiplier, offset))
     }
 
     /// Stops following a leader (see `set_mimic`).
     fn clear_mimic(&self, py: Python<'_>) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.clear_mimic())
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.clear_mimic())
     }
 
     /// The torques (N·m) or forces (N) put on it this step so far, by where they
@@ -464,7 +473,7 @@ impl Joint {
     /// `"friction"` (viscous) and `"total"`.
     #[getter]
     fn efforts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
-        let e = self.act(py, |sim, id| sim.joint_efforts(id))?;
+        let e = self.act(py, |sim, id| sim.scene().joint_efforts(id))?;
         let dict = pyo3::types::PyDict::new(py);
         dict.set_item("added", e.added)?;
         dict.set_item("controller", e.controller)?;
@@ -475,7 +484,7 @@ impl Joint {
 
     /// Stops (limits) of its first degree of freedom (±inf: none).
     fn set_limits(&self, py: Python<'_>, low: f64, high: f64) -> PyResult<()> {
-        self.act(py, |sim, id| sim.joint_mut(id)?.set_limits(low, high))
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_limits(low, high))
     }
 
     fn __repr__(&self) -> String {

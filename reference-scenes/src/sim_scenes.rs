@@ -21,7 +21,7 @@ impl SimScene {
     /// The thesis' falling ball (C twin: `falling_sphere.c`).
     pub fn falling_sphere() -> Self {
         let mut sim = Self::with_floor(SpaceKind::Simple);
-        sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).expect("a valid sphere");
+        sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).expect("a valid sphere");
         SimScene { sim }
     }
 
@@ -31,9 +31,9 @@ impl SimScene {
         for i in 0..count {
             let p = drop_pile_position(i);
             if i % 2 == 0 {
-                sim.add_sphere(0.2, p, Mass::Total(1.0)).expect("a valid sphere");
+                sim.scene_mut().add_sphere(0.2, p, Mass::Total(1.0)).expect("a valid sphere");
             } else {
-                sim.add_box([0.3, 0.3, 0.3], p, Mass::Total(1.0)).expect("a valid box");
+                sim.scene_mut().add_box([0.3, 0.3, 0.3], p, Mass::Total(1.0)).expect("a valid box");
             }
         }
         SimScene { sim }
@@ -68,8 +68,8 @@ impl SimScene {
     /// Position, quaternion and velocities of the `i`-th body in creation order, as
     /// [`CScene::body_state`](crate::CScene::body_state) has them.
     pub fn body_state(&self, i: usize) -> crate::BodyState {
-        let (_, handle) = self.sim.bodies().nth(i).expect("a body of the scene");
-        let b = self.sim.world().body(handle).expect("a live body");
+        let (_, handle) = self.sim.scene().bodies().nth(i).expect("a body of the scene");
+        let b = self.sim.scene().world().body(handle).expect("a live body");
         let (p, q, v, w) = (b.position(), b.quaternion(), b.linear_velocity(), b.angular_velocity());
         [p.x, p.y, p.z, q.w, q.i, q.j, q.k, v.x, v.y, v.z, w.x, w.y, w.z]
     }

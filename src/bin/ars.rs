@@ -228,12 +228,12 @@ impl Program for FileProgram {
         };
         if sim.sensor_tables().is_empty() {
             // Something to write: every body's position, or a robot's joints.
-            let moving: Vec<_> = sim.joints().map(|(_, id)| id).filter(|id| is_moving(&sim, *id)).collect();
+            let moving: Vec<_> = sim.scene().joints().map(|(_, id)| id).filter(|id| is_moving(&sim, *id)).collect();
             if self.is_urdf() && !moving.is_empty() {
-                let positions = JointPositions::new(&sim, &moving)?;
+                let positions = JointPositions::new(sim.scene(), &moving)?;
                 sim.add_sensor(positions)?;
             } else {
-                let bodies: Vec<_> = sim.bodies().map(|(id, _)| id).collect();
+                let bodies: Vec<_> = sim.scene().bodies().map(|(id, _)| id).collect();
                 for id in bodies {
                     sim.add_sensor(Gps::new(id))?;
                 }
@@ -242,9 +242,9 @@ impl Program for FileProgram {
         self.summary = format!(
             "{}: {} objects, {} joints, t = {} s",
             self.path.display(),
-            sim.objects().count(),
-            sim.joints().count(),
-            sim.time()
+            sim.scene().objects().count(),
+            sim.scene().joints().count(),
+            sim.scene().time()
         );
         Ok(sim)
     }
@@ -256,7 +256,9 @@ impl Program for FileProgram {
 
 /// A joint with one position to write (a hinge, slider or piston).
 fn is_moving(sim: &Simulation, joint: ars::JointId) -> bool {
-    sim.joint(joint).is_ok_and(|j| matches!(j.joint_type(), JointType::Hinge | JointType::Slider | JointType::Piston))
+    sim.scene()
+        .joint(joint)
+        .is_ok_and(|j| matches!(j.joint_type(), JointType::Hinge | JointType::Slider | JointType::Piston))
 }
 
 /// Writes every sensor's records as one CSV table.
@@ -301,7 +303,11 @@ fn run(command: &Command) -> Result<(), Box<dyn std::error::Error>> {
             }
             let sim = runner.into_simulation();
             println!("{}", program.summary);
-            println!("ran to t = {} s ({} steps) in {wall:.3} s of wall time", sim.time(), sim.step_count());
+            println!(
+                "ran to t = {} s ({} steps) in {wall:.3} s of wall time",
+                sim.scene().time(),
+                sim.scene().step_count()
+            );
             if let Some(path) = &command.csv {
                 write_csv(&sim, path, command.every)?;
             }
@@ -342,7 +348,7 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
             }
         };
         println!("{}", program.summary);
-        println!("closed at t = {} s ({} steps)", sim.time(), sim.step_count());
+        println!("closed at t = {} s ({} steps)", sim.scene().time(), sim.scene().step_count());
         if let Some(path) = &command.csv {
             write_csv(&sim, path, command.every)?;
         }
@@ -358,7 +364,7 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
         println!("{}", program.summary);
         println!(
             "recorded t = {} s: {} frames ({} s at {} frames/s, {} bytes) into {}",
-            sim.time(),
+            sim.scene().time(),
             video.frames,
             video.duration,
             video.fps,
@@ -380,7 +386,12 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
         }
         let (sim, replay) = recorder.record_to(program, command.duration.unwrap_or(10.0), path)?;
         println!("{}", program.summary);
-        println!("recorded t = {} s: a replay of {} frames into {}", sim.time(), replay.frames(), path.display());
+        println!(
+            "recorded t = {} s: a replay of {} frames into {}",
+            sim.scene().time(),
+            replay.frames(),
+            path.display()
+        );
         if let Some(csv) = &command.csv {
             write_csv(&sim, csv, command.every)?;
         }
@@ -397,7 +408,7 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
     }
     let (sim, written) = recorder.record(program, command.duration.unwrap_or(10.0))?;
     println!("{}", program.summary);
-    println!("recorded t = {} s: {} frames into {}", sim.time(), written.len(), dir.display());
+    println!("recorded t = {} s: {} frames into {}", sim.scene().time(), written.len(), dir.display());
     if let Some(path) = &command.csv {
         write_csv(&sim, path, command.every)?;
     }

@@ -182,7 +182,7 @@ pub struct MjcfActuator {
     pub actuator: Actuator,
 }
 
-/// What [`Scene::load_mjcf`] made.
+/// What [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) made.
 #[derive(Clone, Debug, Default)]
 pub struct MjcfModel {
     /// The model's name (`<mujoco model>`).
@@ -207,9 +207,7 @@ pub struct MjcfModel {
     /// armature of the joint that moves it, in the object's frame, kg·m² (see the module
     /// docs): subtract it to compare the object's inertia with MuJoCo's `body_inertia`.
     pub armature: Vec<(String, Matrix3<f64>)>,
-    /// The sensors read, in the file's order: made by
-    /// [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) (a scene alone has no
-    /// sensors: [`Scene::load_mjcf`] lists them unmade).
+    /// The sensors read, in the file's order, each with the ARS sensor made of it.
     pub sensors: Vec<MjcfSensor>,
     /// The named `<site>`s of the bodies, in the file's order.
     pub sites: Vec<MjcfSite>,
@@ -1621,15 +1619,9 @@ fn placement(options: &MjcfOptions) -> Isometry3<f64> {
 }
 
 impl Scene {
-    /// Loads the MJCF model in `path` (see the [module docs](self)).
-    pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the MJCF file", path, &e))?;
-        self.load_mjcf_text(&text, &path.display().to_string(), options)
-    }
-
-    /// Loads an MJCF model from its text; `file` names it in errors.
-    pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
+    /// Makes the bodies, joints and actuators of an MJCF model from its text, not its
+    /// sensors (a scene has none); `file` names it in errors.
+    pub(crate) fn insert_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
         let model = read(file, text, options).map_err(|p| Error::Format {
             format: "MJCF",
             file: p.file.unwrap_or_else(|| file.to_string()),
@@ -1953,17 +1945,18 @@ impl Scene {
 
 /// Loads MJCF models with their sensors.
 impl crate::Simulation {
-    /// Loads the MJCF model in `path` as [`Scene::load_mjcf`] does, and makes its
-    /// sensors ([`MjcfModel::sensors`]), sampled after every step.
+    /// Loads the MJCF model in `path` (see the [module docs](self)) with its sensors
+    /// ([`MjcfModel::sensors`]), sampled after every step.
     pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
-        let model = self.scene_mut().load_mjcf(path, options)?;
-        self.make_mjcf_sensors(model)
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the MJCF file", path, &e))?;
+        self.load_mjcf_text(&text, &path.display().to_string(), options)
     }
 
     /// Loads an MJCF model from its text with its sensors (see
     /// [`load_mjcf`](Self::load_mjcf)); `file` names it in errors.
     pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
-        let model = self.scene_mut().load_mjcf_text(text, file, options)?;
+        let model = self.scene.insert_mjcf_text(text, file, options)?;
         self.make_mjcf_sensors(model)
     }
 
@@ -1981,9 +1974,9 @@ impl crate::Simulation {
                 "jointpos" | "jointvel" => {
                     let joint = model.joint(target).ok_or_else(|| unknown_target(target))?;
                     if kind == "jointpos" {
-                        self.add_sensor(JointPositions::new(self, &[joint])?)?.into()
+                        self.add_sensor(JointPositions::new(&self.scene, &[joint])?)?.into()
                     } else {
-                        self.add_sensor(JointVelocities::new(self, &[joint])?)?.into()
+                        self.add_sensor(JointVelocities::new(&self.scene, &[joint])?)?.into()
                     }
                 }
                 _ => {

@@ -68,10 +68,10 @@ impl Simulation {
     /// # std::fs::create_dir_all(&dir).unwrap();
     /// use ars_core::{Mass, Simulation};
     /// let mut sim = Simulation::new()?;
-    /// sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
+    /// sim.scene_mut().add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
     /// sim.save_scene_to(dir.join("ball.json"))?;
     /// let opened = Simulation::open(dir.join("ball.json"))?;
-    /// assert_eq!(opened.simulation.objects().count(), 1);
+    /// assert_eq!(opened.simulation.scene().objects().count(), 1);
     /// assert!(Simulation::open(dir.join("ball.txt")).is_err());
     /// # Ok::<(), ars_core::Error>(())
     /// ```
@@ -95,7 +95,7 @@ impl Simulation {
                 let mut simulation = Simulation::builder().space(SpaceKind::Simple).build()?;
                 let model = simulation.load_mjcf(path, &MjcfOptions::new().base_pose(base).skip_unsupported(true))?;
                 if let Some(gravity) = model.gravity {
-                    simulation.world_mut().set_gravity(gravity)?;
+                    simulation.scene_mut().world_mut().set_gravity(gravity)?;
                 }
                 Ok(OpenedFile { simulation, skipped: model.skipped })
             }

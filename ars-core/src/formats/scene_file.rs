@@ -129,8 +129,9 @@ pub struct SensorFile {
 impl SensorFile {
     /// Adds the sensor to `sim` (its objects and joints looked up by name).
     fn add_to(&self, sim: &mut Simulation) -> Result<()> {
-        let objects = self.objects.iter().map(|n| Ok(sim.object(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
-        let joints = self.joints.iter().map(|n| Ok(sim.joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
+        let objects =
+            self.objects.iter().map(|n| Ok(sim.scene().object(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
+        let joints = self.joints.iter().map(|n| Ok(sim.scene().joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
         sim.add_sensor_described(&self.kind, &objects, &joints, self.period, self.noise, self.settings.as_ref())
             .map(drop)
     }
@@ -265,7 +266,7 @@ impl WorldJointFile {
     /// Makes the joint in `sim`.
     fn add_to(&self, sim: &mut Simulation) -> Result<()> {
         let body = |name: &str| -> Result<crate::BodyHandle> {
-            let object = sim.object(name)?;
+            let object = sim.scene().object(name)?;
             object.body_handle().ok_or_else(|| Error::NoBody { operation: "a joint", object: name.to_string() })
         };
         let builder = JointBuilder::new(self.kind.clone());
@@ -273,7 +274,7 @@ impl WorldJointFile {
             Some(o) => builder.between(body(&self.object1)?, body(o)?),
             None => builder.to_world(body(&self.object1)?),
         };
-        sim.world_mut().insert_joint(builder).map(drop)
+        sim.scene_mut().world_mut().insert_joint(builder).map(drop)
     }
 }
 
@@ -312,7 +313,7 @@ impl Simulation {
     /// (the state remakes them where they were made); without, where they stand after
     /// the first step.
     pub(crate) fn scene_structure(&self, exact: bool) -> Result<SceneFile> {
-        let world = self.world();
+        let world = self.scene.world();
         let mut objects = Vec::new();
         for (_, data) in self.scene.objects_in_creation_order() {
             let body = match data.body {
@@ -354,10 +355,10 @@ impl Simulation {
         let mut scene_joints: Vec<_> = self.scene.joints_in_creation_order().collect();
         scene_joints.sort_by_key(|d| serial(d.handle));
         for data in scene_joints {
-            let name_of = |o| self.object(o).map(|v| v.name().to_string());
+            let name_of = |o| self.scene.object(o).map(|v| v.name().to_string());
             // Before any step, the joint as it was created (the same ODE calls again);
             // after, where its anchor and axis are now.
-            let kind = if self.step_count() == 0 || exact {
+            let kind = if self.scene.step_count() == 0 || exact {
                 data.creation.clone()
             } else {
                 let ode = world.joint(data.handle)?;
@@ -402,7 +403,7 @@ impl Simulation {
                 mimic: data
                     .mimic
                     .map(|m| -> Result<MimicFile> {
-                        let leader = self.joint(m.leader)?.name().to_string();
+                        let leader = self.scene.joint(m.leader)?.name().to_string();
                         Ok(MimicFile { leader, multiplier: m.multiplier, offset: m.offset })
                     })
                     .transpose()?,
@@ -416,8 +417,10 @@ impl Simulation {
                 unsaved_sensors.push(d.kind);
                 continue;
             };
-            let objects = d.objects.iter().map(|o| Ok(self.object(*o)?.name().to_string())).collect::<Result<_>>()?;
-            let joints = d.joints.iter().map(|j| Ok(self.joint(*j)?.name().to_string())).collect::<Result<_>>()?;
+            let objects =
+                d.objects.iter().map(|o| Ok(self.scene.object(*o)?.name().to_string())).collect::<Result<_>>()?;
+            let joints =
+                d.joints.iter().map(|j| Ok(self.scene.joint(*j)?.name().to_string())).collect::<Result<_>>()?;
             sensors.push(SensorFile {
                 kind: kind.to_string(),
                 objects,
@@ -434,27 +437,33 @@ impl Simulation {
             state: None,
             state_not_saved: None,
             gravity: world.gravity(),
-            time_step: self.time_step(),
-            steps_per_frame: self.steps_per_frame(),
+            time_step: self.scene.time_step(),
+            steps_per_frame: self.scene.steps_per_frame(),
             erp: world.erp(),
             cfm: world.cfm(),
             stepper: world.stepper(),
             surface: world.default_surface(),
             pair_surfaces: self
+                .scene()
                 .contact_surfaces()
                 .into_iter()
                 .map(|(a, b, surface)| {
-                    Ok(PairSurfaceFile { a: self.object(a)?.name().into(), b: self.object(b)?.name().into(), surface })
+                    Ok(PairSurfaceFile {
+                        a: self.scene.object(a)?.name().into(),
+                        b: self.scene.object(b)?.name().into(),
+                        surface,
+                    })
                 })
                 .collect::<Result<_>>()?,
             excluded_contacts: self
+                .scene()
                 .excluded_contacts()
                 .into_iter()
-                .map(|(a, b)| Ok((self.object(a)?.name().to_string(), self.object(b)?.name().to_string())))
+                .map(|(a, b)| Ok((self.scene.object(a)?.name().to_string(), self.scene.object(b)?.name().to_string())))
                 .collect::<Result<_>>()?,
-            space: self.space_kind(),
-            time: self.time(),
-            step_count: self.step_count(),
+            space: self.scene.space_kind(),
+            time: self.scene.time(),
+            step_count: self.scene.step_count(),
             objects,
             joints,
             world_joints,
@@ -463,7 +472,7 @@ impl Simulation {
 
     /// The joints made through the world (hinge-2 joints, motors...), not the scene.
     fn world_joint_files(&self) -> Result<Vec<WorldJointFile>> {
-        let world = self.world();
+        let world = self.scene.world();
         let scene_handles: Vec<crate::JointHandle> = self.scene.joints_in_creation_order().map(|d| d.handle).collect();
         let mut scene_serials: Vec<u64> =
             scene_handles.iter().filter_map(|h| world.joints.get(h.0, "joint").ok().map(|j| j.serial)).collect();
@@ -553,7 +562,7 @@ impl Simulation {
             .contact_surface(file.surface)
             .space(file.space)
             .build()?;
-        let space = sim.space();
+        let space = sim.scene().space();
         for o in &file.objects {
             let geom = GeomBuilder::new(o.shape.clone());
             let id = match &o.body {
@@ -597,19 +606,19 @@ impl Simulation {
                 }
             };
             if let Some(c) = o.color {
-                sim.set_color(id, c)?;
+                sim.scene_mut().set_color(id, c)?;
             }
             if !o.visuals.is_empty() {
-                sim.set_visuals(id, o.visuals.clone())?;
+                sim.scene_mut().set_visuals(id, o.visuals.clone())?;
             }
         }
         for (i, j) in file.joints.iter().enumerate() {
             for w in file.world_joints.iter().filter(|w| w.after == i) {
                 w.add_to(&mut sim)?;
             }
-            let object1 = sim.object(j.object1.as_str())?.id();
+            let object1 = sim.scene().object(j.object1.as_str())?.id();
             let object2 = match &j.object2 {
-                Some(name) => JointEnd::Object(sim.object(name.as_str())?.id()),
+                Some(name) => JointEnd::Object(sim.scene().object(name.as_str())?.id()),
                 None => JointEnd::World,
             };
             let id = sim.scene.insert_sim_joint(
@@ -620,9 +629,9 @@ impl Simulation {
                 JointBuilder::new(j.kind.clone()),
             )?;
             if let Some((low, high)) = j.limits {
-                sim.joint_mut(id)?.set_limits(low, high)?;
+                sim.scene_mut().joint_mut(id)?.set_limits(low, high)?;
             }
-            let mut joint = sim.joint_mut(id)?;
+            let mut joint = sim.scene_mut().joint_mut(id)?;
             if j.friction != 0.0 {
                 joint.set_viscous_friction(j.friction)?;
             }
@@ -651,18 +660,18 @@ impl Simulation {
         // Leaders may come later in creation order than their followers.
         for j in &file.joints {
             if let Some(m) = &j.mimic {
-                sim.joint_mut(j.name.as_str())?.set_mimic(m.leader.as_str(), m.multiplier, m.offset)?;
+                sim.scene_mut().joint_mut(j.name.as_str())?.set_mimic(m.leader.as_str(), m.multiplier, m.offset)?;
             }
         }
         sim.scene.set_clock(file.time, file.step_count);
         // After the clock: periodic sensors count their periods from the saved time.
         for pair in &file.pair_surfaces {
-            let (a, b) = (sim.object(pair.a.as_str())?.id(), sim.object(pair.b.as_str())?.id());
-            sim.set_contact_surface(a, b, pair.surface)?;
+            let (a, b) = (sim.scene().object(pair.a.as_str())?.id(), sim.scene().object(pair.b.as_str())?.id());
+            sim.scene_mut().set_contact_surface(a, b, pair.surface)?;
         }
         for (a, b) in &file.excluded_contacts {
-            let (a, b) = (sim.object(a.as_str())?.id(), sim.object(b.as_str())?.id());
-            sim.exclude_contacts(a, b)?;
+            let (a, b) = (sim.scene().object(a.as_str())?.id(), sim.scene().object(b.as_str())?.id());
+            sim.scene_mut().exclude_contacts(a, b)?;
         }
         for sensor in &file.sensors {
             sensor.add_to(&mut sim)?;

@@ -348,8 +348,9 @@ struct Plan<'r> {
     posed_link_frames: Option<Vec<Frame>>,
 }
 
-impl Scene {
-    /// Loads the robot of a URDF file (see the [`urdf`](crate::scene::urdf) module).
+/// Loads URDF robots.
+impl crate::Simulation {
+    /// Loads the robot of a URDF file (see the [module docs](self)).
     pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
         let path = path.as_ref();
         let file = path.display().to_string();
@@ -359,6 +360,13 @@ impl Scene {
 
     /// Loads a robot from URDF text; `file` names it in errors.
     pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
+        self.scene.insert_urdf_text(text, file, options)
+    }
+}
+
+impl Scene {
+    /// Makes the links and joints of a URDF robot from its text; `file` names it in errors.
+    pub(crate) fn insert_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
         let bad = |element: String, problem: String| Error::Format {
             format: "URDF",
             file: file.to_string(),

@@ -34,12 +34,12 @@ use crate::world::SpaceKind;
 /// impl Hooks for HelloWorld {}
 /// impl Program for HelloWorld {
 ///     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-///         sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
+///         sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0)).map(drop)
 ///     }
 /// }
 ///
 /// let sim = HelloWorld.run_headless(1.0)?;
-/// let ball = sim.object("sphere")?; // named access: a view of the object
+/// let ball = sim.scene().object("sphere")?; // named access: a view of the object
 /// assert!((ball.position()?.y - 0.5).abs() < 1e-3);
 /// # Ok::<(), ars_core::Error>(())
 /// ```

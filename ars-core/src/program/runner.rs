@@ -131,14 +131,14 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
 
     /// One frame of `steps_per_frame` steps.
     pub fn step_frame(&mut self) -> Result<()> {
-        let n = u64::from(self.sim.steps_per_frame());
+        let n = u64::from(self.sim.scene().steps_per_frame());
         self.run_steps(n, &mut || false)
     }
 
     /// As [`step_frame`](Self::step_frame), showing the simulation to `after_step`
     /// after each step (see [`Simulation::step_frame_observed`]).
     pub fn step_frame_observed(&mut self, after_step: &mut dyn FnMut(&Simulation) -> Result<()>) -> Result<()> {
-        let n = self.sim.steps_per_frame();
+        let n = self.sim.scene().steps_per_frame();
         let (mut program, sim) = self.driven();
         sim.frame_observed(Some(&mut program), n, after_step)
     }
@@ -149,10 +149,10 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     /// stop requested through [`interrupt`](crate::interrupt) (Ctrl-C) ends it between
     /// two frames with [`Error::Interrupted`](crate::Error::Interrupted).
     pub fn run_script(&mut self, script: &KeyScript, duration: f64) -> Result<()> {
-        let mut steps = self.sim.steps_in(duration)?;
+        let mut steps = self.sim.scene().steps_in(duration)?;
         while steps > 0 {
             self.apply_due_events(script)?;
-            let n = steps.min(u64::from(self.sim.steps_per_frame()));
+            let n = steps.min(u64::from(self.sim.scene().steps_per_frame()));
             self.run_steps(n, &mut crate::interrupt::requested)?;
             steps -= n;
         }
@@ -167,7 +167,7 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
 
     /// Applies the script's events that are due at the current time and not yet applied.
     fn apply_due_events(&mut self, script: &KeyScript) -> Result<()> {
-        let now = self.sim.time() + 0.5 * self.sim.time_step();
+        let now = self.sim.scene().time() + 0.5 * self.sim.scene().time_step();
         while let Some(e) = script.events().get(self.script_position).filter(|e| e.time <= now) {
             if e.down {
                 self.key_down(e.key)?;
@@ -183,7 +183,7 @@ impl<'p, P: Program> ProgramRunner<'p, P> {
     /// through [`interrupt`](crate::interrupt) (Ctrl-C) ends it between two frames with
     /// [`Error::Interrupted`](crate::Error::Interrupted); the runner can go on.
     pub fn run_for(&mut self, duration: f64) -> Result<()> {
-        let steps = self.sim.steps_in(duration)?;
+        let steps = self.sim.scene().steps_in(duration)?;
         self.run_steps(steps, &mut crate::interrupt::requested)
     }
 }

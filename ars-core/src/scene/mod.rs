@@ -1,7 +1,7 @@
 //! The [`Scene`] of a simulation: its named objects and joints on a [`World`], and its
 //! clock. Sensors read a scene; a [`Simulation`](crate::Simulation) is a scene with
-//! its sensors and hooks, and the step loop (it dereferences to its scene, so
-//! `sim.add_sphere(..)` and `sim.body(..)` are scene methods).
+//! its sensors and hooks, and the step loop (`sim.scene_mut().add_sphere(..)`,
+//! `sim.scene().body(..)`).
 //!
 //! - objects: bodies with their [`Shape`](crate::Shape), static shapes, floors;
 //! - joints: named joints with their efforts, friction and controllers;

@@ -61,12 +61,12 @@ impl Scene {
     /// use ars_core::{ContactSurface, Mass, Simulation};
     ///
     /// let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
-    /// let floor = sim.object("floor")?.id();
-    /// let puck = sim.add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
-    /// sim.set_contact_surface(floor, puck, ContactSurface { mu: 0.0, bounce: None, ..Default::default() })?;
-    /// sim.body_mut(puck)?.set_linear_velocity([1.0, 0.0, 0.0].into())?;
+    /// let floor = sim.scene().object("floor")?.id();
+    /// let puck = sim.scene_mut().add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
+    /// sim.scene_mut().set_contact_surface(floor, puck, ContactSurface { mu: 0.0, bounce: None, ..Default::default() })?;
+    /// sim.scene_mut().body_mut(puck)?.set_linear_velocity([1.0, 0.0, 0.0].into())?;
     /// sim.run_for(1.0)?;
-    /// assert!(sim.position(puck)?.x > 0.99, "no friction: it slides on");
+    /// assert!(sim.scene().position(puck)?.x > 0.99, "no friction: it slides on");
     /// # Ok::<(), ars_core::Error>(())
     /// ```
     pub fn set_contact_surface(&mut self, a: ObjectId, b: ObjectId, surface: ContactSurface) -> Result<()> {
@@ -103,11 +103,11 @@ impl Scene {
     /// use ars_core::{Mass, Simulation};
     ///
     /// let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
-    /// let floor = sim.object("floor")?.id();
-    /// let ghost = sim.add_sphere(0.1, [0.0, 0.5, 0.0], Mass::Total(1.0))?;
-    /// sim.exclude_contacts(floor, ghost)?;
+    /// let floor = sim.scene().object("floor")?.id();
+    /// let ghost = sim.scene_mut().add_sphere(0.1, [0.0, 0.5, 0.0], Mass::Total(1.0))?;
+    /// sim.scene_mut().exclude_contacts(floor, ghost)?;
     /// sim.run_for(1.0)?;
-    /// assert!(sim.position(ghost)?.y < -1.0, "it fell through the floor");
+    /// assert!(sim.scene().position(ghost)?.y < -1.0, "it fell through the floor");
     /// # Ok::<(), ars_core::Error>(())
     /// ```
     pub fn exclude_contacts(&mut self, a: ObjectId, b: ObjectId) -> Result<()> {

@@ -26,7 +26,7 @@ use crate::world::raycast::Ray;
 /// use ars_core::{Mass, Simulation, sensors::DepthCamera};
 ///
 /// let mut sim = Simulation::builder().gravity(Vector3::zeros()).build()?;
-/// sim.add_box([4.0, 4.0, 1.0], [0.0, 0.0, -3.5], Mass::Total(1.0))?; // its face at z = -3
+/// sim.scene_mut().add_box([4.0, 4.0, 1.0], [0.0, 0.0, -3.5], Mass::Total(1.0))?; // its face at z = -3
 /// let camera = sim.add_sensor(DepthCamera::new(64, 48, 1.0, 0.1, 10.0)?)?;
 /// sim.step()?;
 /// let image = &sim.records(camera)?.last().unwrap().record;

@@ -221,9 +221,9 @@ impl Sensor for JointReaction {
 /// use ars_core::{JointEnd, Mass, Simulation};
 ///
 /// let mut sim = Simulation::new()?;
-/// let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0))?;
-/// let pivot = sim.add_hinge_joint("pivot", ball, JointEnd::World, Some([0.0, 0.0, 0.0].into()), Vector3::z())?;
-/// let q = sim.add_sensor(JointPositions::new(&sim, &[pivot])?)?;
+/// let ball = sim.scene_mut().add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0))?;
+/// let pivot = sim.scene_mut().add_hinge_joint("pivot", ball, JointEnd::World, Some([0.0, 0.0, 0.0].into()), Vector3::z())?;
+/// let q = sim.add_sensor(JointPositions::new(sim.scene(), &[pivot])?)?;
 /// sim.step_n(100)?;
 /// let mut csv = Vec::new();
 /// sim.records(q)?.write_csv(&mut csv).unwrap();
@@ -299,12 +299,12 @@ impl Sensor for JointPositions {
 /// use ars_core::{JointEnd, Mass, Simulation};
 ///
 /// let mut sim = Simulation::new()?;
-/// let ball = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0))?;
-/// let pivot = sim.add_hinge_joint("pivot", ball, JointEnd::World, Some([0.0, 0.0, 0.0].into()), Vector3::z())?;
-/// let rates = sim.add_sensor(JointVelocities::new(&sim, &[pivot])?)?;
+/// let ball = sim.scene_mut().add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0))?;
+/// let pivot = sim.scene_mut().add_hinge_joint("pivot", ball, JointEnd::World, Some([0.0, 0.0, 0.0].into()), Vector3::z())?;
+/// let rates = sim.add_sensor(JointVelocities::new(sim.scene(), &[pivot])?)?;
 /// sim.step_n(100)?;
 /// let last = sim.records(rates)?.last().unwrap().record.values[0];
-/// assert_eq!(last, sim.joint(pivot)?.state()?.rate);
+/// assert_eq!(last, sim.scene().joint(pivot)?.state()?.rate);
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 #[derive(Clone, Debug)]

@@ -25,7 +25,7 @@ enum Mount {
 /// use nalgebra::{Point3, Vector3};
 ///
 /// let mut sim = Simulation::new()?;
-/// sim.add_sphere(1.0, [5.0, 0.0, 0.0], Mass::Total(1.0))?;
+/// sim.scene_mut().add_sphere(1.0, [5.0, 0.0, 0.0], Mass::Total(1.0))?;
 /// // Pointing along +X: local +Z turned by π/2 about Y.
 /// let along_x = rotation_about_axis(&Vector3::y(), std::f64::consts::FRAC_PI_2);
 /// let laser = sim.add_sensor(Laser::new(1000.0).at(Point3::origin(), along_x))?;

@@ -26,7 +26,7 @@ use crate::world::raycast::Ray;
 /// use ars_core::{Mass, Simulation, sensors::Lidar};
 ///
 /// let mut sim = Simulation::new()?;
-/// sim.add_box([1.0, 1.0, 1.0], [3.0, 0.0, 0.0], Mass::Total(1.0))?; // 2.5 m ahead
+/// sim.scene_mut().add_box([1.0, 1.0, 1.0], [3.0, 0.0, 0.0], Mass::Total(1.0))?; // 2.5 m ahead
 /// let lidar = sim.add_sensor(Lidar::new(360, std::f64::consts::TAU, 10.0)?)?;
 /// sim.step()?;
 /// let scan = &sim.records(lidar)?.last().unwrap().record;

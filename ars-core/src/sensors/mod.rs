@@ -5,7 +5,7 @@
 //! use ars_core::{Mass, Simulation, sensors::{Gps, Velometer}};
 //!
 //! let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
-//! let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+//! let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
 //! let gps = sim.add_sensor(Gps::new(ball))?;
 //! let speed = sim.add_sensor(Velometer::new(ball))?;
 //! sim.run_for(0.1)?;
@@ -338,7 +338,7 @@ impl<R: Record> CsvColumns for SensorLog<R> {
 /// use ars_core::{Mass, Simulation};
 ///
 /// let mut sim = Simulation::new()?;
-/// let ball = sim.add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
+/// let ball = sim.scene_mut().add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
 /// let (gps, vel) = (sim.add_sensor(Gps::new(ball))?, sim.add_sensor(Velometer::new(ball))?);
 /// sim.step_n(4)?;
 /// let mut csv = Vec::new();

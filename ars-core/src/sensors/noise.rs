@@ -101,11 +101,11 @@ perturb_fields!(Energy, |r, n| {
 /// ```
 /// use ars_core::{Mass, Simulation, sensors::{Gps, Noisy}};
 /// let mut sim = Simulation::new()?;
-/// let ball = sim.add_sphere(0.5, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
+/// let ball = sim.scene_mut().add_sphere(0.5, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
 /// let gps = sim.add_sensor(Noisy::new(Gps::new(ball), 0.01, 42)?)?;
 /// sim.step()?;
 /// let y = sim.records(gps)?.last().unwrap().record.position.y;
-/// assert!((y - 10.0).abs() < 0.1 && y != sim.body(ball)?.position().y);
+/// assert!((y - 10.0).abs() < 0.1 && y != sim.scene().body(ball)?.position().y);
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 #[derive(Clone, Debug)]

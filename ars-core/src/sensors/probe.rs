@@ -32,7 +32,7 @@ use crate::scene::Scene;
 /// }
 ///
 /// let mut sim = Simulation::new()?;
-/// let ball = sim.add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
+/// let ball = sim.scene_mut().add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
 /// let probe = sim.add_sensor(
 ///     Probe::new(move |sim: &Scene| {
 ///         let b = sim.body(ball)?;

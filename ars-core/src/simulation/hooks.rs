@@ -10,9 +10,9 @@
 //! use ars_core::{Mass, PostStep, Simulation};
 //!
 //! let mut sim = Simulation::new()?;
-//! let ball = sim.add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
+//! let ball = sim.scene_mut().add_sphere(0.1, [0.0, 10.0, 0.0], Mass::Total(1.0))?;
 //! let lowest = sim.add_hooks(PostStep(move |sim: &mut Simulation| {
-//!     let y = sim.body(ball)?.position().y;
+//!     let y = sim.scene().body(ball)?.position().y;
 //!     Ok(())
 //! }))?;
 //! sim.step_n(10)?;

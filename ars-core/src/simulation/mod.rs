@@ -29,8 +29,6 @@ pub mod snapshot;
 
 pub use sensor_kinds::SENSOR_KINDS;
 
-use std::ops::{Deref, DerefMut};
-
 use nalgebra::Vector3;
 
 use crate::contact::ContactSurface;
@@ -194,24 +192,27 @@ impl SimulationBuilder {
             hooks: HookSet::new(id),
         };
         if let Floor::Plane { normal, distance } = self.floor {
-            sim.add_floor_plane(normal, distance)?;
+            sim.scene_mut().add_floor_plane(normal, distance)?;
         }
         Ok(sim)
     }
 }
 
 /// A simulation: a [`Scene`] (a [`World`] with named objects and joints), sensors,
-/// hooks, and the step loop of the original ARS (see the [module docs](self)). It
-/// dereferences to its scene: the objects, joints and clock are scene methods.
+/// hooks, and the step loop of the original ARS (see the [module docs](self)).
+///
+/// What involves the step, the sensors or the hooks is a method of the simulation;
+/// the objects, joints and clock are the scene's, reached through
+/// [`scene`](Self::scene) and [`scene_mut`](Self::scene_mut).
 ///
 /// ```
 /// use ars_core::{Mass, Simulation};
 ///
 /// let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
-/// let ball = sim.add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
+/// let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
 /// sim.run_for(1.0)?;
-/// assert!((sim.body(ball)?.position().y - 0.5).abs() < 1e-3);
-/// assert_eq!(sim.object(ball).map(|o| o.name())?, "sphere");
+/// assert!((sim.scene().body(ball)?.position().y - 0.5).abs() < 1e-3);
+/// assert_eq!(sim.scene().object(ball).map(|o| o.name())?, "sphere");
 /// # Ok::<(), ars_core::Error>(())
 /// ```
 pub struct Simulation {
@@ -230,19 +231,6 @@ impl std::fmt::Debug for Simulation {
     }
 }
 
-impl Deref for Simulation {
-    type Target = Scene;
-    fn deref(&self) -> &Scene {
-        &self.scene
-    }
-}
-
-impl DerefMut for Simulation {
-    fn deref_mut(&mut self) -> &mut Scene {
-        &mut self.scene
-    }
-}
-
 impl Simulation {
     /// A simulation with the ARS defaults, no floor, and the default broad-phase
     /// space ([`DEFAULT_SPACE`]).
@@ -255,7 +243,7 @@ impl Simulation {
         SimulationBuilder::default()
     }
 
-    /// The scene: objects, joints, world and clock (also reached by dereferencing).
+    /// The scene: objects, joints, world and clock.
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
@@ -299,7 +287,7 @@ impl Simulation {
 
     /// The error of a run stopped now.
     fn interrupted(&self) -> Error {
-        Error::Interrupted { time: self.time(), steps: self.step_count() }
+        Error::Interrupted { time: self.scene.time(), steps: self.scene.step_count() }
     }
 
     /// One frame: pre-frame hooks, `steps_per_frame` steps, post-frame hooks.

@@ -147,13 +147,13 @@ impl Simulation {
             ("JointReaction", _) => self.add_noisy(JointReaction::new(joint()?), period, noise),
             ("JointPositions", _) if noise.is_some() => Err(noiseless("JointPositions")),
             ("JointPositions", _) if objects.is_empty() => {
-                let sensor = JointPositions::new(self, joints)?;
+                let sensor = JointPositions::new(&self.scene, joints)?;
                 self.add_any(sensor, period)
             }
             ("JointPositions", _) => Err(wrong("joints only")),
             ("JointVelocities", _) if noise.is_some() => Err(noiseless("JointVelocities")),
             ("JointVelocities", _) if objects.is_empty() => {
-                let sensor = JointVelocities::new(self, joints)?;
+                let sensor = JointVelocities::new(&self.scene, joints)?;
                 self.add_any(sensor, period)
             }
             ("JointVelocities", _) => Err(wrong("joints only")),

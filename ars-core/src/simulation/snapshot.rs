@@ -6,19 +6,19 @@
 //! use ars_core::{Mass, Simulation};
 //!
 //! let mut sim = Simulation::builder().floor_plane(nalgebra::Vector3::y(), 0.0).build()?;
-//! let ball = sim.add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
+//! let ball = sim.scene_mut().add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
 //! sim.step_n(500)?;
 //! let state = sim.snapshot()?;
 //! sim.step_n(1000)?;
-//! let later = sim.body(ball)?.position();
+//! let later = sim.scene().body(ball)?.position();
 //! sim.restore(&state)?;
 //! sim.step_n(1000)?;
-//! assert_eq!(sim.body(ball)?.position(), later);
+//! assert_eq!(sim.scene().body(ball)?.position(), later);
 //! // Into a simulation of its own (in this process or another: `to_bytes`).
 //! let mut copy = Simulation::from_snapshot(&ars_core::Snapshot::from_bytes(&state.to_bytes())?)?;
 //! copy.step_n(1000)?;
-//! let copied_ball = copy.object("sphere")?.id();
-//! assert_eq!(copy.body(copied_ball)?.position(), later);
+//! let copied_ball = copy.scene().object("sphere")?.id();
+//! assert_eq!(copy.scene().body(copied_ball)?.position(), later);
 //! # Ok::<(), ars_core::Error>(())
 //! ```
 //!
@@ -183,11 +183,11 @@ impl Simulation {
     /// The exact state beyond the scene file.
     pub(crate) fn capture_state(&self) -> Result<SceneState> {
         Ok(SceneState {
-            world: self.world().capture_state(),
+            world: self.scene.world().capture_state(),
             joints: self.scene.save_joint_drives()?,
             sensors: self.sensors.save(),
             hooks: self.hooks.save()?,
-            frame_count: self.frame_count(),
+            frame_count: self.scene.frame_count(),
         })
     }
 
@@ -221,8 +221,8 @@ impl Simulation {
 
     /// Checks everything a state must fit, then puts it back.
     pub(crate) fn restore_state(&mut self, state: &SceneState) -> Result<()> {
-        self.world().check_usable()?;
-        self.world().check_state_fits(&state.world)?;
+        self.scene.world().check_usable()?;
+        self.scene.world().check_state_fits(&state.world)?;
         self.scene.check_joint_drives_fit(&state.joints)?;
         self.sensors.check_fits(&state.sensors)?;
         self.hooks.check_fits(&state.hooks)?;
@@ -263,19 +263,19 @@ impl Simulation {
         }
         self.scene.steps_per_frame = scene.steps_per_frame;
         self.scene.set_clock(scene.time, scene.step_count);
-        for (a, b, _) in self.contact_surfaces() {
-            self.clear_contact_surface(a, b)?;
+        for (a, b, _) in self.scene.contact_surfaces() {
+            self.scene.clear_contact_surface(a, b)?;
         }
         for pair in &scene.pair_surfaces {
-            let (a, b) = (self.object(pair.a.as_str())?.id(), self.object(pair.b.as_str())?.id());
-            self.set_contact_surface(a, b, pair.surface)?;
+            let (a, b) = (self.scene.object(pair.a.as_str())?.id(), self.scene.object(pair.b.as_str())?.id());
+            self.scene.set_contact_surface(a, b, pair.surface)?;
         }
         for o in &scene.objects {
-            let id = self.object(o.name.as_str())?.id();
+            let id = self.scene.object(o.name.as_str())?.id();
             if let Some(c) = o.color {
-                self.set_color(id, c)?;
+                self.scene.set_color(id, c)?;
             }
-            self.set_visuals(id, o.visuals.clone())?;
+            self.scene.set_visuals(id, o.visuals.clone())?;
         }
         Ok(())
     }

@@ -525,12 +525,12 @@ impl Harness {
                 let c = input.point();
                 let m = input.amount();
                 let r = match input.byte() % 6 {
-                    0 => s.sim.add_sphere(input.real(), c, m),
-                    1 => s.sim.add_box(input.vector(), c, m),
-                    2 => s.sim.add_cylinder(input.real(), input.real(), c, m),
-                    3 => s.sim.add_capsule(input.real(), input.real(), c, m),
-                    4 => s.sim.add_cone(input.real(), input.real(), c, m),
-                    _ => s.sim.add_static(Shape::Box { edges: input.vector() }, input.isometry()),
+                    0 => s.sim.scene_mut().add_sphere(input.real(), c, m),
+                    1 => s.sim.scene_mut().add_box(input.vector(), c, m),
+                    2 => s.sim.scene_mut().add_cylinder(input.real(), input.real(), c, m),
+                    3 => s.sim.scene_mut().add_capsule(input.real(), input.real(), c, m),
+                    4 => s.sim.scene_mut().add_cone(input.real(), input.real(), c, m),
+                    _ => s.sim.scene_mut().add_static(Shape::Box { edges: input.vector() }, input.isometry()),
                 };
                 if let Ok(id) = r {
                     s.objects.push(id);
@@ -540,7 +540,7 @@ impl Harness {
                 let v = vec![input.point(), input.point(), input.point(), input.point()];
                 let n = 1 + input.byte() as usize % 2;
                 let faces = (0..n).map(|i| [0, 1 + i as u32, 2 + i as u32]).collect();
-                if let Ok(id) = s.sim.add_trimesh_floor(v, faces, input.point()) {
+                if let Ok(id) = s.sim.scene_mut().add_trimesh_floor(v, faces, input.point()) {
                     s.objects.push(id);
                 }
             }
@@ -552,12 +552,19 @@ impl Harness {
                 };
                 let name = if input.one_in(2) { "" } else { "j" };
                 let r = match input.byte() % 6 {
-                    0 => s.sim.add_fixed_joint(name, o1, end),
-                    1 => s.sim.add_hinge_joint(name, o1, end, Some(input.point()), input.vector()),
-                    2 => s.sim.add_slider_joint(name, o1, end, input.vector()),
-                    3 => s.sim.add_universal_joint(name, o1, end, input.point(), input.vector(), input.vector()),
-                    4 => s.sim.add_ball_joint(name, o1, end, None),
-                    _ => s.sim.add_piston_joint(name, o1, end, input.point(), input.vector()),
+                    0 => s.sim.scene_mut().add_fixed_joint(name, o1, end),
+                    1 => s.sim.scene_mut().add_hinge_joint(name, o1, end, Some(input.point()), input.vector()),
+                    2 => s.sim.scene_mut().add_slider_joint(name, o1, end, input.vector()),
+                    3 => s.sim.scene_mut().add_universal_joint(
+                        name,
+                        o1,
+                        end,
+                        input.point(),
+                        input.vector(),
+                        input.vector(),
+                    ),
+                    4 => s.sim.scene_mut().add_ball_joint(name, o1, end, None),
+                    _ => s.sim.scene_mut().add_piston_joint(name, o1, end, input.point(), input.vector()),
                 };
                 if let Ok(id) = r {
                     s.joints.push(id);
@@ -566,7 +573,7 @@ impl Harness {
             4 => {
                 let Some(j) = joint else { return };
                 let leader = if s.joints.is_empty() { None } else { Some(s.joints[input.index(s.joints.len())]) };
-                let Ok(mut jm) = s.sim.joint_mut(j) else { return };
+                let Ok(mut jm) = s.sim.scene_mut().joint_mut(j) else { return };
                 let _ = match input.byte() % 10 {
                     0 => jm.add_torque(input.real()),
                     1 => jm.add_force(input.real()),
@@ -640,21 +647,21 @@ impl Harness {
                     2 => s.sim.step_frame(),
                     // At most 100 steps: a tiny time step makes a long duration a
                     // legitimately long run, not a hang.
-                    _ => s.sim.run_for(input.real().min(100.0 * s.sim.time_step())),
+                    _ => s.sim.run_for(input.real().min(100.0 * s.sim.scene().time_step())),
                 };
             }
             12 => {
-                let _ = s.sim.set_time_step(input.real());
+                let _ = s.sim.scene_mut().set_time_step(input.real());
             }
             13 => {
                 let Some(o) = object else { return };
                 let _ = match input.byte() % 6 {
-                    0 => s.sim.set_position(o, input.point()),
-                    1 => s.sim.set_rotation(o, input.rotation()),
-                    2 => s.sim.rotate(o, input.vector(), input.real()),
-                    3 => s.sim.offset_by_position(o, input.vector()),
-                    4 => s.sim.body_mut(o).and_then(|mut b| b.add_force(input.vector())),
-                    _ => s.sim.body_mut(o).and_then(|mut b| b.set_linear_velocity(input.vector())),
+                    0 => s.sim.scene_mut().set_position(o, input.point()),
+                    1 => s.sim.scene_mut().set_rotation(o, input.rotation()),
+                    2 => s.sim.scene_mut().rotate(o, input.vector(), input.real()),
+                    3 => s.sim.scene_mut().offset_by_position(o, input.vector()),
+                    4 => s.sim.scene_mut().body_mut(o).and_then(|mut b| b.add_force(input.vector())),
+                    _ => s.sim.scene_mut().body_mut(o).and_then(|mut b| b.set_linear_velocity(input.vector())),
                 };
             }
             14 => {
@@ -671,13 +678,16 @@ impl Harness {
                 }));
             }
             _ => {
-                let _ = (s.sim.time(), s.sim.objects().count(), s.sim.world().body_count());
+                let _ = (s.sim.scene().time(), s.sim.scene().objects().count(), s.sim.scene().world().body_count());
                 if let Some(o) = object {
-                    let _ =
-                        (s.sim.pose(o), s.sim.object(o).map(|v| v.name().len()), s.sim.body(o).map(|b| b.position()));
+                    let _ = (
+                        s.sim.scene().pose(o),
+                        s.sim.scene().object(o).map(|v| v.name().len()),
+                        s.sim.scene().body(o).map(|b| b.position()),
+                    );
                 }
                 if let Some(j) = joint {
-                    let _ = (s.sim.joint_state(j), s.sim.joint(j).map(|v| v.efforts()));
+                    let _ = (s.sim.scene().joint_state(j), s.sim.scene().joint(j).map(|v| v.efforts()));
                 }
             }
         }

@@ -14,6 +14,6 @@ fn a_density_that_overflows_the_mass_is_refused() {
     let err = world.insert_body(BodyBuilder::new().mass(spec)).unwrap_err();
     assert!(err.to_string().contains("from the density"), "{err}");
     let mut sim = Simulation::new().unwrap();
-    assert!(sim.add_sphere(MAX_SIZE, [0.0, 0.0, 0.0], Mass::Density(1e10)).is_err());
+    assert!(sim.scene_mut().add_sphere(MAX_SIZE, [0.0, 0.0, 0.0], Mass::Density(1e10)).is_err());
     assert_eq!(world.body_count(), 0);
 }

@@ -19,11 +19,11 @@ fn a_huge_velocity_is_refused() {
 #[test]
 fn a_runaway_body_is_named_and_the_world_waits_until_it_is_reset() {
     let mut sim = Simulation::new().unwrap();
-    let ball = sim.add_sphere(0.5, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.5, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
     let gps = sim.add_sensor(sensors::Gps::new(ball)).unwrap();
     sim.step_n(3).unwrap();
     // At the speed limit, gravity takes it beyond within a step.
-    sim.body_mut(ball).unwrap().set_linear_velocity(Vector3::new(0.0, -MAX_SPEED, 0.0)).unwrap();
+    sim.scene_mut().body_mut(ball).unwrap().set_linear_velocity(Vector3::new(0.0, -MAX_SPEED, 0.0)).unwrap();
     let err = sim.step().unwrap_err();
     match &err {
         Error::Diverged { body, detail, .. } => {
@@ -32,10 +32,10 @@ fn a_runaway_body_is_named_and_the_world_waits_until_it_is_reset() {
         }
         other => panic!("expected Diverged, got {other}"),
     }
-    assert_eq!(sim.step_count(), 4, "the step happened");
+    assert_eq!(sim.scene().step_count(), 4, "the step happened");
     assert!(matches!(sim.step(), Err(Error::Diverged { .. })), "refused until reset");
     assert_eq!(sim.records(gps).unwrap().len(), 3, "records so far kept, the diverged state not sampled");
-    let mut body = sim.body_mut(ball).unwrap();
+    let mut body = sim.scene_mut().body_mut(ball).unwrap();
     body.set_linear_velocity(Vector3::zeros()).unwrap();
     body.set_position(Point3::new(0.0, 1.0, 0.0)).unwrap();
     sim.step().unwrap();

@@ -8,13 +8,13 @@ use ars_core::*;
 #[test]
 fn a_capsule_of_radius_max_is_refused_and_one_at_the_bound_collides() {
     let mut sim = Simulation::builder().build().unwrap();
-    let err = sim.add_capsule(f64::MAX, 1.0, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
+    let err = sim.scene_mut().add_capsule(f64::MAX, 1.0, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
     assert!(err.to_string().contains("capsule"), "{err}");
-    let err = sim.add_capsule(1.0, f64::MAX, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
+    let err = sim.scene_mut().add_capsule(1.0, f64::MAX, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap_err();
     assert!(err.to_string().contains("capsule"), "{err}");
 
-    sim.add_cone(0.5, 1.0, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    sim.add_capsule(MAX_SIZE, 1.0, [0.0, 0.0, 0.0], Mass::Total(1e9)).unwrap();
+    sim.scene_mut().add_cone(0.5, 1.0, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().add_capsule(MAX_SIZE, 1.0, [0.0, 0.0, 0.0], Mass::Total(1e9)).unwrap();
     for _ in 0..5 {
         let _ = sim.step();
     }

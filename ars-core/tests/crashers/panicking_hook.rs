@@ -19,9 +19,9 @@ fn a_panicking_hook_is_reported_and_no_hook_is_lost() {
             // the post-step one in the step after.
             let hook = move |sim: &mut Simulation| {
                 calls.fetch_add(1, Ordering::Relaxed);
-                if i == 1 && !failed && sim.step_count() >= 2 + point {
+                if i == 1 && !failed && sim.scene().step_count() >= 2 + point {
                     failed = true;
-                    panic!("hook {i} fails at step {}", sim.step_count());
+                    panic!("hook {i} fails at step {}", sim.scene().step_count());
                 }
                 Ok(())
             };

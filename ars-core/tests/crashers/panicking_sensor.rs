@@ -26,7 +26,7 @@ impl Sensor for Flaky {
 #[test]
 fn a_panicking_sensor_is_reported_and_nothing_is_lost() {
     let mut sim = Simulation::new().unwrap();
-    let ball = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
     let flaky = sim.add_sensor(Flaky { inner: Gps::new(ball) }).unwrap();
     let gps = sim.add_sensor(Gps::new(ball)).unwrap();
     sim.step_n(2).unwrap();

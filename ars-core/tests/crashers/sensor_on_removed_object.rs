@@ -9,21 +9,21 @@ use ars_core::*;
 #[test]
 fn sensors_on_removed_or_foreign_objects_are_refused() {
     let mut sim = Simulation::new().unwrap();
-    let ball = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
     sim.remove_object(ball).unwrap();
     assert!(matches!(sim.add_sensor(Gps::new(ball)), Err(Error::StaleHandle { .. })));
 
     let mut other = Simulation::new().unwrap();
-    let foreign = other.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let foreign = other.scene_mut().add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
     assert!(matches!(sim.add_sensor(Gps::new(foreign)), Err(Error::ForeignHandle { .. })));
     sim.step_n(3).unwrap();
-    assert_eq!(sim.time(), 3.0 * sim.time_step());
+    assert_eq!(sim.scene().time(), 3.0 * sim.scene().time_step());
 }
 
 #[test]
 fn a_sensor_can_be_removed_with_its_records() {
     let mut sim = Simulation::new().unwrap();
-    let ball = sim.add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.5, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
     let gps = sim.add_sensor(Gps::new(ball)).unwrap();
     let speed = sim.add_sensor(Velometer::new(ball)).unwrap();
     sim.step_n(5).unwrap();

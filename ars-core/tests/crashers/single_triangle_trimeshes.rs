@@ -33,10 +33,10 @@ fn two_overlapping_one_triangle_meshes_collide_safely() {
 fn two_one_triangle_floors_in_a_simulation() {
     let mut sim = Simulation::new().unwrap();
     let (v, t) = triangle();
-    sim.add_trimesh_floor(v.clone(), t.clone(), [0.0, 0.0, 0.0]).unwrap();
-    sim.add_trimesh_floor(v, t, [0.1, 0.0, 0.0]).unwrap();
-    let ball = sim.add_sphere(0.2, [0.0, 0.5, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().add_trimesh_floor(v.clone(), t.clone(), [0.0, 0.0, 0.0]).unwrap();
+    sim.scene_mut().add_trimesh_floor(v, t, [0.1, 0.0, 0.0]).unwrap();
+    let ball = sim.scene_mut().add_sphere(0.2, [0.0, 0.5, 0.0], Mass::Total(1.0)).unwrap();
     sim.run_for(1.0).unwrap();
-    let y = sim.body(ball).unwrap().position().y;
+    let y = sim.scene().body(ball).unwrap().position().y;
     assert!((y - 0.2).abs() < 1e-3, "the ball rests on the triangle: y = {y}");
 }

@@ -17,9 +17,12 @@ fn skewed_universal_axes_are_refused() {
     world.insert_joint(JointBuilder::universal(Point3::origin(), Vector3::x(), Vector3::y()).between(a, b)).unwrap();
 
     let mut sim = Simulation::new().unwrap();
-    let o1 = sim.add_sphere(0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    let o2 = sim.add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
-    let err = sim.add_universal_joint("u", o1, o2, Point3::origin(), [1.0, 0.0, 0.0], [1.0, 0.1, 0.0]).unwrap_err();
+    let o1 = sim.scene_mut().add_sphere(0.1, [0.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let o2 = sim.scene_mut().add_sphere(0.1, [1.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let err = sim
+        .scene_mut()
+        .add_universal_joint("u", o1, o2, Point3::origin(), [1.0, 0.0, 0.0], [1.0, 0.1, 0.0])
+        .unwrap_err();
     assert!(err.to_string().contains("perpendicular"), "{err}");
 }
 

@@ -47,7 +47,7 @@ const FAR: f64 = 1000.0;
 /// impl Hooks for Ball {}
 /// impl Program for Ball {
 ///     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()> {
-///         sim.add_sphere(0.5, [0.0, 2.0, 0.0], Mass::Total(1.0)).map(drop)
+///         sim.scene_mut().add_sphere(0.5, [0.0, 2.0, 0.0], Mass::Total(1.0)).map(drop)
 ///     }
 /// }
 /// let (_, replay) = ReplayRecorder::new().fps(30.0).record_to(&mut Ball, 5.0, "ball.html").unwrap();
@@ -192,7 +192,7 @@ impl ReplayRecorder {
     /// [`finish`](ReplayInProgress::finish). The settings are checked here: a frame
     /// rate that is not positive, no objects, an unknown plot column are refused.
     pub fn begin(&self, sim: &Simulation, view: &ViewSettings) -> Result<ReplayInProgress> {
-        let frame_rate = 1.0 / (sim.time_step() * f64::from(sim.steps_per_frame()));
+        let frame_rate = 1.0 / (sim.scene().time_step() * f64::from(sim.scene().steps_per_frame()));
         let fps = self.fps.unwrap_or(frame_rate);
         if !(fps.is_finite() && fps > 0.0) {
             return Err(ViewerError::Settings(format!("a replay's frame rate must be positive, got {fps}")));
@@ -205,11 +205,11 @@ impl ReplayRecorder {
         if w == 0 || h == 0 || w > 8192 || h > 8192 {
             return Err(ViewerError::Settings(format!("a replay's size {w}×{h} must be between 1 and 8192 pixels")));
         }
-        if sim.objects().next().is_none() {
+        if sim.scene().objects().next().is_none() {
             return Err(ViewerError::Settings("nothing to replay: the simulation has no objects".into()));
         }
         let columns = self.plots.iter().map(|p| find_column(sim, p)).collect::<Result<Vec<_>>>()?;
-        let ids: Vec<ObjectId> = sim.objects().map(|(_, id)| id).collect();
+        let ids: Vec<ObjectId> = sim.scene().objects().map(|(_, id)| id).collect();
         let looks = ids.iter().enumerate().map(|(i, id)| look_of(sim, *id, i)).collect::<ars_core::Result<_>>()?;
         let mut recording = ReplayInProgress {
             view,
@@ -217,7 +217,7 @@ impl ReplayRecorder {
             track: Track::default(),
             columns,
             fps,
-            start: sim.time(),
+            start: sim.scene().time(),
             next: 1,
             file: None,
         };
@@ -266,7 +266,7 @@ pub struct ReplayInProgress {
 impl ReplayInProgress {
     /// Samples the poses of `sim` if a sample is due (at most one a call).
     pub fn frame(&mut self, sim: &Simulation) {
-        let elapsed = sim.time() - self.start + 0.5 * sim.time_step();
+        let elapsed = sim.scene().time() - self.start + 0.5 * sim.scene().time_step();
         if elapsed >= self.next as f64 / self.fps {
             self.track.sample(sim, &self.objects);
             self.next = (elapsed * self.fps).floor() as u64 + 1;
@@ -300,7 +300,7 @@ impl Column {
     fn points(&self, sim: &Simulation, start: f64, end: f64) -> (String, Vec<f32>, Vec<f32>) {
         let tables = sim.sensor_tables();
         let Some((_, log)) = tables.get(self.table) else { return (self.label.clone(), Vec::new(), Vec::new()) };
-        let slack = 0.5 * sim.time_step();
+        let slack = 0.5 * sim.scene().time_step();
         let kept: Vec<usize> =
             (0..log.len()).filter(|i| (start - slack..=end + slack).contains(&log.stamp(*i).0)).collect();
         let every = kept.len().div_ceil(PLOT_POINTS).max(1);
@@ -360,9 +360,9 @@ struct Track {
 
 impl Track {
     fn sample(&mut self, sim: &Simulation, objects: &Objects) {
-        self.times.push(sim.time());
+        self.times.push(sim.scene().time());
         for id in objects.dynamic() {
-            match sim.pose(id) {
+            match sim.scene().pose(id) {
                 Ok(pose) => self.poses.extend(pose_values(&pose)),
                 Err(_) => self.poses.extend([f32::NAN; 7]),
             }
