@@ -54,10 +54,10 @@ pub(crate) fn record(
     })?;
     if let Some(e) = refused {
         return Err(match e {
-            ViewerError::Write { path, message } => {
-                raise(py, "FileError", format!("cannot write the replay {path:?}: {message}"))
+            ViewerError::Write { path, source } => {
+                raise(py, "FileError", format!("cannot write the replay {:?}: {source}", path.display().to_string()))
             }
-            ViewerError::Settings(message) => raise(py, "InputError", message),
+            ViewerError::InvalidSetting(message) => raise(py, "InputError", message),
             other => to_py(py, ars_core::Error::User(other.to_string())),
         });
     }

@@ -56,8 +56,8 @@ pub(crate) fn record_video(
                 .spawn_scoped(scope, || recorder.record_simulation(sim, &view, duration));
             match drawing.map(|t| t.join()) {
                 Ok(Ok(outcome)) => outcome,
-                Ok(Err(panic)) => Err(ViewerError::Settings(format!("ARS panicked: {}", panic_message(&panic)))),
-                Err(e) => Err(ViewerError::Settings(format!("could not start the video's thread: {e}"))),
+                Ok(Err(panic)) => Err(ViewerError::InvalidSetting(format!("ARS panicked: {}", panic_message(&panic)))),
+                Err(e) => Err(ViewerError::InvalidSetting(format!("could not start the video's thread: {e}"))),
             }
         });
         match outcome {

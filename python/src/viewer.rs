@@ -24,7 +24,12 @@ use crate::simulation::{PySimulation, Vec3};
 pub(crate) fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
     match error {
         ViewerError::Simulation(e) => to_py(py, e),
-        ViewerError::Settings(message) => raise(py, "InputError", message),
+        // As before the variants were split; the Python classes come next.
+        e @ (ViewerError::InvalidSetting(_)
+        | ViewerError::NoDisplay { .. }
+        | ViewerError::ThreadDied { .. }
+        | ViewerError::Encoder(_)
+        | ViewerError::SecondContext) => raise(py, "InputError", e.to_string()),
         other => raise(py, "ArsError", other.to_string()),
     }
 }
