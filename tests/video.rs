@@ -157,7 +157,10 @@ fn an_unwritable_path_is_refused() {
     // Not even root may create files in /proc.
     let error = VideoRecorder::new("/proc/ars-video.mp4").size(64, 48).record(&mut ConicalPendulum::default(), 1.0);
     let error = error.map(drop).unwrap_err();
-    assert!(matches!(&error, ViewerError::Write { path, .. } if path == "/proc/ars-video.mp4"), "{error}");
+    assert!(
+        matches!(&error, ViewerError::Write { path, .. } if path.as_path() == Path::new("/proc/ars-video.mp4")),
+        "{error}"
+    );
 }
 
 /// A program with nothing in it.

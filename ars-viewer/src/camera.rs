@@ -53,18 +53,14 @@ impl CameraFrame {
     /// Saves `PREFIX_rgb.png`, `PREFIX_depth.png` (16-bit, millimetres) and
     /// `PREFIX_depth.npy` (float32, metres) in `dir`.
     pub fn save(&self, dir: &Path, prefix: &str) -> Result<()> {
-        let failed = |path: &Path, e: &dyn std::fmt::Display| ViewerError::Write {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        };
-        std::fs::create_dir_all(dir).map_err(|e| failed(dir, &e))?;
+        std::fs::create_dir_all(dir).map_err(|e| ViewerError::write(dir, e))?;
         let rgb = dir.join(format!("{prefix}_rgb.png"));
-        self.rgb.save(&rgb).map_err(|e| failed(&rgb, &e))?;
+        self.rgb.save(&rgb).map_err(|e| ViewerError::image_write(&rgb, e))?;
         let png = dir.join(format!("{prefix}_depth.png"));
-        self.depth_mm().save(&png).map_err(|e| failed(&png, &e))?;
+        self.depth_mm().save(&png).map_err(|e| ViewerError::image_write(&png, e))?;
         let npy = dir.join(format!("{prefix}_depth.npy"));
-        let file = std::fs::File::create(&npy).map_err(|e| failed(&npy, &e))?;
-        self.depth.write_npy(std::io::BufWriter::new(file)).map_err(|e| failed(&npy, &e))
+        let file = std::fs::File::create(&npy).map_err(|e| ViewerError::write(&npy, e))?;
+        self.depth.write_npy(std::io::BufWriter::new(file)).map_err(|e| ViewerError::write(&npy, e))
     }
 }
 
@@ -114,7 +110,7 @@ impl Camera {
     /// `1 / period` frames per second), the first at the first call.
     pub fn every(mut self, period: f64) -> Result<Self> {
         if !(period.is_finite() && period > 0.0) {
-            return Err(ViewerError::Settings(format!("a camera period must be positive, got {period}")));
+            return Err(ViewerError::InvalidSetting(format!("a camera period must be positive, got {period}")));
         }
         self.period = Some(period);
         Ok(self)

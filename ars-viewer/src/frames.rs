@@ -7,7 +7,7 @@ use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::sync::{Arc, Mutex, PoisonError};
 use std::thread::JoinHandle;
 
-use crate::error::{Result, ViewerError};
+use crate::error::{Result, ThreadEnd, ViewerError};
 
 /// A frame as read back from the renderer: RGB rows, bottom row first.
 pub(crate) struct RawFrame {
@@ -38,7 +38,7 @@ enum Job {
 
 /// Writes one image as PNG, exactly as `RgbImage::save` does.
 pub(crate) fn write_png(path: &Path, image: &image::RgbImage) -> Result<()> {
-    image.save(path).map_err(|e| ViewerError::Write { path: path.display().to_string(), message: e.to_string() })
+    image.save(path).map_err(|e| ViewerError::image_write(path, e))
 }
 
 /// PNG files written by worker threads in the background. Nothing is dropped: when
@@ -96,16 +96,20 @@ impl FrameWriter {
             _ => {
                 self.join();
                 self.check()?;
-                Err(ViewerError::Settings("the frame writers stopped".into()))
+                Err(ViewerError::thread_ended("the frame writers", ThreadEnd::Stopped))
             }
         }
     }
 
-    /// The first failure so far, if any.
+    /// The first failure so far, if any: itself the first time, then a copy (every
+    /// later call fails the same way).
     fn check(&self) -> Result<()> {
-        // Kept: every later call fails the same way.
-        match self.failure.lock().unwrap_or_else(PoisonError::into_inner).as_ref() {
-            Some(e) => Err(e.clone()),
+        let mut failure = self.failure.lock().unwrap_or_else(PoisonError::into_inner);
+        match failure.take() {
+            Some(e) => {
+                *failure = Some(e.again());
+                Err(e)
+            }
             None => Ok(()),
         }
     }
@@ -115,7 +119,7 @@ impl FrameWriter {
         for worker in self.workers.drain(..) {
             if worker.join().is_err() {
                 let mut failure = self.failure.lock().unwrap_or_else(PoisonError::into_inner);
-                failure.get_or_insert(ViewerError::Settings("a frame writer panicked".into()));
+                failure.get_or_insert(ViewerError::thread_ended("a frame writer", ThreadEnd::Panicked));
             }
         }
     }
@@ -197,6 +201,28 @@ mod tests {
         let missing = std::env::temp_dir().join("ars-no-such-folder-for-frames").join("a.png");
         writer.write(missing.clone(), image(1)).unwrap();
         let error = writer.finish().unwrap_err();
-        assert!(matches!(&error, ViewerError::Write { path, .. } if *path == missing.display().to_string()), "{error}");
+        assert!(matches!(&error, ViewerError::Write { path, .. } if *path == missing), "{error}");
+        let source = std::error::Error::source(&error).and_then(|s| s.downcast_ref::<std::io::Error>());
+        assert_eq!(source.map(std::io::Error::kind), Some(std::io::ErrorKind::NotFound), "{error:?}");
+        assert!(error.to_string().starts_with(&format!("could not write {}: ", missing.display())), "{error}");
+    }
+
+    #[test]
+    fn every_call_after_a_failure_fails_the_same_way() {
+        let mut writer = FrameWriter::with_workers(1);
+        let missing = std::env::temp_dir().join("ars-no-such-folder-for-frames-again").join("a.png");
+        writer.write(missing.clone(), image(1)).unwrap();
+        writer.join();
+        let first = writer.write(missing.with_file_name("b.png"), image(2)).unwrap_err();
+        let second = writer.write(missing.with_file_name("c.png"), image(3)).unwrap_err();
+        let last = writer.finish().unwrap_err();
+        for error in [&first, &second, &last] {
+            assert_eq!(error.to_string(), first.to_string());
+            assert!(
+                matches!(error, ViewerError::Write { path, source } if *path == missing
+                    && source.kind() == std::io::ErrorKind::NotFound),
+                "{error:?}"
+            );
+        }
     }
 }

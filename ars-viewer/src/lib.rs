@@ -57,7 +57,7 @@ use ars_core::{Program, ViewSettings};
 pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use driver::Driver;
 pub use edit::{Edit, apply_edit, parse_number};
-pub use error::{Result, ViewerError};
+pub use error::{Result, ThreadEnd, ViewerError};
 pub use frames::FrameWriter;
 pub use image;
 pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_force, spring_torque};
@@ -125,7 +125,27 @@ impl ViewerOptions {
 
 /// Whether a display server is reachable (an X11 or Wayland display is named).
 pub fn has_display() -> bool {
-    ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
+    display_named(|name| std::env::var_os(name))
+}
+
+/// Whether the environment (`var`) names a display: `DISPLAY` or `WAYLAND_DISPLAY`,
+/// not empty.
+fn display_named(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| var(v).is_some_and(|s| !s.is_empty()))
+}
+
+/// [`ViewerError::NoDisplay`] unless the environment (`var`) names a display.
+fn require_display_in(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> Result<()> {
+    if display_named(&var) {
+        return Ok(());
+    }
+    let display = var("DISPLAY").map(|d| d.to_string_lossy().into_owned()).unwrap_or_default();
+    Err(ViewerError::NoDisplay { display, reason: None })
+}
+
+/// [`ViewerError::NoDisplay`] unless a display is named ([`has_display`]).
+fn require_display() -> Result<()> {
+    require_display_in(|name| std::env::var_os(name))
 }
 
 /// Simulated seconds recorded by [`ProgramViewer::start`] when there is no display.
@@ -169,11 +189,9 @@ pub trait ProgramViewer: Program + Sized {
     /// and returns the simulation and what the run measured: frames drawn, the
     /// real-time factor, the process's memory once a second. Needs a display.
     fn show_for(&mut self, seconds: f64) -> Result<(ars_core::Simulation, WindowReport)> {
-        if !has_display() {
-            return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
-        }
+        require_display()?;
         if !(seconds.is_finite() && seconds > 0.0) {
-            return Err(ViewerError::Settings(format!("a window run needs a positive duration, got {seconds}")));
+            return Err(ViewerError::InvalidSetting(format!("a window run needs a positive duration, got {seconds}")));
         }
         let limit = std::time::Duration::from_secs_f64(seconds);
         catch_window_panic(|| window::run_window_until(self, &ViewerOptions::default(), Some(limit)))
@@ -182,9 +200,7 @@ pub trait ProgramViewer: Program + Sized {
     /// Opens the program's window for `frames` frames and returns the last one as
     /// shown (needs a display; run it on the main thread).
     fn snapshot_in_window(&mut self, frames: u32) -> Result<image::RgbImage> {
-        if !has_display() {
-            return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
-        }
+        require_display()?;
         catch_window_panic(|| window::snapshot_window(self, frames))
     }
 
@@ -213,11 +229,9 @@ pub fn run_window_with<D: Driver>(
     options: &ViewerOptions,
     limit: Option<Duration>,
 ) -> Result<WindowReport> {
-    if !has_display() {
-        return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
-    }
+    require_display()?;
     if limit.is_some_and(|l| l.is_zero()) {
-        return Err(ViewerError::Settings("a window run needs a positive duration".into()));
+        return Err(ViewerError::InvalidSetting("a window run needs a positive duration".into()));
     }
     catch_window_panic(|| window::drive_window(driver, view, options, limit, None))
 }
@@ -238,11 +252,9 @@ pub fn run_window_recording<D: Driver>(
     path: impl Into<PathBuf>,
     fps: f64,
 ) -> Result<(WindowReport, RecordedVideo)> {
-    if !has_display() {
-        return Err(ViewerError::Settings("no display: DISPLAY and WAYLAND_DISPLAY are unset".into()));
-    }
+    require_display()?;
     if limit.is_some_and(|l| l.is_zero()) {
-        return Err(ViewerError::Settings("a window run needs a positive duration".into()));
+        return Err(ViewerError::InvalidSetting("a window run needs a positive duration".into()));
     }
     // Before the encoder's thread starts: the probe's fix needs a single thread.
     window::quiet_wayland_probe();
@@ -262,12 +274,51 @@ fn catch_window_panic<T>(open: impl FnOnce() -> Result<T>) -> Result<T> {
                 .cloned()
                 .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_else(|| "unknown panic".into());
-            if message.to_lowercase().contains("adapter") {
-                Err(ViewerError::NoAdapter(message))
-            } else {
-                let display = std::env::var("DISPLAY").unwrap_or_default();
-                Err(ViewerError::Settings(format!("could not open a window (DISPLAY={display:?}): {message}")))
-            }
+            Err(window_panic_error(message, std::env::var("DISPLAY").unwrap_or_default()))
         }
+    }
+}
+
+/// The error for a panic of the windowing stack with `message`, `DISPLAY` being
+/// `display`: no graphics adapter when the message is about one, no display otherwise
+/// (the window could not be opened).
+fn window_panic_error(message: String, display: String) -> ViewerError {
+    if message.to_lowercase().contains("adapter") {
+        ViewerError::NoAdapter(message)
+    } else {
+        ViewerError::NoDisplay { display, reason: Some(message) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An environment of `vars` only.
+    fn env(vars: &'static [(&'static str, &'static str)]) -> impl Fn(&str) -> Option<std::ffi::OsString> {
+        move |name: &str| vars.iter().find(|(n, _)| *n == name).map(|(_, v)| std::ffi::OsString::from(v))
+    }
+
+    #[test]
+    fn no_display_named_is_a_no_display_error() {
+        for vars in [&[][..], &[("DISPLAY", "")], &[("DISPLAY", ""), ("WAYLAND_DISPLAY", "")]] {
+            let error = require_display_in(env(vars)).unwrap_err();
+            assert!(matches!(&error, ViewerError::NoDisplay { reason: None, .. }), "{error:?}");
+            assert_eq!(error.to_string(), "no display: DISPLAY and WAYLAND_DISPLAY are unset");
+        }
+        assert!(require_display_in(env(&[("DISPLAY", ":99")])).is_ok());
+        assert!(require_display_in(env(&[("WAYLAND_DISPLAY", "wayland-0")])).is_ok());
+    }
+
+    #[test]
+    fn a_window_that_does_not_open_is_no_display_and_an_adapter_missing_is_no_adapter() {
+        let error = window_panic_error("Failed to open connection to X server".into(), ":12345".into());
+        assert!(matches!(&error, ViewerError::NoDisplay { reason: Some(_), display } if display == ":12345"));
+        assert_eq!(
+            error.to_string(),
+            "could not open a window (DISPLAY=\":12345\"): Failed to open connection to X server"
+        );
+        let error = window_panic_error("Unable to find a GPU adapter".into(), ":0".into());
+        assert!(matches!(error, ViewerError::NoAdapter(_)), "{error:?}");
     }
 }

@@ -31,7 +31,7 @@ thread_local! {
 }
 
 /// Lets this thread open window after window. kiss3d 0.47 can make one rendering
-/// context per thread (see [`ViewerError::Settings`]), and drops it with the thread's
+/// context per thread (see [`ViewerError::SecondContext`]), and drops it with the thread's
 /// last window; from now on this thread keeps the context of its next window after
 /// that window closes, and its later windows use it.
 ///
@@ -71,12 +71,7 @@ pub(crate) fn keep_context_if_asked() {
 /// inside kiss3d ("non-existent resource"). A new thread gets a fresh start.
 pub(crate) fn check_context_reuse() -> Result<()> {
     if !kiss3d::context::Context::is_initialized() && CONTEXT_MADE.with(|m| m.get()) {
-        return Err(ViewerError::Settings(
-            "this thread already had a window or renderer, now closed: kiss3d 0.47 can make only one rendering \
-             context per thread; keep the first renderer, render on a new thread (std::thread::spawn), or call \
-             ars_viewer::keep_rendering_context() before the first window"
-                .into(),
-        ));
+        return Err(ViewerError::SecondContext);
     }
     Ok(())
 }
@@ -159,10 +154,10 @@ impl OffscreenRenderer {
     pub fn with_options(view: &ViewSettings, options: &ViewerOptions) -> Result<Self> {
         let (w, h) = view.size;
         if w == 0 || h == 0 || w > 8192 || h > 8192 {
-            return Err(ViewerError::Settings(format!("image size {w}×{h} must be between 1 and 8192 pixels")));
+            return Err(ViewerError::InvalidSetting(format!("image size {w}×{h} must be between 1 and 8192 pixels")));
         }
         if !(1..=4).contains(&options.views.max(1)) || (options.views > 1 && (w < 2 || h < 2)) {
-            return Err(ViewerError::Settings(format!(
+            return Err(ViewerError::InvalidSetting(format!(
                 "{} views in a {w}×{h} image: 1 to 4 views, of at least one pixel each",
                 options.views
             )));
@@ -231,7 +226,7 @@ pub(crate) fn surface_with_view(
 /// one may be cut short by the duration): what every recorder runs.
 pub(crate) fn frames_in(sim: &Simulation, duration: f64) -> Result<u64> {
     if !(duration.is_finite() && duration > 0.0) {
-        return Err(ViewerError::Settings(format!("a recording's duration must be positive, got {duration} s")));
+        return Err(ViewerError::InvalidSetting(format!("a recording's duration must be positive, got {duration} s")));
     }
     Ok(sim.scene().steps_in(duration)?.div_ceil(u64::from(sim.scene().steps_per_frame())))
 }
@@ -322,11 +317,10 @@ impl ScreenshotRecorder {
     /// drawn, with the frames so far.
     pub fn record_driven<D: Driver>(&self, driver: &mut D, view: &ViewSettings, duration: f64) -> Result<Vec<PathBuf>> {
         if self.every == 0 {
-            return Err(ViewerError::Settings("the screenshot period must be at least one frame".into()));
+            return Err(ViewerError::InvalidSetting("the screenshot period must be at least one frame".into()));
         }
         let frames = frames_in(&driver.simulation(), duration)?;
-        std::fs::create_dir_all(&self.dir)
-            .map_err(|e| ViewerError::Write { path: self.dir.display().to_string(), message: e.to_string() })?;
+        std::fs::create_dir_all(&self.dir).map_err(|e| ViewerError::write(&self.dir, e))?;
         let mut renderer = recording_renderer(driver, view, self.size, &self.options)?;
         let mut writer = FrameWriter::new();
         let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];

@@ -23,10 +23,13 @@ use openh264::formats::YUVBuffer;
 
 use crate::ViewerOptions;
 use crate::driver::Driver;
-use crate::error::{Result, ViewerError};
+use crate::error::{Result, ThreadEnd, ViewerError};
 use crate::frames::RawFrame;
 use crate::mp4::Mp4Track;
 use crate::offscreen::{frames_in, recording_renderer};
+
+/// The encoder's thread, as its errors name it.
+const ENCODER: &str = "the video encoder";
 
 /// The largest frame rate a video can have, frames per second.
 pub const MAX_VIDEO_FPS: f64 = 1000.0;
@@ -40,12 +43,12 @@ const TIME_TOLERANCE: f64 = 1e-9;
 /// Checks a video's frame rate and size; the message says what is wrong.
 pub fn check_video_settings(fps: f64, width: u32, height: u32) -> Result<()> {
     if !(fps.is_finite() && fps > 0.0 && fps <= MAX_VIDEO_FPS) {
-        return Err(ViewerError::Settings(format!(
+        return Err(ViewerError::InvalidSetting(format!(
             "a video's frame rate must be a number of frames per second above 0 and at most {MAX_VIDEO_FPS}, got {fps}"
         )));
     }
     if !width.is_multiple_of(2) || !height.is_multiple_of(2) {
-        return Err(ViewerError::Settings(format!(
+        return Err(ViewerError::InvalidSetting(format!(
             "a video's width and height must be even (H.264 stores colour at half resolution), got {width}×{height}: \
              use {}×{}",
             width + width % 2,
@@ -53,13 +56,13 @@ pub fn check_video_settings(fps: f64, width: u32, height: u32) -> Result<()> {
         )));
     }
     if !(2..=MAX_VIDEO_SIDE).contains(&width) || !(2..=MAX_VIDEO_SIDE).contains(&height) {
-        return Err(ViewerError::Settings(format!(
+        return Err(ViewerError::InvalidSetting(format!(
             "a video's width and height must be between 2 and {MAX_VIDEO_SIDE} pixels, got {width}×{height}"
         )));
     }
     // H.264 level 5.2 holds up to 36,864 macroblocks of 16×16 pixels a frame.
     if u64::from(width.div_ceil(16)) * u64::from(height.div_ceil(16)) > 36_864 {
-        return Err(ViewerError::Settings(format!(
+        return Err(ViewerError::InvalidSetting(format!(
             "a video of {width}×{height} pixels is larger than H.264 allows (about 4096×2304)"
         )));
     }
@@ -71,7 +74,7 @@ pub fn check_video_settings(fps: f64, width: u32, height: u32) -> Result<()> {
 /// last at 4.967 s, and the video lasts 5.0 s).
 pub fn video_frame_count(duration: f64, fps: f64) -> Result<u64> {
     if !(duration.is_finite() && duration > 0.0) {
-        return Err(ViewerError::Settings(format!("a video needs a positive duration, got {duration} s")));
+        return Err(ViewerError::InvalidSetting(format!("a video needs a positive duration, got {duration} s")));
     }
     Ok((duration * fps - 1e-9).ceil().max(1.0) as u64)
 }
@@ -150,16 +153,23 @@ impl VideoWriter {
     pub fn create(path: impl Into<PathBuf>, width: u32, height: u32, fps: f64) -> Result<Self> {
         let path = path.into();
         check_video_settings(fps, width, height)?;
-        let write_error = |p: &Path, message: String| ViewerError::Write { path: p.display().to_string(), message };
         if path.is_dir() {
-            return Err(write_error(&path, "it is a folder; give a file name such as video.mp4".into()));
+            let why = std::io::Error::new(
+                std::io::ErrorKind::IsADirectory,
+                "it is a folder; give a file name such as video.mp4",
+            );
+            return Err(ViewerError::write(&path, why));
         }
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         if !dir.is_dir() {
-            return Err(write_error(&path, format!("the folder {} does not exist", dir.display())));
+            let why = std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                format!("the folder {} does not exist", dir.display()),
+            );
+            return Err(ViewerError::write(&path, why));
         }
         let partial = PartialFiles::beside(&path);
-        let file = File::create(&partial.frames).map_err(|e| write_error(&path, e.to_string()))?;
+        let file = File::create(&partial.frames).map_err(|e| ViewerError::write(&path, e))?;
         let config = EncoderConfig::new()
             .profile(Profile::Baseline)
             .usage_type(UsageType::CameraVideoRealTime)
@@ -178,18 +188,18 @@ impl VideoWriter {
             Ok(e) => e,
             Err(e) => {
                 partial.remove();
-                return Err(ViewerError::Settings(format!("could not start the H.264 encoder: {e}")));
+                return Err(ViewerError::Encoder(format!("could not start the H.264 encoder: {e}")));
             }
         };
         let track = match Mp4Track::new(width, height, fps) {
             Ok(t) => t,
             Err(e) => {
                 partial.remove();
-                return Err(write_error(&path, e.to_string()));
+                return Err(ViewerError::write(&path, e));
             }
         };
         let (frames, queue) = sync_channel(4);
-        let shown = path.display().to_string();
+        let shown = path.clone();
         let worker = std::thread::Builder::new()
             .name("ars-video-encoder".into())
             .spawn(move || encode(queue, encoder, track, BufWriter::new(file), (width, height), &shown));
@@ -197,7 +207,7 @@ impl VideoWriter {
             Ok(w) => w,
             Err(e) => {
                 partial.remove();
-                return Err(ViewerError::Settings(format!("could not start the video encoder's thread: {e}")));
+                return Err(ViewerError::thread_not_started(ENCODER, e));
             }
         };
         Ok(VideoWriter { path, partial, size: (width, height), fps, frames: Some(frames), worker: Some(worker) })
@@ -211,7 +221,7 @@ impl VideoWriter {
     /// Queues the next frame; it must be of the video's size.
     pub fn add_frame(&mut self, image: image::RgbImage) -> Result<()> {
         if image.dimensions() != self.size {
-            return Err(ViewerError::Settings(format!(
+            return Err(ViewerError::InvalidSetting(format!(
                 "a frame of {}×{} pixels for a video of {}×{}",
                 image.width(),
                 image.height(),
@@ -225,7 +235,7 @@ impl VideoWriter {
     /// Queues a frame as read back from the renderer.
     pub(crate) fn add_raw(&mut self, frame: RawFrame) -> Result<()> {
         if (frame.width, frame.height) != self.size {
-            return Err(ViewerError::Settings(format!(
+            return Err(ViewerError::InvalidSetting(format!(
                 "a frame of {}×{} pixels for a video of {}×{}",
                 frame.width, frame.height, self.size.0, self.size.1
             )));
@@ -242,7 +252,7 @@ impl VideoWriter {
         self.frames = None;
         match self.join() {
             Err(e) => Err(e),
-            Ok(_) => Err(ViewerError::Settings("the video encoder stopped".into())),
+            Ok(_) => Err(ViewerError::thread_ended(ENCODER, ThreadEnd::Stopped)),
         }
     }
 
@@ -251,8 +261,8 @@ impl VideoWriter {
         self.frames = None;
         match self.worker.take().map(|w| w.join()) {
             Some(Ok(outcome)) => outcome,
-            Some(Err(_)) => Err(ViewerError::Settings("the video encoder panicked".into())),
-            None => Err(ViewerError::Settings("the video encoder already stopped".into())),
+            Some(Err(_)) => Err(ViewerError::thread_ended(ENCODER, ThreadEnd::Panicked)),
+            None => Err(ViewerError::thread_ended(ENCODER, ThreadEnd::AlreadyStopped)),
         }
     }
 
@@ -260,9 +270,8 @@ impl VideoWriter {
     /// least one frame.
     pub fn finish(mut self) -> Result<RecordedVideo> {
         let track = self.join()?;
-        let write_error = |message: String| ViewerError::Write { path: self.path.display().to_string(), message };
         if track.frames() == 0 {
-            return Err(ViewerError::Settings("a video needs at least one frame".into()));
+            return Err(ViewerError::InvalidSetting("a video needs at least one frame".into()));
         }
         let written = (|| -> std::io::Result<u64> {
             let mut payload = BufReader::new(File::open(&self.partial.frames)?);
@@ -272,7 +281,7 @@ impl VideoWriter {
             std::fs::rename(&self.partial.whole, &self.path)?;
             Ok(std::fs::metadata(&self.path)?.len())
         })();
-        let bytes = written.map_err(|e| write_error(e.to_string()))?;
+        let bytes = written.map_err(|e| ViewerError::write(&self.path, e))?;
         let frames = track.frames() as u64;
         Ok(RecordedVideo {
             path: self.path.clone(),
@@ -352,9 +361,8 @@ fn encode(
     mut track: Mp4Track,
     mut payload: BufWriter<File>,
     (width, height): (u32, u32),
-    shown: &str,
+    shown: &Path,
 ) -> Result<Mp4Track> {
-    let write_error = |message: String| ViewerError::Write { path: shown.to_string(), message };
     let mut yuv = vec![0u8; (width * height * 3 / 2) as usize];
     for frame in queue {
         match &frame {
@@ -362,14 +370,14 @@ fn encode(
             Frame::Raw(raw) => rgb_to_yuv420(&raw.bottom_up, width as usize, height as usize, true, &mut yuv),
         }
         let buffer = YUVBuffer::from_vec(std::mem::take(&mut yuv), width as usize, height as usize);
-        let encoded = encoder.encode(&buffer).map_err(|e| {
-            ViewerError::Settings(format!("H.264 encoding failed at frame {}: {e}", track.frames() + 1))
-        })?;
+        let encoded = encoder
+            .encode(&buffer)
+            .map_err(|e| ViewerError::Encoder(format!("H.264 encoding failed at frame {}: {e}", track.frames() + 1)))?;
         let bytes = encoded.to_vec();
-        track.add_frame(&bytes, &mut payload).map_err(|e| write_error(e.to_string()))?;
+        track.add_frame(&bytes, &mut payload).map_err(|e| ViewerError::write(shown, e))?;
         yuv = buffer_into_vec(buffer);
     }
-    payload.flush().map_err(|e| write_error(e.to_string()))?;
+    payload.flush().map_err(|e| ViewerError::write(shown, e))?;
     Ok(track)
 }
 
@@ -502,7 +510,7 @@ impl VideoRecorder {
             let sim = driver.simulation();
             let shown = |id| sim.scene().object(id).is_ok_and(|o| !matches!(o.shape(), ars_core::Shape::Plane { .. }));
             if !sim.scene().objects().any(|(_, id)| shown(id)) {
-                return Err(ViewerError::Settings(
+                return Err(ViewerError::InvalidSetting(
                     "nothing to record: the simulation has no objects (a floor plane alone)".into(),
                 ));
             }
@@ -582,6 +590,26 @@ mod tests {
         assert_eq!(video_frame_count(0.5, 7.0).unwrap(), 4);
         assert_eq!(video_frame_count(1.01, 30.0).unwrap(), 31);
         assert!(video_frame_count(0.0, 30.0).is_err());
+    }
+
+    #[test]
+    fn a_missing_folder_or_a_folder_is_a_write_error_and_a_bad_rate_an_invalid_setting() {
+        let missing = std::env::temp_dir().join("ars-no-such-folder-for-videos").join("a.mp4");
+        let error = VideoWriter::create(&missing, 64, 48, 30.0).err().expect("refused");
+        assert!(
+            matches!(&error, ViewerError::Write { path, source } if *path == missing
+                && source.kind() == std::io::ErrorKind::NotFound),
+            "{error:?}"
+        );
+        assert!(error.to_string().ends_with("ars-no-such-folder-for-videos does not exist"), "{error}");
+        let folder = std::env::temp_dir();
+        let error = VideoWriter::create(&folder, 64, 48, 30.0).err().expect("refused");
+        assert!(
+            matches!(&error, ViewerError::Write { source, .. } if source.kind() == std::io::ErrorKind::IsADirectory),
+            "{error:?}"
+        );
+        let error = VideoWriter::create(&missing, 64, 48, 0.0).err().expect("refused");
+        assert!(matches!(&error, ViewerError::InvalidSetting(m) if m.contains("frame rate")), "{error:?}");
     }
 
     #[test]

@@ -19,6 +19,12 @@ One class per cause, each also a Python built-in class where one fits, so that
   error, the simulation is poisoned); the same class every time for the same cause;
 - ``BusyError`` (``RuntimeError``): the simulation is busy running the hook that makes
   the call (a hook that steps, shows or renders its own simulation);
+- ``NoDisplayError`` (``RuntimeError``): a window cannot be opened: ``DISPLAY`` and
+  ``WAYLAND_DISPLAY`` are unset, or the display refused the window (off-screen
+  rendering, ``ars.Renderer``, needs no display);
+- ``RendererError`` (``RuntimeError``): the renderer, the video encoder or a frame
+  writer failed: its thread could not start, stopped or panicked, or the H.264 encoder
+  could not start or encode a frame;
 - ``InternalError``: a bug in ARS (a Rust panic);
 - ``SnapshotError``: a snapshot that cannot be restored or taken, one class per cause:
   ``SnapshotMismatchError`` (a snapshot of another scene), ``SnapshotVersionError``
@@ -38,7 +44,9 @@ __all__ = [
     "FormatError",
     "InputError",
     "InternalError",
+    "NoDisplayError",
     "NotCapturableError",
+    "RendererError",
     "ReproductionError",
     "SimulationError",
     "SnapshotCorruptError",
@@ -115,6 +123,18 @@ class BusyError(ArsError, RuntimeError):
     show or render the simulation it runs in (do it between steps)."""
 
 
+class NoDisplayError(ArsError, RuntimeError):
+    """A window cannot be opened: ``DISPLAY`` and ``WAYLAND_DISPLAY`` are unset, or the
+    display named would not open one (the message says what it said). Off-screen
+    rendering (``ars.Renderer``, ``record_video``, ``save_replay``) needs no display."""
+
+
+class RendererError(ArsError, RuntimeError):
+    """The renderer, the video encoder or a frame writer failed: its thread could not
+    start, stopped or panicked, or the H.264 encoder could not start or encode a frame.
+    Nothing the caller passed was wrong."""
+
+
 class InternalError(ArsError):
     """A bug in ARS (a Rust panic), caught before it reached Python: please report it."""
 
@@ -154,6 +174,8 @@ for _cls in (
     FileError,
     SimulationError,
     BusyError,
+    NoDisplayError,
+    RendererError,
     InternalError,
     ReproductionError,
     SnapshotError,

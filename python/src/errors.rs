@@ -63,6 +63,29 @@ pub(crate) fn file_error(py: Python<'_>, errno: Option<i32>, message: String, pa
     }
 }
 
+/// An `ars.FileError` for `error` met on `path`: its `errno` is the system's error
+/// number, or for a failure ARS saw itself before asking the system (a missing folder,
+/// a path that is a folder) the number of its kind (`ENOENT`, `EISDIR`...).
+pub(crate) fn io_file_error(py: Python<'_>, error: &std::io::Error, message: String, path: &str) -> PyErr {
+    let errno = error.raw_os_error().or_else(|| errno_of_kind(py, error.kind()));
+    file_error(py, errno, message, path)
+}
+
+/// Python's error number (`errno.ENOENT`...) for the kinds of failure ARS reports
+/// itself.
+fn errno_of_kind(py: Python<'_>, kind: std::io::ErrorKind) -> Option<i32> {
+    use std::io::ErrorKind;
+    let name = match kind {
+        ErrorKind::NotFound => "ENOENT",
+        ErrorKind::PermissionDenied => "EACCES",
+        ErrorKind::IsADirectory => "EISDIR",
+        ErrorKind::NotADirectory => "ENOTDIR",
+        ErrorKind::AlreadyExists => "EEXIST",
+        _ => return None,
+    };
+    py.import("errno").and_then(|m| m.getattr(name)).and_then(|n| n.extract()).ok()
+}
+
 /// An `ars.FormatError` with its `filename` and `position`.
 fn format_error(
     py: Python<'_>,

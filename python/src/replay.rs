@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use ars_viewer::{ReplayRecorder, ViewerError};
 use pyo3::prelude::*;
 
-use crate::errors::{raise, to_py};
+use crate::errors::{io_file_error, raise};
 use crate::simulation::PySimulation;
-use crate::viewer::ViewArgs;
+use crate::viewer::{ViewArgs, to_py_error};
 
 /// What `save_replay` and `replay` take besides the view.
 pub(crate) struct ReplayArgs {
@@ -54,11 +54,11 @@ pub(crate) fn record(
     })?;
     if let Some(e) = refused {
         return Err(match e {
-            ViewerError::Write { path, message } => {
-                raise(py, "FileError", format!("cannot write the replay {path:?}: {message}"))
+            ViewerError::Write { path, source } => {
+                let path = path.display().to_string();
+                io_file_error(py, &source, format!("cannot write the replay {path:?}: {source}"), &path)
             }
-            ViewerError::Settings(message) => raise(py, "InputError", message),
-            other => to_py(py, ars_core::Error::User(other.to_string())),
+            other => to_py_error(py, other),
         });
     }
     let Some(replay) = replay else {

@@ -6,13 +6,13 @@
 use std::path::PathBuf;
 use std::sync::Mutex;
 
-use ars_viewer::{RecordedVideo, VideoRecorder, VideoWriter, ViewerError};
+use ars_viewer::{RecordedVideo, ThreadEnd, VideoRecorder, VideoWriter, ViewerError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::{panic_message, raise};
 use crate::simulation::{PySimulation, Vec3};
-use crate::viewer::{PyRenderer, ViewArgs, to_py_error};
+use crate::viewer::{Failure, PyRenderer, ViewArgs, to_py_error};
 
 /// What a finished video holds, as a dict.
 fn summary(py: Python<'_>, video: &RecordedVideo) -> PyResult<Py<PyDict>> {
@@ -46,8 +46,9 @@ pub(crate) fn record_video(
         .and_then(|()| ars_viewer::video_frame_count(duration, fps));
     checked.map_err(|e| to_py_error(py, e))?;
     let recorder = VideoRecorder::new(path).fps(fps).options(options);
-    // The recorder's own error, kept whole (the step's error type cannot carry it).
-    let failure: Mutex<Option<ViewerError>> = Mutex::new(None);
+    // The recorder's own error (or its thread's panic), kept whole (the step's error
+    // type cannot carry it).
+    let failure: Mutex<Option<Failure>> = Mutex::new(None);
     let recorded: Mutex<Option<RecordedVideo>> = Mutex::new(None);
     let ran = sim.advance(py, |sim| {
         let outcome = std::thread::scope(|scope| {
@@ -55,9 +56,13 @@ pub(crate) fn record_video(
                 .name("ars-video".into())
                 .spawn_scoped(scope, || recorder.record_simulation(sim, &view, duration));
             match drawing.map(|t| t.join()) {
-                Ok(Ok(outcome)) => outcome,
-                Ok(Err(panic)) => Err(ViewerError::Settings(format!("ARS panicked: {}", panic_message(&panic)))),
-                Err(e) => Err(ViewerError::Settings(format!("could not start the video's thread: {e}"))),
+                Ok(Ok(outcome)) => outcome.map_err(Failure::Viewer),
+                Ok(Err(panic)) => Err(Failure::Panic(panic_message(&panic))),
+                Err(e) => Err(Failure::Viewer(ViewerError::ThreadDied {
+                    thread: "the video",
+                    end: ThreadEnd::NotStarted,
+                    source: Some(e),
+                })),
             }
         });
         match outcome {
@@ -65,16 +70,19 @@ pub(crate) fn record_video(
                 *failure_free(&recorded) = Some(video);
                 Ok(())
             }
-            Err(ViewerError::Simulation(e)) => Err(e),
-            Err(e) => {
-                let message = e.to_string();
-                *failure_free(&failure) = Some(e);
+            Err(Failure::Viewer(ViewerError::Simulation(e))) => Err(e),
+            Err(f) => {
+                let message = match &f {
+                    Failure::Viewer(e) => e.to_string(),
+                    Failure::Panic(m) => format!("ARS panicked: {m}"),
+                };
+                *failure_free(&failure) = Some(f);
                 Err(ars_core::Error::User(message))
             }
         }
     });
-    if let Some(e) = failure_free(&failure).take() {
-        return Err(to_py_error(py, e));
+    if let Some(f) = failure_free(&failure).take() {
+        return Err(f.into_py(py));
     }
     ran?;
     let video = failure_free(&recorded).take();

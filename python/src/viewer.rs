@@ -17,15 +17,26 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{panic_message, raise, to_py};
+use crate::errors::{io_file_error, panic_message, raise, to_py};
 use crate::simulation::{PySimulation, Vec3};
 
-/// The Python exception for a viewer error.
+/// The Python exception for a viewer error: a bad setting is an `ars.InputError`, no
+/// display an `ars.NoDisplayError`, a renderer, encoder or frame-writer thread that
+/// died, the H.264 encoder failing or a second rendering context on a thread an
+/// `ars.RendererError`, a file that cannot be written an `ars.FileError` (with `errno`
+/// and `filename`), no graphics adapter an `ars.ArsError`; the simulation's own errors
+/// as everywhere ([`to_py`]).
 pub(crate) fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
+    let message = error.to_string();
     match error {
         ViewerError::Simulation(e) => to_py(py, e),
-        ViewerError::Settings(message) => raise(py, "InputError", message),
-        other => raise(py, "ArsError", other.to_string()),
+        ViewerError::InvalidSetting(_) => raise(py, "InputError", message),
+        ViewerError::NoDisplay { .. } => raise(py, "NoDisplayError", message),
+        ViewerError::ThreadDied { .. } | ViewerError::Encoder(_) | ViewerError::SecondContext => {
+            raise(py, "RendererError", message)
+        }
+        ViewerError::Write { path, source } => io_file_error(py, &source, message, &path.display().to_string()),
+        _ => raise(py, "ArsError", message),
     }
 }
 
@@ -295,14 +306,15 @@ struct Request {
     reply: mpsc::SyncSender<Result<image::RgbImage, Failure>>,
 }
 
-/// Why an image was not drawn.
-enum Failure {
+/// Why an image (or a video) was not made.
+pub(crate) enum Failure {
     Viewer(ViewerError),
     Panic(String),
 }
 
 impl Failure {
-    fn into_py(self, py: Python<'_>) -> PyErr {
+    /// Its Python exception: a panic is an `ars.InternalError`.
+    pub(crate) fn into_py(self, py: Python<'_>) -> PyErr {
         match self {
             Failure::Viewer(e) => to_py_error(py, e),
             Failure::Panic(m) => raise(py, "InternalError", format!("ARS panicked: {m}")),
@@ -403,12 +415,12 @@ impl PyRenderer {
         let thread = std::thread::Builder::new()
             .name("ars-renderer".into())
             .spawn(move || serve(view, options, ready_tx, requests_rx))
-            .map_err(|e| raise(py, "ArsError", format!("could not start the renderer's thread: {e}")))?;
+            .map_err(|e| raise(py, "RendererError", format!("could not start the renderer's thread: {e}")))?;
         let ready = py.detach(move || ready_rx.recv());
         match ready {
             Ok(Ok(())) => Ok(PyRenderer { requests: Mutex::new(requests), thread: Some(thread), size }),
             Ok(Err(failure)) => Err(failure.into_py(py)),
-            Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended before it was ready".into())),
+            Err(_) => Err(raise(py, "RendererError", "the renderer's thread ended before it was ready".into())),
         }
     }
 
@@ -457,12 +469,12 @@ impl PyRenderer {
         let (reply, answer) = mpsc::sync_channel(1);
         let sent = self.requests.lock().unwrap_or_else(std::sync::PoisonError::into_inner).send(Request { sim, reply });
         if sent.is_err() {
-            return Err(raise(py, "InternalError", "the renderer's thread has ended".into()));
+            return Err(raise(py, "RendererError", "the renderer's thread has ended".into()));
         }
         match py.detach(move || answer.recv()) {
             Ok(Ok(image)) => Ok(image),
             Ok(Err(failure)) => Err(failure.into_py(py)),
-            Err(_) => Err(raise(py, "InternalError", "the renderer's thread ended while drawing".into())),
+            Err(_) => Err(raise(py, "RendererError", "the renderer's thread ended while drawing".into())),
         }
     }
 }

@@ -2,6 +2,7 @@
 and messages that are sentences naming objects, never internal handles."""
 
 import errno
+import os
 import pickle
 
 import pytest
@@ -24,12 +25,16 @@ def test_every_class_is_importable_from_ars_and_is_the_python_class_it_should_be
     assert issubclass(ars.UnknownNameError, KeyError)
     assert issubclass(ars.FileError, OSError)
     assert issubclass(ars.BusyError, RuntimeError)
+    assert issubclass(ars.NoDisplayError, RuntimeError)
+    assert issubclass(ars.RendererError, RuntimeError)
     for cls in (
         ars.SimulationError,
         ars.InternalError,
         ars.FileError,
         ars.BusyError,
         ars.FormatError,
+        ars.NoDisplayError,
+        ars.RendererError,
     ):
         assert issubclass(cls, ars.ArsError) and cls.__module__ == "ars"
     assert not issubclass(ars.SimulationError, ars.InternalError)
@@ -227,3 +232,67 @@ def test_a_simulation_that_cannot_go_on_raises_the_same_class_every_time():
             sim.step()
         assert type(later.value) is ars.SimulationError, repr(later.value)
         readable(later.value)
+
+
+def ball():
+    """A simulation with something to show."""
+    sim = ars.Simulation()
+    sim.add_sphere(0.2, (0.0, 2.0, 0.0), mass=1.0, name="ball")
+    return sim
+
+
+def test_the_viewer_classes_pickle_as_the_same_classes():
+    for cls in (ars.NoDisplayError, ars.RendererError):
+        again = pickle.loads(pickle.dumps(cls("message")))
+        assert type(again) is cls and str(again) == "message"
+        assert not issubclass(cls, ars.InputError)
+
+
+def test_a_window_with_no_display_is_a_no_display_error(monkeypatch):
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    assert not ars.has_display()
+    with pytest.raises(ars.NoDisplayError) as caught:
+        ball().show(1.0)
+    error = caught.value
+    assert isinstance(error, RuntimeError) and isinstance(error, ars.ArsError)
+    assert not isinstance(error, ars.InputError)
+    assert readable(error) == "no display: DISPLAY and WAYLAND_DISPLAY are unset"
+
+
+def test_a_video_into_a_missing_folder_is_a_file_error_with_the_path(tmp_path):
+    sim = ball()
+    path = tmp_path / "no such folder" / "ball.mp4"
+    with pytest.raises(OSError) as caught:
+        sim.record_video(path, 1.0, size=(64, 48))
+    error = caught.value
+    assert type(error) is ars.FileError
+    assert error.errno == errno.ENOENT and error.filename == str(path)
+    assert readable(error) == f"could not write {path}: the folder {path.parent} does not exist"
+    assert os.listdir(tmp_path) == [] and sim.time == 0.0
+
+
+def test_a_replay_into_a_missing_folder_is_a_file_error_with_the_path(tmp_path):
+    sim = ball()
+    path = tmp_path / "no such folder" / "ball.html"
+    with pytest.raises(OSError) as caught:
+        sim.save_replay(path, 0.1)
+    error = caught.value
+    assert type(error) is ars.FileError
+    assert error.errno == errno.ENOENT and error.filename == str(path)
+    assert readable(error).startswith(f"cannot write the replay {str(path)!r}: ".replace("'", '"'))
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "words"),
+    [
+        ({"size": (65, 48)}, "a video's width and height must be even"),
+        ({"fps": 0.0, "size": (64, 48)}, "a video's frame rate must be a number of frames"),
+    ],
+)
+def test_a_bad_video_setting_is_an_input_error(tmp_path, kwargs, words):
+    with pytest.raises(ars.InputError) as caught:
+        ball().record_video(tmp_path / "ball.mp4", 1.0, **kwargs)
+    assert readable(caught.value).startswith(words)
+    assert os.listdir(tmp_path) == []

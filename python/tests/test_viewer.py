@@ -129,12 +129,12 @@ def test_a_hook_cannot_render_its_own_simulation_and_the_simulation_goes_on():
     assert renderer.render(sim).shape == (24, 32, 3)
 
 
-def test_show_without_a_display_is_an_input_error(monkeypatch):
+def test_show_without_a_display_is_a_no_display_error(monkeypatch):
     monkeypatch.delenv("DISPLAY", raising=False)
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     sim, _ = ball_scene()
     assert not ars.has_display()
-    with pytest.raises(ars.InputError, match="no display"):
+    with pytest.raises(ars.NoDisplayError, match="no display"):
         sim.show(1.0)
 
 

@@ -195,7 +195,7 @@ impl ReplayRecorder {
         let frame_rate = 1.0 / (sim.scene().time_step() * f64::from(sim.scene().steps_per_frame()));
         let fps = self.fps.unwrap_or(frame_rate);
         if !(fps.is_finite() && fps > 0.0) {
-            return Err(ViewerError::Settings(format!("a replay's frame rate must be positive, got {fps}")));
+            return Err(ViewerError::InvalidSetting(format!("a replay's frame rate must be positive, got {fps}")));
         }
         let mut view = view.clone();
         if let Some(size) = self.size {
@@ -203,10 +203,12 @@ impl ReplayRecorder {
         }
         let (w, h) = view.size;
         if w == 0 || h == 0 || w > 8192 || h > 8192 {
-            return Err(ViewerError::Settings(format!("a replay's size {w}×{h} must be between 1 and 8192 pixels")));
+            return Err(ViewerError::InvalidSetting(format!(
+                "a replay's size {w}×{h} must be between 1 and 8192 pixels"
+            )));
         }
         if sim.scene().objects().next().is_none() {
-            return Err(ViewerError::Settings("nothing to replay: the simulation has no objects".into()));
+            return Err(ViewerError::InvalidSetting("nothing to replay: the simulation has no objects".into()));
         }
         let columns = self.plots.iter().map(|p| find_column(sim, p)).collect::<Result<Vec<_>>>()?;
         let ids: Vec<ObjectId> = sim.scene().objects().map(|(_, id)| id).collect();
@@ -330,7 +332,7 @@ fn find_column(sim: &Simulation, spec: &str) -> Result<Column> {
         }
     }
     let choices = if known.is_empty() { "the simulation has no sensors".to_string() } else { known.join(", ") };
-    Err(ViewerError::Settings(format!("no sensor column {spec:?} to plot; the columns are: {choices}")))
+    Err(ViewerError::InvalidSetting(format!("no sensor column {spec:?} to plot; the columns are: {choices}")))
 }
 
 /// The objects of a replay, as they looked when it started.
@@ -485,21 +487,22 @@ struct PendingFile {
 impl PendingFile {
     /// Creates the temporary file (the folder must exist and be writable).
     fn create(target: &Path) -> Result<Self> {
-        let failed = |message: String| ViewerError::Write { path: target.display().to_string(), message };
-        let name = target.file_name().ok_or_else(|| failed("the path names no file".into()))?;
+        let failed = |kind, message| ViewerError::write(target, std::io::Error::new(kind, message));
+        let name =
+            target.file_name().ok_or_else(|| failed(std::io::ErrorKind::InvalidInput, "the path names no file"))?;
         if target.is_dir() {
-            return Err(failed("it is a folder".into()));
+            return Err(failed(std::io::ErrorKind::IsADirectory, "it is a folder"));
         }
         let mut temporary_name = std::ffi::OsString::from(".");
         temporary_name.push(name);
         temporary_name.push(format!(".{}.partial", std::process::id()));
         let temporary = target.with_file_name(temporary_name);
-        let file = std::fs::File::create(&temporary).map_err(|e| failed(e.to_string()))?;
+        let file = std::fs::File::create(&temporary).map_err(|e| ViewerError::write(target, e))?;
         Ok(PendingFile { target: target.to_path_buf(), temporary, file })
     }
 
     fn failed(&self, e: std::io::Error) -> ViewerError {
-        ViewerError::Write { path: self.target.display().to_string(), message: e.to_string() }
+        ViewerError::write(&self.target, e)
     }
 
     fn write(&mut self, bytes: &[u8]) -> Result<()> {
