@@ -160,7 +160,7 @@ fn several_joints_in_one_body_are_chained_through_light_links() {
     assert_eq!(model.chain_links.len(), 2);
     let torso = model.body("torso").unwrap();
     let link = sim.scene().body(model.chain_links[0]).unwrap().mass();
-    assert!((link - sim.scene().body(torso).unwrap().mass() * ars::scene::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
+    assert!((link - sim.scene().body(torso).unwrap().mass() * ars::formats::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
     // The tilted capsule falls, lands and tips over in its plane: it moves along x and
     // turns about the hinge, and never leaves the plane z = 0.
     sim.run_for(1.5).unwrap();

@@ -94,7 +94,6 @@ pub mod handle;
 mod init;
 pub mod interrupt;
 pub mod limits;
-pub use formats::mesh;
 mod panic;
 pub mod platform;
 pub mod program;
@@ -114,6 +113,9 @@ pub use control::{
     TorqueMotor, VelocityServo,
 };
 pub use error::{Error, Result};
+pub use formats::mjcf::{MjcfActuator, MjcfModel, MjcfOptions, MjcfSensor};
+pub use formats::open::{FileFormat, OpenedFile};
+pub use formats::urdf::{UpAxis, UrdfOptions, UrdfRobot};
 pub use geom::{GeomBuilder, GeomMut, GeomRef};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
 pub use init::{ensure_ode_ready, lock_ode_global_state};
@@ -122,13 +124,12 @@ pub use program::{
     Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, ViewSettings,
 };
 pub use scene::{
-    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, MjcfActuator, MjcfModel, MjcfOptions,
-    MjcfSensor, Scene, SimJoint, UpAxis, UrdfOptions, UrdfRobot, Visual, heightfield_triangles,
+    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, Visual,
+    heightfield_triangles,
 };
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, HookPoint, Hooks, PostFrame, PostStep, PreFrame, PreStep};
-pub use simulation::open::{FileFormat, OpenedFile};
 pub use simulation::snapshot::{SNAPSHOT_VERSION, SceneState, Snapshot};
 pub use simulation::{
     DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, SENSOR_KINDS, Simulation, SimulationBuilder,

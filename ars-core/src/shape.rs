@@ -89,7 +89,7 @@ impl Shape {
 
     /// The volume it encloses, m³: `None` for a plane or a ray. A triangle mesh's is
     /// that of the solid its triangles close (counter-clockwise seen from outside; `None`
-    /// when they enclose nothing: see [`mass_properties`](crate::mesh::mass_properties)).
+    /// when they enclose nothing: see [`mass_properties`](crate::formats::mesh::mass_properties)).
     ///
     /// ```
     /// use ars_core::Shape;
@@ -107,7 +107,7 @@ impl Shape {
             Shape::Cone { radius, height } => Some(PI * radius.powi(2) * height / 3.0),
             Shape::Plane { .. } | Shape::Ray { .. } => None,
             Shape::TriMesh { vertices, triangles } => {
-                crate::mesh::mass_properties(vertices, triangles).map(|m| m.volume)
+                crate::formats::mesh::mass_properties(vertices, triangles).map(|m| m.volume)
             }
         }
     }

@@ -19,7 +19,7 @@ use crate::shape::Shape;
 /// # let path = dir.join("tetra.stl");
 /// std::fs::write(&path, "solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\n\
 ///     facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid t\n")?;
-/// let shape = ars_core::mesh::load_mesh(&path, nalgebra::Vector3::new(2.0, 2.0, 2.0))?;
+/// let shape = ars_core::formats::mesh::load_mesh(&path, nalgebra::Vector3::new(2.0, 2.0, 2.0))?;
 /// let ars_core::Shape::TriMesh { vertices, triangles } = shape else { unreachable!() };
 /// assert_eq!((vertices.len(), triangles.len()), (4, 2), "the shared vertices are welded");
 /// assert!(vertices.contains(&nalgebra::Point3::new(2.0, 0.0, 0.0)));
@@ -91,7 +91,7 @@ pub struct MeshMass {
 /// second moments.
 ///
 /// ```
-/// use ars_core::mesh::mass_properties;
+/// use ars_core::formats::mesh::mass_properties;
 /// use nalgebra::Point3;
 /// // The unit cube [0, 1]³, two triangles a face, wound outwards.
 /// let v: Vec<Point3<f64>> = (0..8).map(|i| Point3::new(f64::from(i & 1), f64::from(i >> 1 & 1), f64::from(i >> 2))).collect();

@@ -126,9 +126,9 @@ use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion
 use crate::body::{BodyBuilder, MassSpec};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::{Error, Result};
+use crate::formats::mesh::MeshMass;
 use crate::geom::GeomBuilder;
 use crate::handle::{GeomHandle, JointId, ObjectId};
-use crate::mesh::MeshMass;
 use crate::scene::JointEnd;
 use crate::scene::Scene;
 use crate::sensors::{AnySensorId, Mount, TouchZone};
@@ -924,7 +924,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let Shape::TriMesh { vertices, triangles } = &shape else {
             return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
         };
-        let mass = crate::mesh::mass_properties(vertices, triangles).ok_or_else(|| {
+        let mass = crate::formats::mesh::mass_properties(vertices, triangles).ok_or_else(|| {
             problem(node, format!("the mesh {name:?} encloses no volume (it must be closed and wound outwards)"))
         })?;
         let mesh = std::sync::Arc::new(MeshGeom { shape, mass });

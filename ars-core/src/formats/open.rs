@@ -7,7 +7,8 @@ use std::path::Path;
 use nalgebra::{Isometry3, Vector3};
 
 use crate::error::{Error, Result};
-use crate::scene::{MjcfOptions, UrdfOptions};
+use crate::formats::mjcf::MjcfOptions;
+use crate::formats::urdf::UrdfOptions;
 use crate::simulation::Simulation;
 use crate::world::SpaceKind;
 

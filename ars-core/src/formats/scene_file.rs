@@ -290,7 +290,7 @@ pub struct MimicFile {
 }
 
 impl Simulation {
-    /// The scene as a [`SceneFile`] (see the [`scene_file`](crate::simulation::scene_file)
+    /// The scene as a [`SceneFile`] (see the [`scene_file`](crate::formats::scene_file)
     /// module), with its exact state when it can be saved (otherwise `state_not_saved`
     /// says why).
     pub fn scene_file(&self) -> Result<SceneFile> {
@@ -504,7 +504,7 @@ impl Simulation {
             .collect()
     }
 
-    /// The scene as JSON text (see the [`scene_file`](crate::simulation::scene_file) module).
+    /// The scene as JSON text (see the [`scene_file`](crate::formats::scene_file) module).
     pub fn save_scene(&self) -> Result<String> {
         serde_json::to_string_pretty(&self.scene_file()?)
             .map_err(|e| Error::Invalid { what: "the scene", problem: format!("cannot be written as JSON: {e}") })

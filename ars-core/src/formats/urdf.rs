@@ -31,7 +31,7 @@
 //!   [`UrdfOptions::self_collision`] off (the default) no two links of the robot do.
 //! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
 //!   link's Z, as in ODE), `sphere`, `capsule`, and `mesh` (STL, OBJ, COLLADA, with
-//!   `scale`) as a triangle mesh (see [`load_mesh`](crate::mesh::load_mesh)).
+//!   `scale`) as a triangle mesh (see [`load_mesh`](crate::formats::mesh::load_mesh)).
 //! - **Mesh paths** (the first that exists; the error lists every path tried):
 //!   `file://` and absolute paths as written; relative ones in the URDF's folder, then
 //!   in [`UrdfOptions::search_paths`]; `package://NAME/REST` in the folder given for

@@ -13,16 +13,13 @@ pub(crate) mod joints;
 mod names;
 pub(crate) mod objects;
 mod surfaces;
-pub use crate::formats::{mjcf, urdf};
 mod views;
 
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic, SimJoint};
-pub use mjcf::{MjcfActuator, MjcfModel, MjcfOptions, MjcfSensor};
 pub use objects::{Color, Visual};
-pub use urdf::{UpAxis, UrdfOptions, UrdfRobot};
 pub use views::{JointKey, JointView, ObjectKey, ObjectView};
 
 use crate::error::{Error, Result};

@@ -23,7 +23,6 @@
 //! only (ODE clears its accumulators after each step).
 
 pub mod hooks;
-pub use crate::formats::{open, scene_file};
 mod sensor_kinds;
 pub mod snapshot;
 

@@ -69,8 +69,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::Simulation;
-use super::scene_file::SceneFile;
 use crate::error::{Error, Result};
+use crate::formats::scene_file::SceneFile;
 use crate::scene::joints::JointDriveState;
 use crate::sensors::SensorState;
 use crate::world::state::WorldState;
