@@ -19,7 +19,6 @@ use crate::shape::Shape;
 
 pub mod mesh;
 pub mod mjcf;
-mod mjcf_schema;
 pub mod open;
 pub mod scene_file;
 pub mod urdf;

@@ -1,0 +1,300 @@
+//! Building a read model in a scene: objects, joints, actuators, contact pairs and
+//! exclusions, placed at the model's base pose.
+
+use std::collections::HashMap;
+
+use nalgebra::{Isometry3, Matrix3, Translation3, Unit, UnitQuaternion, Vector3};
+
+use super::mass::{armature_inertia, at_least_ars_least_mass};
+use super::model::{Body, Geom, GeomKind, Joint, JointKind, Model};
+use super::read::read;
+use super::{CHAIN_LINK_FRACTION, MjcfModel, MjcfOptions};
+use crate::body::{BodyBuilder, MassSpec};
+use crate::error::{Error, Result};
+use crate::geom::GeomBuilder;
+use crate::handle::{GeomHandle, ObjectId};
+use crate::scene::JointEnd;
+use crate::scene::Scene;
+use crate::shape::Shape;
+
+/// MuJoCo (x, y, z) → simulation (x, z, −y), then the base pose.
+pub(super) fn placement(options: &MjcfOptions) -> Isometry3<f64> {
+    let turn = UnitQuaternion::from_rotation_matrix(&crate::formats::z_up_to_y_up());
+    options.base_pose * Isometry3::from_parts(Translation3::identity(), turn)
+}
+
+impl Scene {
+    /// Makes the bodies, joints and actuators of an MJCF model from its text, not its
+    /// sensors (a scene has none); `file` names it in errors.
+    pub(crate) fn insert_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
+        let model = read(file, text, options).map_err(|p| Error::Format {
+            format: "MJCF",
+            file: p.file.unwrap_or_else(|| file.to_string()),
+            element: format!("<{}>", p.element),
+            line: Some(p.line),
+            column: None,
+            problem: p.text,
+        })?;
+        // Built in one go; on an error everything made so far is removed.
+        let mut made = MjcfModel {
+            name: model.name.clone(),
+            timestep: model.timestep,
+            gravity: model.gravity.map(|g| placement(options).rotation * g),
+            actuators: model.actuators.clone(),
+            skipped: model.skipped.clone(),
+            ..MjcfModel::default()
+        };
+        let built = self.build_mjcf(&model, options, &mut made);
+        if let Err(e) = built {
+            let ids: Vec<ObjectId> = made
+                .bodies
+                .iter()
+                .map(|(_, id)| *id)
+                .chain(made.chain_links.iter().copied())
+                .chain(made.world_geoms.iter().copied())
+                .collect();
+            for id in ids.into_iter().rev() {
+                // Its joints go with it; what was made is removed whatever the error.
+                let _ = self.remove_object_with_joints(id);
+            }
+            return Err(e);
+        }
+        Ok(made)
+    }
+
+    pub(super) fn build_mjcf(&mut self, model: &Model, options: &MjcfOptions, made: &mut MjcfModel) -> Result<()> {
+        let world = placement(options);
+        // Geoms by name, for `<contact><pair>`.
+        let mut named = HashMap::new();
+        for g in &model.world_geoms {
+            let pose = world * g.frame;
+            let id = match g.kind {
+                GeomKind::Plane => {
+                    let normal = pose.rotation * Vector3::z();
+                    self.add_static(Shape::Plane { normal, distance: normal.dot(&pose.translation.vector) }, pose)?
+                }
+                _ => self.add_static(g.shape(), pose)?,
+            };
+            if let Some(c) = g.rgba {
+                self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
+            }
+            if let Some(handle) = self.object(id)?.geom_handle() {
+                let mut geom = self.world.geom_mut(handle)?;
+                geom.set_category_bits(g.bits.0);
+                geom.set_collide_bits(g.bits.1);
+                if let Some(name) = &g.name {
+                    named.insert(name.clone(), (handle, g.bits));
+                }
+            }
+            made.world_geoms.push(id);
+        }
+        for body in &model.bodies {
+            self.add_mjcf_body(body, &world, None, made, &mut named)?;
+        }
+        for (k, (a, b)) in model.pairs.iter().enumerate() {
+            let unknown = |name: &str| Error::Invalid {
+                what: "an MJCF contact pair",
+                problem: format!("names the geom {name:?}, which the model does not have"),
+            };
+            // A bit of its own in one's category and the other's collide bits: these
+            // two touch, and nothing else gains a contact.
+            let bit = 1u64 << (32 + k);
+            let (first, bits) = named.get_mut(a).ok_or_else(|| unknown(a))?;
+            bits.0 |= bit;
+            let (first, category) = (*first, bits.0);
+            let (second, bits) = named.get_mut(b).ok_or_else(|| unknown(b))?;
+            bits.1 |= bit;
+            let (second, collide) = (*second, bits.1);
+            self.world.geom_mut(first)?.set_category_bits(category);
+            self.world.geom_mut(second)?.set_collide_bits(collide);
+        }
+        self.place_mjcf_sensors(model, made)?;
+        for (a, b) in &model.excluded {
+            let body = |name: &str| {
+                made.body(name).ok_or_else(|| Error::Invalid {
+                    what: "an MJCF contact exclusion",
+                    problem: format!("names the body {name:?}, which the model does not have"),
+                })
+            };
+            self.exclude_contacts(body(a)?, body(b)?)?;
+        }
+        for a in &model.actuators {
+            let joint = made.joint(&a.joint).ok_or_else(|| Error::Invalid {
+                what: "an MJCF actuator",
+                problem: format!("{:?} drives the joint {:?}, which the model does not have", a.name, a.joint),
+            })?;
+            if self.actuators().any(|(_, j)| j == joint) {
+                made.skipped.push(format!(
+                    "actuator {:?}: the joint {:?} has an actuator already (ARS drives a joint with one)",
+                    a.name, a.joint
+                ));
+                continue;
+            }
+            self.joint_mut(joint)?.set_controller(a.actuator.clone()).map_err(|e| Error::Invalid {
+                what: "an MJCF actuator",
+                problem: format!("{:?} on the joint {:?}: {e}", a.name, a.joint),
+            })?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn add_mjcf_body(
+        &mut self,
+        body: &Body,
+        parent_frame: &Isometry3<f64>,
+        parent: Option<ObjectId>,
+        made: &mut MjcfModel,
+        named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
+    ) -> Result<()> {
+        let frame = parent_frame * body.frame;
+        let invalid = |problem: String| Error::Invalid { what: "an MJCF body", problem };
+        let (mass, com, inertia) = body
+            .mass
+            .ok_or_else(|| invalid(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+        let (link_mass, link_inertia) = if body.joints.len() > 1 {
+            let what = format!("the light links chaining {:?}", body.name);
+            at_least_ars_least_mass(&what, mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION, &mut made.skipped)
+        } else {
+            (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
+        };
+        let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
+        // The body is moved by its last joint, a chain link by its joint: each carries
+        // its joint's armature.
+        let mut armature = |object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>| -> Matrix3<f64> {
+            let Some(joint) = joint.filter(|j| j.armature > 0.0) else { return Matrix3::zeros() };
+            let (added, across) = armature_inertia(inertia, joint);
+            if added != Matrix3::zeros() {
+                made.armature.push((object.to_string(), added));
+            }
+            if across > 0.0 {
+                made.skipped.push(format!(
+                    "<joint> {:?}: its armature {} outweighs {object:?}'s inertia; {across:e} kg·m² was added across its axis too, to keep {object:?} a rigid body",
+                    joint.name, joint.armature
+                ));
+            }
+            added
+        };
+        let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
+            .iter()
+            .map(|j| armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j)))
+            .collect();
+        let inertia = inertia + armature(&body.name, &inertia, body.joints.last());
+        // The ODE body at the centre of mass, turned as the MJCF body.
+        let body_frame = Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(com)), frame.rotation);
+        let handle = self
+            .world
+            .insert_body(
+                BodyBuilder::new()
+                    .mass(MassSpec::Custom { mass, inertia })
+                    .position(nalgebra::Point3::from(body_frame.translation.vector))
+                    .rotation(body_frame.rotation.to_rotation_matrix()),
+            )
+            .map_err(|e| invalid(format!("{:?}: {e}", body.name)))?;
+        let mut geoms = Vec::new();
+        for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
+            let offset = body_frame.inverse() * frame * g.frame;
+            let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
+            let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
+            let handle = self.world.insert_geom(self.space(), geom)?;
+            if let Some(name) = &g.name {
+                named.insert(name.clone(), (handle, g.bits));
+            }
+            geoms.push(handle);
+        }
+        let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
+        let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
+        self.set_extra_geoms(id, geoms.into_iter().skip(1).collect())?;
+        if let Some(c) = body.geoms.iter().find_map(|g| g.rgba) {
+            self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
+        }
+        made.bodies.push((self.object(id)?.name().to_string(), id));
+        let mut end = parent.map_or(JointEnd::World, JointEnd::Object);
+        // MuJoCo ignores contacts between a body and its parent (filterparent). ODE
+        // skips them for bodies one joint joins; a chain's links hide that.
+        if let (Some(parent), true) = (parent, body.joints.len() > 1) {
+            self.exclude_contacts(parent, id)?;
+        }
+        if body.joints.is_empty() {
+            let name = format!("{}_weld", body.name);
+            self.add_fixed_joint(&name, id, end)?;
+        }
+        for (k, j) in body.joints.iter().enumerate() {
+            if j.kind == JointKind::Free {
+                continue;
+            }
+            // Several joints in one body: a chain through light links at the body's
+            // frame, the first joint nearest the parent (MuJoCo's order).
+            let child = if k + 1 < body.joints.len() {
+                let name = format!("{}/{}", body.name, j.name);
+                let link = self
+                    .world
+                    .insert_body(
+                        BodyBuilder::new()
+                            .mass(MassSpec::Custom { mass: link_mass, inertia: link_inertia + links_armature[k] })
+                            .position(nalgebra::Point3::from(body_frame.translation.vector))
+                            .rotation(body_frame.rotation.to_rotation_matrix()),
+                    )
+                    .map_err(|e| invalid(format!("{name:?}, the light link chaining {:?}: {e}", j.name)))?;
+                self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)?
+            } else {
+                id
+            };
+            let anchor = frame * nalgebra::Point3::from(j.pos);
+            let axis = frame.rotation * j.axis;
+            // ODE measures a joint from where its bodies are when it is made: made with
+            // the child moved back by `ref`, it reads `ref` in the file's pose.
+            let moved = self.object(child)?.body_handle().filter(|_| j.reference != 0.0);
+            let before = match moved {
+                Some(b) => {
+                    let body = self.world.body(b)?;
+                    let (position, rotation) = (body.position(), body.rotation());
+                    let back = match j.kind {
+                        JointKind::Hinge => {
+                            let turn = UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), -j.reference);
+                            Isometry3::rotation_wrt_point(turn, anchor)
+                        }
+                        _ => Isometry3::from_parts(Translation3::from(axis * -j.reference), UnitQuaternion::identity()),
+                    };
+                    let mut body = self.world.body_mut(b)?;
+                    body.set_position(back * position)?;
+                    body.set_rotation(back.rotation.to_rotation_matrix() * rotation)?;
+                    Some((b, position, rotation))
+                }
+                None => None,
+            };
+            let joint = match j.kind {
+                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis),
+                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis),
+                _ => self.add_ball_joint(&j.name, child, end, Some(anchor)),
+            };
+            if let Some((b, position, rotation)) = before {
+                // Put back as it was made: ODE keeps the rotation matrix as set.
+                let mut body = self.world.body_mut(b)?;
+                body.set_position(position)?;
+                body.set_rotation(rotation)?;
+            }
+            let joint = joint?;
+            if let Some((lo, hi)) = j.range {
+                self.joint_mut(joint)?.set_limits(lo, hi)?;
+            }
+            if j.damping > 0.0 {
+                self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
+            }
+            if j.spring.0 > 0.0 {
+                self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
+            }
+            if j.frictionloss > 0.0 {
+                self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
+            }
+            made.joints.push((j.name.clone(), joint));
+            if child != id {
+                made.chain_links.push(child);
+            }
+            end = JointEnd::Object(child);
+        }
+        for child in &body.children {
+            self.add_mjcf_body(child, &frame, Some(id), made, named)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,172 @@
+//! Mass and inertia as MuJoCo's compiler computes them: geoms' volumes and densities,
+//! a body's mass from its geoms, the inertia a joint's armature adds.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::model::{Body, Geom, GeomKind, Joint, JointKind};
+use crate::shape::Shape;
+
+impl Geom {
+    pub(super) fn volume(&self) -> f64 {
+        use std::f64::consts::PI;
+        match &self.kind {
+            GeomKind::Mesh(mesh) => mesh.mass.volume,
+            GeomKind::Plane => 0.0,
+            GeomKind::Sphere(r) => 4.0 / 3.0 * PI * r.powi(3),
+            GeomKind::Capsule(r, h) => PI * r * r * 2.0 * h + 4.0 / 3.0 * PI * r.powi(3),
+            GeomKind::Cylinder(r, h) => PI * r * r * 2.0 * h,
+            GeomKind::Box(s) => 8.0 * s.x * s.y * s.z,
+            GeomKind::Ellipsoid(s) => 4.0 / 3.0 * PI * s.x * s.y * s.z,
+        }
+    }
+
+    pub(super) fn mass(&self) -> f64 {
+        self.mass.unwrap_or(self.density * self.volume())
+    }
+
+    /// Its centre of mass and its inertia tensor about it, in its frame.
+    pub(super) fn mass_distribution(&self) -> (Vector3<f64>, Matrix3<f64>) {
+        match &self.kind {
+            GeomKind::Mesh(mesh) => (mesh.mass.centre.coords, mesh.mass.inertia * (self.mass() / mesh.mass.volume)),
+            _ => (Vector3::zeros(), Matrix3::from_diagonal(&self.inertia())),
+        }
+    }
+
+    /// Principal moments about the geom's centre, in its frame, as MuJoCo computes them
+    /// (a mesh's are [`mass_distribution`](Self::mass_distribution)'s).
+    pub(super) fn inertia(&self) -> Vector3<f64> {
+        let m = self.mass();
+        match &self.kind {
+            GeomKind::Plane | GeomKind::Mesh(_) => Vector3::zeros(),
+            GeomKind::Sphere(r) => Vector3::repeat(0.4 * m * r * r),
+            GeomKind::Capsule(r, h) => {
+                let height = 2.0 * h;
+                let sphere_mass = m * 4.0 * r / (4.0 * r + 3.0 * height);
+                let cylinder_mass = m - sphere_mass;
+                let across = cylinder_mass * (3.0 * r * r + height * height) / 12.0
+                    + 0.4 * sphere_mass * r * r
+                    + sphere_mass * height * (3.0 * r + 2.0 * height) / 8.0;
+                Vector3::new(across, across, cylinder_mass * r * r / 2.0 + 0.4 * sphere_mass * r * r)
+            }
+            GeomKind::Cylinder(r, h) => {
+                let across = m * (3.0 * r * r + 4.0 * h * h) / 12.0;
+                Vector3::new(across, across, m * r * r / 2.0)
+            }
+            GeomKind::Box(s) => {
+                Vector3::new(s.y * s.y + s.z * s.z, s.x * s.x + s.z * s.z, s.x * s.x + s.y * s.y) * (m / 3.0)
+            }
+            GeomKind::Ellipsoid(s) => {
+                Vector3::new(s.y * s.y + s.z * s.z, s.x * s.x + s.z * s.z, s.x * s.x + s.y * s.y) * (m / 5.0)
+            }
+        }
+    }
+
+    /// The ODE shape (an ellipsoid as the sphere of its volume).
+    pub(super) fn shape(&self) -> Shape {
+        match &self.kind {
+            GeomKind::Mesh(mesh) => mesh.shape.clone(),
+            GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
+            GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
+            GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },
+            GeomKind::Cylinder(r, h) => Shape::Cylinder { radius: *r, length: 2.0 * h },
+            GeomKind::Box(s) => Shape::Box { edges: *s * 2.0 },
+            GeomKind::Ellipsoid(s) => Shape::Sphere { radius: (s.x * s.y * s.z).cbrt() },
+        }
+    }
+}
+
+/// The first body of the tree (depth first, in the file's order) that `wanted` accepts.
+pub(super) fn find_body<'b>(bodies: &'b [Body], wanted: &dyn Fn(&Body) -> bool) -> Option<&'b Body> {
+    bodies.iter().find_map(|b| if wanted(b) { Some(b) } else { find_body(&b.children, wanted) })
+}
+
+/// The mass, centre of mass and inertia about it (body frame) of `geoms`, as MuJoCo's
+/// compiler combines them; `None` when they weigh nothing.
+pub(super) fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
+    let solid: Vec<&Geom> = geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)).collect();
+    let mass: f64 = solid.iter().map(|g| g.mass()).sum();
+    if mass <= 0.0 {
+        return None;
+    }
+    // Each geom's centre of mass and inertia about it, in the body's frame.
+    let parts: Vec<(f64, Vector3<f64>, Matrix3<f64>)> = solid
+        .iter()
+        .map(|g| {
+            let (centre, inertia) = g.mass_distribution();
+            let r = g.frame.rotation.to_rotation_matrix();
+            (g.mass(), (g.frame * nalgebra::Point3::from(centre)).coords, crate::formats::turned_inertia(&r, &inertia))
+        })
+        .collect();
+    let com = parts.iter().map(|(m, c, _)| c * *m).sum::<Vector3<f64>>() / mass;
+    let mut inertia = Matrix3::zeros();
+    for (m, c, about_centre) in parts {
+        let d = c - com;
+        inertia += about_centre + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m;
+    }
+    Some((mass, com, inertia))
+}
+
+/// The inertia a joint's armature adds to the object it moves, in that object's frame
+/// (whose rotation is the MJCF body's): `armature · n nᵀ` about a hinge's axis `n`,
+/// `armature · 1` for a ball; nothing for slides and free joints (listed as skipped).
+///
+/// When `inertia` plus `armature · n nᵀ` is no rigid body's (a light link with a large
+/// armature: the moment about the axis exceeds the sum of the other two), the smallest
+/// inertia `t (1 − n nᵀ)` across the axis that makes it one is added too (at most
+/// `armature`: a thin disc's is `armature / 2`); returned as the second number.
+pub(super) fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64) {
+    let a = joint.armature;
+    if a <= 0.0 {
+        return (Matrix3::zeros(), 0.0);
+    }
+    match joint.kind {
+        JointKind::Ball => (Matrix3::identity() * a, 0.0),
+        JointKind::Hinge => {
+            let axial = joint.axis * joint.axis.transpose() * a;
+            let across = (Matrix3::identity() - joint.axis * joint.axis.transpose()) * a;
+            // A rigid body's principal moments: the largest at most the sum of the
+            // others, without the rounding slack of ARS's own check (`limits::inertia`),
+            // so that the body made with the sum passes it whatever the rounding.
+            let rigid = |t: f64| {
+                let moments = (inertia + axial + across * t).symmetric_eigenvalues();
+                let largest = moments.max();
+                largest <= moments.sum() - largest
+            };
+            if rigid(0.0) {
+                return (axial, 0.0);
+            }
+            // Rigid at t = 1 (an isotropic term keeps the inequality strict): bisect.
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if rigid(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            (axial + across * hi, hi * a)
+        }
+        JointKind::Slide | JointKind::Free => (Matrix3::zeros(), 0.0),
+    }
+}
+
+/// A mass below ARS's least ([`MIN_MASS`](crate::limits::MIN_MASS): a marker of a
+/// few milligrams, as in Gymnasium's pusher) raised to it, the inertia scaled alike,
+/// with a warning in `skipped`; any other mass as it is.
+pub(super) fn at_least_ars_least_mass(
+    what: &str,
+    mass: f64,
+    inertia: Matrix3<f64>,
+    skipped: &mut Vec<String>,
+) -> (f64, Matrix3<f64>) {
+    let least = crate::limits::MIN_MASS;
+    if mass > 0.0 && mass < least {
+        skipped.push(format!(
+            "{what}: a mass of {mass:e} kg is below ARS's least ({least:e} kg): raised to it, the inertia scaled alike"
+        ));
+        (least, inertia * (least / mass))
+    } else {
+        (mass, inertia)
+    }
+}

@@ -1,0 +1,331 @@
+//! Models from MuJoCo's MJCF files: one body per `<body>`, ARS joints for its joints,
+//! the file's names.
+//!
+//! What is read (the rest is a clear error naming the element and its line, or with
+//! [`MjcfOptions::skip_unsupported`] a warning in [`MjcfModel::skipped`]):
+//! - **Frames.** `pos` and one of `quat`, `euler` (with `<compiler eulerseq>`),
+//!   `axisangle`, `xyaxes`, `zaxis` on bodies, geoms, joints' `pos`/`axis` and
+//!   `<inertial>`; angles in degrees unless `<compiler angle="radian">`. MJCF is Z-up:
+//!   the model is turned by −90° about X (MuJoCo (x, y, z) → simulation (x, z, −y)), then
+//!   placed at [`MjcfOptions::base_pose`].
+//! - **Mass.** `<inertial>` (`mass`, `diaginertia` or `fullinertia`, its own frame), or,
+//!   without one (or with `<compiler inertiafromgeom="true">`), the mass and inertia of
+//!   the body's geoms as MuJoCo's compiler computes them: each geom's `mass`, or its
+//!   `density` (1000 kg/m³ by default) times its volume, combined about the centre of
+//!   mass. ODE wants the body's frame at the centre of mass: the body is placed there,
+//!   turned as the MJCF body, with the full inertia tensor.
+//! - **Geoms.** `plane` (static only: an infinite plane), `sphere`, `capsule`,
+//!   `cylinder`, `box`, and `ellipsoid` (as a sphere of the same volume, with a warning);
+//!   `mesh` (an `<asset><mesh>`'s STL or OBJ file, with its `scale`, in `<compiler
+//!   meshdir>` or `assetdir`, as a triangle mesh; its mass and inertia those of the
+//!   closed solid it bounds, as MuJoCo's for a convex mesh);
+//!   `fromto` for capsules and cylinders; `rgba` for the colour (else its
+//!   `material`'s, as MuJoCo draws it); `contype` and
+//!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
+//!   when one's type meets the other's affinity).
+//! - **Joints.** `hinge` (a hinge), `slide` (a slider), `ball`, `free` (a free body); a
+//!   body without joints is fixed to its parent. `range` (with `limited`, or
+//!   `<compiler autolimits>`, on by default) becomes stops, `damping` viscous friction
+//!   (explicit, from the rate at the start of the step: stable while `damping · dt`
+//!   stays below the inertia it acts on).
+//!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
+//!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
+//!   slide z, hinge y) are chained through light links at the body's frame (each of
+//!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
+//!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
+//!   along each joint but the first (and a free joint cannot be chained). A chained
+//!   body and its parent never touch ([`Scene::exclude_contacts`](crate::Scene::exclude_contacts)), as MuJoCo ignores
+//!   the contacts of a body with its parent and ODE those of two bodies one joint joins.
+//!   A hinge's or slide's `ref` is its position in the pose the file gives (MuJoCo's
+//!   `qpos0`): the joint is made with its child moved back by `ref`, so that ODE,
+//!   which measures a joint from where it was made, reads `ref` there, and ranges,
+//!   servos and sensors see MuJoCo's positions. `stiffness` about `springref` becomes
+//!   a spring ([`SimJoint::set_spring`](crate::SimJoint::set_spring): explicit, from
+//!   the position at the start of the step), `frictionloss` dry friction
+//!   ([`SimJoint::set_dry_friction`](crate::SimJoint::set_dry_friction): ODE's motor
+//!   at speed 0, a hard limit where MuJoCo's is soft). On ball and free joints they
+//!   are unsupported (an error, or skipped with a warning).
+//! - **Armature.** ODE has no joint-space inertia, so a joint's `armature` (MuJoCo's
+//!   rotor inertia on the joint's own degree of freedom) is added to the inertia of
+//!   the body the joint moves: `armature · n nᵀ` about a hinge's axis `n`,
+//!   `armature · 1` for a ball joint ([`MjcfModel::armature`] lists what each object
+//!   got). That is MuJoCo's armature exactly for a joint whose axis stays put in the
+//!   world (the first hinge or ball of a fixed base). Below moving joints the added
+//!   inertia also turns with the joints above it: it adds `armature · (n·m)` to their
+//!   coupling and `armature · (n·m)²` to a joint of axis `m` above, and a gyroscopic
+//!   torque MuJoCo's armature has not. When the armature outweighs the body so much
+//!   that no rigid body has the sum (a moment above the sum of the other two: links of
+//!   grams with an armature of 1, as in Gymnasium's reacher), the smallest inertia
+//!   across the axis that makes it one is added too, with a warning in
+//!   [`MjcfModel::skipped`]. A slide's or a free joint's armature (mass along some
+//!   directions only) is not modelled and is listed there.
+//! - **Contact parameters.** A geom's `friction`, `solref`, `solimp`, `condim`,
+//!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
+//!   contacts take ARS's surfaces ([`Scene::set_contact_surface`](crate::Scene::set_contact_surface)).
+//! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
+//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`, `meshdir`,
+//!   `assetdir`,
+//!   `settotalmass` (every body's mass and inertia scaled by one factor, as MuJoCo
+//!   does); `coordinate="global"` is refused.
+//! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
+//!   integrator is ODE's; the caller chooses to use them).
+//! - **Includes.** `<include file>` anywhere (its path relative to the file that
+//!   includes it; a cycle is refused): the included file's top-level elements take its
+//!   place, and an error in it names that file.
+//! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
+//!   (textures, materials beyond their colour, meshes not used by a geom),
+//!   `<statistic>`, `<size>`, `<custom>`, `<light>`, `<camera>`, unnamed `<site>`s
+//!   (nothing can name them).
+//! - **Sites.** A body's named `<site>`s (`pos` and orientation, `type` `sphere`,
+//!   `capsule`, `cylinder`, `box` or `ellipsoid` with its `size`, MuJoCo's 0.005 m
+//!   where not given; classes as other elements) are listed in [`MjcfModel::sites`]
+//!   with their frames relative to their body's object; `fromto` is unsupported. Sites
+//!   of the world body are read for their names only: a sensor on one is unsupported.
+//! - **Attributes.** Every attribute of the elements read is checked against MuJoCo's
+//!   schema (`mjcf/schema.rs`): one MuJoCo does not know (a typo) is an error naming it,
+//!   its element and line (or skipped with a warning); one it knows and ARS does not
+//!   use is accepted (and said unused where it changes the physics).
+//! - **Actuators.** `motor`, `position` (`kp`, `kv`) and `velocity` (`kv`) on a joint
+//!   become [`Actuator`]s of the same names driving their joints, with `gear` (its
+//!   first number), `ctrlrange`/`ctrllimited` and `forcerange`/`forcelimited` (with
+//!   `autolimits`), their defaults from a `<default>` class's actuator (in a class,
+//!   `<general>`, `<motor>`, `<position>`... all set the one actuator default, as in
+//!   MuJoCo: the attributes merge in the file's order); set a control with [`Scene::set_control`](crate::Scene::set_control), as MuJoCo's
+//!   `data.ctrl`, at 0 until set. Other kinds, and actuators on tendons or sites, are
+//!   unsupported; a second actuator on one joint is skipped (ARS drives a joint with
+//!   one controller).
+//! - **Contacts.** `<contact><exclude body1 body2>`: the two bodies never touch
+//!   ([`Scene::exclude_contacts`](crate::Scene::exclude_contacts)). `<pair geom1 geom2>`: the two named geoms touch
+//!   whatever their `contype` and `conaffinity` say (each pair takes a bit of its own
+//!   among ODE's upper 32 category and collide bits, so at most [`MAX_CONTACT_PAIRS`];
+//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its contact
+//!   parameters are read and said unused. Unlike MuJoCo's, a pair does not override
+//!   an `<exclude>` or the rule that bodies one joint joins never touch; and a paired
+//!   geom also touches what was made outside the model (ARS's own shapes and floors,
+//!   URDF robots), whose collide bits take in ODE's upper 32.
+//! - **Sensors.** `jointpos` and `jointvel` of hinges and slides; `framepos`,
+//!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
+//!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
+//!   (`xbody`) or a site; `accelerometer`, `gyro`, `touch` and `rangefinder` on a site:
+//!   made by [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) and listed in
+//!   [`MjcfModel::sensors`] ([`MjcfSensor`] says which ARS sensor each becomes and
+//!   which of its columns hold MuJoCo's value, in the simulation's Y-up frame). Other
+//!   kinds and frames, `reftype`, a `cutoff`, and sensors on the world body's sites are
+//!   unsupported; a sensor naming a joint, body or site the model lacks is an error at
+//!   its line. A `touch` counts the contacts whose point lies inside the site's volume
+//!   (MuJoCo also counts those whose normal, cast as a ray from the point, crosses it).
+//!
+//! Unnamed bodies and joints are named `body{N}` and `joint{N}` with N MuJoCo's id (the
+//! world body is 0, bodies are numbered in the file's order).
+
+use std::path::Path;
+
+use nalgebra::{Isometry3, Matrix3, Vector3};
+
+use crate::control::Actuator;
+use crate::error::{Error, Result};
+use crate::handle::{JointId, ObjectId};
+use crate::sensors::{AnySensorId, Mount, TouchZone};
+
+mod build;
+mod defaults;
+mod include;
+mod mass;
+mod model;
+mod read;
+mod schema;
+mod sensors;
+
+/// How an MJCF model is loaded.
+#[derive(Clone, Debug)]
+pub struct MjcfOptions {
+    /// Where the model's world frame goes in the simulation (after the Z-up to Y-up
+    /// turn). Default: the origin.
+    pub base_pose: Isometry3<f64>,
+    /// Skip what ARS cannot read (with a warning in [`MjcfModel::skipped`]) instead of
+    /// refusing the file.
+    pub skip_unsupported: bool,
+}
+
+impl Default for MjcfOptions {
+    fn default() -> Self {
+        MjcfOptions { base_pose: Isometry3::identity(), skip_unsupported: false }
+    }
+}
+
+impl MjcfOptions {
+    /// The defaults: at the origin, refusing what cannot be read.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Where the model goes.
+    pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
+        self.base_pose = pose;
+        self
+    }
+    /// Skip (with a warning) what cannot be read.
+    pub fn skip_unsupported(mut self, skip: bool) -> Self {
+        self.skip_unsupported = skip;
+        self
+    }
+}
+
+/// An actuator of the file, as made: an [`Actuator`] of the same name driving its
+/// joint (set its control with [`Scene::set_control`](crate::Scene::set_control)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfActuator {
+    /// Its name (`actuator{N}` when unnamed, N its index among the actuators).
+    pub name: String,
+    /// `motor`, `position` or `velocity`.
+    pub kind: String,
+    /// The joint it drives.
+    pub joint: String,
+    /// The actuator made of it.
+    pub actuator: Actuator,
+}
+
+/// What [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) made.
+#[derive(Clone, Debug, Default)]
+pub struct MjcfModel {
+    /// The model's name (`<mujoco model>`).
+    pub name: String,
+    /// Every body, by name, in the file's order.
+    pub bodies: Vec<(String, ObjectId)>,
+    /// Every joint made, by name.
+    pub joints: Vec<(String, JointId)>,
+    /// The static geoms of the world body.
+    pub world_geoms: Vec<ObjectId>,
+    /// `<option timestep>`, s.
+    pub timestep: Option<f64>,
+    /// `<option gravity>`, in the simulation's frame, m/s².
+    pub gravity: Option<Vector3<f64>>,
+    /// The actuators read.
+    pub actuators: Vec<MjcfActuator>,
+    /// What was skipped, and why.
+    pub skipped: Vec<String>,
+    /// The light links that chain several joints of one body (see the module docs).
+    pub chain_links: Vec<ObjectId>,
+    /// The inertia added to an object (by name: a body, or a chain link) for the
+    /// armature of the joint that moves it, in the object's frame, kg·m² (see the module
+    /// docs): subtract it to compare the object's inertia with MuJoCo's `body_inertia`.
+    pub armature: Vec<(String, Matrix3<f64>)>,
+    /// The sensors read, in the file's order, each with the ARS sensor made of it.
+    pub sensors: Vec<MjcfSensor>,
+    /// The named `<site>`s of the bodies, in the file's order.
+    pub sites: Vec<MjcfSite>,
+}
+
+/// A `<site>` of a body: a frame fixed on it (where sensors sit) and the volume a
+/// `touch` sensor feels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfSite {
+    /// Its name.
+    pub name: String,
+    /// The body it is on, by name.
+    pub body: String,
+    /// The body's object.
+    pub object: ObjectId,
+    /// The site's frame relative to the object's: ARS keeps a body's frame at its centre
+    /// of mass, turned as the MJCF body, so this is the site's `pos` and orientation in
+    /// its body less the body's centre of mass (`(site.pos − com, site.quat)` in the MJCF
+    /// body's axes).
+    pub offset: Isometry3<f64>,
+    /// Its volume (`type` and `size`, MuJoCo's half sizes), centred on its frame.
+    pub zone: TouchZone,
+}
+
+/// A sensor of the file and the ARS sensor made of it.
+///
+/// Each kind becomes (its record's columns that hold MuJoCo's value; MuJoCo's world
+/// (x, y, z) is the simulation's (x, z, −y)):
+/// - `jointpos`, `jointvel`: a [`JointPositions`](crate::sensors::JointPositions) or
+///   [`JointVelocities`](crate::sensors::JointVelocities) of its joint (its one column).
+/// - `framepos`: a [`Gps`](crate::sensors::Gps) at the frame's origin (its columns, in
+///   the simulation's world frame).
+/// - `framelinvel`: a [`Velometer`](crate::sensors::Velometer) at the frame's origin
+///   (its first three columns, world frame). On a jointed body it lags MuJoCo's by
+///   about `ω² r dt` (ODE keeps a constrained body's velocity tangent to its path at
+///   the start of the step).
+/// - `framequat`: an [`Orientation`](crate::sensors::Orientation) of the frame (its
+///   quaternion `q` is MuJoCo's `q_mj` turned with the model, `q = q_turn · q_mj`,
+///   `q_turn` the −90° turn about X, up to the sign: ARS's has `w ≥ 0`).
+/// - `accelerometer`, `gyro`: an [`Imu`](crate::sensors::Imu) at the site, in the
+///   site's frame as MuJoCo's (its first three columns, the specific force, are the
+///   `accelerometer`; its last three the `gyro`). The acceleration is the change of the
+///   site's velocity over the step (MuJoCo's is the acceleration at an instant): they
+///   agree as the step shrinks, on a jointed body once ODE's error correction has
+///   brought in the centripetal pull (a few steps after a state is set).
+/// - `touch`: a [`Touch`](crate::sensors::Touch) on the site's body within the site's
+///   volume (its second column, the normal force).
+/// - `rangefinder`: a [`Laser`](crate::sensors::Laser) of [`RANGEFINDER_LENGTH`] at the
+///   site along its +Z, not seeing the site's body (its first column; empty where MuJoCo
+///   reads −1, nothing hit).
+///
+/// The frame of `objtype="body"` is the body's inertial frame (its centre of mass,
+/// turned as its `<inertial>`), of `xbody` the body's own frame, of `site` the site's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfSensor {
+    /// Its name (`sensor{N}` when unnamed, N its index among the sensors).
+    pub name: String,
+    /// Its element: `jointpos`, `jointvel`, `framepos`, `framelinvel`, `framequat`,
+    /// `accelerometer`, `gyro`, `touch` or `rangefinder`.
+    pub kind: String,
+    /// What its target is: `joint`, `body` (its inertial frame), `xbody` (its frame) or
+    /// `site`.
+    pub objtype: String,
+    /// The joint, body or site it reads, by name.
+    pub target: String,
+    /// Where it reads, once the model is built: its object and the frame's offset from
+    /// the object's origin (the body's centre of mass, turned as the body); `None` for
+    /// a joint's sensor.
+    pub mount: Option<Mount>,
+    /// The ARS sensor made of it (see above); `None` until made.
+    pub id: Option<AnySensorId>,
+}
+
+/// Most `<contact><pair>`s a model may have: each takes one of the upper 32 of ODE's
+/// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
+pub const MAX_CONTACT_PAIRS: usize = 32;
+
+/// The length of the ray of a `rangefinder` (MuJoCo's has none), m.
+pub const RANGEFINDER_LENGTH: f64 = 1e4;
+
+/// MuJoCo's default size of a site, m.
+const SITE_SIZE: f64 = 0.005;
+
+impl MjcfModel {
+    /// The object of a body, by name.
+    pub fn body(&self, name: &str) -> Option<ObjectId> {
+        self.bodies.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+    /// A joint, by name.
+    pub fn joint(&self, name: &str) -> Option<JointId> {
+        self.joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+    /// A site, by name.
+    pub fn site(&self, name: &str) -> Option<&MjcfSite> {
+        self.sites.iter().find(|s| s.name == name)
+    }
+}
+
+/// The mass (and inertia) of each light link that chains several joints of one body,
+/// as a fraction of the body's.
+pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
+
+/// Loads MJCF models with their sensors.
+impl crate::Simulation {
+    /// Loads the MJCF model in `path` (see the [module docs](self)) with its sensors
+    /// ([`MjcfModel::sensors`]), sampled after every step.
+    pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the MJCF file", path, &e))?;
+        self.load_mjcf_text(&text, &path.display().to_string(), options)
+    }
+
+    /// Loads an MJCF model from its text with its sensors (see
+    /// [`load_mjcf`](Self::load_mjcf)); `file` names it in errors.
+    pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
+        let model = self.scene.insert_mjcf_text(text, file, options)?;
+        self.make_mjcf_sensors(model)
+    }
+}

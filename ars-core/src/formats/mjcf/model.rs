@@ -1,0 +1,115 @@
+//! The model as read from the file, before anything is built: bodies, geoms, joints,
+//! sites.
+
+use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
+
+use super::read::Problem;
+use super::{MjcfActuator, MjcfSensor};
+use crate::formats::mesh::MeshMass;
+use crate::sensors::TouchZone;
+use crate::shape::Shape;
+
+/// A geom's shape, MuJoCo's way (half sizes).
+#[derive(Clone, Debug)]
+pub(super) enum GeomKind {
+    Mesh(std::sync::Arc<MeshGeom>),
+    Plane,
+    Sphere(f64),
+    Capsule(f64, f64),
+    Cylinder(f64, f64),
+    Box(Vector3<f64>),
+    Ellipsoid(Vector3<f64>),
+}
+
+/// A mesh asset as a geom uses it: its triangles (scaled) and their mass properties.
+#[derive(Debug)]
+pub(super) struct MeshGeom {
+    pub(super) shape: Shape,
+    pub(super) mass: MeshMass,
+}
+
+#[derive(Clone, Debug)]
+pub(super) struct Geom {
+    pub(super) kind: GeomKind,
+    /// Relative to its body.
+    pub(super) frame: Isometry3<f64>,
+    pub(super) mass: Option<f64>,
+    pub(super) density: f64,
+    pub(super) rgba: Option<[f64; 4]>,
+    /// `contype` and `conaffinity`: ODE's category and collide bits, the same rule.
+    pub(super) bits: (u64, u64),
+    /// Its name, for `<contact><pair>`.
+    pub(super) name: Option<String>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum JointKind {
+    Hinge,
+    Slide,
+    Ball,
+    Free,
+}
+
+#[derive(Clone, Debug)]
+pub(super) struct Joint {
+    pub(super) name: String,
+    pub(super) kind: JointKind,
+    /// Anchor and axis in the body's frame.
+    pub(super) pos: Vector3<f64>,
+    pub(super) axis: Vector3<f64>,
+    pub(super) range: Option<(f64, f64)>,
+    pub(super) damping: f64,
+    pub(super) armature: f64,
+    /// `ref`: its position in the pose the file gives (MuJoCo's `qpos0`).
+    pub(super) reference: f64,
+    /// `stiffness` and `springref`: a spring.
+    pub(super) spring: (f64, f64),
+    /// `frictionloss`: dry friction.
+    pub(super) frictionloss: f64,
+}
+
+#[derive(Clone, Debug)]
+pub(super) struct Body {
+    pub(super) name: String,
+    /// Relative to its parent.
+    pub(super) frame: Isometry3<f64>,
+    /// Mass, centre of mass in the body's frame, inertia about it in the body's frame.
+    pub(super) mass: Option<(f64, Vector3<f64>, Matrix3<f64>)>,
+    pub(super) geoms: Vec<Geom>,
+    pub(super) joints: Vec<Joint>,
+    pub(super) children: Vec<Body>,
+    /// Its named sites.
+    pub(super) sites: Vec<Site>,
+    /// The turn of its inertial frame from its frame, when its `<inertial>` gives it
+    /// (`diaginertia`, used for its mass).
+    pub(super) principal: Option<UnitQuaternion<f64>>,
+}
+
+/// A named `<site>`.
+#[derive(Clone, Debug)]
+pub(super) struct Site {
+    pub(super) name: String,
+    /// Relative to its body.
+    pub(super) frame: Isometry3<f64>,
+    pub(super) zone: TouchZone,
+}
+
+/// Everything read from the file before anything is built.
+pub(super) struct Model {
+    pub(super) name: String,
+    pub(super) world_geoms: Vec<Geom>,
+    pub(super) bodies: Vec<Body>,
+    pub(super) timestep: Option<f64>,
+    pub(super) gravity: Option<Vector3<f64>>,
+    pub(super) actuators: Vec<MjcfActuator>,
+    /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
+    pub(super) excluded: Vec<(String, String)>,
+    /// `<contact><pair>`: pairs of geoms, by name, that touch whatever their bits say.
+    pub(super) pairs: Vec<(String, String)>,
+    pub(super) sensors: Vec<MjcfSensor>,
+    /// Where each sensor is in the file (for errors found once the whole file is read).
+    pub(super) sensor_places: Vec<Problem>,
+    /// The sites of the world body, by name.
+    pub(super) world_sites: Vec<String>,
+    pub(super) skipped: Vec<String>,
+}

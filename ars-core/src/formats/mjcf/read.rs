@@ -1,0 +1,715 @@
+//! Reading an MJCF file into its parsed [`Model`]: the elements
+//! ARS reads, what it skips or refuses and where (a [`Problem`] at a line).
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
+
+use super::MAX_CONTACT_PAIRS;
+use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
+use super::include::{Files, Includes, Tree, gather};
+use super::mass::mass_of_geoms;
+use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
+use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
+use crate::control::{Actuator, ActuatorKind};
+use crate::error::Error;
+use crate::sensors::TouchZone;
+use crate::shape::Shape;
+
+/// A problem at a place of the file (or of a file it includes).
+#[derive(Clone)]
+pub(super) struct Problem {
+    pub(super) element: String,
+    pub(super) line: u32,
+    pub(super) text: String,
+    /// The included file it is in, if not the main one (set from `document` when the
+    /// problem reaches [`read`]).
+    pub(super) file: Option<String>,
+    /// The address of the document its element is in: which file it is.
+    pub(super) document: usize,
+}
+
+pub(super) type Parsed<T> = std::result::Result<T, Problem>;
+
+/// What cannot be read: with `skip` (`MjcfOptions::skip_unsupported`) a line in
+/// `skipped` naming its element and line, else the error.
+pub(super) fn skip_or_refuse(p: Problem, skip: bool, skipped: &mut Vec<String>) -> Parsed<()> {
+    if !skip {
+        return Err(p);
+    }
+    skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
+    Ok(())
+}
+
+pub(super) fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
+    let line = node.document().text_pos_at(node.range().start).row;
+    let document = std::ptr::from_ref(node.document()) as usize;
+    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None, document }
+}
+
+/// Reads the model's elements.
+pub(super) struct Reader<'d, 'a, 'input> {
+    pub(super) tree: &'d Tree<'a, 'input>,
+    pub(super) compiler: Compiler,
+    pub(super) defaults: &'d Defaults,
+    pub(super) skip: bool,
+    pub(super) skipped: Vec<String>,
+    pub(super) bodies: usize,
+    pub(super) joints: usize,
+    /// The `<asset><mesh>`es by name: their file (as written) and scale.
+    pub(super) meshes: HashMap<String, (String, Vector3<f64>)>,
+    /// The meshes loaded so far, by name.
+    pub(super) loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
+    /// The `<asset><material>`s' colours, by name.
+    pub(super) materials: HashMap<String, [f64; 4]>,
+    /// Their files, each read once.
+    pub(super) files: crate::formats::MeshCache,
+    /// The main file's folder.
+    pub(super) dir: std::path::PathBuf,
+}
+
+impl<'a, 'input> Reader<'_, 'a, 'input> {
+    pub(super) fn unsupported(&mut self, node: &roxmltree::Node<'_, '_>, what: &str) -> Parsed<()> {
+        skip_or_refuse(problem(node, format!("{what} is not supported")), self.skip, &mut self.skipped)
+    }
+
+    pub(super) fn geom(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Geom>> {
+        let a = Attrs::new(node, self.defaults, class);
+        let kind_name = a.get("type").unwrap_or("sphere");
+        let size = a.numbers("size")?.unwrap_or_default();
+        let fromto = a.fixed::<6>("fromto")?;
+        let size_at = |i: usize| -> Parsed<f64> {
+            match size.get(i) {
+                Some(s) if *s > 0.0 => Ok(*s),
+                Some(s) => Err(problem(&node, format!("size {s} must be positive"))),
+                None => Err(problem(&node, format!("a {kind_name} needs {} size numbers", i + 1))),
+            }
+        };
+        let mut frame = frame(&a, &self.compiler)?;
+        let kind = match kind_name {
+            "mesh" => GeomKind::Mesh(self.mesh(&node, a.get("mesh"))?),
+            "plane" => GeomKind::Plane,
+            "sphere" => GeomKind::Sphere(size_at(0)?),
+            "capsule" | "cylinder" => {
+                let (r, h) = match fromto {
+                    Some(f) => {
+                        let (from, to) = (Vector3::new(f[0], f[1], f[2]), Vector3::new(f[3], f[4], f[5]));
+                        let along = to - from;
+                        if along.norm() == 0.0 {
+                            return Err(problem(&node, "fromto's two points are the same"));
+                        }
+                        let turn = UnitQuaternion::rotation_between(&Vector3::z(), &along).unwrap_or_else(|| {
+                            UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
+                        });
+                        frame = Isometry3::from_parts(Translation3::from((from + to) / 2.0), turn);
+                        (size_at(0)?, along.norm() / 2.0)
+                    }
+                    None => (size_at(0)?, size_at(1)?),
+                };
+                if kind_name == "capsule" { GeomKind::Capsule(r, h) } else { GeomKind::Cylinder(r, h) }
+            }
+            "box" => GeomKind::Box(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?)),
+            "ellipsoid" => {
+                self.skipped.push(format!(
+                    "<geom> at line {}: an ellipsoid collides as the sphere of its volume",
+                    problem(&node, "").line
+                ));
+                GeomKind::Ellipsoid(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?))
+            }
+            other => {
+                self.unsupported(&node, &format!("a geom of type {other:?}"))?;
+                return Ok(None);
+            }
+        };
+        let mass = a.number("mass")?;
+        if mass.is_some_and(|m| m < 0.0) {
+            return Err(problem(&node, "mass must not be negative"));
+        }
+        let density = a.number("density")?.unwrap_or(1000.0);
+        if density < 0.0 {
+            return Err(problem(&node, "density must not be negative"));
+        }
+        let bits = |name: &str| -> Parsed<u64> {
+            match a.get(name) {
+                None => Ok(1),
+                // MuJoCo's are 32 bits; ODE's upper 32 are left for `<contact><pair>`.
+                Some(v) => v
+                    .parse::<u32>()
+                    .map(u64::from)
+                    .map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number of at most 32 bits"))),
+            }
+        };
+        let bits = (bits("contype")?, bits("conaffinity")?);
+        // MuJoCo's contact model is not ODE's: its parameters are read and said unused.
+        let contact: Vec<&str> = ["friction", "solref", "solimp", "condim", "margin", "gap"]
+            .into_iter()
+            .filter(|k| a.get(k).is_some())
+            .collect();
+        contact_parameters_unused(&node, &contact, &mut self.skipped);
+        let name = node.attribute("name").map(str::to_string);
+        // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
+        let rgba = match a.fixed::<4>("rgba")? {
+            Some(rgba) => Some(rgba),
+            None => a.get("material").and_then(|m| self.materials.get(m)).copied(),
+        };
+        Ok(Some(Geom { kind, frame, mass, density, rgba, bits, name }))
+    }
+
+    pub(super) fn joint(&mut self, node: roxmltree::Node<'_, '_>, class: &str, free: bool) -> Parsed<Joint> {
+        self.joints += 1;
+        let a = Attrs::new(node, self.defaults, class);
+        let kind = match (free, a.get("type").unwrap_or("hinge")) {
+            (true, _) | (_, "free") => JointKind::Free,
+            (_, "hinge") => JointKind::Hinge,
+            (_, "slide") => JointKind::Slide,
+            (_, "ball") => JointKind::Ball,
+            (_, other) => return Err(problem(&node, format!("a joint of type {other:?} is not supported"))),
+        };
+        let name = a.node.attribute("name").map_or_else(|| format!("joint{}", self.joints - 1), str::to_string);
+        let axis = Vector3::from(a.fixed::<3>("axis")?.unwrap_or([0.0, 0.0, 1.0]));
+        if axis.norm() == 0.0 {
+            return Err(problem(&node, "axis is zero"));
+        }
+        // A hinge's positions are angles, in the compiler's unit.
+        let angle = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
+        let limited = match a.get("limited") {
+            Some("true") => true,
+            Some("false") => false,
+            _ => self.compiler.autolimits && a.get("range").is_some(),
+        };
+        let range = match (limited, a.fixed::<2>("range")?) {
+            (true, Some([lo, hi])) => {
+                if lo > hi {
+                    return Err(problem(&node, format!("range {lo} {hi} is reversed")));
+                }
+                Some((lo * angle, hi * angle))
+            }
+            (true, None) => return Err(problem(&node, "is limited but has no range")),
+            _ => None,
+        };
+        let damping = a.number("damping")?.unwrap_or(0.0);
+        if damping < 0.0 {
+            return Err(problem(&node, "damping must not be negative"));
+        }
+        let armature = a.number("armature")?.unwrap_or(0.0);
+        if armature < 0.0 {
+            return Err(problem(&node, "armature must not be negative"));
+        }
+        let mut reference = a.number("ref")?.unwrap_or(0.0) * angle;
+        let mut spring = (a.number("stiffness")?.unwrap_or(0.0), a.number("springref")?.unwrap_or(0.0) * angle);
+        let mut frictionloss = a.number("frictionloss")?.unwrap_or(0.0);
+        if spring.0 < 0.0 || frictionloss < 0.0 {
+            return Err(problem(&node, "stiffness and frictionloss must not be negative"));
+        }
+        // A ball's or a free joint's has no one position: ARS's springs, dry friction
+        // and reference positions are of hinges and slides.
+        if matches!(kind, JointKind::Ball | JointKind::Free) {
+            for (attribute, value) in [("ref", reference), ("stiffness", spring.0), ("frictionloss", frictionloss)] {
+                if value != 0.0 {
+                    self.unsupported(&node, &format!("{attribute} on a ball or free joint"))?;
+                }
+            }
+            (reference, spring, frictionloss) = (0.0, (0.0, 0.0), 0.0);
+        }
+        Ok(Joint {
+            name,
+            kind,
+            pos: Vector3::from(a.fixed::<3>("pos")?.unwrap_or([0.0; 3])),
+            axis: axis.normalize(),
+            range,
+            damping,
+            armature,
+            reference,
+            spring,
+            frictionloss,
+        })
+    }
+
+    pub(super) fn body(&mut self, node: roxmltree::Node<'a, 'input>, class: &str) -> Parsed<Body> {
+        self.bodies += 1;
+        let index = self.bodies;
+        let a = Attrs::new(node, self.defaults, class);
+        let class = node.attribute("childclass").unwrap_or(class).to_string();
+        let name = node.attribute("name").map_or_else(|| format!("body{index}"), str::to_string);
+        let mut body = Body {
+            name,
+            frame: frame(&a, &self.compiler)?,
+            mass: None,
+            geoms: Vec::new(),
+            joints: Vec::new(),
+            children: Vec::new(),
+            sites: Vec::new(),
+            principal: None,
+        };
+        let mut inertial = None;
+        let mut principal = None;
+        for child in self.tree.elements(node) {
+            match child.tag_name().name() {
+                "geom" => body.geoms.extend(self.geom(child, &class)?),
+                "joint" => body.joints.push(self.joint(child, &class, false)?),
+                "freejoint" => body.joints.push(self.joint(child, &class, true)?),
+                "body" => body.children.push(self.body(child, &class)?),
+                "inertial" => {
+                    inertial = Some(self.inertial(child, &class)?);
+                    principal = self.principal_axes(child, &class)?;
+                }
+                "site" => body.sites.extend(self.site(child, &class)?),
+                "camera" | "light" => {}
+                other => self.unsupported(&child, &format!("<{other}> in a body"))?,
+            }
+        }
+        let from_geoms = match self.compiler.from_geom {
+            Some(always) => always,
+            None => inertial.is_none(),
+        };
+        body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial };
+        body.principal = if from_geoms { None } else { principal };
+        if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
+            return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
+        }
+        // A slide's or a free joint's armature would be mass along some directions
+        // only: ODE's mass is the same along all.
+        for j in body.joints.iter().filter(|j| j.armature > 0.0 && matches!(j.kind, JointKind::Slide | JointKind::Free))
+        {
+            self.skipped.push(format!(
+                "<joint> {:?} in body {:?}: the armature {} of a {} joint is not modelled (ODE's mass is the same in every direction)",
+                j.name,
+                body.name,
+                j.armature,
+                if j.kind == JointKind::Slide { "slide" } else { "free" }
+            ));
+        }
+        Ok(body)
+    }
+
+    /// The mesh asset `name` (loaded once), for a geom at `node`.
+    pub(super) fn mesh(
+        &mut self,
+        node: &roxmltree::Node<'_, '_>,
+        name: Option<&str>,
+    ) -> Parsed<std::sync::Arc<MeshGeom>> {
+        let name = name.ok_or_else(|| problem(node, "a mesh geom needs a mesh"))?;
+        if let Some(mesh) = self.loaded.get(name) {
+            return Ok(mesh.clone());
+        }
+        let (file, scale) =
+            self.meshes.get(name).ok_or_else(|| problem(node, format!("no <mesh> asset is called {name:?}")))?;
+        let dir = match &self.compiler.meshdir {
+            Some(meshdir) => self.dir.join(meshdir),
+            None => self.dir.clone(),
+        };
+        let path = crate::formats::first_file(file, &[dir.join(file)]).map_err(|e| problem(node, e))?;
+        let shape = self.files.load(&path, *scale).map_err(|e| problem(node, e.to_string()))?;
+        let Shape::TriMesh { vertices, triangles } = &shape else {
+            return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
+        };
+        let mass = crate::formats::mesh::mass_properties(vertices, triangles).ok_or_else(|| {
+            problem(node, format!("the mesh {name:?} encloses no volume (it must be closed and wound outwards)"))
+        })?;
+        let mesh = std::sync::Arc::new(MeshGeom { shape, mass });
+        self.loaded.insert(name.to_string(), mesh.clone());
+        Ok(mesh)
+    }
+
+    /// A `<site>`, or `None` when it has no name (no sensor can name it) or is skipped.
+    pub(super) fn site(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Site>> {
+        let a = Attrs::new(node, self.defaults, class);
+        let Some(name) = node.attribute("name") else { return Ok(None) };
+        if a.get("fromto").is_some() {
+            self.unsupported(&node, "a site placed by fromto")?;
+            return Ok(None);
+        }
+        let size = a.numbers("size")?.unwrap_or_default();
+        if let Some(s) = size.iter().find(|s| **s <= 0.0) {
+            return Err(problem(&node, format!("size {s} must be positive")));
+        }
+        let at = |i: usize| size.get(i).copied().unwrap_or(SITE_SIZE);
+        let zone = match a.get("type").unwrap_or("sphere") {
+            "sphere" => TouchZone::Sphere { radius: at(0) },
+            "capsule" => TouchZone::Capsule { radius: at(0), half_length: at(1) },
+            "cylinder" => TouchZone::Cylinder { radius: at(0), half_length: at(1) },
+            "box" => TouchZone::Box { half_extents: Vector3::new(at(0), at(1), at(2)) },
+            "ellipsoid" => TouchZone::Ellipsoid { radii: Vector3::new(at(0), at(1), at(2)) },
+            other => {
+                self.unsupported(&node, &format!("a site of type {other:?}"))?;
+                return Ok(None);
+            }
+        };
+        Ok(Some(Site { name: name.to_string(), frame: frame(&a, &self.compiler)?, zone }))
+    }
+
+    /// The turn of an `<inertial>`'s principal axes from its body's frame: its
+    /// orientation when it gives `diaginertia` (MuJoCo's `body_iquat`), `None` for a
+    /// `fullinertia` (MuJoCo diagonalises it).
+    pub(super) fn principal_axes(
+        &self,
+        node: roxmltree::Node<'_, '_>,
+        class: &str,
+    ) -> Parsed<Option<UnitQuaternion<f64>>> {
+        let a = Attrs::new(node, self.defaults, class);
+        if a.get("diaginertia").is_none() {
+            return Ok(None);
+        }
+        Ok(Some(orientation(&a, &self.compiler)?))
+    }
+
+    /// An actuator (the `index`-th), or `None` when skipped.
+    pub(super) fn actuator(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfActuator>> {
+        let tag = node.tag_name().name();
+        let a = Attrs::new(node, self.defaults, "main");
+        for transmission in ["tendon", "site", "jointinparent", "body", "cranksite"] {
+            if a.get(transmission).is_some() {
+                self.unsupported(&node, &format!("an actuator driving a {transmission} (only joints are)"))?;
+                return Ok(None);
+            }
+        }
+        let kind = match tag {
+            "motor" => ActuatorKind::Motor,
+            "position" => {
+                ActuatorKind::Position { kp: a.number("kp")?.unwrap_or(1.0), kv: a.number("kv")?.unwrap_or(0.0) }
+            }
+            "velocity" => ActuatorKind::Velocity { kv: a.number("kv")?.unwrap_or(1.0) },
+            other => {
+                self.unsupported(&node, &format!("an actuator of kind <{other}>"))?;
+                return Ok(None);
+            }
+        };
+        let joint = a.get("joint").ok_or_else(|| problem(&node, "needs a joint"))?.to_string();
+        let name = node.attribute("name").map_or_else(|| format!("actuator{index}"), str::to_string);
+        let gear = a.numbers("gear")?.and_then(|g| g.first().copied()).unwrap_or(1.0);
+        let to_problem = |e: Error| problem(&node, e.to_string());
+        let mut actuator = Actuator::new(&name, kind, gear).map_err(to_problem)?;
+        if let Some([lo, hi]) = self.limited(&a, "ctrl")? {
+            actuator = actuator.with_ctrl_range(lo, hi).map_err(to_problem)?;
+        }
+        if let Some([lo, hi]) = self.limited(&a, "force")? {
+            actuator = actuator.with_force_range(lo, hi).map_err(to_problem)?;
+        }
+        Ok(Some(MjcfActuator { name, kind: tag.to_string(), joint, actuator }))
+    }
+
+    /// `{what}range` when `{what}limited` says it applies ("true", or "auto" with a
+    /// range and `<compiler autolimits>`).
+    pub(super) fn limited(&self, a: &Attrs<'_, '_>, what: &str) -> Parsed<Option<[f64; 2]>> {
+        let range = a.fixed::<2>(&format!("{what}range"))?;
+        Ok(match a.get(&format!("{what}limited")).unwrap_or("auto") {
+            "true" => Some(range.ok_or_else(|| problem(&a.node, format!("{what}limited needs a {what}range")))?),
+            "auto" if self.compiler.autolimits => range,
+            _ => None,
+        })
+    }
+
+    pub(super) fn inertial(
+        &mut self,
+        node: roxmltree::Node<'_, '_>,
+        class: &str,
+    ) -> Parsed<(f64, Vector3<f64>, Matrix3<f64>)> {
+        let a = Attrs::new(node, self.defaults, class);
+        let mass = a.number("mass")?.ok_or_else(|| problem(&node, "needs a mass"))?;
+        if mass <= 0.0 {
+            return Err(problem(&node, format!("mass {mass} must be positive")));
+        }
+        let frame = frame(&a, &self.compiler)?;
+        let local = match (a.fixed::<3>("diaginertia")?, a.fixed::<6>("fullinertia")?) {
+            (Some(d), None) => Matrix3::from_diagonal(&Vector3::from(d)),
+            (None, Some(f)) => crate::formats::inertia_tensor(f),
+            _ => return Err(problem(&node, "needs one of diaginertia and fullinertia")),
+        };
+        let r = frame.rotation.to_rotation_matrix();
+        Ok((mass, frame.translation.vector, crate::formats::turned_inertia(&r, &local)))
+    }
+}
+
+/// Checks every element ARS reads against MuJoCo's schema
+/// ([`schema`](super::schema)): an unknown attribute is an error naming it, its
+/// element and line (with `skip`, a line in `skipped`).
+pub(super) fn check_attributes(
+    tree: &Tree<'_, '_>,
+    root: roxmltree::Node<'_, '_>,
+    skip: bool,
+    skipped: &mut Vec<String>,
+) -> Parsed<()> {
+    pub(super) fn walk(
+        tree: &Tree<'_, '_>,
+        node: roxmltree::Node<'_, '_>,
+        in_sensor: bool,
+        skip: bool,
+        skipped: &mut Vec<String>,
+    ) -> Parsed<()> {
+        let tag = node.tag_name().name();
+        for attribute in node.attributes() {
+            let name = attribute.name();
+            if super::schema::is_unknown(tag, name, in_sensor) {
+                {
+                    let p =
+                        problem(&node, format!("unknown attribute {name:?} (MuJoCo's <{tag}> has no such attribute)"));
+                    skip_or_refuse(p, skip, skipped)?;
+                }
+            }
+        }
+        // Into the sections ARS reads, and the bodies and classes in them; not into the
+        // others (a tendon's <joint> is not a body's) nor below the elements read.
+        let holds_elements = match tag {
+            "mujoco" => node.parent().is_some_and(|p| p.is_root()),
+            "body" | "worldbody" | "default" => true,
+            _ => {
+                super::schema::READ_SECTIONS.contains(&tag)
+                    && node.parent_element().is_some_and(|p| p.has_tag_name("mujoco"))
+            }
+        };
+        if holds_elements {
+            for child in tree.elements(node) {
+                walk(tree, child, in_sensor || tag == "sensor", skip, skipped)?;
+            }
+        }
+        Ok(())
+    }
+    walk(tree, root, false, skip, skipped)?;
+    Ok(())
+}
+
+/// Says which of a geom's or a pair's contact parameters (MuJoCo's contact model, not
+/// ODE's) are read and not used, if any.
+pub(super) fn contact_parameters_unused(node: &roxmltree::Node<'_, '_>, names: &[&str], skipped: &mut Vec<String>) {
+    if !names.is_empty() {
+        skipped.push(format!(
+            "<{}> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
+            node.tag_name().name(),
+            problem(node, "").line,
+            names.join(", ")
+        ));
+    }
+}
+
+/// Reads the model from the text of a file (`name` resolves its includes).
+pub(super) fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Model> {
+    let mut files = Files::new();
+    let mut includes = Includes::new();
+    gather(name, text.to_string(), &mut files, &mut includes, &mut vec![name.to_string()])?;
+    let documents = files
+        .iter()
+        .map(|(_, text)| roxmltree::Document::parse(text).expect("parsed once already"))
+        .collect::<Vec<_>>();
+    let tree = Tree { documents: &documents, includes: &includes };
+    read_nodes(name, &tree, options).map_err(|mut p| {
+        // A problem in an included file names it.
+        if p.file.is_none()
+            && let Some(index) = tree.file_at(p.document).filter(|&i| i > 0)
+        {
+            p.file = Some(files[index].0.clone());
+        }
+        p
+    })
+}
+
+/// Reads the model from its files.
+pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<Model> {
+    let root = tree.documents[0].root_element();
+    let nodes = tree.elements(root);
+    let mut compiler = Compiler::default();
+    let mut defaults = Defaults::new();
+    let mut timestep = None;
+    let mut gravity = None;
+    let mut meshes = HashMap::new();
+    let mut material_nodes = Vec::new();
+    let mut schema_skips = Vec::new();
+    check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
+    for &node in &nodes {
+        let mut first_pass = || -> Parsed<()> {
+            match node.tag_name().name() {
+                "compiler" => {
+                    if let Some(angle) = node.attribute("angle") {
+                        compiler.degrees = angle != "radian";
+                    }
+                    if let Some(seq) = node.attribute("eulerseq") {
+                        let axes: Vec<u8> = seq
+                            .chars()
+                            .filter_map(|c| match c.to_ascii_lowercase() {
+                                'x' => Some(0),
+                                'y' => Some(1),
+                                'z' => Some(2),
+                                _ => None,
+                            })
+                            .collect();
+                        compiler.eulerseq = axes
+                            .try_into()
+                            .map_err(|_| problem(&node, format!("eulerseq {seq:?} must be three of x, y, z")))?;
+                        compiler.extrinsic = seq.chars().all(|c| c.is_ascii_uppercase());
+                    }
+                    if let Some(auto) = node.attribute("autolimits") {
+                        compiler.autolimits = auto == "true";
+                    }
+                    if let Some(v) = node.attribute("inertiafromgeom") {
+                        compiler.from_geom = match v {
+                            "true" => Some(true),
+                            "false" => Some(false),
+                            _ => None,
+                        };
+                    }
+                    if let Some(total) = node.attribute("settotalmass") {
+                        compiler.total_mass = match total.parse::<f64>() {
+                            Ok(m) if m > 0.0 && m.is_finite() => Some(m),
+                            Ok(_) => None,
+                            Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
+                        };
+                    }
+                    if let Some(dir) = node.attribute("meshdir").or(node.attribute("assetdir")) {
+                        compiler.meshdir = Some(dir.to_string());
+                    }
+                    if node.attribute("coordinate").is_some_and(|c| c != "local") {
+                        return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
+                    }
+                }
+                "default" => read_defaults(tree, node, &HashMap::new(), &mut defaults),
+                "asset" => {
+                    for mesh in tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")) {
+                        let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
+                        let name = match mesh.attribute("name") {
+                            Some(name) => name.to_string(),
+                            None => Path::new(file)
+                                .file_stem()
+                                .map(|s| s.to_string_lossy().into_owned())
+                                .unwrap_or_default(),
+                        };
+                        let a = Attrs { node: mesh, class: None };
+                        let scale = a.fixed::<3>("scale")?.map_or(Vector3::repeat(1.0), Vector3::from);
+                        meshes.insert(name, (file.to_string(), scale));
+                    }
+                    material_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("material")));
+                }
+                "option" => {
+                    let a = Attrs { node, class: None };
+                    timestep = a.number("timestep")?;
+                    gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
+                }
+                _ => {}
+            }
+            Ok(())
+        };
+        first_pass()?;
+    }
+    // Materials' colours, with their classes' defaults (read by now, wherever they are).
+    let mut materials = HashMap::new();
+    for node in material_nodes {
+        let a = Attrs::new(node, &defaults, "main");
+        if let (Some(name), Some(rgba)) = (node.attribute("name"), a.fixed::<4>("rgba")?) {
+            materials.insert(name.to_string(), rgba);
+        }
+    }
+    let mut reader = Reader {
+        compiler,
+        defaults: &defaults,
+        skip: options.skip_unsupported,
+        skipped: schema_skips,
+        bodies: 0,
+        joints: 0,
+        meshes,
+        materials,
+        loaded: HashMap::new(),
+        files: crate::formats::MeshCache::default(),
+        tree,
+        dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
+    };
+    let mut model = Model {
+        name: root.attribute("model").unwrap_or("").to_string(),
+        world_geoms: Vec::new(),
+        bodies: Vec::new(),
+        timestep,
+        gravity,
+        actuators: Vec::new(),
+        excluded: Vec::new(),
+        pairs: Vec::new(),
+        sensors: Vec::new(),
+        sensor_places: Vec::new(),
+        world_sites: Vec::new(),
+        skipped: Vec::new(),
+    };
+    for &node in &nodes {
+        let mut second_pass = || -> Parsed<()> {
+            match node.tag_name().name() {
+                "worldbody" => {
+                    for child in tree.elements(node) {
+                        match child.tag_name().name() {
+                            "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
+                            "body" => model.bodies.push(reader.body(child, "main")?),
+                            "site" => model.world_sites.extend(reader.site(child, "main")?.map(|s| s.name)),
+                            "camera" | "light" => {}
+                            other => reader.unsupported(&child, &format!("<{other}> in the world body"))?,
+                        }
+                    }
+                }
+                "actuator" => {
+                    for (i, child) in tree.elements(node).into_iter().enumerate() {
+                        if let Some(actuator) = reader.actuator(child, i)? {
+                            model.actuators.push(actuator);
+                        }
+                    }
+                }
+                "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
+                "contact" => {
+                    for child in tree.elements(node) {
+                        let needs = |attr: &str| {
+                            child
+                                .attribute(attr)
+                                .map(str::to_string)
+                                .ok_or_else(|| problem(&child, format!("needs a {attr}")))
+                        };
+                        match child.tag_name().name() {
+                            "exclude" => model.excluded.push((needs("body1")?, needs("body2")?)),
+                            "pair" => {
+                                if model.pairs.len() == MAX_CONTACT_PAIRS {
+                                    reader.unsupported(
+                                        &child,
+                                        &format!("a contact pair beyond the first {MAX_CONTACT_PAIRS}"),
+                                    )?;
+                                    continue;
+                                }
+                                model.pairs.push((needs("geom1")?, needs("geom2")?));
+                                let unused: Vec<&str> = child
+                                    .attributes()
+                                    .map(|a| a.name())
+                                    .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
+                                    .collect();
+                                contact_parameters_unused(&child, &unused, &mut reader.skipped);
+                            }
+                            other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
+                        }
+                    }
+                }
+                "sensor" => {
+                    for (i, child) in tree.elements(node).into_iter().enumerate() {
+                        if let Some(sensor) = reader.sensor(child, i)? {
+                            model.sensors.push(sensor);
+                            model.sensor_places.push(problem(&child, ""));
+                        }
+                    }
+                }
+                other => reader.unsupported(&node, &format!("<{other}>"))?,
+            }
+            Ok(())
+        };
+        second_pass()?;
+    }
+    reader.check_sensors(&mut model)?;
+    model.skipped = reader.skipped;
+    if let Some(total) = reader.compiler.total_mass {
+        fn sum(bodies: &[Body]) -> f64 {
+            bodies.iter().map(|b| b.mass.map_or(0.0, |m| m.0) + sum(&b.children)).sum()
+        }
+        fn scale(bodies: &mut [Body], factor: f64) {
+            for b in bodies {
+                if let Some((mass, _, inertia)) = b.mass.as_mut() {
+                    *mass *= factor;
+                    *inertia *= factor;
+                }
+                scale(&mut b.children, factor);
+            }
+        }
+        let now = sum(&model.bodies);
+        if now > 0.0 {
+            scale(&mut model.bodies, total / now);
+        }
+    }
+    Ok(model)
+}

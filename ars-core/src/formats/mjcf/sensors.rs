@@ -1,0 +1,207 @@
+//! MJCF sensors: read and checked against the model, placed on what was built, and
+//! made as ARS sensors.
+
+use nalgebra::{Isometry3, Translation3, Vector3};
+
+use super::defaults::Attrs;
+use super::mass::find_body;
+use super::model::{Body, Model};
+use super::read::{Parsed, Problem, Reader, problem, skip_or_refuse};
+use super::{MjcfModel, MjcfSensor, MjcfSite, RANGEFINDER_LENGTH};
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+use crate::sensors::{AnySensorId, Mount};
+
+impl Reader<'_, '_, '_> {
+    /// A sensor (the `index`-th), or `None` when skipped.
+    pub(super) fn sensor(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfSensor>> {
+        let kind = node.tag_name().name();
+        let a = Attrs::new(node, self.defaults, "main");
+        let needs = |what: &str| a.get(what).ok_or_else(|| problem(&node, format!("needs a {what}")));
+        let (objtype, target) = match kind {
+            "jointpos" | "jointvel" => ("joint", needs("joint")?),
+            "accelerometer" | "gyro" | "touch" | "rangefinder" => ("site", needs("site")?),
+            "framepos" | "framelinvel" | "framequat" => {
+                let objtype = match a.get("objtype") {
+                    Some(t @ ("body" | "xbody" | "site")) => t,
+                    other => {
+                        let what = other.unwrap_or("(none)");
+                        self.unsupported(
+                            &node,
+                            &format!("a {kind} of objtype {what} (ARS reads objtype body, xbody and site)"),
+                        )?;
+                        return Ok(None);
+                    }
+                };
+                if a.get("reftype").is_some() {
+                    self.unsupported(&node, &format!("a {kind} relative to another frame (reftype)"))?;
+                    return Ok(None);
+                }
+                (objtype, needs("objname")?)
+            }
+            other => {
+                self.unsupported(&node, &format!("a sensor of kind <{other}>"))?;
+                return Ok(None);
+            }
+        };
+        // A rangefinder reads its distance from a site (MuJoCo's can cast from a camera
+        // and give other data).
+        if kind == "rangefinder" && (a.get("camera").is_some() || a.get("data").is_some_and(|d| d != "dist")) {
+            self.unsupported(&node, "a rangefinder on a camera or with data other than \"dist\"")?;
+            return Ok(None);
+        }
+        // MuJoCo's noise is not applied in simulation either; a cutoff clamps readings.
+        if a.number("cutoff")?.is_some_and(|c| c != 0.0) {
+            self.unsupported(&node, "a sensor's cutoff")?;
+            return Ok(None);
+        }
+        let name = node.attribute("name").map_or_else(|| format!("sensor{index}"), str::to_string);
+        Ok(Some(MjcfSensor {
+            name,
+            kind: kind.to_string(),
+            objtype: objtype.to_string(),
+            target: target.to_string(),
+            mount: None,
+            id: None,
+        }))
+    }
+
+    /// Checks that the sensors' targets are in the model, once it is read; a sensor ARS
+    /// cannot make there is skipped (with a warning) or refused.
+    pub(super) fn check_sensors(&mut self, model: &mut Model) -> Parsed<()> {
+        let mut kept = Vec::new();
+        let places = std::mem::take(&mut model.sensor_places);
+        for (sensor, place) in std::mem::take(&mut model.sensors).into_iter().zip(places) {
+            let at = |text: String| Problem { text, ..place.clone() };
+            let missing =
+                || at(format!("reads the {} {:?}, which the model does not have", sensor.objtype, sensor.target));
+            let body = |name: &str| find_body(&model.bodies, &|b| b.name == name);
+            let unsupported = match sensor.objtype.as_str() {
+                "joint" => {
+                    find_body(&model.bodies, &|b| b.joints.iter().any(|j| j.name == sensor.target))
+                        .ok_or_else(missing)?;
+                    None
+                }
+                "site" => match find_body(&model.bodies, &|b| b.sites.iter().any(|s| s.name == sensor.target)) {
+                    Some(_) => None,
+                    None if model.world_sites.contains(&sensor.target) => {
+                        Some(format!("a {} on a site of the world body (ARS reads sites on bodies)", sensor.kind))
+                    }
+                    None => return Err(missing()),
+                },
+                _ => match body(&sensor.target).ok_or_else(missing)? {
+                    b if sensor.kind == "framequat" && sensor.objtype == "body" && b.principal.is_none() => Some(
+                        "a framequat of a body's inertial frame when its <inertial> gives no diaginertia (the \
+                         principal axes MuJoCo computes are not read; objtype=\"xbody\" reads the body's frame)"
+                            .to_string(),
+                    ),
+                    _ => None,
+                },
+            };
+            match unsupported {
+                None => kept.push(sensor),
+                Some(what) => skip_or_refuse(at(format!("{what} is not supported")), self.skip, &mut self.skipped)?,
+            }
+        }
+        model.sensors = kept;
+        Ok(())
+    }
+}
+
+impl Scene {
+    /// Lists the bodies' sites and places the sensors on their objects (their targets
+    /// were checked when the file was read).
+    pub(super) fn place_mjcf_sensors(&self, model: &Model, made: &mut MjcfModel) -> Result<()> {
+        fn sites(bodies: &[Body], made: &mut MjcfModel) -> Result<()> {
+            for body in bodies {
+                let object = made.body(&body.name).ok_or_else(|| unknown_target(&body.name))?;
+                // From the body's frame to the object's (at the centre of mass, turned
+                // as the body).
+                let com = body.mass.map_or(Vector3::zeros(), |(_, com, _)| com);
+                for site in &body.sites {
+                    made.sites.push(MjcfSite {
+                        name: site.name.clone(),
+                        body: body.name.clone(),
+                        object,
+                        offset: Isometry3::from(-com) * site.frame,
+                        zone: site.zone,
+                    });
+                }
+                sites(&body.children, made)?;
+            }
+            Ok(())
+        }
+        sites(&model.bodies, made)?;
+        let mut sensors = model.sensors.clone();
+        for sensor in &mut sensors {
+            sensor.mount = match sensor.objtype.as_str() {
+                "joint" => None,
+                "site" => {
+                    let site = made.sites.iter().find(|s| s.name == sensor.target);
+                    let site = site.ok_or_else(|| unknown_target(&sensor.target))?;
+                    Some(Mount::Object(site.object, site.offset))
+                }
+                objtype => {
+                    let body = find_body(&model.bodies, &|b| b.name == sensor.target);
+                    let (body, object) =
+                        body.zip(made.body(&sensor.target)).ok_or_else(|| unknown_target(&sensor.target))?;
+                    let offset = if objtype == "xbody" {
+                        Isometry3::from(-body.mass.map_or(Vector3::zeros(), |(_, com, _)| com))
+                    } else {
+                        Isometry3::from_parts(Translation3::identity(), body.principal.unwrap_or_default())
+                    };
+                    Some(Mount::Object(object, offset))
+                }
+            };
+        }
+        made.sensors = sensors;
+        Ok(())
+    }
+}
+
+impl crate::Simulation {
+    pub(super) fn make_mjcf_sensors(&mut self, mut model: MjcfModel) -> Result<MjcfModel> {
+        use crate::sensors::{Gps, Imu, JointPositions, JointVelocities, Laser, Orientation, Touch, Velometer};
+        for i in 0..model.sensors.len() {
+            let sensor = &model.sensors[i];
+            let (kind, target) = (sensor.kind.as_str(), sensor.target.as_str());
+            // The targets were checked while the model was read and placed while it was built.
+            let mounted = || match sensor.mount {
+                Some(Mount::Object(object, offset)) => Ok((object, offset)),
+                _ => Err(unknown_target(target)),
+            };
+            let id: AnySensorId = match kind {
+                "jointpos" | "jointvel" => {
+                    let joint = model.joint(target).ok_or_else(|| unknown_target(target))?;
+                    if kind == "jointpos" {
+                        self.add_sensor(JointPositions::new(&self.scene, &[joint])?)?.into()
+                    } else {
+                        self.add_sensor(JointVelocities::new(&self.scene, &[joint])?)?.into()
+                    }
+                }
+                _ => {
+                    let (object, offset) = mounted()?;
+                    let point = offset.translation.vector;
+                    match kind {
+                        "framepos" => self.add_sensor(Gps::new(object).at(point))?.into(),
+                        "framelinvel" => self.add_sensor(Velometer::new(object).at(point))?.into(),
+                        "framequat" => self.add_sensor(Orientation::new(object).at(offset.rotation))?.into(),
+                        "accelerometer" | "gyro" => self.add_sensor(Imu::new(object).at(offset))?.into(),
+                        "touch" => {
+                            let zone = model.site(target).ok_or_else(|| unknown_target(target))?.zone;
+                            self.add_sensor(Touch::new(object).within(zone, offset))?.into()
+                        }
+                        _ => self.add_sensor(Laser::new(RANGEFINDER_LENGTH).mounted_on(object, offset))?.into(),
+                    }
+                }
+            };
+            model.sensors[i].id = Some(id);
+        }
+        Ok(model)
+    }
+}
+
+/// A sensor target the model does not have (checked before: not expected).
+pub(super) fn unknown_target(target: &str) -> Error {
+    Error::Invalid { what: "an MJCF sensor", problem: format!("reads {target:?}, which the model does not have") }
+}
