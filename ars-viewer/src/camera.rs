@@ -95,12 +95,14 @@ impl Camera {
     }
 
     /// Placed in the world at `pose`.
+    #[must_use]
     pub fn at(mut self, pose: Isometry3<f64>) -> Self {
         self.depth = self.depth.at(pose);
         self
     }
 
     /// Mounted on `object` at `offset` from its origin (it does not see that object).
+    #[must_use]
     pub fn on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
         self.depth = self.depth.on(object, offset);
         self

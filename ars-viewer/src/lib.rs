@@ -105,18 +105,21 @@ pub struct ViewerOptions {
 
 impl ViewerOptions {
     /// With the world axes drawn or not.
+    #[must_use]
     pub fn with_axes(mut self, axes: bool) -> Self {
         self.axes = axes;
         self
     }
 
     /// With `views` views (1 to 4; see [`views`](Self::views)).
+    #[must_use]
     pub fn with_views(mut self, views: usize) -> Self {
         self.views = views;
         self
     }
 
     /// With the contact forces drawn or not.
+    #[must_use]
     pub fn with_forces(mut self, forces: bool) -> Self {
         self.forces = forces;
         self

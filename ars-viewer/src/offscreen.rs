@@ -268,16 +268,19 @@ impl ScreenshotRecorder {
         ScreenshotRecorder { dir: dir.into(), every: 1, size: None, options: ViewerOptions::default() }
     }
     /// One image every `frames` frames.
+    #[must_use]
     pub fn every(mut self, frames: u32) -> Self {
         self.every = frames;
         self
     }
     /// Images of `width × height` pixels (default: the program's window size).
+    #[must_use]
     pub fn size(mut self, width: u32, height: u32) -> Self {
         self.size = Some((width, height));
         self
     }
     /// Frames drawn as `options` say (the world axes...).
+    #[must_use]
     pub fn options(mut self, options: ViewerOptions) -> Self {
         self.options = options;
         self

@@ -455,17 +455,20 @@ impl VideoRecorder {
         VideoRecorder { path: path.into(), fps: 30.0, size: None, options: ViewerOptions::default() }
     }
     /// Frames per second of video (and of simulated time).
+    #[must_use]
     pub fn fps(mut self, fps: f64) -> Self {
         self.fps = fps;
         self
     }
     /// Frames of `width × height` pixels, both even (default: the program's window
     /// size).
+    #[must_use]
     pub fn size(mut self, width: u32, height: u32) -> Self {
         self.size = Some((width, height));
         self
     }
     /// Frames drawn as `options` say (the world axes...).
+    #[must_use]
     pub fn options(mut self, options: ViewerOptions) -> Self {
         self.options = options;
         self

@@ -106,41 +106,49 @@ impl UrdfOptions {
         Self::default()
     }
     /// The root link's pose.
+    #[must_use]
     pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
         self.base_pose = pose;
         self
     }
     /// Fix the root link to the world.
+    #[must_use]
     pub fn fixed_base(mut self, fixed: bool) -> Self {
         self.fixed_base = fixed;
         self
     }
     /// Let links collide with each other.
+    #[must_use]
     pub fn self_collision(mut self, on: bool) -> Self {
         self.self_collision = on;
         self
     }
     /// The file's up axis.
+    #[must_use]
     pub fn up_axis(mut self, up: UpAxis) -> Self {
         self.up_axis = up;
         self
     }
     /// Where the ROS package `name` is (for `package://name/...` mesh paths).
+    #[must_use]
     pub fn package(mut self, name: &str, dir: impl Into<PathBuf>) -> Self {
         self.package_dirs.push((name.to_string(), dir.into()));
         self
     }
     /// The starting position of joint `name` (rad or m).
+    #[must_use]
     pub fn initial_position(mut self, name: &str, position: f64) -> Self {
         self.initial_positions.push((name.to_string(), position));
         self
     }
     /// Draw the collision geometry, not the `<visual>` elements.
+    #[must_use]
     pub fn ignore_visuals(mut self, ignore: bool) -> Self {
         self.ignore_visuals = ignore;
         self
     }
     /// A folder to look for meshes (and packages) in.
+    #[must_use]
     pub fn search_path(mut self, dir: impl Into<PathBuf>) -> Self {
         self.search_paths.push(dir.into());
         self

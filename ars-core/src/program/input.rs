@@ -170,6 +170,7 @@ impl<P> ActionMap<P> {
         ActionMap::default()
     }
     /// Binds `key` (replacing an earlier binding).
+    #[must_use]
     pub fn add(
         mut self,
         key: Key,

@@ -59,6 +59,7 @@ impl Gps {
     }
 
     /// At `offset` from the object's origin (its centre of mass), in the object's frame.
+    #[must_use]
     pub fn at(mut self, offset: Vector3<f64>) -> Self {
         self.offset = offset;
         self
@@ -111,6 +112,7 @@ impl Velometer {
 
     /// At `offset` from the object's origin (its centre of mass), in the object's
     /// frame: it reads that point's velocity, `v + ω × R·offset`.
+    #[must_use]
     pub fn at(mut self, offset: Vector3<f64>) -> Self {
         self.offset = offset;
         self
@@ -174,6 +176,7 @@ impl Accelerometer {
     }
 
     /// At `offset` from the object's origin (its centre of mass), in the object's frame.
+    #[must_use]
     pub fn at(mut self, offset: Vector3<f64>) -> Self {
         self.offset = offset;
         self
@@ -238,6 +241,7 @@ impl Orientation {
     }
 
     /// Reads the frame turned by `offset` from the object's (in the object's frame).
+    #[must_use]
     pub fn at(mut self, offset: UnitQuaternion<f64>) -> Self {
         self.offset = offset;
         self
@@ -343,6 +347,7 @@ impl Imu {
 
     /// Mounted at `offset` from the object's origin (its centre of mass), in the
     /// object's frame: it reads at that point, in that frame.
+    #[must_use]
     pub fn at(self, offset: Isometry3<f64>) -> Self {
         Imu { inner: self.inner.at(offset.translation.vector), turn: offset.rotation }
     }

@@ -74,12 +74,14 @@ impl DepthCamera {
     }
 
     /// Placed in the world at `pose`.
+    #[must_use]
     pub fn at(mut self, pose: Isometry3<f64>) -> Self {
         self.mount = Mount::World(pose);
         self
     }
 
     /// Mounted on `object` at `offset` from its origin.
+    #[must_use]
     pub fn on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
         self.mount = Mount::Object(object, offset);
         self

@@ -85,6 +85,7 @@ impl PotentialEnergy {
         PotentialEnergy { object, reference_height: 0.0 }
     }
     /// Zero at `y = height` instead.
+    #[must_use]
     pub fn reference_height(mut self, height: f64) -> Self {
         self.reference_height = height;
         self
@@ -155,6 +156,7 @@ impl TotalEnergy {
         TotalEnergy { object, reference_height: 0.0 }
     }
     /// Potential zero at `y = height` instead.
+    #[must_use]
     pub fn reference_height(mut self, height: f64) -> Self {
         self.reference_height = height;
         self
@@ -185,6 +187,7 @@ impl SystemTotalEnergy {
         SystemTotalEnergy::default()
     }
     /// Potential zero at `y = height` instead.
+    #[must_use]
     pub fn reference_height(mut self, height: f64) -> Self {
         self.reference_height = height;
         self

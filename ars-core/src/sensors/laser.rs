@@ -52,6 +52,7 @@ impl Laser {
     }
 
     /// Placed at `position` with `rotation` (the beam points along `rotation · +Z`).
+    #[must_use]
     pub fn at(mut self, position: Point3<f64>, rotation: Rotation3<f64>) -> Self {
         self.mount = Mount::World { position, rotation };
         self
@@ -59,6 +60,7 @@ impl Laser {
 
     /// Mounted on `object` at `offset` from its origin; it moves with the object and
     /// does not see the object itself.
+    #[must_use]
     pub fn mounted_on(mut self, object: ObjectId, offset: Isometry3<f64>) -> Self {
         self.mount = Mount::Body { object, offset };
         self

@@ -77,12 +77,14 @@ impl<R: Record> Probe<R> {
 
     /// The objects the closure reads: the probe is refused if one is not in the
     /// simulation, and stops when one is removed.
+    #[must_use]
     pub fn reads_objects(mut self, objects: impl IntoIterator<Item = ObjectId>) -> Self {
         self.objects.extend(objects);
         self
     }
 
     /// The joints the closure reads (as [`reads_objects`](Self::reads_objects)).
+    #[must_use]
     pub fn reads_joints(mut self, joints: impl IntoIterator<Item = JointId>) -> Self {
         self.joints.extend(joints);
         self

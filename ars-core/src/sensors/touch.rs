@@ -95,6 +95,7 @@ impl Touch {
 
     /// Feels only the contacts whose point lies in `zone`, placed at `offset` from the
     /// object's origin (its centre of mass), in the object's frame.
+    #[must_use]
     pub fn within(mut self, zone: TouchZone, offset: Isometry3<f64>) -> Self {
         self.zone = Some((zone, offset));
         self

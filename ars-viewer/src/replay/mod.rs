@@ -102,6 +102,7 @@ impl ReplayRecorder {
 
     /// Pose samples per second of simulated time (default: the simulation's frame
     /// rate, `1 / (time_step × steps_per_frame)`; at most one per simulation frame).
+    #[must_use]
     pub fn fps(mut self, fps: f64) -> Self {
         self.fps = Some(fps);
         self
@@ -110,12 +111,14 @@ impl ReplayRecorder {
     /// Plots a sensor column under the 3D view: `"Gps 1: y [m]"`, the sensor's type,
     /// its number among the simulation's sensors (from 1) and its column, as the CSV
     /// of `ars run --csv` heads it; the unit may be left out (`"Gps 1: y"`).
+    #[must_use]
     pub fn plot(mut self, column: impl Into<String>) -> Self {
         self.plots.push(column.into());
         self
     }
 
     /// The view's size instead of the program's (the player's canvas, pixels).
+    #[must_use]
     pub fn size(mut self, width: u32, height: u32) -> Self {
         self.size = Some((width, height));
         self

@@ -159,11 +159,13 @@ impl MjcfOptions {
         Self::default()
     }
     /// Where the model goes.
+    #[must_use]
     pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
         self.base_pose = pose;
         self
     }
     /// Skip (with a warning) what cannot be read.
+    #[must_use]
     pub fn skip_unsupported(mut self, skip: bool) -> Self {
         self.skip_unsupported = skip;
         self
