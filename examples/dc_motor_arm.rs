@@ -9,7 +9,7 @@
 mod common;
 
 use ars::nalgebra::{Point3, Vector3};
-use ars::{DcMotor, JointEnd, Mass, Profile, Simulation};
+use ars::{DcMotor, JointEnd, Mass, Profile, SensorKind, Simulation};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(4.0);
@@ -34,8 +34,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     sim.scene_mut().joint_mut(shoulder)?.set_controller(motor(shoulder_volts)?)?;
     sim.scene_mut().joint_mut(elbow)?.set_controller(motor(elbow_volts)?)?;
     for joint in [shoulder, elbow] {
-        sim.add_sensor_of_kind("HingeSensor", &[], &[joint], None)?;
-        sim.add_sensor_of_kind("JointTorque", &[], &[joint], None)?;
+        sim.add_sensor_of_kind(SensorKind::HingeSensor, &[], &[joint], None)?;
+        sim.add_sensor_of_kind(SensorKind::JointTorque, &[], &[joint], None)?;
     }
     let steps = sim.scene().steps_in(args.duration)?;
     let every = (0.5 / sim.scene().time_step()).round() as u64;

@@ -4,7 +4,7 @@
 //! every body's pose and velocity after every step, and every sensor record.
 
 use ars::sensors::CsvColumns;
-use ars::{Program, Simulation, Snapshot};
+use ars::{Program, SensorKind, Simulation, Snapshot};
 use ars_programs::ConicalPendulum;
 
 /// Every body's position, quaternion, rotation matrix and velocities, as bits.
@@ -294,10 +294,10 @@ fn scene_joints() -> Simulation {
         .set_controller(VelocityServo { setpoint: profile(0.2), gain: 20.0 })
         .unwrap();
     sim.scene_mut().joint_mut("universal").unwrap().set_viscous_friction(0.05).unwrap();
-    for (kind, object) in [("Gps", b), ("Accelerometer", d), ("ContactSensor", e)] {
+    for (kind, object) in [(SensorKind::Gps, b), (SensorKind::Accelerometer, d), (SensorKind::ContactSensor, e)] {
         sim.add_sensor_of_kind(kind, &[object], &[], Some(0.01)).unwrap();
     }
-    sim.add_sensor_of_kind("JointPositions", &[], &[hinge, slider], None).unwrap();
+    sim.add_sensor_of_kind(SensorKind::JointPositions, &[], &[hinge, slider], None).unwrap();
     sim
 }
 
@@ -324,7 +324,7 @@ fn urdf_with_offset_shapes() -> Simulation {
     let options = ars::UrdfOptions::new().base_pose(ars::nalgebra::Isometry3::translation(0.0, 0.3, 0.0));
     sim.load_urdf_text(URDF, "cart.urdf", &options).unwrap();
     sim.scene_mut().joint_mut("axle").unwrap().set_speed(4.0, 2.0).unwrap();
-    sim.add_sensor_of_kind("Gps", &[sim.scene().object("wheel").unwrap().id()], &[], Some(0.01)).unwrap();
+    sim.add_sensor_of_kind(SensorKind::Gps, &[sim.scene().object("wheel").unwrap().id()], &[], Some(0.01)).unwrap();
     sim
 }
 

@@ -127,13 +127,11 @@ pub use scene::{
     ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, Visual,
     heightfield_triangles,
 };
-pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorLog};
+pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorKind, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, HookPoint, Hooks, PostFrame, PostStep, PreFrame, PreStep};
 pub use simulation::snapshot::{SNAPSHOT_VERSION, SceneState, Snapshot};
-pub use simulation::{
-    DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, SENSOR_KINDS, Simulation, SimulationBuilder,
-};
+pub use simulation::{DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Simulation, SimulationBuilder};
 pub use world::{AxisOrder, DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 
 pub use nalgebra;

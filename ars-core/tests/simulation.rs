@@ -709,8 +709,8 @@ fn sensors_sampled_at_the_end_of_the_step_sample_again_after_others_come_and_go(
 fn sensors_are_removed_and_cleared_whatever_their_type() -> Result<()> {
     let mut sim = with_floor();
     let ball = sim.scene_mut().add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0))?;
-    let gps = sim.add_sensor_of_kind("Gps", &[ball], &[], None)?;
-    let energy = sim.add_sensor_of_kind("KineticEnergy", &[ball], &[], None)?;
+    let gps = sim.add_sensor_of_kind(ars_core::SensorKind::Gps, &[ball], &[], None)?;
+    let energy = sim.add_sensor_of_kind(ars_core::SensorKind::KineticEnergy, &[ball], &[], None)?;
     sim.step_n(3)?;
     sim.clear_any_records(gps)?;
     assert_eq!(sim.sensor_table(gps)?.1.len(), 0);

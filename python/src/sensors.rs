@@ -3,8 +3,9 @@
 //! `step`, then one field per column, named as in the CSV) or as CSV.
 
 use ars_core::nalgebra::Isometry3;
+use ars_core::sensors::SensorTarget;
 use ars_core::sensors::{AnySensorId, DepthCamera, Lidar, Noisy, Sensor, SensorId};
-use ars_core::{Error, SENSOR_KINDS, Simulation};
+use ars_core::{Error, SensorKind, Simulation};
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 
@@ -12,8 +13,8 @@ use crate::simulation::PySimulation;
 
 /// The kind of ARS sensor a Python name means: the type's name itself (`"Gps"`), or
 /// it in snake case (`"gps"`, `"joint_positions"`), with `"Sensor"` understood
-/// (`"hinge"`, `"contact"`).
-fn kind_of(name: &str) -> Option<&'static str> {
+/// (`"hinge"`, `"contact"`); lidars and depth cameras have calls of their own.
+fn kind_of(name: &str) -> Option<SensorKind> {
     let camel: String = name
         .split('_')
         .map(|w| {
@@ -21,7 +22,10 @@ fn kind_of(name: &str) -> Option<&'static str> {
             c.next().map(|f| f.to_ascii_uppercase().to_string() + c.as_str()).unwrap_or_default()
         })
         .collect();
-    SENSOR_KINDS.iter().copied().find(|k| *k == name || *k == camel || *k == format!("{camel}Sensor"))
+    SensorKind::from_targets().find(|k| {
+        let k = k.name();
+        k == name || k == camel || k == format!("{camel}Sensor")
+    })
 }
 
 /// `CamelCase` in snake case: `"JointPositions"` → `"joint_positions"`.
@@ -52,10 +56,10 @@ pub(crate) fn declare(
         return Err(Error::UnknownKind {
             what: "sensor kind",
             name: kind.to_string(),
-            known: SENSOR_KINDS.iter().copied().map(snake_case).collect(),
+            known: SensorKind::from_targets().map(|k| snake_case(k.name())).collect(),
         });
     };
-    let reads_joints = kind.starts_with("Joint") || kind == "HingeSensor";
+    let reads_joints = matches!(kind.target(), SensorTarget::Joint | SensorTarget::Joints);
     let (mut objects, mut joints) = (Vec::new(), Vec::new());
     for name in targets {
         if reads_joints {

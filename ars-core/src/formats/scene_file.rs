@@ -30,9 +30,10 @@ use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::joint::{JointBuilder, JointKind, JointParam};
 use crate::scene::{ActuatorLimits, Color, JointEnd, JointType, Visual};
+use crate::sensors::SensorKind;
 use crate::sensors::SensorSettings;
 use crate::shape::Shape;
-use crate::simulation::{SENSOR_KINDS, Simulation, SimulationBuilder};
+use crate::simulation::{Simulation, SimulationBuilder};
 use crate::world::{SpaceKind, Stepper};
 
 /// The format tag of a scene file.
@@ -132,17 +133,9 @@ impl SensorFile {
         let objects =
             self.objects.iter().map(|n| Ok(sim.scene().object(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
         let joints = self.joints.iter().map(|n| Ok(sim.scene().joint(n.as_str())?.id())).collect::<Result<Vec<_>>>()?;
-        sim.add_sensor_described(&self.kind, &objects, &joints, self.period, self.noise, self.settings.as_ref())
+        sim.add_sensor_described(self.kind.parse()?, &objects, &joints, self.period, self.noise, self.settings.as_ref())
             .map(drop)
     }
-}
-
-/// The kind of sensor a scene file rebuilds from a sensor's type name: `"Gps"` for
-/// `"Gps"` and `"Noisy<Gps>"`, `"Lidar"` for `"Lidar"` and `"Noisy<Lidar>"`; `None`
-/// for a sensor it does not rebuild (a closure, a laser, your own type).
-pub(crate) fn rebuilt_kind(type_name: &str) -> Option<&str> {
-    let kind = type_name.strip_prefix("Noisy<").and_then(|k| k.strip_suffix('>')).unwrap_or(type_name);
-    (SENSOR_KINDS.contains(&kind) || kind == "Lidar" || kind == "DepthCamera").then_some(kind)
 }
 
 /// The contact surface of a pair of objects, by name.
@@ -413,7 +406,7 @@ impl Simulation {
         let world_joints = self.world_joint_files()?;
         let (mut sensors, mut unsaved_sensors) = (Vec::new(), Vec::new());
         for d in self.sensors.descriptions() {
-            let Some(kind) = rebuilt_kind(&d.kind) else {
+            let Some(kind) = SensorKind::of_type_name(&d.kind) else {
                 unsaved_sensors.push(d.kind);
                 continue;
             };
@@ -690,7 +683,7 @@ impl Simulation {
                 crate::simulation::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
             // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
             // no place for their state.
-            state.keep_sensors(|kind| rebuilt_kind(kind).is_some());
+            state.keep_sensors(|kind| SensorKind::of_type_name(kind).is_some());
             sim.restore_state(&state)?;
         }
         Ok(sim)

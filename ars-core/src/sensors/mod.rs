@@ -23,6 +23,7 @@ mod body;
 mod depth_camera;
 mod energy;
 mod joint;
+mod kind;
 mod laser;
 mod lidar;
 mod mount;
@@ -44,6 +45,7 @@ pub use joint::{
     Effort, HingeReading, HingeSensor, JointForce, JointPositions, JointPower, JointReaction, JointTorque,
     JointVelocities, Positions, Power, Rates, Reaction,
 };
+pub use kind::{SensorKind, SensorTarget};
 pub use laser::{Laser, LaserReading};
 pub use lidar::{Lidar, Scan};
 pub use mount::Mount;

@@ -26,8 +26,6 @@ pub mod hooks;
 mod sensor_kinds;
 pub mod snapshot;
 
-pub use sensor_kinds::SENSOR_KINDS;
-
 use nalgebra::Vector3;
 
 use crate::contact::ContactSurface;

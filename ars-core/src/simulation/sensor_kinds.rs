@@ -7,42 +7,18 @@ use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
     Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
     Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, JointVelocities, KineticEnergy,
-    Lidar, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorSettings, SystemTotalEnergy, TotalEnergy, Touch,
-    Velometer,
+    Lidar, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorKind, SensorSettings, SystemTotalEnergy,
+    TotalEnergy, Touch, Velometer,
 };
 
-/// The kinds [`Simulation::add_sensor_of_kind`] makes (the sensors' type names): on
-/// one object, on one joint, on a list of joints (`JointPositions`, `JointVelocities`), or on the whole
-/// simulation (`SystemTotalEnergy`).
-pub const SENSOR_KINDS: [&str; 20] = [
-    "Gps",
-    "Velometer",
-    "Accelerometer",
-    "Orientation",
-    "Inclinometer",
-    "Imu",
-    "ContactSensor",
-    "ContactForces",
-    "Touch",
-    "KineticEnergy",
-    "PotentialEnergy",
-    "TotalEnergy",
-    "SystemTotalEnergy",
-    "HingeSensor",
-    "JointTorque",
-    "JointForce",
-    "JointPower",
-    "JointReaction",
-    "JointPositions",
-    "JointVelocities",
-];
-
 impl Simulation {
-    /// Adds a sensor of `kind` (one of [`SENSOR_KINDS`]) reading `objects` and `joints`,
-    /// sampled after every step or every `period` seconds.
+    /// Adds a sensor of `kind` reading `objects` and `joints` (as the kind's
+    /// [`target`](SensorKind::target) says), sampled after every step or every `period`
+    /// seconds. A lidar or a depth camera needs its settings: make it with
+    /// [`add_sensor`](Self::add_sensor).
     pub fn add_sensor_of_kind(
         &mut self,
-        kind: &str,
+        kind: SensorKind,
         objects: &[ObjectId],
         joints: &[JointId],
         period: Option<f64>,
@@ -55,7 +31,7 @@ impl Simulation {
     /// deviation, generator state) is given: what scene files rebuild.
     pub(crate) fn add_sensor_described(
         &mut self,
-        kind: &str,
+        kind: SensorKind,
         objects: &[ObjectId],
         joints: &[JointId],
         period: Option<f64>,
@@ -78,10 +54,12 @@ impl Simulation {
             [j] if objects.is_empty() => Ok(*j),
             _ => Err(wrong("one joint")),
         };
-        let noiseless =
-            |kind: &str| Error::Invalid { what: "a sensor", problem: format!("of kind {kind} cannot be given noise") };
+        if noise.is_some() && !kind.takes_noise() {
+            return Err(Error::Invalid { what: "a sensor", problem: format!("of kind {kind} cannot be given noise") });
+        }
+        use SensorKind as K;
         match (kind, settings) {
-            (_, Some(SensorSettings::Lidar { beams, fov, min_range, max_range, elevations, pose })) => {
+            (K::Lidar, Some(SensorSettings::Lidar { beams, fov, min_range, max_range, elevations, pose })) => {
                 let lidar = Lidar::new(*beams, *fov, *max_range)?.min_range(*min_range)?.planes(elevations)?;
                 let lidar = match objects {
                     [] => lidar.at(*pose),
@@ -90,10 +68,7 @@ impl Simulation {
                 };
                 self.add_noisy(lidar, period, noise)
             }
-            (_, Some(SensorSettings::DepthCamera { width, height, fov_y, near, far, pose })) => {
-                if noise.is_some() {
-                    return Err(noiseless("DepthCamera"));
-                }
+            (K::DepthCamera, Some(SensorSettings::DepthCamera { width, height, fov_y, near, far, pose })) => {
                 let camera = DepthCamera::new(*width, *height, *fov_y, *near, *far)?;
                 let camera = match objects {
                     [] => camera.at(*pose),
@@ -102,65 +77,62 @@ impl Simulation {
                 };
                 self.add_any(camera, period)
             }
-            ("Gps", Some(SensorSettings::Offset { pose })) => {
+            (K::Gps, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Gps::new(object()?).at(pose.translation.vector), period, noise)
             }
-            ("Velometer", Some(SensorSettings::Offset { pose })) => {
+            (K::Velometer, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Velometer::new(object()?).at(pose.translation.vector), period, noise)
             }
-            ("Accelerometer", Some(SensorSettings::Offset { pose })) => {
+            (K::Accelerometer, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Accelerometer::new(object()?).at(pose.translation.vector), period, noise)
             }
-            ("Orientation", Some(SensorSettings::Offset { pose })) => {
+            (K::Orientation, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Orientation::new(object()?).at(pose.rotation), period, noise)
             }
-            ("Imu", Some(SensorSettings::Offset { pose })) => {
+            (K::Imu, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Imu::new(object()?).at(*pose), period, noise)
             }
-            ("Touch", Some(SensorSettings::Touch { zone, pose })) => {
+            (K::Touch, Some(SensorSettings::Touch { zone, pose })) => {
                 self.add_noisy(Touch::new(object()?).within(*zone, *pose), period, noise)
             }
             (_, Some(settings)) => Err(Error::Invalid {
                 what: "a sensor",
                 problem: format!("of kind {kind} cannot take the settings {settings:?}"),
             }),
-            ("Gps", _) => self.add_noisy(Gps::new(object()?), period, noise),
-            ("Velometer", _) => self.add_noisy(Velometer::new(object()?), period, noise),
-            ("Accelerometer", _) => self.add_noisy(Accelerometer::new(object()?), period, noise),
-            ("Inclinometer", _) => self.add_noisy(Inclinometer::new(object()?), period, noise),
-            ("Imu", _) => self.add_noisy(Imu::new(object()?), period, noise),
-            ("Orientation", _) => self.add_noisy(Orientation::new(object()?), period, noise),
-            ("Touch", _) => self.add_noisy(Touch::new(object()?), period, noise),
-            ("ContactSensor", _) => self.add_noisy(ContactSensor::new(object()?), period, noise),
-            ("ContactForces", _) => self.add_noisy(ContactForces::new(object()?), period, noise),
-            ("KineticEnergy", _) => self.add_noisy(KineticEnergy::new(object()?), period, noise),
-            ("PotentialEnergy", _) => self.add_noisy(PotentialEnergy::new(object()?), period, noise),
-            ("TotalEnergy", _) => self.add_noisy(TotalEnergy::new(object()?), period, noise),
-            ("SystemTotalEnergy", _) if objects.is_empty() && joints.is_empty() => {
+            (K::Gps, _) => self.add_noisy(Gps::new(object()?), period, noise),
+            (K::Velometer, _) => self.add_noisy(Velometer::new(object()?), period, noise),
+            (K::Accelerometer, _) => self.add_noisy(Accelerometer::new(object()?), period, noise),
+            (K::Inclinometer, _) => self.add_noisy(Inclinometer::new(object()?), period, noise),
+            (K::Imu, _) => self.add_noisy(Imu::new(object()?), period, noise),
+            (K::Orientation, _) => self.add_noisy(Orientation::new(object()?), period, noise),
+            (K::Touch, _) => self.add_noisy(Touch::new(object()?), period, noise),
+            (K::ContactSensor, _) => self.add_noisy(ContactSensor::new(object()?), period, noise),
+            (K::ContactForces, _) => self.add_noisy(ContactForces::new(object()?), period, noise),
+            (K::KineticEnergy, _) => self.add_noisy(KineticEnergy::new(object()?), period, noise),
+            (K::PotentialEnergy, _) => self.add_noisy(PotentialEnergy::new(object()?), period, noise),
+            (K::TotalEnergy, _) => self.add_noisy(TotalEnergy::new(object()?), period, noise),
+            (K::SystemTotalEnergy, _) if objects.is_empty() && joints.is_empty() => {
                 self.add_noisy(SystemTotalEnergy::new(), period, noise)
             }
-            ("SystemTotalEnergy", _) => Err(wrong("nothing")),
-            ("HingeSensor", _) => self.add_noisy(HingeSensor::new(joint()?), period, noise),
-            ("JointTorque", _) => self.add_noisy(JointTorque::new(joint()?), period, noise),
-            ("JointForce", _) => self.add_noisy(JointForce::new(joint()?), period, noise),
-            ("JointPower", _) => self.add_noisy(JointPower::new(joint()?), period, noise),
-            ("JointReaction", _) => self.add_noisy(JointReaction::new(joint()?), period, noise),
-            ("JointPositions", _) if noise.is_some() => Err(noiseless("JointPositions")),
-            ("JointPositions", _) if objects.is_empty() => {
+            (K::SystemTotalEnergy, _) => Err(wrong("nothing")),
+            (K::HingeSensor, _) => self.add_noisy(HingeSensor::new(joint()?), period, noise),
+            (K::JointTorque, _) => self.add_noisy(JointTorque::new(joint()?), period, noise),
+            (K::JointForce, _) => self.add_noisy(JointForce::new(joint()?), period, noise),
+            (K::JointPower, _) => self.add_noisy(JointPower::new(joint()?), period, noise),
+            (K::JointReaction, _) => self.add_noisy(JointReaction::new(joint()?), period, noise),
+            (K::JointPositions, _) if objects.is_empty() => {
                 let sensor = JointPositions::new(&self.scene, joints)?;
                 self.add_any(sensor, period)
             }
-            ("JointPositions", _) => Err(wrong("joints only")),
-            ("JointVelocities", _) if noise.is_some() => Err(noiseless("JointVelocities")),
-            ("JointVelocities", _) if objects.is_empty() => {
+            (K::JointPositions, _) => Err(wrong("joints only")),
+            (K::JointVelocities, _) if objects.is_empty() => {
                 let sensor = JointVelocities::new(&self.scene, joints)?;
                 self.add_any(sensor, period)
             }
-            ("JointVelocities", _) => Err(wrong("joints only")),
-            (other, _) => Err(Error::UnknownKind {
-                what: "sensor kind",
-                name: other.to_string(),
-                known: SENSOR_KINDS.iter().map(|k| k.to_string()).collect(),
+            (K::JointVelocities, _) => Err(wrong("joints only")),
+            (K::Lidar | K::DepthCamera, None) => Err(Error::Invalid {
+                what: "a sensor",
+                problem: format!("of kind {kind} is made from its settings (range, field of view, pose)"),
             }),
         }
     }

@@ -52,7 +52,7 @@
 //!
 //! [`Simulation::from_snapshot`] builds the scene from its [`SceneFile`] and can
 //! therefore rebuild what a scene file holds: the objects and joints (those made
-//! through the world too), the sensors of [`SENSOR_KINDS`](super::SENSOR_KINDS), lidars
+//! through the world too), the sensors of every [`SensorKind`](crate::SensorKind), lidars
 //! and depth cameras, noisy or not. A snapshot of a scene with other sensors (closures,
 //! lasers, your own types), with robots whose links have several collision shapes, or
 //! with bodies that are not objects, is restored into a simulation built by your own

@@ -10,7 +10,7 @@ use super::read::{Parsed, Problem, Reader, problem, skip_or_refuse};
 use super::{MjcfModel, MjcfSensor, MjcfSite, RANGEFINDER_LENGTH};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
-use crate::sensors::{AnySensorId, Mount};
+use crate::sensors::{Laser, Mount, SensorKind, SensorSettings, SensorTarget};
 
 impl Reader<'_, '_, '_> {
     /// A sensor (the `index`-th), or `None` when skipped.
@@ -159,40 +159,49 @@ impl Scene {
     }
 }
 
+/// The ARS sensor kind an MJCF sensor element becomes (see [`MjcfSensor`]); `None` for
+/// a `rangefinder`, which becomes a [`Laser`], a sensor a scene file does not rebuild.
+pub(super) fn ars_kind(element: &str) -> Option<SensorKind> {
+    Some(match element {
+        "jointpos" => SensorKind::JointPositions,
+        "jointvel" => SensorKind::JointVelocities,
+        "framepos" => SensorKind::Gps,
+        "framelinvel" => SensorKind::Velometer,
+        "framequat" => SensorKind::Orientation,
+        "accelerometer" | "gyro" => SensorKind::Imu,
+        "touch" => SensorKind::Touch,
+        _ => return None,
+    })
+}
+
 impl crate::Simulation {
     pub(super) fn make_mjcf_sensors(&mut self, mut model: MjcfModel) -> Result<MjcfModel> {
-        use crate::sensors::{Gps, Imu, JointPositions, JointVelocities, Laser, Orientation, Touch, Velometer};
         for i in 0..model.sensors.len() {
             let sensor = &model.sensors[i];
-            let (kind, target) = (sensor.kind.as_str(), sensor.target.as_str());
+            let target = sensor.target.as_str();
             // The targets were checked while the model was read and placed while it was built.
             let mounted = || match sensor.mount {
                 Some(Mount::Object(object, offset)) => Ok((object, offset)),
                 _ => Err(unknown_target(target)),
             };
-            let id: AnySensorId = match kind {
-                "jointpos" | "jointvel" => {
+            let id = match ars_kind(&sensor.kind) {
+                Some(kind) if kind.target() == SensorTarget::Joints => {
                     let joint = model.joint(target).ok_or_else(|| unknown_target(target))?;
-                    if kind == "jointpos" {
-                        self.add_sensor(JointPositions::new(&self.scene, &[joint])?)?.into()
-                    } else {
-                        self.add_sensor(JointVelocities::new(&self.scene, &[joint])?)?.into()
-                    }
+                    self.add_sensor_described(kind, &[], &[joint], None, None, None)?
                 }
-                _ => {
+                Some(kind) => {
+                    let (object, pose) = mounted()?;
+                    let settings = if kind == SensorKind::Touch {
+                        let zone = model.site(target).ok_or_else(|| unknown_target(target))?.zone;
+                        SensorSettings::Touch { zone, pose }
+                    } else {
+                        SensorSettings::Offset { pose }
+                    };
+                    self.add_sensor_described(kind, &[object], &[], None, None, Some(&settings))?
+                }
+                None => {
                     let (object, offset) = mounted()?;
-                    let point = offset.translation.vector;
-                    match kind {
-                        "framepos" => self.add_sensor(Gps::new(object).at(point))?.into(),
-                        "framelinvel" => self.add_sensor(Velometer::new(object).at(point))?.into(),
-                        "framequat" => self.add_sensor(Orientation::new(object).at(offset.rotation))?.into(),
-                        "accelerometer" | "gyro" => self.add_sensor(Imu::new(object).at(offset))?.into(),
-                        "touch" => {
-                            let zone = model.site(target).ok_or_else(|| unknown_target(target))?.zone;
-                            self.add_sensor(Touch::new(object).within(zone, offset))?.into()
-                        }
-                        _ => self.add_sensor(Laser::new(RANGEFINDER_LENGTH).mounted_on(object, offset))?.into(),
-                    }
+                    self.add_sensor(Laser::new(RANGEFINDER_LENGTH).mounted_on(object, offset))?.into()
                 }
             };
             model.sensors[i].id = Some(id);
