@@ -123,7 +123,9 @@ def test_ars_knows_the_attributes_mujoco_s_schema_gives():
     """ARS refuses an attribute MuJoCo does not know (a typo) and accepts every one it
     does: its list (ars-core/src/formats/mjcf/schema.rs) is MuJoCo's, element by
     element, in the places ARS reads them."""
-    source = pathlib.Path(__file__).parents[2] / "ars-core" / "src" / "formats" / "mjcf" / "schema.rs"
+    source = (
+        pathlib.Path(__file__).parents[2] / "ars-core" / "src" / "formats" / "mjcf" / "schema.rs"
+    )
     text = source.read_text()
     ours = {
         tag: set(re.findall(r'"(\w+)"', names))
