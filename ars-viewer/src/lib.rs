@@ -30,12 +30,14 @@
 //! libegl1 libegl-mesa0 libgl1-mesa-dri` (and `xvfb` for a virtual display).
 
 mod camera;
+mod command;
 pub mod convert;
 mod driver;
 mod edit;
 mod error;
 mod frames;
 mod gui;
+mod hand;
 mod interact;
 mod layout;
 mod look;
@@ -44,6 +46,7 @@ mod mp4;
 mod offscreen;
 mod replay;
 mod scene;
+mod session;
 mod skipped;
 mod state;
 mod video;
