@@ -1336,7 +1336,7 @@ fn act_on_the_ant(seen: &std::sync::Mutex<AntSeen>, display: &str) -> std::resul
     let pose = [now.x, now.y, now.z, roll.to_degrees(), pitch.to_degrees(), yaw.to_degrees()];
     let mut texts = Vec::new();
     for (label, value) in ["x", "y", "z", "roll", "pitch", "yaw"].into_iter().zip(pose) {
-        let text = shown.field_text(label).ok_or(format!("no {label} field"))?.to_string();
+        let text = shown.field_text(label).ok_or_else(|| format!("no {label} field"))?.to_string();
         // Read as a person reads the field: all of it fits (no power of ten cut off).
         let close = text.parse::<f64>().is_ok_and(|v| (v - value).abs() <= 6e-4);
         texts.push(format!("{label} {text:?} ({value:.4})"));

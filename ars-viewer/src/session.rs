@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use ars_core::nalgebra::{Matrix4, Vector3};
+use ars_core::nalgebra::Matrix4;
 use ars_core::{Simulation, ViewSettings};
 use kiss3d::event::{Action, Key as WindowKey, Modifiers, MouseButton, WindowEvent};
 use kiss3d::glamx::Vec2;
