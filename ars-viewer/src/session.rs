@@ -381,7 +381,6 @@ impl<'a, D: Driver> Session<'a, D> {
 
     /// Does what a key or the panel asked.
     fn apply(&mut self, command: Command) -> Result<()> {
-        let mirror = &mut self.shown.mirror;
         match command {
             Command::TogglePause => {
                 self.paused = !self.paused;
@@ -392,14 +391,14 @@ impl<'a, D: Driver> Session<'a, D> {
             Command::Reset => self.reset()?,
             Command::Screenshot => screenshot(&self.window, &self.title),
             Command::ToggleFollow => self.shown.toggle_follow(&self.runner.simulation()),
-            Command::ToggleContacts => mirror.show_contacts = !mirror.show_contacts,
+            Command::ToggleContacts => self.shown.mirror.show_contacts ^= true,
             Command::ToggleForces => {
-                mirror.show_forces = !mirror.show_forces;
-                self.feedback.show(&mut self.runner.simulation(), mirror.show_forces);
+                self.shown.mirror.show_forces ^= true;
+                self.feedback.show(&mut self.runner.simulation(), self.shown.mirror.show_forces);
             }
-            Command::ToggleJoints => mirror.show_joints = !mirror.show_joints,
-            Command::ToggleAxes => mirror.show_axes = !mirror.show_axes,
-            Command::TogglePanel => self.panel.shown = !self.panel.shown,
+            Command::ToggleJoints => self.shown.mirror.show_joints ^= true,
+            Command::ToggleAxes => self.shown.mirror.show_axes ^= true,
+            Command::TogglePanel => self.panel.shown ^= true,
             Command::Setpoint(joint, value) => gui::set_setpoint(&mut self.runner.simulation(), joint, value)?,
             Command::Edit(edit) => self.edit(&edit),
             Command::Save => save(&self.runner.simulation(), &mut self.panel),
