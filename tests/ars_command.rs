@@ -98,3 +98,19 @@ fn ars_record_writes_a_browser_replay_with_a_plot() {
     assert_eq!(left, ["replay.html", "scene.json"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Opening Gymnasium's ant, whose every geom has contact parameters ARS does not use,
+/// says so in one line on stderr, not one per geom.
+#[test]
+fn what_a_model_skipped_is_said_in_one_line() {
+    let ant = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ant.xml");
+    let opened = Simulation::open(ant).unwrap();
+    assert!(opened.skipped.len() > 5, "{:?}", opened.skipped);
+    let out = Command::new(ARS).args(["run", ant, "--duration", "0.05"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let said: Vec<&str> = stderr.lines().filter(|l| l.contains("skipped")).collect();
+    assert_eq!(said.len(), 1, "{stderr}");
+    let n = opened.skipped.len();
+    assert!(said[0].starts_with(&format!("skipped {n} unsupported MJCF items (contact parameters of ")), "{stderr}");
+}

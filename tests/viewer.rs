@@ -1139,6 +1139,250 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     Ok((lines, Instant::now()))
 }
 
+/// What the window showed last of Gymnasium's ant, and its torso as the simulation
+/// holds it.
+#[derive(Default)]
+struct AntSeen {
+    state: Option<ars::viewer::ViewerState>,
+    torso: Point3<f64>,
+    rotation: ars::nalgebra::UnitQuaternion<f64>,
+    time: f64,
+    frames: u64,
+}
+
+/// Gymnasium's ant (tests/data/ant.xml), opened as `ars view` opens it, driven by the
+/// window.
+struct Ant {
+    sim: Simulation,
+    seen: std::sync::Arc<std::sync::Mutex<AntSeen>>,
+}
+
+impl Ant {
+    const FILE: &'static str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ant.xml");
+}
+
+impl ars::viewer::Driver for Ant {
+    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
+        &mut self.sim
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        self.sim.step_frame()
+    }
+    fn step(&mut self) -> Result<()> {
+        self.sim.step()
+    }
+    fn reset(&mut self) -> Result<()> {
+        self.sim = Simulation::open(Ant::FILE)?.simulation;
+        Ok(())
+    }
+    fn key_down(&mut self, _: ars::Key) -> Result<()> {
+        Ok(())
+    }
+    fn key_up(&mut self, _: ars::Key) -> Result<()> {
+        Ok(())
+    }
+    fn viewer_state(&mut self, state: &ars::viewer::ViewerState) {
+        let body = self.sim.scene().object("torso").and_then(|o| o.body().map(|b| (b.position(), b.quaternion())));
+        let mut seen = self.seen.lock().unwrap();
+        if let Ok((p, q)) = body {
+            (seen.torso, seen.rotation) = (p, q);
+        }
+        seen.time = self.sim.scene().time();
+        seen.frames += 1;
+        seen.state = Some(state.clone());
+    }
+}
+
+/// A person at `ars view ant.xml` under Xvfb, through xdotool as the user who found the
+/// bugs drove it (no window manager, the window never given the focus): a click selects
+/// the torso; a Ctrl-drag 200 px up pulls it up by more than 0.3 m while the camera
+/// stays put (the camera used to orbit instead); running, the editor's x, y, z, roll,
+/// pitch and yaw fields show the torso's pose (they showed the start of numbers such
+/// as -9.86e-5 clipped to "-9.86"); with the pointer resting over the editor, `r`
+/// resets the simulation and Escape deselects (both used to do nothing), and a second
+/// Escape quits.
+fn a_person_pulls_and_reads_the_ant() -> std::result::Result<bool, String> {
+    use std::sync::{Arc, Mutex};
+    if Command::new("xdotool").arg("version").output().is_err() {
+        return Err("xdotool is missing: install it (make deps)".into());
+    }
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: this process runs this test alone, on its main thread, before any other
+    // thread starts.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    // SAFETY: as above (see a_person_selects_pulls_and_edits_a_body).
+    unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    let shots = std::env::temp_dir().join(format!("ars-ant-{}", std::process::id()));
+    std::fs::create_dir_all(&shots).map_err(|e| e.to_string())?;
+    std::env::set_current_dir(&shots).map_err(|e| e.to_string())?;
+    let seen = Arc::new(Mutex::new(AntSeen::default()));
+    let person = {
+        let (seen, display) = (seen.clone(), display.clone());
+        std::thread::spawn(move || {
+            let acted = act_on_the_ant(&seen, &display);
+            if acted.is_err() {
+                for _ in 0..2 {
+                    let _ = Command::new("xdotool").args(["key", "Escape"]).env("DISPLAY", &display).output();
+                    std::thread::sleep(Duration::from_millis(500));
+                }
+            }
+            acted
+        })
+    };
+    let sim = Simulation::open(Ant::FILE).map_err(|e| e.to_string())?.simulation;
+    let mut ant = Ant { sim, seen };
+    let view = ViewSettings {
+        title: "ant".into(),
+        size: (1024, 768),
+        camera_position: Point3::new(2.5, 2.0, 2.5),
+        camera_target: Point3::new(0.0, 0.3, 0.0),
+        ..ViewSettings::default()
+    };
+    let window = ars::viewer::run_window(&mut ant, &view, Some(Duration::from_secs(90)));
+    let acted = person.join().map_err(|_| "the person's thread panicked".to_string());
+    stop_xvfb(xvfb);
+    window.map_err(|e| e.to_string())?;
+    for line in acted?? {
+        println!("  {line}");
+    }
+    let _ = std::env::set_current_dir(std::env::temp_dir());
+    if std::env::var_os("ARS_KEEP_TEST_FILES").is_some_and(|v| v == "1") {
+        println!("  files kept in {}", shots.display());
+    } else {
+        let _ = std::fs::remove_dir_all(&shots);
+    }
+    Ok(true)
+}
+
+/// The person's side of [`a_person_pulls_and_reads_the_ant`]: what they did and saw.
+fn act_on_the_ant(seen: &std::sync::Mutex<AntSeen>, display: &str) -> std::result::Result<Vec<String>, String> {
+    let xdotool = |args: &[&str]| -> std::result::Result<String, String> {
+        let out = Command::new("xdotool").args(args).env("DISPLAY", display).output().map_err(|e| e.to_string())?;
+        Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+    };
+    let wait = |ms: u64| std::thread::sleep(Duration::from_millis(ms));
+    let window = xdotool(&["search", "--sync", "--name", "^ant$"])?.lines().next().unwrap_or_default().to_string();
+    if window.is_empty() {
+        return Err("the window did not appear".into());
+    }
+    let state = || seen.lock().unwrap().state.clone();
+    let started = Instant::now();
+    while state().is_none() {
+        if started.elapsed() > Duration::from_secs(30) {
+            return Err("the window drew no frame in 30 s".into());
+        }
+        wait(100);
+    }
+    wait(2500);
+    let mut lines = Vec::new();
+    let torso = || seen.lock().unwrap().torso;
+    let on_screen = |p: &Point3<f64>| -> std::result::Result<(i64, i64), String> {
+        let (x, y) = state().unwrap().window_point(p).ok_or("behind the camera")?;
+        Ok((x.round() as i64, y.round() as i64))
+    };
+    let move_to = |x: i64, y: i64| xdotool(&["mousemove", "--window", &window, &x.to_string(), &y.to_string()]);
+
+    // Click: the torso selected.
+    let (x, y) = on_screen(&torso())?;
+    move_to(x, y)?;
+    wait(300);
+    xdotool(&["click", "1"])?;
+    wait(700);
+    let name = state().unwrap().selected.map(|s| s.name);
+    if name.as_deref() != Some("torso") {
+        return Err(format!("a click at ({x}, {y}) on the torso selected {name:?}"));
+    }
+    lines.push(format!("click at ({x}, {y}): {:?} selected", name.unwrap()));
+
+    // Ctrl-drag 200 px up, running: the torso rises, the camera stays.
+    let origin = state().unwrap().window_point(&Point3::origin()).ok_or("the origin is behind the camera")?;
+    let p0 = torso();
+    xdotool(&["keydown", "ctrl"])?;
+    wait(100);
+    xdotool(&["mousedown", "1"])?;
+    wait(200);
+    for i in 1..=10 {
+        move_to(x, y - 20 * i)?;
+        wait(60);
+    }
+    wait(1200);
+    let (p1, during) = (torso(), state().unwrap());
+    xdotool(&["mouseup", "1"])?;
+    wait(100);
+    xdotool(&["keyup", "ctrl"])?;
+    let origin_then = during.window_point(&Point3::origin()).ok_or("the origin went behind the camera")?;
+    let turned = (origin_then.0 - origin.0).hypot(origin_then.1 - origin.1);
+    lines.push(format!(
+        "Ctrl-drag 200 px up: torso from {:.2?} to {:.2?}; the origin moved {turned:.1} px on screen; drag line: {}",
+        p0.coords.as_slice(),
+        p1.coords.as_slice(),
+        during.drag.is_some()
+    ));
+    if p1.y - p0.y < 0.3 || turned > 1.0 || during.drag.is_none() {
+        return Err(lines.pop().unwrap());
+    }
+    wait(1500);
+
+    // Running, the pose fields show the torso's pose (the state and the torso are of
+    // the same frame).
+    let (now, rotation, shown) = {
+        let s = seen.lock().unwrap();
+        (s.torso, s.rotation, s.state.clone().unwrap())
+    };
+    if shown.paused || shown.selected.is_none() {
+        return Err("the simulation should run with the torso selected".into());
+    }
+    let (roll, pitch, yaw) = rotation.euler_angles();
+    let pose = [now.x, now.y, now.z, roll.to_degrees(), pitch.to_degrees(), yaw.to_degrees()];
+    let mut texts = Vec::new();
+    for (label, value) in ["x", "y", "z", "roll", "pitch", "yaw"].into_iter().zip(pose) {
+        let text = shown.field_text(label).ok_or_else(|| format!("no {label} field"))?.to_string();
+        // Read as a person reads the field: all of it fits (no power of ten cut off).
+        let close = text.parse::<f64>().is_ok_and(|v| (v - value).abs() <= 6e-4);
+        texts.push(format!("{label} {text:?} ({value:.4})"));
+        if !close || text.contains('e') || text.len() > 9 {
+            return Err(format!("running, the {label} field shows {text:?}, the torso's {label} is {value}"));
+        }
+    }
+    lines.push(format!("running, the pose fields show the torso's pose: {}", texts.join(", ")));
+    xdotool(&["key", "p"])?;
+    wait(700);
+
+    // The pointer resting over the editor: `r` resets, Escape deselects.
+    let field = shown.field("mass").ok_or("no mass field in the editor")?;
+    move_to(((field[0] + field[2]) / 2.0) as i64 - 120, ((field[1] + field[3]) / 2.0) as i64)?;
+    wait(500);
+    let before = seen.lock().unwrap().time;
+    xdotool(&["key", "r"])?;
+    wait(700);
+    let (after, selected) = (seen.lock().unwrap().time, state().unwrap().selected);
+    lines.push(format!("r over the editor: clock {before:.2} s then {after:.2} s, selection {:?}", selected.is_some()));
+    if after >= before || selected.is_some() {
+        return Err(lines.pop().unwrap());
+    }
+    let (x, y) = on_screen(&torso())?;
+    move_to(x, y)?;
+    wait(300);
+    xdotool(&["click", "1"])?;
+    wait(700);
+    let field = state().unwrap().field("mass").ok_or("no mass field in the editor")?;
+    move_to(((field[0] + field[2]) / 2.0) as i64 - 120, ((field[1] + field[3]) / 2.0) as i64)?;
+    wait(500);
+    xdotool(&["key", "Escape"])?;
+    wait(700);
+    let frames = seen.lock().unwrap().frames;
+    wait(300);
+    if seen.lock().unwrap().frames == frames {
+        return Err("Escape over the editor closed the window".into());
+    }
+    if state().unwrap().selected.is_some() {
+        return Err("Escape over the editor left the torso selected".into());
+    }
+    lines.push("Escape over the editor: nothing selected".into());
+    xdotool(&["key", "Escape"])?;
+    Ok(lines)
+}
+
 /// Runs one test and counts it (`threaded`: on a thread of its own, as off-screen
 /// rendering wants; windows stay on the main thread).
 fn run<T: Send + 'static>(
@@ -1397,6 +1641,7 @@ fn main() {
             "window_memory_stays_flat_over_a_minute" => window_memory_stays_flat_over_a_minute,
             "windows_one_after_another_when_the_context_is_kept" => windows_one_after_another_when_the_context_is_kept,
             "a_person_selects_pulls_and_edits_a_body" => a_person_selects_pulls_and_edits_a_body,
+            "a_person_pulls_and_reads_the_ant" => a_person_pulls_and_reads_the_ant,
             "a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view" => {
                 a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view
             }
@@ -1464,6 +1709,13 @@ fn main() {
     run(
         "a_person_selects_pulls_and_edits_a_body",
         || in_own_process("a_person_selects_pulls_and_edits_a_body"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "a_person_pulls_and_reads_the_ant",
+        || in_own_process("a_person_pulls_and_reads_the_ant"),
         false,
         shown,
         &mut tally,

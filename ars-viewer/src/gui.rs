@@ -10,49 +10,9 @@ use ars_core::{Actuator, DcMotor, JointId, JointParam, ObjectId, PositionServo, 
 use egui_plot::{Line, Plot, PlotPoints};
 use kiss3d::egui;
 
+use crate::command::Command;
 use crate::edit::{Edit, joint_param, parse_number};
 use crate::state::Selected;
-
-/// What the panel asks the window to do this frame.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) enum Command {
-    /// Pause or resume.
-    TogglePause,
-    /// One frame while paused.
-    StepFrame,
-    /// One physics step while paused.
-    StepPhysics,
-    /// Rebuild the simulation.
-    Reset,
-    /// Write a PNG of the window.
-    Screenshot,
-    /// Follow an object with the camera, or stop.
-    ToggleFollow,
-    /// Draw the contact points, or stop.
-    ToggleContacts,
-    /// Draw the contact forces as arrows, or stop.
-    ToggleForces,
-    /// Draw the joints' anchors and axes, or stop.
-    ToggleJoints,
-    /// Draw the world axes, or stop.
-    ToggleAxes,
-    /// Set a joint's position set-point (rad or m).
-    Setpoint(JointId, f64),
-    /// Change the simulation (the editor).
-    Edit(Edit),
-    /// Save the scene to the panel's save path (`Ctrl+S`).
-    Save,
-    /// Open the file at the panel's open path (a scene file, a URDF or an MJCF model)
-    /// instead of the program.
-    Open,
-    /// Show this many views (1 to 4: keys `1`–`4`).
-    Views(usize),
-    /// Show this depth camera (counted from 0, in the order the sensors were added) in
-    /// the camera view.
-    ViewCamera(usize),
-    /// Forget the selection.
-    Deselect,
-}
 
 /// The panel's own state.
 pub(crate) struct Panel {
@@ -78,6 +38,8 @@ pub(crate) struct Panel {
     /// The editor's fields drawn last frame, by label, with their rectangles (window
     /// pixels).
     pub(crate) fields: Vec<(String, [f32; 4])>,
+    /// The text each of those fields showed, by label.
+    pub(crate) texts: Vec<(String, String)>,
     /// The joint the editor shows.
     joint: Option<JointId>,
     /// The error shown in red: the last edit refused, or a save that failed.
@@ -108,6 +70,7 @@ impl Default for Panel {
             editor_covers: None,
             typing: HashMap::new(),
             fields: Vec::new(),
+            texts: Vec::new(),
             joint: None,
             error: None,
             save_path: format!("./scene-{stamp}.json"),
@@ -244,6 +207,7 @@ impl Panel {
             self.covers = Some((rect, (screen.width(), screen.height())));
         }
         self.fields.clear();
+        self.texts.clear();
         let editor = egui::Window::new("Edit").anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).default_width(280.0);
         let edited = editor.show(ctx, |ui| self.editor(ui, sim, status, &mut commands));
         self.editor_covers = edited.map(|shown| {
@@ -367,7 +331,8 @@ impl Panel {
             }
             for (axis, label) in ["x", "y", "z"].into_iter().enumerate() {
                 ui.label(format!("{label} [m]"));
-                let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, s.position[axis])).inner;
+                let shown = format_pose(s.position[axis]);
+                let field = ui.add_enabled_ui(paused, |ui| self.field(ui, label, shown)).inner;
                 if let Some(v) = field {
                     let mut p = s.position;
                     p[axis] = v;
@@ -378,7 +343,8 @@ impl Panel {
             let angles = [roll, pitch, yaw].map(f64::to_degrees);
             for (axis, label) in ["roll", "pitch", "yaw"].into_iter().enumerate() {
                 ui.label(format!("{label} [°]"));
-                let field = ui.add_enabled_ui(paused, |ui| self.number(ui, label, angles[axis])).inner;
+                let shown = format_pose(angles[axis]);
+                let field = ui.add_enabled_ui(paused, |ui| self.field(ui, label, shown)).inner;
                 if let Some(v) = field {
                     let mut a = angles;
                     a[axis] = v;
@@ -493,9 +459,15 @@ impl Panel {
     /// A number field showing `value`: what was typed once it is entered (Enter, or
     /// focus moved away) and differs from what was shown; a typo is the panel's error.
     fn number(&mut self, ui: &mut egui::Ui, label: &str, value: f64) -> Option<f64> {
-        let shown = format_number(value);
+        self.field(ui, label, format_number(value))
+    }
+
+    /// A number field showing `shown`: what was typed once it is entered and differs
+    /// from it, as [`number`](Self::number) says.
+    fn field(&mut self, ui: &mut egui::Ui, label: &str, shown: String) -> Option<f64> {
         let text = self.typing.entry(label.to_string()).or_insert_with(|| shown.clone());
-        let response = ui.add(egui::TextEdit::singleline(text).desired_width(72.0)).on_hover_text(label);
+        let response = ui.add(egui::TextEdit::singleline(&mut *text).desired_width(72.0)).on_hover_text(label);
+        self.texts.push((label.to_string(), text.clone()));
         let r = response.rect;
         self.fields.push((label.to_string(), [r.min.x, r.min.y, r.max.x, r.max.y]));
         if response.lost_focus() {
@@ -644,6 +616,15 @@ fn format_number(v: f64) -> String {
     }
 }
 
+/// A coordinate of the selected body's pose as its fields show it: millimetres or
+/// thousandths of a degree, as the readout above them, and never in powers of ten (a
+/// body at rest near zero is at -9.86e-5 m one step and 1.2e-6 m the next: the
+/// field, a few characters wide, showed "-9.86" of it).
+fn format_pose(v: f64) -> String {
+    let s = format!("{v:.3}");
+    if s == "-0.000" { "0.000".to_string() } else { s }
+}
+
 /// The longest name the panel shows whole, in characters.
 const SHOWN_NAME_CHARS: usize = 24;
 
@@ -692,6 +673,14 @@ mod tests {
         for v in [2.0, 0.0004, -9.81, 1e-10, 0.2, f64::INFINITY, -f64::INFINITY, 1234.5] {
             assert_eq!(parse_number("v", &format_number(v)), Ok(v));
         }
+    }
+
+    #[test]
+    fn a_pose_is_shown_to_the_millimetre_and_never_in_powers_of_ten() {
+        assert_eq!(format_pose(-9.860_412e-5), "0.000");
+        assert_eq!(format_pose(0.507_6), "0.508");
+        assert_eq!(format_pose(-1.745_329), "-1.745");
+        assert_eq!(format_pose(-12_345.0), "-12345.000");
     }
 
     #[test]

@@ -30,12 +30,14 @@
 //! libegl1 libegl-mesa0 libgl1-mesa-dri` (and `xvfb` for a virtual display).
 
 mod camera;
+mod command;
 pub mod convert;
 mod driver;
 mod edit;
 mod error;
 mod frames;
 mod gui;
+mod hand;
 mod interact;
 mod layout;
 mod look;
@@ -44,6 +46,8 @@ mod mp4;
 mod offscreen;
 mod replay;
 mod scene;
+mod session;
+mod skipped;
 mod state;
 mod video;
 mod views;
@@ -66,6 +70,7 @@ pub use offscreen::{
 };
 pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
+pub use skipped::skipped_summary;
 pub use state::{DragLine, Selected, ViewerState};
 pub use video::{
     MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,
