@@ -3,6 +3,7 @@
 
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::{HookId, ObjectId, Simulation};
+use kiss3d::camera::Camera3d;
 use kiss3d::event::{Action, Key as WindowKey, Modifiers};
 use kiss3d::glamx::{Vec2, Vec3};
 use kiss3d::window::Window;

@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use ars_core::nalgebra::Matrix4;
 use ars_core::{Simulation, ViewSettings};
+use kiss3d::camera::Camera3d;
 use kiss3d::event::{Action, Key as WindowKey, Modifiers, MouseButton, WindowEvent};
 use kiss3d::glamx::Vec2;
 use kiss3d::post_processing::Fxaa;
@@ -181,7 +182,7 @@ impl<'a, D: Driver> Session<'a, D> {
         let mut panels: Vec<layout::Rect> = self.panel.covers.map(|(r, _)| r).into_iter().collect();
         panels.extend(self.panel.editor_covers);
         panels.extend(self.view_covers.iter().copied());
-        let events = self.window.events();
+        let mut events = self.window.events();
         for mut event in events.iter() {
             match event.value {
                 WindowEvent::CursorPos(x, y, _) => {

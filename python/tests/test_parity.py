@@ -359,8 +359,8 @@ PYTHON_FOR_RUST = {
     "Scene.contact_surface": "Simulation.contact_surface",
     "Scene.clear_contact_surface": "Simulation.clear_contact_surface",
     "Scene.contact_surfaces": "Simulation.contact_surface",
-    "Scene.load_urdf": "Simulation.load_urdf",
-    "Scene.load_mjcf": "Simulation.load_mjcf",
+    "Simulation.load_urdf": "Simulation.load_urdf",
+    "Simulation.load_mjcf": "Simulation.load_mjcf",
     # SimJoint (what `joint_mut` hands out)
     "SimJoint.id": "Joint.name",
     "SimJoint.add_torque": "Joint.add_torque",
@@ -398,8 +398,8 @@ NOT_IN_PYTHON = {
     "Scene.add_static",
     "Scene.set_name",
     "Scene.set_visuals",
-    "Scene.load_urdf_text",
-    "Scene.load_mjcf_text",
+    "Simulation.load_urdf_text",
+    "Simulation.load_mjcf_text",
     "SimJoint.controller_mut",
 }
 
@@ -410,7 +410,7 @@ def rust_methods():
     files = [
         path
         for folder in ("scene", "simulation", "formats")
-        for path in sorted((ROOT / "ars-core/src" / folder).glob("*.rs"))
+        for path in sorted((ROOT / "ars-core/src" / folder).rglob("*.rs"))
     ]
     for path in files:
         owner = None

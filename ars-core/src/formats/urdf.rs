@@ -64,6 +64,7 @@ use crate::scene::JointEnd;
 use crate::scene::Scene;
 use crate::scene::objects::multiply;
 use crate::shape::Shape;
+use crate::simulation::Simulation;
 
 /// The up axis a URDF file is written with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -357,7 +358,7 @@ struct Plan<'r> {
 }
 
 /// Loads URDF robots.
-impl crate::Simulation {
+impl Simulation {
     /// Loads the robot of a URDF file (see the [module docs](self)).
     pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
         let path = path.as_ref();

@@ -107,7 +107,7 @@
 //!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
 //!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
 //!   (`xbody`) or a site; `accelerometer`, `gyro`, `touch` and `rangefinder` on a site:
-//!   made by [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) and listed in
+//!   made by [`Simulation::load_mjcf`] and listed in
 //!   [`MjcfModel::sensors`] ([`MjcfSensor`] says which ARS sensor each becomes and
 //!   which of its columns hold MuJoCo's value, in the simulation's Y-up frame). Other
 //!   kinds and frames, `reftype`, a `cutoff`, and sensors on the world body's sites are
@@ -126,6 +126,7 @@ use crate::control::Actuator;
 use crate::error::{Error, Result};
 use crate::handle::{JointId, ObjectId};
 use crate::sensors::{AnySensorId, Mount, TouchZone};
+use crate::simulation::Simulation;
 
 mod build;
 mod defaults;
@@ -186,7 +187,7 @@ pub struct MjcfActuator {
     pub actuator: Actuator,
 }
 
-/// What [`Simulation::load_mjcf`](crate::Simulation::load_mjcf) made.
+/// What [`Simulation::load_mjcf`] made.
 #[derive(Clone, Debug, Default)]
 pub struct MjcfModel {
     /// The model's name (`<mujoco model>`).
@@ -315,7 +316,7 @@ impl MjcfModel {
 pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
 
 /// Loads MJCF models with their sensors.
-impl crate::Simulation {
+impl Simulation {
     /// Loads the MJCF model in `path` (see the [module docs](self)) with its sensors
     /// ([`MjcfModel::sensors`]), sampled after every step.
     pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
