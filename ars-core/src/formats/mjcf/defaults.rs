@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 
 use super::include::Tree;
-use super::read::{Parsed, problem};
+use super::problem::{Parsed, problem};
 
 /// `<compiler>` settings.
 #[derive(Clone, Debug)]

@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::read::{Parsed, Problem, problem};
+use super::problem::{Parsed, Problem, problem};
 
 /// A file and its text: the model's, then those it includes, in the order met.
 pub(super) type Files = Vec<(String, String)>;

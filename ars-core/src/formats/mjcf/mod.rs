@@ -133,6 +133,7 @@ mod defaults;
 mod include;
 mod mass;
 mod model;
+mod problem;
 mod read;
 mod schema;
 mod sensors;

@@ -3,7 +3,7 @@
 
 use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
 
-use super::read::Problem;
+use super::problem::Problem;
 use super::{MjcfActuator, MjcfSensor};
 use crate::formats::mesh::MeshMass;
 use crate::sensors::TouchZone;

@@ -1,5 +1,5 @@
 //! Reading an MJCF file into its parsed [`Model`]: the elements
-//! ARS reads, what it skips or refuses and where (a [`Problem`] at a line).
+//! ARS reads, what it skips or refuses and where (a [`Problem`](super::problem::Problem) at a line).
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -11,42 +11,12 @@ use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaul
 use super::include::{Files, Includes, Tree, gather};
 use super::mass::mass_of_geoms;
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
+use super::problem::{Parsed, problem, skip_or_refuse};
 use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::Error;
 use crate::sensors::TouchZone;
 use crate::shape::Shape;
-
-/// A problem at a place of the file (or of a file it includes).
-#[derive(Clone)]
-pub(super) struct Problem {
-    pub(super) element: String,
-    pub(super) line: u32,
-    pub(super) text: String,
-    /// The included file it is in, if not the main one (set from `document` when the
-    /// problem reaches [`read`]).
-    pub(super) file: Option<String>,
-    /// The address of the document its element is in: which file it is.
-    pub(super) document: usize,
-}
-
-pub(super) type Parsed<T> = std::result::Result<T, Problem>;
-
-/// What cannot be read: with `skip` (`MjcfOptions::skip_unsupported`) a line in
-/// `skipped` naming its element and line, else the error.
-pub(super) fn skip_or_refuse(p: Problem, skip: bool, skipped: &mut Vec<String>) -> Parsed<()> {
-    if !skip {
-        return Err(p);
-    }
-    skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
-    Ok(())
-}
-
-pub(super) fn problem(node: &roxmltree::Node<'_, '_>, text: impl Into<String>) -> Problem {
-    let line = node.document().text_pos_at(node.range().start).row;
-    let document = std::ptr::from_ref(node.document()) as usize;
-    Problem { element: node.tag_name().name().to_string(), line, text: text.into(), file: None, document }
-}
 
 /// Reads the model's elements.
 pub(super) struct Reader<'d, 'a, 'input> {
