@@ -178,7 +178,7 @@ pub trait ProgramViewer: Program + Sized {
     /// frames recorded without a display).
     fn show_with(&mut self, options: &ViewerOptions) -> Result<ars_core::Simulation> {
         if has_display() {
-            return catch_window_panic(|| window::run_window(self, options));
+            return catch_window_panic(|| session::run_window(self, options));
         }
         let title = self.view_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
         let dir = std::env::temp_dir().join(format!("ars-frames-{title}"));
@@ -202,7 +202,7 @@ pub trait ProgramViewer: Program + Sized {
             return Err(ViewerError::InvalidSetting(format!("a window run needs a positive duration, got {seconds}")));
         }
         let limit = std::time::Duration::from_secs_f64(seconds);
-        catch_window_panic(|| window::run_window_until(self, &ViewerOptions::default(), Some(limit)))
+        catch_window_panic(|| session::run_window_until(self, &ViewerOptions::default(), Some(limit)))
     }
 
     /// Opens the program's window for `frames` frames and returns the last one as
@@ -241,7 +241,7 @@ pub fn run_window_with<D: Driver>(
     if limit.is_some_and(|l| l.is_zero()) {
         return Err(ViewerError::InvalidSetting("a window run needs a positive duration".into()));
     }
-    catch_window_panic(|| window::drive_window(driver, view, options, limit, None))
+    catch_window_panic(|| session::drive_window(driver, view, options, limit, None))
 }
 
 /// As [`run_window_with`], recording what the window shows (the panel and the text
@@ -267,7 +267,7 @@ pub fn run_window_recording<D: Driver>(
     // Before the encoder's thread starts: the probe's fix needs a single thread.
     window::quiet_wayland_probe();
     let mut video = video::WindowVideo::new(VideoWriter::create(path, view.size.0, view.size.1, fps)?);
-    let report = catch_window_panic(|| window::drive_window(driver, view, options, limit, Some(&mut video)))?;
+    let report = catch_window_panic(|| session::drive_window(driver, view, options, limit, Some(&mut video)))?;
     Ok((report, video.finish()?))
 }
 

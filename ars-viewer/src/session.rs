@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use ars_core::nalgebra::Matrix4;
-use ars_core::{Simulation, ViewSettings};
+use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
 use kiss3d::camera::Camera3d;
 use kiss3d::event::{Action, Key as WindowKey, Modifiers, MouseButton, WindowEvent};
 use kiss3d::glamx::Vec2;
@@ -29,6 +29,42 @@ use crate::state::{DragLine, Selected, ViewerState};
 use crate::video::WindowVideo;
 use crate::views::{self, Views};
 use crate::window::{VIEWER_KEYS, WindowReport, open_window, resident_mb};
+
+/// Opens the program's window and runs it until the window is closed; returns the
+/// simulation as it was then.
+pub(crate) fn run_window<P: Program>(program: &mut P, options: &ViewerOptions) -> Result<ars_core::Simulation> {
+    run_window_until(program, options, None).map(|(sim, _)| sim)
+}
+
+/// The window loop of a program, until the window closes or `limit` of wall time has
+/// passed.
+pub(crate) fn run_window_until<P: Program>(
+    program: &mut P,
+    options: &ViewerOptions,
+    limit: Option<Duration>,
+) -> Result<(ars_core::Simulation, WindowReport)> {
+    let view = program.view_settings();
+    let mut runner = ProgramRunner::new(program)?;
+    let report = drive_window(&mut runner, &view, options, limit, None)?;
+    Ok((runner.into_simulation(), report))
+}
+
+/// The window loop: shows what `runner` drives until the window closes or `limit` of
+/// wall time has passed.
+pub(crate) fn drive_window<D: Driver>(
+    runner: &mut D,
+    view: &ViewSettings,
+    options: &ViewerOptions,
+    limit: Option<Duration>,
+    video: Option<&mut WindowVideo>,
+) -> Result<WindowReport> {
+    kiss3d::pollster::block_on(async move {
+        let mut session = Session::open(runner, view, options).await?;
+        let outcome = session.run(limit, video).await;
+        let report = session.close();
+        outcome.map(|()| report)
+    })
+}
 
 /// Frames run per drawn frame at most when the simulation is behind wall time.
 const MAX_CATCH_UP_FRAMES: u32 = 4;

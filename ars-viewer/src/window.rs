@@ -1,18 +1,12 @@
 //! The on-screen viewer: a window that runs a program in real time, with an orbit
 //! camera, keyboard control and a text overlay.
 
-use std::time::Duration;
-
-use ars_core::{Program, ProgramRunner, ViewSettings};
+use ars_core::{Program, ProgramRunner};
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
-use crate::ViewerOptions;
 use crate::convert;
-use crate::driver::Driver;
 use crate::error::Result;
 use crate::scene::View;
-use crate::session::Session;
-use crate::video::WindowVideo;
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
@@ -101,12 +95,6 @@ async fn software_adapter() -> bool {
     instance.request_adapter(&options).await.is_ok_and(|a| a.get_info().device_type == wgpu::DeviceType::Cpu)
 }
 
-/// Opens the program's window and runs it until the window is closed; returns the
-/// simulation as it was then.
-pub(crate) fn run_window<P: Program>(program: &mut P, options: &ViewerOptions) -> Result<ars_core::Simulation> {
-    run_window_until(program, options, None).map(|(sim, _)| sim)
-}
-
 /// What a window run measured ([`ProgramViewer::show_for`](crate::ProgramViewer::show_for)).
 #[derive(Clone, Debug, Default)]
 pub struct WindowReport {
@@ -140,36 +128,6 @@ pub(crate) fn resident_mb() -> f64 {
             line.split_whitespace().nth(1)?.parse::<f64>().ok()
         })
         .map_or(f64::NAN, |kb| kb / 1024.0)
-}
-
-/// The window loop of a program, until the window closes or `limit` of wall time has
-/// passed.
-pub(crate) fn run_window_until<P: Program>(
-    program: &mut P,
-    options: &ViewerOptions,
-    limit: Option<Duration>,
-) -> Result<(ars_core::Simulation, WindowReport)> {
-    let view = program.view_settings();
-    let mut runner = ProgramRunner::new(program)?;
-    let report = drive_window(&mut runner, &view, options, limit, None)?;
-    Ok((runner.into_simulation(), report))
-}
-
-/// The window loop: shows what `runner` drives until the window closes or `limit` of
-/// wall time has passed.
-pub(crate) fn drive_window<D: Driver>(
-    runner: &mut D,
-    view: &ViewSettings,
-    options: &ViewerOptions,
-    limit: Option<Duration>,
-    video: Option<&mut WindowVideo>,
-) -> Result<WindowReport> {
-    kiss3d::pollster::block_on(async move {
-        let mut session = Session::open(runner, view, options).await?;
-        let outcome = session.run(limit, video).await;
-        let report = session.close();
-        outcome.map(|()| report)
-    })
 }
 
 /// Opens the program's window, runs `frames` frames (one drawn frame each, no real-time
