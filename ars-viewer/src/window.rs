@@ -1,5 +1,6 @@
-//! The on-screen viewer: a window that runs a program in real time, with an orbit
-//! camera, keyboard control and a text overlay.
+//! Opening the on-screen viewer's window (and keeping Mesa's probe quiet), the viewer's
+//! keys, and what a window run measured; the window's loop is its
+//! [`Session`](crate::session::Session).
 
 use ars_core::{Program, ProgramRunner};
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
