@@ -75,8 +75,8 @@ python: python-deps $(PYTHON)
 	$(PYTHON) -m pip install --quiet --force-reinstall --no-deps ./python
 
 python-test: python
-	$(VENV)/bin/ruff check python
-	$(VENV)/bin/ruff format --check python
+	$(VENV)/bin/ruff check python tools
+	$(VENV)/bin/ruff format --check python tools
 	$(VENV)/bin/pytest -q python/tests
 
 check: deps
