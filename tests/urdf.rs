@@ -3,7 +3,7 @@
 //! and the problem.
 
 use ars::nalgebra::{Isometry3, Vector3};
-use ars::{Error, Program, ProgramRunner, Simulation, UpAxis, UrdfOptions};
+use ars::{Error, Program, ProgramRunner, Simulation, UpAxis, UrdfFile, UrdfOptions};
 use ars_programs::ConicalPendulum;
 
 const ARM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/conical_pendulum_arm.urdf");
@@ -40,6 +40,37 @@ fn the_thesis_arm_from_urdf_steps_bit_for_bit_as_the_arm_built_in_code() {
     }
     let rate = sim.scene().joint("r1").unwrap().state().unwrap().rate;
     assert!(rate > 1.0, "the waist spun up: {rate} rad/s");
+}
+
+#[test]
+fn a_urdf_file_parsed_once_is_inserted_into_two_simulations_that_step_alike() {
+    let file = UrdfFile::read(ARM).unwrap();
+    assert_eq!(file.name(), "conical_pendulum");
+    let options = UrdfOptions::new().up_axis(UpAxis::Y).base_pose(Isometry3::translation(0.0, 0.5, 0.0));
+    let mut sims = [0, 1].map(|_| Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap());
+    let robots = sims.each_mut().map(|sim| file.insert(sim, &options).unwrap());
+    // Handles name their world: compare what was made by name.
+    let names = |r: &ars::UrdfRobot| {
+        (
+            r.links.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>(),
+            r.joints.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>(),
+        )
+    };
+    assert_eq!(names(&robots[0]), names(&robots[1]));
+    assert_eq!(names(&robots[0]).0, ["base", "pole", "arm"]);
+    // What sim.load_urdf makes is what read and insert make.
+    let mut loaded = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    assert_eq!(names(&loaded.load_urdf(ARM, &options).unwrap()), names(&robots[0]));
+    for sim in sims.iter_mut().chain([&mut loaded]) {
+        sim.step_n(500).unwrap();
+    }
+    for i in 0..3 {
+        assert_eq!(body_state(&sims[0], i), body_state(&sims[1], i), "body {i}");
+        assert_eq!(body_state(&sims[0], i), body_state(&loaded, i), "body {i}");
+    }
+    // A bad file is an error at parse time, before any simulation is touched.
+    let err = UrdfFile::parse("<robot name=", "broken.urdf").unwrap_err();
+    assert!(matches!(&err, Error::Format { format: "URDF", file, .. } if file == "broken.urdf"), "{err:?}");
 }
 
 const TWO_LINKS: &str = r#"<robot name="two">

@@ -115,7 +115,7 @@ pub use control::{
 pub use error::{Error, Result};
 pub use formats::mjcf::{MjcfActuator, MjcfModel, MjcfOptions, MjcfSensor};
 pub use formats::open::{FileFormat, OpenedFile};
-pub use formats::urdf::{UpAxis, UrdfOptions, UrdfRobot};
+pub use formats::urdf::{UpAxis, UrdfFile, UrdfOptions, UrdfRobot};
 pub use geom::{GeomBuilder, GeomMut, GeomRef};
 pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHandle, WorldId};
 pub use init::{ensure_ode_ready, lock_ode_global_state};

@@ -357,46 +357,87 @@ struct Plan<'r> {
     posed_link_frames: Option<Vec<Frame>>,
 }
 
-/// Loads URDF robots.
-impl Simulation {
-    /// Loads the robot of a URDF file (see the [module docs](self)).
-    pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
-        let path = path.as_ref();
-        let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the URDF file", path, &e))?;
-        self.load_urdf_text(&text, &file, options)
-    }
-
-    /// Loads a robot from URDF text; `file` names it in errors.
-    pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
-        self.scene.insert_urdf_text(text, file, options)
-    }
+/// A URDF file as read: its robot, not yet in a simulation. [`insert`](Self::insert)
+/// makes its links and joints, as many times as asked.
+///
+/// ```
+/// use ars_core::formats::urdf::{UrdfFile, UrdfOptions};
+/// use ars_core::Simulation;
+///
+/// let text = r#"<robot name="one"><link name="base"><inertial><mass value="1"/>
+///   <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>"#;
+/// let file = UrdfFile::parse(text, "one.urdf")?;
+/// let mut sim = Simulation::new()?;
+/// let robot = file.insert(&mut sim, &UrdfOptions::new())?;
+/// assert_eq!(robot.name, "one");
+/// assert!(robot.link("base").is_some());
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct UrdfFile {
+    robot: urdf_rs::Robot,
+    /// The file's name, in errors; its folder is where relative mesh paths start.
+    file: String,
 }
 
-impl Scene {
-    /// Makes the links and joints of a URDF robot from its text; `file` names it in errors.
-    pub(crate) fn insert_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
-        let bad = |element: String, problem: String| Error::Format {
-            format: "URDF",
-            file: file.to_string(),
-            element,
-            line: None,
-            column: None,
-            problem,
-        };
+impl UrdfFile {
+    /// Reads and parses the URDF file at `path`.
+    pub fn read(path: impl AsRef<Path>) -> Result<UrdfFile> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the URDF file", path, &e))?;
+        UrdfFile::parse(&text, &path.display().to_string())
+    }
+
+    /// Parses URDF text; `file` names it in errors and its folder is where relative
+    /// mesh paths start.
+    pub fn parse(text: &str, file: &str) -> Result<UrdfFile> {
+        let bad = |problem: String| format_error(file, "robot".into(), problem);
         // The parser is a dependency: a panic in it must not reach the caller either.
         let parsed = std::panic::catch_unwind(|| urdf_rs::read_from_string(text))
-            .map_err(|_| bad("robot".into(), "the URDF parser failed on this text".into()))?;
-        let robot = parsed.map_err(|e| bad("robot".into(), format!("not valid URDF: {e}")))?;
-        let plan = plan(&robot, options).map_err(|(element, problem)| bad(element, problem))?;
-        let base_dir = Path::new(file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
+            .map_err(|_| bad("the URDF parser failed on this text".into()))?;
+        let robot = parsed.map_err(|e| bad(format!("not valid URDF: {e}")))?;
+        Ok(UrdfFile { robot, file: file.to_string() })
+    }
+
+    /// The robot's name.
+    pub fn name(&self) -> &str {
+        &self.robot.name
+    }
+
+    /// Makes the robot's links and joints in `sim` (see the [module docs](self)); on an
+    /// error nothing of it is left.
+    pub fn insert(&self, sim: &mut Simulation, options: &UrdfOptions) -> Result<UrdfRobot> {
+        let bad = |element: String, problem: String| format_error(&self.file, element, problem);
+        let plan = plan(&self.robot, options).map_err(|(element, problem)| bad(element, problem))?;
+        let base_dir = Path::new(&self.file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
         let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default() };
-        self.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
+        sim.scene.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })
     }
+}
 
+/// A problem of the URDF file `file` at `element`.
+fn format_error(file: &str, element: String, problem: String) -> Error {
+    Error::Format { format: "URDF", file: file.to_string(), element, line: None, column: None, problem }
+}
+
+/// Loads URDF robots: a [`UrdfFile`] read and inserted.
+impl Simulation {
+    /// Loads the robot of a URDF file: [`UrdfFile::read`], then
+    /// [`insert`](UrdfFile::insert).
+    pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
+        UrdfFile::read(path)?.insert(self, options)
+    }
+
+    /// Loads a robot from URDF text; `file` names it in errors.
+    pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
+        UrdfFile::parse(text, file)?.insert(self, options)
+    }
+}
+
+impl Scene {
     // The element with the error: internal, and only on the error path, so its size
     // costs nothing on a robot that loads.
     #[allow(clippy::result_large_err)]
