@@ -130,7 +130,8 @@ pub use scene::{
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorKind, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};
 pub use simulation::hooks::{self, HookId, HookPoint, Hooks, PostFrame, PostStep, PreFrame, PreStep};
-pub use simulation::snapshot::{SNAPSHOT_VERSION, SceneState, Snapshot};
+pub use simulation::scene_state::{SNAPSHOT_VERSION, SceneState};
+pub use simulation::snapshot::Snapshot;
 pub use simulation::{DEFAULT_SPACE, DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Floor, Simulation, SimulationBuilder};
 pub use world::{AxisOrder, DEFAULT_CFM, DEFAULT_ERP, DEFAULT_GRAVITY, SpaceKind, Stepper, World};
 

@@ -290,7 +290,7 @@ impl Simulation {
         match self.capture_state() {
             Ok(state) => {
                 let mut file = self.scene_structure(true)?;
-                file.state = Some(to_hex(&crate::simulation::snapshot::encode(&state)));
+                file.state = Some(to_hex(&crate::simulation::scene_state::encode(&state)));
                 Ok(file)
             }
             Err(Error::NotCapturable { what }) => {
@@ -679,8 +679,8 @@ impl Simulation {
                 problem,
             };
             let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
-            let mut state: crate::simulation::snapshot::SceneState =
-                crate::simulation::snapshot::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
+            let mut state: crate::simulation::scene_state::SceneState =
+                crate::simulation::scene_state::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
             // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
             // no place for their state.
             state.keep_sensors(|kind| SensorKind::of_type_name(kind).is_some());

@@ -23,6 +23,7 @@
 //! only (ODE clears its accumulators after each step).
 
 pub mod hooks;
+pub mod scene_state;
 mod sensor_kinds;
 pub mod snapshot;
 
