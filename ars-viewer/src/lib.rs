@@ -47,7 +47,6 @@ mod offscreen;
 mod replay;
 mod scene;
 mod session;
-mod skipped;
 mod state;
 mod video;
 mod views;
@@ -70,7 +69,6 @@ pub use offscreen::{
 };
 pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
-pub use skipped::skipped_summary;
 pub use state::{DragLine, Selected, ViewerState};
 pub use video::{
     MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,

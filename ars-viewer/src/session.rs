@@ -492,7 +492,7 @@ impl<'a, D: Driver> Session<'a, D> {
         };
         self.hand.deselect(&mut self.runner.simulation());
         eprintln!("opened {}", path.display());
-        let skipped = crate::skipped_summary(&opened.skipped);
+        let skipped = opened.skipped_summary();
         if let Some(line) = &skipped {
             eprintln!("{line}");
         }

@@ -215,7 +215,7 @@ impl Program for FileProgram {
         let mut sim = if self.is_mjcf() {
             // As the viewer's Open button opens it (with the model's gravity).
             let opened = Simulation::open_at(&self.path, self.urdf.base_pose)?;
-            if let Some(line) = skipped_summary(&opened.skipped) {
+            if let Some(line) = opened.skipped_summary() {
                 eprintln!("{line}");
             }
             opened.simulation
@@ -447,18 +447,4 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-/// One line for what opening a model skipped (each item is in `OpenedFile::skipped`).
-#[cfg(feature = "viewer")]
-fn skipped_summary(skipped: &[String]) -> Option<String> {
-    ars::viewer::skipped_summary(skipped)
-}
-
-/// One line for what opening a model skipped: without the viewer's summary by kind,
-/// how many.
-#[cfg(not(feature = "viewer"))]
-fn skipped_summary(skipped: &[String]) -> Option<String> {
-    let n = skipped.len();
-    (n > 0).then(|| format!("skipped {n} unsupported MJCF items; each is listed in the opened file's `skipped`"))
 }

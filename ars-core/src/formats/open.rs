@@ -7,7 +7,7 @@ use std::path::Path;
 use nalgebra::{Isometry3, Vector3};
 
 use crate::error::{Error, Result};
-use crate::formats::mjcf::MjcfOptions;
+use crate::formats::mjcf::{CONTACT_PARAMETERS_UNUSED, MjcfOptions};
 use crate::formats::urdf::UrdfOptions;
 use crate::simulation::Simulation;
 use crate::world::SpaceKind;
@@ -53,6 +53,38 @@ pub struct OpenedFile {
     /// What it holds that ARS skipped (MJCF elements it cannot read), said as
     /// sentences: empty for scene files and URDF robots.
     pub skipped: Vec<String>,
+}
+
+impl OpenedFile {
+    /// One line for what ARS skipped (`None` when it skipped nothing): how many items,
+    /// and how many of each kind, by the element they are on (a geom's or a pair's
+    /// unused contact parameters are their own kind). The whole list is
+    /// [`skipped`](Self::skipped), a line per item: one per geom for a model such as
+    /// Gymnasium's ant, too many for a terminal.
+    pub fn skipped_summary(&self) -> Option<String> {
+        if self.skipped.is_empty() {
+            return None;
+        }
+        // (what, element, count), in the order first met.
+        let mut kinds: Vec<(&str, &str, usize)> = Vec::new();
+        for item in &self.skipped {
+            let element = match item.strip_prefix('<').and_then(|rest| rest.find('>')) {
+                Some(end) => &item[..end + 2],
+                None => item.split_whitespace().next().unwrap_or("item"),
+            };
+            let what = if item.ends_with(CONTACT_PARAMETERS_UNUSED) { "contact parameters of " } else { "" };
+            match kinds.iter_mut().find(|(w, e, _)| *w == what && *e == element) {
+                Some((_, _, n)) => *n += 1,
+                None => kinds.push((what, element, 1)),
+            }
+        }
+        let kinds: Vec<String> = kinds.iter().map(|(what, element, n)| format!("{what}{n} {element}")).collect();
+        Some(format!(
+            "skipped {} unsupported MJCF items ({}); each is listed in the opened file's `skipped`",
+            self.skipped.len(),
+            kinds.join(", ")
+        ))
+    }
 }
 
 impl Simulation {
@@ -101,5 +133,26 @@ impl Simulation {
                 Ok(OpenedFile { simulation, skipped: model.skipped })
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn what_was_skipped_is_said_in_one_line_by_kind() {
+        let skipped = [
+            format!("<geom> at line 12: friction, condim {CONTACT_PARAMETERS_UNUSED}"),
+            format!("<geom> at line 14: margin {CONTACT_PARAMETERS_UNUSED}"),
+            "<motor> at line 40: gear 150 is read as ...".to_string(),
+        ];
+        let opened = |skipped: Vec<String>| OpenedFile { simulation: Simulation::new().unwrap(), skipped };
+        assert_eq!(
+            opened(skipped.to_vec()).skipped_summary().unwrap(),
+            "skipped 3 unsupported MJCF items (contact parameters of 2 <geom>, 1 <motor>); \
+             each is listed in the opened file's `skipped`"
+        );
+        assert_eq!(opened(Vec::new()).skipped_summary(), None);
     }
 }

@@ -291,6 +291,9 @@ pub struct MjcfSensor {
 /// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
 pub const MAX_CONTACT_PAIRS: usize = 32;
 
+/// How a skipped line about a geom's or a pair's unused contact parameters ends.
+pub(crate) const CONTACT_PARAMETERS_UNUSED: &str = "not used (contacts take ARS's surface: Scene::set_contact_surface)";
+
 /// The length of the ray of a `rangefinder` (MuJoCo's has none), m.
 pub const RANGEFINDER_LENGTH: f64 = 1e4;
 

@@ -12,7 +12,7 @@ use super::include::{Files, Includes, Tree, gather};
 use super::mass::mass_of_geoms;
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
-use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
+use super::{CONTACT_PARAMETERS_UNUSED, MjcfActuator, MjcfOptions, SITE_SIZE};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::Error;
 use crate::sensors::TouchZone;
@@ -444,7 +444,7 @@ pub(super) fn check_attributes(
 pub(super) fn contact_parameters_unused(node: &roxmltree::Node<'_, '_>, names: &[&str], skipped: &mut Vec<String>) {
     if !names.is_empty() {
         skipped.push(format!(
-            "<{}> at line {}: {} not used (contacts take ARS's surface: Scene::set_contact_surface)",
+            "<{}> at line {}: {} {CONTACT_PARAMETERS_UNUSED}",
             node.tag_name().name(),
             problem(node, "").line,
             names.join(", ")
