@@ -38,8 +38,6 @@ pub(crate) struct Panel {
     /// The editor's fields drawn last frame, by label, with their rectangles (window
     /// pixels).
     pub(crate) fields: Vec<(String, [f32; 4])>,
-    /// The text each of those fields showed, by label.
-    pub(crate) texts: Vec<(String, String)>,
     /// The joint the editor shows.
     joint: Option<JointId>,
     /// The error shown in red: the last edit refused, or a save that failed.
@@ -70,7 +68,6 @@ impl Default for Panel {
             editor_covers: None,
             typing: HashMap::new(),
             fields: Vec::new(),
-            texts: Vec::new(),
             joint: None,
             error: None,
             save_path: format!("./scene-{stamp}.json"),
@@ -207,7 +204,6 @@ impl Panel {
             self.covers = Some((rect, (screen.width(), screen.height())));
         }
         self.fields.clear();
-        self.texts.clear();
         let editor = egui::Window::new("Edit").anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).default_width(280.0);
         let edited = editor.show(ctx, |ui| self.editor(ui, sim, status, &mut commands));
         self.editor_covers = edited.map(|shown| {
@@ -466,8 +462,7 @@ impl Panel {
     /// from it, as [`number`](Self::number) says.
     fn field(&mut self, ui: &mut egui::Ui, label: &str, shown: String) -> Option<f64> {
         let text = self.typing.entry(label.to_string()).or_insert_with(|| shown.clone());
-        let response = ui.add(egui::TextEdit::singleline(&mut *text).desired_width(72.0)).on_hover_text(label);
-        self.texts.push((label.to_string(), text.clone()));
+        let response = ui.add(egui::TextEdit::singleline(text).desired_width(72.0)).on_hover_text(label);
         let r = response.rect;
         self.fields.push((label.to_string(), [r.min.x, r.min.y, r.max.x, r.max.y]));
         if response.lost_focus() {
