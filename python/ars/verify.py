@@ -22,7 +22,9 @@ from ars import _native
 
 #: The golden run of this module's own program.
 PYTHON_RUN = "python_original_api"
-PYTHON_RUN_WHAT = "an arm in the original ARS API, printing its joint rates, tip and energy every step"
+PYTHON_RUN_WHAT = (
+    "an arm in the original ARS API, printing its joint rates, tip and energy every step"
+)
 PYTHON_RUN_DURATION = 2.0
 
 
