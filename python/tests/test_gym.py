@@ -283,6 +283,51 @@ def test_the_reach_target_is_where_the_arm_would_be_at_the_drawn_angles():
         assert ars.gym.arm_end_effector(q) == pytest.approx(sim.body("fore").position, abs=1e-9)
 
 
+def test_the_reach_kinematics_are_read_from_the_urdf_by_its_links(tmp_path):
+    # An arm moved in a copy of reach_arm.urdf, with its joints listed in reverse: the
+    # kinematics parsed from the copy follow it and agree with ARS loading the copy.
+    from ars.gym.envs import _end_effector, _parse_arm
+
+    text = (resources.files("ars.gym") / "reach_arm.urdf").read_text(encoding="utf-8")
+    joints = ars.gym.ReachEnv.actuators
+    shipped = _parse_arm(text, joints)
+    for old, new in [
+        ('xyz="0 0 0.3" rpy="0 0 0.4"', 'xyz="0.05 -0.02 0.25" rpy="0.1 0 0.4"'),  # j2
+        ('<axis xyz="0 0.6 0.8"/>', '<axis xyz="0.6 0 0.8"/>'),  # j3
+        ('xyz="0.15 0 0.02" rpy="0 0.5 0"', 'xyz="0.12 0.01 0.03" rpy="0 0.5 0"'),  # fore's mass
+    ]:
+        assert text.count(old) == 1
+        text = text.replace(old, new)
+    first, last = text.index("<joint "), text.rindex("</joint>") + len("</joint>")
+    blocks = [b + "</joint>" for b in text[first:last].split("</joint>")[:-1]]
+    text = text[:first] + "".join(reversed(blocks)) + text[last:]
+    moved = _parse_arm(text, joints)
+    assert [j.name for j in moved[0]] == list(joints)
+    path = tmp_path / "moved_arm.urdf"
+    path.write_text(text, encoding="utf-8")
+    for q in [(0.0, 0.0, 0.0), (0.4, -0.7, 1.1), (-2.5, 1.0, -0.6)]:
+        sim = ars.Simulation()
+        sim.load_urdf(str(path), fixed_base=True, initial_positions=dict(zip(joints, q)))
+        effector = _end_effector(moved, q, (0.0, 0.0, 0.0))
+        assert effector == pytest.approx(sim.body("fore").position, abs=1e-9)
+        assert bits(ars.gym.arm_end_effector(q)) == bits(_end_effector(shipped, q, (0, 0, 0)))
+        assert np.linalg.norm(effector - ars.gym.arm_end_effector(q)) > 1e-3
+
+
+def test_a_reach_urdf_without_a_joint_or_link_of_the_arm_is_refused_by_name():
+    from ars.gym.envs import _parse_arm
+
+    text = (resources.files("ars.gym") / "reach_arm.urdf").read_text(encoding="utf-8")
+    joints = ars.gym.ReachEnv.actuators
+    j2 = text[text.index('<joint name="j2"') : text.index("</joint>", text.index('"j2"')) + 8]
+    with pytest.raises(ValueError, match=r"from the link 'upper' to 'fore' are \[j3"):
+        _parse_arm(text.replace(j2, ""), joints)
+    with pytest.raises(ValueError, match="no link 'fore'"):
+        _parse_arm(text.replace('<link name="fore">', '<link name="forearm">'), joints)
+    with pytest.raises(ValueError, match="parent link 'turret' of the joint 'j2' is missing"):
+        _parse_arm(text.replace('<link name="turret">', '<link name="tower">'), joints)
+
+
 def test_a_subclass_that_leaves_out_a_part_is_told_which():
     class Empty(ars.gym.ArsEnv):
         def build(self):

@@ -3,9 +3,11 @@ and a URDF arm reaching for a point."""
 
 from __future__ import annotations
 
+import functools
 import math
+import xml.etree.ElementTree as ET
 from importlib import resources
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -234,15 +236,94 @@ class SpeedProfileEnv(ArsEnv):
         return {"peak_speed": self.peak, "x": float(self.sim.body("chassis").position[0])}
 
 
-# The arm of tests/data/rnea_arm.urdf, for its forward kinematics: each joint's origin
-# (xyz, rpy) in its parent's frame and its axis; the end effector is the centre of
-# mass of the last link, `fore`, at FORE_COM in the last joint's frame.
-ARM_JOINTS = (
-    ((0.0, 0.0, 0.1), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)),
-    ((0.0, 0.0, 0.3), (0.0, 0.0, 0.4), (0.0, 1.0, 0.0)),
-    ((0.4, 0.0, 0.05), (0.2, 0.0, 0.0), (0.0, 0.6, 0.8)),
-)
-FORE_COM = (0.15, 0.0, 0.02)
+# ReachEnv's arm is defined once, in its URDF: the simulation loads it, and the forward
+# kinematics its targets are drawn with read their joints and end effector from it.
+_ARM_URDF = "reach_arm.urdf"
+
+
+class _ArmJoint(NamedTuple):
+    """A joint of the chain from the arm's base to `fore`, as its URDF gives it."""
+
+    name: str
+    type: str
+    xyz: tuple[float, float, float]  # origin in the parent link's frame
+    rpy: tuple[float, float, float]
+    axis: tuple[float, float, float]
+
+
+def _triple(
+    element: ET.Element | None, attribute: str, default: tuple[float, float, float]
+) -> tuple[float, float, float]:
+    """An `element`'s three-number attribute, or URDF's default where it is absent."""
+    text = None if element is None else element.get(attribute)
+    if text is None:
+        return default
+    values = tuple(float(v) for v in text.split())
+    if len(values) != 3:
+        raise ValueError(f"{attribute}={text!r} is not three numbers")
+    return values[0], values[1], values[2]
+
+
+def _parse_arm(
+    urdf: str | bytes, joints: tuple[str, ...], tip: str = "fore", source: str = _ARM_URDF
+) -> tuple[tuple[_ArmJoint, ...], tuple[float, float, float]]:
+    """The chain of joints from the root link to the link `tip` in the URDF text `urdf`,
+    followed by parent and child links (not by file order), and the origin of `tip`'s
+    <inertial> (its centre of mass) in `tip`'s frame. Raises `ValueError`, naming
+    `source`, if a link or joint of the chain is missing or the chain's joints are not
+    the rotary `joints`, in that order."""
+    robot = ET.fromstring(urdf)
+    links = {link.get("name"): link for link in robot.iter("link")}
+    by_child: dict[str | None, ET.Element] = {}
+    for joint in robot.iter("joint"):
+        child = joint.find("child")
+        child_link = None if child is None else child.get("link")
+        if child_link in by_child:
+            raise ValueError(f"{source}: two joints have the child link {child_link!r}")
+        by_child[child_link] = joint
+    if tip not in links:
+        raise ValueError(f"{source} has no link {tip!r}")
+    if links[tip].find("inertial") is None:
+        raise ValueError(f"{source}: the link {tip!r} has no <inertial> (centre of mass)")
+    com = _triple(links[tip].find("inertial/origin"), "xyz", (0.0, 0.0, 0.0))
+    chain: list[_ArmJoint] = []
+    link: str | None = tip
+    while link in by_child and len(chain) < len(joints):
+        joint = by_child[link]
+        name = joint.get("name", "")
+        parent = joint.find("parent")
+        link = None if parent is None else parent.get("link")
+        if link not in links:
+            raise ValueError(f"{source}: the parent link {link!r} of the joint {name!r} is missing")
+        origin = joint.find("origin")
+        chain.append(
+            _ArmJoint(
+                name,
+                joint.get("type", ""),
+                _triple(origin, "xyz", (0.0, 0.0, 0.0)),
+                _triple(origin, "rpy", (0.0, 0.0, 0.0)),
+                _triple(joint.find("axis"), "xyz", (1.0, 0.0, 0.0)),
+            )
+        )
+    if link in by_child:
+        raise ValueError(f"{source}: more than {len(joints)} joints lead to the link {tip!r}")
+    chain.reverse()
+    names = tuple(joint.name for joint in chain)
+    rotary = all(joint.type in ("revolute", "continuous") for joint in chain)
+    if names != joints or not rotary:
+        found = ", ".join(f"{joint.name} ({joint.type})" for joint in chain)
+        raise ValueError(
+            f"{source}: the joints from the link {link!r} to {tip!r} are [{found}], "
+            f"not the revolute or continuous {', '.join(joints)}"
+        )
+    return tuple(chain), com
+
+
+@functools.cache
+def _reach_arm() -> tuple[tuple[_ArmJoint, ...], tuple[float, float, float]]:
+    """`ReachEnv`'s arm as its URDF `reach_arm.urdf` gives it, parsed once."""
+    urdf = (resources.files("ars.gym") / _ARM_URDF).read_bytes()
+    return _parse_arm(urdf, ReachEnv.actuators)
 
 
 def _rpy(r: float, p: float, y: float) -> Array:
@@ -268,11 +349,19 @@ def _axis_angle(axis: Any, angle: float) -> Array:
 def arm_end_effector(q: Any, base: Any = (0.0, 0.0, 0.0)) -> Array:
     """Where the end effector of `ReachEnv`'s arm (the centre of mass of its link
     `fore`) is at joint angles `q` (rad), in ARS's Y-up world, with the base at `base`."""
+    return _end_effector(_reach_arm(), q, base)
+
+
+def _end_effector(
+    arm: tuple[tuple[_ArmJoint, ...], tuple[float, float, float]], q: Any, base: Any
+) -> Array:
+    """`arm_end_effector` for the chain and centre of mass `arm` (`_parse_arm`'s)."""
+    joints, com = arm
     rotation, position = np.eye(3), np.zeros(3)
-    for (xyz, rpy, axis), angle in zip(ARM_JOINTS, q):
-        position = position + rotation @ np.asarray(xyz)
-        rotation = rotation @ _rpy(*rpy) @ _axis_angle(axis, float(angle))
-    z_up = position + rotation @ np.asarray(FORE_COM)
+    for joint, angle in zip(joints, q):
+        position = position + rotation @ np.asarray(joint.xyz)
+        rotation = rotation @ _rpy(*joint.rpy) @ _axis_angle(joint.axis, float(angle))
+    z_up = position + rotation @ np.asarray(com)
     # URDF is Z-up: turned −90° about X into the Y-up world.
     y_up: Array = np.array([z_up[0], z_up[2], -z_up[1]]) + np.asarray(base, dtype=np.float64)
     return y_up
@@ -318,7 +407,7 @@ class ReachEnv(ArsEnv):
 
     def build(self) -> ars.Simulation:
         sim = ars.Simulation(time_step=0.001)
-        with resources.as_file(resources.files("ars.gym") / "reach_arm.urdf") as path:
+        with resources.as_file(resources.files("ars.gym") / _ARM_URDF) as path:
             sim.load_urdf(str(path), fixed_base=True)
         for joint in self.actuators:
             sim.joint(joint).set_viscous_friction(self.FRICTION)
