@@ -12,14 +12,16 @@ mod floor;
 pub(crate) mod joints;
 mod names;
 pub(crate) mod objects;
+mod sim_joint;
 mod surfaces;
 mod views;
 
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
-pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic, SimJoint};
+pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic};
 pub use objects::{Color, Visual};
+pub use sim_joint::SimJoint;
 pub use views::{JointKey, JointView, ObjectKey, ObjectView};
 
 use crate::error::{Error, Result};
