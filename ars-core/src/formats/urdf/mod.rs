@@ -1,0 +1,257 @@
+//! Robots from URDF files: one body per link, one joint per URDF joint, with the
+//! file's names.
+//!
+//! - **Up axis.** URDF is Z-up; a simulation is Y-up. The root link's frame is turned
+//!   by one rotation, −90° about X (URDF (x, y, z) → simulation (x, z, −y)), then placed
+//!   at [`UrdfOptions::base_pose`]. A file written Y-up is loaded as is with
+//!   [`UpAxis::Y`].
+//! - **Bodies.** ODE wants a body's frame at its centre of mass: each link's body frame
+//!   is its `<inertial>` frame (origin and `rpy`), where the URDF's inertia tensor is
+//!   given, so the tensor is used as written. Collision geometry is placed relative to
+//!   it (no offset when it shares the inertial frame).
+//! - **Mass.** A root link without mass is static (its geometry collides, nothing moves
+//!   it), as pybullet does. A massless link fixed to its parent (a tool frame, a
+//!   flange: the Panda's `panda_link8`) is merged into the nearest ancestor that is not
+//!   one: its geometry and looks join that link's object, [`UrdfRobot::link`] gives that
+//!   object for its name, and its fixed joint is not made. Any other link needs a
+//!   positive mass.
+//! - **Joints.** `revolute` and `continuous` become hinges, `prismatic` sliders,
+//!   `fixed` fixed joints, at the joint's origin and about its axis, with the URDF's
+//!   sign: a joint's angle (position) is the child's relative to the parent, and a
+//!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
+//!   the parent to the child about the negated axis); `revolute` and
+//!   `prismatic` limits become joint stops, their `effort` and `velocity` the joint's
+//!   [`ActuatorLimits`](crate::scene::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
+//!   becomes viscous friction and `friction` dry friction
+//!   ([`SimJoint::set_dry_friction`](crate::scene::SimJoint::set_dry_friction)); `<mimic>` a
+//!   [`Mimic`](crate::scene::Mimic) (multiplier 1 and offset 0 unless given); `spherical` (an
+//!   extension some tools write) becomes a ball joint. `floating` and `planar` joints
+//!   are refused.
+//! - **Collisions.** Linked bodies never collide (ODE's rule). With
+//!   [`UrdfOptions::self_collision`] off (the default) no two links of the robot do.
+//! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
+//!   link's Z, as in ODE), `sphere`, `capsule`, and `mesh` (STL, OBJ, COLLADA, with
+//!   `scale`) as a triangle mesh (see [`load_mesh`](crate::formats::mesh::load_mesh)).
+//! - **Mesh paths** (the first that exists; the error lists every path tried):
+//!   `file://` and absolute paths as written; relative ones in the URDF's folder, then
+//!   in [`UrdfOptions::search_paths`]; `package://NAME/REST` in the folder given for
+//!   NAME ([`UrdfOptions::package`]), in `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH`,
+//!   as `NAME/REST` beside the URDF, in a folder named NAME above it, as `REST` beside
+//!   it, then in the search paths.
+//!
+//! - **Looks.** The viewer draws a link's `<visual>` elements (any geometry, meshes
+//!   found as above, each in its material's colour: its own `<color>` or the
+//!   robot-level material it names) as its [`Visual`](crate::scene::Visual)s; the link's
+//!   colour is its first visual's. A link without visuals, or every link with
+//!   [`UrdfOptions::ignore_visuals`] (for files whose visual meshes ARS cannot read),
+//!   is drawn as its collision geometry.
+//!
+//! Errors name the file, the element and the problem, and nothing is added to the
+//! scene when a file is refused.
+
+use std::path::{Path, PathBuf};
+
+use nalgebra::Isometry3;
+
+use crate::error::{Error, Result};
+use crate::handle::{JointId, ObjectId};
+use crate::simulation::Simulation;
+
+mod build;
+mod frame;
+
+use build::{Meshes, plan};
+
+/// The up axis a URDF file is written with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum UpAxis {
+    /// Z up, as URDF specifies: turned −90° about X into the simulation's Y-up frame.
+    #[default]
+    Z,
+    /// Y up, like the simulation: loaded as written.
+    Y,
+}
+
+/// How to load a URDF file.
+#[derive(Clone, Debug, Default)]
+#[non_exhaustive]
+pub struct UrdfOptions {
+    /// Where the root link's frame goes, in the simulation frame (after the up-axis
+    /// rotation).
+    pub base_pose: Isometry3<f64>,
+    /// Fix the root link to the world.
+    pub fixed_base: bool,
+    /// Let links of the robot collide with each other (never a parent and its child).
+    pub self_collision: bool,
+    /// The up axis the file is written with.
+    pub up_axis: UpAxis,
+    /// Folders of ROS packages: `package://NAME/...` resolves in the folder given for NAME.
+    pub package_dirs: Vec<(String, PathBuf)>,
+    /// More folders where relative mesh paths (and packages) are looked for.
+    pub search_paths: Vec<PathBuf>,
+    /// Starting positions of joints, by name (rad or m; the others start at 0). The
+    /// joints read these positions: the robot is built at zero, joined, then posed.
+    pub initial_positions: Vec<(String, f64)>,
+    /// Draw the collision geometry rather than the `<visual>` elements (whose meshes
+    /// are then not loaded at all).
+    pub ignore_visuals: bool,
+}
+
+impl UrdfOptions {
+    /// The defaults: floating base at the origin, no self-collision, Z up.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// The root link's pose.
+    #[must_use]
+    pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
+        self.base_pose = pose;
+        self
+    }
+    /// Fix the root link to the world.
+    #[must_use]
+    pub fn fixed_base(mut self, fixed: bool) -> Self {
+        self.fixed_base = fixed;
+        self
+    }
+    /// Let links collide with each other.
+    #[must_use]
+    pub fn self_collision(mut self, on: bool) -> Self {
+        self.self_collision = on;
+        self
+    }
+    /// The file's up axis.
+    #[must_use]
+    pub fn up_axis(mut self, up: UpAxis) -> Self {
+        self.up_axis = up;
+        self
+    }
+    /// Where the ROS package `name` is (for `package://name/...` mesh paths).
+    #[must_use]
+    pub fn package(mut self, name: &str, dir: impl Into<PathBuf>) -> Self {
+        self.package_dirs.push((name.to_string(), dir.into()));
+        self
+    }
+    /// The starting position of joint `name` (rad or m).
+    #[must_use]
+    pub fn initial_position(mut self, name: &str, position: f64) -> Self {
+        self.initial_positions.push((name.to_string(), position));
+        self
+    }
+    /// Draw the collision geometry, not the `<visual>` elements.
+    #[must_use]
+    pub fn ignore_visuals(mut self, ignore: bool) -> Self {
+        self.ignore_visuals = ignore;
+        self
+    }
+    /// A folder to look for meshes (and packages) in.
+    #[must_use]
+    pub fn search_path(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.search_paths.push(dir.into());
+        self
+    }
+}
+
+/// What a URDF file added to a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfRobot {
+    /// The robot's name.
+    pub name: String,
+    /// Each link's object, in file order (named after the link).
+    pub links: Vec<(String, ObjectId)>,
+    /// Each joint, in file order (named after the URDF joint).
+    pub joints: Vec<(String, JointId)>,
+    /// The fixed joint holding the root to the world, with [`UrdfOptions::fixed_base`].
+    pub base_joint: Option<JointId>,
+}
+
+impl UrdfRobot {
+    /// The object of a link.
+    pub fn link(&self, name: &str) -> Option<ObjectId> {
+        self.links.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+    /// A joint by its URDF name.
+    pub fn joint(&self, name: &str) -> Option<JointId> {
+        self.joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+    }
+}
+
+/// A URDF file as read: its robot, not yet in a simulation. [`insert`](Self::insert)
+/// makes its links and joints, as many times as asked.
+///
+/// ```
+/// use ars_core::formats::urdf::{UrdfFile, UrdfOptions};
+/// use ars_core::Simulation;
+///
+/// let text = r#"<robot name="one"><link name="base"><inertial><mass value="1"/>
+///   <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>"#;
+/// let file = UrdfFile::parse(text, "one.urdf")?;
+/// let mut sim = Simulation::new()?;
+/// let robot = file.insert(&mut sim, &UrdfOptions::new())?;
+/// assert_eq!(robot.name, "one");
+/// assert!(robot.link("base").is_some());
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct UrdfFile {
+    robot: urdf_rs::Robot,
+    /// The file's name, in errors; its folder is where relative mesh paths start.
+    file: String,
+}
+
+impl UrdfFile {
+    /// Reads and parses the URDF file at `path`.
+    pub fn read(path: impl AsRef<Path>) -> Result<UrdfFile> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the URDF file", path, &e))?;
+        UrdfFile::parse(&text, &path.display().to_string())
+    }
+
+    /// Parses URDF text; `file` names it in errors and its folder is where relative
+    /// mesh paths start.
+    pub fn parse(text: &str, file: &str) -> Result<UrdfFile> {
+        let bad = |problem: String| format_error(file, "robot".into(), problem);
+        // The parser is a dependency: a panic in it must not reach the caller either.
+        let parsed = std::panic::catch_unwind(|| urdf_rs::read_from_string(text))
+            .map_err(|_| bad("the URDF parser failed on this text".into()))?;
+        let robot = parsed.map_err(|e| bad(format!("not valid URDF: {e}")))?;
+        Ok(UrdfFile { robot, file: file.to_string() })
+    }
+
+    /// The robot's name.
+    pub fn name(&self) -> &str {
+        &self.robot.name
+    }
+
+    /// Makes the robot's links and joints in `sim` (see the [module docs](self)); on an
+    /// error nothing of it is left.
+    pub fn insert(&self, sim: &mut Simulation, options: &UrdfOptions) -> Result<UrdfRobot> {
+        let bad = |element: String, problem: String| format_error(&self.file, element, problem);
+        let plan = plan(&self.robot, options).map_err(|(element, problem)| bad(element, problem))?;
+        let base_dir = Path::new(&self.file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
+        let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default() };
+        sim.scene.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
+            Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
+            other => bad(element, other.to_string()),
+        })
+    }
+}
+
+/// A problem of the URDF file `file` at `element`.
+fn format_error(file: &str, element: String, problem: String) -> Error {
+    Error::Format { format: "URDF", file: file.to_string(), element, line: None, column: None, problem }
+}
+
+/// Loads URDF robots: a [`UrdfFile`] read and inserted.
+impl Simulation {
+    /// Loads the robot of a URDF file: [`UrdfFile::read`], then
+    /// [`insert`](UrdfFile::insert).
+    pub fn load_urdf(&mut self, path: impl AsRef<Path>, options: &UrdfOptions) -> Result<UrdfRobot> {
+        UrdfFile::read(path)?.insert(self, options)
+    }
+
+    /// Loads a robot from URDF text; `file` names it in errors.
+    pub fn load_urdf_text(&mut self, text: &str, file: &str, options: &UrdfOptions) -> Result<UrdfRobot> {
+        UrdfFile::parse(text, file)?.insert(self, options)
+    }
+}
