@@ -1,0 +1,194 @@
+//! `ars.Simulation`'s methods that read and write files and states: URDF and MJCF
+//! models, scene files, snapshots.
+
+use crate::errors::guarded;
+use ars_core::Simulation;
+use pyo3::prelude::*;
+use std::collections::HashMap;
+
+use super::{PySimulation, Vec3};
+
+#[pymethods]
+impl PySimulation {
+    /// Loads a robot from a URDF file (Z up unless `y_up`; see the Rust
+    /// `Scene::load_urdf` for the rules). Returns `{"name", "links", "joints",
+    /// "base_joint"}`, links and joints by their URDF names in file order.
+    #[pyo3(signature = (path, *, fixed_base=false, base_position=[0.0; 3], self_collision=false, y_up=false,
+                        initial_positions=None, packages=None, search_paths=None, ignore_visuals=false))]
+    fn load_urdf<'py>(
+        &self,
+        py: Python<'py>,
+        path: std::path::PathBuf,
+        fixed_base: bool,
+        base_position: Vec3,
+        self_collision: bool,
+        y_up: bool,
+        initial_positions: Option<HashMap<String, f64>>,
+        packages: Option<HashMap<String, std::path::PathBuf>>,
+        search_paths: Option<Vec<std::path::PathBuf>>,
+        ignore_visuals: bool,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let mut options = ars_core::UrdfOptions::new()
+            .fixed_base(fixed_base)
+            .self_collision(self_collision)
+            .ignore_visuals(ignore_visuals)
+            .base_pose(ars_core::nalgebra::Isometry3::translation(
+                base_position[0],
+                base_position[1],
+                base_position[2],
+            ));
+        if y_up {
+            options = options.up_axis(ars_core::UpAxis::Y);
+        }
+        let mut positions: Vec<(String, f64)> = initial_positions.unwrap_or_default().into_iter().collect();
+        positions.sort_by(|a, b| a.0.cmp(&b.0));
+        for (name, q) in positions {
+            options = options.initial_position(&name, q);
+        }
+        for (name, dir) in packages.unwrap_or_default() {
+            options = options.package(&name, dir);
+        }
+        for dir in search_paths.unwrap_or_default() {
+            options = options.search_path(dir);
+        }
+        let (name, links, joints, base) = self.with(py, move |sim| {
+            let robot = sim.load_urdf(&path, &options)?;
+            let base = robot.base_joint.map(|id| sim.scene().joint(id).map(|j| j.name().to_string())).transpose()?;
+            let links: Vec<String> = robot.links.into_iter().map(|(n, _)| n).collect();
+            let joints: Vec<String> = robot.joints.into_iter().map(|(n, _)| n).collect();
+            Ok((robot.name, links, joints, base))
+        })?;
+        let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("name", name)?;
+        dict.set_item("links", links)?;
+        dict.set_item("joints", joints)?;
+        dict.set_item("base_joint", base)?;
+        Ok(dict)
+    }
+
+    /// Loads a MuJoCo model from an MJCF file (see the Rust `Scene::load_mjcf` for what
+    /// is read). Returns `{"name", "bodies", "joints", "timestep", "gravity",
+    /// "actuators", "sensors", "sites", "armature", "skipped"}`: bodies and joints by
+    /// their MJCF names in file order, the file's time step and gravity (not applied),
+    /// the file's sensors made (`ars.Sensor`s by name; see the Rust `MjcfSensor` for the
+    /// columns that hold MuJoCo's values), the bodies' named sites (`{name: body}`), the
+    /// inertia (3×3, body frame) each object carries for its joint's armature, what was
+    /// skipped.
+    #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false))]
+    fn load_mjcf<'py>(
+        slf: Bound<'py, Self>,
+        path: std::path::PathBuf,
+        base_position: Vec3,
+        skip_unsupported: bool,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let py = slf.py();
+        let [x, y, z] = base_position;
+        let options = ars_core::MjcfOptions::new()
+            .base_pose(ars_core::nalgebra::Isometry3::translation(x, y, z))
+            .skip_unsupported(skip_unsupported);
+        let model = slf.get().with(py, move |sim| sim.load_mjcf(&path, &options))?;
+        let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("name", &model.name)?;
+        dict.set_item("bodies", model.bodies.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>())?;
+        dict.set_item("joints", model.joints.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>())?;
+        dict.set_item("timestep", model.timestep)?;
+        dict.set_item("gravity", model.gravity.map(|g| (g.x, g.y, g.z)))?;
+        let actuators: Vec<(String, String, String)> =
+            model.actuators.iter().map(|a| (a.name.clone(), a.kind.clone(), a.joint.clone())).collect();
+        dict.set_item("actuators", actuators)?;
+        let sensors = pyo3::types::PyDict::new(py);
+        for sensor in &model.sensors {
+            let Some(id) = sensor.id else { continue };
+            let kind = match sensor.kind.as_str() {
+                "jointpos" => "joint_positions",
+                "jointvel" => "joint_velocities",
+                "framepos" => "gps",
+                "framelinvel" => "velometer",
+                "framequat" => "orientation",
+                "accelerometer" | "gyro" => "imu",
+                "touch" => "touch",
+                _ => "laser",
+            };
+            let typed = crate::sensors::Typed::Table(id);
+            sensors.set_item(&sensor.name, crate::sensors::PySensor::new(slf.clone().unbind(), kind.into(), typed))?;
+        }
+        dict.set_item("sensors", sensors)?;
+        let sites = pyo3::types::PyDict::new(py);
+        for site in &model.sites {
+            sites.set_item(&site.name, &site.body)?;
+        }
+        dict.set_item("sites", sites)?;
+        let armature = pyo3::types::PyDict::new(py);
+        for (name, inertia) in &model.armature {
+            let rows: Vec<Vec<f64>> = (0..3).map(|r| (0..3).map(|c| inertia[(r, c)]).collect()).collect();
+            armature.set_item(name, rows)?;
+        }
+        dict.set_item("armature", armature)?;
+        dict.set_item("skipped", &model.skipped)?;
+        Ok(dict)
+    }
+
+    /// Writes the scene (see `save_scene`) to the file `path`.
+    fn save_scene_to(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+        self.with(py, move |sim| sim.save_scene_to(&path))
+    }
+
+    /// The whole state of the simulation now, as bytes (picklable): `restore` puts it
+    /// back, in this simulation or in one built by the same code (in any process), and
+    /// every later step is the same to the bit. Hooks' own variables are not in it;
+    /// records are cleared by `restore`.
+    fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
+        let bytes = self.with(py, |sim| sim.snapshot().map(|s| s.to_bytes()))?;
+        Ok(pyo3::types::PyBytes::new(py, &bytes))
+    }
+
+    /// Puts back the state `snapshot()` returned (see `snapshot`). A snapshot of
+    /// another scene raises `ars.SnapshotMismatchError` and changes nothing.
+    fn restore(&self, py: Python<'_>, state: &[u8]) -> PyResult<()> {
+        let snapshot = guarded(py, || ars_core::Snapshot::from_bytes(state))?;
+        self.with(py, move |sim| sim.restore(&snapshot))
+    }
+
+    /// A new simulation in the state `snapshot()` returned, built from the scene it
+    /// holds (objects, joints, `add_sensor`'s sensors, lidars and depth cameras; a
+    /// robot whose links have several collision shapes needs the scene built by your
+    /// code, then `restore`).
+    #[staticmethod]
+    fn from_snapshot(py: Python<'_>, state: &[u8]) -> PyResult<Self> {
+        let sim = guarded(py, || ars_core::Snapshot::from_bytes(state).and_then(|s| Simulation::from_snapshot(&s)))?;
+        Ok(PySimulation::wrap(sim))
+    }
+
+    /// A simulation from a file written by `save_scene_to`.
+    #[staticmethod]
+    fn load_scene_from(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let sim = guarded(py, || Simulation::load_scene_from(&path))?;
+        Ok(PySimulation::wrap(sim))
+    }
+
+    /// A simulation from any file ARS reads, by its extension: a scene file (`.json`), a
+    /// URDF robot with its root at the origin over a floor (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`;
+    /// what ARS cannot read is skipped, each with a `UserWarning`). What the viewer's
+    /// Open button and `ars view FILE` open.
+    #[staticmethod]
+    fn open(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let opened = guarded(py, || Simulation::open(&path))?;
+        for skipped in &opened.skipped {
+            let message = std::ffi::CString::new(format!("skipped: {skipped}")).unwrap_or_default();
+            PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
+        }
+        Ok(PySimulation::wrap(opened.simulation))
+    }
+
+    /// The scene as JSON text (objects, joints, parameters, state).
+    fn save_scene(&self, py: Python<'_>) -> PyResult<String> {
+        self.with(py, |sim| sim.save_scene())
+    }
+
+    /// A simulation from JSON text written by `save_scene`.
+    #[staticmethod]
+    fn load_scene(py: Python<'_>, text: &str) -> PyResult<Self> {
+        let sim = guarded(py, || Simulation::load_scene(text))?;
+        Ok(PySimulation::wrap(sim))
+    }
+}
