@@ -5,8 +5,8 @@ use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
 
 use super::problem::Problem;
 use super::{MjcfActuator, MjcfSensor};
-use crate::formats::mesh::MeshMass;
 use crate::sensors::TouchZone;
+use crate::shape::MeshMass;
 use crate::shape::Shape;
 
 /// A geom's shape, MuJoCo's way (half sizes).

@@ -274,7 +274,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let Shape::TriMesh { vertices, triangles } = &shape else {
             return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
         };
-        let mass = crate::formats::mesh::mass_properties(vertices, triangles).ok_or_else(|| {
+        let mass = crate::shape::mass_properties(vertices, triangles).ok_or_else(|| {
             problem(node, format!("the mesh {name:?} encloses no volume (it must be closed and wound outwards)"))
         })?;
         let mesh = std::sync::Arc::new(MeshGeom { shape, mass });
