@@ -29,6 +29,7 @@ impl Simulation {
     /// [`add_sensor_of_kind`](Self::add_sensor_of_kind), and also lidars and depth
     /// cameras from their `settings`, each wrapped in seeded noise when `noise` (standard
     /// deviation, generator state) is given: what scene files rebuild.
+    // table: one match arm per sensor kind (and its settings), each a constructor call
     pub(crate) fn add_sensor_described(
         &mut self,
         kind: SensorKind,

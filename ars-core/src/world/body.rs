@@ -2,6 +2,7 @@
 
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use ode_sys as ffi;
+use serde::{Deserialize, Serialize};
 
 use super::World;
 use crate::convert;
@@ -683,4 +684,43 @@ fn force(f: &Vector3<f64>) -> Result<Vector3<f64>> {
 
 fn torque(t: &Vector3<f64>) -> Result<Vector3<f64>> {
     limits::vector_within("torque", t, limits::MAX_TORQUE, "N·m")
+}
+
+/// A body's pose exactly as ODE keeps it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct ExactPose {
+    pub(super) position: [f64; 3],
+    pub(super) quaternion: [f64; 4],
+    /// ODE's 3×4 rotation matrix (the fourth column is padding).
+    pub(super) rotation: [f64; 12],
+}
+
+impl ExactPose {
+    /// # Safety
+    /// `body` is a live body.
+    pub(super) unsafe fn of(body: ffi::dBodyID) -> ExactPose {
+        let mut pose = ExactPose { position: [0.0; 3], quaternion: [0.0; 4], rotation: [0.0; 12] };
+        // SAFETY: the caller's contract; ODE's getters point at 4, 4 and 12 reals.
+        unsafe {
+            pose.position.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetPosition(body), 3));
+            pose.quaternion.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetQuaternion(body), 4));
+            pose.rotation.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetRotation(body), 12));
+        }
+        pose
+    }
+
+    /// Puts the body there, to the bit: ODE's quaternion and rotation setters
+    /// renormalise, so both are written in place, after `dBodySetPosition` (which tells
+    /// the body's geoms that it moved).
+    ///
+    /// # Safety
+    /// `body` is a live body.
+    pub(super) unsafe fn put(&self, body: ffi::dBodyID) {
+        let p = self.position;
+        // SAFETY: the caller's contract.
+        unsafe {
+            ffi::dBodySetPosition(body, p[0], p[1], p[2]);
+            write_orientation(body, &self.quaternion, &self.rotation);
+        }
+    }
 }

@@ -34,7 +34,7 @@ use nalgebra::Vector3;
 use ode_sys as ffi;
 
 use super::contact::{
-    CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit,
+    CollisionHooks, ContactPoint, ContactSurface, DefaultHooks, GeomPair, MAX_CONTACTS_LIMIT, RayHit, geom_slot_in,
 };
 use super::{Poison, SpaceKind, World};
 use crate::convert;
@@ -541,19 +541,8 @@ impl World {
         let (shape1, shape2, b1, b2) = (&d1.shape, &d2.shape, d1.body_raw, d2.body_raw);
         let ray1 = matches!(shape1, crate::shape::Shape::Ray { .. });
         let ray2 = matches!(shape2, crate::shape::Shape::Ray { .. });
-        if b1.is_null() && b2.is_null() && !ray1 && !ray2 {
-            // Two static geoms (a static box on the floor): contact joints between no
-            // bodies would change nothing and cost a collision every step.
-            return Ok(());
-        }
-        if !b1.is_null() && !b2.is_null() {
-            // SAFETY: both bodies are live and non-null (ODE asserts on null).
-            let connected = unsafe { ffi::dAreConnectedExcluding(b1, b2, ffi::dJointType_dJointTypeContact as i32) };
-            if connected != 0 {
-                return Ok(());
-            }
-        }
-        if ray1 && ray2 {
+        // SAFETY: the bodies of the pair's geoms, live or null (static geoms).
+        if !unsafe { pair_may_touch(b1, b2, ray1, ray2) } {
             return Ok(());
         }
         if let Some(ratio) = convex_pair_ratio(shape1, shape2)
@@ -562,19 +551,8 @@ impl World {
             return Err(PairFailure::Refused(g1, g2, ratio));
         }
         let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
-        let surface = if ray1 || ray2 {
-            PairSurface::Ray
-        } else if hooks.always_default() {
-            PairSurface::Default
-        } else {
-            match hooks.contact_surface(&pair, &self.collision.default_surface) {
-                Some(s) if s.validate().is_ok() => PairSurface::Chosen(s.to_ode(), s.max_contacts),
-                Some(s) => {
-                    log::error!("contact hooks returned an invalid surface {s:?}; pair skipped");
-                    return Ok(());
-                }
-                None => return Ok(()),
-            }
+        let Some(surface) = self.pair_surface(hooks, &pair, ray1 || ray2) else {
+            return Ok(());
         };
         let max = match surface {
             PairSurface::Ray => MAX_CONTACTS_LIMIT,
@@ -591,16 +569,7 @@ impl World {
         match surface {
             PairSurface::Ray => {
                 let (ray, other, flip) = if ray1 { (g1, g2, false) } else { (g2, g1, true) };
-                for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
-                    let normal = convert::vector_from_ode(&c.normal);
-                    self.collision.ray_hits.push(RayHit {
-                        ray,
-                        other,
-                        position: convert::point_from_ode(&c.pos),
-                        normal: if flip { -normal } else { normal },
-                        distance: c.depth,
-                    });
-                }
+                self.record_ray_hits(ray, other, flip, n);
             }
             PairSurface::Default | PairSurface::Chosen(..) => {
                 let state = &mut self.collision;
@@ -632,56 +601,73 @@ impl World {
         }
         Ok(())
     }
-}
 
-/// The contact points of a plain collision's records, appended to `points`; the
-/// handles are looked up once per pair.
-pub(super) fn points_from_records(
-    geoms: &crate::handle::Arena<super::geom::GeomData>,
-    records: &[ffi::odesys_contact_record],
-    points: &mut Vec<ContactPoint>,
-) {
-    let mut last: Option<(ffi::dGeomID, ffi::dGeomID, GeomPair)> = None;
-    for r in records {
-        let pair = match last {
-            Some((o1, o2, pair)) if o1 == r.o1 && o2 == r.o2 => pair,
-            _ => match (geom_slot_in(geoms, r.o1), geom_slot_in(geoms, r.o2)) {
-                (Some((g1, d1)), Some((g2, d2))) => {
-                    let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
-                    last = Some((r.o1, r.o2, pair));
-                    pair
+    /// The surface of a pair's contacts: a ray's hits, the default surface, or the one
+    /// the hooks choose; `None` when the hooks skip the pair (or give an invalid
+    /// surface, which is logged).
+    #[inline]
+    fn pair_surface<H: CollisionHooks + ?Sized>(
+        &self,
+        hooks: &mut H,
+        pair: &GeomPair,
+        ray: bool,
+    ) -> Option<PairSurface> {
+        if ray {
+            Some(PairSurface::Ray)
+        } else if hooks.always_default() {
+            Some(PairSurface::Default)
+        } else {
+            match hooks.contact_surface(pair, &self.collision.default_surface) {
+                Some(s) if s.validate().is_ok() => Some(PairSurface::Chosen(s.to_ode(), s.max_contacts)),
+                Some(s) => {
+                    log::error!("contact hooks returned an invalid surface {s:?}; pair skipped");
+                    None
                 }
-                _ => {
-                    log::error!("collision reported a geom that this world does not own; contact not recorded");
-                    continue;
-                }
-            },
-        };
-        points.push(ContactPoint {
-            pair,
-            position: convert::point_from_ode(&r.geom.pos),
-            normal: convert::vector_from_ode(&r.geom.normal),
-            depth: r.geom.depth,
-            force: Vector3::zeros(),
-        });
+                None => None,
+            }
+        }
+    }
+
+    /// Records the first `n` points of the scratch buffer as hits of `ray` on `other`
+    /// (the normals turned when ODE gave the ray second).
+    fn record_ray_hits(&mut self, ray: GeomHandle, other: GeomHandle, flip: bool, n: usize) {
+        for c in self.collision.scratch[..n].iter().filter(|c| contact_is_finite(c)) {
+            let normal = convert::vector_from_ode(&c.normal);
+            self.collision.ray_hits.push(RayHit {
+                ray,
+                other,
+                position: convert::point_from_ode(&c.pos),
+                normal: if flip { -normal } else { normal },
+                distance: c.depth,
+            });
+        }
     }
 }
 
-/// The handle and data of a geom that ODE reports, in `geoms` (see
-/// [`World::geom_slot`]).
+/// Whether a pair can make contacts or ray hits: not two static geoms, not two
+/// bodies joined by a joint, not two rays.
+///
+/// # Safety
+/// `b1` and `b2` are live bodies or null.
 #[inline]
-fn geom_slot_in(
-    geoms: &crate::handle::Arena<super::geom::GeomData>,
-    raw: ffi::dGeomID,
-) -> Option<(GeomHandle, &super::geom::GeomData)> {
-    // SAFETY: ODE hands the callback live geoms of the collided space; their user
-    // data is the arena index set at creation.
-    let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
-    let (h, data) = geoms.get_by_index(index)?;
-    if data.raw != raw {
-        return None;
+unsafe fn pair_may_touch(b1: ffi::dBodyID, b2: ffi::dBodyID, ray1: bool, ray2: bool) -> bool {
+    if b1.is_null() && b2.is_null() && !ray1 && !ray2 {
+        // Two static geoms (a static box on the floor): contact joints between no
+        // bodies would change nothing and cost a collision every step.
+        return false;
     }
-    Some((GeomHandle(h), data))
+    if !b1.is_null() && !b2.is_null() {
+        // SAFETY: both bodies are live (the caller's contract) and non-null (ODE
+        // asserts on null).
+        let connected = unsafe { ffi::dAreConnectedExcluding(b1, b2, ffi::dJointType_dJointTypeContact as i32) };
+        if connected != 0 {
+            return false;
+        }
+    }
+    if ray1 && ray2 {
+        return false;
+    }
+    true
 }
 
 /// One contact joint per finite contact point, with `contact`'s surface, attached to

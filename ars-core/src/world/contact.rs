@@ -5,7 +5,7 @@ use nalgebra::{Point3, Vector3};
 use ode_sys as ffi;
 
 use super::World;
-use super::collision::points_from_records;
+use crate::convert;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle};
 use crate::validate;
@@ -253,4 +253,54 @@ impl World {
             .min_by(|a, b| a.distance.total_cmp(&b.distance))
             .copied()
     }
+}
+
+/// The contact points of a plain collision's records, appended to `points`; the
+/// handles are looked up once per pair.
+fn points_from_records(
+    geoms: &crate::handle::Arena<super::geom::GeomData>,
+    records: &[ffi::odesys_contact_record],
+    points: &mut Vec<ContactPoint>,
+) {
+    let mut last: Option<(ffi::dGeomID, ffi::dGeomID, GeomPair)> = None;
+    for r in records {
+        let pair = match last {
+            Some((o1, o2, pair)) if o1 == r.o1 && o2 == r.o2 => pair,
+            _ => match (geom_slot_in(geoms, r.o1), geom_slot_in(geoms, r.o2)) {
+                (Some((g1, d1)), Some((g2, d2))) => {
+                    let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
+                    last = Some((r.o1, r.o2, pair));
+                    pair
+                }
+                _ => {
+                    log::error!("collision reported a geom that this world does not own; contact not recorded");
+                    continue;
+                }
+            },
+        };
+        points.push(ContactPoint {
+            pair,
+            position: convert::point_from_ode(&r.geom.pos),
+            normal: convert::vector_from_ode(&r.geom.normal),
+            depth: r.geom.depth,
+            force: Vector3::zeros(),
+        });
+    }
+}
+
+/// The handle and data of a geom that ODE reports, in `geoms` (see
+/// [`World::geom_slot`]).
+#[inline]
+pub(super) fn geom_slot_in(
+    geoms: &crate::handle::Arena<super::geom::GeomData>,
+    raw: ffi::dGeomID,
+) -> Option<(GeomHandle, &super::geom::GeomData)> {
+    // SAFETY: ODE hands the callback live geoms of the collided space; their user
+    // data is the arena index set at creation.
+    let index = unsafe { ffi::dGeomGetData(raw) } as usize as u32;
+    let (h, data) = geoms.get_by_index(index)?;
+    if data.raw != raw {
+        return None;
+    }
+    Some((GeomHandle(h), data))
 }

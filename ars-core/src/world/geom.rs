@@ -157,6 +157,103 @@ pub struct GeomMut<'w> {
     world: &'w mut World,
 }
 
+/// The placement a builder asks for fits its geom: an offset needs a body, a pose no
+/// body, and a plane takes neither.
+fn check_placement(body: bool, offset: bool, pose: bool, placeable: bool) -> Result<()> {
+    if offset && !body {
+        return Err(Error::Invalid {
+            what: "a geom offset",
+            problem: "needs a body; use `pose` for a geom without one".into(),
+        });
+    }
+    if pose && body {
+        return Err(Error::Invalid {
+            what: "a geom pose",
+            problem: "cannot be given to an attached geom, which follows its body; use `offset` instead".into(),
+        });
+    }
+    if pose && !placeable {
+        return Err(Error::WrongGeomKind { operation: "setting a pose", kind: "plane" });
+    }
+    Ok(())
+}
+
+impl TriMeshStorage {
+    /// ODE's data of a triangle mesh, with the buffers it points into.
+    fn build(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> TriMeshStorage {
+        let flat_v: Vec<f64> = vertices.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+        let mut flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
+        if triangles.len() == 1 {
+            // OPCODE's tree of a one-triangle mesh is a lone leaf, and its
+            // trimesh–trimesh collider reads a child that leaf does not have
+            // (SIGSEGV when two such meshes overlap). Give ODE the triangle twice:
+            // a two-leaf tree, the same surface.
+            flat_i.extend_from_within(..);
+        }
+        // SAFETY: the buffers are kept alive in `TriMeshStorage` for as long as the
+        // data exists; counts and strides describe them exactly (checked above:
+        // every index is in range, counts fit in an int).
+        let data = unsafe {
+            let data = ffi::dGeomTriMeshDataCreate();
+            ffi::dGeomTriMeshDataBuildDouble(
+                data,
+                flat_v.as_ptr().cast(),
+                (3 * size_of::<f64>()) as i32,
+                vertices.len() as i32,
+                flat_i.as_ptr().cast(),
+                flat_i.len() as i32,
+                (3 * size_of::<ffi::dTriIndex>()) as i32,
+            );
+            data
+        };
+        TriMeshStorage { data, _vertices: flat_v, _indices: flat_i }
+    }
+}
+
+/// The triangles a mesh or a cone collides with: ODE's data, the tree ARS's own
+/// queries use, and a cone's mesh (kept for drawing); all `None` for other shapes.
+fn triangle_mesh_parts(shape: &Shape) -> (Option<TriMeshStorage>, Option<MeshTree>, Option<Triangles>) {
+    let mut mesh = None;
+    let mut mesh_tree = None;
+    let cone = match &shape {
+        Shape::Cone { radius, height } => Some(cone_mesh(*radius, *height)),
+        _ => None,
+    };
+    let triangle_mesh = match (&shape, &cone) {
+        (Shape::TriMesh { vertices, triangles }, _) => Some((vertices, triangles)),
+        (_, Some((vertices, triangles))) => Some((vertices, triangles)),
+        _ => None,
+    };
+    if let Some((vertices, triangles)) = triangle_mesh {
+        mesh_tree = Some(MeshTree::new(vertices, triangles));
+        mesh = Some(TriMeshStorage::build(vertices, triangles));
+    }
+    (mesh, mesh_tree, cone)
+}
+
+/// Creates the ODE geom of `shape` in `space_raw`; a triangle mesh or cone takes
+/// `mesh`'s data.
+///
+/// # Safety
+/// `space_raw` is live, `shape` is valid, and `mesh` holds the data of a mesh or cone.
+unsafe fn create_ode_geom(space_raw: ffi::dSpaceID, shape: &Shape, mesh: Option<&TriMeshStorage>) -> ffi::dGeomID {
+    // SAFETY: the caller's contract.
+    unsafe {
+        match &shape {
+            Shape::Sphere { radius } => ffi::dCreateSphere(space_raw, *radius),
+            Shape::Box { edges: e } => ffi::dCreateBox(space_raw, e.x, e.y, e.z),
+            Shape::Capsule { radius, length } => ffi::dCreateCapsule(space_raw, *radius, *length),
+            Shape::Cylinder { radius, length } => ffi::dCreateCylinder(space_raw, *radius, *length),
+            Shape::Plane { normal, distance } => ffi::dCreatePlane(space_raw, normal.x, normal.y, normal.z, *distance),
+            Shape::Ray { length } => ffi::dCreateRay(space_raw, *length),
+            Shape::TriMesh { .. } | Shape::Cone { .. } => {
+                let data = mesh.map_or(std::ptr::null_mut(), |m| m.data);
+                ffi::dCreateTriMesh(space_raw, data, None, None, None)
+            }
+        }
+    }
+}
+
 impl World {
     /// Creates a geom in `space`.
     pub fn insert_geom(&mut self, space: SpaceHandle, builder: GeomBuilder) -> Result<GeomHandle> {
@@ -175,82 +272,14 @@ impl World {
             }
             None => None,
         };
-        if builder.offset.is_some() && builder.body.is_none() {
-            return Err(Error::Invalid {
-                what: "a geom offset",
-                problem: "needs a body; use `pose` for a geom without one".into(),
-            });
-        }
-        if builder.pose.is_some() && builder.body.is_some() {
-            return Err(Error::Invalid {
-                what: "a geom pose",
-                problem: "cannot be given to an attached geom, which follows its body; use `offset` instead".into(),
-            });
-        }
-        if builder.pose.is_some() && !placeable {
-            return Err(Error::WrongGeomKind { operation: "setting a pose", kind: "plane" });
-        }
+        check_placement(builder.body.is_some(), builder.offset.is_some(), builder.pose.is_some(), placeable)?;
         let offset = builder.offset.map(|o| check_isometry("geom offset", &o)).transpose()?;
         let pose = builder.pose.map(|p| check_isometry("geom pose", &p)).transpose()?;
 
-        let mut mesh = None;
-        let mut mesh_tree = None;
-        let cone = match &shape {
-            Shape::Cone { radius, height } => Some(cone_mesh(*radius, *height)),
-            _ => None,
-        };
-        let triangle_mesh = match (&shape, &cone) {
-            (Shape::TriMesh { vertices, triangles }, _) => Some((vertices, triangles)),
-            (_, Some((vertices, triangles))) => Some((vertices, triangles)),
-            _ => None,
-        };
-        if let Some((vertices, triangles)) = triangle_mesh {
-            mesh_tree = Some(MeshTree::new(vertices, triangles));
-            let flat_v: Vec<f64> = vertices.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
-            let mut flat_i: Vec<ffi::dTriIndex> = triangles.iter().flatten().copied().collect();
-            if triangles.len() == 1 {
-                // OPCODE's tree of a one-triangle mesh is a lone leaf, and its
-                // trimesh–trimesh collider reads a child that leaf does not have
-                // (SIGSEGV when two such meshes overlap). Give ODE the triangle twice:
-                // a two-leaf tree, the same surface.
-                flat_i.extend_from_within(..);
-            }
-            // SAFETY: the buffers are kept alive in `TriMeshStorage` for as long as the
-            // data exists; counts and strides describe them exactly (checked above:
-            // every index is in range, counts fit in an int).
-            let data = unsafe {
-                let data = ffi::dGeomTriMeshDataCreate();
-                ffi::dGeomTriMeshDataBuildDouble(
-                    data,
-                    flat_v.as_ptr().cast(),
-                    (3 * size_of::<f64>()) as i32,
-                    vertices.len() as i32,
-                    flat_i.as_ptr().cast(),
-                    flat_i.len() as i32,
-                    (3 * size_of::<ffi::dTriIndex>()) as i32,
-                );
-                data
-            };
-            mesh = Some(TriMeshStorage { data, _vertices: flat_v, _indices: flat_i });
-        }
+        let (mesh, mesh_tree, cone) = triangle_mesh_parts(&shape);
         // SAFETY: the space is live and every size was checked positive and finite; a
         // trimesh's data was built above.
-        let raw = unsafe {
-            match &shape {
-                Shape::Sphere { radius } => ffi::dCreateSphere(space_raw, *radius),
-                Shape::Box { edges: e } => ffi::dCreateBox(space_raw, e.x, e.y, e.z),
-                Shape::Capsule { radius, length } => ffi::dCreateCapsule(space_raw, *radius, *length),
-                Shape::Cylinder { radius, length } => ffi::dCreateCylinder(space_raw, *radius, *length),
-                Shape::Plane { normal, distance } => {
-                    ffi::dCreatePlane(space_raw, normal.x, normal.y, normal.z, *distance)
-                }
-                Shape::Ray { length } => ffi::dCreateRay(space_raw, *length),
-                Shape::TriMesh { .. } | Shape::Cone { .. } => {
-                    let data = mesh.as_ref().map_or(std::ptr::null_mut(), |m| m.data);
-                    ffi::dCreateTriMesh(space_raw, data, None, None, None)
-                }
-            }
-        };
+        let raw = unsafe { create_ode_geom(space_raw, &shape, mesh.as_ref()) };
         if mesh.is_some() {
             self.trimesh_count += 1;
         }

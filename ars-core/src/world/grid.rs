@@ -81,31 +81,8 @@ impl Grid {
     /// creation.
     pub(crate) fn candidate_pairs(&mut self, world: &World, space: SpaceHandle) -> &[(ffi::dGeomID, ffi::dGeomID)] {
         let Grid { entries, extents, small, large, covered, starts, next, grouped, found, pairs } = self;
-        entries.clear();
-        for (_, g) in world.geoms.iter().filter(|(_, g)| g.space == space) {
-            let mut aabb = [0.0; 6];
-            // SAFETY: the geom is live (owned by the world's arena); `aabb` holds 6
-            // reals. dGeomGetAABB brings a moved geom's box up to date.
-            let enabled = unsafe {
-                ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr());
-                ffi::dGeomIsEnabled(g.raw) != 0
-            };
-            if !enabled {
-                continue;
-            }
-            // SAFETY: as above.
-            let (category, collide) = unsafe { (ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw)) };
-            entries.push(Entry { raw: g.raw, body: g.body_raw, category, collide, aabb });
-        }
-        extents.clear();
-        extents.extend(entries.iter().map(Entry::extent).filter(|e| e.is_finite()));
-        let size = if extents.is_empty() {
-            1.0
-        } else {
-            let middle = extents.len() / 2;
-            let (_, median, _) = extents.select_nth_unstable_by(middle, f64::total_cmp);
-            (2.0 * *median).max(1e-6)
-        };
+        gather_entries(entries, world, space);
+        let size = cell_size(entries, extents);
         small.clear();
         large.clear();
         for (i, e) in entries.iter().enumerate() {
@@ -116,59 +93,10 @@ impl Grid {
                 large.push(i);
             }
         }
-        // Every (cell, geom) a small geom's box covers, grouped by a hash of the cell
-        // with a counting sort (linear): the geoms of a cell are then in one bucket.
-        covered.clear();
-        for &i in small.iter() {
-            let b = &entries[i].aabb;
-            let (lo, hi) = ([0, 2, 4].map(|k| cell(b[k], size)), [1, 3, 5].map(|k| cell(b[k], size)));
-            for x in lo[0]..=hi[0] {
-                for y in lo[1]..=hi[1] {
-                    for z in lo[2]..=hi[2] {
-                        covered.push((key([x, y, z]), i as u32));
-                    }
-                }
-            }
-        }
-        let buckets = (2 * covered.len()).next_power_of_two().max(1);
-        let bucket = |key: u64| (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1);
-        starts.clear();
-        starts.resize(buckets + 1, 0);
-        for &(k, _) in covered.iter() {
-            starts[bucket(k) + 1] += 1;
-        }
-        for b in 0..buckets {
-            starts[b + 1] += starts[b];
-        }
-        grouped.clear();
-        grouped.resize(covered.len(), (0, 0));
-        next.clear();
-        next.extend_from_slice(starts);
-        for &(k, i) in covered.iter() {
-            let slot = &mut next[bucket(k)];
-            grouped[*slot as usize] = (k, i);
-            *slot += 1;
-        }
+        cover_cells(entries, small, size, covered);
+        group_by_cell(covered, starts, next, grouped);
         found.clear();
-        for b in 0..buckets {
-            let run = &grouped[starts[b] as usize..starts[b + 1] as usize];
-            for (n, &(cell_key, i)) in run.iter().enumerate() {
-                for &(other_key, j) in &run[n + 1..] {
-                    if other_key != cell_key {
-                        continue;
-                    }
-                    let (a, b) = (&entries[i as usize], &entries[j as usize]);
-                    // Once each: in the cell that holds the corner where their boxes
-                    // start to overlap (cells that share a key by wrapping only add
-                    // candidates).
-                    let first = key([0, 2, 4].map(|k| cell(a.aabb[k].max(b.aabb[k]), size)));
-                    if first == cell_key && a.may_touch(b) {
-                        let (i, j) = (i as usize, j as usize);
-                        found.push((i.min(j), i.max(j)));
-                    }
-                }
-            }
-        }
+        pairs_in_cells(entries, starts, grouped, size, found);
         for (n, &i) in large.iter().enumerate() {
             for &j in small.iter().chain(&large[n + 1..]) {
                 if entries[i].may_touch(&entries[j]) {
@@ -181,5 +109,112 @@ impl Grid {
         pairs.clear();
         pairs.extend(found.iter().map(|&(i, j)| (entries[i].raw, entries[j].raw)));
         pairs
+    }
+}
+
+/// The enabled geoms of `space`, with their boxes and collision bits.
+fn gather_entries(entries: &mut Vec<Entry>, world: &World, space: SpaceHandle) {
+    entries.clear();
+    for (_, g) in world.geoms.iter().filter(|(_, g)| g.space == space) {
+        let mut aabb = [0.0; 6];
+        // SAFETY: the geom is live (owned by the world's arena); `aabb` holds 6
+        // reals. dGeomGetAABB brings a moved geom's box up to date.
+        let enabled = unsafe {
+            ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr());
+            ffi::dGeomIsEnabled(g.raw) != 0
+        };
+        if !enabled {
+            continue;
+        }
+        // SAFETY: as above.
+        let (category, collide) = unsafe { (ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw)) };
+        entries.push(Entry { raw: g.raw, body: g.body_raw, category, collide, aabb });
+    }
+}
+
+/// The grid's cell size: twice the median extent of the finite boxes (1 m without any).
+fn cell_size(entries: &[Entry], extents: &mut Vec<f64>) -> f64 {
+    extents.clear();
+    extents.extend(entries.iter().map(Entry::extent).filter(|e| e.is_finite()));
+    if extents.is_empty() {
+        1.0
+    } else {
+        let middle = extents.len() / 2;
+        let (_, median, _) = extents.select_nth_unstable_by(middle, f64::total_cmp);
+        (2.0 * *median).max(1e-6)
+    }
+}
+
+/// Every (cell, geom) a small geom's box covers.
+fn cover_cells(entries: &[Entry], small: &[usize], size: f64, covered: &mut Vec<(u64, u32)>) {
+    covered.clear();
+    for &i in small.iter() {
+        let b = &entries[i].aabb;
+        let (lo, hi) = ([0, 2, 4].map(|k| cell(b[k], size)), [1, 3, 5].map(|k| cell(b[k], size)));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    covered.push((key([x, y, z]), i as u32));
+                }
+            }
+        }
+    }
+}
+
+/// The bucket of a cell's key among `buckets` (a power of two).
+#[inline]
+fn bucket(key: u64, buckets: usize) -> usize {
+    (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1)
+}
+
+/// `covered` grouped by a hash of the cell with a counting sort (linear): the geoms of
+/// a cell are then in one bucket, `grouped[starts[b]..starts[b + 1]]`.
+fn group_by_cell(covered: &[(u64, u32)], starts: &mut Vec<u32>, next: &mut Vec<u32>, grouped: &mut Vec<(u64, u32)>) {
+    let buckets = (2 * covered.len()).next_power_of_two().max(1);
+    starts.clear();
+    starts.resize(buckets + 1, 0);
+    for &(k, _) in covered.iter() {
+        starts[bucket(k, buckets) + 1] += 1;
+    }
+    for b in 0..buckets {
+        starts[b + 1] += starts[b];
+    }
+    grouped.clear();
+    grouped.resize(covered.len(), (0, 0));
+    next.clear();
+    next.extend_from_slice(starts);
+    for &(k, i) in covered.iter() {
+        let slot = &mut next[bucket(k, buckets)];
+        grouped[*slot as usize] = (k, i);
+        *slot += 1;
+    }
+}
+
+/// The pairs of small geoms that share a cell and may touch, each found once.
+fn pairs_in_cells(
+    entries: &[Entry],
+    starts: &[u32],
+    grouped: &[(u64, u32)],
+    size: f64,
+    found: &mut Vec<(usize, usize)>,
+) {
+    for b in 0..starts.len() - 1 {
+        let run = &grouped[starts[b] as usize..starts[b + 1] as usize];
+        for (n, &(cell_key, i)) in run.iter().enumerate() {
+            for &(other_key, j) in &run[n + 1..] {
+                if other_key != cell_key {
+                    continue;
+                }
+                let (a, b) = (&entries[i as usize], &entries[j as usize]);
+                // Once each: in the cell that holds the corner where their boxes
+                // start to overlap (cells that share a key by wrapping only add
+                // candidates).
+                let first = key([0, 2, 4].map(|k| cell(a.aabb[k].max(b.aabb[k]), size)));
+                if first == cell_key && a.may_touch(b) {
+                    let (i, j) = (i as usize, j as usize);
+                    found.push((i.min(j), i.max(j)));
+                }
+            }
+        }
     }
 }

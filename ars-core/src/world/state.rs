@@ -28,67 +28,11 @@ use ode_sys as ffi;
 use serde::{Deserialize, Serialize};
 
 use super::World;
-use super::joint::{JointKind, JointParam, create_ode_joint, set_raw_param};
+use super::body::ExactPose;
+use super::joint::{JointKind, JointParam, JointReference, create_ode_joint, set_raw_param};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::world::Stepper;
-
-/// A body's pose exactly as ODE keeps it.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct ExactPose {
-    position: [f64; 3],
-    quaternion: [f64; 4],
-    /// ODE's 3×4 rotation matrix (the fourth column is padding).
-    rotation: [f64; 12],
-}
-
-impl ExactPose {
-    /// # Safety
-    /// `body` is a live body.
-    unsafe fn of(body: ffi::dBodyID) -> ExactPose {
-        let mut pose = ExactPose { position: [0.0; 3], quaternion: [0.0; 4], rotation: [0.0; 12] };
-        // SAFETY: the caller's contract; ODE's getters point at 4, 4 and 12 reals.
-        unsafe {
-            pose.position.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetPosition(body), 3));
-            pose.quaternion.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetQuaternion(body), 4));
-            pose.rotation.copy_from_slice(std::slice::from_raw_parts(ffi::dBodyGetRotation(body), 12));
-        }
-        pose
-    }
-
-    /// Puts the body there, to the bit: ODE's quaternion and rotation setters
-    /// renormalise, so both are written in place, after `dBodySetPosition` (which tells
-    /// the body's geoms that it moved).
-    ///
-    /// # Safety
-    /// `body` is a live body.
-    unsafe fn put(&self, body: ffi::dBodyID) {
-        let p = self.position;
-        // SAFETY: the caller's contract.
-        unsafe {
-            ffi::dBodySetPosition(body, p[0], p[1], p[2]);
-            super::body::write_orientation(body, &self.quaternion, &self.rotation);
-        }
-    }
-}
-
-/// Where a joint's bodies were when its anchors and axes were set.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct JointReference {
-    body1: ExactPose,
-    body2: Option<ExactPose>,
-}
-
-impl JointReference {
-    /// The poses of `b1` and `b2` (null: the world) now.
-    ///
-    /// # Safety
-    /// `b1` is a live body, `b2` null or a live body.
-    pub(crate) unsafe fn of(b1: ffi::dBodyID, b2: ffi::dBodyID) -> JointReference {
-        // SAFETY: the caller's contract.
-        unsafe { JointReference { body1: ExactPose::of(b1), body2: (!b2.is_null()).then(|| ExactPose::of(b2)) } }
-    }
-}
 
 /// A body's state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -225,6 +169,163 @@ impl WorldState {
     }
 }
 
+/// Puts a body back in its saved state: mass, kinematic flag, pose, velocities,
+/// accumulators, enabled and gravity flags.
+///
+/// # Safety
+/// `raw` is a live body.
+unsafe fn restore_body(raw: ffi::dBodyID, s: &BodyState) {
+    let mut mass = ffi::dMass::default();
+    // SAFETY: the body is live; the mass was read from ODE (a valid dMass).
+    unsafe {
+        ffi::dBodyGetMass(raw, &mut mass);
+        let now: Vec<f64> = std::iter::once(mass.mass).chain(mass.c).chain(mass.I).collect();
+        if now.iter().zip(&s.mass).any(|(a, b)| a.to_bits() != b.to_bits()) {
+            mass.mass = s.mass[0];
+            mass.c.copy_from_slice(&s.mass[1..5]);
+            mass.I.copy_from_slice(&s.mass[5..17]);
+            ffi::dBodySetMass(raw, &mass);
+        }
+        if s.kinematic {
+            ffi::dBodySetKinematic(raw);
+        } else if ffi::dBodyIsKinematic(raw) != 0 {
+            ffi::dBodySetDynamic(raw);
+        }
+        s.pose.put(raw);
+        let (v, w, f, t) = (s.linear_velocity, s.angular_velocity, s.force, s.torque);
+        ffi::dBodySetLinearVel(raw, v[0], v[1], v[2]);
+        ffi::dBodySetAngularVel(raw, w[0], w[1], w[2]);
+        ffi::dBodySetForce(raw, f[0], f[1], f[2]);
+        ffi::dBodySetTorque(raw, t[0], t[1], t[2]);
+        if s.enabled {
+            ffi::dBodyEnable(raw)
+        } else {
+            ffi::dBodyDisable(raw)
+        }
+        ffi::dBodySetGravityMode(raw, s.gravity.into());
+    }
+}
+
+/// Puts a geom back in its saved pose or offset, enabled flag and collision bits.
+///
+/// # Safety
+/// `raw` is a live geom, of the kind and body its state was saved from.
+unsafe fn restore_geom(raw: ffi::dGeomID, s: &GeomState) {
+    // SAFETY: the geom is live; a pose is kept only for a placeable geom
+    // without a body, an offset only for a geom on a body (checked to fit
+    // above); dGeomSetRotation and dGeomSetOffsetRotation copy the matrix as
+    // given.
+    unsafe {
+        if let Some((p, r)) = &s.pose {
+            ffi::dGeomSetPosition(raw, p[0], p[1], p[2]);
+            ffi::dGeomSetRotation(raw, r.as_ptr());
+        }
+        match &s.offset {
+            Some((p, r)) => {
+                ffi::dGeomSetOffsetPosition(raw, p[0], p[1], p[2]);
+                ffi::dGeomSetOffsetRotation(raw, r.as_ptr());
+            }
+            None if s.body.is_some() && ffi::dGeomIsOffset(raw) != 0 => ffi::dGeomClearOffset(raw),
+            None => {}
+        }
+        if s.enabled {
+            ffi::dGeomEnable(raw)
+        } else {
+            ffi::dGeomDisable(raw)
+        }
+        ffi::dGeomSetCategoryBits(raw, s.category_bits);
+        ffi::dGeomSetCollideBits(raw, s.collide_bits);
+    }
+}
+
+/// Puts a space's geoms back in their saved order.
+///
+/// # Safety
+/// `space` and every geom of `geoms` are live.
+unsafe fn restore_space_order(space: ffi::dSpaceID, order: &[u32], geoms: &[ffi::dGeomID]) -> Result<()> {
+    // Each geom taken out and put back at the front, last first: the space's
+    // list comes out in the saved order.
+    for &g in order.iter().rev() {
+        let raw = *geoms
+            .get(g as usize)
+            .ok_or_else(|| Error::SnapshotCorrupt { detail: format!("a space lists geom {g}, of {}", geoms.len()) })?;
+        // SAFETY: the space and the geom are live; the geom is in that space
+        // (checked by ODE's own bookkeeping: dSpaceRemove of a geom of the
+        // space, then dSpaceAdd of a geom in no space).
+        unsafe {
+            if ffi::dGeomGetSpace(raw) == space {
+                ffi::dSpaceRemove(space, raw);
+                ffi::dSpaceAdd(space, raw);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A body's pose, velocities, accumulators, mass and flags, for [`World::capture_state`].
+fn body_state(b: &super::body::BodyData) -> BodyState {
+    let mut mass = ffi::dMass::default();
+    // SAFETY: every body in the arena is live; its state pointers too.
+    unsafe {
+        ffi::dBodyGetMass(b.raw, &mut mass);
+        BodyState {
+            pose: ExactPose::of(b.raw),
+            linear_velocity: *b.state.linear_velocity,
+            angular_velocity: *b.state.angular_velocity,
+            force: *b.state.force,
+            torque: *b.state.torque,
+            mass: std::iter::once(mass.mass).chain(mass.c).chain(mass.I).collect(),
+            enabled: ffi::dBodyIsEnabled(b.raw) != 0,
+            kinematic: ffi::dBodyIsKinematic(b.raw) != 0,
+            gravity: ffi::dBodyGetGravityMode(b.raw) != 0,
+        }
+    }
+}
+
+/// A geom's kind, body (by index), pose or offset and collision flags, for
+/// [`World::capture_state`].
+fn geom_state(g: &super::geom::GeomData, body_index: &impl Fn(ffi::dBodyID) -> Option<u32>) -> GeomState {
+    let placeable = !matches!(g.shape, crate::shape::Shape::Plane { .. });
+    // SAFETY: every geom in the arena is live; a placeable geom's position
+    // and rotation pointers hold 3 and 12 reals.
+    unsafe {
+        GeomState {
+            kind: g.shape.kind_name().to_string(),
+            body: if g.body_raw.is_null() { None } else { body_index(g.body_raw) },
+            pose: (placeable && g.body_raw.is_null()).then(|| {
+                let mut p = [0.0; 3];
+                let mut r = [0.0; 12];
+                p.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetPosition(g.raw), 3));
+                r.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetRotation(g.raw), 12));
+                (p, r)
+            }),
+            offset: (!g.body_raw.is_null() && ffi::dGeomIsOffset(g.raw) != 0).then(|| {
+                let mut p = [0.0; 3];
+                let mut r = [0.0; 12];
+                p.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetOffsetPosition(g.raw), 3));
+                r.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetOffsetRotation(g.raw), 12));
+                (p, r)
+            }),
+            enabled: ffi::dGeomIsEnabled(g.raw) != 0,
+            category_bits: ffi::dGeomGetCategoryBits(g.raw),
+            collide_bits: ffi::dGeomGetCollideBits(g.raw),
+        }
+    }
+}
+
+/// The geoms of a space, by their index in the captured state.
+fn space_members(s: &super::SpaceData, geom_indices: &std::collections::HashMap<usize, u32>) -> Vec<u32> {
+    // SAFETY: the space is live; indices below its count.
+    let n = unsafe { ffi::dSpaceGetNumGeoms(s.raw) };
+    (0..n)
+        .filter_map(|i| {
+            // SAFETY: as above.
+            let g = unsafe { ffi::dSpaceGetGeom(s.raw, i) };
+            geom_indices.get(&(g as usize)).copied()
+        })
+        .collect()
+}
+
 impl World {
     /// The next number in the world's creation order of bodies, geoms and joints.
     pub(crate) fn next_serial(&mut self) -> u64 {
@@ -242,96 +343,11 @@ impl World {
         geoms.sort_by_key(|(_, g)| g.serial);
         let mut joints: Vec<_> = self.joints.iter().collect();
         joints.sort_by_key(|(_, j)| j.serial);
-        let body_states = bodies
-            .iter()
-            .map(|(_, b)| {
-                let mut mass = ffi::dMass::default();
-                // SAFETY: every body in the arena is live; its state pointers too.
-                unsafe {
-                    ffi::dBodyGetMass(b.raw, &mut mass);
-                    BodyState {
-                        pose: ExactPose::of(b.raw),
-                        linear_velocity: *b.state.linear_velocity,
-                        angular_velocity: *b.state.angular_velocity,
-                        force: *b.state.force,
-                        torque: *b.state.torque,
-                        mass: std::iter::once(mass.mass).chain(mass.c).chain(mass.I).collect(),
-                        enabled: ffi::dBodyIsEnabled(b.raw) != 0,
-                        kinematic: ffi::dBodyIsKinematic(b.raw) != 0,
-                        gravity: ffi::dBodyGetGravityMode(b.raw) != 0,
-                    }
-                }
-            })
-            .collect();
-        let geom_states = geoms
-            .iter()
-            .map(|(_, g)| {
-                let placeable = !matches!(g.shape, crate::shape::Shape::Plane { .. });
-                // SAFETY: every geom in the arena is live; a placeable geom's position
-                // and rotation pointers hold 3 and 12 reals.
-                unsafe {
-                    GeomState {
-                        kind: g.shape.kind_name().to_string(),
-                        body: if g.body_raw.is_null() { None } else { body_index(g.body_raw) },
-                        pose: (placeable && g.body_raw.is_null()).then(|| {
-                            let mut p = [0.0; 3];
-                            let mut r = [0.0; 12];
-                            p.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetPosition(g.raw), 3));
-                            r.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetRotation(g.raw), 12));
-                            (p, r)
-                        }),
-                        offset: (!g.body_raw.is_null() && ffi::dGeomIsOffset(g.raw) != 0).then(|| {
-                            let mut p = [0.0; 3];
-                            let mut r = [0.0; 12];
-                            p.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetOffsetPosition(g.raw), 3));
-                            r.copy_from_slice(std::slice::from_raw_parts(ffi::dGeomGetOffsetRotation(g.raw), 12));
-                            (p, r)
-                        }),
-                        enabled: ffi::dGeomIsEnabled(g.raw) != 0,
-                        category_bits: ffi::dGeomGetCategoryBits(g.raw),
-                        collide_bits: ffi::dGeomGetCollideBits(g.raw),
-                    }
-                }
-            })
-            .collect();
-        let joint_states = joints
-            .iter()
-            .map(|(h, j)| {
-                let joint = self.joint(crate::handle::JointHandle(*h)).expect("a joint of the arena");
-                let params = (0..j.kind.param_axes())
-                    .flat_map(|axis| JointParam::ALL.iter().map(move |p| (axis, *p)))
-                    .map(|(axis, p)| joint.param(p, axis).expect("a parameter of the joint's kind"))
-                    .collect();
-                let feedback = j.feedback.as_ref().map(|f| [f.f1, f.t1, f.f2, f.t2].concat());
-                let index = |b: Option<crate::handle::BodyHandle>| {
-                    b.and_then(|b| self.bodies.get(b.0, "body").ok()).and_then(|d| body_index(d.raw))
-                };
-                JointState {
-                    kind: j.kind.clone(),
-                    body1: index(j.body1).expect("a joint has a first body"),
-                    body2: index(j.body2),
-                    reference: j.reference,
-                    params,
-                    feedback,
-                }
-            })
-            .collect();
+        let body_states = bodies.iter().map(|(_, b)| body_state(b)).collect();
+        let geom_states = geoms.iter().map(|(_, g)| geom_state(g, &body_index)).collect();
+        let joint_states = joints.iter().map(|(h, j)| self.joint_state(*h, j, &body_index)).collect();
         let geom_indices = positions(geoms.iter().map(|(_, g)| g.raw));
-        let spaces = self
-            .spaces
-            .values()
-            .map(|s| {
-                // SAFETY: the space is live; indices below its count.
-                let n = unsafe { ffi::dSpaceGetNumGeoms(s.raw) };
-                (0..n)
-                    .filter_map(|i| {
-                        // SAFETY: as above.
-                        let g = unsafe { ffi::dSpaceGetGeom(s.raw, i) };
-                        geom_indices.get(&(g as usize)).copied()
-                    })
-                    .collect()
-            })
-            .collect();
+        let spaces = self.spaces.values().map(|s| space_members(s, &geom_indices)).collect();
         WorldState {
             gravity: self.gravity(),
             erp: self.erp(),
@@ -344,6 +360,32 @@ impl World {
             geoms: geom_states,
             joints: joint_states,
             spaces,
+        }
+    }
+
+    /// A joint's kind, bodies (by index) and every parameter, for [`World::capture_state`].
+    fn joint_state(
+        &self,
+        handle: crate::handle::RawHandle,
+        j: &super::joint::JointData,
+        body_index: &impl Fn(ffi::dBodyID) -> Option<u32>,
+    ) -> JointState {
+        let joint = self.joint(crate::handle::JointHandle(handle)).expect("a joint of the arena");
+        let params = (0..j.kind.param_axes())
+            .flat_map(|axis| JointParam::ALL.iter().map(move |p| (axis, *p)))
+            .map(|(axis, p)| joint.param(p, axis).expect("a parameter of the joint's kind"))
+            .collect();
+        let feedback = j.feedback.as_ref().map(|f| [f.f1, f.t1, f.f2, f.t2].concat());
+        let index = |b: Option<crate::handle::BodyHandle>| {
+            b.and_then(|b| self.bodies.get(b.0, "body").ok()).and_then(|d| body_index(d.raw))
+        };
+        JointState {
+            kind: j.kind.clone(),
+            body1: index(j.body1).expect("a joint has a first body"),
+            body2: index(j.body2),
+            reference: j.reference,
+            params,
+            feedback,
         }
     }
 
@@ -417,127 +459,74 @@ impl World {
         // No contact joint may hold on to a body while joints are made again.
         self.clear_contacts();
         for ((_, h), s) in joints.iter().zip(&state.joints) {
-            let b1 = bodies[s.body1 as usize];
-            let b2 = s.body2.map_or(std::ptr::null_mut(), |b| bodies[b as usize]);
-            let data = self.joints.get_mut(*h, "joint")?;
-            // SAFETY: the joint is live and destroyed once here; its bodies are live
-            // bodies of this world (checked to fit above); the kind was validated when
-            // it was first made; the feedback buffer outlives the new joint (it stays
-            // in the joint's data).
-            unsafe {
-                ffi::dJointDestroy(data.raw);
-                s.reference.body1.put(b1);
-                if let Some(p) = &s.reference.body2 {
-                    p.put(b2);
-                }
-                data.raw = create_ode_joint(self.raw, &s.kind, b1, b2);
-                let axes = s.kind.param_axes();
-                let mut values = s.params.iter();
-                for axis in 0..axes {
-                    for p in JointParam::ALL {
-                        if let Some(v) = values.next() {
-                            set_raw_param(data.raw, &s.kind, p, axis, *v);
-                        }
-                    }
-                }
-                if let Some(f) = data.feedback.as_mut() {
-                    ffi::dJointSetFeedback(data.raw, &mut **f);
-                    if let Some(saved) = &s.feedback {
-                        for (dst, src) in [&mut f.f1, &mut f.t1, &mut f.f2, &mut f.t2].into_iter().zip(saved.chunks(4))
-                        {
-                            dst.copy_from_slice(src);
-                        }
-                    }
-                }
-            }
-            data.kind = s.kind.clone();
-            data.reference = s.reference;
+            self.restore_joint(*h, s, &bodies)?;
         }
         for (raw, s) in bodies.iter().zip(&state.bodies) {
-            let mut mass = ffi::dMass::default();
-            // SAFETY: the body is live; the mass was read from ODE (a valid dMass).
-            unsafe {
-                ffi::dBodyGetMass(*raw, &mut mass);
-                let now: Vec<f64> = std::iter::once(mass.mass).chain(mass.c).chain(mass.I).collect();
-                if now.iter().zip(&s.mass).any(|(a, b)| a.to_bits() != b.to_bits()) {
-                    mass.mass = s.mass[0];
-                    mass.c.copy_from_slice(&s.mass[1..5]);
-                    mass.I.copy_from_slice(&s.mass[5..17]);
-                    ffi::dBodySetMass(*raw, &mass);
-                }
-                if s.kinematic {
-                    ffi::dBodySetKinematic(*raw);
-                } else if ffi::dBodyIsKinematic(*raw) != 0 {
-                    ffi::dBodySetDynamic(*raw);
-                }
-                s.pose.put(*raw);
-                let (v, w, f, t) = (s.linear_velocity, s.angular_velocity, s.force, s.torque);
-                ffi::dBodySetLinearVel(*raw, v[0], v[1], v[2]);
-                ffi::dBodySetAngularVel(*raw, w[0], w[1], w[2]);
-                ffi::dBodySetForce(*raw, f[0], f[1], f[2]);
-                ffi::dBodySetTorque(*raw, t[0], t[1], t[2]);
-                if s.enabled {
-                    ffi::dBodyEnable(*raw)
-                } else {
-                    ffi::dBodyDisable(*raw)
-                }
-                ffi::dBodySetGravityMode(*raw, s.gravity.into());
-            }
+            // SAFETY: the bodies of this world, live.
+            unsafe { restore_body(*raw, s) };
         }
         let mut geoms: Vec<_> = self.geoms.values().map(|g| (g.serial, g.raw)).collect();
         geoms.sort_unstable();
         let geoms: Vec<ffi::dGeomID> = geoms.into_iter().map(|(_, raw)| raw).collect();
         for (raw, s) in geoms.iter().zip(&state.geoms) {
-            // SAFETY: the geom is live; a pose is kept only for a placeable geom
-            // without a body, an offset only for a geom on a body (checked to fit
-            // above); dGeomSetRotation and dGeomSetOffsetRotation copy the matrix as
-            // given.
-            unsafe {
-                if let Some((p, r)) = &s.pose {
-                    ffi::dGeomSetPosition(*raw, p[0], p[1], p[2]);
-                    ffi::dGeomSetRotation(*raw, r.as_ptr());
-                }
-                match &s.offset {
-                    Some((p, r)) => {
-                        ffi::dGeomSetOffsetPosition(*raw, p[0], p[1], p[2]);
-                        ffi::dGeomSetOffsetRotation(*raw, r.as_ptr());
-                    }
-                    None if s.body.is_some() && ffi::dGeomIsOffset(*raw) != 0 => ffi::dGeomClearOffset(*raw),
-                    None => {}
-                }
-                if s.enabled {
-                    ffi::dGeomEnable(*raw)
-                } else {
-                    ffi::dGeomDisable(*raw)
-                }
-                ffi::dGeomSetCategoryBits(*raw, s.category_bits);
-                ffi::dGeomSetCollideBits(*raw, s.collide_bits);
-            }
+            // SAFETY: the geoms of this world, live, checked to fit their states above.
+            unsafe { restore_geom(*raw, s) };
         }
         let spaces: Vec<ffi::dSpaceID> = self.spaces.values().map(|s| s.raw).collect();
         for (space, order) in spaces.iter().zip(&state.spaces) {
-            // Each geom taken out and put back at the front, last first: the space's
-            // list comes out in the saved order.
-            for &g in order.iter().rev() {
-                let raw = *geoms.get(g as usize).ok_or_else(|| Error::SnapshotCorrupt {
-                    detail: format!("a space lists geom {g}, of {}", geoms.len()),
-                })?;
-                // SAFETY: the space and the geom are live; the geom is in that space
-                // (checked by ODE's own bookkeeping: dSpaceRemove of a geom of the
-                // space, then dSpaceAdd of a geom in no space).
-                unsafe {
-                    if ffi::dGeomGetSpace(raw) == *space {
-                        ffi::dSpaceRemove(*space, raw);
-                        ffi::dSpaceAdd(*space, raw);
-                    }
-                }
-            }
+            // SAFETY: the spaces and geoms of this world, live.
+            unsafe { restore_space_order(*space, order, &geoms)? };
         }
         self.random_seed = state.random_seed;
         self.time = state.time;
         self.gate.forces_added = true;
         self.set_diverged(None);
         self.restored_coordinates();
+        Ok(())
+    }
+
+    /// Makes a joint again from its saved state (its kind, bodies, parameters and
+    /// feedback), in place of the live one.
+    fn restore_joint(
+        &mut self,
+        handle: crate::handle::RawHandle,
+        s: &JointState,
+        bodies: &[ffi::dBodyID],
+    ) -> Result<()> {
+        let b1 = bodies[s.body1 as usize];
+        let b2 = s.body2.map_or(std::ptr::null_mut(), |b| bodies[b as usize]);
+        let data = self.joints.get_mut(handle, "joint")?;
+        // SAFETY: the joint is live and destroyed once here; its bodies are live
+        // bodies of this world (checked to fit above); the kind was validated when
+        // it was first made; the feedback buffer outlives the new joint (it stays
+        // in the joint's data).
+        unsafe {
+            ffi::dJointDestroy(data.raw);
+            s.reference.body1.put(b1);
+            if let Some(p) = &s.reference.body2 {
+                p.put(b2);
+            }
+            data.raw = create_ode_joint(self.raw, &s.kind, b1, b2);
+            let axes = s.kind.param_axes();
+            let mut values = s.params.iter();
+            for axis in 0..axes {
+                for p in JointParam::ALL {
+                    if let Some(v) = values.next() {
+                        set_raw_param(data.raw, &s.kind, p, axis, *v);
+                    }
+                }
+            }
+            if let Some(f) = data.feedback.as_mut() {
+                ffi::dJointSetFeedback(data.raw, &mut **f);
+                if let Some(saved) = &s.feedback {
+                    for (dst, src) in [&mut f.f1, &mut f.t1, &mut f.f2, &mut f.t2].into_iter().zip(saved.chunks(4)) {
+                        dst.copy_from_slice(src);
+                    }
+                }
+            }
+        }
+        data.kind = s.kind.clone();
+        data.reference = s.reference;
         Ok(())
     }
 }

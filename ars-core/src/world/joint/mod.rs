@@ -3,6 +3,7 @@
 
 use nalgebra::{Point3, Vector3};
 use ode_sys as ffi;
+use serde::{Deserialize, Serialize};
 
 use super::World;
 use crate::error::{Error, Result};
@@ -11,7 +12,7 @@ use crate::init::ensure_ode_ready;
 use crate::limits;
 use crate::validate;
 
-pub(crate) use super::state::JointReference;
+use super::body::ExactPose;
 
 mod access;
 
@@ -637,4 +638,22 @@ fn check_stop_order(kind: &JointKind, params: &[(JointParam, usize, f64)]) -> Re
         }
     }
     Ok(())
+}
+
+/// Where a joint's bodies were when its anchors and axes were set.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct JointReference {
+    pub(super) body1: ExactPose,
+    pub(super) body2: Option<ExactPose>,
+}
+
+impl JointReference {
+    /// The poses of `b1` and `b2` (null: the world) now.
+    ///
+    /// # Safety
+    /// `b1` is a live body, `b2` null or a live body.
+    pub(crate) unsafe fn of(b1: ffi::dBodyID, b2: ffi::dBodyID) -> JointReference {
+        // SAFETY: the caller's contract.
+        unsafe { JointReference { body1: ExactPose::of(b1), body2: (!b2.is_null()).then(|| ExactPose::of(b2)) } }
+    }
 }
