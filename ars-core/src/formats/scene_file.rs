@@ -28,7 +28,9 @@ use crate::body::{BodyBuilder, MassSpec};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
+use crate::handle::{ObjectId, SpaceHandle};
 use crate::joint::{JointBuilder, JointKind, JointParam};
+use crate::scene::joints::JointData;
 use crate::scene::{ActuatorLimits, Color, JointEnd, JointType, Visual};
 use crate::sensors::SensorKind;
 use crate::sensors::SensorSettings;
@@ -307,122 +309,10 @@ impl Simulation {
     /// the first step.
     pub(crate) fn scene_structure(&self, exact: bool) -> Result<SceneFile> {
         let world = self.scene.world();
-        let mut objects = Vec::new();
-        for (_, data) in self.scene.objects_in_creation_order() {
-            let body = match data.body {
-                Some(b) => {
-                    let b = world.body(b)?;
-                    Some(BodyFile {
-                        mass: b.mass(),
-                        inertia: b.inertia(),
-                        position: b.position(),
-                        rotation: b.rotation(),
-                        quaternion: b.quaternion(),
-                        linear_velocity: b.linear_velocity(),
-                        angular_velocity: b.angular_velocity(),
-                    })
-                }
-                None => None,
-            };
-            let pose = match (&data.body, data.geom, &data.shape) {
-                (None, Some(g), shape) if !matches!(shape, Shape::Plane { .. }) => Some(world.geom(g)?.pose()),
-                _ => None,
-            };
-            objects.push(ObjectFile {
-                name: data.name.clone(),
-                shape: data.shape.clone(),
-                color: data.color,
-                body,
-                pose,
-                visuals: data.visuals.clone(),
-                extra_shapes: data
-                    .extra_geoms
-                    .iter()
-                    .map(|g| Ok(world.geoms.get(g.0, "geom")?.shape.clone()))
-                    .collect::<Result<_>>()?,
-                geom: data.geom.is_some(),
-            });
-        }
-        let mut joints = Vec::new();
-        let serial = |h: crate::JointHandle| world.joints.get(h.0, "joint").map_or(u64::MAX, |j| j.serial);
-        let mut scene_joints: Vec<_> = self.scene.joints_in_creation_order().collect();
-        scene_joints.sort_by_key(|d| serial(d.handle));
-        for data in scene_joints {
-            let name_of = |o| self.scene.object(o).map(|v| v.name().to_string());
-            // Before any step, the joint as it was created (the same ODE calls again);
-            // after, where its anchor and axis are now.
-            let kind = if self.scene.step_count() == 0 || exact {
-                data.creation.clone()
-            } else {
-                let ode = world.joint(data.handle)?;
-                match &data.creation {
-                    JointKind::Fixed => JointKind::Fixed,
-                    JointKind::Hinge { .. } => JointKind::Hinge { anchor: ode.anchor()?, axis: ode.axis()? },
-                    JointKind::Slider { .. } => JointKind::Slider { axis: ode.axis()? },
-                    JointKind::Ball { .. } => JointKind::Ball { anchor: ode.anchor()? },
-                    JointKind::Piston { .. } => JointKind::Piston { anchor: ode.anchor()?, axis: ode.axis()? },
-                    other => {
-                        return Err(Error::Invalid {
-                            what: "the scene",
-                            problem: format!(
-                                "cannot be saved: joint {:?} is {} joint, which can be saved only before the scene steps",
-                                data.name,
-                                crate::error::article(other.name())
-                            ),
-                        });
-                    }
-                }
-            };
-            let motor = match data.kind {
-                JointType::Fixed | JointType::Ball => None,
-                _ => {
-                    let ode = world.joint(data.handle)?;
-                    let max_force = ode.param(JointParam::MaxForce, 0)?;
-                    (max_force > 0.0).then_some((ode.param(JointParam::Velocity, 0)?, max_force))
-                }
-            };
-            joints.push(JointFile {
-                name: data.name.clone(),
-                joint_type: data.kind,
-                kind,
-                object1: name_of(data.object1)?,
-                object2: data.object2.map(name_of).transpose()?,
-                limits: data.limits,
-                friction: data.friction,
-                dry_friction: data.dry_friction,
-                spring: (data.spring.0 != 0.0).then_some(data.spring),
-                effort_limit: Some(data.actuator.effort).filter(|e| e.is_finite()),
-                velocity_limit: Some(data.actuator.velocity).filter(|v| v.is_finite()),
-                mimic: data
-                    .mimic
-                    .map(|m| -> Result<MimicFile> {
-                        let leader = self.scene.joint(m.leader)?.name().to_string();
-                        Ok(MimicFile { leader, multiplier: m.multiplier, offset: m.offset })
-                    })
-                    .transpose()?,
-                motor,
-            });
-        }
+        let objects = self.object_files()?;
+        let joints = self.joint_files(exact)?;
         let world_joints = self.world_joint_files()?;
-        let (mut sensors, mut unsaved_sensors) = (Vec::new(), Vec::new());
-        for d in self.sensors.descriptions() {
-            let Some(kind) = SensorKind::of_type_name(&d.kind) else {
-                unsaved_sensors.push(d.kind);
-                continue;
-            };
-            let objects =
-                d.objects.iter().map(|o| Ok(self.scene.object(*o)?.name().to_string())).collect::<Result<_>>()?;
-            let joints =
-                d.joints.iter().map(|j| Ok(self.scene.joint(*j)?.name().to_string())).collect::<Result<_>>()?;
-            sensors.push(SensorFile {
-                kind: kind.to_string(),
-                objects,
-                joints,
-                period: d.period,
-                noise: d.noise,
-                settings: d.settings,
-            });
-        }
+        let (sensors, unsaved_sensors) = self.sensor_files()?;
         Ok(SceneFile {
             format: FORMAT.into(),
             sensors,
@@ -461,6 +351,150 @@ impl Simulation {
             joints,
             world_joints,
         })
+    }
+
+    /// Every object as saved, in creation order.
+    fn object_files(&self) -> Result<Vec<ObjectFile>> {
+        let world = self.scene.world();
+        let mut objects = Vec::new();
+        for (_, data) in self.scene.objects_in_creation_order() {
+            let body = match data.body {
+                Some(b) => {
+                    let b = world.body(b)?;
+                    Some(BodyFile {
+                        mass: b.mass(),
+                        inertia: b.inertia(),
+                        position: b.position(),
+                        rotation: b.rotation(),
+                        quaternion: b.quaternion(),
+                        linear_velocity: b.linear_velocity(),
+                        angular_velocity: b.angular_velocity(),
+                    })
+                }
+                None => None,
+            };
+            let pose = match (&data.body, data.geom, &data.shape) {
+                (None, Some(g), shape) if !matches!(shape, Shape::Plane { .. }) => Some(world.geom(g)?.pose()),
+                _ => None,
+            };
+            objects.push(ObjectFile {
+                name: data.name.clone(),
+                shape: data.shape.clone(),
+                color: data.color,
+                body,
+                pose,
+                visuals: data.visuals.clone(),
+                extra_shapes: data
+                    .extra_geoms
+                    .iter()
+                    .map(|g| Ok(world.geoms.get(g.0, "geom")?.shape.clone()))
+                    .collect::<Result<_>>()?,
+                geom: data.geom.is_some(),
+            });
+        }
+        Ok(objects)
+    }
+
+    /// Every joint of the scene as saved, in the order ODE made them (with `exact`, each
+    /// as it was made).
+    fn joint_files(&self, exact: bool) -> Result<Vec<JointFile>> {
+        let world = self.scene.world();
+        let mut joints = Vec::new();
+        let serial = |h: crate::JointHandle| world.joints.get(h.0, "joint").map_or(u64::MAX, |j| j.serial);
+        let mut scene_joints: Vec<_> = self.scene.joints_in_creation_order().collect();
+        scene_joints.sort_by_key(|d| serial(d.handle));
+        for data in scene_joints {
+            let name_of = |o| self.scene.object(o).map(|v| v.name().to_string());
+            let kind = self.saved_joint_kind(data, exact)?;
+            let motor = self.saved_motor(data)?;
+            joints.push(JointFile {
+                name: data.name.clone(),
+                joint_type: data.kind,
+                kind,
+                object1: name_of(data.object1)?,
+                object2: data.object2.map(name_of).transpose()?,
+                limits: data.limits,
+                friction: data.friction,
+                dry_friction: data.dry_friction,
+                spring: (data.spring.0 != 0.0).then_some(data.spring),
+                effort_limit: Some(data.actuator.effort).filter(|e| e.is_finite()),
+                velocity_limit: Some(data.actuator.velocity).filter(|v| v.is_finite()),
+                mimic: data
+                    .mimic
+                    .map(|m| -> Result<MimicFile> {
+                        let leader = self.scene.joint(m.leader)?.name().to_string();
+                        Ok(MimicFile { leader, multiplier: m.multiplier, offset: m.offset })
+                    })
+                    .transpose()?,
+                motor,
+            });
+        }
+        Ok(joints)
+    }
+
+    /// The kind a joint is saved as, with its anchors and axes. Before any step (or
+    /// with `exact`), the joint as it was created (the same ODE calls again); after,
+    /// where its anchor and axis are now.
+    fn saved_joint_kind(&self, data: &JointData, exact: bool) -> Result<JointKind> {
+        if self.scene.step_count() == 0 || exact {
+            return Ok(data.creation.clone());
+        }
+        let ode = self.scene.world().joint(data.handle)?;
+        Ok(match &data.creation {
+            JointKind::Fixed => JointKind::Fixed,
+            JointKind::Hinge { .. } => JointKind::Hinge { anchor: ode.anchor()?, axis: ode.axis()? },
+            JointKind::Slider { .. } => JointKind::Slider { axis: ode.axis()? },
+            JointKind::Ball { .. } => JointKind::Ball { anchor: ode.anchor()? },
+            JointKind::Piston { .. } => JointKind::Piston { anchor: ode.anchor()?, axis: ode.axis()? },
+            other => {
+                return Err(Error::Invalid {
+                    what: "the scene",
+                    problem: format!(
+                        "cannot be saved: joint {:?} is {} joint, which can be saved only before the scene steps",
+                        data.name,
+                        crate::error::article(other.name())
+                    ),
+                });
+            }
+        })
+    }
+
+    /// A joint's speed motor, when on: its speed and largest force.
+    fn saved_motor(&self, data: &JointData) -> Result<Option<(f64, f64)>> {
+        let world = self.scene.world();
+        Ok(match data.kind {
+            JointType::Fixed | JointType::Ball => None,
+            _ => {
+                let ode = world.joint(data.handle)?;
+                let max_force = ode.param(JointParam::MaxForce, 0)?;
+                (max_force > 0.0).then_some((ode.param(JointParam::Velocity, 0)?, max_force))
+            }
+        })
+    }
+
+    /// The sensors ARS rebuilds from a kind, as saved, and the kinds of the others (not
+    /// saved).
+    fn sensor_files(&self) -> Result<(Vec<SensorFile>, Vec<String>)> {
+        let (mut sensors, mut unsaved_sensors) = (Vec::new(), Vec::new());
+        for d in self.sensors.descriptions() {
+            let Some(kind) = SensorKind::of_type_name(&d.kind) else {
+                unsaved_sensors.push(d.kind);
+                continue;
+            };
+            let objects =
+                d.objects.iter().map(|o| Ok(self.scene.object(*o)?.name().to_string())).collect::<Result<_>>()?;
+            let joints =
+                d.joints.iter().map(|j| Ok(self.scene.joint(*j)?.name().to_string())).collect::<Result<_>>()?;
+            sensors.push(SensorFile {
+                kind: kind.to_string(),
+                objects,
+                joints,
+                period: d.period,
+                noise: d.noise,
+                settings: d.settings,
+            });
+        }
+        Ok((sensors, unsaved_sensors))
     }
 
     /// The joints made through the world (hinge-2 joints, motors...), not the scene.
@@ -557,95 +591,13 @@ impl Simulation {
             .build()?;
         let space = sim.scene().space();
         for o in &file.objects {
-            let geom = GeomBuilder::new(o.shape.clone());
-            let id = match &o.body {
-                Some(b) => {
-                    let spec = MassSpec::Custom { mass: b.mass, inertia: b.inertia };
-                    let body = sim.scene.world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
-                    let g =
-                        if o.geom { Some(sim.scene.world.insert_geom(space, geom.attached_to(body))?) } else { None };
-                    {
-                        let mut m = sim.scene.world.body_mut(body)?;
-                        // Both ODE's quaternion and its rotation matrix, to the bit.
-                        m.restore_orientation(&b.quaternion, &b.rotation)?;
-                        m.set_linear_velocity(b.linear_velocity)?;
-                        m.set_angular_velocity(b.angular_velocity)?;
-                    }
-                    let id = sim.scene.register_object(&o.name, o.shape.clone(), Some(body), g)?;
-                    let extra = o
-                        .extra_shapes
-                        .iter()
-                        .map(|shape| {
-                            sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone()).attached_to(body))
-                        })
-                        .collect::<Result<Vec<_>>>()?;
-                    sim.scene.set_extra_geoms(id, extra)?;
-                    id
-                }
-                None => {
-                    let geom = match (&o.shape, o.pose) {
-                        (Shape::Plane { .. }, _) | (_, None) => geom,
-                        (_, Some(pose)) => geom.pose(pose),
-                    };
-                    let g = sim.scene.world.insert_geom(space, geom)?;
-                    let id = sim.scene.register_object(&o.name, o.shape.clone(), None, Some(g))?;
-                    let extra = o
-                        .extra_shapes
-                        .iter()
-                        .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone())))
-                        .collect::<Result<Vec<_>>>()?;
-                    sim.scene.set_extra_geoms(id, extra)?;
-                    id
-                }
-            };
-            if let Some(c) = o.color {
-                sim.scene_mut().set_color(id, c)?;
-            }
-            if !o.visuals.is_empty() {
-                sim.scene_mut().set_visuals(id, o.visuals.clone())?;
-            }
+            o.add_to(&mut sim, space)?;
         }
         for (i, j) in file.joints.iter().enumerate() {
             for w in file.world_joints.iter().filter(|w| w.after == i) {
                 w.add_to(&mut sim)?;
             }
-            let object1 = sim.scene().object(j.object1.as_str())?.id();
-            let object2 = match &j.object2 {
-                Some(name) => JointEnd::Object(sim.scene().object(name.as_str())?.id()),
-                None => JointEnd::World,
-            };
-            let id = sim.scene.insert_sim_joint(
-                &j.name,
-                j.joint_type,
-                object1,
-                object2,
-                JointBuilder::new(j.kind.clone()),
-            )?;
-            if let Some((low, high)) = j.limits {
-                sim.scene_mut().joint_mut(id)?.set_limits(low, high)?;
-            }
-            let mut joint = sim.scene_mut().joint_mut(id)?;
-            if j.friction != 0.0 {
-                joint.set_viscous_friction(j.friction)?;
-            }
-            if j.effort_limit.is_some() || j.velocity_limit.is_some() {
-                let unlimited = f64::INFINITY;
-                joint.set_actuator_limits(ActuatorLimits {
-                    effort: j.effort_limit.unwrap_or(unlimited),
-                    velocity: j.velocity_limit.unwrap_or(unlimited),
-                })?;
-            }
-            if j.dry_friction != 0.0 {
-                joint.set_dry_friction(j.dry_friction)?;
-            }
-            if let Some((stiffness, rest)) = j.spring {
-                joint.set_spring(stiffness, rest)?;
-            }
-            if let Some((speed, max_force)) = j.motor {
-                // As it was, whatever the limits (the speed was held to them when set).
-                let handle = sim.scene.joint_data(id)?.handle;
-                sim.scene.world.joint_mut(handle)?.set_motor(0, speed, max_force)?;
-            }
+            j.add_to(&mut sim)?;
         }
         for w in file.world_joints.iter().filter(|w| w.after >= file.joints.len()) {
             w.add_to(&mut sim)?;
@@ -670,23 +622,134 @@ impl Simulation {
             sensor.add_to(&mut sim)?;
         }
         if let Some(hex) = &file.state {
-            let corrupt = |problem: String| Error::Format {
-                format: "scene file",
-                file: "<string>".into(),
-                element: "\"state\"".into(),
-                line: None,
-                column: None,
-                problem,
-            };
-            let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
-            let mut state: crate::simulation::scene_state::SceneState =
-                crate::simulation::scene_state::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
-            // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
-            // no place for their state.
-            state.keep_sensors(|kind| SensorKind::of_type_name(kind).is_some());
-            sim.restore_state(&state)?;
+            sim.restore_saved_state(hex)?;
         }
         Ok(sim)
+    }
+
+    /// Restores the exact state a scene file holds (`hex`, hexadecimal digits), but
+    /// that of the sensors it does not rebuild.
+    fn restore_saved_state(&mut self, hex: &str) -> Result<()> {
+        let corrupt = |problem: String| Error::Format {
+            format: "scene file",
+            file: "<string>".into(),
+            element: "\"state\"".into(),
+            line: None,
+            column: None,
+            problem,
+        };
+        let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
+        let mut state: crate::simulation::scene_state::SceneState =
+            crate::simulation::scene_state::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
+        // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
+        // no place for their state.
+        state.keep_sensors(|kind| SensorKind::of_type_name(kind).is_some());
+        self.restore_state(&state)
+    }
+}
+
+impl ObjectFile {
+    /// Makes the object in `sim`, its geoms in `space`, with its colour and visuals.
+    fn add_to(&self, sim: &mut Simulation, space: SpaceHandle) -> Result<()> {
+        let id = match &self.body {
+            Some(b) => self.add_body_to(sim, b, space)?,
+            None => self.add_static_to(sim, space)?,
+        };
+        if let Some(c) = self.color {
+            sim.scene_mut().set_color(id, c)?;
+        }
+        if !self.visuals.is_empty() {
+            sim.scene_mut().set_visuals(id, self.visuals.clone())?;
+        }
+        Ok(())
+    }
+
+    /// Makes the object with its body `b` (restored to the bit) and its geoms.
+    fn add_body_to(&self, sim: &mut Simulation, b: &BodyFile, space: SpaceHandle) -> Result<ObjectId> {
+        let geom = GeomBuilder::new(self.shape.clone());
+        let spec = MassSpec::Custom { mass: b.mass, inertia: b.inertia };
+        let body = sim.scene.world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
+        let g = if self.geom { Some(sim.scene.world.insert_geom(space, geom.attached_to(body))?) } else { None };
+        {
+            let mut m = sim.scene.world.body_mut(body)?;
+            // Both ODE's quaternion and its rotation matrix, to the bit.
+            m.restore_orientation(&b.quaternion, &b.rotation)?;
+            m.set_linear_velocity(b.linear_velocity)?;
+            m.set_angular_velocity(b.angular_velocity)?;
+        }
+        let id = sim.scene.register_object(&self.name, self.shape.clone(), Some(body), g)?;
+        let extra = self
+            .extra_shapes
+            .iter()
+            .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone()).attached_to(body)))
+            .collect::<Result<Vec<_>>>()?;
+        sim.scene.set_extra_geoms(id, extra)?;
+        Ok(id)
+    }
+
+    /// Makes the static object: its geom at its pose (a plane's is in its shape) and
+    /// its other geoms.
+    fn add_static_to(&self, sim: &mut Simulation, space: SpaceHandle) -> Result<ObjectId> {
+        let geom = GeomBuilder::new(self.shape.clone());
+        let geom = match (&self.shape, self.pose) {
+            (Shape::Plane { .. }, _) | (_, None) => geom,
+            (_, Some(pose)) => geom.pose(pose),
+        };
+        let g = sim.scene.world.insert_geom(space, geom)?;
+        let id = sim.scene.register_object(&self.name, self.shape.clone(), None, Some(g))?;
+        let extra = self
+            .extra_shapes
+            .iter()
+            .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone())))
+            .collect::<Result<Vec<_>>>()?;
+        sim.scene.set_extra_geoms(id, extra)?;
+        Ok(id)
+    }
+}
+
+impl JointFile {
+    /// Makes the joint in `sim` (its objects looked up by name) with its stops,
+    /// friction, actuator limits, spring and motor; not its mimic (its leader may be
+    /// made later).
+    fn add_to(&self, sim: &mut Simulation) -> Result<()> {
+        let object1 = sim.scene().object(self.object1.as_str())?.id();
+        let object2 = match &self.object2 {
+            Some(name) => JointEnd::Object(sim.scene().object(name.as_str())?.id()),
+            None => JointEnd::World,
+        };
+        let id = sim.scene.insert_sim_joint(
+            &self.name,
+            self.joint_type,
+            object1,
+            object2,
+            JointBuilder::new(self.kind.clone()),
+        )?;
+        if let Some((low, high)) = self.limits {
+            sim.scene_mut().joint_mut(id)?.set_limits(low, high)?;
+        }
+        let mut joint = sim.scene_mut().joint_mut(id)?;
+        if self.friction != 0.0 {
+            joint.set_viscous_friction(self.friction)?;
+        }
+        if self.effort_limit.is_some() || self.velocity_limit.is_some() {
+            let unlimited = f64::INFINITY;
+            joint.set_actuator_limits(ActuatorLimits {
+                effort: self.effort_limit.unwrap_or(unlimited),
+                velocity: self.velocity_limit.unwrap_or(unlimited),
+            })?;
+        }
+        if self.dry_friction != 0.0 {
+            joint.set_dry_friction(self.dry_friction)?;
+        }
+        if let Some((stiffness, rest)) = self.spring {
+            joint.set_spring(stiffness, rest)?;
+        }
+        if let Some((speed, max_force)) = self.motor {
+            // As it was, whatever the limits (the speed was held to them when set).
+            let handle = sim.scene.joint_data(id)?.handle;
+            sim.scene.world.joint_mut(handle)?.set_motor(0, speed, max_force)?;
+        }
+        Ok(())
     }
 }
 

@@ -12,7 +12,7 @@ use super::{CHAIN_LINK_FRACTION, MjcfModel, MjcfOptions};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
-use crate::handle::{GeomHandle, ObjectId};
+use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
 use crate::scene::JointEnd;
 use crate::scene::Scene;
 use crate::shape::Shape;
@@ -138,6 +138,8 @@ impl Scene {
         Ok(())
     }
 
+    /// Makes an MJCF body (its object, the light links chaining its joints, and those
+    /// joints to `parent`), then its children.
     pub(super) fn add_mjcf_body(
         &mut self,
         body: &Body,
@@ -147,67 +149,8 @@ impl Scene {
         named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
     ) -> Result<()> {
         let frame = parent_frame * body.frame;
-        let invalid = |problem: String| Error::Invalid { what: "an MJCF body", problem };
-        let (mass, com, inertia) = body
-            .mass
-            .ok_or_else(|| invalid(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
-        let (link_mass, link_inertia) = if body.joints.len() > 1 {
-            let what = format!("the light links chaining {:?}", body.name);
-            at_least_ars_least_mass(&what, mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION, &mut made.skipped)
-        } else {
-            (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
-        };
-        let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
-        // The body is moved by its last joint, a chain link by its joint: each carries
-        // its joint's armature.
-        let mut armature = |object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>| -> Matrix3<f64> {
-            let Some(joint) = joint.filter(|j| j.armature > 0.0) else { return Matrix3::zeros() };
-            let (added, across) = armature_inertia(inertia, joint);
-            if added != Matrix3::zeros() {
-                made.armature.push((object.to_string(), added));
-            }
-            if across > 0.0 {
-                made.skipped.push(format!(
-                    "<joint> {:?}: its armature {} outweighs {object:?}'s inertia; {across:e} kg·m² was added across its axis too, to keep {object:?} a rigid body",
-                    joint.name, joint.armature
-                ));
-            }
-            added
-        };
-        let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
-            .iter()
-            .map(|j| armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j)))
-            .collect();
-        let inertia = inertia + armature(&body.name, &inertia, body.joints.last());
-        // The ODE body at the centre of mass, turned as the MJCF body.
-        let body_frame = Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(com)), frame.rotation);
-        let handle = self
-            .world
-            .insert_body(
-                BodyBuilder::new()
-                    .mass(MassSpec::Custom { mass, inertia })
-                    .position(nalgebra::Point3::from(body_frame.translation.vector))
-                    .rotation(body_frame.rotation.to_rotation_matrix()),
-            )
-            .map_err(|e| invalid(format!("{:?}: {e}", body.name)))?;
-        let mut geoms = Vec::new();
-        for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
-            let offset = body_frame.inverse() * frame * g.frame;
-            let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
-            let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
-            let handle = self.world.insert_geom(self.space(), geom)?;
-            if let Some(name) = &g.name {
-                named.insert(name.clone(), (handle, g.bits));
-            }
-            geoms.push(handle);
-        }
-        let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
-        let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
-        self.set_extra_geoms(id, geoms.into_iter().skip(1).collect())?;
-        if let Some(c) = body.geoms.iter().find_map(|g| g.rgba) {
-            self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
-        }
-        made.bodies.push((self.object(id)?.name().to_string(), id));
+        let masses = body_masses(body, made)?;
+        let (id, body_frame) = self.add_mjcf_object(body, &frame, &masses, made, named)?;
         let mut end = parent.map_or(JointEnd::World, JointEnd::Object);
         // MuJoCo ignores contacts between a body and its parent (filterparent). ODE
         // skips them for bodies one joint joins; a chain's links hide that.
@@ -225,67 +168,12 @@ impl Scene {
             // Several joints in one body: a chain through light links at the body's
             // frame, the first joint nearest the parent (MuJoCo's order).
             let child = if k + 1 < body.joints.len() {
-                let name = format!("{}/{}", body.name, j.name);
-                let link = self
-                    .world
-                    .insert_body(
-                        BodyBuilder::new()
-                            .mass(MassSpec::Custom { mass: link_mass, inertia: link_inertia + links_armature[k] })
-                            .position(nalgebra::Point3::from(body_frame.translation.vector))
-                            .rotation(body_frame.rotation.to_rotation_matrix()),
-                    )
-                    .map_err(|e| invalid(format!("{name:?}, the light link chaining {:?}: {e}", j.name)))?;
-                self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)?
+                let inertia = masses.link_inertia + masses.links_armature[k];
+                self.add_chain_link(body, j, &body_frame, masses.link_mass, inertia)?
             } else {
                 id
             };
-            let anchor = frame * nalgebra::Point3::from(j.pos);
-            let axis = frame.rotation * j.axis;
-            // ODE measures a joint from where its bodies are when it is made: made with
-            // the child moved back by `ref`, it reads `ref` in the file's pose.
-            let moved = self.object(child)?.body_handle().filter(|_| j.reference != 0.0);
-            let before = match moved {
-                Some(b) => {
-                    let body = self.world.body(b)?;
-                    let (position, rotation) = (body.position(), body.rotation());
-                    let back = match j.kind {
-                        JointKind::Hinge => {
-                            let turn = UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), -j.reference);
-                            Isometry3::rotation_wrt_point(turn, anchor)
-                        }
-                        _ => Isometry3::from_parts(Translation3::from(axis * -j.reference), UnitQuaternion::identity()),
-                    };
-                    let mut body = self.world.body_mut(b)?;
-                    body.set_position(back * position)?;
-                    body.set_rotation(back.rotation.to_rotation_matrix() * rotation)?;
-                    Some((b, position, rotation))
-                }
-                None => None,
-            };
-            let joint = match j.kind {
-                JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis),
-                JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis),
-                _ => self.add_ball_joint(&j.name, child, end, Some(anchor)),
-            };
-            if let Some((b, position, rotation)) = before {
-                // Put back as it was made: ODE keeps the rotation matrix as set.
-                let mut body = self.world.body_mut(b)?;
-                body.set_position(position)?;
-                body.set_rotation(rotation)?;
-            }
-            let joint = joint?;
-            if let Some((lo, hi)) = j.range {
-                self.joint_mut(joint)?.set_limits(lo, hi)?;
-            }
-            if j.damping > 0.0 {
-                self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
-            }
-            if j.spring.0 > 0.0 {
-                self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
-            }
-            if j.frictionloss > 0.0 {
-                self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
-            }
+            let joint = self.add_mjcf_joint(j, &frame, child, end)?;
             made.joints.push((j.name.clone(), joint));
             if child != id {
                 made.chain_links.push(child);
@@ -297,4 +185,200 @@ impl Scene {
         }
         Ok(())
     }
+
+    /// Makes an MJCF body's ODE body (at its centre of mass, turned as the MJCF body),
+    /// its geoms and its object; returns the object and the ODE body's frame.
+    fn add_mjcf_object(
+        &mut self,
+        body: &Body,
+        frame: &Isometry3<f64>,
+        masses: &BodyMasses,
+        made: &mut MjcfModel,
+        named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
+    ) -> Result<(ObjectId, Isometry3<f64>)> {
+        let (mass, inertia) = (masses.mass, masses.inertia);
+        let body_frame =
+            Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(masses.com)), frame.rotation);
+        let handle = self
+            .world
+            .insert_body(
+                BodyBuilder::new()
+                    .mass(MassSpec::Custom { mass, inertia })
+                    .position(nalgebra::Point3::from(body_frame.translation.vector))
+                    .rotation(body_frame.rotation.to_rotation_matrix()),
+            )
+            .map_err(|e| body_error(format!("{:?}: {e}", body.name)))?;
+        let geoms = self.add_mjcf_geoms(body, frame, &body_frame, handle, named)?;
+        let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
+        let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
+        self.set_extra_geoms(id, geoms.into_iter().skip(1).collect())?;
+        if let Some(c) = body.geoms.iter().find_map(|g| g.rgba) {
+            self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
+        }
+        made.bodies.push((self.object(id)?.name().to_string(), id));
+        Ok((id, body_frame))
+    }
+
+    /// Attaches an MJCF body's geoms (not its planes) to its ODE body `handle`, whose
+    /// frame is `body_frame`; the named ones go in `named`.
+    fn add_mjcf_geoms(
+        &mut self,
+        body: &Body,
+        frame: &Isometry3<f64>,
+        body_frame: &Isometry3<f64>,
+        handle: BodyHandle,
+        named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
+    ) -> Result<Vec<GeomHandle>> {
+        let mut geoms = Vec::new();
+        for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
+            let offset = body_frame.inverse() * frame * g.frame;
+            let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
+            let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
+            let handle = self.world.insert_geom(self.space(), geom)?;
+            if let Some(name) = &g.name {
+                named.insert(name.clone(), (handle, g.bits));
+            }
+            geoms.push(handle);
+        }
+        Ok(geoms)
+    }
+
+    /// A light link of the chain through a body's joints, at the body's frame, moved by
+    /// `joint`.
+    fn add_chain_link(
+        &mut self,
+        body: &Body,
+        joint: &Joint,
+        body_frame: &Isometry3<f64>,
+        mass: f64,
+        inertia: Matrix3<f64>,
+    ) -> Result<ObjectId> {
+        let name = format!("{}/{}", body.name, joint.name);
+        let link = self
+            .world
+            .insert_body(
+                BodyBuilder::new()
+                    .mass(MassSpec::Custom { mass, inertia })
+                    .position(nalgebra::Point3::from(body_frame.translation.vector))
+                    .rotation(body_frame.rotation.to_rotation_matrix()),
+            )
+            .map_err(|e| body_error(format!("{name:?}, the light link chaining {:?}: {e}", joint.name)))?;
+        self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)
+    }
+
+    /// Makes an MJCF joint moving `child` relative to `end` (at the joint's `ref`),
+    /// with its range, damping, spring and dry friction.
+    fn add_mjcf_joint(&mut self, j: &Joint, frame: &Isometry3<f64>, child: ObjectId, end: JointEnd) -> Result<JointId> {
+        let anchor = frame * nalgebra::Point3::from(j.pos);
+        let axis = frame.rotation * j.axis;
+        // ODE measures a joint from where its bodies are when it is made: made with
+        // the child moved back by `ref`, it reads `ref` in the file's pose.
+        let moved = self.object(child)?.body_handle().filter(|_| j.reference != 0.0);
+        let before = match moved {
+            Some(b) => {
+                let body = self.world.body(b)?;
+                let (position, rotation) = (body.position(), body.rotation());
+                let back = match j.kind {
+                    JointKind::Hinge => {
+                        let turn = UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), -j.reference);
+                        Isometry3::rotation_wrt_point(turn, anchor)
+                    }
+                    _ => Isometry3::from_parts(Translation3::from(axis * -j.reference), UnitQuaternion::identity()),
+                };
+                let mut body = self.world.body_mut(b)?;
+                body.set_position(back * position)?;
+                body.set_rotation(back.rotation.to_rotation_matrix() * rotation)?;
+                Some((b, position, rotation))
+            }
+            None => None,
+        };
+        let joint = match j.kind {
+            JointKind::Hinge => self.add_hinge_joint(&j.name, child, end, Some(anchor), axis),
+            JointKind::Slide => self.add_slider_joint(&j.name, child, end, axis),
+            _ => self.add_ball_joint(&j.name, child, end, Some(anchor)),
+        };
+        if let Some((b, position, rotation)) = before {
+            // Put back as it was made: ODE keeps the rotation matrix as set.
+            let mut body = self.world.body_mut(b)?;
+            body.set_position(position)?;
+            body.set_rotation(rotation)?;
+        }
+        let joint = joint?;
+        if let Some((lo, hi)) = j.range {
+            self.joint_mut(joint)?.set_limits(lo, hi)?;
+        }
+        if j.damping > 0.0 {
+            self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
+        }
+        if j.spring.0 > 0.0 {
+            self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
+        }
+        if j.frictionloss > 0.0 {
+            self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
+        }
+        Ok(joint)
+    }
+}
+
+/// The masses of an MJCF body and of the light links chaining its joints, each at
+/// least ARS's least mass.
+struct BodyMasses {
+    /// The body's mass.
+    mass: f64,
+    /// Its centre of mass in its frame.
+    com: Vector3<f64>,
+    /// Its inertia, its last joint's armature added.
+    inertia: Matrix3<f64>,
+    /// Each light link's mass.
+    link_mass: f64,
+    /// Each light link's inertia, without its joint's armature.
+    link_inertia: Matrix3<f64>,
+    /// The armature each light link carries (one per joint but the last).
+    links_armature: Vec<Matrix3<f64>>,
+}
+
+/// An MJCF body's masses and its links' (a fraction of its own), with their joints'
+/// armatures; what is raised to ARS's least mass or added by an armature is noted in
+/// `made`.
+fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
+    let (mass, com, inertia) = body
+        .mass
+        .ok_or_else(|| body_error(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+    let (link_mass, link_inertia) = if body.joints.len() > 1 {
+        let what = format!("the light links chaining {:?}", body.name);
+        at_least_ars_least_mass(&what, mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION, &mut made.skipped)
+    } else {
+        (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
+    };
+    let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
+    // The body is moved by its last joint, a chain link by its joint: each carries
+    // its joint's armature.
+    let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
+        .iter()
+        .map(|j| joint_armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j), made))
+        .collect();
+    let inertia = inertia + joint_armature(&body.name, &inertia, body.joints.last(), made);
+    Ok(BodyMasses { mass, com, inertia, link_mass, link_inertia, links_armature })
+}
+
+/// The inertia a joint's armature adds to `object` (of inertia `inertia`), which the
+/// joint moves; what was added is noted in `made`.
+fn joint_armature(object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>, made: &mut MjcfModel) -> Matrix3<f64> {
+    let Some(joint) = joint.filter(|j| j.armature > 0.0) else { return Matrix3::zeros() };
+    let (added, across) = armature_inertia(inertia, joint);
+    if added != Matrix3::zeros() {
+        made.armature.push((object.to_string(), added));
+    }
+    if across > 0.0 {
+        made.skipped.push(format!(
+            "<joint> {:?}: its armature {} outweighs {object:?}'s inertia; {across:e} kg·m² was added across its axis too, to keep {object:?} a rigid body",
+            joint.name, joint.armature
+        ));
+    }
+    added
+}
+
+/// A problem with an MJCF body.
+fn body_error(problem: String) -> Error {
+    Error::Invalid { what: "an MJCF body", problem }
 }

@@ -44,8 +44,38 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         skip_or_refuse(problem(node, format!("{what} is not supported")), self.skip, &mut self.skipped)
     }
 
+    /// A `<geom>`, or `None` when it is of a type ARS skips.
     pub(super) fn geom(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Geom>> {
         let a = Attrs::new(node, self.defaults, class);
+        let Some((kind, frame)) = self.geom_shape(&a)? else { return Ok(None) };
+        let mass = a.number("mass")?;
+        if mass.is_some_and(|m| m < 0.0) {
+            return Err(problem(&node, "mass must not be negative"));
+        }
+        let density = a.number("density")?.unwrap_or(1000.0);
+        if density < 0.0 {
+            return Err(problem(&node, "density must not be negative"));
+        }
+        let bits = (collision_bits(&a, "contype")?, collision_bits(&a, "conaffinity")?);
+        // MuJoCo's contact model is not ODE's: its parameters are read and said unused.
+        let contact: Vec<&str> = ["friction", "solref", "solimp", "condim", "margin", "gap"]
+            .into_iter()
+            .filter(|k| a.get(k).is_some())
+            .collect();
+        contact_parameters_unused(&node, &contact, &mut self.skipped);
+        let name = node.attribute("name").map(str::to_string);
+        // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
+        let rgba = match a.fixed::<4>("rgba")? {
+            Some(rgba) => Some(rgba),
+            None => a.get("material").and_then(|m| self.materials.get(m)).copied(),
+        };
+        Ok(Some(Geom { kind, frame, mass, density, rgba, bits, name }))
+    }
+
+    /// A geom's shape (its type and size) and its frame (the one `fromto` gives, if
+    /// any), or `None` when its type is skipped.
+    fn geom_shape(&mut self, a: &Attrs<'_, '_>) -> Parsed<Option<(GeomKind, Isometry3<f64>)>> {
+        let node = a.node;
         let kind_name = a.get("type").unwrap_or("sphere");
         let size = a.numbers("size")?.unwrap_or_default();
         let fromto = a.fixed::<6>("fromto")?;
@@ -56,7 +86,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 None => Err(problem(&node, format!("a {kind_name} needs {} size numbers", i + 1))),
             }
         };
-        let mut frame = frame(&a, &self.compiler)?;
+        let mut frame = frame(a, &self.compiler)?;
         let kind = match kind_name {
             "mesh" => GeomKind::Mesh(self.mesh(&node, a.get("mesh"))?),
             "plane" => GeomKind::Plane,
@@ -64,16 +94,9 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             "capsule" | "cylinder" => {
                 let (r, h) = match fromto {
                     Some(f) => {
-                        let (from, to) = (Vector3::new(f[0], f[1], f[2]), Vector3::new(f[3], f[4], f[5]));
-                        let along = to - from;
-                        if along.norm() == 0.0 {
-                            return Err(problem(&node, "fromto's two points are the same"));
-                        }
-                        let turn = UnitQuaternion::rotation_between(&Vector3::z(), &along).unwrap_or_else(|| {
-                            UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
-                        });
-                        frame = Isometry3::from_parts(Translation3::from((from + to) / 2.0), turn);
-                        (size_at(0)?, along.norm() / 2.0)
+                        let (placed, half_length) = fromto_frame(&node, f)?;
+                        frame = placed;
+                        (size_at(0)?, half_length)
                     }
                     None => (size_at(0)?, size_at(1)?),
                 };
@@ -92,38 +115,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 return Ok(None);
             }
         };
-        let mass = a.number("mass")?;
-        if mass.is_some_and(|m| m < 0.0) {
-            return Err(problem(&node, "mass must not be negative"));
-        }
-        let density = a.number("density")?.unwrap_or(1000.0);
-        if density < 0.0 {
-            return Err(problem(&node, "density must not be negative"));
-        }
-        let bits = |name: &str| -> Parsed<u64> {
-            match a.get(name) {
-                None => Ok(1),
-                // MuJoCo's are 32 bits; ODE's upper 32 are left for `<contact><pair>`.
-                Some(v) => v
-                    .parse::<u32>()
-                    .map(u64::from)
-                    .map_err(|_| problem(&node, format!("{name}=\"{v}\" is not a whole number of at most 32 bits"))),
-            }
-        };
-        let bits = (bits("contype")?, bits("conaffinity")?);
-        // MuJoCo's contact model is not ODE's: its parameters are read and said unused.
-        let contact: Vec<&str> = ["friction", "solref", "solimp", "condim", "margin", "gap"]
-            .into_iter()
-            .filter(|k| a.get(k).is_some())
-            .collect();
-        contact_parameters_unused(&node, &contact, &mut self.skipped);
-        let name = node.attribute("name").map(str::to_string);
-        // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
-        let rgba = match a.fixed::<4>("rgba")? {
-            Some(rgba) => Some(rgba),
-            None => a.get("material").and_then(|m| self.materials.get(m)).copied(),
-        };
-        Ok(Some(Geom { kind, frame, mass, density, rgba, bits, name }))
+        Ok(Some((kind, frame)))
     }
 
     pub(super) fn joint(&mut self, node: roxmltree::Node<'_, '_>, class: &str, free: bool) -> Parsed<Joint> {
@@ -452,6 +444,31 @@ pub(super) fn contact_parameters_unused(node: &roxmltree::Node<'_, '_>, names: &
     }
 }
 
+/// The frame of a capsule or cylinder placed by `fromto` (centred between its two
+/// points, its z axis from the first to the second) and its half-length.
+fn fromto_frame(node: &roxmltree::Node<'_, '_>, f: [f64; 6]) -> Parsed<(Isometry3<f64>, f64)> {
+    let (from, to) = (Vector3::new(f[0], f[1], f[2]), Vector3::new(f[3], f[4], f[5]));
+    let along = to - from;
+    if along.norm() == 0.0 {
+        return Err(problem(node, "fromto's two points are the same"));
+    }
+    let turn = UnitQuaternion::rotation_between(&Vector3::z(), &along)
+        .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
+    Ok((Isometry3::from_parts(Translation3::from((from + to) / 2.0), turn), along.norm() / 2.0))
+}
+
+/// A geom's `contype` or `conaffinity` bits (1 when not given).
+fn collision_bits(a: &Attrs<'_, '_>, name: &str) -> Parsed<u64> {
+    match a.get(name) {
+        None => Ok(1),
+        // MuJoCo's are 32 bits; ODE's upper 32 are left for `<contact><pair>`.
+        Some(v) => v
+            .parse::<u32>()
+            .map(u64::from)
+            .map_err(|_| problem(&a.node, format!("{name}=\"{v}\" is not a whole number of at most 32 bits"))),
+    }
+}
+
 /// Reads the model from the text of a file (`name` resolves its includes).
 pub(super) fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Model> {
     let mut files = Files::new();
@@ -473,108 +490,24 @@ pub(super) fn read(name: &str, text: &str, options: &MjcfOptions) -> Parsed<Mode
     })
 }
 
-/// Reads the model from its files.
+/// Reads the model from its files: first the sections the others depend on
+/// (compiler, defaults, assets, options), then the bodies, actuators, contacts and
+/// sensors.
 pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions) -> Parsed<Model> {
     let root = tree.documents[0].root_element();
     let nodes = tree.elements(root);
-    let mut compiler = Compiler::default();
-    let mut defaults = Defaults::new();
-    let mut timestep = None;
-    let mut gravity = None;
-    let mut meshes = HashMap::new();
-    let mut material_nodes = Vec::new();
     let mut schema_skips = Vec::new();
     check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
-    for &node in &nodes {
-        let mut first_pass = || -> Parsed<()> {
-            match node.tag_name().name() {
-                "compiler" => {
-                    if let Some(angle) = node.attribute("angle") {
-                        compiler.degrees = angle != "radian";
-                    }
-                    if let Some(seq) = node.attribute("eulerseq") {
-                        let axes: Vec<u8> = seq
-                            .chars()
-                            .filter_map(|c| match c.to_ascii_lowercase() {
-                                'x' => Some(0),
-                                'y' => Some(1),
-                                'z' => Some(2),
-                                _ => None,
-                            })
-                            .collect();
-                        compiler.eulerseq = axes
-                            .try_into()
-                            .map_err(|_| problem(&node, format!("eulerseq {seq:?} must be three of x, y, z")))?;
-                        compiler.extrinsic = seq.chars().all(|c| c.is_ascii_uppercase());
-                    }
-                    if let Some(auto) = node.attribute("autolimits") {
-                        compiler.autolimits = auto == "true";
-                    }
-                    if let Some(v) = node.attribute("inertiafromgeom") {
-                        compiler.from_geom = match v {
-                            "true" => Some(true),
-                            "false" => Some(false),
-                            _ => None,
-                        };
-                    }
-                    if let Some(total) = node.attribute("settotalmass") {
-                        compiler.total_mass = match total.parse::<f64>() {
-                            Ok(m) if m > 0.0 && m.is_finite() => Some(m),
-                            Ok(_) => None,
-                            Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
-                        };
-                    }
-                    if let Some(dir) = node.attribute("meshdir").or(node.attribute("assetdir")) {
-                        compiler.meshdir = Some(dir.to_string());
-                    }
-                    if node.attribute("coordinate").is_some_and(|c| c != "local") {
-                        return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
-                    }
-                }
-                "default" => read_defaults(tree, node, &HashMap::new(), &mut defaults),
-                "asset" => {
-                    for mesh in tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")) {
-                        let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
-                        let name = match mesh.attribute("name") {
-                            Some(name) => name.to_string(),
-                            None => Path::new(file)
-                                .file_stem()
-                                .map(|s| s.to_string_lossy().into_owned())
-                                .unwrap_or_default(),
-                        };
-                        let a = Attrs { node: mesh, class: None };
-                        let scale = a.fixed::<3>("scale")?.map_or(Vector3::repeat(1.0), Vector3::from);
-                        meshes.insert(name, (file.to_string(), scale));
-                    }
-                    material_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("material")));
-                }
-                "option" => {
-                    let a = Attrs { node, class: None };
-                    timestep = a.number("timestep")?;
-                    gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
-                }
-                _ => {}
-            }
-            Ok(())
-        };
-        first_pass()?;
-    }
-    // Materials' colours, with their classes' defaults (read by now, wherever they are).
-    let mut materials = HashMap::new();
-    for node in material_nodes {
-        let a = Attrs::new(node, &defaults, "main");
-        if let (Some(name), Some(rgba)) = (node.attribute("name"), a.fixed::<4>("rgba")?) {
-            materials.insert(name.to_string(), rgba);
-        }
-    }
+    let settings = read_settings(tree, &nodes)?;
+    let materials = material_colors(&settings.material_nodes, &settings.defaults)?;
     let mut reader = Reader {
-        compiler,
-        defaults: &defaults,
+        compiler: settings.compiler,
+        defaults: &settings.defaults,
         skip: options.skip_unsupported,
         skipped: schema_skips,
         bodies: 0,
         joints: 0,
-        meshes,
+        meshes: settings.meshes,
         materials,
         loaded: HashMap::new(),
         files: crate::formats::MeshCache::default(),
@@ -585,8 +518,8 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         name: root.attribute("model").unwrap_or("").to_string(),
         world_geoms: Vec::new(),
         bodies: Vec::new(),
-        timestep,
-        gravity,
+        timestep: settings.timestep,
+        gravity: settings.gravity,
         actuators: Vec::new(),
         excluded: Vec::new(),
         pairs: Vec::new(),
@@ -596,90 +529,222 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         skipped: Vec::new(),
     };
     for &node in &nodes {
-        let mut second_pass = || -> Parsed<()> {
-            match node.tag_name().name() {
-                "worldbody" => {
-                    for child in tree.elements(node) {
-                        match child.tag_name().name() {
-                            "geom" => model.world_geoms.extend(reader.geom(child, "main")?),
-                            "body" => model.bodies.push(reader.body(child, "main")?),
-                            "site" => model.world_sites.extend(reader.site(child, "main")?.map(|s| s.name)),
-                            "camera" | "light" => {}
-                            other => reader.unsupported(&child, &format!("<{other}> in the world body"))?,
-                        }
-                    }
-                }
-                "actuator" => {
-                    for (i, child) in tree.elements(node).into_iter().enumerate() {
-                        if let Some(actuator) = reader.actuator(child, i)? {
-                            model.actuators.push(actuator);
-                        }
-                    }
-                }
-                "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
-                "contact" => {
-                    for child in tree.elements(node) {
-                        let needs = |attr: &str| {
-                            child
-                                .attribute(attr)
-                                .map(str::to_string)
-                                .ok_or_else(|| problem(&child, format!("needs a {attr}")))
-                        };
-                        match child.tag_name().name() {
-                            "exclude" => model.excluded.push((needs("body1")?, needs("body2")?)),
-                            "pair" => {
-                                if model.pairs.len() == MAX_CONTACT_PAIRS {
-                                    reader.unsupported(
-                                        &child,
-                                        &format!("a contact pair beyond the first {MAX_CONTACT_PAIRS}"),
-                                    )?;
-                                    continue;
-                                }
-                                model.pairs.push((needs("geom1")?, needs("geom2")?));
-                                let unused: Vec<&str> = child
-                                    .attributes()
-                                    .map(|a| a.name())
-                                    .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
-                                    .collect();
-                                contact_parameters_unused(&child, &unused, &mut reader.skipped);
-                            }
-                            other => reader.unsupported(&child, &format!("<{other}> in <contact>"))?,
-                        }
-                    }
-                }
-                "sensor" => {
-                    for (i, child) in tree.elements(node).into_iter().enumerate() {
-                        if let Some(sensor) = reader.sensor(child, i)? {
-                            model.sensors.push(sensor);
-                            model.sensor_places.push(problem(&child, ""));
-                        }
-                    }
-                }
-                other => reader.unsupported(&node, &format!("<{other}>"))?,
-            }
-            Ok(())
-        };
-        second_pass()?;
+        reader.section(node, &mut model)?;
     }
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
     if let Some(total) = reader.compiler.total_mass {
-        fn sum(bodies: &[Body]) -> f64 {
-            bodies.iter().map(|b| b.mass.map_or(0.0, |m| m.0) + sum(&b.children)).sum()
-        }
-        fn scale(bodies: &mut [Body], factor: f64) {
-            for b in bodies {
-                if let Some((mass, _, inertia)) = b.mass.as_mut() {
-                    *mass *= factor;
-                    *inertia *= factor;
-                }
-                scale(&mut b.children, factor);
-            }
-        }
-        let now = sum(&model.bodies);
+        let now = total_mass(&model.bodies);
         if now > 0.0 {
-            scale(&mut model.bodies, total / now);
+            scale_masses(&mut model.bodies, total / now);
         }
     }
     Ok(model)
+}
+
+/// What the first pass reads: the sections every other element depends on.
+struct Settings<'a, 'input> {
+    compiler: Compiler,
+    defaults: Defaults,
+    timestep: Option<f64>,
+    gravity: Option<Vector3<f64>>,
+    /// The `<asset><mesh>`es by name: their file (as written) and scale.
+    meshes: HashMap<String, (String, Vector3<f64>)>,
+    /// The `<asset><material>`s, read once every default class is known.
+    material_nodes: Vec<roxmltree::Node<'a, 'input>>,
+}
+
+/// The first pass over the top-level elements: `<compiler>`, `<default>`, `<asset>`
+/// and `<option>`, wherever they are in the file.
+fn read_settings<'a, 'input>(
+    tree: &Tree<'a, 'input>,
+    nodes: &[roxmltree::Node<'a, 'input>],
+) -> Parsed<Settings<'a, 'input>> {
+    let mut settings = Settings {
+        compiler: Compiler::default(),
+        defaults: Defaults::new(),
+        timestep: None,
+        gravity: None,
+        meshes: HashMap::new(),
+        material_nodes: Vec::new(),
+    };
+    for &node in nodes {
+        match node.tag_name().name() {
+            "compiler" => read_compiler(node, &mut settings.compiler)?,
+            "default" => read_defaults(tree, node, &HashMap::new(), &mut settings.defaults),
+            "asset" => {
+                for mesh in tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")) {
+                    let (name, file, scale) = mesh_asset(mesh)?;
+                    settings.meshes.insert(name, (file, scale));
+                }
+                settings.material_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("material")));
+            }
+            "option" => {
+                let a = Attrs { node, class: None };
+                settings.timestep = a.number("timestep")?;
+                settings.gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
+            }
+            _ => {}
+        }
+    }
+    Ok(settings)
+}
+
+/// Reads a `<compiler>`'s settings into `compiler`.
+fn read_compiler(node: roxmltree::Node<'_, '_>, compiler: &mut Compiler) -> Parsed<()> {
+    if let Some(angle) = node.attribute("angle") {
+        compiler.degrees = angle != "radian";
+    }
+    if let Some(seq) = node.attribute("eulerseq") {
+        let axes: Vec<u8> = seq
+            .chars()
+            .filter_map(|c| match c.to_ascii_lowercase() {
+                'x' => Some(0),
+                'y' => Some(1),
+                'z' => Some(2),
+                _ => None,
+            })
+            .collect();
+        compiler.eulerseq =
+            axes.try_into().map_err(|_| problem(&node, format!("eulerseq {seq:?} must be three of x, y, z")))?;
+        compiler.extrinsic = seq.chars().all(|c| c.is_ascii_uppercase());
+    }
+    if let Some(auto) = node.attribute("autolimits") {
+        compiler.autolimits = auto == "true";
+    }
+    if let Some(v) = node.attribute("inertiafromgeom") {
+        compiler.from_geom = match v {
+            "true" => Some(true),
+            "false" => Some(false),
+            _ => None,
+        };
+    }
+    if let Some(total) = node.attribute("settotalmass") {
+        compiler.total_mass = match total.parse::<f64>() {
+            Ok(m) if m > 0.0 && m.is_finite() => Some(m),
+            Ok(_) => None,
+            Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
+        };
+    }
+    if let Some(dir) = node.attribute("meshdir").or(node.attribute("assetdir")) {
+        compiler.meshdir = Some(dir.to_string());
+    }
+    if node.attribute("coordinate").is_some_and(|c| c != "local") {
+        return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
+    }
+    Ok(())
+}
+
+/// An `<asset><mesh>`: its name (else its file's stem), its file (as written) and
+/// its scale.
+fn mesh_asset(mesh: roxmltree::Node<'_, '_>) -> Parsed<(String, String, Vector3<f64>)> {
+    let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
+    let name = match mesh.attribute("name") {
+        Some(name) => name.to_string(),
+        None => Path::new(file).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+    };
+    let a = Attrs { node: mesh, class: None };
+    let scale = a.fixed::<3>("scale")?.map_or(Vector3::repeat(1.0), Vector3::from);
+    Ok((name, file.to_string(), scale))
+}
+
+/// The materials' colours by name, with their classes' defaults (read by now,
+/// wherever they are).
+fn material_colors(nodes: &[roxmltree::Node<'_, '_>], defaults: &Defaults) -> Parsed<HashMap<String, [f64; 4]>> {
+    let mut materials = HashMap::new();
+    for &node in nodes {
+        let a = Attrs::new(node, defaults, "main");
+        if let (Some(name), Some(rgba)) = (node.attribute("name"), a.fixed::<4>("rgba")?) {
+            materials.insert(name.to_string(), rgba);
+        }
+    }
+    Ok(materials)
+}
+
+/// The sum of the bodies' masses, their children's included.
+fn total_mass(bodies: &[Body]) -> f64 {
+    bodies.iter().map(|b| b.mass.map_or(0.0, |m| m.0) + total_mass(&b.children)).sum()
+}
+
+/// Scales every body's mass and inertia (its children's too) by `factor`.
+fn scale_masses(bodies: &mut [Body], factor: f64) {
+    for b in bodies {
+        if let Some((mass, _, inertia)) = b.mass.as_mut() {
+            *mass *= factor;
+            *inertia *= factor;
+        }
+        scale_masses(&mut b.children, factor);
+    }
+}
+
+impl<'a, 'input> Reader<'_, 'a, 'input> {
+    /// The second pass: reads a top-level element into `model` (the first pass's are
+    /// passed over).
+    fn section(&mut self, node: roxmltree::Node<'a, 'input>, model: &mut Model) -> Parsed<()> {
+        let tree = self.tree;
+        match node.tag_name().name() {
+            "worldbody" => self.world_body(node, model)?,
+            "actuator" => {
+                for (i, child) in tree.elements(node).into_iter().enumerate() {
+                    if let Some(actuator) = self.actuator(child, i)? {
+                        model.actuators.push(actuator);
+                    }
+                }
+            }
+            "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
+            "contact" => self.contacts(node, model)?,
+            "sensor" => {
+                for (i, child) in tree.elements(node).into_iter().enumerate() {
+                    if let Some(sensor) = self.sensor(child, i)? {
+                        model.sensors.push(sensor);
+                        model.sensor_places.push(problem(&child, ""));
+                    }
+                }
+            }
+            other => self.unsupported(&node, &format!("<{other}>"))?,
+        }
+        Ok(())
+    }
+
+    /// The `<worldbody>`: its geoms, bodies and sites.
+    fn world_body(&mut self, node: roxmltree::Node<'a, 'input>, model: &mut Model) -> Parsed<()> {
+        for child in self.tree.elements(node) {
+            match child.tag_name().name() {
+                "geom" => model.world_geoms.extend(self.geom(child, "main")?),
+                "body" => model.bodies.push(self.body(child, "main")?),
+                "site" => model.world_sites.extend(self.site(child, "main")?.map(|s| s.name)),
+                "camera" | "light" => {}
+                other => self.unsupported(&child, &format!("<{other}> in the world body"))?,
+            }
+        }
+        Ok(())
+    }
+
+    /// A `<contact>` section: its exclusions and its pairs (up to
+    /// [`MAX_CONTACT_PAIRS`]).
+    fn contacts(&mut self, node: roxmltree::Node<'a, 'input>, model: &mut Model) -> Parsed<()> {
+        for child in self.tree.elements(node) {
+            let needs = |attr: &str| {
+                child.attribute(attr).map(str::to_string).ok_or_else(|| problem(&child, format!("needs a {attr}")))
+            };
+            match child.tag_name().name() {
+                "exclude" => model.excluded.push((needs("body1")?, needs("body2")?)),
+                "pair" => {
+                    if model.pairs.len() == MAX_CONTACT_PAIRS {
+                        self.unsupported(&child, &format!("a contact pair beyond the first {MAX_CONTACT_PAIRS}"))?;
+                        continue;
+                    }
+                    model.pairs.push((needs("geom1")?, needs("geom2")?));
+                    let unused: Vec<&str> = child
+                        .attributes()
+                        .map(|a| a.name())
+                        .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
+                        .collect();
+                    contact_parameters_unused(&child, &unused, &mut self.skipped);
+                }
+                other => self.unsupported(&child, &format!("<{other}> in <contact>"))?,
+            }
+        }
+        Ok(())
+    }
 }

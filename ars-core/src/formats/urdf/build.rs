@@ -114,6 +114,9 @@ pub(super) struct Plan<'r> {
 }
 
 impl Scene {
+    /// Builds the planned robot: its links (a massless link fixed to its parent merged
+    /// into it), joints, mimics, fixed base and initial pose. On an error, what was made
+    /// is removed and the error names its element.
     // The element with the error: internal, and only on the error path, so its size
     // costs nothing on a robot that loads.
     #[allow(clippy::result_large_err)]
@@ -123,120 +126,14 @@ impl Scene {
         options: &UrdfOptions,
         meshes: &mut Meshes<'_>,
     ) -> std::result::Result<UrdfRobot, (String, Error)> {
-        let robot = plan.robot;
-        let link_element = |name: &str| format!("link {name:?}");
-        // Self-collision off: the robot's geoms share one category they do not collide with.
-        let bits = if options.self_collision { None } else { Some(self.next_robot_bit()) };
-        let mut links = Vec::new();
-        let mut created: Vec<(ObjectId, Option<crate::handle::BodyHandle>)> = Vec::new();
-        let undo = |scene: &mut Scene, created: &[(ObjectId, Option<crate::handle::BodyHandle>)]| {
+        let mut created = Vec::new();
+        let built = self.build_urdf_parts(plan, options, meshes, &mut created);
+        if built.is_err() {
             for (id, _) in created.iter().rev() {
-                let _ = scene.remove_object_with_joints(*id);
-            }
-        };
-        let hosts = merge_hosts(robot, plan.root);
-        let mut made: Vec<Option<(ObjectId, Option<crate::handle::BodyHandle>)>> = vec![None; robot.links.len()];
-        for (i, link) in robot.links.iter().enumerate() {
-            if hosts[i].is_some() {
-                continue;
-            }
-            let frame = plan.link_frames[i];
-            let result = self.add_link(robot, link, &frame, i == plan.root, bits, meshes);
-            let result = result.and_then(|(id, body)| {
-                if let Some(color) = link_color(robot, link) {
-                    self.set_color(id, color)?;
-                }
-                Ok((id, body))
-            });
-            match result {
-                Ok(made_link) => {
-                    created.push(made_link);
-                    made[i] = Some(made_link);
-                }
-                Err(e) => {
-                    undo(self, &created);
-                    return Err((link_element(&link.name), e));
-                }
+                let _ = self.remove_object_with_joints(*id);
             }
         }
-        for (i, link) in robot.links.iter().enumerate() {
-            let Some(host) = hosts[i] else { continue };
-            let host_made = made[host].expect("a host is made in the first pass");
-            let host_frame = match host_made.1 {
-                Some(_) => plan.link_frames[host].then(&Frame::from_pose(&robot.links[host].inertial.origin)),
-                None => plan.link_frames[host],
-            };
-            let result = self.merge_link(robot, link, &plan.link_frames[i], host_made, &host_frame, bits, meshes);
-            if let Err(e) = result {
-                undo(self, &created);
-                return Err((link_element(&link.name), e));
-            }
-            made[i] = Some(host_made);
-        }
-        let made: Vec<(ObjectId, Option<crate::handle::BodyHandle>)> =
-            made.into_iter().map(|m| m.expect("every link is made or merged")).collect();
-        for (link, (id, _)) in robot.links.iter().zip(&made) {
-            links.push((link.name.clone(), *id));
-        }
-        let mut joints = Vec::new();
-        for (j, joint) in robot.joints.iter().enumerate() {
-            let parent = robot.links.iter().position(|l| l.name == joint.parent.link).expect("checked");
-            let child = robot.links.iter().position(|l| l.name == joint.child.link).expect("checked");
-            if hosts[child].is_some() {
-                continue; // merged: its link is part of its parent's body
-            }
-            match self.add_urdf_joint(joint, &plan.joint_frames[j], made[child], made[parent]) {
-                Ok(id) => joints.push((joint.name.clone(), id)),
-                Err(e) => {
-                    undo(self, &created);
-                    return Err((format!("joint {:?}", joint.name), e));
-                }
-            }
-        }
-        for joint in &robot.joints {
-            let Some(mimic) = &joint.mimic else { continue };
-            let find = |name: &str| joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id).expect("checked");
-            let (follower, leader) = (find(&joint.name), find(&mimic.joint));
-            let (multiplier, offset) = (mimic.multiplier.unwrap_or(1.0), mimic.offset.unwrap_or(0.0));
-            if let Err(e) = self.joint_mut(follower).and_then(|mut j| j.set_mimic(leader, multiplier, offset)) {
-                undo(self, &created);
-                return Err((format!("joint {:?}", joint.name), e));
-            }
-        }
-        let base_joint = match (options.fixed_base, made[plan.root]) {
-            (true, (root, Some(_))) => {
-                let name = format!("{}/base", robot.name);
-                match self.insert_sim_joint(
-                    &name,
-                    crate::scene::JointType::Fixed,
-                    root,
-                    JointEnd::World,
-                    JointBuilder::fixed(),
-                ) {
-                    Ok(id) => Some(id),
-                    Err(e) => {
-                        undo(self, &created);
-                        return Err(("robot".into(), e));
-                    }
-                }
-            }
-            _ => None,
-        };
-        if let Some(posed) = &plan.posed_link_frames {
-            for (i, link) in robot.links.iter().enumerate() {
-                let Some(body) = made[i].1.filter(|_| hosts[i].is_none()) else { continue };
-                let at = posed[i].then(&Frame::from_pose(&link.inertial.origin));
-                let result = self.world.body_mut(body).and_then(|mut b| {
-                    b.set_position(Point3::from(at.translation))?;
-                    b.set_rotation(at.rotation3())
-                });
-                if let Err(e) = result {
-                    undo(self, &created);
-                    return Err((link_element(&link.name), e));
-                }
-            }
-        }
-        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint })
+        built
     }
 
     /// A category bit no other robot of this scene uses (1 to 62; 63 is everything else).
@@ -245,6 +142,8 @@ impl Scene {
         1u64 << self.robots_loaded
     }
 
+    /// Makes a link that is not merged into another: a body at its inertial frame, or
+    /// static geometry for a massless root; with its geoms and visuals.
     pub(super) fn add_link(
         &mut self,
         robot: &urdf_rs::Robot,
@@ -253,54 +152,66 @@ impl Scene {
         root: bool,
         bits: Option<u64>,
         meshes: &mut Meshes<'_>,
-    ) -> Result<(ObjectId, Option<crate::handle::BodyHandle>)> {
+    ) -> Result<MadeLink> {
         let (collisions, looks) = link_geometry(robot, link, frame, meshes)?;
-        let urdf_err = |problem: String| link_error(link, problem);
-        // The visuals relative to the object's pose.
-        let visuals = |object_pose: Isometry3<f64>| -> Vec<crate::scene::Visual> {
-            let to_object = object_pose.inverse();
-            looks
-                .iter()
-                .map(|(shape, at, color)| crate::scene::Visual {
-                    shape: shape.clone(),
-                    offset: to_object * at,
-                    color: *color,
-                })
-                .collect()
-        };
         let mass = link.inertial.mass.value;
-        let inertial = frame.then(&Frame::from_pose(&link.inertial.origin));
-        let with_bits = |g: GeomBuilder| match bits {
-            Some(b) => g.category_bits(b).collide_bits(!b),
-            None => g,
-        };
         // A link without collision geometry is drawn as a small sphere and collides with nothing.
         let drawn = collisions.first().map_or(Shape::Sphere { radius: 1e-3 }, |(shape, _)| shape.clone());
-        let mut geoms = Vec::new();
         if mass == 0.0 && root {
-            // A massless root is static: its geometry collides, nothing moves it.
-            for (shape, at) in collisions {
-                let g = GeomBuilder::new(shape).pose(at.isometry());
-                match self.world.insert_geom(self.space(), with_bits(g)) {
-                    Ok(g) => geoms.push(g),
-                    Err(e) => {
-                        geoms.into_iter().try_for_each(|g| self.world.remove_geom(g))?;
-                        return Err(e);
-                    }
-                }
-            }
-            let id = self.register_as(&link.name, drawn, None, geoms.first().copied())?;
-            self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
-            let object_pose = self.pose(id).unwrap_or_else(|_| Isometry3::identity());
-            self.set_visuals(id, visuals(object_pose))?;
-            return Ok((id, None));
+            return self.add_static_link(link, collisions, &looks, drawn, bits);
         }
         if mass.is_nan() || mass <= 0.0 {
-            return Err(urdf_err(format!(
-                "mass {mass}: a moving link needs a positive mass (a massless link is merged into its parent \
-                 only when a fixed joint holds it)"
-            )));
+            return Err(link_error(
+                link,
+                format!(
+                    "mass {mass}: a moving link needs a positive mass (a massless link is merged into its parent \
+                     only when a fixed joint holds it)"
+                ),
+            ));
         }
+        self.add_link_body(link, frame, collisions, &looks, drawn, bits)
+    }
+
+    /// A massless root link: static, its geometry collides and nothing moves it.
+    fn add_static_link(
+        &mut self,
+        link: &urdf_rs::Link,
+        collisions: Vec<(Shape, Frame)>,
+        looks: &[Look],
+        drawn: Shape,
+        bits: Option<u64>,
+    ) -> Result<MadeLink> {
+        let mut geoms = Vec::new();
+        for (shape, at) in collisions {
+            let g = GeomBuilder::new(shape).pose(at.isometry());
+            match self.world.insert_geom(self.space(), with_robot_bits(g, bits)) {
+                Ok(g) => geoms.push(g),
+                Err(e) => {
+                    geoms.into_iter().try_for_each(|g| self.world.remove_geom(g))?;
+                    return Err(e);
+                }
+            }
+        }
+        let id = self.register_as(&link.name, drawn, None, geoms.first().copied())?;
+        self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
+        let object_pose = self.pose(id).unwrap_or_else(|_| Isometry3::identity());
+        self.set_visuals(id, visuals_of(looks, object_pose))?;
+        Ok((id, None))
+    }
+
+    /// A moving link: its body at its inertial frame (`frame` is the link's), its geoms
+    /// on it.
+    fn add_link_body(
+        &mut self,
+        link: &urdf_rs::Link,
+        frame: &Frame,
+        collisions: Vec<(Shape, Frame)>,
+        looks: &[Look],
+        drawn: Shape,
+        bits: Option<u64>,
+    ) -> Result<MadeLink> {
+        let mass = link.inertial.mass.value;
+        let inertial = frame.then(&Frame::from_pose(&link.inertial.origin));
         let i = &link.inertial.inertia;
         let inertia = crate::formats::inertia_tensor([i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz]);
         let spec = MassSpec::Custom { mass, inertia };
@@ -309,12 +220,13 @@ impl Scene {
             builder = builder.rotation(inertial.rotation3());
         }
         let body = self.world.insert_body(builder)?;
+        let mut geoms = Vec::new();
         for (shape, at) in collisions {
             let mut g = GeomBuilder::new(shape).attached_to(body);
             if !at.same_as(&inertial) {
                 g = g.offset(inertial.relative(&at));
             }
-            match self.world.insert_geom(self.space(), with_bits(g)) {
+            match self.world.insert_geom(self.space(), with_robot_bits(g, bits)) {
                 Ok(g) => geoms.push(g),
                 Err(e) => {
                     self.world.remove_body(body)?;
@@ -324,7 +236,7 @@ impl Scene {
         }
         let id = self.register_as(&link.name, drawn, Some(body), geoms.first().copied())?;
         self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
-        self.set_visuals(id, visuals(inertial.isometry()))?;
+        self.set_visuals(id, visuals_of(looks, inertial.isometry()))?;
         Ok((id, Some(body)))
     }
 
@@ -434,6 +346,208 @@ impl Scene {
         }
         Ok(id)
     }
+}
+
+// The build's steps: each error names its element (internal, and only on the error
+// path, so its size costs nothing on a robot that loads).
+#[allow(clippy::result_large_err)]
+impl Scene {
+    /// [`build_urdf`](Self::build_urdf) without the removal on an error: the links made
+    /// themselves go in `created`, as they are made.
+    fn build_urdf_parts(
+        &mut self,
+        plan: &Plan<'_>,
+        options: &UrdfOptions,
+        meshes: &mut Meshes<'_>,
+        created: &mut Vec<MadeLink>,
+    ) -> std::result::Result<UrdfRobot, (String, Error)> {
+        let robot = plan.robot;
+        // Self-collision off: the robot's geoms share one category they do not collide with.
+        let bits = if options.self_collision { None } else { Some(self.next_robot_bit()) };
+        let hosts = merge_hosts(robot, plan.root);
+        let mut made = self.make_urdf_links(plan, &hosts, bits, meshes, created)?;
+        self.merge_urdf_links(plan, &hosts, &mut made, bits, meshes)?;
+        let made: Vec<MadeLink> = made.into_iter().map(|m| m.expect("every link is made or merged")).collect();
+        let links = robot.links.iter().zip(&made).map(|(link, (id, _))| (link.name.clone(), *id)).collect();
+        let joints = self.make_urdf_joints(plan, &hosts, &made)?;
+        self.set_urdf_mimics(robot, &joints)?;
+        let base_joint = self.fix_urdf_base(plan, options, &made)?;
+        if let Some(posed) = &plan.posed_link_frames {
+            self.pose_urdf_links(robot, posed, &hosts, &made)?;
+        }
+        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint })
+    }
+
+    /// Makes the links that are not merged into another, with their colours; each link
+    /// made goes in `created` and at its index in the result.
+    fn make_urdf_links(
+        &mut self,
+        plan: &Plan<'_>,
+        hosts: &[Option<usize>],
+        bits: Option<u64>,
+        meshes: &mut Meshes<'_>,
+        created: &mut Vec<MadeLink>,
+    ) -> std::result::Result<Vec<Option<MadeLink>>, (String, Error)> {
+        let robot = plan.robot;
+        let mut made = vec![None; robot.links.len()];
+        for (i, link) in robot.links.iter().enumerate() {
+            if hosts[i].is_some() {
+                continue;
+            }
+            let result = self.add_link(robot, link, &plan.link_frames[i], i == plan.root, bits, meshes);
+            let made_link = result
+                .and_then(|(id, body)| {
+                    if let Some(color) = link_color(robot, link) {
+                        self.set_color(id, color)?;
+                    }
+                    Ok((id, body))
+                })
+                .map_err(|e| (link_element(&link.name), e))?;
+            created.push(made_link);
+            made[i] = Some(made_link);
+        }
+        Ok(made)
+    }
+
+    /// Merges each massless link fixed to its parent into its host (made by now): the
+    /// link's index in `made` gets the host's object.
+    fn merge_urdf_links(
+        &mut self,
+        plan: &Plan<'_>,
+        hosts: &[Option<usize>],
+        made: &mut [Option<MadeLink>],
+        bits: Option<u64>,
+        meshes: &mut Meshes<'_>,
+    ) -> std::result::Result<(), (String, Error)> {
+        let robot = plan.robot;
+        for (i, link) in robot.links.iter().enumerate() {
+            let Some(host) = hosts[i] else { continue };
+            let host_made = made[host].expect("a host is made in the first pass");
+            let host_frame = match host_made.1 {
+                Some(_) => plan.link_frames[host].then(&Frame::from_pose(&robot.links[host].inertial.origin)),
+                None => plan.link_frames[host],
+            };
+            self.merge_link(robot, link, &plan.link_frames[i], host_made, &host_frame, bits, meshes)
+                .map_err(|e| (link_element(&link.name), e))?;
+            made[i] = Some(host_made);
+        }
+        Ok(())
+    }
+
+    /// Makes the joints (not those of merged links), by name.
+    fn make_urdf_joints(
+        &mut self,
+        plan: &Plan<'_>,
+        hosts: &[Option<usize>],
+        made: &[MadeLink],
+    ) -> std::result::Result<Vec<(String, JointId)>, (String, Error)> {
+        let robot = plan.robot;
+        let mut joints = Vec::new();
+        for (j, joint) in robot.joints.iter().enumerate() {
+            let parent = robot.links.iter().position(|l| l.name == joint.parent.link).expect("checked");
+            let child = robot.links.iter().position(|l| l.name == joint.child.link).expect("checked");
+            if hosts[child].is_some() {
+                continue; // merged: its link is part of its parent's body
+            }
+            let id = self
+                .add_urdf_joint(joint, &plan.joint_frames[j], made[child], made[parent])
+                .map_err(|e| (format!("joint {:?}", joint.name), e))?;
+            joints.push((joint.name.clone(), id));
+        }
+        Ok(joints)
+    }
+
+    /// Makes each joint with a `<mimic>` follow its leader (`joints`: the joints made,
+    /// by name).
+    fn set_urdf_mimics(
+        &mut self,
+        robot: &urdf_rs::Robot,
+        joints: &[(String, JointId)],
+    ) -> std::result::Result<(), (String, Error)> {
+        for joint in &robot.joints {
+            let Some(mimic) = &joint.mimic else { continue };
+            let find = |name: &str| joints.iter().find(|(n, _)| n == name).map(|(_, id)| *id).expect("checked");
+            let (follower, leader) = (find(&joint.name), find(&mimic.joint));
+            let (multiplier, offset) = (mimic.multiplier.unwrap_or(1.0), mimic.offset.unwrap_or(0.0));
+            self.joint_mut(follower)
+                .and_then(|mut j| j.set_mimic(leader, multiplier, offset))
+                .map_err(|e| (format!("joint {:?}", joint.name), e))?;
+        }
+        Ok(())
+    }
+
+    /// With a fixed base, the joint that holds the root link (when it has a body) to
+    /// the world.
+    fn fix_urdf_base(
+        &mut self,
+        plan: &Plan<'_>,
+        options: &UrdfOptions,
+        made: &[MadeLink],
+    ) -> std::result::Result<Option<JointId>, (String, Error)> {
+        match (options.fixed_base, made[plan.root]) {
+            (true, (root, Some(_))) => {
+                let name = format!("{}/base", plan.robot.name);
+                let fixed = crate::scene::JointType::Fixed;
+                match self.insert_sim_joint(&name, fixed, root, JointEnd::World, JointBuilder::fixed()) {
+                    Ok(id) => Ok(Some(id)),
+                    Err(e) => Err(("robot".into(), e)),
+                }
+            }
+            _ => Ok(None),
+        }
+    }
+
+    /// Moves the bodies of the links made themselves to their frames at the initial
+    /// joint positions (`posed`, the links' frames).
+    fn pose_urdf_links(
+        &mut self,
+        robot: &urdf_rs::Robot,
+        posed: &[Frame],
+        hosts: &[Option<usize>],
+        made: &[MadeLink],
+    ) -> std::result::Result<(), (String, Error)> {
+        for (i, link) in robot.links.iter().enumerate() {
+            let Some(body) = made[i].1.filter(|_| hosts[i].is_none()) else { continue };
+            let at = posed[i].then(&Frame::from_pose(&link.inertial.origin));
+            self.world
+                .body_mut(body)
+                .and_then(|mut b| {
+                    b.set_position(Point3::from(at.translation))?;
+                    b.set_rotation(at.rotation3())
+                })
+                .map_err(|e| (link_element(&link.name), e))?;
+        }
+        Ok(())
+    }
+}
+
+/// A link as made: its object, and its body (`None`: static).
+type MadeLink = (ObjectId, Option<crate::handle::BodyHandle>);
+
+/// What a link looks like: a visual's shape, world pose and colour.
+type Look = (Shape, Isometry3<f64>, Option<crate::scene::Color>);
+
+/// How an error names a link.
+fn link_element(name: &str) -> String {
+    format!("link {name:?}")
+}
+
+/// A geom in the robot's own category, colliding with everything else, when
+/// self-collision is off (`bits`, that category).
+fn with_robot_bits(g: GeomBuilder, bits: Option<u64>) -> GeomBuilder {
+    match bits {
+        Some(b) => g.category_bits(b).collide_bits(!b),
+        None => g,
+    }
+}
+
+/// Looks as the visuals of an object at `object_pose`.
+fn visuals_of(looks: &[Look], object_pose: Isometry3<f64>) -> Vec<crate::scene::Visual> {
+    let to_object = object_pose.inverse();
+    looks
+        .iter()
+        .map(|(shape, at, color)| crate::scene::Visual { shape: shape.clone(), offset: to_object * at, color: *color })
+        .collect()
 }
 
 /// A link's collision shapes with their world frames, and its looks (shape, world
@@ -560,6 +674,39 @@ pub(super) fn plan<'r>(
     if robot.links.is_empty() {
         return Err(("robot".into(), "it has no link".into()));
     }
+    let (joint_names, parent_joint) = check_joints(robot, &link_index)?;
+    let root = root_link(robot, &parent_joint)?;
+    for link in &robot.links {
+        let element = format!("link {:?}", link.name);
+        let m = link.inertial.mass.value;
+        if !m.is_finite() || m < 0.0 {
+            return Err((element, format!("mass {m}: must be positive")));
+        }
+    }
+    // Frames, from the root outwards.
+    let base = Frame::from_isometry(&options.base_pose);
+    let root_frame = match options.up_axis {
+        UpAxis::Z => base.then(&z_up_to_y_up()),
+        UpAxis::Y => base,
+    };
+    let (link_frames, joint_frames) = frames(robot, &link_index, root, root_frame, None);
+    let posed_link_frames = if options.initial_positions.is_empty() {
+        None
+    } else {
+        let q = initial_positions(robot, options, &joint_names)?;
+        Some(frames(robot, &link_index, root, root_frame, Some(&q)).0)
+    };
+    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames })
+}
+
+/// Checks every joint (a name of its own, links in the file, a link's only parent
+/// joint, a type ARS loads, its mimic's leader, its axis): the joints' indices by name,
+/// and each link's parent joint (`None`: the root).
+#[allow(clippy::type_complexity)]
+fn check_joints<'r>(
+    robot: &'r urdf_rs::Robot,
+    link_index: &HashMap<&str, usize>,
+) -> std::result::Result<(HashMap<&'r str, usize>, Vec<Option<usize>>), (String, String)> {
     let mut joint_names = HashMap::new();
     let mut parent_joint = vec![None; robot.links.len()];
     for (j, joint) in robot.joints.iter().enumerate() {
@@ -584,66 +731,67 @@ pub(super) fn plan<'r>(
             ));
         }
         parent_joint[child] = Some(j);
-        use urdf_rs::JointType as U;
-        match joint.joint_type {
-            U::Revolute | U::Continuous | U::Prismatic | U::Fixed | U::Spherical => {}
-            ref other => {
-                return Err((
-                    element,
-                    format!("type {other:?}: ARS loads revolute, continuous, prismatic, fixed and spherical joints"),
-                ));
-            }
-        }
-        if let Some(mimic) = &joint.mimic
-            && !robot.joints.iter().any(|j| j.name == mimic.joint)
-        {
-            return Err((element, format!("<mimic> names joint {:?}, which is not in the file", mimic.joint)));
-        }
-        let axis = Vector3::from(joint.axis.xyz.0);
-        let directed = axis.iter().all(|x| x.is_finite()) && axis.norm() > 1e-9;
-        if !matches!(joint.joint_type, U::Fixed | U::Spherical) && !directed {
-            return Err((element, format!("axis {:?} has no direction", joint.axis.xyz.0)));
+        check_joint_kind(robot, joint).map_err(|problem| (element, problem))?;
+    }
+    Ok((joint_names, parent_joint))
+}
+
+/// Checks a joint's type (one ARS loads), its mimic's leader (in the file) and its axis
+/// (a direction, but for fixed and spherical joints).
+fn check_joint_kind(robot: &urdf_rs::Robot, joint: &urdf_rs::Joint) -> std::result::Result<(), String> {
+    use urdf_rs::JointType as U;
+    match joint.joint_type {
+        U::Revolute | U::Continuous | U::Prismatic | U::Fixed | U::Spherical => {}
+        ref other => {
+            return Err(format!(
+                "type {other:?}: ARS loads revolute, continuous, prismatic, fixed and spherical joints"
+            ));
         }
     }
+    if let Some(mimic) = &joint.mimic
+        && !robot.joints.iter().any(|j| j.name == mimic.joint)
+    {
+        return Err(format!("<mimic> names joint {:?}, which is not in the file", mimic.joint));
+    }
+    let axis = Vector3::from(joint.axis.xyz.0);
+    let directed = axis.iter().all(|x| x.is_finite()) && axis.norm() > 1e-9;
+    if !matches!(joint.joint_type, U::Fixed | U::Spherical) && !directed {
+        return Err(format!("axis {:?} has no direction", joint.axis.xyz.0));
+    }
+    Ok(())
+}
+
+/// The root: the one link that is no joint's child.
+fn root_link(robot: &urdf_rs::Robot, parent_joint: &[Option<usize>]) -> std::result::Result<usize, (String, String)> {
     let roots: Vec<usize> = (0..robot.links.len()).filter(|&i| parent_joint[i].is_none()).collect();
-    let root = match roots[..] {
-        [root] => root,
-        [] => return Err(("robot".into(), "every link has a parent: the joints form a loop".into())),
+    match roots[..] {
+        [root] => Ok(root),
+        [] => Err(("robot".into(), "every link has a parent: the joints form a loop".into())),
         _ => {
             let names: Vec<&str> = roots.iter().map(|&i| robot.links[i].name.as_str()).collect();
-            return Err(("robot".into(), format!("several root links ({}): one tree is needed", names.join(", "))));
-        }
-    };
-    for link in &robot.links {
-        let element = format!("link {:?}", link.name);
-        let m = link.inertial.mass.value;
-        if !m.is_finite() || m < 0.0 {
-            return Err((element, format!("mass {m}: must be positive")));
+            Err(("robot".into(), format!("several root links ({}): one tree is needed", names.join(", "))))
         }
     }
-    // Frames, from the root outwards.
-    let base = Frame::from_isometry(&options.base_pose);
-    let root_frame = match options.up_axis {
-        UpAxis::Z => base.then(&z_up_to_y_up()),
-        UpAxis::Y => base,
-    };
-    let (link_frames, joint_frames) = frames(robot, &link_index, root, root_frame, None);
-    let posed_link_frames = if options.initial_positions.is_empty() {
-        None
-    } else {
-        let mut q = vec![0.0; robot.joints.len()];
-        for (name, value) in &options.initial_positions {
-            let element = format!("joint {name:?}");
-            let Some(&j) = joint_names.get(name.as_str()) else {
-                return Err((element, "an initial position is given, but the file has no such joint".into()));
-            };
-            let fixed = matches!(robot.joints[j].joint_type, urdf_rs::JointType::Fixed | urdf_rs::JointType::Spherical);
-            if fixed || !value.is_finite() {
-                return Err((element, format!("initial position {value}: needs a moving joint and a finite value")));
-            }
-            q[j] = *value;
+}
+
+/// The joint positions the options give (0 for the others), each checked: a moving
+/// joint of the file, a finite value.
+fn initial_positions(
+    robot: &urdf_rs::Robot,
+    options: &UrdfOptions,
+    joint_names: &HashMap<&str, usize>,
+) -> std::result::Result<Vec<f64>, (String, String)> {
+    let mut q = vec![0.0; robot.joints.len()];
+    for (name, value) in &options.initial_positions {
+        let element = format!("joint {name:?}");
+        let Some(&j) = joint_names.get(name.as_str()) else {
+            return Err((element, "an initial position is given, but the file has no such joint".into()));
+        };
+        let fixed = matches!(robot.joints[j].joint_type, urdf_rs::JointType::Fixed | urdf_rs::JointType::Spherical);
+        if fixed || !value.is_finite() {
+            return Err((element, format!("initial position {value}: needs a moving joint and a finite value")));
         }
-        Some(frames(robot, &link_index, root, root_frame, Some(&q)).0)
-    };
-    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames })
+        q[j] = *value;
+    }
+    Ok(q)
 }
