@@ -117,20 +117,7 @@ impl Panel {
                 sim.scene().step_count(),
                 status.real_time_factor
             ));
-            ui.horizontal(|ui| {
-                if ui.button(if status.paused { "▶ Run" } else { "⏸ Pause" }).clicked() {
-                    commands.push(Command::TogglePause);
-                }
-                if ui.add_enabled(status.paused, egui::Button::new("Frame")).clicked() {
-                    commands.push(Command::StepFrame);
-                }
-                if ui.add_enabled(status.paused, egui::Button::new("Step")).clicked() {
-                    commands.push(Command::StepPhysics);
-                }
-                if ui.button("Reset").clicked() {
-                    commands.push(Command::Reset);
-                }
-            });
+            ui.horizontal(|ui| run_buttons(ui, status, &mut commands));
             ui.horizontal(|ui| {
                 ui.label("Speed");
                 ui.add_enabled(
@@ -139,53 +126,8 @@ impl Panel {
                 );
                 ui.checkbox(&mut self.fastest, "fastest");
             });
-            ui.horizontal(|ui| {
-                if ui.selectable_label(status.following, "Follow").clicked() {
-                    commands.push(Command::ToggleFollow);
-                }
-                if ui.selectable_label(status.contacts, "Contacts").clicked() {
-                    commands.push(Command::ToggleContacts);
-                }
-                if ui
-                    .selectable_label(status.forces, "Forces")
-                    .on_hover_text("contact forces (cyan) and joint reactions (amber) as arrows")
-                    .clicked()
-                {
-                    commands.push(Command::ToggleForces);
-                }
-                if ui.selectable_label(status.joints, "Joints").clicked() {
-                    commands.push(Command::ToggleJoints);
-                }
-                if ui.selectable_label(status.axes, "Axes").clicked() {
-                    commands.push(Command::ToggleAxes);
-                }
-                if ui.button("Screenshot (p)").clicked() {
-                    commands.push(Command::Screenshot);
-                }
-            });
-            ui.horizontal(|ui| {
-                ui.label("Views (1–4)");
-                for (n, name) in [(1, "free"), (2, "+ follow"), (3, "+ top"), (4, "+ camera")] {
-                    if ui.selectable_label(status.views == n, name).clicked() {
-                        commands.push(Command::Views(n));
-                    }
-                }
-                // Which camera sensor the fourth view shows, when there are several.
-                let cameras = sim.sensors_of::<DepthCamera>().count();
-                if status.views == 4 && cameras > 1 {
-                    let mut chosen = status.camera.min(cameras - 1);
-                    egui::ComboBox::from_id_salt("ars-view-camera")
-                        .selected_text(format!("camera {}", chosen + 1))
-                        .show_ui(ui, |ui| {
-                            for i in 0..cameras {
-                                ui.selectable_value(&mut chosen, i, format!("camera {}", i + 1));
-                            }
-                        });
-                    if chosen != status.camera {
-                        commands.push(Command::ViewCamera(chosen));
-                    }
-                }
-            });
+            ui.horizontal(|ui| display_toggles(ui, status, &mut commands));
+            ui.horizontal(|ui| view_choice(ui, sim, status, &mut commands));
             if status.forces {
                 let slider = egui::Slider::new(&mut self.force_scale, 0.001..=1.0).logarithmic(true).suffix(" m/N");
                 ui.add(slider.text("force arrows"));
@@ -416,40 +358,45 @@ impl Panel {
                 commands.push(Command::Edit(Edit::ViscousFriction(id, v)));
             }
             ui.end_row();
-            let now = sim.scene().time();
-            let controller = if let Ok(Some(s)) = sim.scene().joint_controller::<PositionServo>(id) {
-                Some(("position", s.setpoint.value(now), vec![("kp", s.pid.kp), ("ki", s.pid.ki), ("kd", s.pid.kd)]))
-            } else if let Ok(Some(s)) = sim.scene().joint_controller::<VelocityServo>(id) {
-                Some(("speed", s.setpoint.value(now), vec![("gain", s.gain)]))
-            } else if let Ok(Some(m)) = sim.scene().joint_controller::<DcMotor>(id) {
-                Some(("voltage", m.voltage.value(now), vec![]))
-            } else {
-                None
-            };
-            if let Some((what, setpoint, gains)) = controller {
-                ui.label(format!("set-point ({what})"));
-                if let Some(v) = self.number(ui, "set-point", setpoint) {
-                    commands.push(Command::Edit(Edit::Setpoint(id, v)));
-                }
-                ui.end_row();
-                if !gains.is_empty() {
-                    ui.label(gains.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "));
-                    ui.horizontal(|ui| {
-                        let mut all = [0.0; 3];
-                        for (i, (_, g)) in gains.iter().enumerate() {
-                            all[i] = *g;
-                        }
-                        for (i, (label, g)) in gains.iter().enumerate() {
-                            if let Some(v) = self.number(ui, label, *g) {
-                                all[i] = v;
-                                commands.push(Command::Edit(Edit::Gains(id, all)));
-                            }
-                        }
-                    });
-                    ui.end_row();
-                }
-            }
+            self.controller_rows(ui, sim, id, commands);
         });
+    }
+
+    /// The rows of a joint's controller: its set-point and its gains.
+    fn controller_rows(&mut self, ui: &mut egui::Ui, sim: &Simulation, id: JointId, commands: &mut Vec<Command>) {
+        let now = sim.scene().time();
+        let controller = if let Ok(Some(s)) = sim.scene().joint_controller::<PositionServo>(id) {
+            Some(("position", s.setpoint.value(now), vec![("kp", s.pid.kp), ("ki", s.pid.ki), ("kd", s.pid.kd)]))
+        } else if let Ok(Some(s)) = sim.scene().joint_controller::<VelocityServo>(id) {
+            Some(("speed", s.setpoint.value(now), vec![("gain", s.gain)]))
+        } else if let Ok(Some(m)) = sim.scene().joint_controller::<DcMotor>(id) {
+            Some(("voltage", m.voltage.value(now), vec![]))
+        } else {
+            None
+        };
+        if let Some((what, setpoint, gains)) = controller {
+            ui.label(format!("set-point ({what})"));
+            if let Some(v) = self.number(ui, "set-point", setpoint) {
+                commands.push(Command::Edit(Edit::Setpoint(id, v)));
+            }
+            ui.end_row();
+            if !gains.is_empty() {
+                ui.label(gains.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "));
+                ui.horizontal(|ui| {
+                    let mut all = [0.0; 3];
+                    for (i, (_, g)) in gains.iter().enumerate() {
+                        all[i] = *g;
+                    }
+                    for (i, (label, g)) in gains.iter().enumerate() {
+                        if let Some(v) = self.number(ui, label, *g) {
+                            all[i] = v;
+                            commands.push(Command::Edit(Edit::Gains(id, all)));
+                        }
+                    }
+                });
+                ui.end_row();
+            }
+        }
     }
 
     /// A number field showing `value`: what was typed once it is entered (Enter, or
@@ -651,6 +598,75 @@ pub(crate) fn set_setpoint(sim: &mut Simulation, joint: JointId, value: f64) -> 
         servo.setpoint = profile;
     }
     Ok(())
+}
+
+/// Run, pause, one frame, one step, reset.
+fn run_buttons(ui: &mut egui::Ui, status: &Status<'_>, commands: &mut Vec<Command>) {
+    if ui.button(if status.paused { "▶ Run" } else { "⏸ Pause" }).clicked() {
+        commands.push(Command::TogglePause);
+    }
+    if ui.add_enabled(status.paused, egui::Button::new("Frame")).clicked() {
+        commands.push(Command::StepFrame);
+    }
+    if ui.add_enabled(status.paused, egui::Button::new("Step")).clicked() {
+        commands.push(Command::StepPhysics);
+    }
+    if ui.button("Reset").clicked() {
+        commands.push(Command::Reset);
+    }
+}
+
+/// What the scene is drawn with: following, contacts, forces, joints, axes; and a
+/// screenshot.
+fn display_toggles(ui: &mut egui::Ui, status: &Status<'_>, commands: &mut Vec<Command>) {
+    if ui.selectable_label(status.following, "Follow").clicked() {
+        commands.push(Command::ToggleFollow);
+    }
+    if ui.selectable_label(status.contacts, "Contacts").clicked() {
+        commands.push(Command::ToggleContacts);
+    }
+    if ui
+        .selectable_label(status.forces, "Forces")
+        .on_hover_text("contact forces (cyan) and joint reactions (amber) as arrows")
+        .clicked()
+    {
+        commands.push(Command::ToggleForces);
+    }
+    if ui.selectable_label(status.joints, "Joints").clicked() {
+        commands.push(Command::ToggleJoints);
+    }
+    if ui.selectable_label(status.axes, "Axes").clicked() {
+        commands.push(Command::ToggleAxes);
+    }
+    if ui.button("Screenshot (p)").clicked() {
+        commands.push(Command::Screenshot);
+    }
+}
+
+/// How many views, and which camera sensor the fourth shows.
+fn view_choice(ui: &mut egui::Ui, sim: &Simulation, status: &Status<'_>, commands: &mut Vec<Command>) {
+    ui.label("Views (1–4)");
+    for (n, name) in [(1, "free"), (2, "+ follow"), (3, "+ top"), (4, "+ camera")] {
+        if ui.selectable_label(status.views == n, name).clicked() {
+            commands.push(Command::Views(n));
+        }
+    }
+    // Which camera sensor the fourth view shows, when there are several.
+    let cameras = sim.sensors_of::<DepthCamera>().count();
+    if status.views == 4 && cameras > 1 {
+        let mut chosen = status.camera.min(cameras - 1);
+        egui::ComboBox::from_id_salt("ars-view-camera").selected_text(format!("camera {}", chosen + 1)).show_ui(
+            ui,
+            |ui| {
+                for i in 0..cameras {
+                    ui.selectable_value(&mut chosen, i, format!("camera {}", i + 1));
+                }
+            },
+        );
+        if chosen != status.camera {
+            commands.push(Command::ViewCamera(chosen));
+        }
+    }
 }
 
 #[cfg(test)]

@@ -118,50 +118,7 @@ impl FlatMaterial {
         });
         let shader = ctxt.create_shader_module(Some("ars_flat_shader"), include_str!("flat.wgsl"));
         let build = Rc::new(move |cull_mode: Option<wgpu::Face>, sample_count: u32| {
-            let vec3_buffer = |location| wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<[f32; 3]>() as wgpu::BufferAddress,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: if location == 0 { &POSITION } else { &NORMAL },
-            };
-            Context::get().create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("ars_flat_pipeline"),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some("vs_main"),
-                    buffers: &[Some(vec3_buffer(0)), Some(vec3_buffer(1))],
-                    compilation_options: Default::default(),
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some("fs_main"),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: Context::render_format(),
-                        blend: Some(wgpu::BlendState::REPLACE),
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                    compilation_options: Default::default(),
-                }),
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    strip_index_format: None,
-                    front_face: wgpu::FrontFace::Ccw,
-                    cull_mode,
-                    polygon_mode: wgpu::PolygonMode::Fill,
-                    unclipped_depth: false,
-                    conservative: false,
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: Context::depth_format(),
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                multisample: multisample_state(sample_count),
-                multiview_mask: None,
-                cache: None,
-            })
+            flat_pipeline(&layout, &shader, cull_mode, sample_count)
         });
         let cull = PipelineCache::new({
             let build = build.clone();
@@ -193,6 +150,60 @@ impl FlatMaterial {
             frame_written: false,
         }
     }
+}
+
+/// The flat material's render pipeline: positions and normals in, one colour out,
+/// depth-tested, with `cull_mode` and `sample_count` samples a pixel.
+fn flat_pipeline(
+    layout: &wgpu::PipelineLayout,
+    shader: &wgpu::ShaderModule,
+    cull_mode: Option<wgpu::Face>,
+    sample_count: u32,
+) -> wgpu::RenderPipeline {
+    let vec3_buffer = |location| wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<[f32; 3]>() as wgpu::BufferAddress,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: if location == 0 { &POSITION } else { &NORMAL },
+    };
+    Context::get().create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("ars_flat_pipeline"),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: shader,
+            entry_point: Some("vs_main"),
+            buffers: &[Some(vec3_buffer(0)), Some(vec3_buffer(1))],
+            compilation_options: Default::default(),
+        },
+        fragment: Some(wgpu::FragmentState {
+            module: shader,
+            entry_point: Some("fs_main"),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: Context::render_format(),
+                blend: Some(wgpu::BlendState::REPLACE),
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+            compilation_options: Default::default(),
+        }),
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            strip_index_format: None,
+            front_face: wgpu::FrontFace::Ccw,
+            cull_mode,
+            polygon_mode: wgpu::PolygonMode::Fill,
+            unclipped_depth: false,
+            conservative: false,
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: Context::depth_format(),
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        multisample: multisample_state(sample_count),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 const POSITION: [wgpu::VertexAttribute; 1] =

@@ -192,6 +192,29 @@ impl Mp4Track {
                 b.extend(full_box_flags(b"url ", 0, 1, |_| {}));
             }))
         });
+        let stbl = self.sample_table(self.sample_description(sps, pps), first, long);
+        let minf = boxed(b"minf", |b| {
+            for part in [vmhd, dinf, stbl] {
+                b.extend(part);
+            }
+        });
+        let mdia = boxed(b"mdia", |b| {
+            for part in [mdhd, hdlr, minf] {
+                b.extend(part);
+            }
+        });
+        let trak = boxed(b"trak", |b| {
+            b.extend(tkhd);
+            b.extend(mdia);
+        });
+        boxed(b"moov", |b| {
+            b.extend(mvhd);
+            b.extend(trak);
+        })
+    }
+
+    /// The `stsd` box: the one H.264 sample entry, with the stream's SPS and PPS.
+    fn sample_description(&self, sps: &[u8], pps: &[u8]) -> Vec<u8> {
         let avc1 = boxed(b"avc1", |b| {
             b.extend_from_slice(&[0; 6]);
             b.extend_from_slice(&1u16.to_be_bytes()); // data reference index
@@ -222,10 +245,16 @@ impl Mp4Track {
                 b.extend_from_slice(pps);
             }));
         });
-        let stsd = full_box(b"stsd", 0, |b| {
+        full_box(b"stsd", 0, |b| {
             b.extend_from_slice(&1u32.to_be_bytes());
             b.extend(avc1);
-        });
+        })
+    }
+
+    /// The `stbl` box: the sample description `stsd`, the frames' durations, key
+    /// frames, sizes and offsets (from byte `first` of the file; 64-bit when `long`).
+    fn sample_table(&self, stsd: Vec<u8>, first: u64, long: bool) -> Vec<u8> {
+        let count = self.sizes.len();
         // Frame k lasts from tick(k) to tick(k + 1): runs of equal lengths.
         let mut runs: Vec<(u32, u32)> = Vec::new();
         for k in 0..count {
@@ -273,28 +302,10 @@ impl Mp4Track {
                 at += u64::from(*s);
             }
         });
-        let stbl = boxed(b"stbl", |b| {
+        boxed(b"stbl", |b| {
             for part in [stsd, stts, stss, stsc, stsz, offsets] {
                 b.extend(part);
             }
-        });
-        let minf = boxed(b"minf", |b| {
-            for part in [vmhd, dinf, stbl] {
-                b.extend(part);
-            }
-        });
-        let mdia = boxed(b"mdia", |b| {
-            for part in [mdhd, hdlr, minf] {
-                b.extend(part);
-            }
-        });
-        let trak = boxed(b"trak", |b| {
-            b.extend(tkhd);
-            b.extend(mdia);
-        });
-        boxed(b"moov", |b| {
-            b.extend(mvhd);
-            b.extend(trak);
         })
     }
 }

@@ -186,6 +186,30 @@ def where_the_time_goes(n, steps=2000):
     }
 
 
+def print_table(rows):
+    """The Markdown table of environment steps per second: ARS, MuJoCo sync and async."""
+    ars_frame, mujoco_frame = 80, 2  # physics steps per environment step
+    print()
+    print(
+        "| environment steps per second | ARS ConicalPendulum-v0 (make_vec: step_many) "
+        "| MuJoCo InvertedPendulum-v5, sync | MuJoCo, async |"
+    )
+    print("| --- | --- | --- | --- |")
+
+    def cell(result, frame=None, unit=""):
+        if result is None:
+            return "—"
+        value, quiet = result
+        text = f"{value:,.0f}" + ("" if quiet else " (busy machine)")
+        return text + (f" ({value * frame / 1e3:,.0f}k {unit} steps/s)" if frame else "")
+
+    for name, a, m, m_async in rows:
+        print(
+            f"| {name} | {cell(a, ars_frame, 'ODE')} | {cell(m, mujoco_frame, 'MuJoCo')} "
+            f"| {cell(m_async)} |"
+        )
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seconds", type=float, default=1.0, help="wall time per measurement")
@@ -231,26 +255,7 @@ def main():
     noisy = sum(1 for key, rs in rounds.items() if key[1] != "async" for _, o in rs if o > QUIET)
     total = sum(len(rs) for key, rs in rounds.items() if key[1] != "async")
     print(f"{noisy} of {total} rounds had other programs busy (> {QUIET} cores) and were set aside")
-    ars_frame, mujoco_frame = 80, 2  # physics steps per environment step
-    print()
-    print(
-        "| environment steps per second | ARS ConicalPendulum-v0 (make_vec: step_many) "
-        "| MuJoCo InvertedPendulum-v5, sync | MuJoCo, async |"
-    )
-    print("| --- | --- | --- | --- |")
-
-    def cell(result, frame=None, unit=""):
-        if result is None:
-            return "—"
-        value, quiet = result
-        text = f"{value:,.0f}" + ("" if quiet else " (busy machine)")
-        return text + (f" ({value * frame / 1e3:,.0f}k {unit} steps/s)" if frame else "")
-
-    for name, a, m, m_async in rows:
-        print(
-            f"| {name} | {cell(a, ars_frame, 'ODE')} | {cell(m, mujoco_frame, 'MuJoCo')} "
-            f"| {cell(m_async)} |"
-        )
+    print_table(rows)
     single_ars = rows[0][1][0]
     n1, n2 = rows[1][1][0], rows[2][1][0]
     print()
