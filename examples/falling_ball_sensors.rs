@@ -8,6 +8,7 @@
 #[path = "common/mod.rs"]
 mod common;
 
+use ars::sensors::{Acceleration, Energy, Kinetic, Position, Potential, Sample, Velocity};
 use ars_programs::FallingBallSensors;
 use common::args::export_csv_table;
 use common::plot::{Series, line_chart, over_time};
@@ -53,46 +54,54 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         export_csv_table(path, &table, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let height = over_time(gps, |r| r.position.y);
-        line_chart(
-            dir,
-            "fig3_2a_height.png",
-            "Falling ball: height (fig. 3.2a)",
-            "time [s]",
-            "height y [m]",
-            &[Series::new("GPS y", height)],
-        )?;
-        let speed = over_time(vel, |r| r.linear.y);
-        line_chart(
-            dir,
-            "fig3_2b_vertical_speed.png",
-            "Falling ball: vertical speed (fig. 3.2b)",
-            "time [s]",
-            "vertical speed vy [m/s]",
-            &[Series::new("velometer vy", speed)],
-        )?;
-        let accel = over_time(acc, |r| r.linear.y);
-        line_chart(
-            dir,
-            "fig3_2c_vertical_acceleration.png",
-            "Falling ball: vertical acceleration (fig. 3.2c)",
-            "time [s]",
-            "vertical acceleration ay [m/s^2]",
-            &[Series::new("accelerometer ay", accel)],
-        )?;
-        let energies = [
-            Series::new("kinetic", over_time(ke, |r| r.total())),
-            Series::new("potential", over_time(pe, |r| r.potential)),
-            Series::new("total", over_time(total, |r| r.total())),
-        ];
-        line_chart(
-            dir,
-            "fig3_2d_energies.png",
-            "Falling ball: energies (fig. 3.2d)",
-            "time [s]",
-            "energy [J]",
-            &energies,
-        )?;
+        plot_figures(dir, gps, vel, acc, ke, pe, total)?;
     }
+    Ok(())
+}
+
+/// The thesis' figure 3.2: height, vertical speed and acceleration, and the energies,
+/// as PNG files in `dir`.
+fn plot_figures(
+    dir: &std::path::Path,
+    gps: &[Sample<Position>],
+    vel: &[Sample<Velocity>],
+    acc: &[Sample<Acceleration>],
+    ke: &[Sample<Kinetic>],
+    pe: &[Sample<Potential>],
+    total: &[Sample<Energy>],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let height = over_time(gps, |r| r.position.y);
+    line_chart(
+        dir,
+        "fig3_2a_height.png",
+        "Falling ball: height (fig. 3.2a)",
+        "time [s]",
+        "height y [m]",
+        &[Series::new("GPS y", height)],
+    )?;
+    let speed = over_time(vel, |r| r.linear.y);
+    line_chart(
+        dir,
+        "fig3_2b_vertical_speed.png",
+        "Falling ball: vertical speed (fig. 3.2b)",
+        "time [s]",
+        "vertical speed vy [m/s]",
+        &[Series::new("velometer vy", speed)],
+    )?;
+    let accel = over_time(acc, |r| r.linear.y);
+    line_chart(
+        dir,
+        "fig3_2c_vertical_acceleration.png",
+        "Falling ball: vertical acceleration (fig. 3.2c)",
+        "time [s]",
+        "vertical acceleration ay [m/s^2]",
+        &[Series::new("accelerometer ay", accel)],
+    )?;
+    let energies = [
+        Series::new("kinetic", over_time(ke, |r| r.total())),
+        Series::new("potential", over_time(pe, |r| r.potential)),
+        Series::new("total", over_time(total, |r| r.total())),
+    ];
+    line_chart(dir, "fig3_2d_energies.png", "Falling ball: energies (fig. 3.2d)", "time [s]", "energy [J]", &energies)?;
     Ok(())
 }

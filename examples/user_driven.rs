@@ -12,7 +12,7 @@
 mod common;
 
 use ars::{KeyScript, ProgramRunner};
-use ars_programs::UserDriven;
+use ars_programs::{DrivingRow, UserDriven};
 use common::plot::{Series, line_chart, unwrapped};
 
 /// A short push forward, then left held (the wheels turn opposite ways: the vehicle
@@ -39,26 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let mut program = UserDriven { paper_friction: paper, ..Default::default() };
     if args.window {
-        // Live: the arrow keys drive it, as in the original.
-        let start = {
-            let mut probe = UserDriven { paper_friction: paper, ..Default::default() };
-            let sim = ars::Program::create_simulation(&mut probe)?;
-            sim.scene().position(probe.vehicle.expect("built").chassis)?
-        };
-        let sim = common::args::run(&mut program, &args)?;
-        let chassis = program.vehicle.expect("built").chassis;
-        let x = sim.scene().rotation(chassis)? * ars::nalgebra::Vector3::x();
-        let p = sim.scene().position(chassis)?;
-        println!(
-            "after {:.1} s: chassis from ({:.2}, {:.2}) to ({:.2}, {:.2}) m, heading {:.1} deg",
-            sim.scene().time(),
-            start.x,
-            start.z,
-            p.x,
-            p.z,
-            (-x.z).atan2(x.x).to_degrees()
-        );
-        return Ok(());
+        return drive_live(&mut program, paper, &args);
     }
     let mut runner = ProgramRunner::new(&mut program)?;
     let chassis = runner.program().vehicle.expect("built").chassis;
@@ -89,25 +70,60 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         common::args::export_csv(path, log, args.every)?;
     }
     if let Some(dir) = &args.plot {
-        let path: Vec<_> = log.iter().step_by(40).map(|s| (s.record.x, s.record.z)).collect();
-        line_chart(
-            dir,
-            "ex5_path_xz.png",
-            "User-driven vehicle: path seen from above",
-            "x [m]",
-            "z [m]",
-            &[Series::new("chassis", path)],
-        )?;
-        let q1 = log.iter().step_by(40).map(|s| (s.time, s.record.q1.to_degrees())).collect();
-        let e2 = log.iter().step_by(40).map(|s| (s.time, (s.record.setpoint - s.record.q2).to_degrees())).collect();
-        line_chart(
-            dir,
-            "ex5_joint_errors.png",
-            "User-driven vehicle: arm joint errors",
-            "time [s]",
-            "error [deg]",
-            &[Series::new("waist (free, set-point 0)", q1), Series::new("shoulder (PD)", e2)],
-        )?;
+        plot_figures(dir, log)?;
     }
+    Ok(())
+}
+
+/// Live, in a window: the arrow keys drive the vehicle, as in the original; says where
+/// it went.
+fn drive_live(
+    program: &mut UserDriven,
+    paper: bool,
+    args: &common::args::Args,
+) -> Result<(), Box<dyn std::error::Error>> {
+    // Live: the arrow keys drive it, as in the original.
+    let start = {
+        let mut probe = UserDriven { paper_friction: paper, ..Default::default() };
+        let sim = ars::Program::create_simulation(&mut probe)?;
+        sim.scene().position(probe.vehicle.expect("built").chassis)?
+    };
+    let sim = common::args::run(program, args)?;
+    let chassis = program.vehicle.expect("built").chassis;
+    let x = sim.scene().rotation(chassis)? * ars::nalgebra::Vector3::x();
+    let p = sim.scene().position(chassis)?;
+    println!(
+        "after {:.1} s: chassis from ({:.2}, {:.2}) to ({:.2}, {:.2}) m, heading {:.1} deg",
+        sim.scene().time(),
+        start.x,
+        start.z,
+        p.x,
+        p.z,
+        (-x.z).atan2(x.x).to_degrees()
+    );
+    Ok(())
+}
+
+/// The path seen from above and the arm's joint errors, as PNG files in `dir`.
+fn plot_figures(dir: &std::path::Path, log: &ars::SensorLog<DrivingRow>) -> Result<(), Box<dyn std::error::Error>> {
+    let path: Vec<_> = log.iter().step_by(40).map(|s| (s.record.x, s.record.z)).collect();
+    line_chart(
+        dir,
+        "ex5_path_xz.png",
+        "User-driven vehicle: path seen from above",
+        "x [m]",
+        "z [m]",
+        &[Series::new("chassis", path)],
+    )?;
+    let q1 = log.iter().step_by(40).map(|s| (s.time, s.record.q1.to_degrees())).collect();
+    let e2 = log.iter().step_by(40).map(|s| (s.time, (s.record.setpoint - s.record.q2).to_degrees())).collect();
+    line_chart(
+        dir,
+        "ex5_joint_errors.png",
+        "User-driven vehicle: arm joint errors",
+        "time [s]",
+        "error [deg]",
+        &[Series::new("waist (free, set-point 0)", q1), Series::new("shoulder (PD)", e2)],
+    )?;
     Ok(())
 }

@@ -2,7 +2,8 @@
 //!
 //! This crate gathers the ARS crates under one name:
 //! - [`core`] (`ars-core`): the safe ODE layer and the simulation model;
-//! - [`viewer`] (`ars-viewer`, default feature `viewer`): the 3D viewer.
+//! - [`viewer`] (`ars-viewer`, default feature `viewer`): the 3D viewer;
+//! - [`cli`]: the command-line options that the `ars` command and the examples share.
 //!
 //! The items of `ars-core` are also re-exported at the top level.
 //!
@@ -22,6 +23,8 @@
 //! world.clear_contacts();
 //! # Ok::<(), ars::Error>(())
 //! ```
+
+pub mod cli;
 
 pub use ars_core as core;
 pub use ars_core::*;

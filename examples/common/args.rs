@@ -1,9 +1,13 @@
-//! The examples' command line: `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
+//! The examples' command line (the options shared with the `ars` command are
+//! [`ars::cli`]'s): `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
 //! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
 //! [--axes] [--views N]`, and the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`.
 
 use std::path::PathBuf;
-use std::process::exit;
+
+use ars::cli::{PictureArgs, RunArgs};
+use clap::error::ErrorKind;
+use clap::{CommandFactory, FromArgMatches};
 
 /// Parsed options.
 #[derive(Debug, Clone)]
@@ -38,25 +42,20 @@ pub struct Args {
     pub html_plots: Vec<String>,
 }
 
-fn usage(program: &str, default_duration: f64) -> String {
-    format!(
-        "usage: {program} [--duration S] [--csv PATH] [--plot DIR] [--every N] [--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH] [--axes] [--views N] [--html OUT.html [--html-plot COLUMN]...]\n\
-         \x20 --duration S       simulated seconds to run (default {default_duration})\n\
-         \x20 --csv PATH         write the data as CSV\n\
-         \x20 --plot DIR         write the figures as PNG into DIR\n\
-         \x20 --every N          keep one CSV row every N steps (default 1)\n\
-         \x20 --screenshots DIR  render off screen (no display or GPU needed) into DIR/frame_00001.png...\n\
-         \x20 --frame-every N    one screenshot every N frames (default 5)\n\
-         \x20 --video OUT.mp4    record an H.264 MP4 video off screen (with --window: of the window), frame k at\n\
-         \x20                    k/fps simulated seconds\n\
-         \x20 --fps N            the video's frames per second (default 30)\n\
-         \x20 --window           show the program in a window instead (records off screen if there is no display)\n\
-         \x20 --size WxH         screenshot or window size in pixels (default: the program's window size)\n\
-         \x20 --axes             draw the world axes (X red, Y green, Z blue; the window's x key toggles them)\n\
-         \x20 --views N          split the picture into N views (1-4): free, following, top, camera sensor\n\
-         \x20 --html OUT.html    write a browser replay: one HTML file that plays the run back, no network needed\n\
-         \x20 --html-plot COLUMN plot a sensor column under the replay (\"Gps 1: y\", as --csv heads it; repeatable)"
-    )
+/// The examples' own options around the shared ones ([`ars::cli`]).
+#[derive(clap::Parser)]
+#[command(about = "An ARS example: runs headless unless asked for pictures, a window or a replay")]
+struct ExampleCli {
+    #[command(flatten)]
+    run: RunArgs,
+    /// Write the figures as PNG into DIR
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
+    /// Show the program in a window instead (records off screen if there is no display)
+    #[arg(long)]
+    window: bool,
+    #[command(flatten)]
+    pictures: PictureArgs,
 }
 
 /// Parses the command line; prints the usage and exits on `--help` or a mistake.
@@ -66,97 +65,38 @@ pub fn parse(default_duration: f64) -> Args {
 
 /// As [`parse`], ignoring the example's own flags `extra` (flags without values).
 pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
-    let mut argv = std::env::args().filter(|a| !extra.contains(&a.as_str()));
-    let program = argv.next().unwrap_or_else(|| "example".into());
-    let mut args = Args {
-        duration: default_duration,
-        csv: None,
-        plot: None,
-        every: 1,
-        screenshots: None,
-        frame_every: 5,
-        size: None,
-        window: false,
-        axes: false,
-        video: None,
-        fps: 30.0,
-        views: 1,
-        html: None,
-        html_plots: Vec::new(),
-    };
-    let fail = |msg: String| -> ! {
-        eprintln!("{msg}\n{}", usage(&program, default_duration));
-        exit(2)
-    };
-    while let Some(flag) = argv.next() {
-        let mut value = |name: &str| argv.next().unwrap_or_else(|| fail(format!("{name} needs a value")));
-        match flag.as_str() {
-            "--duration" => {
-                let v = value("--duration");
-                args.duration = match v.parse::<f64>() {
-                    Ok(d) if d.is_finite() && d > 0.0 => d,
-                    _ => fail(format!("--duration must be a positive number of seconds, got {v:?}")),
-                };
-            }
-            "--csv" => args.csv = Some(value("--csv").into()),
-            "--plot" => args.plot = Some(value("--plot").into()),
-            "--every" => {
-                let v = value("--every");
-                args.every = match v.parse::<usize>() {
-                    Ok(n) if n > 0 => n,
-                    _ => fail(format!("--every must be a positive whole number, got {v:?}")),
-                };
-            }
-            "--window" => args.window = true,
-            "--axes" => args.axes = true,
-            "--views" => {
-                let v = value("--views");
-                args.views = match v.parse::<usize>() {
-                    Ok(n) if (1..=4).contains(&n) => n,
-                    _ => fail(format!("--views must be 1, 2, 3 or 4, got {v:?}")),
-                };
-            }
-            "--screenshots" => args.screenshots = Some(value("--screenshots").into()),
-            "--video" => args.video = Some(value("--video").into()),
-            "--fps" => {
-                let v = value("--fps");
-                args.fps = match v.parse::<f64>() {
-                    Ok(f) if f.is_finite() && f > 0.0 => f,
-                    _ => fail(format!("--fps must be a positive number of frames per second, got {v:?}")),
-                };
-            }
-            "--html" => args.html = Some(value("--html").into()),
-            "--html-plot" => args.html_plots.push(value("--html-plot")),
-            "--frame-every" => {
-                let v = value("--frame-every");
-                args.frame_every = match v.parse::<u32>() {
-                    Ok(n) if n > 0 => n,
-                    _ => fail(format!("--frame-every must be a positive whole number, got {v:?}")),
-                };
-            }
-            "--size" => {
-                let v = value("--size");
-                let parsed =
-                    v.split_once('x').and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)));
-                args.size = match parsed {
-                    Some((w, h)) if w > 0 && h > 0 => Some((w, h)),
-                    _ => fail(format!("--size must look like 640x480, got {v:?}")),
-                };
-            }
-            "-h" | "--help" => {
-                println!("{}", usage(&program, default_duration));
-                exit(0)
-            }
-            other => fail(format!("unknown option {other:?}")),
-        }
+    let argv: Vec<String> = std::env::args().filter(|a| !extra.contains(&a.as_str())).collect();
+    let program = argv.first().and_then(|p| std::path::Path::new(p).file_stem()).map(|p| p.to_string_lossy());
+    let command = ExampleCli::command()
+        .bin_name(program.map_or_else(|| "example".into(), String::from))
+        .mut_arg("duration", |a| a.help(format!("Simulated seconds to run (default {default_duration})")));
+    let matches = command.clone().try_get_matches_from(&argv).unwrap_or_else(|e| e.exit());
+    let cli = ExampleCli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let mut command = command;
+    let mut fail = |message: &str| -> ! { command.error(ErrorKind::ArgumentConflict, message).exit() };
+    if cli.pictures.html.is_some() && (cli.window || cli.pictures.screenshots.is_some()) {
+        fail("--html records a run of its own: give it without --window and --screenshots");
     }
-    if args.html.is_some() && (args.window || args.screenshots.is_some()) {
-        fail("--html records a run of its own: give it without --window and --screenshots".into());
+    if !cli.pictures.html_plots.is_empty() && cli.pictures.html.is_none() {
+        fail("--html-plot goes with --html");
     }
-    if !args.html_plots.is_empty() && args.html.is_none() {
-        fail("--html-plot goes with --html".into());
+    let PictureArgs { screenshots, frame_every, video, fps, size, axes, views, html, html_plots } = cli.pictures;
+    Args {
+        duration: cli.run.duration.unwrap_or(default_duration),
+        csv: cli.run.csv,
+        plot: cli.plot,
+        every: cli.run.every,
+        screenshots,
+        frame_every,
+        size,
+        window: cli.window,
+        axes,
+        video,
+        fps,
+        views,
+        html,
+        html_plots,
     }
-    args
 }
 
 /// Writes a sensor's records as CSV to `path` (one sample in every `every`; the

@@ -7,49 +7,77 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use ars::cli::{PictureArgs, RunArgs};
 use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::{CsvColumns, Gps, JointPositions};
 use ars::{FileFormat, Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, ViewSettings};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
-const USAGE: &str = "\
-ars: run, view and record ARS scenes and URDF robots
-
-usage:
-  ars run FILE [--duration S] [--csv OUT] [--every N]
-  ars view FILE [--screenshots DIR | --video OUT.mp4] [--duration S] [--frame-every N]
-           [--size WxH] [--axes] [--views N] [--csv OUT]
-  ars record FILE --screenshots DIR [--duration S] [--frame-every N] [--size WxH] [--axes]
-           [--views N] [--csv OUT]
-  ars record FILE --video OUT.mp4 [--fps N] [--duration S] [--size WxH] [--axes] ...
-  ars record FILE --html OUT.html [--html-plot COLUMN]... [--duration S] [--size WxH]
-  ars --help | --version
-
+/// What the verbs read, said under `ars --help`.
+const FILES: &str = "\
 FILE is a scene file (.json: Simulation::save_scene_to, sim.save_scene_to in Python,
 Ctrl+S in the window; saved at any step, it goes on exactly where it was), a robot
 (.urdf, its root at --at over the floor y = 0; --fixed-base bolts it to the world) or a
-MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said).
+MuJoCo model (.xml, MJCF; what ARS cannot read is skipped and said). `ars VERB --help`
+lists a verb's options; with view and record, --csv writes what was simulated until the
+end.";
 
-  run       simulate without graphics and print a summary; --csv writes the scene's
-            sensors (or, if it has none, every body's position) every N steps; with
-            view and record, --csv writes what was simulated until the end
-  view      open a window (Escape closes it; --video records it); without a display,
-            record off screen into --screenshots or --video
-  record    render off screen (no display or GPU needed) into DIR/frame_00001.png...,
-            into an H.264 MP4 video (frame k at k/fps simulated seconds), or into a
-            browser replay: one HTML file that plays the run back in any browser, no
-            network needed (--html-plot \"Gps 1: y\" plots a sensor column, as ars run
-            --csv heads it)
+/// The command line: a verb and its file.
+#[derive(Parser)]
+#[command(name = "ars", version, about = "ars: run, view and record ARS scenes and URDF robots", after_help = FILES)]
+#[command(arg_required_else_help = true)]
+struct Cli {
+    #[command(subcommand)]
+    verb: Verb,
+}
 
-  --duration S      simulated seconds (default: run and record 10, view until closed)
-  --every N         one CSV row every N steps (default 1)
-  --frame-every N   one picture every N frames (default 5)
-  --fps N           the video's frames per second (default 30)
-  --size WxH        picture or window size in pixels (default 1024x768)
-  --axes            draw the world axes
-  --views N         split the picture into N views (1-4): free, following, top, camera
-  --fixed-base      (URDF) fix the robot's root to the world
-  --y-up            (URDF) the file is written Y up (URDF's convention is Z up)
-  --at X,Y,Z        (URDF, MJCF) where its root starts, m (default 0,0,0)";
+/// The verbs, each with its file and options.
+#[derive(Subcommand)]
+enum Verb {
+    /// Simulate without graphics and print a summary
+    ///
+    /// --csv writes the scene's sensors (or, if it has none, every body's position) every N
+    /// steps.
+    Run(FileArgs),
+    /// Open a window, or record off screen where there is no display
+    ///
+    /// Escape closes the window; --duration is wall seconds there, and --video records it.
+    /// Without a display, it records off screen into --screenshots or --video.
+    View(FileArgs),
+    /// Render off screen into pictures, an MP4 video or a browser replay
+    ///
+    /// No display or GPU is needed. --html-plot "Gps 1: y" plots a sensor column under the
+    /// replay.
+    Record(FileArgs),
+}
+
+/// A verb's file and options.
+#[derive(clap::Args)]
+struct FileArgs {
+    /// A scene file (.json), a robot (.urdf) or a MuJoCo model (.xml)
+    file: PathBuf,
+    #[command(flatten)]
+    run: RunArgs,
+    #[command(flatten)]
+    pictures: PictureArgs,
+    /// (URDF) fix the robot's root to the world
+    #[arg(long)]
+    fixed_base: bool,
+    /// (URDF) the file is written Y up (URDF's convention is Z up)
+    #[arg(long)]
+    y_up: bool,
+    /// (URDF, MJCF) where its root starts, m (default 0,0,0)
+    #[arg(long, value_name = "X,Y,Z", value_parser = position, allow_hyphen_values = true)]
+    at: Option<Vector3<f64>>,
+}
+
+fn position(v: &str) -> Result<Vector3<f64>, String> {
+    let xyz: Vec<f64> = v.split(',').filter_map(|c| c.trim().parse().ok()).collect();
+    match xyz[..] {
+        [x, y, z] if xyz.iter().all(|c| c.is_finite()) => Ok(Vector3::new(x, y, z)),
+        _ => Err(format!("must look like 0,0.5,0, got {v:?}")),
+    }
+}
 
 /// What was asked.
 struct Command {
@@ -72,94 +100,65 @@ struct Command {
     at: Vector3<f64>,
 }
 
-/// Parses the command line; `Err` is the message to print.
-fn parse(args: &[String]) -> Result<Command, String> {
-    let mut args = args.iter();
-    let verb = args.next().ok_or("a command is needed: run, view or record")?.clone();
-    if !["run", "view", "record"].contains(&verb.as_str()) {
-        return Err(format!("unknown command {verb:?}: run, view or record"));
+/// What the command line asks (`Err`: what clap said, help and version included).
+fn parse(args: &[String]) -> Result<Command, clap::Error> {
+    let duration = |a: clap::Arg| a.help("Simulated seconds (default: run and record 10, view until closed)");
+    let mut command = Cli::command();
+    for verb in ["run", "view", "record"] {
+        command = command.mut_subcommand(verb, |c| c.mut_arg("duration", duration));
     }
-    let file = PathBuf::from(args.next().ok_or(format!("ars {verb} needs a FILE (a scene .json or a .urdf)"))?);
-    let mut command = Command {
-        verb,
-        file,
-        duration: None,
-        csv: None,
-        every: 1,
-        screenshots: None,
-        html: None,
-        html_plots: Vec::new(),
-        frame_every: 5,
-        video: None,
-        fps: 30.0,
-        size: None,
-        axes: false,
-        views: 1,
-        fixed_base: false,
-        y_up: false,
-        at: Vector3::zeros(),
+    let matches = command.try_get_matches_from(std::iter::once("ars").chain(args.iter().map(String::as_str)))?;
+    let cli = Cli::from_arg_matches(&matches)?;
+    let (verb, file) = match cli.verb {
+        Verb::Run(file) => ("run", file),
+        Verb::View(file) => ("view", file),
+        Verb::Record(file) => ("record", file),
     };
-    while let Some(flag) = args.next() {
-        let mut value = |name: &str| args.next().cloned().ok_or(format!("{name} needs a value"));
-        let positive = |name: &str, v: String| match v.parse::<u64>() {
-            Ok(n) if n > 0 => Ok(n),
-            _ => Err(format!("{name} must be a positive whole number, got {v:?}")),
-        };
-        match flag.as_str() {
-            "--duration" => {
-                let v = value("--duration")?;
-                command.duration = match v.parse::<f64>() {
-                    Ok(d) if d.is_finite() && d > 0.0 => Some(d),
-                    _ => return Err(format!("--duration must be a positive number of seconds, got {v:?}")),
-                };
-            }
-            "--csv" => command.csv = Some(value("--csv")?.into()),
-            "--every" => command.every = positive("--every", value("--every")?)? as usize,
-            "--screenshots" => command.screenshots = Some(value("--screenshots")?.into()),
-            "--video" => command.video = Some(value("--video")?.into()),
-            "--fps" => {
-                let v = value("--fps")?;
-                command.fps = match v.parse::<f64>() {
-                    Ok(f) if f.is_finite() && f > 0.0 => f,
-                    _ => return Err(format!("--fps must be a positive number of frames per second, got {v:?}")),
-                };
-            }
-            "--html" => command.html = Some(value("--html")?.into()),
-            "--html-plot" => command.html_plots.push(value("--html-plot")?),
-            "--frame-every" => {
-                let n = positive("--frame-every", value("--frame-every")?)?;
-                command.frame_every = u32::try_from(n).map_err(|_| format!("--frame-every is too large: {n}"))?;
-            }
-            "--size" => {
-                let v = value("--size")?;
-                let parsed =
-                    v.split_once('x').and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)));
-                command.size = match parsed {
-                    Some((w, h)) if w > 0 && h > 0 => Some((w, h)),
-                    _ => return Err(format!("--size must look like 800x600, got {v:?}")),
-                };
-            }
-            "--axes" => command.axes = true,
-            "--views" => {
-                let v = value("--views")?;
-                command.views = match v.parse::<usize>() {
-                    Ok(n) if (1..=4).contains(&n) => n,
-                    _ => return Err(format!("--views must be 1, 2, 3 or 4, got {v:?}")),
-                };
-            }
-            "--fixed-base" => command.fixed_base = true,
-            "--y-up" => command.y_up = true,
-            "--at" => {
-                let v = value("--at")?;
-                let xyz: Vec<f64> = v.split(',').filter_map(|c| c.trim().parse().ok()).collect();
-                command.at = match xyz[..] {
-                    [x, y, z] if xyz.iter().all(|c| c.is_finite()) => Vector3::new(x, y, z),
-                    _ => return Err(format!("--at must look like 0,0.5,0, got {v:?}")),
-                };
-            }
-            other => return Err(format!("unknown option {other:?}")),
+    let FileArgs { file, run, pictures, fixed_base, y_up, at } = file;
+    Ok(Command {
+        verb: verb.into(),
+        file,
+        duration: run.duration,
+        csv: run.csv,
+        every: run.every,
+        screenshots: pictures.screenshots,
+        html: pictures.html,
+        html_plots: pictures.html_plots,
+        frame_every: pictures.frame_every,
+        video: pictures.video,
+        fps: pictures.fps,
+        size: pictures.size,
+        axes: pictures.axes,
+        views: pictures.views,
+        fixed_base,
+        y_up,
+        at: at.unwrap_or_else(Vector3::zeros),
+    })
+}
+
+/// What clap refused, said as ARS says it: an unknown verb or option, or a missing
+/// file, in one line.
+fn refusal(args: &[String], e: &clap::Error) -> String {
+    use clap::error::{ContextKind, ErrorKind};
+    let context = |kind| e.get(kind).map(|v| v.to_string()).unwrap_or_default();
+    match e.kind() {
+        ErrorKind::InvalidSubcommand => format!("unknown command {:?}: run, view or record", args[0]),
+        ErrorKind::UnknownArgument => format!("unknown option {:?}", context(ContextKind::InvalidArg)),
+        ErrorKind::MissingRequiredArgument => {
+            format!("ars {} needs a FILE (a scene .json, a .urdf or an MJCF .xml)", args[0])
         }
+        // "--duration must be a positive number of seconds, got \"-1\"".
+        ErrorKind::ValueValidation if std::error::Error::source(e).is_some() => {
+            let flag = context(ContextKind::InvalidArg);
+            let why = std::error::Error::source(e).map(|why| why.to_string()).unwrap_or_default();
+            format!("{} {why}", flag.split_whitespace().next().unwrap_or_default())
+        }
+        _ => e.render().to_string().trim().trim_start_matches("error: ").lines().next().unwrap_or_default().into(),
     }
+}
+
+/// The choices that go together, checked once the options are read.
+fn check(command: &Command) -> Result<(), String> {
     if command.verb == "record" && command.screenshots.is_none() && command.html.is_none() && command.video.is_none() {
         return Err("ars record needs --screenshots DIR, --video OUT.mp4 or --html OUT.html".into());
     }
@@ -172,7 +171,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
     if command.video.is_some() && (command.verb == "run" || command.screenshots.is_some() || command.html.is_some()) {
         return Err("--video goes with ars record or ars view, without --screenshots or --html".into());
     }
-    Ok(command)
+    Ok(())
 }
 
 /// A file as a program: its scene (a scene file as saved, or a robot on the floor),
@@ -319,40 +318,11 @@ fn run(command: &Command) -> Result<(), Box<dyn std::error::Error>> {
 
 #[cfg(feature = "viewer")]
 fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
-    use ars::viewer::{ProgramViewer, ScreenshotRecorder, ViewerOptions};
+    use ars::viewer::{ScreenshotRecorder, ViewerOptions};
     let options = ViewerOptions::default().with_axes(command.axes).with_views(command.views);
     let window = command.verb == "view" && ars::viewer::has_display();
     if window {
-        eprintln!("{}", ars::viewer::VIEWER_KEYS);
-        let sim = match (command.size, command.duration, &command.video) {
-            (size, limit, Some(path)) => {
-                let view =
-                    ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
-                let mut runner = ars::ProgramRunner::new(program)?;
-                // The window runs in real time: a duration is wall seconds here.
-                let limit = limit.map(std::time::Duration::from_secs_f64);
-                let (_, video) =
-                    ars::viewer::run_window_recording(&mut runner, &view, &options, limit, path, command.fps)?;
-                println!("recorded the window: {} frames ({} s) into {}", video.frames, video.duration, path.display());
-                runner.into_simulation()
-            }
-            (None, None, None) => program.show_with(&options)?,
-            (size, limit, None) => {
-                let view =
-                    ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
-                let mut runner = ars::ProgramRunner::new(program)?;
-                // The window runs in real time: a duration is wall seconds here.
-                let limit = limit.map(std::time::Duration::from_secs_f64);
-                ars::viewer::run_window_with(&mut runner, &view, &options, limit)?;
-                runner.into_simulation()
-            }
-        };
-        println!("{}", program.summary);
-        println!("closed at t = {} s ({} steps)", sim.scene().time(), sim.scene().step_count());
-        if let Some(path) = &command.csv {
-            write_csv(&sim, path, command.every)?;
-        }
-        return Ok(());
+        return show_in_window(program, command, &options);
     }
     if let Some(path) = &command.video {
         // Off screen (ars record, or ars view with no display).
@@ -415,6 +385,44 @@ fn show(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std:
     Ok(())
 }
 
+/// `ars view` in a window: until it is closed or for `--duration` wall seconds,
+/// recording it with `--video`.
+#[cfg(feature = "viewer")]
+fn show_in_window(
+    program: &mut FileProgram,
+    command: &Command,
+    options: &ars::viewer::ViewerOptions,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use ars::viewer::ProgramViewer;
+    eprintln!("{}", ars::viewer::VIEWER_KEYS);
+    let sim = match (command.size, command.duration, &command.video) {
+        (size, limit, Some(path)) => {
+            let view = ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+            let mut runner = ars::ProgramRunner::new(program)?;
+            // The window runs in real time: a duration is wall seconds here.
+            let limit = limit.map(std::time::Duration::from_secs_f64);
+            let (_, video) = ars::viewer::run_window_recording(&mut runner, &view, options, limit, path, command.fps)?;
+            println!("recorded the window: {} frames ({} s) into {}", video.frames, video.duration, path.display());
+            runner.into_simulation()
+        }
+        (None, None, None) => program.show_with(options)?,
+        (size, limit, None) => {
+            let view = ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+            let mut runner = ars::ProgramRunner::new(program)?;
+            // The window runs in real time: a duration is wall seconds here.
+            let limit = limit.map(std::time::Duration::from_secs_f64);
+            ars::viewer::run_window_with(&mut runner, &view, options, limit)?;
+            runner.into_simulation()
+        }
+    };
+    println!("{}", program.summary);
+    println!("closed at t = {} s ({} steps)", sim.scene().time(), sim.scene().step_count());
+    if let Some(path) = &command.csv {
+        write_csv(&sim, path, command.every)?;
+    }
+    Ok(())
+}
+
 #[cfg(not(feature = "viewer"))]
 fn show(_: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     Err(format!("ars {} needs the viewer: build ars with its default features", command.verb).into())
@@ -422,24 +430,26 @@ fn show(_: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.first().map(String::as_str) {
-        None | Some("-h" | "--help" | "help") => {
-            println!("{USAGE}");
-            return if args.is_empty() { ExitCode::from(2) } else { ExitCode::SUCCESS };
-        }
-        Some("-V" | "--version") => {
-            println!("ars {}", env!("CARGO_PKG_VERSION"));
-            return ExitCode::SUCCESS;
-        }
-        _ => {}
-    }
     let command = match parse(&args) {
         Ok(command) => command,
-        Err(message) => {
-            eprintln!("ars: {message}\n(ars --help lists the commands)");
+        Err(e) if !e.use_stderr() => {
+            // --help, --version: printed as asked.
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            return ExitCode::from(2);
+        }
+        Err(e) => {
+            eprintln!("ars: {}\n(ars --help lists the commands)", refusal(&args, &e));
             return ExitCode::from(2);
         }
     };
+    if let Err(message) = check(&command) {
+        eprintln!("ars: {message}\n(ars --help lists the commands)");
+        return ExitCode::from(2);
+    }
     match run(&command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

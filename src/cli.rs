@@ -1,0 +1,118 @@
+//! The command-line options that the `ars` command and the examples share, defined
+//! once with `clap`: how long to run and what to write ([`RunArgs`]), and what to draw
+//! ([`PictureArgs`]). Each value is checked as it is read, and a wrong one is refused
+//! with a message naming the option (`invalid value '-1' for '--duration <S>': must be a
+//! positive number of seconds, got "-1"`).
+//!
+//! ```
+//! use ars::cli::{PictureArgs, RunArgs};
+//! use clap::Parser;
+//!
+//! #[derive(Parser)]
+//! struct Cli {
+//!     #[command(flatten)]
+//!     run: RunArgs,
+//!     #[command(flatten)]
+//!     pictures: PictureArgs,
+//! }
+//!
+//! let cli = Cli::try_parse_from(["demo", "--duration", "2", "--size", "640x480"]).unwrap();
+//! assert_eq!((cli.run.duration, cli.pictures.size), (Some(2.0), Some((640, 480))));
+//! assert_eq!((cli.run.every, cli.pictures.frame_every, cli.pictures.views), (1, 5, 1));
+//! let wrong = Cli::try_parse_from(["demo", "--views", "5"]).err().unwrap().to_string();
+//! assert!(wrong.contains("'--views <N>': must be 1, 2, 3 or 4, got \"5\""), "{wrong}");
+//! ```
+
+use std::path::PathBuf;
+
+/// How long to run and which data to write.
+#[derive(clap::Args, Clone, Debug, PartialEq)]
+pub struct RunArgs {
+    /// Simulated seconds to run (default: the program's own)
+    #[arg(long, value_name = "S", value_parser = positive_seconds, allow_negative_numbers = true)]
+    pub duration: Option<f64>,
+    /// Write the sensors' data as CSV
+    #[arg(long, value_name = "OUT")]
+    pub csv: Option<PathBuf>,
+    /// One CSV row every N steps
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = positive_every, allow_negative_numbers = true)]
+    pub every: usize,
+}
+
+/// What to draw and where: off-screen frames, a video, a browser replay, and how the
+/// pictures look.
+#[derive(clap::Args, Clone, Debug, PartialEq)]
+pub struct PictureArgs {
+    /// Render off screen (no display or GPU needed) into DIR/frame_00001.png...
+    #[arg(long, value_name = "DIR")]
+    pub screenshots: Option<PathBuf>,
+    /// One picture every N frames
+    #[arg(long, value_name = "N", default_value_t = 5, value_parser = positive_frame_every, allow_negative_numbers = true)]
+    pub frame_every: u32,
+    /// Record an H.264 MP4 video, frame k at k/fps simulated seconds
+    #[arg(long, value_name = "OUT.mp4")]
+    pub video: Option<PathBuf>,
+    /// The video's frames per second
+    #[arg(long, value_name = "N", default_value_t = 30.0, value_parser = positive_fps, allow_negative_numbers = true)]
+    pub fps: f64,
+    /// Picture or window size in pixels, WxH (default: the program's window size)
+    #[arg(long, value_name = "WxH", value_parser = picture_size)]
+    pub size: Option<(u32, u32)>,
+    /// Draw the world axes (X red, Y green, Z blue)
+    #[arg(long)]
+    pub axes: bool,
+    /// Split the picture into N views (1-4): free, following, top, camera
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = view_count, allow_negative_numbers = true)]
+    pub views: usize,
+    /// Write a browser replay: one HTML file that plays the run back, no network needed
+    #[arg(long, value_name = "OUT.html")]
+    pub html: Option<PathBuf>,
+    /// Plot a sensor column under the replay ("Gps 1: y", as --csv heads it; repeatable)
+    #[arg(long = "html-plot", value_name = "COLUMN")]
+    pub html_plots: Vec<String>,
+}
+
+fn positive_seconds(v: &str) -> Result<f64, String> {
+    match v.parse::<f64>() {
+        Ok(d) if d.is_finite() && d > 0.0 => Ok(d),
+        _ => Err(format!("must be a positive number of seconds, got {v:?}")),
+    }
+}
+
+fn positive_fps(v: &str) -> Result<f64, String> {
+    match v.parse::<f64>() {
+        Ok(f) if f.is_finite() && f > 0.0 => Ok(f),
+        _ => Err(format!("must be a positive number of frames per second, got {v:?}")),
+    }
+}
+
+fn positive_whole(v: &str) -> Result<u64, String> {
+    match v.parse::<u64>() {
+        Ok(n) if n > 0 => Ok(n),
+        _ => Err(format!("must be a positive whole number, got {v:?}")),
+    }
+}
+
+fn positive_every(v: &str) -> Result<usize, String> {
+    let n = positive_whole(v)?;
+    usize::try_from(n).map_err(|_| format!("is too large: {n}"))
+}
+
+fn positive_frame_every(v: &str) -> Result<u32, String> {
+    let n = positive_whole(v)?;
+    u32::try_from(n).map_err(|_| format!("is too large: {n}"))
+}
+
+fn picture_size(v: &str) -> Result<(u32, u32), String> {
+    match v.split_once('x').and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?))) {
+        Some((w, h)) if w > 0 && h > 0 => Ok((w, h)),
+        _ => Err(format!("must look like 800x600, got {v:?}")),
+    }
+}
+
+fn view_count(v: &str) -> Result<usize, String> {
+    match v.parse::<usize>() {
+        Ok(n) if (1..=4).contains(&n) => Ok(n),
+        _ => Err(format!("must be 1, 2, 3 or 4, got {v:?}")),
+    }
+}
