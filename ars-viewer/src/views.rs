@@ -14,7 +14,7 @@ use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::convert;
 use crate::layout::Rect;
-use crate::scene::{SceneMirror, View};
+use crate::scene::View;
 
 /// What a viewport shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -314,112 +314,7 @@ pub(crate) fn place(image: &mut [u8], width: u32, height: u32, rect: [u32; 4], c
 }
 
 /// The colour of a view that shows nothing (as in the window).
-const EMPTY_VIEW: u8 = 40;
-
-/// The grey of the lines between views (as in the window).
-const BORDER: u8 = 60;
-
-/// One view after the free one in an off-screen image of several views.
-struct Cell {
-    kind: ViewKind,
-    rect: [u32; 4],
-    surface: OffscreenSurface,
-    view: View,
-}
-
-/// The views after the free one of an off-screen renderer of several views (its
-/// `--views`): each drawn into its own surface the size of its quarter, then put in
-/// its place in the renderer's image.
-pub(crate) struct OffscreenViews {
-    cells: Vec<Cell>,
-    /// The image's size.
-    size: (u32, u32),
-    /// The free view's quarter.
-    free: [u32; 4],
-}
-
-impl OffscreenViews {
-    /// The views 2 to `count` of a `settings.size` image, drawing what `mirror` draws
-    /// (axes, forces...). Needs the rendering context.
-    pub(crate) fn new(settings: &ViewSettings, count: usize, mirror: &SceneMirror) -> Self {
-        let (width, height) = settings.size;
-        let rects = pixel_cells(width, height, count);
-        let cells = rects
-            .iter()
-            .zip(VIEW_KINDS)
-            .skip(1)
-            .map(|(&rect, kind)| {
-                let (surface, view) = crate::offscreen::surface_with_view(settings, (rect[2], rect[3]), mirror);
-                Cell { kind, rect, surface, view }
-            })
-            .collect();
-        OffscreenViews { cells, size: (width, height), free: rects[0] }
-    }
-
-    /// The whole image's size.
-    pub(crate) fn size(&self) -> (u32, u32) {
-        self.size
-    }
-
-    /// Forgets every view's nodes (after the simulation was rebuilt).
-    pub(crate) fn clear(&mut self) {
-        for cell in &mut self.cells {
-            cell.view.mirror.clear();
-        }
-    }
-
-    /// A line between the quarters, drawn on the free view's right and bottom edges and
-    /// on the follow and top views' edges next to it (the camera view keeps every pixel
-    /// of its image).
-    fn draw_borders(&self, image: &mut [u8]) {
-        let (width, height) = self.size;
-        let [_, _, w, h] = self.free;
-        let mut paint = |x: u32, y: u32| {
-            let at = 3 * ((height - 1 - y) as usize * width as usize + x as usize);
-            image[at..at + 3].fill(BORDER);
-        };
-        for y in 0..height {
-            paint(w - 1, y);
-        }
-        for x in 0..width {
-            paint(x, h - 1);
-        }
-    }
-
-    /// The free view's size: the renderer draws it through its own camera.
-    pub(crate) fn free_size(&self) -> (u32, u32) {
-        (self.free[2], self.free[3])
-    }
-
-    /// The whole image (bottom row first): the free view's pixels `free_view` (bottom
-    /// row first, [`free_size`](Self::free_size)) in the top-left quarter, the others
-    /// drawn now from `sim`. `free` is the free camera's eye and target, `follow` the
-    /// object it follows.
-    pub(crate) fn compose(
-        &mut self,
-        sim: &Simulation,
-        free_view: &[u8],
-        free: (Point3<f64>, Point3<f64>),
-        follow: Option<&str>,
-    ) -> ars_core::Result<Vec<u8>> {
-        let (width, height) = self.size;
-        let mut image = vec![EMPTY_VIEW; 3 * width as usize * height as usize];
-        place(&mut image, width, height, self.free, free_view);
-        let target = followed(sim, None, follow);
-        let mut pixels = Vec::new();
-        for cell in &mut self.cells {
-            cell.view.mirror.sync(sim, &mut cell.view.scene)?;
-            if let Seen::Through(mut camera, _) = camera_of(cell.kind, sim, free, target, 0)? {
-                cell.view.mirror.draw_overlays(sim, cell.surface.window_mut());
-                kiss3d::pollster::block_on(camera.draw(&mut cell.surface, &mut cell.view.scene));
-                cell.surface.snap(&mut pixels);
-                place(&mut image, width, height, cell.rect, &pixels);
-            }
-        }
-        self.draw_borders(&mut image);
-        Ok(image)
-    }
-}
+pub(crate) const EMPTY_VIEW: u8 = 40;
 
 #[cfg(test)]
 mod tests {

@@ -9,7 +9,7 @@ use ars_viewer::{ReplayRecorder, ViewerError};
 use pyo3::prelude::*;
 
 use crate::errors::{io_file_error, raise};
-use crate::simulation::PySimulation;
+use crate::simulation::{PySimulation, Vec3};
 use crate::viewer::{ViewArgs, to_py_error};
 
 /// What `save_replay` and `replay` take besides the view.
@@ -67,4 +67,45 @@ pub(crate) fn record(
     let (start, end) = replay.span();
     let class = py.import("ars.display")?.getattr("Replay")?;
     Ok(class.call1((replay.html(), path, replay.frames(), start, end))?.unbind())
+}
+
+/// `ars.Simulation`'s browser replays: `save_replay` and `replay`.
+#[pymethods]
+impl PySimulation {
+    /// Runs for `duration` seconds of simulated time and writes a browser replay of
+    /// it to `path` (`None`: kept in memory): one self-contained HTML file (no network
+    /// needed) with every object's shape, colour and pose, `fps` samples a second
+    /// (default: the frame rate), and plots of the sensor columns `plots` names
+    /// (`"Gps 1: y"`: the sensor's type, its number from 1, its column). The camera
+    /// starts as a `Renderer`'s with the same keywords. Returns an `ars.Replay`, which
+    /// a notebook shows inline. Bad settings are refused before the run, and no file
+    /// is left.
+    #[pyo3(signature = (path, duration, *, fps=None, plots=Vec::new(), size=(640, 480), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], title="ARS".to_string()))]
+    fn save_replay(
+        &self,
+        py: Python<'_>,
+        path: Option<std::path::PathBuf>,
+        duration: f64,
+        fps: Option<f64>,
+        plots: Vec<String>,
+        size: (i64, i64),
+        camera: Vec3,
+        look_at: Vec3,
+        background: Vec3,
+        title: String,
+    ) -> PyResult<Py<PyAny>> {
+        let view = ViewArgs::for_replay(title, size, camera, look_at, background);
+        record(py, self, path, ReplayArgs { duration, fps, plots, view })
+    }
+
+    /// As `save_replay` (the same keywords), kept in memory: an `ars.Replay` to show
+    /// in a notebook (or save later).
+    #[pyo3(signature = (duration, **options))]
+    fn replay(
+        slf: &Bound<'_, Self>,
+        duration: f64,
+        options: Option<&Bound<'_, pyo3::types::PyDict>>,
+    ) -> PyResult<Py<PyAny>> {
+        Ok(slf.call_method("save_replay", (None::<std::path::PathBuf>, duration), options)?.unbind())
+    }
 }

@@ -164,3 +164,29 @@ impl PyVideoWriter {
         py.detach(|| drop(writer));
     }
 }
+
+/// `ars.Simulation.record_video`.
+#[pymethods]
+impl PySimulation {
+    /// Runs `duration` seconds of simulated time off screen into an H.264 MP4 video at
+    /// `path`: frame k is the picture at the first step at or after k/fps s (see
+    /// `ars._native.VideoWriter` for frames one by one). A dict of what it holds.
+    #[pyo3(signature = (path, duration, fps=30.0, size=(800, 600), *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
+    fn record_video(
+        &self,
+        py: Python<'_>,
+        path: std::path::PathBuf,
+        duration: f64,
+        fps: f64,
+        size: (i64, i64),
+        camera: Vec3,
+        look_at: Vec3,
+        background: Vec3,
+        follow: Option<String>,
+        quality: String,
+        axes: bool,
+    ) -> PyResult<Py<pyo3::types::PyDict>> {
+        let view = ViewArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes };
+        record_video(py, self, path, duration, fps, view)
+    }
+}

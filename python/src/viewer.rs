@@ -478,3 +478,31 @@ impl PyRenderer {
         }
     }
 }
+
+/// `ars.Simulation.show`: the window.
+#[pymethods]
+impl PySimulation {
+    /// Opens a window on the simulation and runs it in real time until the window is
+    /// closed (or for `duration` wall seconds, or until it has run `frames` frames, the
+    /// last one drawn): mouse to turn the camera, space to pause, `g` for the panel
+    /// (speed, plots of the sensors, joints), escape to quit.
+    /// Needs a display; returns what the run measured (frames, seconds, real-time
+    /// factor). Off screen, use `ars.Renderer`.
+    #[pyo3(signature = (duration=None, *, frames=None, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
+    fn show(
+        slf: &Bound<'_, Self>,
+        duration: Option<f64>,
+        frames: Option<i64>,
+        title: String,
+        size: (i64, i64),
+        camera: Vec3,
+        look_at: Vec3,
+        background: Vec3,
+        follow: Option<String>,
+        quality: String,
+        axes: bool,
+    ) -> PyResult<Py<pyo3::types::PyDict>> {
+        let view = ViewArgs { title, size, camera, look_at, background, follow, quality, axes };
+        show(slf.py(), slf.clone().unbind(), None, duration, frames, view)
+    }
+}

@@ -491,3 +491,20 @@ impl Joint {
         format!("<ars.Joint {:?}>", self.name)
     }
 }
+
+/// `ars.Simulation`'s views of one body or joint by name: `body` and `joint`.
+#[pymethods]
+impl PySimulation {
+    /// The object named `name` (an unknown name raises `ars.UnknownNameError`, with the
+    /// names spelled almost the same). Its attributes are copies, read when asked.
+    fn body(slf: Bound<'_, Self>, name: &str) -> PyResult<Body> {
+        slf.get().with(slf.py(), |sim| Self::object_id(sim, name))?;
+        Ok(Body::new(slf.unbind(), name.to_string()))
+    }
+
+    /// The joint named `name`; see `body`.
+    fn joint(slf: Bound<'_, Self>, name: &str) -> PyResult<Joint> {
+        slf.get().with(slf.py(), |sim| sim.scene().joint(name).map(|_| ()))?;
+        Ok(Joint::new(slf.unbind(), name.to_string()))
+    }
+}

@@ -6,8 +6,6 @@
 use nalgebra::{Point3, Vector3};
 
 use super::Scene;
-use super::sim_joint::SimJoint;
-use super::views::JointKey;
 use crate::control::{Actuator, JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
@@ -322,15 +320,6 @@ impl Scene {
     /// Every joint, by name in alphabetical order.
     pub fn joints(&self) -> impl Iterator<Item = (&str, JointId)> + '_ {
         self.joint_names.iter()
-    }
-
-    /// Actions on a joint: torques, forces, motors, limits, friction, controllers.
-    #[inline]
-    pub fn joint_mut(&mut self, key: impl JointKey) -> Result<SimJoint<'_>> {
-        let id = key.joint_id(self)?;
-        let data = self.joint_data(id)?;
-        let (kind, handle) = (data.kind, data.handle);
-        Ok(SimJoint { sim: self, id, kind, handle })
     }
 
     /// The torques (or forces) put on a joint during the step being taken.

@@ -251,7 +251,7 @@ impl Scene {
 
     fn dynamic_body(&self, id: ObjectId) -> Result<BodyHandle> {
         let data = self.object_data(id)?;
-        data.body.ok_or_else(|| super::views::static_object(&data.name))
+        data.body.ok_or_else(|| static_object(&data.name))
     }
 
     /// Read access to the body of a dynamic object (pose, velocities, mass, inertia...).
@@ -397,4 +397,9 @@ fn valid_color(color: Color) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// The error for a static object asked for its body.
+pub(crate) fn static_object(name: &str) -> Error {
+    Error::NoBody { operation: "a velocity, force or mass", object: name.to_string() }
 }

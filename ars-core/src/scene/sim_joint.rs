@@ -13,10 +13,21 @@ use crate::{limits, validate};
 /// Actions on one joint of a simulation, from [`Scene::joint_mut`] (to read it,
 /// [`Scene::joint`]).
 pub struct SimJoint<'s> {
-    pub(super) sim: &'s mut Scene,
-    pub(super) id: JointId,
-    pub(super) kind: JointType,
-    pub(super) handle: JointHandle,
+    sim: &'s mut Scene,
+    id: JointId,
+    kind: JointType,
+    handle: JointHandle,
+}
+
+impl Scene {
+    /// Actions on a joint: torques, forces, motors, limits, friction, controllers.
+    #[inline]
+    pub fn joint_mut(&mut self, key: impl JointKey) -> Result<SimJoint<'_>> {
+        let id = key.joint_id(self)?;
+        let data = self.joint_data(id)?;
+        let (kind, handle) = (data.kind, data.handle);
+        Ok(SimJoint { sim: self, id, kind, handle })
+    }
 }
 
 impl SimJoint<'_> {

@@ -9,7 +9,7 @@ use super::joints::{ActuatorLimits, JointData, JointEfforts, JointType, Mimic};
 use super::objects::{Color, ObjectData, Visual};
 use crate::body::BodyRef;
 use crate::control::JointState;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
 use crate::joint::{JointFeedback, JointRef};
 use crate::shape::Shape;
@@ -217,9 +217,4 @@ impl Scene {
         let id = key.joint_id(self)?;
         Ok(JointView { scene: self, id, data: self.joint_data(id)? })
     }
-}
-
-/// The error for a static object asked for its body.
-pub(crate) fn static_object(name: &str) -> Error {
-    Error::NoBody { operation: "a velocity, force or mass", object: name.to_string() }
 }

@@ -20,7 +20,6 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
 use crate::errors::{count, guarded, outcome, raise};
-use crate::views::{Body, Joint};
 
 mod building;
 mod files;
@@ -298,7 +297,7 @@ impl PySimulation {
         })
     }
 
-    fn object_id(sim: &Simulation, name: &str) -> ars_core::Result<ObjectId> {
+    pub(crate) fn object_id(sim: &Simulation, name: &str) -> ars_core::Result<ObjectId> {
         Ok(sim.scene().object(name)?.id())
     }
 
@@ -466,7 +465,7 @@ impl PySimulation {
 
     /// The broad phase that finds the pairs of geoms that may touch, chosen when the
     /// simulation is made (`Simulation(space=...)`): `"grid"` (the default, ARS's own:
-    /// linear in the geoms; 10,000 spaced spheres 2.6 ms a step, 100,000 67 ms),
+    /// linear in the geoms; docs/python.md gives measured times),
     /// `"sweep_and_prune"` (ODE's), `"hash"` (a hash grid; up to 100,000 geoms) or
     /// `"simple"` (every pair, as the original ARS: its programs keep
     /// it, to give the original's numbers bit for bit).
@@ -519,67 +518,6 @@ impl PySimulation {
         self.advance(py, move |sim| sim.run_for_until(duration, python_signals(&context.raised)))
     }
 
-    /// Opens a window on the simulation and runs it in real time until the window is
-    /// closed (or for `duration` wall seconds, or until it has run `frames` frames, the
-    /// last one drawn): mouse to turn the camera, space to pause, `g` for the panel
-    /// (speed, plots of the sensors, joints), escape to quit.
-    /// Needs a display; returns what the run measured (frames, seconds, real-time
-    /// factor). Off screen, use `ars.Renderer`.
-    #[pyo3(signature = (duration=None, *, frames=None, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
-    fn show(
-        slf: &Bound<'_, Self>,
-        duration: Option<f64>,
-        frames: Option<i64>,
-        title: String,
-        size: (i64, i64),
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        follow: Option<String>,
-        quality: String,
-        axes: bool,
-    ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = crate::viewer::ViewArgs { title, size, camera, look_at, background, follow, quality, axes };
-        crate::viewer::show(slf.py(), slf.clone().unbind(), None, duration, frames, view)
-    }
-
-    /// Runs for `duration` seconds of simulated time and writes a browser replay of
-    /// it to `path` (`None`: kept in memory): one self-contained HTML file (no network
-    /// needed) with every object's shape, colour and pose, `fps` samples a second
-    /// (default: the frame rate), and plots of the sensor columns `plots` names
-    /// (`"Gps 1: y"`: the sensor's type, its number from 1, its column). The camera
-    /// starts as a `Renderer`'s with the same keywords. Returns an `ars.Replay`, which
-    /// a notebook shows inline. Bad settings are refused before the run, and no file
-    /// is left.
-    #[pyo3(signature = (path, duration, *, fps=None, plots=Vec::new(), size=(640, 480), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], title="ARS".to_string()))]
-    fn save_replay(
-        &self,
-        py: Python<'_>,
-        path: Option<std::path::PathBuf>,
-        duration: f64,
-        fps: Option<f64>,
-        plots: Vec<String>,
-        size: (i64, i64),
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        title: String,
-    ) -> PyResult<Py<PyAny>> {
-        let view = crate::viewer::ViewArgs::for_replay(title, size, camera, look_at, background);
-        crate::replay::record(py, self, path, crate::replay::ReplayArgs { duration, fps, plots, view })
-    }
-
-    /// As `save_replay` (the same keywords), kept in memory: an `ars.Replay` to show
-    /// in a notebook (or save later).
-    #[pyo3(signature = (duration, **options))]
-    fn replay(
-        slf: &Bound<'_, Self>,
-        duration: f64,
-        options: Option<&Bound<'_, pyo3::types::PyDict>>,
-    ) -> PyResult<Py<PyAny>> {
-        Ok(slf.call_method("save_replay", (None::<std::path::PathBuf>, duration), options)?.unbind())
-    }
-
     /// Sets the control of the actuator called `name` (an MJCF `<motor>`,
     /// `<position>` or `<velocity>`), clamped to its control range and held until set
     /// again: MuJoCo's `data.ctrl`.
@@ -603,29 +541,6 @@ impl PySimulation {
         self.advance(py, |sim| sim.step_frame())
     }
 
-    /// Runs `duration` seconds of simulated time off screen into an H.264 MP4 video at
-    /// `path`: frame k is the picture at the first step at or after k/fps s (see
-    /// `ars._native.VideoWriter` for frames one by one). A dict of what it holds.
-    #[pyo3(signature = (path, duration, fps=30.0, size=(800, 600), *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
-    fn record_video(
-        &self,
-        py: Python<'_>,
-        path: std::path::PathBuf,
-        duration: f64,
-        fps: f64,
-        size: (i64, i64),
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        follow: Option<String>,
-        quality: String,
-        axes: bool,
-    ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view =
-            crate::viewer::ViewArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes };
-        crate::video::record_video(py, self, path, duration, fps, view)
-    }
-
     /// The names of the objects, in alphabetical order.
     #[getter]
     fn objects(&self, py: Python<'_>) -> PyResult<Vec<String>> {
@@ -636,19 +551,6 @@ impl PySimulation {
     #[getter]
     fn joints(&self, py: Python<'_>) -> PyResult<Vec<String>> {
         self.with(py, |sim| Ok(sim.scene().joints().map(|(n, _)| n.to_string()).collect()))
-    }
-
-    /// The object named `name` (an unknown name raises `ars.UnknownNameError`, with the
-    /// names spelled almost the same). Its attributes are copies, read when asked.
-    fn body(slf: Bound<'_, Self>, name: &str) -> PyResult<Body> {
-        slf.get().with(slf.py(), |sim| Self::object_id(sim, name))?;
-        Ok(Body::new(slf.unbind(), name.to_string()))
-    }
-
-    /// The joint named `name`; see `body`.
-    fn joint(slf: Bound<'_, Self>, name: &str) -> PyResult<Joint> {
-        slf.get().with(slf.py(), |sim| sim.scene().joint(name).map(|_| ()))?;
-        Ok(Joint::new(slf.unbind(), name.to_string()))
     }
 
     /// Calls `function()` before every step (after the earlier hooks); returns an id
