@@ -21,7 +21,7 @@
 //! | force, torque (per call and accumulated) | ≤ [`MAX_FORCE`], [`MAX_TORQUE`] | one step of acceleration cannot overflow |
 //! | time step | [`MIN_TIME_STEP`] ‥ [`MAX_TIME_STEP`] | ERP/dt and dt·F/m stay finite |
 //! | gravity | ≤ [`MAX_ACCELERATION`] | |
-//! | contacts in one island, exact stepper | ≤ [`DEFAULT_EXACT_STEP_CONTACTS`] (configurable) | the dense solver's time grows with the cube: 1,640 contacts take 43 s per step |
+//! | contacts in one island, exact stepper | ≤ [`DEFAULT_EXACT_STEP_CONTACTS`] (configurable) | the dense solver's time grows with the cube of the contacts (the README's "Bad input, divergence and ODE's own failures" gives a measured time) |
 //!
 //! After every step, a body whose state left these ranges (or became non-finite) is
 //! reported as [`Error::Diverged`], and the world refuses to
@@ -80,8 +80,9 @@ pub const MAX_ACCELERATION: f64 = 1e9;
 /// Default largest number of contact points in one island (a group of bodies linked
 /// by contacts) for the exact stepper ([`World::set_exact_step_contact_limit`](crate::World::set_exact_step_contact_limit)).
 /// `dWorldStep` solves each island as one dense problem whose cost grows with the
-/// cube of its rows (three per contact): measured on a 2-core laptop-class machine,
-/// 1,640 contacts in one island take 43 s for one step; 400 take about half a second.
+/// cube of its rows (three per contact): past a few hundred contacts a step takes
+/// seconds to minutes (the README's "Bad input, divergence and ODE's own failures"
+/// gives a measured time).
 pub const DEFAULT_EXACT_STEP_CONTACTS: usize = 400;
 
 /// `value` in `[min, max]` (finite). The check is inlined; building the error is not.

@@ -332,8 +332,8 @@ impl View {
         let mut mirror = SceneMirror::new();
         if draws_fast(settings.quality) {
             mirror.draw_fast();
-            // No shadows, and the smallest shadow atlas (2048² × 16 layers otherwise:
-            // about 500 MB of memory without a GPU).
+            // No shadows, and the smallest shadow atlas (2048² × 16 layers otherwise,
+            // hundreds of megabytes of memory without a GPU).
             window.set_shadows_enabled(false);
             window.set_shadow_atlas_layers(1);
             window.set_shadow_resolution(64);

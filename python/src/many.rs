@@ -6,8 +6,7 @@
 //! simulations are then stepped by the calling thread and by the workers of one pool
 //! per process (one thread fewer than there are cores, started on first use and kept:
 //! a vector environment calls `step_many` at every step, and starting threads each
-//! time cost about 70 µs a call on a 2-core machine, a fifth of a pendulum's 80
-//! steps). Each takes the next simulation not yet taken until none is left, so the
+//! time costs a sizeable part of a pendulum's 80 steps). Each takes the next simulation not yet taken until none is left, so the
 //! calling thread takes on the work alone when the workers are busy with another
 //! call (it then waits for them to get to this one and find nothing left). The
 //! calling thread is the one that looks for Ctrl-C. Each simulation is
@@ -90,8 +89,8 @@ impl Pool {
 }
 
 /// How long a thread waiting for a message polls before it sleeps. A vector
-/// environment calls `step_many` again some 20 µs after the last call ended, and a
-/// sleeping thread takes 10–50 µs to wake on a virtual machine: a worker that still
+/// environment calls `step_many` again soon after the last call ended, sooner than a
+/// sleeping thread wakes on a virtual machine: a worker that still
 /// polls takes the next call at once, and a caller whose worker finishes just after it
 /// does not sleep either.
 const SPIN: Duration = Duration::from_micros(200);
