@@ -705,3 +705,50 @@ fn reference_positions_and_springs_survive_a_scene_file_and_a_snapshot() {
         assert!(e.contains("spring"), "{e}");
     }
 }
+
+/// `MjcfFile`: Gymnasium's ant read once and inserted into two simulations makes the same
+/// bodies, joints, actuators and sensors as `load_mjcf`, and the three step to the same
+/// bits; a broken file is refused when read, before any simulation is touched.
+#[test]
+fn an_mjcf_file_read_once_is_inserted_into_two_simulations_that_step_alike() {
+    use ars::MjcfFile;
+    let ant = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ant.xml");
+    let options = MjcfOptions::new().skip_unsupported(true).base_pose(Isometry3::translation(0.0, 0.75, 0.0));
+    let file = MjcfFile::read(ant, &options).unwrap();
+    assert_eq!(file.name(), "ant");
+    assert!(!file.skipped().is_empty(), "the ant's contact parameters are said");
+    let floor = || Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let mut sims = [floor(), floor(), floor()];
+    let [first, second, loaded] = &mut sims;
+    let models = [file.insert(first, &options).unwrap(), file.insert(second, &options).unwrap()];
+    let by_load = loaded.load_mjcf(ant, &options).unwrap();
+    let names = |m: &ars::MjcfModel| {
+        let bodies: Vec<String> = m.bodies.iter().map(|(n, _)| n.clone()).collect();
+        let joints: Vec<String> = m.joints.iter().map(|(n, _)| n.clone()).collect();
+        let actuators: Vec<String> = m.actuators.iter().map(|a| a.name.clone()).collect();
+        (bodies, joints, actuators, m.sensors.len(), m.skipped.clone())
+    };
+    assert_eq!(names(&models[0]), names(&models[1]));
+    assert_eq!(names(&models[0]), names(&by_load));
+    assert_eq!(models[0].bodies.len(), 13, "{:?}", names(&models[0]).0);
+    for sim in &mut sims {
+        for actuator in &by_load.actuators {
+            sim.scene_mut().set_control(&actuator.name, 0.5).unwrap();
+        }
+        sim.step_n(500).unwrap();
+    }
+    let state = |sim: &Simulation, m: &ars::MjcfModel| -> Vec<u64> {
+        m.bodies
+            .iter()
+            .flat_map(|(_, id)| {
+                let object = sim.scene().object(*id).unwrap();
+                let (p, v) = (object.position().unwrap(), object.body().unwrap().linear_velocity());
+                [p.x, p.y, p.z, v.x, v.y, v.z].map(f64::to_bits)
+            })
+            .collect()
+    };
+    assert_eq!(state(&sims[0], &models[0]), state(&sims[1], &models[1]));
+    assert_eq!(state(&sims[0], &models[0]), state(&sims[2], &by_load));
+    let err = MjcfFile::parse("<mujoco><worldbody>", "broken.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(matches!(&err, Error::Format { format: "MJCF", file, .. } if file == "broken.xml"), "{err:?}");
+}

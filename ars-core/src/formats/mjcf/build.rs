@@ -23,18 +23,23 @@ pub(super) fn placement(options: &MjcfOptions) -> Isometry3<f64> {
     options.base_pose * Isometry3::from_parts(Translation3::identity(), turn)
 }
 
+/// The model of an MJCF file's text (`file` names it in errors), read as `options`
+/// say (`skip_unsupported`).
+pub(super) fn read_mjcf(text: &str, file: &str, options: &MjcfOptions) -> Result<Model> {
+    read(file, text, options).map_err(|p| Error::Format {
+        format: "MJCF",
+        file: p.file.unwrap_or_else(|| file.to_string()),
+        element: format!("<{}>", p.element),
+        line: Some(p.line),
+        column: None,
+        problem: p.text,
+    })
+}
+
 impl Scene {
-    /// Makes the bodies, joints and actuators of an MJCF model from its text, not its
-    /// sensors (a scene has none); `file` names it in errors.
-    pub(crate) fn insert_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
-        let model = read(file, text, options).map_err(|p| Error::Format {
-            format: "MJCF",
-            file: p.file.unwrap_or_else(|| file.to_string()),
-            element: format!("<{}>", p.element),
-            line: Some(p.line),
-            column: None,
-            problem: p.text,
-        })?;
+    /// Makes the bodies, joints and actuators of a read MJCF model, not its sensors (a
+    /// scene has none), at `options.base_pose`.
+    pub(super) fn insert_mjcf_model(&mut self, model: &Model, options: &MjcfOptions) -> Result<MjcfModel> {
         // Built in one go; on an error everything made so far is removed.
         let mut made = MjcfModel {
             name: model.name.clone(),
@@ -44,7 +49,7 @@ impl Scene {
             skipped: model.skipped.clone(),
             ..MjcfModel::default()
         };
-        let built = self.build_mjcf(&model, options, &mut made);
+        let built = self.build_mjcf(model, options, &mut made);
         if let Err(e) = built {
             let ids: Vec<ObjectId> = made
                 .bodies

@@ -319,20 +319,76 @@ impl MjcfModel {
 /// as a fraction of the body's.
 pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
 
+/// An MJCF file as read: its model, not yet in a simulation. [`insert`](Self::insert)
+/// makes its bodies, joints, actuators and sensors, as many times as asked.
+///
+/// ```
+/// use ars_core::formats::mjcf::{MjcfFile, MjcfOptions};
+/// use ars_core::Simulation;
+///
+/// let text = r#"<mujoco model="one"><worldbody><body name="ball" pos="0 0 1">
+///   <freejoint/><geom type="sphere" size="0.1"/></body></worldbody></mujoco>"#;
+/// let file = MjcfFile::parse(text, "one.xml", &MjcfOptions::new())?;
+/// let (mut a, mut b) = (Simulation::new()?, Simulation::new()?);
+/// let model = file.insert(&mut a, &MjcfOptions::new())?;
+/// file.insert(&mut b, &MjcfOptions::new())?;
+/// assert_eq!((model.name.as_str(), a.scene().objects().count()), ("one", b.scene().objects().count()));
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct MjcfFile {
+    model: model::Model,
+}
+
+impl MjcfFile {
+    /// Reads the MJCF model in `path` (and the files it includes and the meshes it
+    /// names), as `options` say: what cannot be read is an error, or with
+    /// [`MjcfOptions::skip_unsupported`] a line in [`skipped`](Self::skipped).
+    pub fn read(path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfFile> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the MJCF file", path, &e))?;
+        Self::parse(&text, &path.display().to_string(), options)
+    }
+
+    /// Reads an MJCF model from its text (see [`read`](Self::read)); `file` names it in
+    /// errors, and its folder is where included files and meshes are found.
+    pub fn parse(text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfFile> {
+        Ok(MjcfFile { model: build::read_mjcf(text, file, options)? })
+    }
+
+    /// The model's name (`<mujoco model>`).
+    pub fn name(&self) -> &str {
+        &self.model.name
+    }
+
+    /// What reading skipped or adjusted, and why (what it could not read only when read
+    /// with `skip_unsupported`).
+    pub fn skipped(&self) -> &[String] {
+        &self.model.skipped
+    }
+
+    /// Makes the model in `sim` at `options.base_pose`, with its sensors
+    /// ([`MjcfModel::sensors`]), sampled after every step; returns what was made. On an
+    /// error nothing is left in the simulation. `options.skip_unsupported` plays no part
+    /// here: it decides how the file is read ([`read`](Self::read)).
+    pub fn insert(&self, sim: &mut Simulation, options: &MjcfOptions) -> Result<MjcfModel> {
+        let made = sim.scene.insert_mjcf_model(&self.model, options)?;
+        sim.make_mjcf_sensors(made)
+    }
+}
+
 /// Loads MJCF models with their sensors.
 impl Simulation {
     /// Loads the MJCF model in `path` (see the [module docs](self)) with its sensors
-    /// ([`MjcfModel::sensors`]), sampled after every step.
+    /// ([`MjcfModel::sensors`]), sampled after every step: [`MjcfFile::read`], then
+    /// [`MjcfFile::insert`].
     pub fn load_mjcf(&mut self, path: impl AsRef<Path>, options: &MjcfOptions) -> Result<MjcfModel> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the MJCF file", path, &e))?;
-        self.load_mjcf_text(&text, &path.display().to_string(), options)
+        MjcfFile::read(path, options)?.insert(self, options)
     }
 
     /// Loads an MJCF model from its text with its sensors (see
     /// [`load_mjcf`](Self::load_mjcf)); `file` names it in errors.
     pub fn load_mjcf_text(&mut self, text: &str, file: &str, options: &MjcfOptions) -> Result<MjcfModel> {
-        let model = self.scene.insert_mjcf_text(text, file, options)?;
-        self.make_mjcf_sensors(model)
+        MjcfFile::parse(text, file, options)?.insert(self, options)
     }
 }

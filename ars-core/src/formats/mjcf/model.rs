@@ -95,6 +95,7 @@ pub(super) struct Site {
 }
 
 /// Everything read from the file before anything is built.
+#[derive(Clone, Debug)]
 pub(super) struct Model {
     pub(super) name: String,
     pub(super) world_geoms: Vec<Geom>,

@@ -2,7 +2,7 @@
 //! warning.
 
 /// A problem at a place of the file (or of a file it includes).
-#[derive(Clone)]
+#[derive(Clone, Debug)]
 pub(super) struct Problem {
     pub(super) element: String,
     pub(super) line: u32,
