@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut runner = ProgramRunner::new(&mut program)?;
     let steps = runner.simulation().scene().steps_in(args.duration)?;
     let dt = runner.simulation().scene().time_step();
-    let mut capture = common::args::Capture::new(&args, ars::Program::view_settings(runner.program()))?;
+    let mut capture = common::args::Capture::new(&args, ars::Program::window_settings(runner.program()))?;
     let spf = u64::from(runner.simulation().scene().steps_per_frame());
     for step in 0..steps {
         if step % spf == 0 {

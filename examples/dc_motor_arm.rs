@@ -39,7 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let steps = sim.scene().steps_in(args.duration)?;
     let every = (0.5 / sim.scene().time_step()).round() as u64;
-    let view = ars::ViewSettings {
+    let view = ars::WindowSettings {
         camera_position: Point3::new(0.0, 1.0, 3.0),
         camera_target: Point3::new(0.0, 0.8, 0.0),
         ..Default::default()

@@ -19,7 +19,7 @@ use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::JointPositions;
 use ars::{
     Hooks, JointType, Program, Result, SensorId, Simulation, SimulationBuilder, SpaceKind, UpAxis, UrdfOptions,
-    ViewSettings,
+    WindowSettings,
 };
 
 /// A URDF robot as a program: the file's robot on the floor, recording its joint positions.
@@ -38,8 +38,8 @@ impl Program for UrdfProgram {
         builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
     }
 
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings {
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings {
             title: format!("ARS: {}", self.path.display()),
             camera_position: Point3::new(2.5, 1.8, 2.5),
             camera_target: Point3::new(0.0, 0.5, 0.0),

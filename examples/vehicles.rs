@@ -38,7 +38,7 @@ fn drive<P: Program>(
         return Ok(Path::default());
     }
     let duration = args.duration;
-    let mut capture = common::args::Capture::new(args, program.view_settings())?;
+    let mut capture = common::args::Capture::new(args, program.window_settings())?;
     let mut runner = ProgramRunner::new(&mut program)?;
     let body = chassis(runner.program());
     let sim = runner.simulation_mut();

@@ -11,7 +11,7 @@ use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::Gps;
 use ars::viewer::image::{self, RgbImage};
 use ars::viewer::{OffscreenRenderer, ReplayRecorder};
-use ars::{Hooks, JointEnd, Mass, Program, ProgramRunner, Result, Simulation, SimulationBuilder, ViewSettings};
+use ars::{Hooks, JointEnd, Mass, Program, ProgramRunner, Result, Simulation, SimulationBuilder, WindowSettings};
 
 /// Two pendulums of several shapes (a box arm with a ball at its end, a cylinder with
 /// a cone, a capsule), swinging about Z, with a GPS on the ball; no floor: the
@@ -56,12 +56,12 @@ impl Program for Pendulums {
         )?;
         sim.add_sensor(Gps::new(ball)).map(drop)
     }
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings {
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings {
             size: (320, 240),
             camera_position: Point3::new(1.2, 1.6, 3.6),
             camera_target: Point3::new(0.0, 1.2, 0.0),
-            ..ViewSettings::default()
+            ..WindowSettings::default()
         }
     }
 }
@@ -179,7 +179,7 @@ fn chromium_plays_the_replay_and_shows_the_bodies_where_the_simulation_had_them(
     assert_eq!(sim.scene().time_step() * f64::from(sim.scene().steps_per_frame()), 0.02);
     assert_eq!(replay.frames(), 151);
 
-    let view = Pendulums.view_settings();
+    let view = Pendulums.window_settings();
     let (w, h) = view.size;
     // The off-screen frame at t = 1.56 s (78 frames), its silhouettes.
     let mut program = Pendulums;
@@ -257,7 +257,7 @@ fn bad_settings_are_refused_and_leave_no_file() {
     refused(ReplayRecorder::new(), &dir.join("missing/out.html"), "missing/out.html");
     refused(ReplayRecorder::new(), &dir, "it is a folder");
     let mut empty = Simulation::new().unwrap();
-    let e = ReplayRecorder::new().record_simulation_to(&mut empty, &ViewSettings::default(), 1.0, &page);
+    let e = ReplayRecorder::new().record_simulation_to(&mut empty, &WindowSettings::default(), 1.0, &page);
     let e = e.map(drop).unwrap_err().to_string();
     assert!(e.contains("nothing to replay: the simulation has no objects"), "{e}");
     let e = ReplayRecorder::new().record_to(&mut Pendulums, 0.0, &page).map(drop).unwrap_err().to_string();

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use ars::viewer::{OffscreenRenderer, VideoRecorder, ViewerError};
-use ars::{Hooks, Program, ProgramRunner, ViewSettings};
+use ars::{Hooks, Program, ProgramRunner, WindowSettings};
 use ars_programs::ConicalPendulum;
 
 /// A fresh empty folder for one test.
@@ -106,7 +106,7 @@ fn five_seconds_of_the_conical_pendulum_make_150_frames_and_the_frame_at_2_s_mat
     // rendering context per thread).
     let (expected, later) = std::thread::spawn(|| {
         let mut program = ConicalPendulum::default();
-        let view = ViewSettings { size: SIZE, ..program.view_settings() };
+        let view = WindowSettings { size: SIZE, ..program.window_settings() };
         let mut renderer = OffscreenRenderer::new(&view).unwrap();
         let mut runner = ProgramRunner::new(&mut program).unwrap();
         runner.run_for(2.0).unwrap();

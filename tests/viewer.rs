@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use ars::nalgebra::{Matrix4, Point3, Vector3};
 use ars::viewer::image::RgbImage;
 use ars::viewer::{OffscreenRenderer, ProgramViewer, ScreenshotRecorder};
-use ars::{Hooks, Mass, Program, ProgramRunner, Result, Simulation, ViewSettings};
+use ars::{Hooks, Mass, Program, ProgramRunner, Result, Simulation, WindowSettings};
 
 /// The thesis' falling ball, painted red, seen from the original's camera.
 struct RedBall;
@@ -23,14 +23,14 @@ impl Program for RedBall {
         let ball = sim.scene_mut().add_sphere(0.5, [1.0, 1.0, 1.0], Mass::Total(1.0))?;
         sim.scene_mut().set_color(ball, [1.0, 0.0, 0.0])
     }
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings { size: (320, 240), ..ViewSettings::default() }
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings { size: (320, 240), ..WindowSettings::default() }
     }
 }
 
 /// Where `p` lands in the image: the camera looks from `eye` at `target`, Y up, with a
 /// vertical field of view of π/4 (kiss3d's orbit camera).
-fn project(view: &ViewSettings, p: Point3<f64>) -> (f64, f64) {
+fn project(view: &WindowSettings, p: Point3<f64>) -> (f64, f64) {
     let (w, h) = (view.size.0 as f64, view.size.1 as f64);
     let v = Matrix4::look_at_rh(&view.camera_position, &view.camera_target, &Vector3::y());
     let proj = Matrix4::new_perspective(w / h, std::f64::consts::FRAC_PI_4, 0.1, 1000.0);
@@ -57,7 +57,7 @@ fn reddish(image: &RgbImage, x: f64, y: f64, radius: i64) -> bool {
 }
 
 fn offscreen_frames_show_the_ball_where_it_is() -> std::result::Result<(), String> {
-    let view = RedBall.view_settings();
+    let view = RedBall.window_settings();
     let mut renderer = OffscreenRenderer::new(&view).map_err(|e| e.to_string())?;
     let mut program = RedBall;
     let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
@@ -123,7 +123,7 @@ fn coloured_near(image: &RgbImage, x: f64, y: f64, radius: i64, channel: usize) 
 /// same empty world, once without and once with them, seen from the original's camera.
 fn offscreen_axes_are_drawn_only_when_asked() -> std::result::Result<(), String> {
     use ars::viewer::ViewerOptions;
-    let view = ViewSettings { size: (320, 240), ..ViewSettings::default() };
+    let view = WindowSettings { size: (320, 240), ..WindowSettings::default() };
     let sim = Simulation::builder().gravity(Vector3::zeros()).build().map_err(|e| e.to_string())?;
     // Both renderers (and the recorder's below) share the first one's context: it
     // lives to the end.
@@ -155,8 +155,8 @@ fn offscreen_axes_are_drawn_only_when_asked() -> std::result::Result<(), String>
         fn create_sim_objects(&mut self, _: &mut Simulation) -> Result<()> {
             Ok(())
         }
-        fn view_settings(&self) -> ViewSettings {
-            ViewSettings { size: (320, 240), ..ViewSettings::default() }
+        fn window_settings(&self) -> WindowSettings {
+            WindowSettings { size: (320, 240), ..WindowSettings::default() }
         }
     }
     let dir = std::env::temp_dir().join(format!("ars_viewer_test_axes_{}", std::process::id()));
@@ -191,14 +191,18 @@ fn offscreen_contact_forces_are_drawn_when_asked() -> std::result::Result<(), St
             let id = sim.scene_mut().add_box([1.0, 1.0, 1.0], [0.0, 0.5, 0.0], Mass::Total(2.0))?;
             sim.scene_mut().set_color(id, [0.8, 0.1, 0.1])
         }
-        fn view_settings(&self) -> ViewSettings {
-            ViewSettings { size: (320, 240), camera_position: Point3::new(4.0, 3.0, 5.0), ..ViewSettings::default() }
+        fn window_settings(&self) -> WindowSettings {
+            WindowSettings {
+                size: (320, 240),
+                camera_position: Point3::new(4.0, 3.0, 5.0),
+                ..WindowSettings::default()
+            }
         }
     }
     let dir = std::env::temp_dir().join(format!("ars_viewer_test_forces_{}", std::process::id()));
     // Two recordings on this thread: this renderer holds the thread's one rendering
     // context for both, to the end.
-    let holder = OffscreenRenderer::new(&Resting.view_settings()).map_err(|e| e.to_string())?;
+    let holder = OffscreenRenderer::new(&Resting.window_settings()).map_err(|e| e.to_string())?;
     let recorded = |options: ViewerOptions| -> std::result::Result<RgbImage, String> {
         let recorder = ScreenshotRecorder::new(&dir).every(25).options(options);
         let (sim, written) = recorder.record(&mut Resting, 1.0).map_err(|e| e.to_string())?;
@@ -216,7 +220,7 @@ fn offscreen_contact_forces_are_drawn_when_asked() -> std::result::Result<(), St
     let cyan = |image: &RgbImage| image.pixels().filter(|p| p.0[0] < 90 && p.0[1] > 120 && p.0[2] > 140).count();
     let (before, after) = (cyan(&without), cyan(&with));
     // A corner's arrow, from the contact point up a quarter of 0.98 m: cyan halfway.
-    let view = Resting.view_settings();
+    let view = Resting.window_settings();
     let (x, y) = project(&view, Point3::new(0.5, 0.12, 0.5));
     let near = (-3..=3i64)
         .flat_map(|dx| (-3..=3i64).map(move |dy| (dx, dy)))
@@ -238,7 +242,7 @@ fn offscreen_contact_forces_are_drawn_when_asked() -> std::result::Result<(), St
 /// in order, each the same bytes as the image the renderer draws of the same state
 /// saved with `RgbImage::save` (what the recorder wrote itself before).
 fn the_recorder_writes_every_frame_as_drawn() -> std::result::Result<(), String> {
-    let view = RedBall.view_settings();
+    let view = RedBall.window_settings();
     // Kept alive across the recording: the recorder's renderer shares its context.
     let mut renderer = OffscreenRenderer::new(&view).map_err(|e| e.to_string())?;
     let dir = std::env::temp_dir().join(format!("ars_viewer_test_recorder_{}", std::process::id()));
@@ -330,7 +334,7 @@ fn a_real_window_under_xvfb_shows_the_ball() -> std::result::Result<bool, String
     let result = RedBall.snapshot_in_window(3);
     stop_xvfb(xvfb);
     let image = result.map_err(|e| e.to_string())?;
-    let view = RedBall.view_settings();
+    let view = RedBall.window_settings();
     let _ = image.save(std::env::temp_dir().join("ars_viewer_test_window.png"));
     let (x, y) = project(&view, Point3::new(1.0, 1.0, 1.0));
     let (sx, sy) = (x * image.width() as f64 / view.size.0 as f64, y * image.height() as f64 / view.size.1 as f64);
@@ -424,7 +428,7 @@ fn a_window_records_a_video() -> std::result::Result<bool, String> {
     unsafe { std::env::set_var("DISPLAY", &display) };
     let path = std::env::temp_dir().join(format!("ars-window-video-{}.mp4", std::process::id()));
     let mut program = RedBall;
-    let view = program.view_settings();
+    let view = program.window_settings();
     let mut runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
     let recorded = ars::viewer::run_window_recording(
         &mut runner,
@@ -633,11 +637,11 @@ fn offscreen_views_split_the_frame_and_the_camera_view_sees_as_the_camera() -> s
     for _ in 0..100 {
         sim.step().map_err(e)?;
     }
-    let view = ViewSettings {
+    let view = WindowSettings {
         size: (640, 480),
         camera_position: Point3::new(3.0, 2.5, 3.0),
         camera_target: Point3::new(0.0, 0.0, -1.5),
-        ..ViewSettings::default()
+        ..WindowSettings::default()
     };
     let options = ViewerOptions::default().with_views(4);
     // One rendering context per thread: the renderer lives while the camera renders.
@@ -694,13 +698,13 @@ impl Program for Crate {
             .at(ars::nalgebra::Isometry3::translation(0.0, 0.5, 3.0));
         sim.add_sensor_every(camera, 1.0).map(drop)
     }
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings {
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings {
             title: "touch".into(),
             size: (1024, 768),
             camera_position: Point3::new(4.0, 3.0, 4.0),
             camera_target: Point3::new(0.0, 0.25, 0.0),
-            ..ViewSettings::default()
+            ..WindowSettings::default()
         }
     }
 }
@@ -794,7 +798,7 @@ fn a_person_selects_pulls_and_edits_a_body() -> std::result::Result<bool, String
         })
     };
     let mut program = Crate;
-    let view = program.view_settings();
+    let view = program.window_settings();
     let runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
     let mut watched = Watched { runner, seen };
     let window = ars::viewer::run_window(&mut watched, &view, Some(Duration::from_secs(90)));
@@ -857,7 +861,7 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     };
     let move_to = |x: i64, y: i64| xdotool(&["mousemove", "--window", &window, &x.to_string(), &y.to_string()]);
     // The camera's up and right, as the test's own geometry says.
-    let view = Crate.view_settings();
+    let view = Crate.window_settings();
     let forward = (view.camera_target - view.camera_position).normalize();
     let up = (Vector3::y() - forward * forward.y).normalize();
     let right = forward.cross(&up);
@@ -1192,13 +1196,13 @@ impl Program for Knock {
         )?;
         sim.scene_mut().add_sphere(0.05, [0.0, 0.05, 0.0], Mass::Total(0.3)).map(drop)
     }
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings {
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings {
             title: "knock".into(),
             size: (640, 480),
             camera_position: Point3::new(1.5, 1.0, 2.5),
             camera_target: Point3::new(0.0, 0.3, 0.0),
-            ..ViewSettings::default()
+            ..WindowSettings::default()
         }
     }
 }
@@ -1315,7 +1319,7 @@ fn a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view() -> std::result::R
         })
     };
     let mut program = Knock;
-    let view = program.view_settings();
+    let view = program.window_settings();
     let runner = ProgramRunner::new(&mut program).map_err(|e| e.to_string())?;
     let mut kept = Kept { runner, history: history.clone() };
     let window = ars::viewer::run_window(&mut kept, &view, Some(Duration::from_secs(150)));

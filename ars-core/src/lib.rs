@@ -121,7 +121,7 @@ pub use handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId, SpaceHa
 pub use init::{ensure_ode_ready, lock_ode_global_state};
 pub use joint::{AxisFrame, JointBuilder, JointFeedback, JointKind, JointMut, JointParam, JointRef};
 pub use program::{
-    Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, ViewSettings,
+    Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, WindowSettings,
 };
 pub use scene::{
     ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, Visual,

@@ -95,8 +95,8 @@ impl Hooks for CentrifugalForce {
 }
 
 impl Program for CentrifugalForce {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: centrifugal force".into(),
             camera_position: ars_core::nalgebra::Point3::new(2.0, 5.0, 10.0),
             size: (900, 600),

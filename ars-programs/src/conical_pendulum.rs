@@ -109,8 +109,8 @@ impl Hooks for ConicalPendulum {
 }
 
 impl Program for ConicalPendulum {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: conical pendulum (IROS example 2)".into(),
             camera_position: ars_core::nalgebra::Point3::new(6.0, 3.0, 6.0),
             camera_target: ars_core::nalgebra::Point3::new(1.0, 0.5, 2.0),

@@ -53,8 +53,8 @@ impl Program for FallingBallSensors {
         builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
     }
 
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: falling ball with sensors".into(),
             camera_position: ars_core::nalgebra::Point3::new(10.0, 8.0, 10.0),
             ..Default::default()

@@ -171,8 +171,8 @@ impl Hooks for SpeedProfile {
 }
 
 impl Program for SpeedProfile {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: speed profile (IROS example 3)".into(),
             follow: Some("chassis".into()),
             camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 25.0),
@@ -318,8 +318,8 @@ impl Hooks for SinusoidalTerrain {
 }
 
 impl Program for SinusoidalTerrain {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: sinusoidal terrain (IROS example 4)".into(),
             follow: Some("chassis".into()),
             camera_position: ars_core::nalgebra::Point3::new(0.0, 8.0, 30.0),
@@ -437,8 +437,8 @@ impl Hooks for UserDriven {
 }
 
 impl Program for UserDriven {
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: user-driven vehicle (IROS example 5)".into(),
             follow: Some("chassis".into()),
             camera_position: ars_core::nalgebra::Point3::new(15.0, 10.0, 15.0),

@@ -38,8 +38,8 @@ impl Program for TwoBallLaser {
         builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
     }
 
-    fn view_settings(&self) -> ars_core::ViewSettings {
-        ars_core::ViewSettings {
+    fn window_settings(&self) -> ars_core::WindowSettings {
+        ars_core::WindowSettings {
             title: "ARS: two balls and a laser".into(),
             camera_position: ars_core::nalgebra::Point3::new(-8.0, 6.0, 16.0),
             camera_target: ars_core::nalgebra::Point3::new(3.0, 1.5, 1.0),

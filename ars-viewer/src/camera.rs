@@ -6,12 +6,12 @@ use std::path::Path;
 
 use ars_core::nalgebra::Isometry3;
 use ars_core::sensors::{DepthCamera, DepthImage, Sensor};
-use ars_core::{ObjectId, Simulation, ViewSettings};
+use ars_core::{ObjectId, Simulation, WindowSettings};
 use kiss3d::window::OffscreenSurface;
 
 use crate::error::{Result, ViewerError};
 use crate::offscreen::init_offscreen_context;
-use crate::scene::View;
+use crate::scene::DrawnScene;
 
 /// A camera's image size and lens.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,7 +74,7 @@ impl CameraFrame {
 pub struct Camera {
     intrinsics: Intrinsics,
     surface: OffscreenSurface,
-    view: View,
+    view: DrawnScene,
     depth: DepthCamera,
     /// Seconds between frames (`None`: every call).
     period: Option<f64>,
@@ -88,7 +88,7 @@ impl Camera {
         let Intrinsics { width, height, fov_y, near, far } = intrinsics;
         let depth = DepthCamera::new(width, height, fov_y, near, far).map_err(ViewerError::from)?;
         init_offscreen_context()?;
-        let settings = ViewSettings { size: (width, height), ..ViewSettings::default() };
+        let settings = WindowSettings { size: (width, height), ..WindowSettings::default() };
         let (surface, view) =
             crate::offscreen::surface_with_view(&settings, (width, height), &crate::SceneMirror::new());
         Ok(Camera { intrinsics, surface, view, depth, period: None, next_frame: None })
@@ -165,7 +165,7 @@ impl Camera {
     pub fn capture(&mut self, sim: &Simulation) -> Result<CameraFrame> {
         // One mount for both images: the depth camera's. The colour image rolls with the
         // camera's own up (its +Y), not the world's, as the depth image does.
-        let mut camera = crate::views::sensor_camera(&self.depth, sim)?;
+        let mut camera = crate::viewports::sensor_camera(&self.depth, sim)?;
         self.view.mirror.sync(sim, &mut self.view.scene).map_err(ViewerError::from)?;
         let rgb = kiss3d::pollster::block_on(self.surface.render_image_3d(&mut self.view.scene, &mut camera));
         let depth = self.depth.measure(sim.scene()).map_err(ViewerError::from)?;

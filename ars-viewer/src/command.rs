@@ -44,7 +44,7 @@ pub(crate) enum Command {
     Views(usize),
     /// Show this depth camera (counted from 0, in the order the sensors were added) in
     /// the camera view.
-    ViewCamera(usize),
+    ViewportCamera(usize),
     /// Forget the selection (Escape, the editor's ✖).
     Deselect,
     /// A key the viewer does not use went down: the program's.

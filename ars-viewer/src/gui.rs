@@ -664,7 +664,7 @@ fn view_choice(ui: &mut egui::Ui, sim: &Simulation, status: &Status<'_>, command
             },
         );
         if chosen != status.camera {
-            commands.push(Command::ViewCamera(chosen));
+            commands.push(Command::ViewportCamera(chosen));
         }
     }
 }

@@ -49,13 +49,13 @@ mod scene;
 mod session;
 mod state;
 mod video;
-mod views;
+mod viewports;
 mod window;
 
 use std::path::PathBuf;
 use std::time::Duration;
 
-use ars_core::{Program, ViewSettings};
+use ars_core::{Program, WindowSettings};
 
 pub use camera::{Camera, CameraFrame, Intrinsics};
 pub use driver::Driver;
@@ -73,11 +73,11 @@ pub use state::{DragLine, Selected, ViewerState};
 pub use video::{
     MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,
 };
-pub use views::{VIEW_KINDS, ViewKind, viewports};
+pub use viewports::{VIEWPORT_KINDS, ViewportKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};
 
 /// What the viewer draws besides the simulation, where the program's
-/// [`ViewSettings`] do not say: for [`ProgramViewer::show_with`], [`run_window_with`],
+/// [`WindowSettings`] do not say: for [`ProgramViewer::show_with`], [`run_window_with`],
 /// [`OffscreenRenderer::with_options`] and [`ScreenshotRecorder::options`].
 ///
 /// ```
@@ -101,7 +101,7 @@ pub struct ViewerOptions {
     /// How many views, 1 to 4 (0 is taken as 1): with more than one, the image is split
     /// into quarters showing, in reading order, the free camera, a camera following a
     /// body, the top view (orthographic) and what the scene's first depth camera sees
-    /// (see [`ViewKind`]). A window starts with these views (keys `1`–`4` change them);
+    /// (see [`ViewportKind`]). A window starts with these views (keys `1`–`4` change them);
     /// off screen, every frame is the split image.
     pub views: usize,
 }
@@ -178,7 +178,7 @@ pub trait ProgramViewer: Program + Sized {
         if has_display() {
             return catch_window_panic(|| session::run_window(self, options));
         }
-        let title = self.view_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
+        let title = self.window_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
         let dir = std::env::temp_dir().join(format!("ars-frames-{title}"));
         eprintln!(
             "no display (DISPLAY and WAYLAND_DISPLAY are unset): recording {HEADLESS_FALLBACK_SECONDS} s off screen, \
@@ -224,14 +224,14 @@ impl<P: Program> ProgramViewer for P {}
 /// with programs of their own (the Python package); Rust programs use
 /// [`ProgramViewer::start`]. Needs a display and the main thread; one window per
 /// thread, unless the thread keeps its context ([`keep_rendering_context`]).
-pub fn run_window<D: Driver>(driver: &mut D, view: &ViewSettings, limit: Option<Duration>) -> Result<WindowReport> {
+pub fn run_window<D: Driver>(driver: &mut D, view: &WindowSettings, limit: Option<Duration>) -> Result<WindowReport> {
     run_window_with(driver, view, &ViewerOptions::default(), limit)
 }
 
 /// As [`run_window`], drawing what `options` say.
 pub fn run_window_with<D: Driver>(
     driver: &mut D,
-    view: &ViewSettings,
+    view: &WindowSettings,
     options: &ViewerOptions,
     limit: Option<Duration>,
 ) -> Result<WindowReport> {
@@ -252,7 +252,7 @@ pub fn run_window_with<D: Driver>(
 /// written when the window closes, and nothing is left if it fails.
 pub fn run_window_recording<D: Driver>(
     driver: &mut D,
-    view: &ViewSettings,
+    view: &WindowSettings,
     options: &ViewerOptions,
     limit: Option<Duration>,
     path: impl Into<PathBuf>,

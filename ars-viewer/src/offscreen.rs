@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use ars_core::nalgebra::Point3;
-use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
+use ars_core::{Program, ProgramRunner, Simulation, WindowSettings};
 use kiss3d::camera::Camera3d;
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
@@ -17,8 +17,8 @@ use crate::convert;
 use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
 use crate::frames::{FrameWriter, RawFrame};
-use crate::scene::{SceneMirror, View};
-use crate::views::{EMPTY_VIEW, Seen, VIEW_KINDS, ViewKind, camera_of, followed, pixel_cells, place};
+use crate::scene::{DrawnScene, SceneMirror};
+use crate::viewports::{EMPTY_VIEW, Seen, VIEWPORT_KINDS, ViewportKind, camera_of, followed, pixel_cells, place};
 
 thread_local! {
     /// Whether a kiss3d context was made on this thread.
@@ -139,20 +139,20 @@ pub fn init_offscreen_context() -> Result<()> {
 /// Renders a simulation into images, off screen.
 pub struct OffscreenRenderer {
     surface: OffscreenSurface,
-    view: View,
+    view: DrawnScene,
     /// The other views when several are drawn ([`ViewerOptions::views`]); `surface`
     /// then draws the free one, in the top-left quarter.
-    views: Option<OffscreenViews>,
+    views: Option<OffscreenViewports>,
 }
 
 impl OffscreenRenderer {
     /// A renderer of `view.size` pixels with the view's camera and background.
-    pub fn new(view: &ViewSettings) -> Result<Self> {
+    pub fn new(view: &WindowSettings) -> Result<Self> {
         OffscreenRenderer::with_options(view, &ViewerOptions::default())
     }
 
     /// As [`new`](Self::new), drawing what `options` say.
-    pub fn with_options(view: &ViewSettings, options: &ViewerOptions) -> Result<Self> {
+    pub fn with_options(view: &WindowSettings, options: &ViewerOptions) -> Result<Self> {
         let (w, h) = view.size;
         if w == 0 || h == 0 || w > 8192 || h > 8192 {
             return Err(ViewerError::InvalidSetting(format!("image size {w}×{h} must be between 1 and 8192 pixels")));
@@ -167,8 +167,8 @@ impl OffscreenRenderer {
         let mut mirror = SceneMirror::new();
         mirror.show_axes = options.axes;
         mirror.show_forces = options.forces;
-        let views = (options.views > 1).then(|| OffscreenViews::new(view, options.views, &mirror));
-        let (w, h) = views.as_ref().map_or((w, h), OffscreenViews::free_size);
+        let views = (options.views > 1).then(|| OffscreenViewports::new(view, options.views, &mirror));
+        let (w, h) = views.as_ref().map_or((w, h), OffscreenViewports::free_size);
         let (surface, shown) = surface_with_view(view, (w, h), &mirror);
         Ok(OffscreenRenderer { surface, view: shown, views })
     }
@@ -182,7 +182,7 @@ impl OffscreenRenderer {
     /// the recorder flips them on its writer threads.
     pub(crate) fn render_raw(&mut self, sim: &Simulation) -> Result<RawFrame> {
         self.view.update(sim, self.surface.window_mut())?;
-        let View { scene, camera, .. } = &mut self.view;
+        let DrawnScene { scene, camera, .. } = &mut self.view;
         kiss3d::pollster::block_on(self.surface.render_3d(scene, camera));
         let mut bottom_up = Vec::new();
         self.surface.snap(&mut bottom_up);
@@ -209,15 +209,15 @@ impl OffscreenRenderer {
 /// `settings` drawn into it, drawing what `mirror` draws (axes, forces). Needs the
 /// rendering context.
 pub(crate) fn surface_with_view(
-    settings: &ViewSettings,
+    settings: &WindowSettings,
     (width, height): (u32, u32),
     mirror: &SceneMirror,
-) -> (OffscreenSurface, View) {
+) -> (OffscreenSurface, DrawnScene) {
     // One sample: MSAA ×4 renders black on Mesa's GL path.
     let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
     let mut surface = kiss3d::pollster::block_on(OffscreenSurface::with_setup(width, height, setup));
     surface.set_background_color(convert::color(settings.background));
-    let mut view = View::new(settings, surface.window_mut());
+    let mut view = DrawnScene::new(settings, surface.window_mut());
     view.mirror.show_axes = mirror.show_axes;
     view.mirror.show_forces = mirror.show_forces;
     (surface, view)
@@ -237,7 +237,7 @@ pub(crate) fn frames_in(sim: &Simulation, duration: f64) -> Result<u64> {
 /// to report them (the contacts' and every joint's).
 pub(crate) fn recording_renderer<D: Driver>(
     driver: &mut D,
-    view: &ViewSettings,
+    view: &WindowSettings,
     size: Option<(u32, u32)>,
     options: &ViewerOptions,
 ) -> Result<OffscreenRenderer> {
@@ -307,7 +307,7 @@ impl ScreenshotRecorder {
     /// Runs `program` for `duration` seconds of simulated time, off screen, writing
     /// frames; returns the simulation (for its records) and the files written.
     pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, Vec<PathBuf>)> {
-        let view = program.view_settings();
+        let view = program.window_settings();
         let mut runner = ProgramRunner::new(program)?;
         let written = self.record_driven(&mut runner, &view, duration)?;
         Ok((runner.into_simulation(), written))
@@ -319,7 +319,12 @@ impl ScreenshotRecorder {
     /// drawn; every one is written when this returns. A stop requested through
     /// [`ars_core::interrupt`] (Ctrl-C) ends the recording after the frame being
     /// drawn, with the frames so far.
-    pub fn record_driven<D: Driver>(&self, driver: &mut D, view: &ViewSettings, duration: f64) -> Result<Vec<PathBuf>> {
+    pub fn record_driven<D: Driver>(
+        &self,
+        driver: &mut D,
+        view: &WindowSettings,
+        duration: f64,
+    ) -> Result<Vec<PathBuf>> {
         if self.every == 0 {
             return Err(ViewerError::InvalidSetting("the screenshot period must be at least one frame".into()));
         }
@@ -348,16 +353,16 @@ const BORDER: u8 = 60;
 
 /// One view after the free one in an off-screen image of several views.
 struct Cell {
-    kind: ViewKind,
+    kind: ViewportKind,
     rect: [u32; 4],
     surface: OffscreenSurface,
-    view: View,
+    view: DrawnScene,
 }
 
 /// The views after the free one of an off-screen renderer of several views (its
 /// `--views`): each drawn into its own surface the size of its quarter, then put in
 /// its place in the renderer's image.
-pub(crate) struct OffscreenViews {
+pub(crate) struct OffscreenViewports {
     cells: Vec<Cell>,
     /// The image's size.
     size: (u32, u32),
@@ -365,22 +370,22 @@ pub(crate) struct OffscreenViews {
     free: [u32; 4],
 }
 
-impl OffscreenViews {
+impl OffscreenViewports {
     /// The views 2 to `count` of a `settings.size` image, drawing what `mirror` draws
     /// (axes, forces...). Needs the rendering context.
-    pub(crate) fn new(settings: &ViewSettings, count: usize, mirror: &SceneMirror) -> Self {
+    pub(crate) fn new(settings: &WindowSettings, count: usize, mirror: &SceneMirror) -> Self {
         let (width, height) = settings.size;
         let rects = pixel_cells(width, height, count);
         let cells = rects
             .iter()
-            .zip(VIEW_KINDS)
+            .zip(VIEWPORT_KINDS)
             .skip(1)
             .map(|(&rect, kind)| {
                 let (surface, view) = surface_with_view(settings, (rect[2], rect[3]), mirror);
                 Cell { kind, rect, surface, view }
             })
             .collect();
-        OffscreenViews { cells, size: (width, height), free: rects[0] }
+        OffscreenViewports { cells, size: (width, height), free: rects[0] }
     }
 
     /// The whole image's size.

@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use ars_core::nalgebra::{Point3, Vector3};
-use ars_core::{ObjectId, RenderQuality, Shape, Simulation, ViewSettings};
+use ars_core::{ObjectId, RenderQuality, Shape, Simulation, WindowSettings};
 use kiss3d::color::Color;
 use kiss3d::glamx::{Quat, Vec3};
 use kiss3d::light::Light;
@@ -310,7 +310,7 @@ fn add_shape(group: &mut SceneNode3d, shape: &Shape) -> SceneNode3d {
 
 /// What every viewer draws from: the scene graph (with its lights), the camera of the
 /// program's view settings, and the mirror of the simulation's objects.
-pub(crate) struct View {
+pub(crate) struct DrawnScene {
     pub(crate) scene: SceneNode3d,
     /// The orbit camera, its image shifted off the panel in a window.
     pub(crate) camera: FramedCamera,
@@ -321,10 +321,10 @@ pub(crate) struct View {
     pub(crate) following: bool,
 }
 
-impl View {
+impl DrawnScene {
     /// The view of `settings`, drawn into `window` (whose shadows it sets). Needs the
     /// rendering context of this thread.
-    pub(crate) fn new(settings: &ViewSettings, window: &mut Window) -> Self {
+    pub(crate) fn new(settings: &WindowSettings, window: &mut Window) -> Self {
         let mut scene = SceneNode3d::empty();
         add_lights(&mut scene, settings);
         let camera =
@@ -339,7 +339,7 @@ impl View {
             window.set_shadow_resolution(64);
         }
         let follow = settings.follow.clone();
-        View { scene, camera, mirror, following: follow.is_some(), follow }
+        DrawnScene { scene, camera, mirror, following: follow.is_some(), follow }
     }
 
     /// Brings the scene up to date with `sim`, moves the camera with the object it
@@ -385,7 +385,7 @@ pub(crate) fn fast_for(quality: RenderQuality, software: impl FnOnce() -> bool) 
 
 /// Lights that show every side: a point light above and behind the camera, and a
 /// dimmer one from the other side.
-fn add_lights(scene: &mut SceneNode3d, view: &ViewSettings) {
+fn add_lights(scene: &mut SceneNode3d, view: &WindowSettings) {
     let eye = view.camera_position;
     scene.add_light(Light::point(200.0)).set_position(kiss3d::glamx::Vec3::new(
         eye.x as f32,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use ars_core::nalgebra::Matrix4;
-use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
+use ars_core::{Program, ProgramRunner, Simulation, WindowSettings};
 use kiss3d::camera::Camera3d;
 use kiss3d::event::{Action, Key as WindowKey, Modifiers, MouseButton, WindowEvent};
 use kiss3d::glamx::Vec2;
@@ -24,10 +24,10 @@ use crate::error::Result;
 use crate::gui;
 use crate::hand::{Hand, drag_mode, held_modifiers};
 use crate::layout;
-use crate::scene::View;
+use crate::scene::DrawnScene;
 use crate::state::{DragLine, Selected, ViewerState};
 use crate::video::WindowVideo;
-use crate::views::{self, Views};
+use crate::viewports::{self, Viewports};
 use crate::window::{VIEWER_KEYS, WindowReport, open_window, resident_mb};
 
 /// Opens the program's window and runs it until the window is closed; returns the
@@ -43,7 +43,7 @@ pub(crate) fn run_window_until<P: Program>(
     options: &ViewerOptions,
     limit: Option<Duration>,
 ) -> Result<(ars_core::Simulation, WindowReport)> {
-    let view = program.view_settings();
+    let view = program.window_settings();
     let mut runner = ProgramRunner::new(program)?;
     let report = drive_window(&mut runner, &view, options, limit, None)?;
     Ok((runner.into_simulation(), report))
@@ -53,7 +53,7 @@ pub(crate) fn run_window_until<P: Program>(
 /// wall time has passed.
 pub(crate) fn drive_window<D: Driver>(
     runner: &mut D,
-    view: &ViewSettings,
+    view: &WindowSettings,
     options: &ViewerOptions,
     limit: Option<Duration>,
     video: Option<&mut WindowVideo>,
@@ -73,13 +73,13 @@ const MAX_CATCH_UP_FRAMES: u32 = 4;
 pub(crate) struct Session<'a, D: Driver> {
     /// The program's simulation, or a file opened from the panel (then titled so).
     runner: Shown<'a, D>,
-    view: &'a ViewSettings,
+    view: &'a WindowSettings,
     title: String,
     window: Window,
-    shown: View,
+    shown: DrawnScene,
     hand: Hand,
     feedback: Feedback,
-    views: Views,
+    views: Viewports,
     /// Where the extra views were drawn last (their clicks are not the scene's).
     view_covers: Vec<layout::Rect>,
     font: Arc<Font>,
@@ -96,17 +96,17 @@ pub(crate) struct Session<'a, D: Driver> {
 
 impl<'a, D: Driver> Session<'a, D> {
     /// Opens the window for what `runner` drives, as `view` and `options` say.
-    pub(crate) async fn open(runner: &'a mut D, view: &'a ViewSettings, options: &ViewerOptions) -> Result<Self> {
+    pub(crate) async fn open(runner: &'a mut D, view: &'a WindowSettings, options: &ViewerOptions) -> Result<Self> {
         let mut runner = Shown::new(runner);
         let mut window = open_window(view).await?;
         window.rebind_close_key(Some(WindowKey::Escape));
         window.set_background_color(convert::color(view.background));
-        let mut shown = View::new(view, &mut window);
+        let mut shown = DrawnScene::new(view, &mut window);
         shown.mirror.show_axes = options.axes;
         // A plain left drag orbits; with a modifier it drags the selected body.
         shown.camera.orbit.set_rotate_modifiers(Some(Modifiers::empty()));
         let mut feedback = Feedback::default();
-        let mut views = Views::new();
+        let mut views = Viewports::new();
         views.count = options.views.clamp(1, 4);
         if options.forces {
             shown.mirror.show_forces = true;
@@ -392,7 +392,7 @@ impl<'a, D: Driver> Session<'a, D> {
         let sim = self.runner.simulation();
         let camera = &self.shown.camera;
         let free = (convert::point_back(camera.eye()), convert::point_back(camera.orbit.at()));
-        let target = views::followed(&sim, self.hand.selected, self.shown.follow.as_deref());
+        let target = viewports::followed(&sim, self.hand.selected, self.shown.follow.as_deref());
         let size = (self.window.width() as f32, self.window.height() as f32);
         self.views.render(&sim, self.view, size, free, target).await?;
         Ok(())
@@ -405,7 +405,7 @@ impl<'a, D: Driver> Session<'a, D> {
             // Several views: the free one in the top-left quarter.
             _ if self.views.count > 1 => {
                 let (w, h) = (self.window.width() as f32, self.window.height() as f32);
-                let [l, t, r, b] = views::viewports(w, h, self.views.count)[0];
+                let [l, t, r, b] = viewports::viewports(w, h, self.views.count)[0];
                 layout::ndc_shift(w, h, ((l + r) / 2.0, (t + b) / 2.0))
             }
             Some((panel_rect, (w, h))) => {
@@ -441,7 +441,7 @@ impl<'a, D: Driver> Session<'a, D> {
             Command::Save => save(&self.runner.simulation(), &mut self.panel),
             Command::Open => self.open_file(),
             Command::Views(n) => self.views.count = n,
-            Command::ViewCamera(i) => self.views.camera = i,
+            Command::ViewportCamera(i) => self.views.camera = i,
             Command::Deselect => self.hand.deselect(&mut self.runner.simulation()),
             Command::KeyDown(key) => self.runner.key_down(key)?,
             Command::KeyUp(key) => self.runner.key_up(key)?,

@@ -89,7 +89,7 @@ pub struct ViewerState {
     /// The window's size, pixels.
     pub window_size: (f32, f32),
     /// How many views the window shows (1 to 4: keys `1`–`4`, see
-    /// [`viewports`](crate::viewports)).
+    /// [`viewports`](fn@crate::viewports)).
     pub views: usize,
     /// World to normalised device coordinates, as the camera draws.
     pub(crate) view_projection: Matrix4<f64>,

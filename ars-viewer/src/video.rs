@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::thread::JoinHandle;
 
-use ars_core::{Program, ProgramRunner, Simulation, ViewSettings};
+use ars_core::{Program, ProgramRunner, Simulation, WindowSettings};
 use openh264::encoder::{
     Encoder, EncoderConfig, FrameRate, IntraFramePeriod, Profile, QpRange, RateControlMode, UsageType, VuiConfig,
 };
@@ -481,7 +481,7 @@ impl VideoRecorder {
     /// Runs `program` for `duration` seconds of simulated time, off screen, recording
     /// the video; returns the simulation (for its records) and the video.
     pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, RecordedVideo)> {
-        let view = program.view_settings();
+        let view = program.window_settings();
         let mut runner = ProgramRunner::new(program)?;
         let video = self.record_driven(&mut runner, &view, duration)?;
         Ok((runner.into_simulation(), video))
@@ -490,7 +490,12 @@ impl VideoRecorder {
     /// Runs a bare simulation (its own and added hooks, no program) for `duration`
     /// seconds of simulated time, seen as `view` says, recording the video (the front
     /// ends' `sim.record_video`).
-    pub fn record_simulation(&self, sim: &mut Simulation, view: &ViewSettings, duration: f64) -> Result<RecordedVideo> {
+    pub fn record_simulation(
+        &self,
+        sim: &mut Simulation,
+        view: &WindowSettings,
+        duration: f64,
+    ) -> Result<RecordedVideo> {
         self.record_driven(&mut BareSimulation(sim), view, duration)
     }
 
@@ -503,7 +508,7 @@ impl VideoRecorder {
     pub fn record_driven<D: Driver>(
         &self,
         driver: &mut D,
-        view: &ViewSettings,
+        view: &WindowSettings,
         duration: f64,
     ) -> Result<RecordedVideo> {
         let (width, height) = self.size.unwrap_or(view.size);

@@ -7,7 +7,7 @@ use kiss3d::window::{CanvasSetup, NumSamples, Window};
 
 use crate::convert;
 use crate::error::Result;
-use crate::scene::View;
+use crate::scene::DrawnScene;
 
 /// The viewer's own keys (they are not passed to the program), separated by `", "`.
 pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r: reset, j: joints, k: contacts, \
@@ -16,7 +16,7 @@ pub const VIEWER_KEYS: &str = "space: pause/resume, n: one step while paused, r:
 
 /// A window for `view`: without multisampling when it will be drawn fast (4× MSAA costs
 /// a software rasteriser more than half its frame rate).
-pub(crate) async fn open_window(view: &ars_core::ViewSettings) -> Result<Window> {
+pub(crate) async fn open_window(view: &ars_core::WindowSettings) -> Result<Window> {
     crate::offscreen::check_context_reuse()?;
     quiet_wayland_probe();
     // The window's context does not exist yet: ask wgpu for the adapter it will get,
@@ -135,11 +135,11 @@ pub(crate) fn resident_mb() -> f64 {
 /// pacing), and returns the last frame as the window showed it. For tests and
 /// thumbnails; must run on the main thread, with a display.
 pub(crate) fn snapshot_window<P: Program>(program: &mut P, frames: u32) -> Result<image::RgbImage> {
-    let view = program.view_settings();
+    let view = program.window_settings();
     kiss3d::pollster::block_on(async move {
         let mut window = open_window(&view).await?;
         window.set_background_color(convert::color(view.background));
-        let mut shown = View::new(&view, &mut window);
+        let mut shown = DrawnScene::new(&view, &mut window);
         let mut runner = ProgramRunner::new(program)?;
         for frame in 0..frames.max(1) {
             if frame > 0 {

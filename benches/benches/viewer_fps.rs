@@ -12,7 +12,7 @@
 use std::time::Instant;
 
 use ars::viewer::{OffscreenRenderer, ScreenshotRecorder, VideoRecorder};
-use ars::{Program, ProgramRunner, ViewSettings};
+use ars::{Program, ProgramRunner, WindowSettings};
 use ars_programs::{ConicalPendulum, SinusoidalTerrain};
 
 const FRAMES: u32 = 150;
@@ -36,7 +36,7 @@ fn memory_mb() -> (f64, f64) {
 /// Frames per second of drawing alone: a frame of the simulation, then its image
 /// read back (what the recorder draws, without encoding or writing it).
 fn render_only<P: Program>(name: &str, mut program: P) -> f64 {
-    let view = ViewSettings { size: (800, 600), ..program.view_settings() };
+    let view = WindowSettings { size: (800, 600), ..program.window_settings() };
     let mut renderer = OffscreenRenderer::new(&view).expect("an off-screen context");
     let mut runner = ProgramRunner::new(&mut program).expect("the program builds");
     renderer.render(runner.simulation()).expect("a first frame");
@@ -137,8 +137,8 @@ fn window<P: Program>(name: &str, mut program: P) {
     let mb = |i: usize| report.resident_mb.get(i).map_or(f64::NAN, |s| s.1);
     println!(
         "{name}: window {}x{}: {:.1} frames/s, {:.2}x real time, {:.0} MB resident after 1 s, {:.0} MB at the end",
-        program.view_settings().size.0,
-        program.view_settings().size.1,
+        program.window_settings().size.0,
+        program.window_settings().size.1,
         report.frames_per_second(),
         report.real_time_factor(),
         mb(1),

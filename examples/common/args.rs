@@ -181,8 +181,10 @@ fn show<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation
             return record_video(program, args, path);
         }
         // The window's pictures, at the simulation's time.
-        let view =
-            ars::ViewSettings { size: args.size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+        let view = ars::WindowSettings {
+            size: args.size.unwrap_or(program.window_settings().size),
+            ..program.window_settings()
+        };
         let mut runner = ars::ProgramRunner::new(program)?;
         let (_, video) = ars::viewer::run_window_recording(&mut runner, &view, &options, None, path, args.fps)?;
         say_video(&video);
@@ -191,7 +193,7 @@ fn show<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation
     match args.size {
         // The program's view at the size asked for.
         Some(size) if ars::viewer::has_display() => {
-            let view = ars::ViewSettings { size, ..program.view_settings() };
+            let view = ars::WindowSettings { size, ..program.window_settings() };
             let mut runner = ars::ProgramRunner::new(program)?;
             ars::viewer::run_window_with(&mut runner, &view, &options, None)?;
             Ok(runner.into_simulation())
@@ -339,7 +341,7 @@ pub struct Capture {
     inner: Option<(ars::viewer::OffscreenRenderer, PathBuf, u32, u64, u32)>,
     /// The replay: its recorder, view and file, then the recording once begun.
     #[cfg(feature = "viewer")]
-    replay: Option<(ars::viewer::ReplayRecorder, ars::ViewSettings, PathBuf, Option<ars::viewer::ReplayInProgress>)>,
+    replay: Option<(ars::viewer::ReplayRecorder, ars::WindowSettings, PathBuf, Option<ars::viewer::ReplayInProgress>)>,
     #[cfg(feature = "viewer")]
     video: Option<CapturedVideo>,
 }
@@ -347,7 +349,7 @@ pub struct Capture {
 impl Capture {
     /// Records when `--screenshots`, `--html` or `--video` was given, with `view` (the
     /// program's settings).
-    pub fn new(args: &Args, view: ars::ViewSettings) -> Result<Self, Box<dyn std::error::Error>> {
+    pub fn new(args: &Args, view: ars::WindowSettings) -> Result<Self, Box<dyn std::error::Error>> {
         #[cfg(feature = "viewer")]
         {
             let replay = args.html.as_ref().map(|path| (replay_recorder(args), view.clone(), path.clone(), None));

@@ -10,14 +10,14 @@ use pyo3::prelude::*;
 
 use crate::errors::{io_file_error, raise};
 use crate::simulation::{PySimulation, Vec3};
-use crate::viewer::{ViewArgs, to_py_error};
+use crate::viewer::{WindowArgs, to_py_error};
 
 /// What `save_replay` and `replay` take besides the view.
 pub(crate) struct ReplayArgs {
     pub duration: f64,
     pub fps: Option<f64>,
     pub plots: Vec<String>,
-    pub view: ViewArgs,
+    pub view: WindowArgs,
 }
 
 /// Runs `sim` for the duration, recording it; writes the page to `path` if given
@@ -94,7 +94,7 @@ impl PySimulation {
         background: Vec3,
         title: String,
     ) -> PyResult<Py<PyAny>> {
-        let view = ViewArgs::for_replay(title, size, camera, look_at, background);
+        let view = WindowArgs::for_replay(title, size, camera, look_at, background);
         record(py, self, path, ReplayArgs { duration, fps, plots, view })
     }
 

@@ -12,7 +12,7 @@ use pyo3::types::PyDict;
 
 use crate::errors::{panic_message, raise};
 use crate::simulation::{PySimulation, Vec3};
-use crate::viewer::{Failure, PyRenderer, ViewArgs, to_py_error};
+use crate::viewer::{Failure, PyRenderer, WindowArgs, to_py_error};
 
 /// What a finished video holds, as a dict.
 fn summary(py: Python<'_>, video: &RecordedVideo) -> PyResult<Py<PyDict>> {
@@ -35,7 +35,7 @@ pub(crate) fn record_video(
     path: PathBuf,
     duration: f64,
     fps: f64,
-    view: ViewArgs,
+    view: WindowArgs,
 ) -> PyResult<Py<PyDict>> {
     if sim.in_own_hook() {
         return Err(raise(py, "BusyError", "a hook cannot record the simulation it runs in".into()));
@@ -186,7 +186,7 @@ impl PySimulation {
         quality: String,
         axes: bool,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = ViewArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes };
+        let view = WindowArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes };
         record_video(py, self, path, duration, fps, view)
     }
 }

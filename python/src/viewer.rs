@@ -11,7 +11,7 @@ use std::ops::DerefMut;
 use std::sync::{Mutex, mpsc};
 
 use ars_core::nalgebra::Point3;
-use ars_core::{Error, Key, RenderQuality, Simulation, ViewSettings};
+use ars_core::{Error, Key, RenderQuality, Simulation, WindowSettings};
 use ars_viewer::{Driver, OffscreenRenderer, ViewerError, image};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -41,7 +41,7 @@ pub(crate) fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
 }
 
 /// How the viewer sees a simulation, from the keywords `show` and `Renderer` take.
-pub(crate) struct ViewArgs {
+pub(crate) struct WindowArgs {
     pub title: String,
     /// Width and height in pixels, as given (checked by `settings`).
     pub size: (i64, i64),
@@ -54,7 +54,7 @@ pub(crate) struct ViewArgs {
     pub axes: bool,
 }
 
-impl ViewArgs {
+impl WindowArgs {
     /// The viewer's options these keywords ask for.
     pub(crate) fn options(&self) -> ars_viewer::ViewerOptions {
         ars_viewer::ViewerOptions::default().with_axes(self.axes)
@@ -62,10 +62,10 @@ impl ViewArgs {
 
     /// The keywords of a replay: no follow, no axes, the automatic quality.
     pub(crate) fn for_replay(title: String, size: (i64, i64), camera: Vec3, look_at: Vec3, background: Vec3) -> Self {
-        ViewArgs { title, size, camera, look_at, background, follow: None, quality: "auto".into(), axes: false }
+        WindowArgs { title, size, camera, look_at, background, follow: None, quality: "auto".into(), axes: false }
     }
 
-    pub(crate) fn settings(self) -> Result<ViewSettings, String> {
+    pub(crate) fn settings(self) -> Result<WindowSettings, String> {
         let (w, h) = self.size;
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
             return Err(format!("the image size {w}×{h} must be between 1 and 8192 pixels each way"));
@@ -87,7 +87,7 @@ impl ViewArgs {
             "fine" => RenderQuality::Fine,
             other => return Err(format!("quality {other:?}: use \"auto\", \"fast\" or \"fine\"")),
         };
-        Ok(ViewSettings {
+        Ok(WindowSettings {
             title: self.title,
             // Checked above: 1 to 8192 each.
             size: (w as u32, h as u32),
@@ -195,7 +195,7 @@ pub(crate) fn show(
     program: Option<Py<PyAny>>,
     duration: Option<f64>,
     frames: Option<i64>,
-    view: ViewArgs,
+    view: WindowArgs,
 ) -> PyResult<Py<PyDict>> {
     if sim.get().in_own_hook() {
         return Err(raise(py, "BusyError", "a hook cannot show the simulation it runs in".into()));
@@ -270,7 +270,7 @@ pub(crate) fn show_program(
     axes: bool,
 ) -> PyResult<Py<PyDict>> {
     let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
-    let view = ViewArgs { title, size, camera, look_at, background, follow, quality, axes };
+    let view = WindowArgs { title, size, camera, look_at, background, follow, quality, axes };
     show(py, sim, Some(program), duration, frames, view)
 }
 
@@ -332,7 +332,7 @@ fn caught<T>(f: impl FnOnce() -> Result<T, ViewerError>) -> Result<T, Failure> {
 /// The renderer's thread: makes the renderer, then draws what it is asked until the
 /// renderer is dropped.
 fn serve(
-    view: ViewSettings,
+    view: WindowSettings,
     options: ars_viewer::ViewerOptions,
     ready: mpsc::SyncSender<Result<(), Failure>>,
     requests: mpsc::Receiver<Request>,
@@ -405,8 +405,16 @@ impl PyRenderer {
         quality: String,
         axes: bool,
     ) -> PyResult<Self> {
-        let args =
-            ViewArgs { title: "ARS".into(), size: (width, height), camera, look_at, background, follow, quality, axes };
+        let args = WindowArgs {
+            title: "ARS".into(),
+            size: (width, height),
+            camera,
+            look_at,
+            background,
+            follow,
+            quality,
+            axes,
+        };
         let options = args.options();
         let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
         let size = view.size;
@@ -502,7 +510,7 @@ impl PySimulation {
         quality: String,
         axes: bool,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = ViewArgs { title, size, camera, look_at, background, follow, quality, axes };
+        let view = WindowArgs { title, size, camera, look_at, background, follow, quality, axes };
         show(slf.py(), slf.clone().unbind(), None, duration, frames, view)
     }
 }

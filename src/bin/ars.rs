@@ -10,7 +10,9 @@ use std::time::Instant;
 use ars::cli::{PictureArgs, RunArgs};
 use ars::nalgebra::{Point3, Vector3};
 use ars::sensors::{CsvColumns, Gps, JointPositions};
-use ars::{FileFormat, Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, ViewSettings};
+use ars::{
+    FileFormat, Hooks, JointType, Program, Simulation, SimulationBuilder, SpaceKind, UrdfOptions, WindowSettings,
+};
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// What the verbs read, said under `ars --help`.
@@ -200,8 +202,8 @@ impl Program for FileProgram {
         builder.space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0)
     }
 
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings {
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings {
             title: format!("ARS: {}", self.path.display()),
             camera_position: Point3::new(3.0, 2.0, 3.0),
             camera_target: Point3::new(0.0, 0.4, 0.0),
@@ -397,7 +399,8 @@ fn show_in_window(
     eprintln!("{}", ars::viewer::VIEWER_KEYS);
     let sim = match (command.size, command.duration, &command.video) {
         (size, limit, Some(path)) => {
-            let view = ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+            let view =
+                WindowSettings { size: size.unwrap_or(program.window_settings().size), ..program.window_settings() };
             let mut runner = ars::ProgramRunner::new(program)?;
             // The window runs in real time: a duration is wall seconds here.
             let limit = limit.map(std::time::Duration::from_secs_f64);
@@ -407,7 +410,8 @@ fn show_in_window(
         }
         (None, None, None) => program.show_with(options)?,
         (size, limit, None) => {
-            let view = ViewSettings { size: size.unwrap_or(program.view_settings().size), ..program.view_settings() };
+            let view =
+                WindowSettings { size: size.unwrap_or(program.window_settings().size), ..program.window_settings() };
             let mut runner = ars::ProgramRunner::new(program)?;
             // The window runs in real time: a duration is wall seconds here.
             let limit = limit.map(std::time::Duration::from_secs_f64);

@@ -3,18 +3,18 @@
 //! the viewer.
 //!
 //! - [`input`]: keys, key scripts and the actions keys are bound to;
-//! - [`view`]: how the viewer shows a program;
+//! - [`window`]: the window a program is shown in;
 //! - [`runner`]: runs a program's simulation with its hooks and keys.
 
 pub mod input;
 pub mod runner;
-pub mod view;
+pub mod window;
 
 use nalgebra::Vector3;
 
 pub use input::{Action, ActionMap, Key, KeyEvent, KeyScript, Repeat};
 pub use runner::ProgramRunner;
-pub use view::{RenderQuality, ViewSettings};
+pub use window::{RenderQuality, WindowSettings};
 
 use crate::error::Result;
 use crate::simulation::hooks::Hooks;
@@ -58,8 +58,8 @@ pub trait Program: Hooks {
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> Result<()>;
 
     /// Window title, size and camera for the viewer.
-    fn view_settings(&self) -> ViewSettings {
-        ViewSettings::default()
+    fn window_settings(&self) -> WindowSettings {
+        WindowSettings::default()
     }
 
     /// Key bindings.

@@ -85,7 +85,7 @@ pub(crate) struct JointData {
 
 /// What a joint's actuator can put out: its controller's output and its speed motor
 /// are held within these (URDF's `<limit effort velocity>`). Torques added directly
-/// ([`SimJoint::add_torque`]) are the caller's own and are not limited.
+/// ([`SimJoint::add_torque`](super::SimJoint::add_torque)) are the caller's own and are not limited.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ActuatorLimits {
     /// The largest torque (N·m) or force (N) in either direction; `∞` for none.
@@ -138,7 +138,7 @@ pub struct Mimic {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub struct JointEfforts {
-    /// Added through the API ([`SimJoint::add_torque`] or [`add_force`](SimJoint::add_force),
+    /// Added through the API ([`SimJoint::add_torque`](super::SimJoint::add_torque) or [`add_force`](super::SimJoint::add_force),
     /// from hooks and key actions), summed in call order; N·m or N.
     pub added: f64,
     /// Of the viscous friction (`−coefficient · rate` at the start of the step).

@@ -13,7 +13,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use ars_core::nalgebra::Isometry3;
-use ars_core::{ObjectId, Program, ProgramRunner, Shape, Simulation, ViewSettings};
+use ars_core::{ObjectId, Program, ProgramRunner, Shape, Simulation, WindowSettings};
 use serde_json::{Value, json};
 
 use crate::driver::Driver;
@@ -134,7 +134,7 @@ impl ReplayRecorder {
         duration: f64,
         path: impl AsRef<Path>,
     ) -> Result<(Simulation, Replay)> {
-        let view = program.view_settings();
+        let view = program.window_settings();
         let mut runner = ProgramRunner::new(program)?;
         let replay = self.record_driven_to(&mut runner, &view, duration, path.as_ref())?;
         Ok((runner.into_simulation(), replay))
@@ -143,7 +143,7 @@ impl ReplayRecorder {
     /// Runs `program` for `duration` seconds of simulated time; returns the simulation
     /// and the replay, in memory.
     pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, Replay)> {
-        let view = program.view_settings();
+        let view = program.window_settings();
         let mut runner = ProgramRunner::new(program)?;
         let replay = self.record_driven(&mut runner, &view, duration)?;
         Ok((runner.into_simulation(), replay))
@@ -155,7 +155,7 @@ impl ReplayRecorder {
     pub fn record_simulation_to(
         &self,
         sim: &mut Simulation,
-        view: &ViewSettings,
+        view: &WindowSettings,
         duration: f64,
         path: &Path,
     ) -> Result<Replay> {
@@ -163,7 +163,7 @@ impl ReplayRecorder {
     }
 
     /// As [`record_simulation_to`](Self::record_simulation_to), in memory.
-    pub fn record_simulation(&self, sim: &mut Simulation, view: &ViewSettings, duration: f64) -> Result<Replay> {
+    pub fn record_simulation(&self, sim: &mut Simulation, view: &WindowSettings, duration: f64) -> Result<Replay> {
         self.record_driven(&mut Bare(sim), view, duration)
     }
 
@@ -172,7 +172,7 @@ impl ReplayRecorder {
     pub fn record_driven_to<D: Driver>(
         &self,
         driver: &mut D,
-        view: &ViewSettings,
+        view: &WindowSettings,
         duration: f64,
         path: &Path,
     ) -> Result<Replay> {
@@ -184,7 +184,7 @@ impl ReplayRecorder {
     /// Runs what `driver` drives for `duration` seconds (whole frames), seen as `view`
     /// says; returns the replay, in memory. A stop requested through
     /// [`ars_core::interrupt`] (Ctrl-C) ends it after the frame being run.
-    pub fn record_driven<D: Driver>(&self, driver: &mut D, view: &ViewSettings, duration: f64) -> Result<Replay> {
+    pub fn record_driven<D: Driver>(&self, driver: &mut D, view: &WindowSettings, duration: f64) -> Result<Replay> {
         let frames = frames_in(&driver.simulation(), duration)?;
         let recording = self.begin(&driver.simulation(), view)?;
         run(driver, recording, frames)
@@ -194,7 +194,7 @@ impl ReplayRecorder {
     /// own: call [`ReplayInProgress::frame`] after every frame, then
     /// [`finish`](ReplayInProgress::finish). The settings are checked here: a frame
     /// rate that is not positive, no objects, an unknown plot column are refused.
-    pub fn begin(&self, sim: &Simulation, view: &ViewSettings) -> Result<ReplayInProgress> {
+    pub fn begin(&self, sim: &Simulation, view: &WindowSettings) -> Result<ReplayInProgress> {
         let frame_rate = 1.0 / (sim.scene().time_step() * f64::from(sim.scene().steps_per_frame()));
         let fps = self.fps.unwrap_or(frame_rate);
         if !(fps.is_finite() && fps > 0.0) {
@@ -234,7 +234,7 @@ impl ReplayRecorder {
     /// finishes: the folder is tried now (a temporary file is made in it), so that a
     /// long run is not lost to a bad path; nothing is left there if the replay never
     /// finishes.
-    pub fn begin_to(&self, sim: &Simulation, view: &ViewSettings, path: &Path) -> Result<ReplayInProgress> {
+    pub fn begin_to(&self, sim: &Simulation, view: &WindowSettings, path: &Path) -> Result<ReplayInProgress> {
         let mut recording = self.begin(sim, view)?;
         recording.file = Some(PendingFile::create(path)?);
         Ok(recording)
@@ -255,7 +255,7 @@ fn run<D: Driver>(driver: &mut D, mut recording: ReplayInProgress, frames: u64) 
 
 /// A replay being recorded (see [`ReplayRecorder::begin`]).
 pub struct ReplayInProgress {
-    view: ViewSettings,
+    view: WindowSettings,
     objects: Objects,
     track: Track,
     columns: Vec<Column>,
@@ -406,7 +406,7 @@ fn shape_json(shape: &Shape, blob: &mut Blob) -> Value {
 }
 
 /// The page of a replay.
-fn page(view: &ViewSettings, objects: &Objects, track: &Track, plots: Vec<(String, Vec<f32>, Vec<f32>)>) -> String {
+fn page(view: &WindowSettings, objects: &Objects, track: &Track, plots: Vec<(String, Vec<f32>, Vec<f32>)>) -> String {
     let mut blob = Blob::default();
     let mut next_track = 0;
     let objects_json: Vec<Value> = objects

@@ -6,7 +6,7 @@
 
 use ars_core::nalgebra::{Point3, Vector3};
 use ars_core::sensors::DepthCamera;
-use ars_core::{ObjectId, Simulation, ViewSettings};
+use ars_core::{ObjectId, Simulation, WindowSettings};
 use kiss3d::camera::{FirstPersonCamera3d, OrbitCamera3d, Projection};
 use kiss3d::egui;
 use kiss3d::scene::SceneNode3d;
@@ -14,11 +14,11 @@ use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
 use crate::convert;
 use crate::layout::Rect;
-use crate::scene::View;
+use crate::scene::DrawnScene;
 
 /// What a viewport shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ViewKind {
+pub enum ViewportKind {
     /// The window's camera, moved with the mouse.
     Free,
     /// A camera 5 m from the selected body (or the followed one, or the first moving
@@ -32,7 +32,8 @@ pub enum ViewKind {
 }
 
 /// The kinds of the viewports, in the order keys `1`–`4` add them.
-pub const VIEW_KINDS: [ViewKind; 4] = [ViewKind::Free, ViewKind::Follow, ViewKind::Top, ViewKind::Sensor];
+pub const VIEWPORT_KINDS: [ViewportKind; 4] =
+    [ViewportKind::Free, ViewportKind::Follow, ViewportKind::Top, ViewportKind::Sensor];
 
 /// The viewports of `count` views (1 to 4; more or fewer are clamped) in a `width ×
 /// height` window: the whole window for one, else the quarters of a 2 × 2 grid in
@@ -66,25 +67,25 @@ pub(crate) enum Seen {
     /// The free view: the window's (or the renderer's) own camera.
     Free,
     /// The scene through this camera, with the view's caption.
-    Through(Box<ViewCamera>, &'static str),
+    Through(Box<ViewportCamera>, &'static str),
     /// Nothing, for this reason.
     Nothing(&'static str),
 }
 
 /// The camera of a view other than the free one.
-pub(crate) enum ViewCamera {
+pub(crate) enum ViewportCamera {
     /// Following a body, or from above (orthographic).
     Orbit(OrbitCamera3d),
     /// Through a camera sensor's eye.
     Eye(FirstPersonCamera3d),
 }
 
-impl ViewCamera {
+impl ViewportCamera {
     /// Draws `scene` through this camera into `surface`.
     pub(crate) async fn draw(&mut self, surface: &mut OffscreenSurface, scene: &mut SceneNode3d) {
         match self {
-            ViewCamera::Orbit(camera) => surface.render_3d(scene, camera).await,
-            ViewCamera::Eye(camera) => surface.render_3d(scene, camera).await,
+            ViewportCamera::Orbit(camera) => surface.render_3d(scene, camera).await,
+            ViewportCamera::Eye(camera) => surface.render_3d(scene, camera).await,
         }
     }
 }
@@ -93,7 +94,7 @@ impl ViewCamera {
 /// `target` the point a follow view looks at ([`followed`]), `camera` the depth camera
 /// a camera view shows (counted from 0; the last if there are fewer).
 pub(crate) fn camera_of(
-    kind: ViewKind,
+    kind: ViewportKind,
     sim: &Simulation,
     free: (Point3<f64>, Point3<f64>),
     target: Option<Point3<f64>>,
@@ -101,26 +102,26 @@ pub(crate) fn camera_of(
 ) -> ars_core::Result<Seen> {
     let (eye, at) = free;
     Ok(match kind {
-        ViewKind::Free => Seen::Free,
-        ViewKind::Follow => {
+        ViewportKind::Free => Seen::Free,
+        ViewportKind::Follow => {
             let Some(target) = target else { return Ok(Seen::Nothing("2 follow: no moving body")) };
             let side = (eye - at).try_normalize(1e-9).unwrap_or_else(Vector3::z);
             let camera = OrbitCamera3d::new(convert::point(&(target + side * 5.0)), convert::point(&target));
-            Seen::Through(Box::new(ViewCamera::Orbit(camera)), "2 follow")
+            Seen::Through(Box::new(ViewportCamera::Orbit(camera)), "2 follow")
         }
-        ViewKind::Top => {
+        ViewportKind::Top => {
             let height = (eye - at).norm().max(1.0);
             let above = at + Vector3::new(0.0, height, 1e-3 * height);
             let mut camera = OrbitCamera3d::new(convert::point(&above), convert::point(&at));
             camera.set_projection(Projection::Orthographic);
-            Seen::Through(Box::new(ViewCamera::Orbit(camera)), "3 top")
+            Seen::Through(Box::new(ViewportCamera::Orbit(camera)), "3 top")
         }
-        ViewKind::Sensor => {
+        ViewportKind::Sensor => {
             let cameras = sim.sensors_of::<DepthCamera>().count();
             let Some(sensor) = sim.sensors_of::<DepthCamera>().nth(camera.min(cameras.saturating_sub(1))) else {
                 return Ok(Seen::Nothing("4 camera: no depth camera in the scene"));
             };
-            Seen::Through(Box::new(ViewCamera::Eye(sensor_camera(sensor, sim)?)), "4 camera")
+            Seen::Through(Box::new(ViewportCamera::Eye(sensor_camera(sensor, sim)?)), "4 camera")
         }
     })
 }
@@ -144,9 +145,9 @@ pub(crate) fn sensor_camera(sensor: &DepthCamera, sim: &Simulation) -> ars_core:
 
 /// One extra view drawn off screen.
 struct Extra {
-    kind: ViewKind,
+    kind: ViewportKind,
     surface: OffscreenSurface,
-    view: View,
+    view: DrawnScene,
     size: (u32, u32),
     /// The image drawn last, not yet given to egui.
     pending: Option<egui::ColorImage>,
@@ -157,7 +158,7 @@ struct Extra {
 
 /// The extra views of a window and their images.
 #[derive(Default)]
-pub(crate) struct Views {
+pub(crate) struct Viewports {
     /// How many views are shown (1 to 4).
     pub(crate) count: usize,
     /// The depth camera the camera view shows, counted from 0 in the order the
@@ -166,10 +167,10 @@ pub(crate) struct Views {
     extras: Vec<Extra>,
 }
 
-impl Views {
+impl Viewports {
     /// One view, the window's.
     pub(crate) fn new() -> Self {
-        Views { count: 1, camera: 0, extras: Vec::new() }
+        Viewports { count: 1, camera: 0, extras: Vec::new() }
     }
 
     /// Draws `id` anew in every extra view (after its colour changed).
@@ -191,19 +192,19 @@ impl Views {
     pub(crate) async fn render(
         &mut self,
         sim: &Simulation,
-        settings: &ViewSettings,
+        settings: &WindowSettings,
         window: (f32, f32),
         free: (Point3<f64>, Point3<f64>),
         target: Option<Point3<f64>>,
     ) -> crate::Result<()> {
         let size = ((window.0 / 2.0).max(16.0) as u32, (window.1 / 2.0).max(16.0) as u32);
         self.extras.retain(|e| e.size == size);
-        for kind in VIEW_KINDS.iter().copied().take(self.count).skip(1) {
+        for kind in VIEWPORT_KINDS.iter().copied().take(self.count).skip(1) {
             if !self.extras.iter().any(|e| e.kind == kind) {
                 let setup = CanvasSetup { vsync: false, samples: NumSamples::One, ..CanvasSetup::default() };
                 let mut surface = OffscreenSurface::with_setup(size.0, size.1, setup).await;
                 surface.set_background_color(convert::color(settings.background));
-                let view = View::new(settings, surface.window_mut());
+                let view = DrawnScene::new(settings, surface.window_mut());
                 self.extras.push(Extra {
                     kind,
                     surface,
@@ -215,7 +216,7 @@ impl Views {
                 });
             }
         }
-        for extra in self.extras.iter_mut().filter(|e| VIEW_KINDS[..self.count].contains(&e.kind)) {
+        for extra in self.extras.iter_mut().filter(|e| VIEWPORT_KINDS[..self.count].contains(&e.kind)) {
             extra.view.mirror.sync(sim, &mut extra.view.scene)?;
             let image = match camera_of(extra.kind, sim, free, target, self.camera)? {
                 Seen::Free => continue,
@@ -245,7 +246,7 @@ impl Views {
         }
         let screen = ctx.viewport_rect();
         let cells = viewports(screen.width(), screen.height(), self.count);
-        for (i, kind) in VIEW_KINDS.iter().enumerate().take(self.count).skip(1) {
+        for (i, kind) in VIEWPORT_KINDS.iter().enumerate().take(self.count).skip(1) {
             let Some(extra) = self.extras.iter_mut().find(|e| e.kind == *kind) else { continue };
             if let Some(pixels) = extra.pending.take() {
                 match &mut extra.texture {

@@ -4,7 +4,7 @@
 /// are the original's: 1024 × 768, camera at (10, 8, 10) looking at the origin, white
 /// background.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ViewSettings {
+pub struct WindowSettings {
     /// Window title.
     pub title: String,
     /// Window (or off-screen image) size, pixels.
@@ -35,9 +35,9 @@ pub enum RenderQuality {
     Fine,
 }
 
-impl Default for ViewSettings {
+impl Default for WindowSettings {
     fn default() -> Self {
-        ViewSettings {
+        WindowSettings {
             title: "Autonomous Robot Simulator".into(),
             size: (1024, 768),
             camera_position: nalgebra::Point3::new(10.0, 8.0, 10.0),
