@@ -101,6 +101,55 @@ pub struct SceneFile {
     pub state_not_saved: Option<String>,
 }
 
+/// A scene file is read into a [`SceneFile`], which [`build`](SceneFile::build) makes
+/// into the simulation it describes (its settings, objects, joints, sensors and, when
+/// saved exactly, its state): a whole simulation, not something added to one.
+///
+/// ```
+/// use ars_core::formats::scene_file::SceneFile;
+/// use ars_core::{Mass, Simulation};
+///
+/// let mut sim = Simulation::new()?;
+/// sim.scene_mut().add_sphere(0.5, [0.0, 2.0, 0.0], Mass::Total(1.0))?;
+/// let file = SceneFile::parse(&sim.save_scene()?, "ball.json")?;
+/// let (a, b) = (file.build()?, file.build()?);
+/// assert_eq!((a.scene().objects().count(), b.scene().objects().count()), (1, 1));
+/// assert!(SceneFile::parse("{", "broken.json").is_err());
+/// # Ok::<(), ars_core::Error>(())
+/// ```
+impl SceneFile {
+    /// Reads the scene file at `path` (errors name it).
+    pub fn read(path: impl AsRef<std::path::Path>) -> Result<SceneFile> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the scene file", path, &e))?;
+        SceneFile::parse(&text, &path.display().to_string())
+    }
+
+    /// Reads a scene file's JSON text; `file` names it in errors, with the line and
+    /// column where the text stops being a scene.
+    pub fn parse(text: &str, file: &str) -> Result<SceneFile> {
+        serde_json::from_str(text).map_err(|e| {
+            let message = e.to_string();
+            let position = format!(" at line {} column {}", e.line(), e.column());
+            let problem = message.strip_suffix(&position).unwrap_or(&message);
+            Error::Format {
+                format: "scene file",
+                file: file.to_string(),
+                element: String::new(),
+                line: u32::try_from(e.line()).ok(),
+                column: u32::try_from(e.column()).ok(),
+                problem: format!("not a scene: {problem}"),
+            }
+        })
+    }
+
+    /// The simulation this file describes ([`Simulation::from_scene_file`]), as many
+    /// times as asked.
+    pub fn build(&self) -> Result<Simulation> {
+        Simulation::from_scene_file(self)
+    }
+}
+
 /// The space of a file that names none: the original's simple space.
 fn original_space() -> SpaceKind {
     SpaceKind::Simple
@@ -542,26 +591,12 @@ impl Simulation {
         Simulation::load_scene_named(text, "<string>")
     }
 
-    /// [`load_scene`](Self::load_scene) of the text of `file` (named in errors).
+    /// [`load_scene`](Self::load_scene) of the text of `file` (named in errors):
+    /// [`SceneFile::parse`], then [`SceneFile::build`].
     fn load_scene_named(text: &str, file: &str) -> Result<Simulation> {
-        let malformed = |element: String, line: Option<u32>, column: Option<u32>, problem: String| Error::Format {
-            format: "scene file",
-            file: file.to_string(),
-            element,
-            line,
-            column,
-            problem,
-        };
-        let scene: SceneFile = serde_json::from_str(text).map_err(|e| {
-            let message = e.to_string();
-            let position = format!(" at line {} column {}", e.line(), e.column());
-            let problem = message.strip_suffix(&position).unwrap_or(&message);
-            let (line, column) = (u32::try_from(e.line()).ok(), u32::try_from(e.column()).ok());
-            malformed(String::new(), line, column, format!("not a scene: {problem}"))
-        })?;
-        Simulation::from_scene_file(&scene).map_err(|e| match e {
+        SceneFile::parse(text, file)?.build().map_err(|e| match e {
             Error::Format { format: "scene file", element, line, column, problem, .. } => {
-                malformed(element, line, column, problem)
+                Error::Format { format: "scene file", file: file.to_string(), element, line, column, problem }
             }
             other => other,
         })
