@@ -248,8 +248,9 @@ fn includes_are_read_in_place_and_their_errors_name_their_file() {
     write("parts/heavy.xml", r#"<mujoco><geom density="2000"/></mujoco>"#);
     write(
         "parts/arm.xml",
+        // Relative to the model's file (nested.xml), not to arm.xml: as MuJoCo reads it.
         r#"<mujoco><body name="arm" pos="0 0 1"><joint name="shoulder"/>
-           <include file="hand.xml"/></body></mujoco>"#,
+           <include file="parts/hand.xml"/></body></mujoco>"#,
     );
     write(
         "parts/hand.xml",
@@ -751,4 +752,34 @@ fn an_mjcf_file_read_once_is_inserted_into_two_simulations_that_step_alike() {
     assert_eq!(state(&sims[0], &models[0]), state(&sims[2], &by_load));
     let err = MjcfFile::parse("<mujoco><worldbody>", "broken.xml", &MjcfOptions::new()).unwrap_err();
     assert!(matches!(&err, Error::Format { format: "MJCF", file, .. } if file == "broken.xml"), "{err:?}");
+}
+
+/// As MuJoCo reads them (checked with MuJoCo 3): an included file's root may be
+/// `<mujocoinclude>` (or any name), and a nested include's path is relative to the
+/// model's own file, not to the file that includes it. 93 of 356 public models
+/// (robot suites' scenes) include files this way.
+#[test]
+fn mujocoinclude_roots_and_paths_relative_to_the_model_load_as_in_mujoco() {
+    let dir = std::env::temp_dir().join(format!("ars-mujocoinclude-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    let write = |name: &str, text: &str| std::fs::write(dir.join(name), text).unwrap();
+    write("main.xml", r#"<mujoco model="m"><worldbody><include file="sub/first.xml"/></worldbody></mujoco>"#);
+    let ball = |name: &str, x: f64| {
+        format!(r#"<body name="{name}" pos="{x} 0 1"><freejoint/><geom type="sphere" size="0.1"/></body>"#)
+    };
+    write(
+        "sub/first.xml",
+        &format!(r#"<mujocoinclude>{}<include file="second.xml"/></mujocoinclude>"#, ball("a", 0.0)),
+    );
+    // second.xml is looked for beside main.xml; a copy beside first.xml must not be read.
+    write("second.xml", &format!("<anything>{}</anything>", ball("b_beside_the_model", 1.0)));
+    write("sub/second.xml", &format!("<mujocoinclude>{}</mujocoinclude>", ball("b_beside_the_includer", 1.0)));
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf(dir.join("main.xml"), &MjcfOptions::new()).unwrap();
+    let names: Vec<&str> = model.bodies.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["a", "b_beside_the_model"]);
+    // The model's own file is still a <mujoco>.
+    let err = sim.load_mjcf(dir.join("sub/first.xml"), &MjcfOptions::new()).unwrap_err();
+    assert!(err.to_string().contains("the root element must be <mujoco>"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -37,13 +37,17 @@ pub(super) fn gather(
         p
     };
     let root = document.root_element();
-    if root.tag_name().name() != "mujoco" {
+    // The model's own file is a <mujoco>; an included file's root is dropped whatever its
+    // name (<mujocoinclude> by convention), as MuJoCo does.
+    if stack.len() <= 1 && root.tag_name().name() != "mujoco" {
         return Err(in_file(problem(&root, "the root element must be <mujoco>")));
     }
     let mut found = Vec::new();
     for node in root.descendants().filter(|c| c.is_element() && c.tag_name().name() == "include") {
         let file = node.attribute("file").ok_or_else(|| in_file(problem(&node, "needs a file")))?;
-        let path = Path::new(name).parent().unwrap_or(Path::new("")).join(file);
+        // Relative to the model's own file, at any depth of includes (as MuJoCo).
+        let main = stack.first().map_or(name, String::as_str);
+        let path = Path::new(main).parent().unwrap_or(Path::new("")).join(file);
         let path_name = path.display().to_string();
         if stack.contains(&path_name) || stack.len() >= MAX_INCLUDE_DEPTH {
             return Err(in_file(problem(&node, format!("includes {path_name} again: a cycle of includes"))));

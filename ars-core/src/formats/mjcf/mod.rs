@@ -69,9 +69,10 @@
 //!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
 //!   integrator is ODE's; the caller chooses to use them).
-//! - **Includes.** `<include file>` anywhere (its path relative to the file that
-//!   includes it; a cycle is refused): the included file's top-level elements take its
-//!   place, and an error in it names that file.
+//! - **Includes.** `<include file>` anywhere (its path relative to the model's own
+//!   file, at any depth, as MuJoCo reads it; a cycle is refused): the included file's
+//!   top-level elements take its place whatever its root element is called
+//!   (`<mujocoinclude>` by convention), and an error in it names that file.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (textures, materials beyond their colour, meshes not used by a geom),
 //!   `<statistic>`, `<size>`, `<custom>`, `<light>`, `<camera>`, unnamed `<site>`s
