@@ -783,3 +783,37 @@ fn mujocoinclude_roots_and_paths_relative_to_the_model_load_as_in_mujoco() {
     assert!(err.to_string().contains("the root element must be <mujoco>"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `<option><flag contact="disable">` turns every contact off, as in MuJoCo (dm-control's
+/// cartpole and reacher rely on it: their parts overlap); `gravity="disable"` gives the
+/// model no gravity; any other flag is read and said unused, not passed over in silence.
+#[test]
+fn option_flags_disable_contacts_and_gravity_and_others_are_said_unused() {
+    let model = |flags: &str| {
+        format!(
+            r#"<mujoco><option>{flags}</option><worldbody><geom type="plane" size="5 5 0.1"/>
+               <body name="box" pos="0 0 0.5"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
+               <body name="pair" pos="1 0 0.5"><freejoint/><geom type="sphere" size="0.1"/></body>
+               </worldbody><contact><pair geom1="box_geom" geom2="pair_geom"/></contact></mujoco>"#
+        )
+        .replace(r#"type="box" size"#, r#"name="box_geom" type="box" size"#)
+        .replace(r#"type="sphere" size"#, r#"name="pair_geom" type="sphere" size"#)
+    };
+    let height_after_a_second = |flags: &str| {
+        let mut sim = Simulation::new().unwrap();
+        let m = sim.load_mjcf_text(&model(flags), "flags.xml", &MjcfOptions::new()).unwrap();
+        sim.run_for(1.0).unwrap();
+        (sim.scene().object(m.body("box").unwrap()).unwrap().position().unwrap().y, m)
+    };
+    let (resting, _) = height_after_a_second("");
+    assert!((resting - 0.1).abs() < 0.01, "the box rests on the plane: {resting}");
+    let (fallen, _) = height_after_a_second(r#"<flag contact="disable"/>"#);
+    assert!(fallen < -3.0, "with contacts off the box falls through the plane: {fallen}");
+    let (_, weightless) = height_after_a_second(r#"<flag gravity="disable" energy="enable"/>"#);
+    assert_eq!(weightless.gravity, Some(Vector3::zeros()));
+    assert!(
+        weightless.skipped.iter().any(|l| l.contains(r#"energy="enable" is not used"#)),
+        "{:?}",
+        weightless.skipped
+    );
+}

@@ -498,7 +498,9 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     let nodes = tree.elements(root);
     let mut schema_skips = Vec::new();
     check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
-    let settings = read_settings(tree, &nodes)?;
+    let mut settings = read_settings(tree, &nodes)?;
+    let flags_unused = std::mem::take(&mut settings.flags_unused);
+    let (contacts_disabled, gravity_disabled) = (settings.contacts_disabled, settings.gravity_disabled);
     let materials = material_colors(&settings.material_nodes, &settings.defaults)?;
     let mut reader = Reader {
         compiler: settings.compiler,
@@ -533,6 +535,17 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     }
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
+    model.skipped.extend(flags_unused);
+    if contacts_disabled {
+        for geom in &mut model.world_geoms {
+            geom.bits = (0, 0);
+        }
+        disable_contacts(&mut model.bodies);
+        model.pairs.clear();
+    }
+    if gravity_disabled {
+        model.gravity = Some(Vector3::zeros());
+    }
     if let Some(total) = reader.compiler.total_mass {
         let now = total_mass(&model.bodies);
         if now > 0.0 {
@@ -548,6 +561,12 @@ struct Settings<'a, 'input> {
     defaults: Defaults,
     timestep: Option<f64>,
     gravity: Option<Vector3<f64>>,
+    /// `<option><flag contact="disable">`: no contact at all.
+    contacts_disabled: bool,
+    /// `<option><flag gravity="disable">`.
+    gravity_disabled: bool,
+    /// The `<flag>`s read and not used, one line each.
+    flags_unused: Vec<String>,
     /// The `<asset><mesh>`es by name: their file (as written) and scale.
     meshes: HashMap<String, (String, Vector3<f64>)>,
     /// The `<asset><material>`s, read once every default class is known.
@@ -565,6 +584,9 @@ fn read_settings<'a, 'input>(
         defaults: Defaults::new(),
         timestep: None,
         gravity: None,
+        contacts_disabled: false,
+        gravity_disabled: false,
+        flags_unused: Vec::new(),
         meshes: HashMap::new(),
         material_nodes: Vec::new(),
     };
@@ -583,11 +605,40 @@ fn read_settings<'a, 'input>(
                 let a = Attrs { node, class: None };
                 settings.timestep = a.number("timestep")?;
                 settings.gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
+                for flag in tree.elements(node).into_iter().filter(|c| c.has_tag_name("flag")) {
+                    read_flags(flag, &mut settings);
+                }
             }
             _ => {}
         }
     }
     Ok(settings)
+}
+
+/// Reads an `<option><flag>`: `contact` and `gravity` disabled are followed, any other
+/// flag is said unused.
+fn read_flags(flag: roxmltree::Node<'_, '_>, settings: &mut Settings<'_, '_>) {
+    for attribute in flag.attributes() {
+        match (attribute.name(), attribute.value()) {
+            ("contact", "disable") => settings.contacts_disabled = true,
+            ("gravity", "disable") => settings.gravity_disabled = true,
+            ("contact" | "gravity", "enable") => {}
+            (name, value) => settings
+                .flags_unused
+                .push(format!("<flag> at line {}: {name}=\"{value}\" is not used", problem(&flag, "").line)),
+        }
+    }
+}
+
+/// No geom of `bodies` (and their children) collides with anything: `<flag
+/// contact="disable">`.
+fn disable_contacts(bodies: &mut [super::model::Body]) {
+    for body in bodies {
+        for geom in &mut body.geoms {
+            geom.bits = (0, 0);
+        }
+        disable_contacts(&mut body.children);
+    }
 }
 
 /// Reads a `<compiler>`'s settings into `compiler`.
