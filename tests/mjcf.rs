@@ -89,7 +89,7 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
             "must be positive",
         ),
         ("<mujoco><worldbody><body><joint range='10 -10'/><geom size='.1'/></body></worldbody></mujoco>", "reversed"),
-        ("<mujoco><tendon/></mujoco>", "<tendon> is not supported"),
+        ("<mujoco><tendon/></mujoco>", "<tendon> is not supported (skip_unsupported skips what ARS cannot read"),
         ("<mujoco><worldbody><body><geom type='hfield' size='1'/></body></worldbody></mujoco>", "hfield"),
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
         ("<mujoco><worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>", "no <mesh> asset"),

@@ -18,8 +18,10 @@ pub(super) type Parsed<T> = std::result::Result<T, Problem>;
 
 /// What cannot be read: with `skip` (`MjcfOptions::skip_unsupported`) a line in
 /// `skipped` naming its element and line, else the error.
-pub(super) fn skip_or_refuse(p: Problem, skip: bool, skipped: &mut Vec<String>) -> Parsed<()> {
+pub(super) fn skip_or_refuse(mut p: Problem, skip: bool, skipped: &mut Vec<String>) -> Parsed<()> {
     if !skip {
+        // The refusal says how to load the rest of the model.
+        p.text.push_str(" (skip_unsupported skips what ARS cannot read, with a warning)");
         return Err(p);
     }
     skipped.push(format!("<{}> at line {}: {}", p.element, p.line, p.text));
