@@ -594,7 +594,12 @@ impl Simulation {
     /// [`load_scene`](Self::load_scene) of the text of `file` (named in errors):
     /// [`SceneFile::parse`], then [`SceneFile::build`].
     fn load_scene_named(text: &str, file: &str) -> Result<Simulation> {
-        SceneFile::parse(text, file)?.build().map_err(|e| match e {
+        Simulation::built_as(&SceneFile::parse(text, file)?, file)
+    }
+
+    /// [`SceneFile::build`], its errors naming the file `file`.
+    fn built_as(scene: &SceneFile, file: &str) -> Result<Simulation> {
+        scene.build().map_err(|e| match e {
             Error::Format { format: "scene file", element, line, column, problem, .. } => {
                 Error::Format { format: "scene file", file: file.to_string(), element, line, column, problem }
             }
@@ -799,8 +804,7 @@ impl Simulation {
     /// Loads a scene saved with [`save_scene_to`](Self::save_scene_to).
     pub fn load_scene_from(path: impl AsRef<std::path::Path>) -> Result<Simulation> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io("read the scene file", path, &e))?;
-        Simulation::load_scene_named(&text, &path.display().to_string())
+        Simulation::built_as(&SceneFile::read(path)?, &path.display().to_string())
     }
 }
 
