@@ -145,7 +145,10 @@ fn refusal(args: &[String], e: &clap::Error) -> String {
     let context = |kind| e.get(kind).map(|v| v.to_string()).unwrap_or_default();
     match e.kind() {
         ErrorKind::InvalidSubcommand => format!("unknown command {:?}: run, view or record", args[0]),
-        ErrorKind::UnknownArgument => format!("unknown option {:?}", context(ContextKind::InvalidArg)),
+        ErrorKind::UnknownArgument => match context(ContextKind::InvalidArg) {
+            option if option.starts_with('-') => format!("unknown option {option:?}"),
+            extra => format!("unexpected argument {extra:?}: a command takes one FILE"),
+        },
         ErrorKind::MissingRequiredArgument => {
             format!("ars {} needs a FILE (a scene .json, a .urdf or an MJCF .xml)", args[0])
         }
