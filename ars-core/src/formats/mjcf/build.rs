@@ -204,15 +204,8 @@ impl Scene {
         let (mass, inertia) = (masses.mass, masses.inertia);
         let body_frame =
             Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(masses.com)), frame.rotation);
-        let handle = self
-            .world
-            .insert_body(
-                BodyBuilder::new()
-                    .mass(MassSpec::Custom { mass, inertia })
-                    .position(nalgebra::Point3::from(body_frame.translation.vector))
-                    .rotation(body_frame.rotation.to_rotation_matrix()),
-            )
-            .map_err(|e| body_error(format!("{:?}: {e}", body.name)))?;
+        let handle =
+            self.insert_body_at(&body_frame, mass, inertia).map_err(|e| body_error(format!("{:?}: {e}", body.name)))?;
         let geoms = self.add_mjcf_geoms(body, frame, &body_frame, handle, named)?;
         let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
         let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
@@ -248,6 +241,16 @@ impl Scene {
         Ok(geoms)
     }
 
+    /// An ODE body of `mass` and `inertia` (about its centre) whose frame is `frame`.
+    fn insert_body_at(&mut self, frame: &Isometry3<f64>, mass: f64, inertia: Matrix3<f64>) -> Result<BodyHandle> {
+        self.world.insert_body(
+            BodyBuilder::new()
+                .mass(MassSpec::Custom { mass, inertia })
+                .position(nalgebra::Point3::from(frame.translation.vector))
+                .rotation(frame.rotation.to_rotation_matrix()),
+        )
+    }
+
     /// A light link of the chain through a body's joints, at the body's frame, moved by
     /// `joint`.
     fn add_chain_link(
@@ -260,13 +263,7 @@ impl Scene {
     ) -> Result<ObjectId> {
         let name = format!("{}/{}", body.name, joint.name);
         let link = self
-            .world
-            .insert_body(
-                BodyBuilder::new()
-                    .mass(MassSpec::Custom { mass, inertia })
-                    .position(nalgebra::Point3::from(body_frame.translation.vector))
-                    .rotation(body_frame.rotation.to_rotation_matrix()),
-            )
+            .insert_body_at(body_frame, mass, inertia)
             .map_err(|e| body_error(format!("{name:?}, the light link chaining {:?}: {e}", joint.name)))?;
         self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)
     }
