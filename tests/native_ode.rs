@@ -41,16 +41,24 @@ fn drop_pile_in_a_hash_space_is_bit_identical_to_native_ode() {
     assert_bit_identical("drop pile", CScene::drop_pile(100), RustScene::drop_pile(100), 500);
 }
 
+/// A reference scene: its name, its C twin, its `Simulation` and how many steps to run.
+type SimCase = (&'static str, fn() -> CScene, fn() -> SimScene, usize);
+
+/// The four reference scenes through the `Simulation` layer, the 100-body pile run for
+/// `pile_steps` steps.
+fn reference_sim_scenes(pile_steps: usize) -> [SimCase; 4] {
+    [
+        ("falling sphere", CScene::falling_sphere, SimScene::falling_sphere, 2500),
+        ("drop pile", || CScene::drop_pile(100), || SimScene::drop_pile(100), pile_steps),
+        ("conical pendulum", CScene::conical_pendulum, SimScene::conical_pendulum, 2500),
+        ("mobile manipulator", CScene::speed_profile, SimScene::mobile_manipulator, 2500),
+    ]
+}
+
 #[test]
 fn the_simulation_layer_bench_scenes_are_bit_identical_to_native_ode() {
     // What `benches/step_cost.rs` measures must be the same work as its C twin.
-    type Case = (&'static str, fn() -> CScene, fn() -> SimScene, usize);
-    let cases: [Case; 4] = [
-        ("falling sphere", CScene::falling_sphere, SimScene::falling_sphere, 2500),
-        ("drop pile", || CScene::drop_pile(100), || SimScene::drop_pile(100), 300),
-        ("conical pendulum", CScene::conical_pendulum, SimScene::conical_pendulum, 2500),
-        ("mobile manipulator", CScene::speed_profile, SimScene::mobile_manipulator, 2500),
-    ];
+    let cases = reference_sim_scenes(300);
     for (name, c, sim, steps) in cases {
         let (mut c, mut sim) = (c(), sim());
         assert_eq!(c.body_count(), sim.sim.scene().bodies().count(), "{name}: body count");
@@ -73,13 +81,8 @@ fn the_simulation_layer_bench_scenes_are_bit_identical_to_native_ode() {
 /// native ODE's bits on the same scenes.
 #[test]
 fn the_rust_near_callback_steps_every_reference_scene_as_native_ode_does() {
-    type Case = (&'static str, fn() -> CScene, fn() -> SimScene, usize);
-    let cases: [Case; 4] = [
-        ("falling sphere", CScene::falling_sphere, SimScene::falling_sphere, 2500),
-        ("drop pile", || CScene::drop_pile(100), || SimScene::drop_pile(100), 1500),
-        ("conical pendulum", CScene::conical_pendulum, SimScene::conical_pendulum, 2500),
-        ("mobile manipulator", CScene::speed_profile, SimScene::mobile_manipulator, 2500),
-    ];
+    // The pile long enough for its bodies to land (contacts through the callback).
+    let cases = reference_sim_scenes(1500);
     for (name, c, sim, steps) in cases {
         let (mut c, mut sim) = (c(), sim());
         sim.sim.scene_mut().world_mut().set_contact_feedback(true);
