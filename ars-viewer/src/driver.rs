@@ -159,6 +159,34 @@ impl<D: Driver> Driver for Shown<'_, D> {
     }
 }
 
+/// A simulation driven by nothing but its own frames (and hooks): what the recorders
+/// run for front ends with simulations of their own (the Python package).
+pub(crate) struct BareSimulation<'a>(pub(crate) &'a mut Simulation);
+
+impl Driver for BareSimulation<'_> {
+    fn simulation(&mut self) -> impl DerefMut<Target = Simulation> + '_ {
+        &mut *self.0
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        self.0.step_frame()
+    }
+    fn step_frame_observed(&mut self, after_step: &mut dyn FnMut(&Simulation) -> Result<()>) -> Result<()> {
+        self.0.step_frame_observed(after_step)
+    }
+    fn step(&mut self) -> Result<()> {
+        self.0.step()
+    }
+    fn reset(&mut self) -> Result<()> {
+        Err(ars_core::Error::User("a recording does not rebuild a bare simulation".into()))
+    }
+    fn key_down(&mut self, _: Key) -> Result<()> {
+        Ok(())
+    }
+    fn key_up(&mut self, _: Key) -> Result<()> {
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -44,6 +44,7 @@ mod look;
 mod material;
 mod mp4;
 mod offscreen;
+mod recorder;
 mod replay;
 mod scene;
 mod session;
@@ -65,13 +66,16 @@ pub use frames::FrameWriter;
 pub use image;
 pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_force, spring_torque};
 pub use offscreen::{
-    OffscreenRenderer, ScreenshotRecorder, init_offscreen_context, keep_rendering_context, release_rendering_context,
+    OffscreenRenderer, ScreenshotFrames, ScreenshotRecorder, init_offscreen_context, keep_rendering_context,
+    release_rendering_context,
 };
+pub use recorder::{Recorder, RecordingOutput};
 pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
 pub use state::{DragLine, Selected, ViewerState};
 pub use video::{
-    MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoRecorder, VideoWriter, check_video_settings, video_frame_count,
+    MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoFile, VideoRecorder, VideoWriter, check_video_settings,
+    video_frame_count,
 };
 pub use viewports::{VIEWPORT_KINDS, ViewportKind, viewports};
 pub use window::{VIEWER_KEYS, WindowReport, device_select_would_print};

@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use ars_core::nalgebra::Point3;
-use ars_core::{Program, ProgramRunner, Simulation, WindowSettings};
+use ars_core::{Simulation, WindowSettings};
 use kiss3d::camera::Camera3d;
 use kiss3d::window::{CanvasSetup, NumSamples, OffscreenSurface};
 
@@ -17,6 +17,7 @@ use crate::convert;
 use crate::driver::Driver;
 use crate::error::{Result, ViewerError};
 use crate::frames::{FrameWriter, RawFrame};
+use crate::recorder::{Recorder, RecordingOutput, frames_in};
 use crate::scene::{DrawnScene, SceneMirror};
 use crate::viewports::{EMPTY_VIEW, Seen, VIEWPORT_KINDS, ViewportKind, camera_of, followed, pixel_cells, place};
 
@@ -223,74 +224,37 @@ pub(crate) fn surface_with_view(
     (surface, view)
 }
 
-/// The whole frames of `sim` that `duration` seconds of simulated time take (the last
-/// one may be cut short by the duration): what every recorder runs.
-pub(crate) fn frames_in(sim: &Simulation, duration: f64) -> Result<u64> {
-    if !(duration.is_finite() && duration > 0.0) {
-        return Err(ViewerError::InvalidSetting(format!("a recording's duration must be positive, got {duration} s")));
-    }
-    Ok(sim.scene().steps_in(duration)?.div_ceil(u64::from(sim.scene().steps_per_frame())))
-}
-
-/// The renderer a recorder draws what `driver` drives with: `view` at `size` (if
-/// given), drawing what `options` say; when it draws forces, the simulation is asked
-/// to report them (the contacts' and every joint's).
-pub(crate) fn recording_renderer<D: Driver>(
-    driver: &mut D,
-    view: &WindowSettings,
-    size: Option<(u32, u32)>,
-    options: &ViewerOptions,
-) -> Result<OffscreenRenderer> {
-    let mut view = view.clone();
-    if let Some(size) = size {
-        view.size = size;
-    }
-    let renderer = OffscreenRenderer::with_options(&view, options)?;
-    if options.forces {
-        crate::scene::report_forces(driver.simulation().scene_mut().world_mut());
-    }
-    Ok(renderer)
-}
-
-/// Writes numbered PNG frames (`frame_00001.png`, `frame_00002.png`...) of a running
-/// simulation into a folder: the first before any step, then one every `every`
-/// frames.
+/// Where a [`ScreenshotRecorder`] writes: numbered PNG frames (`frame_00001.png`,
+/// `frame_00002.png`...) in a folder, the first before any step, then one every
+/// `every` frames.
 #[derive(Clone, Debug)]
-pub struct ScreenshotRecorder {
+pub struct ScreenshotFrames {
     dir: PathBuf,
     every: u32,
-    size: Option<(u32, u32)>,
-    options: ViewerOptions,
 }
 
-impl ScreenshotRecorder {
+/// Writes numbered PNG frames of a running simulation into a folder (see
+/// [`ScreenshotFrames`]); the size and the options are [`Recorder`]'s.
+pub type ScreenshotRecorder = Recorder<ScreenshotFrames>;
+
+impl Recorder<ScreenshotFrames> {
     /// Frames into `dir` (created if missing), one every frame.
     pub fn new(dir: impl Into<PathBuf>) -> Self {
-        ScreenshotRecorder { dir: dir.into(), every: 1, size: None, options: ViewerOptions::default() }
+        Recorder::with_output(ScreenshotFrames { dir: dir.into(), every: 1 })
     }
     /// One image every `frames` frames.
     #[must_use]
     pub fn every(mut self, frames: u32) -> Self {
-        self.every = frames;
-        self
-    }
-    /// Images of `width × height` pixels (default: the program's window size).
-    #[must_use]
-    pub fn size(mut self, width: u32, height: u32) -> Self {
-        self.size = Some((width, height));
-        self
-    }
-    /// Frames drawn as `options` say (the world axes...).
-    #[must_use]
-    pub fn options(mut self, options: ViewerOptions) -> Self {
-        self.options = options;
+        self.output.every = frames;
         self
     }
     /// The folder.
     pub fn dir(&self) -> &Path {
-        &self.dir
+        &self.output.dir
     }
+}
 
+impl ScreenshotFrames {
     /// Renders the simulation and queues the frame numbered `index` (from 1).
     fn write(
         &self,
@@ -303,44 +267,37 @@ impl ScreenshotRecorder {
         writer.write_raw(path.clone(), renderer.render_raw(sim)?)?;
         Ok(path)
     }
+}
 
-    /// Runs `program` for `duration` seconds of simulated time, off screen, writing
-    /// frames; returns the simulation (for its records) and the files written.
-    pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, Vec<PathBuf>)> {
-        let view = program.window_settings();
-        let mut runner = ProgramRunner::new(program)?;
-        let written = self.record_driven(&mut runner, &view, duration)?;
-        Ok((runner.into_simulation(), written))
-    }
+impl RecordingOutput for ScreenshotFrames {
+    /// The files written.
+    type Recorded = Vec<PathBuf>;
 
-    /// Runs what `driver` drives for `duration` seconds of simulated time (whole
-    /// frames), off screen, seen as `view` says; returns the files written. The PNG
-    /// files are encoded and written by a [`FrameWriter`] while the next frames are
-    /// drawn; every one is written when this returns. A stop requested through
-    /// [`ars_core::interrupt`] (Ctrl-C) ends the recording after the frame being
-    /// drawn, with the frames so far.
-    pub fn record_driven<D: Driver>(
-        &self,
+    /// The PNG files are encoded and written by a [`FrameWriter`] while the next
+    /// frames are drawn; every one is written when this returns.
+    fn record_driven<D: Driver>(
+        recorder: &Recorder<Self>,
         driver: &mut D,
         view: &WindowSettings,
         duration: f64,
     ) -> Result<Vec<PathBuf>> {
-        if self.every == 0 {
+        let output = &recorder.output;
+        if output.every == 0 {
             return Err(ViewerError::InvalidSetting("the screenshot period must be at least one frame".into()));
         }
         let frames = frames_in(&driver.simulation(), duration)?;
-        std::fs::create_dir_all(&self.dir).map_err(|e| ViewerError::write(&self.dir, e))?;
-        let mut renderer = recording_renderer(driver, view, self.size, &self.options)?;
+        std::fs::create_dir_all(&output.dir).map_err(|e| ViewerError::write(&output.dir, e))?;
+        let mut renderer = recorder.renderer(driver, view)?;
         let mut writer = FrameWriter::new();
-        let mut written = vec![self.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
+        let mut written = vec![output.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
         for frame in 1..=frames {
             if ars_core::interrupt::requested() {
                 break;
             }
             driver.step_frame()?;
-            if frame % u64::from(self.every) == 0 {
+            if frame % u64::from(output.every) == 0 {
                 let index = written.len() as u32 + 1;
-                written.push(self.write(&mut writer, &mut renderer, &driver.simulation(), index)?);
+                written.push(output.write(&mut writer, &mut renderer, &driver.simulation(), index)?);
             }
         }
         writer.finish()?;

@@ -15,18 +15,17 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::thread::JoinHandle;
 
-use ars_core::{Program, ProgramRunner, Simulation, WindowSettings};
+use ars_core::{Simulation, WindowSettings};
 use openh264::encoder::{
     Encoder, EncoderConfig, FrameRate, IntraFramePeriod, Profile, QpRange, RateControlMode, UsageType, VuiConfig,
 };
 use openh264::formats::YUVBuffer;
 
-use crate::ViewerOptions;
 use crate::driver::Driver;
 use crate::error::{Result, ThreadEnd, ViewerError};
 use crate::frames::RawFrame;
 use crate::mp4::Mp4Track;
-use crate::offscreen::{frames_in, recording_renderer};
+use crate::recorder::{Recorder, RecordingOutput, frames_in};
 
 /// The encoder's thread, as its errors name it.
 const ENCODER: &str = "the video encoder";
@@ -441,63 +440,35 @@ fn rgb_to_yuv420(rgb: &[u8], width: usize, height: usize, bottom_up: bool, out: 
 /// assert_eq!(video.frames, 150);
 /// # Ok(()) }
 /// ```
+pub type VideoRecorder = Recorder<VideoFile>;
+
+/// Where a [`VideoRecorder`] writes: an MP4 file, at a frame rate.
 #[derive(Clone, Debug)]
-pub struct VideoRecorder {
+pub struct VideoFile {
     path: PathBuf,
     fps: f64,
-    size: Option<(u32, u32)>,
-    options: ViewerOptions,
 }
 
-impl VideoRecorder {
+impl Recorder<VideoFile> {
     /// A video into `path` at 30 frames a second.
     pub fn new(path: impl Into<PathBuf>) -> Self {
-        VideoRecorder { path: path.into(), fps: 30.0, size: None, options: ViewerOptions::default() }
+        Recorder::with_output(VideoFile { path: path.into(), fps: 30.0 })
     }
     /// Frames per second of video (and of simulated time).
     #[must_use]
     pub fn fps(mut self, fps: f64) -> Self {
-        self.fps = fps;
-        self
-    }
-    /// Frames of `width × height` pixels, both even (default: the program's window
-    /// size).
-    #[must_use]
-    pub fn size(mut self, width: u32, height: u32) -> Self {
-        self.size = Some((width, height));
-        self
-    }
-    /// Frames drawn as `options` say (the world axes...).
-    #[must_use]
-    pub fn options(mut self, options: ViewerOptions) -> Self {
-        self.options = options;
+        self.output.fps = fps;
         self
     }
     /// The video's file.
     pub fn path(&self) -> &Path {
-        &self.path
+        &self.output.path
     }
+}
 
-    /// Runs `program` for `duration` seconds of simulated time, off screen, recording
-    /// the video; returns the simulation (for its records) and the video.
-    pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, RecordedVideo)> {
-        let view = program.window_settings();
-        let mut runner = ProgramRunner::new(program)?;
-        let video = self.record_driven(&mut runner, &view, duration)?;
-        Ok((runner.into_simulation(), video))
-    }
-
-    /// Runs a bare simulation (its own and added hooks, no program) for `duration`
-    /// seconds of simulated time, seen as `view` says, recording the video (the front
-    /// ends' `sim.record_video`).
-    pub fn record_simulation(
-        &self,
-        sim: &mut Simulation,
-        view: &WindowSettings,
-        duration: f64,
-    ) -> Result<RecordedVideo> {
-        self.record_driven(&mut BareSimulation(sim), view, duration)
-    }
+impl RecordingOutput for VideoFile {
+    /// The video.
+    type Recorded = RecordedVideo;
 
     /// Runs what `driver` drives for `duration` seconds of simulated time (whole
     /// frames of the simulation), seen as `view` says, recording
@@ -505,15 +476,17 @@ impl VideoRecorder {
     /// written: the frame rate, the size, the path, and that the simulation has
     /// objects to show. A stop requested through [`ars_core::interrupt`] (Ctrl-C)
     /// ends the recording after the frame being drawn, with a shorter video.
-    pub fn record_driven<D: Driver>(
-        &self,
+    fn record_driven<D: Driver>(
+        recorder: &Recorder<Self>,
         driver: &mut D,
         view: &WindowSettings,
         duration: f64,
     ) -> Result<RecordedVideo> {
-        let (width, height) = self.size.unwrap_or(view.size);
-        check_video_settings(self.fps, width, height)?;
-        let count = video_frame_count(duration, self.fps)?;
+        let (width, height) = recorder.size.unwrap_or(view.size);
+        let VideoFile { path, fps } = &recorder.output;
+        let fps = *fps;
+        check_video_settings(fps, width, height)?;
+        let count = video_frame_count(duration, fps)?;
         let (frames, start) = {
             let sim = driver.simulation();
             let shown = |id| sim.scene().object(id).is_ok_and(|o| !matches!(o.shape(), ars_core::Shape::Plane { .. }));
@@ -524,9 +497,8 @@ impl VideoRecorder {
             }
             (frames_in(&sim, duration)?, sim.scene().time())
         };
-        let mut writer = VideoWriter::create(&self.path, width, height, self.fps)?;
-        let mut renderer = recording_renderer(driver, view, self.size, &self.options)?;
-        let fps = self.fps;
+        let mut writer = VideoWriter::create(path, width, height, fps)?;
+        let mut renderer = recorder.renderer(driver, view)?;
         let mut next = 0u64;
         let mut failure: Option<ViewerError> = None;
         // Pictures for every video frame due by the simulation's time now.
@@ -555,36 +527,6 @@ impl VideoRecorder {
             stepped?;
         }
         writer.finish()
-    }
-}
-
-/// A simulation driven by nothing but its own frames.
-struct BareSimulation<'a>(&'a mut Simulation);
-
-impl Driver for BareSimulation<'_> {
-    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
-        &mut *self.0
-    }
-    fn step_frame(&mut self) -> ars_core::Result<()> {
-        self.0.step_frame()
-    }
-    fn step_frame_observed(
-        &mut self,
-        after_step: &mut dyn FnMut(&Simulation) -> ars_core::Result<()>,
-    ) -> ars_core::Result<()> {
-        self.0.step_frame_observed(after_step)
-    }
-    fn step(&mut self) -> ars_core::Result<()> {
-        self.0.step()
-    }
-    fn reset(&mut self) -> ars_core::Result<()> {
-        Ok(())
-    }
-    fn key_down(&mut self, _: ars_core::Key) -> ars_core::Result<()> {
-        Ok(())
-    }
-    fn key_up(&mut self, _: ars_core::Key) -> ars_core::Result<()> {
-        Ok(())
     }
 }
 

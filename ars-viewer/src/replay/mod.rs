@@ -13,13 +13,13 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use ars_core::nalgebra::Isometry3;
-use ars_core::{ObjectId, Program, ProgramRunner, Shape, Simulation, WindowSettings};
+use ars_core::{ObjectId, Program, Shape, Simulation, WindowSettings};
 use serde_json::{Value, json};
 
-use crate::driver::Driver;
+use crate::driver::{BareSimulation, Driver};
 use crate::error::{Result, ViewerError};
 use crate::look::{Look, PLANE_HALF_SIZE, look_of};
-use crate::offscreen::frames_in;
+use crate::recorder::{frames_in, run_program};
 use encode::Blob;
 
 /// The page around the player, with the places for the title, the script and the data.
@@ -134,19 +134,13 @@ impl ReplayRecorder {
         duration: f64,
         path: impl AsRef<Path>,
     ) -> Result<(Simulation, Replay)> {
-        let view = program.window_settings();
-        let mut runner = ProgramRunner::new(program)?;
-        let replay = self.record_driven_to(&mut runner, &view, duration, path.as_ref())?;
-        Ok((runner.into_simulation(), replay))
+        run_program(program, |runner, view| self.record_driven_to(runner, view, duration, path.as_ref()))
     }
 
     /// Runs `program` for `duration` seconds of simulated time; returns the simulation
     /// and the replay, in memory.
     pub fn record<P: Program>(&self, program: &mut P, duration: f64) -> Result<(Simulation, Replay)> {
-        let view = program.window_settings();
-        let mut runner = ProgramRunner::new(program)?;
-        let replay = self.record_driven(&mut runner, &view, duration)?;
-        Ok((runner.into_simulation(), replay))
+        run_program(program, |runner, view| self.record_driven(runner, view, duration))
     }
 
     /// Runs `sim` itself (its own hooks; no program) for `duration` seconds, seen as
@@ -159,12 +153,12 @@ impl ReplayRecorder {
         duration: f64,
         path: &Path,
     ) -> Result<Replay> {
-        self.record_driven_to(&mut Bare(sim), view, duration, path)
+        self.record_driven_to(&mut BareSimulation(sim), view, duration, path)
     }
 
     /// As [`record_simulation_to`](Self::record_simulation_to), in memory.
     pub fn record_simulation(&self, sim: &mut Simulation, view: &WindowSettings, duration: f64) -> Result<Replay> {
-        self.record_driven(&mut Bare(sim), view, duration)
+        self.record_driven(&mut BareSimulation(sim), view, duration)
     }
 
     /// Runs what `driver` drives for `duration` seconds (whole frames), seen as `view`
@@ -453,30 +447,6 @@ fn page(view: &WindowSettings, objects: &Objects, track: &Track, plots: Vec<(Str
     PAGE.replace("{{TITLE}}", &encode::html_escape(&view.title))
         .replace("{{PLAYER}}", PLAYER)
         .replace("{{DATA}}", &data)
-}
-
-/// A bare simulation as a [`Driver`]: its own frames, no program.
-struct Bare<'a>(&'a mut Simulation);
-
-impl Driver for Bare<'_> {
-    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
-        &mut *self.0
-    }
-    fn step_frame(&mut self) -> ars_core::Result<()> {
-        self.0.step_frame()
-    }
-    fn step(&mut self) -> ars_core::Result<()> {
-        self.0.step()
-    }
-    fn reset(&mut self) -> ars_core::Result<()> {
-        Err(ars_core::Error::User("a replay does not rebuild a bare simulation".into()))
-    }
-    fn key_down(&mut self, _: ars_core::Key) -> ars_core::Result<()> {
-        Ok(())
-    }
-    fn key_up(&mut self, _: ars_core::Key) -> ars_core::Result<()> {
-        Ok(())
-    }
 }
 
 /// A file being written: a temporary file beside the target, renamed over it when
