@@ -6,7 +6,7 @@ checks it); the docstrings are in the module itself (`help(ars.Simulation)`).
 
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from typing import Any, Literal, TypeAlias, TypedDict, final
+from typing import Any, Literal, TypeAlias, TypedDict, Unpack, final
 
 import numpy as np
 import numpy.typing as npt
@@ -37,6 +37,27 @@ _Vec3: TypeAlias = Sequence[float] | npt.NDArray[np.floating[Any]]
 # A 3×3 rotation matrix, rows first.
 _Mat3: TypeAlias = Sequence[Sequence[float]] | npt.NDArray[np.floating[Any]]
 _Quality: TypeAlias = Literal["auto", "fast", "fine"]
+
+# The viewer keywords (python/src/viewer.rs, `ViewKeywords`): one set, one default each
+# (the size 1024 × 768, the camera at (10, 8, 10) looking at the origin, white).
+class _ImageView(TypedDict, total=False):
+    camera: _Vec3
+    look_at: _Vec3
+    background: _Vec3
+    follow: str | None
+    quality: _Quality
+    axes: bool
+
+class _WindowView(_ImageView, total=False):
+    title: str
+    size: tuple[int, int]
+
+class _ReplayView(TypedDict, total=False):
+    title: str
+    size: tuple[int, int]
+    camera: _Vec3
+    look_at: _Vec3
+    background: _Vec3
 
 class _ShowReport(TypedDict):
     frames_drawn: int
@@ -300,14 +321,8 @@ class Simulation:
         path: _Path,
         duration: float,
         fps: float = 30.0,
-        size: tuple[int, int] = (800, 600),
-        *,
-        camera: _Vec3 = ...,
-        look_at: _Vec3 = ...,
-        background: _Vec3 = ...,
-        follow: str | None = None,
-        quality: _Quality = ...,
-        axes: bool = ...,
+        size: tuple[int, int] | None = None,
+        **view: Unpack[_ImageView],
     ) -> _RecordedVideo: ...
     @staticmethod
     def load_scene(text: str) -> Simulation: ...
@@ -331,14 +346,7 @@ class Simulation:
         duration: float | None = None,
         *,
         frames: int | None = None,
-        title: str = ...,
-        size: tuple[int, int] = ...,
-        camera: _Vec3 = ...,
-        look_at: _Vec3 = ...,
-        background: _Vec3 = ...,
-        follow: str | None = None,
-        quality: _Quality = ...,
-        axes: bool = ...,
+        **view: Unpack[_WindowView],
     ) -> _ShowReport: ...
     def save_replay(
         self,
@@ -347,11 +355,7 @@ class Simulation:
         *,
         fps: float | None = None,
         plots: Sequence[str] = ...,
-        size: tuple[int, int] = ...,
-        camera: _Vec3 = ...,
-        look_at: _Vec3 = ...,
-        background: _Vec3 = ...,
-        title: str = ...,
+        **view: Unpack[_ReplayView],
     ) -> Replay: ...
     def replay(self, duration: float, **options: Any) -> Replay: ...
 
@@ -473,15 +477,9 @@ class Sensor:
 class Renderer:
     def __new__(
         cls,
-        width: int = 640,
-        height: int = 480,
-        *,
-        camera: _Vec3 = ...,
-        look_at: _Vec3 = ...,
-        background: _Vec3 = ...,
-        follow: str | None = None,
-        quality: _Quality = ...,
-        axes: bool = ...,
+        width: int | None = None,
+        height: int | None = None,
+        **view: Unpack[_ImageView],
     ) -> Renderer: ...
     @property
     def size(self) -> tuple[int, int]: ...
@@ -504,13 +502,7 @@ class VideoWriter:
         width: int,
         height: int,
         fps: float = 30.0,
-        *,
-        camera: _Vec3 = ...,
-        look_at: _Vec3 = ...,
-        background: _Vec3 = ...,
-        follow: str | None = None,
-        quality: _Quality = ...,
-        axes: bool = ...,
+        **view: Unpack[_ImageView],
     ) -> VideoWriter: ...
     def add(self, sim: Simulation) -> None: ...
     def finish(self) -> _RecordedVideo: ...
@@ -523,14 +515,7 @@ def show_program(
     *,
     duration: float | None = None,
     frames: int | None = None,
-    title: str,
-    size: tuple[int, int],
-    camera: _Vec3,
-    look_at: _Vec3,
-    background: _Vec3,
-    follow: str | None = None,
-    quality: _Quality = ...,
-    axes: bool = ...,
+    **view: Unpack[_WindowView],
 ) -> _ShowReport: ...
 def _release_viewer() -> None: ...
 def _panic_for_tests(message: str) -> None: ...

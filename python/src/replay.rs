@@ -9,15 +9,15 @@ use ars_viewer::{ReplayRecorder, ViewerError};
 use pyo3::prelude::*;
 
 use crate::errors::{io_file_error, raise};
-use crate::simulation::{PySimulation, Vec3};
-use crate::viewer::{WindowArgs, to_py_error};
+use crate::simulation::PySimulation;
+use crate::viewer::{REPLAY_KEYWORDS, ViewKeywords, to_py_error};
 
 /// What `save_replay` and `replay` take besides the view.
 pub(crate) struct ReplayArgs {
     pub duration: f64,
     pub fps: Option<f64>,
     pub plots: Vec<String>,
-    pub view: WindowArgs,
+    pub view: ViewKeywords,
 }
 
 /// Runs `sim` for the duration, recording it; writes the page to `path` if given
@@ -80,7 +80,7 @@ impl PySimulation {
     /// starts as a `Renderer`'s with the same keywords. Returns an `ars.Replay`, which
     /// a notebook shows inline. Bad settings are refused before the run, and no file
     /// is left.
-    #[pyo3(signature = (path, duration, *, fps=None, plots=Vec::new(), size=(640, 480), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], title="ARS".to_string()))]
+    #[pyo3(signature = (path, duration, *, fps=None, plots=Vec::new(), **view))]
     fn save_replay(
         &self,
         py: Python<'_>,
@@ -88,13 +88,9 @@ impl PySimulation {
         duration: f64,
         fps: Option<f64>,
         plots: Vec<String>,
-        size: (i64, i64),
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        title: String,
+        view: Option<&Bound<'_, pyo3::types::PyDict>>,
     ) -> PyResult<Py<PyAny>> {
-        let view = WindowArgs::for_replay(title, size, camera, look_at, background);
+        let view = ViewKeywords::from_kwargs("save_replay", view, &REPLAY_KEYWORDS)?;
         record(py, self, path, ReplayArgs { duration, fps, plots, view })
     }
 

@@ -11,8 +11,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::{panic_message, raise};
-use crate::simulation::{PySimulation, Vec3};
-use crate::viewer::{Failure, PyRenderer, WindowArgs, to_py_error};
+use crate::simulation::PySimulation;
+use crate::viewer::{Failure, IMAGE_KEYWORDS, PyRenderer, ViewKeywords, to_py_error};
 
 /// What a finished video holds, as a dict.
 fn summary(py: Python<'_>, video: &RecordedVideo) -> PyResult<Py<PyDict>> {
@@ -35,7 +35,7 @@ pub(crate) fn record_video(
     path: PathBuf,
     duration: f64,
     fps: f64,
-    view: WindowArgs,
+    view: ViewKeywords,
 ) -> PyResult<Py<PyDict>> {
     if sim.in_own_hook() {
         return Err(raise(py, "BusyError", "a hook cannot record the simulation it runs in".into()));
@@ -111,20 +111,17 @@ pub struct PyVideoWriter {
 #[pymethods]
 impl PyVideoWriter {
     #[new]
-    #[pyo3(signature = (path, width, height, fps=30.0, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
+    #[pyo3(signature = (path, width, height, fps=30.0, **view))]
     fn new(
         py: Python<'_>,
         path: PathBuf,
         width: i64,
         height: i64,
         fps: f64,
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        follow: Option<String>,
-        quality: String,
-        axes: bool,
+        view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
+        let mut view = ViewKeywords::from_kwargs("VideoWriter", view, &IMAGE_KEYWORDS)?;
+        view.size = (width, height);
         let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
             return Err(raise(
                 py,
@@ -133,7 +130,7 @@ impl PyVideoWriter {
             ));
         };
         ars_viewer::check_video_settings(fps, w, h).map_err(|e| to_py_error(py, e))?;
-        let renderer = PyRenderer::new(py, width, height, camera, look_at, background, follow, quality, axes)?;
+        let renderer = PyRenderer::start(py, view)?;
         let writer = VideoWriter::create(path, w, h, fps).map_err(|e| to_py_error(py, e))?;
         Ok(PyVideoWriter { renderer, writer: Mutex::new(Some(writer)) })
     }
@@ -171,22 +168,20 @@ impl PySimulation {
     /// Runs `duration` seconds of simulated time off screen into an H.264 MP4 video at
     /// `path`: frame k is the picture at the first step at or after k/fps s (see
     /// `ars._native.VideoWriter` for frames one by one). A dict of what it holds.
-    #[pyo3(signature = (path, duration, fps=30.0, size=(800, 600), *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
+    /// The viewer keywords as `ars.Renderer` takes them; `size` defaults to the
+    /// window's 1024 × 768 (both sides must be even).
+    #[pyo3(signature = (path, duration, fps=30.0, size=None, **view))]
     fn record_video(
         &self,
         py: Python<'_>,
         path: std::path::PathBuf,
         duration: f64,
         fps: f64,
-        size: (i64, i64),
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        follow: Option<String>,
-        quality: String,
-        axes: bool,
+        size: Option<(i64, i64)>,
+        view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = WindowArgs { title: "ARS".into(), size, camera, look_at, background, follow, quality, axes };
+        let mut view = ViewKeywords::from_kwargs("record_video", view, &IMAGE_KEYWORDS)?;
+        view.size = size.unwrap_or(view.size);
         record_video(py, self, path, duration, fps, view)
     }
 }

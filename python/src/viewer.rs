@@ -40,8 +40,11 @@ pub(crate) fn to_py_error(py: Python<'_>, error: ViewerError) -> PyErr {
     }
 }
 
-/// How the viewer sees a simulation, from the keywords `show` and `Renderer` take.
-pub(crate) struct WindowArgs {
+/// The viewer's keywords, as every Python entry point takes them (`show`,
+/// `show_program`, `Renderer`, `record_video`, `save_replay`): one definition, one
+/// default each. The size's default is Rust's [`WindowSettings`] default (the
+/// original's window, 1024 × 768), the camera's too.
+pub(crate) struct ViewKeywords {
     pub title: String,
     /// Width and height in pixels, as given (checked by `settings`).
     pub size: (i64, i64),
@@ -54,15 +57,75 @@ pub(crate) struct WindowArgs {
     pub axes: bool,
 }
 
-impl WindowArgs {
+impl Default for ViewKeywords {
+    fn default() -> Self {
+        let rust = WindowSettings::default();
+        ViewKeywords {
+            // The Python package's windows have always been called "ARS".
+            title: "ARS".into(),
+            size: (i64::from(rust.size.0), i64::from(rust.size.1)),
+            camera: rust.camera_position.coords.into(),
+            look_at: rust.camera_target.coords.into(),
+            background: rust.background.map(f64::from),
+            follow: None,
+            quality: "auto".into(),
+            axes: false,
+        }
+    }
+}
+
+/// Every viewer keyword's name.
+pub(crate) const VIEW_KEYWORDS: [&str; 8] =
+    ["title", "size", "camera", "look_at", "background", "follow", "quality", "axes"];
+
+/// The viewer keywords a replay takes: it has no followed body, axes or quality.
+pub(crate) const REPLAY_KEYWORDS: [&str; 5] = ["title", "size", "camera", "look_at", "background"];
+
+/// The viewer keywords an off-screen renderer and a video take: their size is a
+/// parameter of their own (`width` and `height`, `size`), and an image has no title.
+pub(crate) const IMAGE_KEYWORDS: [&str; 6] = ["camera", "look_at", "background", "follow", "quality", "axes"];
+
+impl ViewKeywords {
+    /// The keywords `function` was given in `given` (its `**view`), each of them one
+    /// of `accepted`; the others take their defaults. A keyword not accepted is a
+    /// `TypeError` as Python says it, a value of the wrong type a `TypeError` naming
+    /// the keyword.
+    pub(crate) fn from_kwargs(function: &str, given: Option<&Bound<'_, PyDict>>, accepted: &[&str]) -> PyResult<Self> {
+        let mut keywords = ViewKeywords::default();
+        let Some(given) = given else { return Ok(keywords) };
+        for (key, value) in given.iter() {
+            let name: String = key.extract()?;
+            if !accepted.contains(&name.as_str()) {
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "{function}() got an unexpected keyword argument '{name}'"
+                )));
+            }
+            keywords
+                .set(&name, &value)
+                .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("{function}() argument '{name}': {e}")))?;
+        }
+        Ok(keywords)
+    }
+
+    /// Sets the keyword `name` (one of [`VIEW_KEYWORDS`]) to `value`.
+    fn set(&mut self, name: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        match name {
+            "title" => self.title = value.extract()?,
+            "size" => self.size = value.extract()?,
+            "camera" => self.camera = value.extract()?,
+            "look_at" => self.look_at = value.extract()?,
+            "background" => self.background = value.extract()?,
+            "follow" => self.follow = value.extract()?,
+            "quality" => self.quality = value.extract()?,
+            "axes" => self.axes = value.extract()?,
+            other => unreachable!("{other} is not a viewer keyword"),
+        }
+        Ok(())
+    }
+
     /// The viewer's options these keywords ask for.
     pub(crate) fn options(&self) -> ars_viewer::ViewerOptions {
         ars_viewer::ViewerOptions::default().with_axes(self.axes)
-    }
-
-    /// The keywords of a replay: no follow, no axes, the automatic quality.
-    pub(crate) fn for_replay(title: String, size: (i64, i64), camera: Vec3, look_at: Vec3, background: Vec3) -> Self {
-        WindowArgs { title, size, camera, look_at, background, follow: None, quality: "auto".into(), axes: false }
     }
 
     pub(crate) fn settings(self) -> Result<WindowSettings, String> {
@@ -195,7 +258,7 @@ pub(crate) fn show(
     program: Option<Py<PyAny>>,
     duration: Option<f64>,
     frames: Option<i64>,
-    view: WindowArgs,
+    view: ViewKeywords,
 ) -> PyResult<Py<PyDict>> {
     if sim.get().in_own_hook() {
         return Err(raise(py, "BusyError", "a hook cannot show the simulation it runs in".into()));
@@ -254,23 +317,16 @@ pub(crate) fn show(
 /// Opens a window on a program in the original's style: `program` has `native()`
 /// (its `ars.Simulation` now), `frame()`, `step()`, `reset()` and `key(name, down)`.
 #[pyfunction]
-#[pyo3(signature = (program, *, duration=None, frames=None, title, size, camera, look_at, background, follow=None, quality="auto".to_string(), axes=false))]
+#[pyo3(signature = (program, *, duration=None, frames=None, **view))]
 pub(crate) fn show_program(
     py: Python<'_>,
     program: Py<PyAny>,
     duration: Option<f64>,
     frames: Option<i64>,
-    title: String,
-    size: (i64, i64),
-    camera: Vec3,
-    look_at: Vec3,
-    background: Vec3,
-    follow: Option<String>,
-    quality: String,
-    axes: bool,
+    view: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Py<PyDict>> {
+    let view = ViewKeywords::from_kwargs("show_program", view, &VIEW_KEYWORDS)?;
     let sim = program.bind(py).call_method0("native")?.cast_into::<PySimulation>()?.unbind();
-    let view = WindowArgs { title, size, camera, look_at, background, follow, quality, axes };
     show(py, sim, Some(program), duration, frames, view)
 }
 
@@ -392,44 +448,20 @@ impl Drop for PyRenderer {
 
 #[pymethods]
 impl PyRenderer {
+    /// An off-screen renderer of `width × height` images (by default the window's
+    /// 1024 × 768), seen as the viewer keywords say (`camera`, `look_at`,
+    /// `background`, `follow`, `quality`, `axes`).
     #[new]
-    #[pyo3(signature = (width=640, height=480, *, camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
+    #[pyo3(signature = (width=None, height=None, **view))]
     pub(crate) fn new(
         py: Python<'_>,
-        width: i64,
-        height: i64,
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        follow: Option<String>,
-        quality: String,
-        axes: bool,
+        width: Option<i64>,
+        height: Option<i64>,
+        view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let args = WindowArgs {
-            title: "ARS".into(),
-            size: (width, height),
-            camera,
-            look_at,
-            background,
-            follow,
-            quality,
-            axes,
-        };
-        let options = args.options();
-        let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
-        let size = view.size;
-        let (ready_tx, ready_rx) = mpsc::sync_channel(1);
-        let (requests, requests_rx) = mpsc::channel();
-        let thread = std::thread::Builder::new()
-            .name("ars-renderer".into())
-            .spawn(move || serve(view, options, ready_tx, requests_rx))
-            .map_err(|e| raise(py, "RendererError", format!("could not start the renderer's thread: {e}")))?;
-        let ready = py.detach(move || ready_rx.recv());
-        match ready {
-            Ok(Ok(())) => Ok(PyRenderer { requests: Mutex::new(requests), thread: Some(thread), size }),
-            Ok(Err(failure)) => Err(failure.into_py(py)),
-            Err(_) => Err(raise(py, "RendererError", "the renderer's thread ended before it was ready".into())),
-        }
+        let mut args = ViewKeywords::from_kwargs("Renderer", view, &IMAGE_KEYWORDS)?;
+        args.size = (width.unwrap_or(args.size.0), height.unwrap_or(args.size.1));
+        Self::start(py, args)
     }
 
     /// The image size, (width, height).
@@ -466,6 +498,25 @@ impl PyRenderer {
 }
 
 impl PyRenderer {
+    /// Starts the renderer's thread, drawing as `args` say.
+    pub(crate) fn start(py: Python<'_>, args: ViewKeywords) -> PyResult<Self> {
+        let options = args.options();
+        let view = args.settings().map_err(|m| raise(py, "InputError", m))?;
+        let size = view.size;
+        let (ready_tx, ready_rx) = mpsc::sync_channel(1);
+        let (requests, requests_rx) = mpsc::channel();
+        let thread = std::thread::Builder::new()
+            .name("ars-renderer".into())
+            .spawn(move || serve(view, options, ready_tx, requests_rx))
+            .map_err(|e| raise(py, "RendererError", format!("could not start the renderer's thread: {e}")))?;
+        let ready = py.detach(move || ready_rx.recv());
+        match ready {
+            Ok(Ok(())) => Ok(PyRenderer { requests: Mutex::new(requests), thread: Some(thread), size }),
+            Ok(Err(failure)) => Err(failure.into_py(py)),
+            Err(_) => Err(raise(py, "RendererError", "the renderer's thread ended before it was ready".into())),
+        }
+    }
+
     pub(crate) fn draw(&self, py: Python<'_>, sim: Py<PySimulation>) -> PyResult<image::RgbImage> {
         if sim.get().in_own_hook() {
             return Err(raise(
@@ -495,22 +546,17 @@ impl PySimulation {
     /// last one drawn): mouse to turn the camera, space to pause, `g` for the panel
     /// (speed, plots of the sensors, joints), escape to quit.
     /// Needs a display; returns what the run measured (frames, seconds, real-time
-    /// factor). Off screen, use `ars.Renderer`.
-    #[pyo3(signature = (duration=None, *, frames=None, title="ARS".to_string(), size=(1024, 768), camera=[10.0, 8.0, 10.0], look_at=[0.0; 3], background=[1.0; 3], follow=None, quality="auto".to_string(), axes=false))]
+    /// factor). Off screen, use `ars.Renderer`. The viewer keywords: `title`, `size`
+    /// (default 1024 × 768), `camera`, `look_at`, `background`, `follow`, `quality`
+    /// and `axes`, as `ars.Renderer` takes them.
+    #[pyo3(signature = (duration=None, *, frames=None, **view))]
     fn show(
         slf: &Bound<'_, Self>,
         duration: Option<f64>,
         frames: Option<i64>,
-        title: String,
-        size: (i64, i64),
-        camera: Vec3,
-        look_at: Vec3,
-        background: Vec3,
-        follow: Option<String>,
-        quality: String,
-        axes: bool,
+        view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
-        let view = WindowArgs { title, size, camera, look_at, background, follow, quality, axes };
+        let view = ViewKeywords::from_kwargs("show", view, &VIEW_KEYWORDS)?;
         show(slf.py(), slf.clone().unbind(), None, duration, frames, view)
     }
 }
