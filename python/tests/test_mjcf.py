@@ -240,6 +240,28 @@ def test_gymnasium_models_load_match_mujoco(asset):
     assert not [s for s in model["skipped"] if "unknown attribute" in s]
 
 
+@pytest.mark.parametrize("asset", ["ant.xml", "humanoid.xml", "half_cheetah.xml"])
+def test_actuators_are_in_mujoco_s_ctrl_order(asset):
+    """`sim.actuators` is MuJoCo's `data.ctrl` order, so a policy's action vector set
+    with `set_controls` drives the joints MuJoCo's would."""
+    path = gymnasium_asset(asset)
+    sim = ars.Simulation()
+    model = sim.load_mjcf(path, skip_unsupported=True)
+    mj = mujoco.MjModel.from_xml_path(path)
+    # An unnamed actuator is `actuator{id}` in ARS, with MuJoCo's id.
+    names = [mj.actuator(i).name or f"actuator{i}" for i in range(mj.nu)]
+    assert sim.actuators == names
+    joints = [mj.joint(mj.actuator_trnid[i, 0]).name for i in range(mj.nu)]
+    assert [joint for _, _, joint in model["actuators"]] == joints
+    # Inside every control range (the humanoid's are ±0.4), so set exactly.
+    action = np.linspace(-0.3, 0.3, mj.nu)
+    sim.set_controls(action)
+    assert sim.controls == action.tolist()
+    assert [sim.control(n) for n in names] == sim.controls
+    with pytest.raises(ars.InputError, match=f"{mj.nu - 1} values for {mj.nu} actuators"):
+        sim.set_controls(action[:-1])
+
+
 @pytest.mark.parametrize("asset", [a for a in GYMNASIUM if not a.startswith("pusher")])
 def test_gymnasium_models_run(asset):
     """Models written by others run 2 s, hopper, walker and half-cheetah with their

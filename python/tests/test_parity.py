@@ -307,6 +307,8 @@ PYTHON_FOR_RUST = {
     "Scene.excluded_contacts": "Simulation.excluded_contacts",
     "Scene.control": "Simulation.control",
     "Scene.actuators": "Simulation.actuators",
+    "Scene.set_controls": "Simulation.set_controls",
+    "Scene.controls": "Simulation.controls",
     # Scene
     "Scene.add_fixed_joint": "Simulation.add_fixed_joint",
     "Scene.add_hinge_joint": "Simulation.add_rotary_joint",

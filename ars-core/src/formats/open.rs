@@ -7,9 +7,9 @@ use std::path::Path;
 use nalgebra::{Isometry3, Vector3};
 
 use crate::error::{Error, Result};
-use crate::formats::mjcf::{CONTACT_PARAMETERS_UNUSED, MjcfOptions};
+use crate::formats::mjcf::{CONTACT_PARAMETERS_UNUSED, MUJOCO_TIMESTEP, MjcfFile, MjcfOptions};
 use crate::formats::urdf::UrdfOptions;
-use crate::simulation::Simulation;
+use crate::simulation::{DEFAULT_STEPS_PER_FRAME, DEFAULT_TIME_STEP, Simulation};
 use crate::world::SpaceKind;
 
 /// The kinds of file [`Simulation::open`] reads.
@@ -92,9 +92,10 @@ impl Simulation {
     /// - a scene file as saved, where it was saved (mid-run: exactly);
     /// - a URDF robot, Z up, its root at the origin over a floor plane at y = 0 (default
     ///   [`UrdfOptions`]), in a simple space;
-    /// - a MuJoCo model with its own floor and gravity, at ARS's time step (the model's
-    ///   is [`MjcfModel::timestep`](crate::MjcfModel::timestep)), in a simple space, what
-    ///   ARS cannot read skipped and listed in [`OpenedFile::skipped`].
+    /// - a MuJoCo model as its file says: its own floor, gravity and time step
+    ///   (MuJoCo's [`MUJOCO_TIMESTEP`] if it gives none; frames of about 20 ms), in a
+    ///   simple space, what ARS cannot read skipped and listed in
+    ///   [`OpenedFile::skipped`].
     ///
     /// ```
     /// # let dir = std::env::temp_dir().join(format!("ars-open-doc-{}", std::process::id()));
@@ -125,8 +126,15 @@ impl Simulation {
                 Ok(OpenedFile { simulation, skipped: Vec::new() })
             }
             FileFormat::Mjcf => {
-                let mut simulation = Simulation::builder().space(SpaceKind::Simple).build()?;
-                let model = simulation.load_mjcf(path, &MjcfOptions::new().base_pose(base).skip_unsupported(true))?;
+                let options = MjcfOptions::new().base_pose(base).skip_unsupported(true);
+                let file = MjcfFile::read(path, &options)?;
+                let dt = file.timestep().unwrap_or(MUJOCO_TIMESTEP);
+                let mut simulation = Simulation::builder()
+                    .space(SpaceKind::Simple)
+                    .time_step(dt)
+                    .steps_per_frame(steps_per_frame(dt))
+                    .build()?;
+                let model = file.insert(&mut simulation, &options)?;
                 if let Some(gravity) = model.gravity {
                     simulation.scene_mut().world_mut().set_gravity(gravity)?;
                 }
@@ -134,6 +142,14 @@ impl Simulation {
             }
         }
     }
+}
+
+/// The steps of a frame at a time step of `dt`: as near ARS's frame (50 steps of 0.4
+/// ms, 20 ms) as whole steps come, at least one.
+fn steps_per_frame(dt: f64) -> u32 {
+    let frame = DEFAULT_TIME_STEP * f64::from(DEFAULT_STEPS_PER_FRAME);
+    // A time step the builder accepts is positive and finite; 1 to 50,000 steps.
+    (frame / dt).round().clamp(1.0, 50_000.0) as u32
 }
 
 #[cfg(test)]

@@ -347,6 +347,7 @@ impl Scene {
         let data = self.joints.remove(id.0, JointId::KIND)?;
         self.joint_names.remove(&data.name);
         self.driven_joints.retain(|j| *j != id);
+        self.actuated_joints.retain(|j| *j != id);
         // Its followers stop following (their motors are left off).
         let followers: Vec<JointId> = self
             .joints
@@ -460,10 +461,63 @@ impl Scene {
         Ok(())
     }
 
-    /// The [`Actuator`]s driving joints, by name, with their joints, in joint creation
-    /// order.
+    /// The [`Actuator`]s driving joints, by name, with their joints, in the order they
+    /// were attached: an MJCF file's order, MuJoCo's `data.ctrl` order.
     pub fn actuators(&self) -> impl Iterator<Item = (&str, JointId)> + '_ {
-        self.driven_joints.iter().filter_map(|&id| Some((self.actuator_of(id)?.name(), id)))
+        self.actuated_joints.iter().filter_map(|&id| Some((self.actuator_of(id)?.name(), id)))
+    }
+
+    /// Sets every actuator's control at once, `ctrl[i]` the control of the `i`-th of
+    /// [`actuators`](Self::actuators) (clamped to its control range): MuJoCo's whole
+    /// `data.ctrl`. A vector of another length, or a control that is not finite, is
+    /// refused and no control changes.
+    pub fn set_controls(&mut self, ctrl: &[f64]) -> Result<()> {
+        let count = self.actuated_joints.len();
+        if ctrl.len() != count {
+            return Err(Error::Invalid {
+                what: "the controls",
+                problem: format!(
+                    "{} values for {count} actuators (one per actuator, in `actuators` order)",
+                    ctrl.len()
+                ),
+            });
+        }
+        if let Some((i, bad)) = ctrl.iter().enumerate().find(|(_, c)| !c.is_finite()) {
+            return Err(Error::NotFinite { what: "an actuator's control", value: format!("{bad} (control {i})") });
+        }
+        for (k, &c) in ctrl.iter().enumerate() {
+            let id = self.actuated_joints[k];
+            let mut joint = self.joint_mut(id)?;
+            if let Some(actuator) = joint.controller_mut::<Actuator>() {
+                actuator.set_ctrl(c)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Every actuator's control, in [`actuators`](Self::actuators) order.
+    pub fn controls(&self) -> Vec<f64> {
+        self.actuated_joints.iter().filter_map(|&id| self.actuator_of(id)).map(Actuator::ctrl).collect()
+    }
+
+    /// The names of the actuated joints, in [`actuators`](Self::actuators) order (what a
+    /// snapshot keeps of that order).
+    pub(crate) fn actuated_joint_names(&self) -> Vec<String> {
+        self.actuated_joints.iter().filter_map(|&id| Some(self.joint_data(id).ok()?.name.clone())).collect()
+    }
+
+    /// Puts the actuators in the order of `names` (their joints' names, as
+    /// [`actuated_joint_names`](Self::actuated_joint_names) gave them); joints not
+    /// named keep their order after those named.
+    pub(crate) fn order_actuators(&mut self, names: &[String]) {
+        let rank = |scene: &Scene, id: JointId| {
+            let name = scene.joint_data(id).map(|d| d.name.as_str()).unwrap_or("");
+            names.iter().position(|n| n == name).unwrap_or(names.len())
+        };
+        let mut ranked: Vec<(usize, JointId)> = self.actuated_joints.iter().map(|&id| (rank(self, id), id)).collect();
+        // Stable: the unnamed keep their order.
+        ranked.sort_by_key(|(r, _)| *r);
+        self.actuated_joints = ranked.into_iter().map(|(_, id)| id).collect();
     }
 
     /// The actuator of joint `id`, if it is driven by one.
@@ -509,6 +563,13 @@ impl Scene {
             }
             (false, Some(i)) => {
                 self.driven_joints.remove(i);
+            }
+            _ => {}
+        }
+        match (self.actuator_of(id).is_some(), self.actuated_joints.iter().position(|j| *j == id)) {
+            (true, None) => self.actuated_joints.push(id),
+            (false, Some(i)) => {
+                self.actuated_joints.remove(i);
             }
             _ => {}
         }

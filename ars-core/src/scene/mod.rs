@@ -45,6 +45,9 @@ pub struct Scene {
     joint_names: Names<JointId>,
     /// Joints with viscous friction or a controller, in creation order.
     driven_joints: Vec<JointId>,
+    /// Joints driven by an [`Actuator`](crate::Actuator), in the order their actuators
+    /// were attached (an MJCF file's order of `<actuator>`s).
+    actuated_joints: Vec<JointId>,
     /// Robots loaded so far (each gets its own collision category).
     pub(crate) robots_loaded: u32,
     pair_surfaces: PairSurfaces,
@@ -85,6 +88,7 @@ impl Scene {
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
             driven_joints: Vec::new(),
+            actuated_joints: Vec::new(),
             robots_loaded: 0,
             pair_surfaces: PairSurfaces::default(),
             time: 0.0,

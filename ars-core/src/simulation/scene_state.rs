@@ -25,6 +25,10 @@ pub struct SceneState {
     /// What each hook set saved of itself ([`Hooks::save_state`](crate::Hooks::save_state)).
     pub(super) hooks: Vec<Vec<u64>>,
     pub(super) frame_count: u64,
+    /// The actuated joints' names in the actuators' order (none in snapshots without
+    /// actuators, or from before it was kept: joint order).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub(super) actuator_order: Vec<String>,
 }
 
 impl SceneState {

@@ -122,6 +122,7 @@ impl Simulation {
             sensors: self.sensors.save(),
             hooks: self.hooks.save()?,
             frame_count: self.scene.frame_count(),
+            actuator_order: self.scene.actuated_joint_names(),
         })
     }
 
@@ -162,6 +163,7 @@ impl Simulation {
         self.hooks.check_fits(&state.hooks)?;
         self.scene.world.restore_state(&state.world)?;
         self.scene.restore_joint_drives(&state.joints)?;
+        self.scene.order_actuators(&state.actuator_order);
         self.sensors.restore(&state.sensors)?;
         self.hooks.restore(&state.hooks)?;
         self.scene.frame_count = state.frame_count;

@@ -530,10 +530,25 @@ impl PySimulation {
         self.with(py, |sim| sim.scene().control(name))
     }
 
-    /// The names of the actuators, in joint order.
+    /// The names of the actuators, in the order they were made: an MJCF file's order,
+    /// MuJoCo's `data.ctrl` order.
     #[getter]
     fn actuators(&self, py: Python<'_>) -> PyResult<Vec<String>> {
         self.with(py, |sim| Ok(sim.scene().actuators().map(|(name, _)| name.to_string()).collect()))
+    }
+
+    /// Sets every actuator's control at once (MuJoCo's whole `data.ctrl`): `ctrl[i]`
+    /// is the control of `actuators[i]`, clamped to its range. A sequence (or numpy
+    /// array) of another length, or a value that is not finite, is an
+    /// `ars.InputError` and no control changes.
+    fn set_controls(&self, py: Python<'_>, ctrl: Vec<f64>) -> PyResult<()> {
+        self.with(py, |sim| sim.scene_mut().set_controls(&ctrl))
+    }
+
+    /// Every actuator's control, in `actuators` order.
+    #[getter]
+    fn controls(&self, py: Python<'_>) -> PyResult<Vec<f64>> {
+        self.with(py, |sim| Ok(sim.scene().controls()))
     }
 
     /// Runs one frame: `steps_per_frame` steps, with the hooks per frame.

@@ -320,6 +320,9 @@ impl MjcfModel {
 /// as a fraction of the body's.
 pub const CHAIN_LINK_FRACTION: f64 = 1e-3;
 
+/// MuJoCo's time step when a model gives none (`<option timestep>`'s default), s.
+pub const MUJOCO_TIMESTEP: f64 = 0.002;
+
 /// An MJCF file as read: its model, not yet in a simulation. [`insert`](Self::insert)
 /// makes its bodies, joints, actuators and sensors, as many times as asked.
 ///
@@ -366,6 +369,12 @@ impl MjcfFile {
     /// with `skip_unsupported`).
     pub fn skipped(&self) -> &[String] {
         &self.model.skipped
+    }
+
+    /// The model's time step (`<option timestep>`), s, if it gives one (MuJoCo's
+    /// default is [`MUJOCO_TIMESTEP`]).
+    pub fn timestep(&self) -> Option<f64> {
+        self.model.timestep
     }
 
     /// Makes the model in `sim` at `options.base_pose`, with its sensors

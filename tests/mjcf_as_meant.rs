@@ -1,0 +1,85 @@
+//! A MuJoCo file behaves as its author meant: actuators in the file's order (MuJoCo's
+//! `data.ctrl`), kept through snapshots and scene files, and the file's time step when
+//! it is opened on its own.
+
+use ars::{MjcfOptions, Simulation, Snapshot};
+
+/// Three hinges made in the order a, b, c; their actuators listed c, a, b.
+const CROSSED: &str = r#"
+<mujoco model="crossed">
+  <option gravity="0 0 0"/>
+  <worldbody>
+    <body name="a"><joint name="ja" axis="0 0 1"/><geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+    <body name="b" pos="0 1 0"><joint name="jb" axis="0 0 1"/><geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+    <body name="c" pos="0 2 0"><joint name="jc" axis="0 0 1"/><geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+  </worldbody>
+  <actuator>
+    <motor name="turn_c" joint="jc" gear="1" ctrlrange="-3 3"/>
+    <motor name="turn_a" joint="ja" gear="1" ctrlrange="-3 3"/>
+    <motor name="turn_b" joint="jb" gear="1" ctrlrange="-1 1"/>
+  </actuator>
+</mujoco>"#;
+
+fn crossed() -> Simulation {
+    let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
+    sim.load_mjcf_text(CROSSED, "crossed.xml", &MjcfOptions::new()).unwrap();
+    sim
+}
+
+fn actuator_names(sim: &Simulation) -> Vec<String> {
+    sim.scene().actuators().map(|(n, _)| n.to_string()).collect()
+}
+
+#[test]
+fn actuators_are_listed_in_the_files_order_and_set_as_one_vector() {
+    let mut sim = crossed();
+    assert_eq!(actuator_names(&sim), ["turn_c", "turn_a", "turn_b"], "the file's order, not the joints'");
+    // One control vector in that order, clamped to each range as set_control does.
+    sim.scene_mut().set_controls(&[2.0, -1.0, 5.0]).unwrap();
+    assert_eq!(sim.scene().controls(), [2.0, -1.0, 1.0]);
+    assert_eq!(sim.scene().control("turn_c").unwrap(), 2.0);
+    assert_eq!(sim.scene().control("turn_a").unwrap(), -1.0);
+    // Each control drives its own joint: c turns positive, a negative, b positive.
+    sim.run_for(0.1).unwrap();
+    let rate = |sim: &Simulation, j: &str| sim.scene().joint(j).unwrap().state().unwrap().rate;
+    assert!(rate(&sim, "jc") > 0.0 && rate(&sim, "ja") < 0.0 && rate(&sim, "jb") > 0.0);
+
+    // A vector of the wrong length or with a NaN is refused whole.
+    let before = sim.scene().controls();
+    let wrong = sim.scene_mut().set_controls(&[1.0, 1.0]).unwrap_err().to_string();
+    assert!(wrong.contains("2 values for 3 actuators"), "{wrong}");
+    let nan = sim.scene_mut().set_controls(&[0.5, f64::NAN, 0.5]).unwrap_err().to_string();
+    assert!(nan.contains("control 1"), "{nan}");
+    assert_eq!(sim.scene().controls(), before, "nothing changed");
+}
+
+#[test]
+fn the_actuators_order_survives_snapshots_and_scene_files() {
+    let mut sim = crossed();
+    sim.scene_mut().set_controls(&[0.5, 0.25, -0.75]).unwrap();
+    sim.step().unwrap();
+    let snapshot = Snapshot::from_bytes(&sim.snapshot().unwrap().to_bytes()).unwrap();
+    let rebuilt = Simulation::from_snapshot(&snapshot).unwrap();
+    assert_eq!(actuator_names(&rebuilt), ["turn_c", "turn_a", "turn_b"]);
+    assert_eq!(rebuilt.scene().controls(), [0.5, 0.25, -0.75]);
+    let loaded = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    assert_eq!(actuator_names(&loaded), ["turn_c", "turn_a", "turn_b"]);
+    assert_eq!(loaded.scene().controls(), [0.5, 0.25, -0.75]);
+}
+
+#[test]
+fn a_model_opened_alone_steps_at_its_own_time_step() {
+    let ant = Simulation::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ant.xml")).unwrap().simulation;
+    // ant.xml says timestep="0.01": frames of two steps, 20 ms as ARS's.
+    assert_eq!((ant.scene().time_step(), ant.scene().steps_per_frame()), (0.01, 2));
+
+    // A model that gives no time step steps at MuJoCo's default.
+    let dir = std::env::temp_dir().join(format!("ars-mjcf-as-meant-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("crossed.xml");
+    std::fs::write(&path, CROSSED).unwrap();
+    let opened = Simulation::open(&path).unwrap().simulation;
+    assert_eq!(opened.scene().time_step(), ars::formats::mjcf::MUJOCO_TIMESTEP);
+    assert_eq!((opened.scene().time_step(), opened.scene().steps_per_frame()), (0.002, 10));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
