@@ -1149,6 +1149,7 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
 struct AntSeen {
     state: Option<ars::viewer::ViewerState>,
     torso: Point3<f64>,
+    rotation: ars::nalgebra::UnitQuaternion<f64>,
     time: f64,
     frames: u64,
     /// The person is done: the window closes (whether or not its keys reach it).
@@ -1190,10 +1191,10 @@ impl ars::viewer::Driver for Ant {
         self.seen.lock().unwrap().done
     }
     fn viewer_state(&mut self, state: &ars::viewer::ViewerState) {
-        let torso = self.sim.scene().object("torso").and_then(|o| o.body().map(|b| b.position()));
+        let body = self.sim.scene().object("torso").and_then(|o| o.body().map(|b| (b.position(), b.quaternion())));
         let mut seen = self.seen.lock().unwrap();
-        if let Ok(p) = torso {
-            seen.torso = p;
+        if let Ok((p, q)) = body {
+            (seen.torso, seen.rotation) = (p, q);
         }
         seen.time = self.sim.scene().time();
         seen.frames += 1;
@@ -1388,6 +1389,43 @@ fn a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus() -> std::result::Result
         ));
         if p1.y - p0.y < 0.3 || turned > 1.0 || during.drag.is_none() {
             return Err(lines.pop().unwrap());
+        }
+        Ok(lines)
+    })
+}
+
+/// Running, the editor's x, y, z, roll, pitch and yaw fields show the selected torso's
+/// pose, whole, as it moves (after a Ctrl-drag has thrown it off its rest): each field's
+/// text, as much of it as is drawn, reads as the pose of the same frame to the
+/// millimetre or thousandth of a degree, twice half a second apart. (The fields were
+/// 72 px wide and cut their text: "-0.20" for -0.207, "-93.8" for -93.878.)
+fn the_ant_s_pose_fields_show_its_pose_while_it_runs() -> std::result::Result<bool, String> {
+    with_the_ant(true, |person| {
+        let mut lines = vec![person.select_the_torso()?];
+        let (p0, p1, _) = person.ctrl_drag((120, -150), 1500)?;
+        if (p1 - p0).norm() < 0.2 {
+            return Err(format!("the Ctrl-drag moved the torso from {p0} to {p1} only"));
+        }
+        for _ in 0..2 {
+            person.wait(500);
+            let (torso, rotation, state) = {
+                let s = person.seen.lock().unwrap();
+                (s.torso, s.rotation, s.state.clone().unwrap_or_default())
+            };
+            if state.paused || state.selected.is_none() {
+                return Err("the ant should run with the torso selected".into());
+            }
+            let (roll, pitch, yaw) = rotation.euler_angles();
+            let pose = [torso.x, torso.y, torso.z, roll.to_degrees(), pitch.to_degrees(), yaw.to_degrees()];
+            let mut read = Vec::new();
+            for (label, value) in ["x", "y", "z", "roll", "pitch", "yaw"].into_iter().zip(pose) {
+                let text = state.field_text(label).ok_or_else(|| format!("no {label} field"))?;
+                read.push(format!("{label} {text:?} ({value:.4})"));
+                if !text.trim().parse::<f64>().is_ok_and(|v| (v - value).abs() <= 6e-4) {
+                    return Err(format!("running, the {label} field shows {text:?}; the torso's {label} is {value}"));
+                }
+            }
+            lines.push(format!("t = {:.2} s, the fields show the torso's pose: {}", person.time(), read.join(", ")));
         }
         Ok(lines)
     })
@@ -1695,6 +1733,7 @@ fn main() {
             "a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus" => {
                 a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus
             }
+            "the_ant_s_pose_fields_show_its_pose_while_it_runs" => the_ant_s_pose_fields_show_its_pose_while_it_runs,
             "keys_act_with_the_pointer_over_the_ant_s_editor" => keys_act_with_the_pointer_over_the_ant_s_editor,
             other => panic!("no test {other}"),
         };
@@ -1774,6 +1813,13 @@ fn main() {
     run(
         "a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus",
         || in_own_process("a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "the_ant_s_pose_fields_show_its_pose_while_it_runs",
+        || in_own_process("the_ant_s_pose_fields_show_its_pose_while_it_runs"),
         false,
         shown,
         &mut tally,

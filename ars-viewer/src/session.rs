@@ -527,6 +527,7 @@ impl<'a, D: Driver> Session<'a, D> {
             save_path: self.panel.save_path.clone().into(),
             saved: self.panel.saved.clone().map(Into::into),
             fields: self.panel.fields.clone(),
+            field_texts: self.panel.field_texts.clone(),
             window_size: (size.x, size.y),
             views: self.views.count,
             view_projection: view_projection(&self.shown.camera),
