@@ -1143,6 +1143,331 @@ fn act(seen: &std::sync::Mutex<Seen>, display: &str) -> std::result::Result<(Vec
     Ok((lines, Instant::now()))
 }
 
+/// What the window showed last of Gymnasium's ant, and its torso as the simulation
+/// held it in the same frame.
+#[derive(Default)]
+struct AntSeen {
+    state: Option<ars::viewer::ViewerState>,
+    torso: Point3<f64>,
+    rotation: ars::nalgebra::UnitQuaternion<f64>,
+    time: f64,
+    frames: u64,
+    /// The person is done: the window closes (whether or not its keys reach it).
+    done: bool,
+}
+
+/// Gymnasium's ant (tests/data/ant.xml), opened as `ars view` opens it, driven by the
+/// window.
+struct Ant {
+    sim: Simulation,
+    seen: std::sync::Arc<std::sync::Mutex<AntSeen>>,
+}
+
+impl Ant {
+    const FILE: &'static str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ant.xml");
+}
+
+impl ars::viewer::Driver for Ant {
+    fn simulation(&mut self) -> impl std::ops::DerefMut<Target = Simulation> + '_ {
+        &mut self.sim
+    }
+    fn step_frame(&mut self) -> Result<()> {
+        self.sim.step_frame()
+    }
+    fn step(&mut self) -> Result<()> {
+        self.sim.step()
+    }
+    fn reset(&mut self) -> Result<()> {
+        self.sim = Simulation::open(Ant::FILE)?.simulation;
+        Ok(())
+    }
+    fn key_down(&mut self, _: ars::Key) -> Result<()> {
+        Ok(())
+    }
+    fn key_up(&mut self, _: ars::Key) -> Result<()> {
+        Ok(())
+    }
+    fn wants_to_close(&mut self) -> bool {
+        self.seen.lock().unwrap().done
+    }
+    fn viewer_state(&mut self, state: &ars::viewer::ViewerState) {
+        let body = self.sim.scene().object("torso").and_then(|o| o.body().map(|b| (b.position(), b.quaternion())));
+        let mut seen = self.seen.lock().unwrap();
+        if let Ok((p, q)) = body {
+            (seen.torso, seen.rotation) = (p, q);
+        }
+        seen.time = self.sim.scene().time();
+        seen.frames += 1;
+        seen.state = Some(state.clone());
+    }
+}
+
+/// A person at the ant's window through xdotool, and what they see.
+struct AtTheAnt<'a> {
+    seen: &'a std::sync::Mutex<AntSeen>,
+    display: &'a str,
+    window: String,
+}
+
+impl AtTheAnt<'_> {
+    fn xdotool(&self, args: &[&str]) -> std::result::Result<String, String> {
+        let out =
+            Command::new("xdotool").args(args).env("DISPLAY", self.display).output().map_err(|e| e.to_string())?;
+        Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+    }
+    fn wait(&self, ms: u64) {
+        std::thread::sleep(Duration::from_millis(ms));
+    }
+    fn state(&self) -> ars::viewer::ViewerState {
+        self.seen.lock().unwrap().state.clone().unwrap_or_default()
+    }
+    fn torso(&self) -> Point3<f64> {
+        self.seen.lock().unwrap().torso
+    }
+    fn time(&self) -> f64 {
+        self.seen.lock().unwrap().time
+    }
+    fn move_to(&self, (x, y): (i64, i64)) -> std::result::Result<(), String> {
+        self.xdotool(&["mousemove", "--window", &self.window, &x.to_string(), &y.to_string()]).map(drop)
+    }
+    /// Where the world point `p` is in the window now.
+    fn on_screen(&self, p: &Point3<f64>) -> std::result::Result<(i64, i64), String> {
+        let (x, y) = self.state().window_point(p).ok_or("behind the camera")?;
+        Ok((x.round() as i64, y.round() as i64))
+    }
+    /// Where the torso is clicked and grabbed: near its top (a leg, toward the camera,
+    /// hides its centre).
+    fn torso_top(&self) -> std::result::Result<(i64, i64), String> {
+        self.on_screen(&(self.torso() + Vector3::y() * 0.15))
+    }
+    /// A click on the torso selects it.
+    fn select_the_torso(&self) -> std::result::Result<String, String> {
+        let at = self.torso_top()?;
+        self.move_to(at)?;
+        self.wait(300);
+        self.xdotool(&["click", "1"])?;
+        self.wait(700);
+        let name = self.state().selected.map(|s| s.name);
+        if name.as_deref() != Some("torso") {
+            return Err(format!("a click at {at:?} on the torso selected {name:?}"));
+        }
+        Ok(format!("click at {at:?}: the torso selected"))
+    }
+    /// Ctrl held, the left button dragged by (dx, dy) pixels from the torso and held
+    /// `hold` ms; returns the torso before and while held, and the state while held.
+    fn ctrl_drag(
+        &self,
+        (dx, dy): (i64, i64),
+        hold: u64,
+    ) -> std::result::Result<(Point3<f64>, Point3<f64>, ars::viewer::ViewerState), String> {
+        let p0 = self.torso();
+        let (x, y) = self.torso_top()?;
+        self.move_to((x, y))?;
+        self.wait(200);
+        self.xdotool(&["keydown", "ctrl"])?;
+        self.wait(100);
+        self.xdotool(&["mousedown", "1"])?;
+        self.wait(200);
+        for i in 1..=10 {
+            self.move_to((x + dx * i / 10, y + dy * i / 10))?;
+            self.wait(60);
+        }
+        self.wait(hold);
+        let (p1, during) = (self.torso(), self.state());
+        self.xdotool(&["mouseup", "1"])?;
+        self.wait(100);
+        self.xdotool(&["keyup", "ctrl"])?;
+        self.wait(200);
+        Ok((p0, p1, during))
+    }
+    /// A point over the editor beside its mass field (on the field's label), where the
+    /// pointer rests.
+    fn over_the_editor(&self) -> std::result::Result<(i64, i64), String> {
+        let field = self.state().field("mass").ok_or("no mass field in the editor")?;
+        Ok((((field[0] + field[2]) / 2.0) as i64 - 120, ((field[1] + field[3]) / 2.0) as i64))
+    }
+}
+
+/// Opens Gymnasium's ant in a window as `ars view` shows it, under Xvfb with no window
+/// manager, and lets a person act on it (`focus`: the person first gives the window
+/// the keyboard focus with xdotool, as the other window tests do); the window closes
+/// when they are done.
+fn with_the_ant(
+    focus: bool,
+    act: fn(&AtTheAnt) -> std::result::Result<Vec<String>, String>,
+) -> std::result::Result<bool, String> {
+    use std::sync::{Arc, Mutex};
+    if Command::new("xdotool").arg("version").output().is_err() {
+        return Err("xdotool is missing: install it (make deps)".into());
+    }
+    let Some((xvfb, display)) = xvfb_for_test()? else { return Ok(false) };
+    // SAFETY: this process runs this test alone, on its main thread, before any other
+    // thread starts.
+    unsafe { std::env::set_var("DISPLAY", &display) };
+    // SAFETY: as above (see a_person_selects_pulls_and_edits_a_body).
+    unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    let seen = Arc::new(Mutex::new(AntSeen::default()));
+    let person = {
+        let (seen, display) = (seen.clone(), display.clone());
+        std::thread::spawn(move || {
+            let acted = person_at_the_ant(&seen, &display, focus, act);
+            seen.lock().unwrap().done = true;
+            acted
+        })
+    };
+    let sim = Simulation::open(Ant::FILE).map_err(|e| e.to_string())?.simulation;
+    let mut ant = Ant { sim, seen };
+    // As `ars view tests/data/ant.xml` shows it.
+    let view = WindowSettings {
+        title: "ant".into(),
+        camera_position: Point3::new(3.0, 2.0, 3.0),
+        camera_target: Point3::new(0.0, 0.4, 0.0),
+        ..WindowSettings::default()
+    };
+    let window = ars::viewer::run_window(&mut ant, &view, Some(Duration::from_secs(40)));
+    let acted = person.join().map_err(|_| "the person's thread panicked".to_string());
+    stop_xvfb(xvfb);
+    window.map_err(|e| e.to_string())?;
+    for line in acted?? {
+        println!("  {line}");
+    }
+    Ok(true)
+}
+
+/// The person's side of [`with_the_ant`]: finds the window, waits for the ant to
+/// settle, and acts.
+fn person_at_the_ant(
+    seen: &std::sync::Mutex<AntSeen>,
+    display: &str,
+    focus: bool,
+    act: fn(&AtTheAnt) -> std::result::Result<Vec<String>, String>,
+) -> std::result::Result<Vec<String>, String> {
+    let mut person = AtTheAnt { seen, display, window: String::new() };
+    let found = person.xdotool(&["search", "--sync", "--name", "^ant$"])?;
+    person.window = found.lines().next().unwrap_or_default().to_string();
+    if person.window.is_empty() {
+        return Err("the window did not appear".into());
+    }
+    if focus {
+        person.xdotool(&["windowfocus", "--sync", &person.window])?;
+    }
+    let started = Instant::now();
+    while seen.lock().unwrap().state.is_none() {
+        if started.elapsed() > Duration::from_secs(30) {
+            return Err("the window drew no frame in 30 s".into());
+        }
+        person.wait(100);
+    }
+    // The ant falls onto its legs and the panels take their places.
+    person.wait(2000);
+    act(&person)
+}
+
+/// Under Xvfb with no window manager, nobody gives the window the keyboard focus (the
+/// user who found this drove `ars view` with xdotool and gave it none): a click selects
+/// the torso, and a Ctrl-drag 200 px up pulls it up by more than 0.3 m while the camera
+/// stays put. The window never saw Ctrl, and a plain drag turned the camera.
+fn a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus() -> std::result::Result<bool, String> {
+    with_the_ant(false, |person| {
+        let mut lines = vec![person.select_the_torso()?];
+        // The camera's view: where a point 2 m to the right of the one it looks at is
+        // drawn, from that one (the picture as a whole may shift, with the panels' size).
+        let seen_across = |state: &ars::viewer::ViewerState| {
+            let (a, b) = (Point3::new(0.0, 0.4, 0.0), Point3::new(1.5, 0.4, -1.5));
+            let ((ax, ay), (bx, by)) = (state.window_point(&a)?, state.window_point(&b)?);
+            Some((bx - ax, by - ay))
+        };
+        let before = seen_across(&person.state()).ok_or("the scene is behind the camera")?;
+        let (p0, p1, during) = person.ctrl_drag((0, -200), 1500)?;
+        let after = seen_across(&during).ok_or("the scene went behind the camera")?;
+        let turned = (after.0 - before.0).hypot(after.1 - before.1);
+        lines.push(format!(
+            "Ctrl-drag 200 px up: torso from {:.2?} to {:.2?}; the view turned by {turned:.1} px; drag line: {}",
+            p0.coords.as_slice(),
+            p1.coords.as_slice(),
+            during.drag.is_some()
+        ));
+        if p1.y - p0.y < 0.3 || turned > 1.0 || during.drag.is_none() {
+            return Err(lines.pop().unwrap());
+        }
+        Ok(lines)
+    })
+}
+
+/// Running, the editor's x, y, z, roll, pitch and yaw fields show the selected torso's
+/// pose, whole, as it moves (after a Ctrl-drag has thrown it off its rest): each field's
+/// text, as much of it as is drawn, reads as the pose of the same frame to the
+/// millimetre or thousandth of a degree, twice half a second apart. (The fields were
+/// 72 px wide and cut their text: "-0.20" for -0.207, "-93.8" for -93.878.)
+fn the_ant_s_pose_fields_show_its_pose_while_it_runs() -> std::result::Result<bool, String> {
+    with_the_ant(true, |person| {
+        let mut lines = vec![person.select_the_torso()?];
+        let (p0, p1, _) = person.ctrl_drag((120, -150), 1500)?;
+        if (p1 - p0).norm() < 0.2 {
+            return Err(format!("the Ctrl-drag moved the torso from {p0} to {p1} only"));
+        }
+        for _ in 0..2 {
+            person.wait(500);
+            let (torso, rotation, state) = {
+                let s = person.seen.lock().unwrap();
+                (s.torso, s.rotation, s.state.clone().unwrap_or_default())
+            };
+            if state.paused || state.selected.is_none() {
+                return Err("the ant should run with the torso selected".into());
+            }
+            let (roll, pitch, yaw) = rotation.euler_angles();
+            let pose = [torso.x, torso.y, torso.z, roll.to_degrees(), pitch.to_degrees(), yaw.to_degrees()];
+            let mut read = Vec::new();
+            for (label, value) in ["x", "y", "z", "roll", "pitch", "yaw"].into_iter().zip(pose) {
+                let text = state.field_text(label).ok_or_else(|| format!("no {label} field"))?;
+                read.push(format!("{label} {text:?} ({value:.4})"));
+                if !text.trim().parse::<f64>().is_ok_and(|v| (v - value).abs() <= 6e-4) {
+                    return Err(format!("running, the {label} field shows {text:?}; the torso's {label} is {value}"));
+                }
+            }
+            lines.push(format!("t = {:.2} s, the fields show the torso's pose: {}", person.time(), read.join(", ")));
+        }
+        Ok(lines)
+    })
+}
+
+/// Keys with no text field focused act wherever the pointer rests, over the editor too,
+/// in a window nobody gave the focus (as `ars view` was driven under Xvfb): `r` resets
+/// the ant (its clock goes back, the selection goes), Escape deselects the torso, and
+/// the window stays open.
+fn keys_act_with_the_pointer_over_the_ant_s_editor() -> std::result::Result<bool, String> {
+    with_the_ant(false, |person| {
+        let mut lines = vec![person.select_the_torso()?];
+        person.move_to(person.over_the_editor()?)?;
+        person.wait(500);
+        let before = person.time();
+        person.xdotool(&["key", "r"])?;
+        person.wait(700);
+        let (after, selected) = (person.time(), person.state().selected);
+        lines
+            .push(format!("r over the editor: clock {before:.2} s then {after:.2} s, selected {}", selected.is_some()));
+        if after >= before || selected.is_some() {
+            return Err(lines.pop().unwrap());
+        }
+        person.wait(1500);
+        lines.push(person.select_the_torso()?);
+        person.move_to(person.over_the_editor()?)?;
+        person.wait(500);
+        person.xdotool(&["key", "Escape"])?;
+        person.wait(700);
+        let frames = person.seen.lock().unwrap().frames;
+        person.wait(300);
+        if person.seen.lock().unwrap().frames == frames {
+            return Err("Escape over the editor closed the window".into());
+        }
+        if person.state().selected.is_some() {
+            return Err("Escape over the editor left the torso selected".into());
+        }
+        lines.push("Escape over the editor: nothing selected, the window open".into());
+        Ok(lines)
+    })
+}
+
 /// Runs one test and counts it (`threaded`: on a thread of its own, as off-screen
 /// rendering wants; windows stay on the main thread).
 fn run<T: Send + 'static>(
@@ -1405,6 +1730,11 @@ fn main() {
                 a_scene_saved_with_ctrl_s_goes_on_the_same_under_ars_view
             }
             "a_window_records_a_video" => a_window_records_a_video,
+            "a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus" => {
+                a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus
+            }
+            "the_ant_s_pose_fields_show_its_pose_while_it_runs" => the_ant_s_pose_fields_show_its_pose_while_it_runs,
+            "keys_act_with_the_pointer_over_the_ant_s_editor" => keys_act_with_the_pointer_over_the_ant_s_editor,
             other => panic!("no test {other}"),
         };
         match test() {
@@ -1480,6 +1810,27 @@ fn main() {
         &mut tally,
     );
     run("a_window_records_a_video", || in_own_process("a_window_records_a_video"), false, shown, &mut tally);
+    run(
+        "a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus",
+        || in_own_process("a_ctrl_drag_pulls_the_ant_in_a_window_given_no_focus"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "the_ant_s_pose_fields_show_its_pose_while_it_runs",
+        || in_own_process("the_ant_s_pose_fields_show_its_pose_while_it_runs"),
+        false,
+        shown,
+        &mut tally,
+    );
+    run(
+        "keys_act_with_the_pointer_over_the_ant_s_editor",
+        || in_own_process("keys_act_with_the_pointer_over_the_ant_s_editor"),
+        false,
+        shown,
+        &mut tally,
+    );
     let (passed, failed, skipped) = tally;
     println!("{passed} passed, {failed} failed, {skipped} skipped");
     if failed > 0 {

@@ -38,6 +38,8 @@ pub(crate) struct Panel {
     /// The editor's fields drawn last frame, by label, with their rectangles (window
     /// pixels).
     pub(crate) fields: Vec<(String, [f32; 4])>,
+    /// What each of those fields showed, by label: the characters drawn whole.
+    pub(crate) field_texts: Vec<(String, String)>,
     /// The joint the editor shows.
     joint: Option<JointId>,
     /// The error shown in red: the last edit refused, or a save that failed.
@@ -68,6 +70,7 @@ impl Default for Panel {
             editor_covers: None,
             typing: HashMap::new(),
             fields: Vec::new(),
+            field_texts: Vec::new(),
             joint: None,
             error: None,
             save_path: format!("./scene-{stamp}.json"),
@@ -146,6 +149,7 @@ impl Panel {
             self.covers = Some((rect, (screen.width(), screen.height())));
         }
         self.fields.clear();
+        self.field_texts.clear();
         let editor = egui::Window::new("Edit").anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0]).default_width(280.0);
         let edited = editor.show(ctx, |ui| self.editor(ui, sim, status, &mut commands));
         self.editor_covers = edited.map(|shown| {
@@ -409,7 +413,11 @@ impl Panel {
     /// from it, as [`number`](Self::number) says.
     fn field(&mut self, ui: &mut egui::Ui, label: &str, shown: String) -> Option<f64> {
         let text = self.typing.entry(label.to_string()).or_insert_with(|| shown.clone());
-        let response = ui.add(egui::TextEdit::singleline(text).desired_width(72.0)).on_hover_text(label);
+        // At least 72 px wide, and as wide as its text: a number cut to the field's
+        // width read as another number ("-0.20" of -0.207, "-93.8" of -93.878).
+        let output = egui::TextEdit::singleline(text).desired_width(72.0).clip_text(false).show(ui);
+        self.field_texts.push((label.to_string(), shown_text(&output)));
+        let response = output.response.response.on_hover_text(label);
         let r = response.rect;
         self.fields.push((label.to_string(), [r.min.x, r.min.y, r.max.x, r.max.y]));
         if response.lost_focus() {
@@ -565,6 +573,16 @@ fn format_number(v: f64) -> String {
 fn format_pose(v: f64) -> String {
     let s = format!("{v:.3}");
     if s == "-0.000" { "0.000".to_string() } else { s }
+}
+
+/// The characters a text field drew whole: those of its first line inside the
+/// rectangle its text is clipped to (a text wider than the field is cut there).
+fn shown_text(output: &egui::text_edit::TextEditOutput) -> String {
+    let (left, right) = (output.text_clip_rect.min.x, output.text_clip_rect.max.x);
+    let Some(row) = output.galley.rows.first() else { return String::new() };
+    let x0 = output.galley_pos.x + row.pos.x;
+    let inside = |g: &&egui::epaint::text::Glyph| x0 + g.pos.x >= left - 0.5 && x0 + g.max_x() <= right + 0.5;
+    row.row.glyphs.iter().filter(inside).map(|g| g.chr).collect()
 }
 
 /// The longest name the panel shows whole, in characters.

@@ -35,6 +35,7 @@ pub mod convert;
 mod driver;
 mod edit;
 mod error;
+mod focus;
 mod frames;
 mod gui;
 mod hand;

@@ -21,6 +21,7 @@ use crate::convert;
 use crate::driver::{Driver, Shown};
 use crate::edit::{Edit, apply_edit};
 use crate::error::Result;
+use crate::focus::Focus;
 use crate::gui;
 use crate::hand::{Hand, drag_mode, held_modifiers};
 use crate::layout;
@@ -78,6 +79,8 @@ pub(crate) struct Session<'a, D: Driver> {
     window: Window,
     shown: DrawnScene,
     hand: Hand,
+    /// The keyboard focus, taken where no window manager gives it.
+    focus: Focus,
     feedback: Feedback,
     views: Viewports,
     /// Where the extra views were drawn last (their clicks are not the scene's).
@@ -121,6 +124,7 @@ impl<'a, D: Driver> Session<'a, D> {
             window,
             shown,
             hand: Hand::default(),
+            focus: Focus::new(),
             feedback,
             views,
             view_covers: Vec::new(),
@@ -142,6 +146,7 @@ impl<'a, D: Driver> Session<'a, D> {
             if !self.render().await {
                 return Ok(());
             }
+            self.focus.shown();
             let wall = self.started.elapsed();
             self.report.frames += 1;
             // The first frame is drawn before the scene is (see `shown.update`).
@@ -228,6 +233,9 @@ impl<'a, D: Driver> Session<'a, D> {
                     event.inhibited = self.hand.grab.is_some() || self.dragging_with_modifier();
                 }
                 WindowEvent::MouseButton(MouseButton::Button1, action, modifiers) => {
+                    if action == Action::Press {
+                        self.focus.clicked();
+                    }
                     let (cursor, seen) = (self.hand.cursor, self.hand.ui_cursor);
                     let over_panel = layout::pointer_on_panel(cursor, seen, egui_pointer, &panels);
                     if !over_panel || self.hand.grab.is_some() {
@@ -519,6 +527,7 @@ impl<'a, D: Driver> Session<'a, D> {
             save_path: self.panel.save_path.clone().into(),
             saved: self.panel.saved.clone().map(Into::into),
             fields: self.panel.fields.clone(),
+            field_texts: self.panel.field_texts.clone(),
             window_size: (size.x, size.y),
             views: self.views.count,
             view_projection: view_projection(&self.shown.camera),

@@ -86,6 +86,9 @@ pub struct ViewerState {
     /// `"gravity y"`, `"time step"`…), with their rectangles `[left, top, right,
     /// bottom]` in window pixels.
     pub fields: Vec<(String, [f32; 4])>,
+    /// What each of those fields shows, by label: the characters drawn whole (a text
+    /// wider than its field would be cut).
+    pub field_texts: Vec<(String, String)>,
     /// The window's size, pixels.
     pub window_size: (f32, f32),
     /// How many views the window shows (1 to 4: keys `1`–`4`, see
@@ -110,6 +113,12 @@ impl ViewerState {
     /// The rectangle of the editor's field `label`, if drawn this frame.
     pub fn field(&self, label: &str) -> Option<[f32; 4]> {
         self.fields.iter().find(|(l, _)| l == label).map(|(_, r)| *r)
+    }
+
+    /// The text the editor's field `label` shows, if drawn this frame: as much of it as
+    /// is drawn whole.
+    pub fn field_text(&self, label: &str) -> Option<&str> {
+        self.field_texts.iter().find(|(l, _)| l == label).map(|(_, t)| t.as_str())
     }
 }
 
