@@ -111,8 +111,12 @@ fn a_z_up_robot_stands_up_in_the_y_up_simulation_with_its_limits_and_damping() {
 }
 
 fn load_error(text: &str) -> (String, String) {
+    load_error_with(text, &UrdfOptions::new())
+}
+
+fn load_error_with(text: &str, options: &UrdfOptions) -> (String, String) {
     let mut sim = Simulation::new().unwrap();
-    match sim.load_urdf_text(text, "bad.urdf", &UrdfOptions::new()) {
+    match sim.load_urdf_text(text, "bad.urdf", options) {
         Err(Error::Format { format: "URDF", file, element, problem, .. }) => {
             assert_eq!(file, "bad.urdf");
             assert_eq!(sim.scene().objects().count(), 0, "nothing added: {element}: {problem}");
@@ -165,9 +169,12 @@ fn bad_urdf_files_are_errors_naming_the_element() {
     assert_eq!(element, "robot");
     assert!(problem.contains("several root links (a, b)"), "{problem}");
 
-    // Found while building: an inertia no body has, and a mesh; nothing stays behind.
+    // Found while building: an inertia no body has (refused when asked to be strict;
+    // corrected otherwise, see below), and a mesh; nothing stays behind.
     let bad_inertia = r#"<link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>"#;
-    let (element, problem) = load_error(&robot(link("a", "1") + bad_inertia + &joint("j", "revolute", "a", "b")));
+    let strict = UrdfOptions::new().strict_inertia(true);
+    let (element, problem) =
+        load_error_with(&robot(link("a", "1") + bad_inertia + &joint("j", "revolute", "a", "b")), &strict);
     assert_eq!(element, r#"link "b""#);
     assert!(problem.contains("inertia"), "{problem}");
     let mesh = r#"<link name="b"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><mesh filename="b.stl"/></geometry></collision></link>"#;
@@ -428,4 +435,55 @@ fn massless_links_fixed_to_their_parent_are_merged_into_it() {
     assert!(sim.scene().joint(knuckle).unwrap().state().unwrap().position.abs() < 1e-6);
     let finger_after = sim.scene().object(finger).unwrap().position().unwrap();
     assert!((finger_after - finger_at).norm() < 1e-3, "{finger_after}");
+}
+
+/// Inertias no body can have, as public robot files carry them (a link given only
+/// its mass, products rounded into a negative moment, moments breaking the triangle
+/// inequality), load corrected with a line naming each link; the mass is the file's.
+#[test]
+fn inertias_no_body_can_have_are_corrected_and_said() {
+    let link = |name: &str, inertia: &str| {
+        format!(r#"<link name="{name}"><inertial><mass value="2"/><inertia {inertia}/></inertial></link>"#)
+    };
+    let joint = |name: &str, child: &str| {
+        format!(
+            r#"<joint name="{name}" type="revolute"><parent link="base"/><child link="{child}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>"#
+        )
+    };
+    let text = format!(
+        r#"<robot name="r">{}{}{}{}{}{}{}</robot>"#,
+        link("base", r#"ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0""#)
+            .replace("</link>", r#"<visual><geometry><sphere radius="0"/></geometry></visual></link>"#),
+        link("zeros", r#"ixx="0" iyy="0" izz="0" ixy="0" ixz="0" iyz="0""#),
+        link("rounded", r#"ixx="0.01" iyy="0.01" izz="0.02" ixy="0.0100001" ixz="0" iyz="0""#),
+        link("unbalanced", r#"ixx="1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0""#),
+        joint("j1", "zeros"),
+        joint("j2", "rounded"),
+        joint("j3", "unbalanced"),
+    );
+    let mut sim = Simulation::new().unwrap();
+    let robot = sim.load_urdf_text(&text, "wild.urdf", &UrdfOptions::new()).unwrap();
+    assert_eq!(robot.adjusted.len(), 4, "{:#?}", robot.adjusted);
+    // A visual with nothing to draw is skipped, not refused.
+    assert!(robot.adjusted[0].starts_with(r#"link "base": a <visual> Sphere"#), "{}", robot.adjusted[0]);
+    assert!(robot.adjusted[0].ends_with("has nothing to draw: skipped"), "{}", robot.adjusted[0]);
+    assert!(sim.scene().object("base").unwrap().visuals().is_empty(), "drawn as its collision shape");
+    for (line, name) in robot.adjusted[1..].iter().zip(["zeros", "rounded", "unbalanced"]) {
+        assert!(line.starts_with(&format!("link {name:?}: inertia balanced")), "{line}");
+    }
+    assert!(robot.adjusted[1].contains("solid sphere"), "{}", robot.adjusted[1]);
+    assert!(robot.adjusted[3].contains("their mean"), "{}", robot.adjusted[3]);
+    for name in ["zeros", "rounded", "unbalanced"] {
+        let body = sim.scene().object(name).unwrap().body_handle().unwrap();
+        assert_eq!(sim.scene().world().body(body).unwrap().mass(), 2.0, "{name}: the file's mass");
+    }
+    // The unbalanced link's moments are their mean, 0.4 each, as MuJoCo's balanceinertia.
+    let body = sim.scene().object("unbalanced").unwrap().body_handle().unwrap();
+    let i = sim.scene().world().body(body).unwrap().inertia();
+    assert!((i - ars::nalgebra::Matrix3::identity() * 0.4).amax() < 1e-12, "{i}");
+    sim.run_for(0.5).unwrap();
+    // Strict: refused, naming the first such link.
+    let (element, problem) = load_error_with(&text, &UrdfOptions::new().strict_inertia(true));
+    assert_eq!(element, r#"link "zeros""#);
+    assert!(problem.contains("positive definite"), "{problem}");
 }

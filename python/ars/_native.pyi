@@ -71,6 +71,7 @@ class _UrdfRobot(TypedDict):
     links: list[str]
     joints: list[str]
     base_joint: str | None
+    adjusted: list[str]
 
 class _ContactSurface(TypedDict):
     mu: float
@@ -240,6 +241,7 @@ class Simulation:
         packages: Mapping[str, _Path] | None = None,
         search_paths: Sequence[_Path] | None = None,
         ignore_visuals: bool = False,
+        strict_inertia: bool = False,
     ) -> _UrdfRobot: ...
     def remove_object(self, name: str) -> None: ...
     @property

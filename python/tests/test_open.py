@@ -62,3 +62,29 @@ def test_excluded_objects_pass_through_each_other():
     assert sim.excluded_contacts() == []
     with pytest.raises(ars.InputError, match="twice"):
         sim.exclude_contacts(ball, ball)
+
+
+WILD_URDF = """<robot name="wild">
+  <link name="base"><inertial><mass value="2"/>
+    <inertia ixx="0" iyy="0" izz="0" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><geometry><sphere radius="0"/></geometry></visual>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+</robot>"""
+
+
+def test_a_urdf_inertia_no_body_can_have_is_corrected_with_a_warning(tmp_path):
+    """A link given only its mass loads, its inertia a sphere of that mass, and the
+    correction and the skipped empty visual are each said; strict loading refuses."""
+    path = tmp_path / "wild.urdf"
+    path.write_text(WILD_URDF)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sim = ars.Simulation.open(path)
+    said = [str(w.message) for w in caught]
+    assert any(s.startswith('adjusted: link "base": inertia balanced') for s in said), said
+    assert any("has nothing to draw: skipped" in s for s in said), said
+    assert sim.body("base").mass == 2.0
+    robot = ars.Simulation().load_urdf(path)
+    assert len(robot["adjusted"]) == 2 and "solid sphere" in robot["adjusted"][1]
+    with pytest.raises(ars.FormatError, match="positive definite"):
+        ars.Simulation().load_urdf(path, strict_inertia=True)

@@ -254,7 +254,14 @@ impl Program for FileProgram {
     }
 
     fn create_sim_objects(&mut self, sim: &mut Simulation) -> ars::Result<()> {
-        sim.load_urdf(&self.path, &self.urdf).map(drop)
+        let robot = sim.load_urdf(&self.path, &self.urdf)?;
+        if let [first, ..] = robot.adjusted.as_slice() {
+            let n = robot.adjusted.len();
+            eprintln!(
+                "adjusted {n} item(s) of the file to load it (inertias no body can have, empty visuals); the first: {first}"
+            );
+        }
+        Ok(())
     }
 }
 

@@ -17,6 +17,7 @@ use nalgebra::{Matrix3, Rotation3, Vector3};
 use crate::error::Result;
 use crate::shape::Shape;
 
+mod balance;
 pub mod mesh;
 pub mod mjcf;
 pub mod open;

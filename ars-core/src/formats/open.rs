@@ -53,6 +53,9 @@ pub struct OpenedFile {
     /// What it holds that ARS skipped (MJCF elements it cannot read), said as
     /// sentences: empty for scene files and URDF robots.
     pub skipped: Vec<String>,
+    /// What ARS corrected to load it (a URDF link's inertia no body can have), said as
+    /// sentences naming what was corrected.
+    pub adjusted: Vec<String>,
 }
 
 impl OpenedFile {
@@ -118,12 +121,16 @@ impl Simulation {
     pub fn open_at(path: impl AsRef<Path>, base: Isometry3<f64>) -> Result<OpenedFile> {
         let path = path.as_ref();
         match FileFormat::of(path)? {
-            FileFormat::Scene => Ok(OpenedFile { simulation: Simulation::load_scene_from(path)?, skipped: Vec::new() }),
+            FileFormat::Scene => Ok(OpenedFile {
+                simulation: Simulation::load_scene_from(path)?,
+                skipped: Vec::new(),
+                adjusted: Vec::new(),
+            }),
             FileFormat::Urdf => {
                 let mut simulation =
                     Simulation::builder().space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0).build()?;
-                simulation.load_urdf(path, &UrdfOptions::new().base_pose(base))?;
-                Ok(OpenedFile { simulation, skipped: Vec::new() })
+                let robot = simulation.load_urdf(path, &UrdfOptions::new().base_pose(base))?;
+                Ok(OpenedFile { simulation, skipped: Vec::new(), adjusted: robot.adjusted })
             }
             FileFormat::Mjcf => {
                 let options = MjcfOptions::new().base_pose(base).skip_unsupported(true);
@@ -138,7 +145,7 @@ impl Simulation {
                 if let Some(gravity) = model.gravity {
                     simulation.scene_mut().world_mut().set_gravity(gravity)?;
                 }
-                Ok(OpenedFile { simulation, skipped: model.skipped })
+                Ok(OpenedFile { simulation, skipped: model.skipped, adjusted: Vec::new() })
             }
         }
     }
@@ -163,7 +170,8 @@ mod tests {
             format!("<geom> at line 14: margin {CONTACT_PARAMETERS_UNUSED}"),
             "<motor> at line 40: gear 150 is read as ...".to_string(),
         ];
-        let opened = |skipped: Vec<String>| OpenedFile { simulation: Simulation::new().unwrap(), skipped };
+        let opened =
+            |skipped: Vec<String>| OpenedFile { simulation: Simulation::new().unwrap(), skipped, adjusted: Vec::new() };
         assert_eq!(
             opened(skipped.to_vec()).skipped_summary().unwrap(),
             "skipped 3 unsupported MJCF items (contact parameters of 2 <geom>, 1 <motor>); \

@@ -12,9 +12,12 @@ use super::{PySimulation, Vec3};
 impl PySimulation {
     /// Loads a robot from a URDF file (Z up unless `y_up`; see the Rust
     /// `Scene::load_urdf` for the rules). Returns `{"name", "links", "joints",
-    /// "base_joint"}`, links and joints by their URDF names in file order.
+    /// "base_joint", "adjusted"}`, links and joints by their URDF names in file order;
+    /// `adjusted` says, a line per link, each inertia no body can have that was
+    /// corrected (refused instead with `strict_inertia=True`).
     #[pyo3(signature = (path, *, fixed_base=false, base_position=[0.0; 3], self_collision=false, y_up=false,
-                        initial_positions=None, packages=None, search_paths=None, ignore_visuals=false))]
+                        initial_positions=None, packages=None, search_paths=None, ignore_visuals=false,
+                        strict_inertia=false))]
     fn load_urdf<'py>(
         &self,
         py: Python<'py>,
@@ -27,8 +30,10 @@ impl PySimulation {
         packages: Option<HashMap<String, std::path::PathBuf>>,
         search_paths: Option<Vec<std::path::PathBuf>>,
         ignore_visuals: bool,
+        strict_inertia: bool,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let mut options = ars_core::UrdfOptions::new()
+            .strict_inertia(strict_inertia)
             .fixed_base(fixed_base)
             .self_collision(self_collision)
             .ignore_visuals(ignore_visuals)
@@ -51,14 +56,15 @@ impl PySimulation {
         for dir in search_paths.unwrap_or_default() {
             options = options.search_path(dir);
         }
-        let (name, links, joints, base) = self.with(py, move |sim| {
+        let (name, links, joints, base, adjusted) = self.with(py, move |sim| {
             let robot = sim.load_urdf(&path, &options)?;
             let base = robot.base_joint.map(|id| sim.scene().joint(id).map(|j| j.name().to_string())).transpose()?;
             let links: Vec<String> = robot.links.into_iter().map(|(n, _)| n).collect();
             let joints: Vec<String> = robot.joints.into_iter().map(|(n, _)| n).collect();
-            Ok((robot.name, links, joints, base))
+            Ok((robot.name, links, joints, base, robot.adjusted))
         })?;
         let dict = pyo3::types::PyDict::new(py);
+        dict.set_item("adjusted", adjusted)?;
         dict.set_item("name", name)?;
         dict.set_item("links", links)?;
         dict.set_item("joints", joints)?;
@@ -173,8 +179,9 @@ impl PySimulation {
     #[staticmethod]
     fn open(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         let opened = guarded(py, || Simulation::open(&path))?;
-        for skipped in &opened.skipped {
-            let message = std::ffi::CString::new(format!("skipped: {skipped}")).unwrap_or_default();
+        let said = opened.skipped.iter().map(|s| format!("skipped: {s}"));
+        for line in said.chain(opened.adjusted.iter().map(|a| format!("adjusted: {a}"))) {
+            let message = std::ffi::CString::new(line).unwrap_or_default();
             PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
         }
         Ok(PySimulation::wrap(opened.simulation))

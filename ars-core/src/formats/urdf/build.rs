@@ -375,7 +375,7 @@ impl Scene {
         if let Some(posed) = &plan.posed_link_frames {
             self.pose_urdf_links(robot, posed, &hosts, &made)?;
         }
-        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint })
+        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, adjusted: Vec::new() })
     }
 
     /// Makes the links that are not merged into another, with their colours; each link

@@ -15,6 +15,17 @@
 //!   one: its geometry and looks join that link's object, [`UrdfRobot::link`] gives that
 //!   object for its name, and its fixed joint is not made. Any other link needs a
 //!   positive mass.
+//! - **Inertia.** An inertia no body can have is corrected, with a line naming the link
+//!   in [`UrdfRobot::adjusted`], in the tensor's principal frame (mass and centre of
+//!   mass untouched): no positive moment at all (a link given only its mass) becomes a
+//!   solid sphere of its mass at water's density, `0.4 m r²` with `r = (3m / 4πρ)^⅓`;
+//!   a moment below a millionth of the largest (zero, or negative from rounded
+//!   products) is raised to that millionth; a moment above the sum of the other two
+//!   sets all three to their mean, as MuJoCo's `balanceinertia` does. With
+//!   [`UrdfOptions::strict_inertia`] such a file is refused instead, as before.
+//! - **Degenerate visuals.** A `<visual>` box, cylinder, capsule or sphere with a size
+//!   that is zero, negative or not finite has nothing to draw: it is skipped, with a
+//!   line in [`UrdfRobot::adjusted`]. (A collision element of that kind is refused.)
 //! - **Joints.** `revolute` and `continuous` become hinges, `prismatic` sliders,
 //!   `fixed` fixed joints, at the joint's origin and about its axis, with the URDF's
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
@@ -95,6 +106,10 @@ pub struct UrdfOptions {
     /// Draw the collision geometry rather than the `<visual>` elements (whose meshes
     /// are then not loaded at all).
     pub ignore_visuals: bool,
+    /// Refuse an inertia no body can have (not positive definite, or breaking the
+    /// triangle inequality) rather than correct it with a line in
+    /// [`UrdfRobot::adjusted`] (see [the module docs](self)).
+    pub strict_inertia: bool,
 }
 
 impl UrdfOptions {
@@ -150,6 +165,12 @@ impl UrdfOptions {
         self.search_paths.push(dir.into());
         self
     }
+    /// Refuse inertias no body can have rather than correct them.
+    #[must_use]
+    pub fn strict_inertia(mut self, strict: bool) -> Self {
+        self.strict_inertia = strict;
+        self
+    }
 }
 
 /// What a URDF file added to a scene.
@@ -163,6 +184,10 @@ pub struct UrdfRobot {
     pub joints: Vec<(String, JointId)>,
     /// The fixed joint holding the root to the world, with [`UrdfOptions::fixed_base`].
     pub base_joint: Option<JointId>,
+    /// What was corrected to load the file, a sentence each naming its link (an
+    /// inertia no body can have, unless [`UrdfOptions::strict_inertia`]; a visual with
+    /// nothing to draw, skipped).
+    pub adjusted: Vec<String>,
 }
 
 impl UrdfRobot {
@@ -227,14 +252,65 @@ impl UrdfFile {
     /// error nothing of it is left.
     pub fn insert(&self, sim: &mut Simulation, options: &UrdfOptions) -> Result<UrdfRobot> {
         let bad = |element: String, problem: String| format_error(&self.file, element, problem);
-        let plan = plan(&self.robot, options).map_err(|(element, problem)| bad(element, problem))?;
+        let (corrected, adjusted) = self.corrected(options);
+        let robot = corrected.as_ref().unwrap_or(&self.robot);
+        let plan = plan(robot, options).map_err(|(element, problem)| bad(element, problem))?;
         let base_dir = Path::new(&self.file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
         let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default() };
-        sim.scene.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
+        let mut made = sim.scene.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
-        })
+        })?;
+        made.adjusted = adjusted;
+        Ok(made)
     }
+
+    /// The robot with what ARS corrects corrected (see the [module docs](self)), if
+    /// anything was, and a line per correction: inertias no body can have (unless
+    /// [`UrdfOptions::strict_inertia`]) and visuals with nothing to draw.
+    fn corrected(&self, options: &UrdfOptions) -> (Option<urdf_rs::Robot>, Vec<String>) {
+        let mut robot = None;
+        let mut adjusted = Vec::new();
+        for (k, link) in self.robot.links.iter().enumerate() {
+            let degenerate = |v: &urdf_rs::Visual| degenerate(&v.geometry);
+            if link.visual.iter().any(degenerate) && !options.ignore_visuals {
+                for v in link.visual.iter().filter(|v| degenerate(v)) {
+                    adjusted.push(format!(
+                        "link {:?}: a <visual> {:?} has nothing to draw: skipped",
+                        link.name, v.geometry
+                    ));
+                }
+                robot.get_or_insert_with(|| self.robot.clone()).links[k].visual.retain(|v| !degenerate(v));
+            }
+            if options.strict_inertia {
+                continue;
+            }
+            let i = &link.inertial.inertia;
+            let tensor = crate::formats::inertia_tensor([i.ixx, i.iyy, i.izz, i.ixy, i.ixz, i.iyz]);
+            let Some(b) = crate::formats::balance::balance_inertia(link.inertial.mass.value, &tensor) else {
+                continue;
+            };
+            adjusted.push(format!("link {:?}: {}", link.name, b.note));
+            let fixed = &mut robot.get_or_insert_with(|| self.robot.clone()).links[k].inertial.inertia;
+            let m = b.inertia;
+            (fixed.ixx, fixed.iyy, fixed.izz) = (m[(0, 0)], m[(1, 1)], m[(2, 2)]);
+            (fixed.ixy, fixed.ixz, fixed.iyz) = (m[(0, 1)], m[(0, 2)], m[(1, 2)]);
+        }
+        (robot, adjusted)
+    }
+}
+
+/// Whether a primitive's sizes are not all finite and positive: a shape with nothing to
+/// draw (a mesh is checked when it is loaded).
+fn degenerate(geometry: &urdf_rs::Geometry) -> bool {
+    use urdf_rs::Geometry;
+    let sizes: Vec<f64> = match geometry {
+        Geometry::Box { size } => size.0.to_vec(),
+        Geometry::Cylinder { radius, length } | Geometry::Capsule { radius, length } => vec![*radius, *length],
+        Geometry::Sphere { radius } => vec![*radius],
+        Geometry::Mesh { .. } => Vec::new(),
+    };
+    sizes.iter().any(|x| !(x.is_finite() && *x > 0.0))
 }
 
 /// A problem of the URDF file `file` at `element`.
