@@ -1022,3 +1022,20 @@ fn a_moving_body_that_weighs_nothing_is_refused_as_mujoco_refuses_it() {
     let err = Simulation::new().unwrap().load_mjcf_text(text, "negative.xml", &MjcfOptions::new()).unwrap_err();
     assert!(err.to_string().contains("mass -1 must not be negative"), "{err}");
 }
+
+/// `<compiler inertiagrouprange>`: only geoms in those groups weigh (Meta-World's
+/// scenes keep visual walls in group 0 and weigh groups 4 and 5). Checked with MuJoCo 4:
+/// the wall body weighs 0 and is welded to the world, the puck 2 kg.
+#[test]
+fn only_geoms_in_the_inertia_group_range_weigh() {
+    let text = r#"<mujoco><compiler inertiagrouprange="4 5"/><worldbody>
+      <body name="wall"><geom type="box" size="1 0.1 0.1"/></body>
+      <body name="puck" pos="0 0 1"><freejoint/>
+        <geom type="sphere" size="0.1" group="1"/><geom type="box" size="0.1 0.1 0.1" mass="2" group="4"/>
+      </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(text, "groups.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.welded.iter().map(|w| w.body.as_str()).collect::<Vec<_>>(), ["wall"]);
+    assert_eq!(sim.scene().body(model.body("puck").unwrap()).unwrap().mass(), 2.0);
+    assert_eq!(sim.scene().object(model.body("puck").unwrap()).unwrap().geoms().count(), 2, "both still collide");
+}

@@ -72,7 +72,8 @@
 //!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
 //!   contacts take ARS's surfaces ([`Scene::set_contact_surface`](crate::Scene::set_contact_surface)).
 //! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
-//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`, `meshdir`,
+//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`,
+//!   `inertiagrouprange` (only geoms of those `group`s weigh), `meshdir`,
 //!   `assetdir`,
 //!   `settotalmass` (every body's mass and inertia scaled by one factor, as MuJoCo
 //!   does); `coordinate="global"` is refused.

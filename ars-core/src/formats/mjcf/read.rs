@@ -52,6 +52,9 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if mass.is_some_and(|m| m < 0.0) {
             return Err(problem(&node, "mass must not be negative"));
         }
+        // Outside `<compiler inertiagrouprange>`, a geom adds nothing to its body's mass.
+        let [low, high] = self.compiler.inertia_groups;
+        let mass = if (low..=high).contains(&a.number("group")?.unwrap_or(0.0)) { mass } else { Some(0.0) };
         let density = a.number("density")?.unwrap_or(1000.0);
         if density < 0.0 {
             return Err(problem(&node, "density must not be negative"));
@@ -672,6 +675,9 @@ fn read_compiler(node: roxmltree::Node<'_, '_>, compiler: &mut Compiler) -> Pars
             "false" => Some(false),
             _ => None,
         };
+    }
+    if let Some([low, high]) = (Attrs { node, class: None }).fixed::<2>("inertiagrouprange")? {
+        compiler.inertia_groups = [low, high];
     }
     if let Some(total) = node.attribute("settotalmass") {
         compiler.total_mass = match total.parse::<f64>() {
