@@ -817,3 +817,225 @@ fn option_flags_disable_contacts_and_gravity_and_others_are_said_unused() {
         weightless.skipped
     );
 }
+
+/// MuJoCo's world (x, y, z) in the simulation's frame: (x, z, −y).
+fn from_mujoco(x: f64, y: f64, z: f64) -> Vector3<f64> {
+    Vector3::new(x, z, -y)
+}
+
+/// A table that weighs nothing (a mass-0 geom) under the world, with a site, a cup of
+/// its own mass on it, and a ball falling onto it.
+const STATIC_TABLE: &str = r#"
+<mujoco model="table">
+  <worldbody>
+    <body name="table" pos="0 0 0.5">
+      <geom name="top" type="box" size="1 1 0.05" mass="0"/>
+      <site name="corner" pos="1 1 0.05"/>
+      <body name="cup" pos="0.5 0 0.1"><geom type="sphere" size="0.05"/></body>
+    </body>
+    <body name="ball" pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/></body>
+  </worldbody>
+</mujoco>"#;
+
+/// As MuJoCo welds it (checked with MuJoCo 4: body_mass 0, 0.5236, 4.1888, body_weldid
+/// of the table and the cup 0): a massless jointless body of the world is no object; its
+/// geom is a static one where MuJoCo has it, which a falling ball lands on; the cup on
+/// it keeps its own mass, fixed to the world; the masses sum to MuJoCo's.
+#[test]
+fn a_massless_body_of_the_world_is_welded_to_it_its_geoms_static() {
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(STATIC_TABLE, "table.xml", &MjcfOptions::new()).unwrap();
+    let names: Vec<&str> = model.bodies.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["cup", "ball"]);
+    assert_eq!(model.welded.len(), 1);
+    let table = &model.welded[0];
+    assert_eq!((table.body.as_str(), table.into.as_deref(), table.object), ("table", None, None));
+    assert!((table.offset.translation.vector - from_mujoco(0.0, 0.0, 0.5)).norm() < 1e-12);
+    assert_eq!(model.body("table"), None);
+    // Its geom: a static object at the table's place.
+    assert_eq!(model.world_geoms.len(), 1);
+    let top = sim.scene().object(model.world_geoms[0]).unwrap();
+    assert!(top.body_handle().is_none());
+    assert!((top.position().unwrap().coords - from_mujoco(0.0, 0.0, 0.5)).norm() < 1e-12);
+    // The cup: its own mass where MuJoCo has it, welded to the world.
+    let cup = sim.scene().body(model.body("cup").unwrap()).unwrap();
+    let sphere = |r: f64| 1000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    assert!((cup.mass() - sphere(0.05)).abs() < 1e-12);
+    assert!((cup.position().coords - from_mujoco(0.5, 0.0, 0.6)).norm() < 1e-12);
+    assert_eq!(sim.scene().joint("cup_weld").unwrap().objects(), (model.body("cup").unwrap(), None));
+    let total: f64 = model.bodies.iter().map(|(_, id)| sim.scene().body(*id).unwrap().mass()).sum();
+    assert!((total - 4.71238898038469).abs() < 1e-12, "MuJoCo's body_mass.sum(): {total}");
+    // The ball lands on the table top (z = 0.55) and rests there; the cup stays put.
+    sim.run_for(1.5).unwrap();
+    let ball = sim.scene().body(model.body("ball").unwrap()).unwrap().position();
+    assert!((ball.y - 0.65).abs() < 5e-3 && ball.x.abs() < 1e-6, "{ball}");
+    let cup = sim.scene().body(model.body("cup").unwrap()).unwrap().position();
+    assert!((cup.coords - from_mujoco(0.5, 0.0, 0.6)).norm() < 1e-3, "{cup}");
+}
+
+/// An arm whose hand hangs from a massless mount (a plate of mass 0, a site, turned 90°
+/// about Z), on a wrist of its own.
+const MOUNTED_HAND: &str = r#"
+<mujoco model="mount">
+  <option timestep="0.0005"/>
+  <worldbody>
+    <body name="arm" pos="0 0 1">
+      <joint name="shoulder" axis="0 1 0"/>
+      <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05"/>
+      <body name="mount" pos="0.5 0 0" euler="0 0 90">
+        <geom name="plate" type="box" size="0.03 0.03 0.01" mass="0"/>
+        <site name="tip" pos="0.1 0 0"/>
+        <body name="hand" pos="0.1 0 0">
+          <joint name="wrist" axis="1 0 0"/>
+          <geom type="sphere" size="0.05"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <framepos name="mount_at" objtype="xbody" objname="mount"/>
+    <framepos name="tip_at" objtype="site" objname="tip"/>
+  </sensor>
+</mujoco>"#;
+
+/// A massless mount between two moving bodies is merged into the arm's object: its
+/// plate rides on the arm's ODE body, its site and the sensor on its frame are placed
+/// through it, and the hand's wrist joins the hand to the arm. The arm swings as
+/// MuJoCo's (checked with MuJoCo 4, same step: after 0.3 s the shoulder is at 1.09669
+/// rad and the mount at (0.22976, 0, 0.55592)).
+#[test]
+fn a_massless_mount_between_moving_bodies_rides_on_its_parent() {
+    let mut sim = Simulation::builder().time_step(0.0005).build().unwrap();
+    let model = sim.load_mjcf_text(MOUNTED_HAND, "mount.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.timestep, Some(0.0005));
+    let names: Vec<&str> = model.bodies.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["arm", "hand"]);
+    let arm = model.body("arm").unwrap();
+    assert_eq!(model.body("mount"), Some(arm));
+    assert_eq!(model.welded[0].into.as_deref(), Some("arm"));
+    assert_eq!(sim.scene().joint("wrist").unwrap().objects(), (model.body("hand").unwrap(), Some(arm)));
+    assert!(sim.scene().joint("mount_weld").is_err(), "no fixed joint: no body to fix");
+    // The arm's object carries the capsule and the plate; its mass is the capsule's.
+    let capsule = 1000.0 * std::f64::consts::PI * 0.05f64.powi(2) * (0.5 + 4.0 / 3.0 * 0.05);
+    let body = sim.scene().body(arm).unwrap();
+    assert!((body.mass() - capsule).abs() < 1e-12, "{}", body.mass());
+    assert!((body.mass() - 4.45058959).abs() < 1e-8, "MuJoCo's body_mass of the arm");
+    let geoms: Vec<_> = sim.scene().object(arm).unwrap().geoms().collect();
+    assert_eq!(geoms.len(), 2);
+    let plate = |sim: &Simulation| sim.scene().world().geom(geoms[1]).unwrap().pose();
+    assert!((plate(&sim).translation.vector - from_mujoco(0.5, 0.0, 1.0)).norm() < 1e-12);
+    // The site: on the arm's object, where MuJoCo's is.
+    let tip = model.site("tip").unwrap();
+    assert_eq!((tip.body.as_str(), tip.object), ("mount", arm));
+    let at = sim.scene().pose(arm).unwrap() * ars::nalgebra::Point3::from(tip.offset.translation.vector);
+    assert!((at.coords - from_mujoco(0.5, 0.1, 1.0)).norm() < 1e-12, "{at}");
+
+    sim.run_for(0.3).unwrap();
+    let shoulder = sim.scene().joint("shoulder").unwrap().state().unwrap().position;
+    assert!((shoulder - 1.09669251).abs() < 2e-3, "{shoulder}");
+    let tables = sim.sensor_tables();
+    let last = |i: usize| {
+        let table = tables[i].1;
+        Vector3::from_iterator(table.cells(table.len() - 1).into_iter().map(|v| v.unwrap()))
+    };
+    let mount = from_mujoco(0.22976314, 0.0, 0.55591791);
+    assert!((last(0) - mount).norm() < 2e-3, "{}", last(0));
+    // The plate moved with the arm, at the mount's frame; the tip's site 0.1 m off it.
+    assert!((plate(&sim).translation.vector - last(0)).norm() < 1e-9);
+    assert!((last(1) - (mount + from_mujoco(0.0, 0.1, 0.0))).norm() < 2e-3, "{}", last(1));
+}
+
+/// A wheeled base whose free body weighs nothing (an <inertial> of mass 0): its
+/// jointless chassis carries the mass, a marker of mass 0 rides along, the wheel turns
+/// on a joint of its own.
+const MASSLESS_BASE: &str = r#"
+<mujoco model="base">
+  <worldbody>
+    <geom type="plane" size="5 5 0.1"/>
+    <body name="base" pos="0 0 0.5">
+      <freejoint/>
+      <inertial pos="0 0 0" mass="0" diaginertia="0 0 0"/>
+      <body name="chassis" pos="0.1 0 0"><geom type="box" size="0.2 0.1 0.05" mass="3"/></body>
+      <body name="marker" pos="0 0 0.1">
+        <inertial pos="0 0 0" mass="0" diaginertia="1e-3 1e-3 1e-3"/>
+        <geom type="sphere" size="0.01" contype="0" conaffinity="0"/>
+      </body>
+      <body name="wheel" pos="0.1 0.15 0">
+        <joint name="axle" axis="0 1 0"/>
+        <geom type="cylinder" size="0.05 0.02" mass="0.5" zaxis="0 1 0"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>"#;
+
+/// A zero-mass <inertial> is a massless body, as MuJoCo reads it (checked with MuJoCo
+/// 4: body_mass 0, 0, 3, 0, 0.5, summing to 3.5; chassis and marker welded to the
+/// base). A moving body that weighs nothing takes in its jointless children, their
+/// masses combined: the base's object weighs the chassis's 3 kg at the chassis's
+/// centre; the wheel keeps its own. The base falls and rests on the chassis and wheel.
+#[test]
+fn a_zero_mass_inertial_is_a_massless_body_and_a_moving_one_takes_in_its_welded_children() {
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(MASSLESS_BASE, "base.xml", &MjcfOptions::new()).unwrap();
+    let names: Vec<&str> = model.bodies.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["base", "wheel"]);
+    let welded: Vec<(&str, Option<&str>)> = model.welded.iter().map(|w| (w.body.as_str(), w.into.as_deref())).collect();
+    assert_eq!(welded, [("chassis", Some("base")), ("marker", Some("base"))]);
+    let base = sim.scene().body(model.body("base").unwrap()).unwrap();
+    assert_eq!(base.mass(), 3.0);
+    assert!((base.position().coords - from_mujoco(0.1, 0.0, 0.5)).norm() < 1e-12);
+    // The box's own inertia about its centre (m/3 (b² + c²), ...), in the object's
+    // frame, which is turned as the MJCF body.
+    let diagonal = base.inertia().diagonal();
+    assert!((diagonal - Vector3::new(0.0125, 0.0425, 0.05)).norm() < 1e-12, "{diagonal}");
+    let total: f64 = model.bodies.iter().map(|(_, id)| sim.scene().body(*id).unwrap().mass()).sum();
+    assert_eq!(total, 3.5, "MuJoCo's body_mass.sum()");
+    assert_eq!(sim.scene().joint("axle").unwrap().objects().1, model.body("base"));
+    sim.run_for(1.5).unwrap();
+    let at = sim.scene().body(model.body("base").unwrap()).unwrap().position();
+    assert!((at.y - 0.05).abs() < 5e-3, "the chassis rests on the floor: {at}");
+}
+
+/// MuJoCo refuses a moving body whose mass is in bodies that move on joints of their
+/// own, or whose own <inertial> weighs nothing ("mass and inertia of moving bodies must
+/// be larger than mjMINVAL", checked with MuJoCo 4); ARS too, naming the body, and
+/// leaves nothing behind.
+#[test]
+fn a_moving_body_that_weighs_nothing_is_refused_as_mujoco_refuses_it() {
+    let cases = [
+        r#"<body name="b"><joint/><body name="c" pos="1 0 0"><joint/><geom size=".1"/></body></body>"#,
+        r#"<body name="b"><joint/><inertial pos="0 0 0" mass="0" diaginertia="0 0 0"/><geom size=".1"/></body>"#,
+        r#"<body name="b"><joint type="slide"/><body name="m"><geom size=".1" mass="0"/></body></body>"#,
+        r#"<body name="b"><joint/><inertial pos="0 0 0" mass="1e-16" diaginertia="1 1 1"/></body>"#,
+    ];
+    for body in cases {
+        let text = format!("<mujoco><worldbody><geom type='plane' size='1 1 1'/>{body}</worldbody></mujoco>");
+        let mut sim = Simulation::new().unwrap();
+        let err = sim.load_mjcf_text(&text, "moving.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap_err();
+        let message = err.to_string();
+        assert!(message.contains("\"b\"") && message.contains("mjMINVAL"), "{message}");
+        assert_eq!(sim.scene().objects().count(), 0, "{message}");
+    }
+    // A negative mass is no MJCF body's.
+    let text =
+        r#"<mujoco><worldbody><body><inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/></body></worldbody></mujoco>"#;
+    let err = Simulation::new().unwrap().load_mjcf_text(text, "negative.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(err.to_string().contains("mass -1 must not be negative"), "{err}");
+}
+
+/// `<compiler inertiagrouprange>`: only geoms in those groups weigh (Meta-World's
+/// scenes keep visual walls in group 0 and weigh groups 4 and 5). Checked with MuJoCo 4:
+/// the wall body weighs 0 and is welded to the world, the puck 2 kg.
+#[test]
+fn only_geoms_in_the_inertia_group_range_weigh() {
+    let text = r#"<mujoco><compiler inertiagrouprange="4 5"/><worldbody>
+      <body name="wall"><geom type="box" size="1 0.1 0.1"/></body>
+      <body name="puck" pos="0 0 1"><freejoint/>
+        <geom type="sphere" size="0.1" group="1"/><geom type="box" size="0.1 0.1 0.1" mass="2" group="4"/>
+      </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(text, "groups.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.welded.iter().map(|w| w.body.as_str()).collect::<Vec<_>>(), ["wall"]);
+    assert_eq!(sim.scene().body(model.body("puck").unwrap()).unwrap().mass(), 2.0);
+    assert_eq!(sim.scene().object(model.body("puck").unwrap()).unwrap().geoms().count(), 2, "both still collide");
+}

@@ -5,10 +5,10 @@ use std::collections::HashMap;
 
 use nalgebra::{Isometry3, Matrix3, Translation3, Unit, UnitQuaternion, Vector3};
 
-use super::mass::{armature_inertia, at_least_ars_least_mass};
+use super::mass::{armature_inertia, at_least_ars_least_mass, find_body};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, Model};
 use super::read::read;
-use super::{CHAIN_LINK_FRACTION, MjcfModel, MjcfOptions};
+use super::{CHAIN_LINK_FRACTION, MjcfModel, MjcfOptions, MjcfWeld};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
@@ -96,6 +96,7 @@ impl Scene {
         for body in &model.bodies {
             self.add_mjcf_body(body, &world, None, made, &mut named)?;
         }
+        made.welded = welds(model, &world, made)?;
         for (k, (a, b)) in model.pairs.iter().enumerate() {
             let unknown = |name: &str| Error::Invalid {
                 what: "an MJCF contact pair",
@@ -114,15 +115,7 @@ impl Scene {
             self.world.geom_mut(second)?.set_collide_bits(collide);
         }
         self.place_mjcf_sensors(model, made)?;
-        for (a, b) in &model.excluded {
-            let body = |name: &str| {
-                made.body(name).ok_or_else(|| Error::Invalid {
-                    what: "an MJCF contact exclusion",
-                    problem: format!("names the body {name:?}, which the model does not have"),
-                })
-            };
-            self.exclude_contacts(body(a)?, body(b)?)?;
-        }
+        self.exclude_mjcf_contacts(model, made)?;
         for a in &model.actuators {
             let joint = made.joint(&a.joint).ok_or_else(|| Error::Invalid {
                 what: "an MJCF actuator",
@@ -139,6 +132,31 @@ impl Scene {
                 what: "an MJCF actuator",
                 problem: format!("{:?} on the joint {:?}: {e}", a.name, a.joint),
             })?;
+        }
+        Ok(())
+    }
+
+    /// `<contact><exclude>`: each pair of bodies (their objects) never touch.
+    fn exclude_mjcf_contacts(&mut self, model: &Model, made: &mut MjcfModel) -> Result<()> {
+        for (a, b) in &model.excluded {
+            let body = |name: &str| match made.body(name) {
+                Some(id) => Ok(Some(id)),
+                // Welded to the world: its geoms are static objects.
+                None if made.welded.iter().any(|w| w.body == name) => Ok(None),
+                None => Err(Error::Invalid {
+                    what: "an MJCF contact exclusion",
+                    problem: format!("names the body {name:?}, which the model does not have"),
+                }),
+            };
+            match (body(a)?, body(b)?) {
+                // Two bodies merged into one object never touch.
+                (Some(x), Some(y)) if x == y => {}
+                (Some(x), Some(y)) => self.exclude_contacts(x, y)?,
+                _ => made.skipped.push(format!(
+                    "<exclude> of {a:?} and {b:?}: a body welded to the world (its geoms static) is not \
+                     excluded from contacts"
+                )),
+            }
         }
         Ok(())
     }
@@ -322,6 +340,25 @@ impl Scene {
     }
 }
 
+/// Where each body merged into another (or into the world) went.
+fn welds(model: &Model, world: &Isometry3<f64>, made: &MjcfModel) -> Result<Vec<MjcfWeld>> {
+    let mut welds = Vec::new();
+    for w in &model.welded {
+        let (object, offset) = match &w.into {
+            None => (None, world * w.frame),
+            Some(into) => {
+                let body = find_body(&model.bodies, &|b| &b.name == into);
+                let (body, object) = body
+                    .zip(made.body(into))
+                    .ok_or_else(|| body_error(format!("{:?} was welded into {into:?}, which was not made", w.name)))?;
+                (Some(object), Isometry3::from(-body.centre_of_mass()) * w.frame)
+            }
+        };
+        welds.push(MjcfWeld { body: w.name.clone(), into: w.into.clone(), object, offset });
+    }
+    Ok(welds)
+}
+
 /// The masses of an MJCF body and of the light links chaining its joints, each at
 /// least ARS's least mass.
 struct BodyMasses {
@@ -343,9 +380,18 @@ struct BodyMasses {
 /// armatures; what is raised to ARS's least mass or added by an armature is noted in
 /// `made`.
 fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
-    let (mass, com, inertia) = body
-        .mass
-        .ok_or_else(|| body_error(format!("{:?} has no mass (no inertial and no geom with mass)", body.name)))?;
+    // Jointless bodies without mass were merged into their parent (`weld`): a body
+    // still without one moves, as one lighter than MuJoCo's least, which MuJoCo refuses.
+    let (mass, com, inertia) = body.mass.unwrap_or((0.0, Vector3::zeros(), Matrix3::zeros()));
+    if !body.joints.is_empty() && (mass < MJ_MINVAL || inertia.trace() < MJ_MINVAL) {
+        return Err(body_error(format!(
+            "{:?} moves (it has joints) but its mass {mass:e} kg or its inertia (trace {:e} kg·m²), with its \
+             jointless children's, is below {MJ_MINVAL:e}: mass and inertia of moving bodies must be larger \
+             than mjMINVAL, as MuJoCo refuses it too (a body's mass is its <inertial>, else its geoms')",
+            body.name,
+            inertia.trace()
+        )));
+    }
     let (link_mass, link_inertia) = if body.joints.len() > 1 {
         let what = format!("the light links chaining {:?}", body.name);
         at_least_ars_least_mass(&what, mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION, &mut made.skipped)
@@ -379,6 +425,9 @@ fn joint_armature(object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>, m
     }
     added
 }
+
+/// MuJoCo's `mjMINVAL`: the least mass and inertia (trace) of a moving body.
+const MJ_MINVAL: f64 = 1e-15;
 
 /// A problem with an MJCF body.
 fn body_error(problem: String) -> Error {

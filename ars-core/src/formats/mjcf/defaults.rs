@@ -18,6 +18,8 @@ pub(super) struct Compiler {
     pub(super) autolimits: bool,
     /// `inertiafromgeom`: Some(true) always, Some(false) never, None when no inertial.
     pub(super) from_geom: Option<bool>,
+    /// `inertiagrouprange`: the geom groups whose geoms make up their bodies' masses.
+    pub(super) inertia_groups: [f64; 2],
     /// `settotalmass`: every body's mass and inertia scaled so that they add up to it.
     pub(super) total_mass: Option<f64>,
     /// `meshdir` (else `assetdir`): where mesh files are, relative to the model's folder.
@@ -32,6 +34,7 @@ impl Default for Compiler {
             extrinsic: false,
             autolimits: true,
             from_geom: None,
+            inertia_groups: [0.0, 5.0],
             total_mass: None,
             meshdir: None,
         }

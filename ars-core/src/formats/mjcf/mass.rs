@@ -170,3 +170,19 @@ pub(super) fn at_least_ars_least_mass(
         (mass, inertia)
     }
 }
+
+/// The sum of the bodies' masses, their children's included.
+pub(super) fn total_mass(bodies: &[Body]) -> f64 {
+    bodies.iter().map(|b| b.mass.map_or(0.0, |m| m.0) + total_mass(&b.children)).sum()
+}
+
+/// Scales every body's mass and inertia (its children's too) by `factor`.
+pub(super) fn scale_masses(bodies: &mut [Body], factor: f64) {
+    for b in bodies {
+        if let Some((mass, _, inertia)) = b.mass.as_mut() {
+            *mass *= factor;
+            *inertia *= factor;
+        }
+        scale_masses(&mut b.children, factor);
+    }
+}

@@ -24,7 +24,16 @@
 //!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
 //!   when one's type meets the other's affinity).
 //! - **Joints.** `hinge` (a hinge), `slide` (a slider), `ball`, `free` (a free body); a
-//!   body without joints is fixed to its parent. `range` (with `limited`, or
+//!   body without joints is welded to its parent, as in MuJoCo: one with mass is an
+//!   object of its own fixed to its parent's (its mass MuJoCo's `body_mass`); one
+//!   without (a frame, a mount, a static prop: no `<inertial>` or one of mass 0, no geom
+//!   with mass) is no object: its geoms go onto its parent's object at their offsets
+//!   (static geoms when it is welded to the world), its sites and children are placed
+//!   through it, and [`MjcfModel::welded`] says where it went. A moving body (one with
+//!   joints) that weighs nothing takes in its jointless descendants, their masses
+//!   combined (MuJoCo's rigid body of welded bodies); when they weigh nothing either
+//!   (its mass is in bodies that move on joints of their own), it is refused, as MuJoCo
+//!   refuses it ("mass and inertia of moving bodies must be larger than mjMINVAL"). `range` (with `limited`, or
 //!   `<compiler autolimits>`, on by default) becomes stops, `damping` viscous friction
 //!   (explicit, from the rate at the start of the step: stable while `damping · dt`
 //!   stays below the inertia it acts on).
@@ -63,7 +72,8 @@
 //!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
 //!   contacts take ARS's surfaces ([`Scene::set_contact_surface`](crate::Scene::set_contact_surface)).
 //! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
-//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`, `meshdir`,
+//! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`,
+//!   `inertiagrouprange` (only geoms of those `group`s weigh), `meshdir`,
 //!   `assetdir`,
 //!   `settotalmass` (every body's mass and inertia scaled by one factor, as MuJoCo
 //!   does); `coordinate="global"` is refused.
@@ -138,6 +148,7 @@ mod problem;
 mod read;
 mod schema;
 mod sensors;
+mod weld;
 
 /// How an MJCF model is loaded.
 #[derive(Clone, Debug)]
@@ -194,8 +205,12 @@ pub struct MjcfActuator {
 pub struct MjcfModel {
     /// The model's name (`<mujoco model>`).
     pub name: String,
-    /// Every body, by name, in the file's order.
+    /// Every body made an object, by name, in the file's order (not those in
+    /// [`welded`](Self::welded)).
     pub bodies: Vec<(String, ObjectId)>,
+    /// The massless jointless bodies merged into the body they are welded to (or into
+    /// the world), in the file's order (see the module docs).
+    pub welded: Vec<MjcfWeld>,
     /// Every joint made, by name.
     pub joints: Vec<(String, JointId)>,
     /// The static geoms of the world body.
@@ -220,15 +235,31 @@ pub struct MjcfModel {
     pub sites: Vec<MjcfSite>,
 }
 
+/// A massless jointless body of the file merged into the body it is welded to: it is
+/// no object of its own.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MjcfWeld {
+    /// Its name.
+    pub body: String,
+    /// The body whose object holds its geoms, by name; `None`: the world (its geoms
+    /// are static objects, in [`MjcfModel::world_geoms`]).
+    pub into: Option<String>,
+    /// That body's object.
+    pub object: Option<ObjectId>,
+    /// Its frame relative to that object's (the body's centre of mass, turned as the
+    /// body), or its pose in the simulation when welded to the world.
+    pub offset: Isometry3<f64>,
+}
+
 /// A `<site>` of a body: a frame fixed on it (where sensors sit) and the volume a
 /// `touch` sensor feels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MjcfSite {
     /// Its name.
     pub name: String,
-    /// The body it is on, by name.
+    /// The body it is on, by name (in the file: a body in [`MjcfModel::welded`] too).
     pub body: String,
-    /// The body's object.
+    /// The body's object (for a body welded into another, that one's).
     pub object: ObjectId,
     /// The site's frame relative to the object's: ARS keeps a body's frame at its centre
     /// of mass, turned as the MJCF body, so this is the site's `pos` and orientation in
@@ -302,9 +333,11 @@ pub const RANGEFINDER_LENGTH: f64 = 1e4;
 const SITE_SIZE: f64 = 0.005;
 
 impl MjcfModel {
-    /// The object of a body, by name.
+    /// The object of a body, by name: its own, or for a body in
+    /// [`welded`](Self::welded) the object it was merged into (`None` for the world).
     pub fn body(&self, name: &str) -> Option<ObjectId> {
-        self.bodies.iter().find(|(n, _)| n == name).map(|(_, id)| *id)
+        let own = self.bodies.iter().find(|(n, _)| n == name).map(|(_, id)| *id);
+        own.or_else(|| self.welded.iter().find(|w| w.body == name).and_then(|w| w.object))
     }
     /// A joint, by name.
     pub fn joint(&self, name: &str) -> Option<JointId> {

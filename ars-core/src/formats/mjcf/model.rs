@@ -85,6 +85,14 @@ pub(super) struct Body {
     pub(super) principal: Option<UnitQuaternion<f64>>,
 }
 
+impl Body {
+    /// Its centre of mass in its frame (its origin when it weighs nothing): where its
+    /// object's frame is.
+    pub(super) fn centre_of_mass(&self) -> Vector3<f64> {
+        self.mass.map_or(Vector3::zeros(), |(_, com, _)| com)
+    }
+}
+
 /// A named `<site>`.
 #[derive(Clone, Debug)]
 pub(super) struct Site {
@@ -92,6 +100,25 @@ pub(super) struct Site {
     /// Relative to its body.
     pub(super) frame: Isometry3<f64>,
     pub(super) zone: TouchZone,
+    /// The massless body it was read in, when that body was welded into the one that
+    /// holds it now (see [`Welded`]).
+    pub(super) welded_from: Option<String>,
+}
+
+/// A jointless body merged into the body it is welded to (or into the world), as
+/// MuJoCo welds it: its geoms, sites and children went there (see
+/// [`weld_jointless`](super::weld::weld_jointless)).
+#[derive(Clone, Debug)]
+pub(super) struct Welded {
+    pub(super) name: String,
+    /// The body that holds its geoms now; `None`: the world (its geoms are static).
+    pub(super) into: Option<String>,
+    /// Its frame relative to `into`'s (or to the model's world frame).
+    pub(super) frame: Isometry3<f64>,
+    /// Its own mass (in its frame), when it had one (merged into a massless moving body).
+    pub(super) mass: Option<(f64, Vector3<f64>, Matrix3<f64>)>,
+    /// Its `<inertial>`'s turn, as [`Body::principal`].
+    pub(super) principal: Option<UnitQuaternion<f64>>,
 }
 
 /// Everything read from the file before anything is built.
@@ -110,7 +137,9 @@ pub(super) struct Model {
     pub(super) sensors: Vec<MjcfSensor>,
     /// Where each sensor is in the file (for errors found once the whole file is read).
     pub(super) sensor_places: Vec<Problem>,
-    /// The sites of the world body, by name.
+    /// The sites of the world body (and of the bodies welded into it), by name.
     pub(super) world_sites: Vec<String>,
+    /// The jointless bodies merged into others, in the file's order.
+    pub(super) welded: Vec<Welded>,
     pub(super) skipped: Vec<String>,
 }

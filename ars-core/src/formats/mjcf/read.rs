@@ -9,7 +9,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 use super::MAX_CONTACT_PAIRS;
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
 use super::include::{Files, Includes, Tree, gather};
-use super::mass::mass_of_geoms;
+use super::mass::{mass_of_geoms, scale_masses, total_mass};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
 use super::{CONTACT_PARAMETERS_UNUSED, MjcfActuator, MjcfOptions, SITE_SIZE};
@@ -52,6 +52,9 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if mass.is_some_and(|m| m < 0.0) {
             return Err(problem(&node, "mass must not be negative"));
         }
+        // Outside `<compiler inertiagrouprange>`, a geom adds nothing to its body's mass.
+        let [low, high] = self.compiler.inertia_groups;
+        let mass = if (low..=high).contains(&a.number("group")?.unwrap_or(0.0)) { mass } else { Some(0.0) };
         let density = a.number("density")?.unwrap_or(1000.0);
         if density < 0.0 {
             return Err(problem(&node, "density must not be negative"));
@@ -225,7 +228,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             Some(always) => always,
             None => inertial.is_none(),
         };
-        body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial };
+        body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial.filter(|m| m.0 > 0.0) };
         body.principal = if from_geoms { None } else { principal };
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
@@ -298,7 +301,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 return Ok(None);
             }
         };
-        Ok(Some(Site { name: name.to_string(), frame: frame(&a, &self.compiler)?, zone }))
+        Ok(Some(Site { name: name.to_string(), frame: frame(&a, &self.compiler)?, zone, welded_from: None }))
     }
 
     /// The turn of an `<inertial>`'s principal axes from its body's frame: its
@@ -369,8 +372,9 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
     ) -> Parsed<(f64, Vector3<f64>, Matrix3<f64>)> {
         let a = Attrs::new(node, self.defaults, class);
         let mass = a.number("mass")?.ok_or_else(|| problem(&node, "needs a mass"))?;
-        if mass <= 0.0 {
-            return Err(problem(&node, format!("mass {mass} must be positive")));
+        // A zero mass is a massless body, as MuJoCo reads it (welded, or refused if it moves).
+        if mass < 0.0 {
+            return Err(problem(&node, format!("mass {mass} must not be negative")));
         }
         let frame = frame(&a, &self.compiler)?;
         let local = match (a.fixed::<3>("diaginertia")?, a.fixed::<6>("fullinertia")?) {
@@ -528,11 +532,13 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         sensors: Vec::new(),
         sensor_places: Vec::new(),
         world_sites: Vec::new(),
+        welded: Vec::new(),
         skipped: Vec::new(),
     };
     for &node in &nodes {
         reader.section(node, &mut model)?;
     }
+    super::weld::weld_jointless(&mut model);
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
     model.skipped.extend(flags_unused);
@@ -670,6 +676,9 @@ fn read_compiler(node: roxmltree::Node<'_, '_>, compiler: &mut Compiler) -> Pars
             _ => None,
         };
     }
+    if let Some([low, high]) = (Attrs { node, class: None }).fixed::<2>("inertiagrouprange")? {
+        compiler.inertia_groups = [low, high];
+    }
     if let Some(total) = node.attribute("settotalmass") {
         compiler.total_mass = match total.parse::<f64>() {
             Ok(m) if m > 0.0 && m.is_finite() => Some(m),
@@ -710,22 +719,6 @@ fn material_colors(nodes: &[roxmltree::Node<'_, '_>], defaults: &Defaults) -> Pa
         }
     }
     Ok(materials)
-}
-
-/// The sum of the bodies' masses, their children's included.
-fn total_mass(bodies: &[Body]) -> f64 {
-    bodies.iter().map(|b| b.mass.map_or(0.0, |m| m.0) + total_mass(&b.children)).sum()
-}
-
-/// Scales every body's mass and inertia (its children's too) by `factor`.
-fn scale_masses(bodies: &mut [Body], factor: f64) {
-    for b in bodies {
-        if let Some((mass, _, inertia)) = b.mass.as_mut() {
-            *mass *= factor;
-            *inertia *= factor;
-        }
-        scale_masses(&mut b.children, factor);
-    }
 }
 
 impl<'a, 'input> Reader<'_, 'a, 'input> {

@@ -1,7 +1,7 @@
 //! MJCF sensors: read and checked against the model, placed on what was built, and
 //! made as ARS sensors.
 
-use nalgebra::{Isometry3, Translation3, Vector3};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use super::defaults::Attrs;
 use super::mass::find_body;
@@ -76,7 +76,6 @@ impl Reader<'_, '_, '_> {
             let at = |text: String| Problem { text, ..place.clone() };
             let missing =
                 || at(format!("reads the {} {:?}, which the model does not have", sensor.objtype, sensor.target));
-            let body = |name: &str| find_body(&model.bodies, &|b| b.name == name);
             let unsupported = match sensor.objtype.as_str() {
                 "joint" => {
                     find_body(&model.bodies, &|b| b.joints.iter().any(|j| j.name == sensor.target))
@@ -90,12 +89,23 @@ impl Reader<'_, '_, '_> {
                     }
                     None => return Err(missing()),
                 },
-                _ => match body(&sensor.target).ok_or_else(missing)? {
-                    b if sensor.kind == "framequat" && sensor.objtype == "body" && b.principal.is_none() => Some(
-                        "a framequat of a body's inertial frame when its <inertial> gives no diaginertia (the \
+                _ => match frame_of(model, &sensor.target).ok_or_else(missing)? {
+                    (_, None) => Some(format!("a {} of a body welded to the world (its geoms static)", sensor.kind)),
+                    _ if sensor.objtype == "body"
+                        && model.welded.iter().any(|w| w.name == sensor.target && w.mass.is_none()) =>
+                    {
+                        Some(format!(
+                            "a {} of a massless body's inertial frame (objtype=\"xbody\" reads its frame)",
+                            sensor.kind
+                        ))
+                    }
+                    (principal, _) if sensor.kind == "framequat" && sensor.objtype == "body" && principal.is_none() => {
+                        Some(
+                            "a framequat of a body's inertial frame when its <inertial> gives no diaginertia (the \
                          principal axes MuJoCo computes are not read; objtype=\"xbody\" reads the body's frame)"
-                            .to_string(),
-                    ),
+                                .to_string(),
+                        )
+                    }
                     _ => None,
                 },
             };
@@ -118,11 +128,11 @@ impl Scene {
                 let object = made.body(&body.name).ok_or_else(|| unknown_target(&body.name))?;
                 // From the body's frame to the object's (at the centre of mass, turned
                 // as the body).
-                let com = body.mass.map_or(Vector3::zeros(), |(_, com, _)| com);
+                let com = body.centre_of_mass();
                 for site in &body.sites {
                     made.sites.push(MjcfSite {
                         name: site.name.clone(),
-                        body: body.name.clone(),
+                        body: site.welded_from.clone().unwrap_or_else(|| body.name.clone()),
                         object,
                         offset: Isometry3::from(-com) * site.frame,
                         zone: site.zone,
@@ -143,15 +153,26 @@ impl Scene {
                     Some(Mount::Object(site.object, site.offset))
                 }
                 objtype => {
-                    let body = find_body(&model.bodies, &|b| b.name == sensor.target);
-                    let (body, object) =
-                        body.zip(made.body(&sensor.target)).ok_or_else(|| unknown_target(&sensor.target))?;
-                    let offset = if objtype == "xbody" {
-                        Isometry3::from(-body.mass.map_or(Vector3::zeros(), |(_, com, _)| com))
-                    } else {
-                        Isometry3::from_parts(Translation3::identity(), body.principal.unwrap_or_default())
+                    let object = made.body(&sensor.target).ok_or_else(|| unknown_target(&sensor.target))?;
+                    // The frame of the body's object in the body's, and the body's in
+                    // the one holding it (itself, unless it was welded into another).
+                    let (body, frame) = match model.welded.iter().find(|w| w.name == sensor.target) {
+                        Some(w) => {
+                            let into = w.into.as_deref().unwrap_or_default();
+                            (find_body(&model.bodies, &|b| b.name == into), w.frame)
+                        }
+                        None => (find_body(&model.bodies, &|b| b.name == sensor.target), Isometry3::identity()),
                     };
-                    Some(Mount::Object(object, offset))
+                    let body = body.ok_or_else(|| unknown_target(&sensor.target))?;
+                    let (principal, _) =
+                        frame_of(model, &sensor.target).ok_or_else(|| unknown_target(&sensor.target))?;
+                    let own = if objtype == "xbody" {
+                        Isometry3::identity()
+                    } else {
+                        let com = mass_centre(model, &sensor.target);
+                        Isometry3::from_parts(Translation3::from(com), principal.unwrap_or_default())
+                    };
+                    Some(Mount::Object(object, Isometry3::from(-body.centre_of_mass()) * frame * own))
                 }
             };
         }
@@ -208,6 +229,24 @@ impl crate::Simulation {
             model.sensors[i].id = Some(id);
         }
         Ok(model)
+    }
+}
+
+/// A body's `<inertial>` turn (when known) and the body it is made in (itself, or the
+/// one it was welded into; `Some(None)`: the world), by name; `None` if there is none.
+fn frame_of(model: &Model, name: &str) -> Option<(Option<UnitQuaternion<f64>>, Option<String>)> {
+    if let Some(b) = find_body(&model.bodies, &|b| b.name == name) {
+        return Some((b.principal, Some(b.name.clone())));
+    }
+    let w = model.welded.iter().find(|w| w.name == name)?;
+    Some((w.principal, w.into.clone()))
+}
+
+/// A body's own centre of mass in its frame (welded or not; its origin when massless).
+fn mass_centre(model: &Model, name: &str) -> Vector3<f64> {
+    match model.welded.iter().find(|w| w.name == name) {
+        Some(w) => w.mass.map_or(Vector3::zeros(), |(_, com, _)| com),
+        None => find_body(&model.bodies, &|b| b.name == name).map_or(Vector3::zeros(), Body::centre_of_mass),
     }
 }
 

@@ -1,0 +1,135 @@
+//! Jointless bodies welded as MuJoCo welds them: a body without joints moves with its
+//! parent (MuJoCo's `body_weldid`). One that weighs nothing (a frame, a mount, a static
+//! prop of the world body) cannot be an ODE body of its own: it is merged into the body
+//! it is welded to (its geoms at their offsets on that body's ODE body, its sites and
+//! children placed through it), or into the world (its geoms static). Jointless bodies
+//! with mass stay ODE bodies of their own, fixed to their parent, with their own mass
+//! (each body's mass is MuJoCo's `body_mass`); except under a moving body that weighs
+//! nothing itself (MuJoCo's mass is then in its welded children): that body takes them
+//! all in, their masses combined, as MuJoCo's rigid body of welded bodies.
+
+use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
+
+use super::model::{Body, Model, Welded};
+
+/// A body's mass, centre of mass and inertia about it, in its frame.
+type Mass = (f64, Vector3<f64>, Matrix3<f64>);
+
+/// Merges the model's massless jointless bodies into the bodies (or the world) they are
+/// welded to, and a massless moving body's jointless descendants into it; each merged
+/// body is listed in `model.welded`.
+pub(super) fn weld_jointless(model: &mut Model) {
+    let mut top = Vec::new();
+    for body in std::mem::take(&mut model.bodies) {
+        into_world(body, &Isometry3::identity(), model, &mut top);
+    }
+    for body in &mut top {
+        merge_children(body, &mut model.welded);
+    }
+    model.bodies = top;
+}
+
+/// A body of the world (or of a body merged into it) whose parent's frame is `parent`:
+/// massless and jointless, its geoms become the world's and its children are looked at
+/// in turn; any other goes to `top`.
+fn into_world(mut body: Body, parent: &Isometry3<f64>, model: &mut Model, top: &mut Vec<Body>) {
+    body.frame = parent * body.frame;
+    if !(body.joints.is_empty() && body.mass.is_none()) {
+        top.push(body);
+        return;
+    }
+    for mut geom in body.geoms {
+        geom.frame = body.frame * geom.frame;
+        model.world_geoms.push(geom);
+    }
+    model.world_sites.extend(body.sites.into_iter().map(|s| s.name));
+    model.welded.push(Welded { name: body.name, into: None, frame: body.frame, mass: None, principal: body.principal });
+    for child in body.children {
+        into_world(child, &body.frame, model, top);
+    }
+}
+
+/// Merges into `body` its massless jointless children (all its jointless ones when it
+/// moves and weighs nothing), then does the same in each child it keeps.
+fn merge_children(body: &mut Body, welded: &mut Vec<Welded>) {
+    let all = body.mass.is_none() && !body.joints.is_empty();
+    for child in std::mem::take(&mut body.children) {
+        merge(body, child, &Isometry3::identity(), all, welded);
+    }
+    for child in &mut body.children {
+        merge_children(child, welded);
+    }
+}
+
+/// Merges `child`, whose parent's frame is `parent` in `body`'s frame, into `body` when
+/// it is jointless and massless (or jointless and `all`), with its own children in
+/// turn; else makes it a child of `body`.
+fn merge(body: &mut Body, mut child: Body, parent: &Isometry3<f64>, all: bool, welded: &mut Vec<Welded>) {
+    child.frame = parent * child.frame;
+    if !(child.joints.is_empty() && (all || child.mass.is_none())) {
+        body.children.push(child);
+        return;
+    }
+    let frame = child.frame;
+    for mut geom in child.geoms {
+        geom.frame = frame * geom.frame;
+        body.geoms.push(geom);
+    }
+    for mut site in child.sites {
+        site.frame = frame * site.frame;
+        site.welded_from.get_or_insert_with(|| child.name.clone());
+        body.sites.push(site);
+    }
+    if let Some(mass) = child.mass {
+        body.mass = Some(combined(body.mass, moved(mass, &frame)));
+        // The combined body's principal axes are not the ones its `<inertial>` gave.
+        body.principal = None;
+    }
+    welded.push(Welded {
+        name: child.name,
+        into: Some(body.name.clone()),
+        frame,
+        mass: child.mass,
+        principal: child.principal,
+    });
+    for grandchild in child.children {
+        merge(body, grandchild, &frame, all, welded);
+    }
+}
+
+/// A mass given in a frame `frame` (relative to a body's), in the body's frame.
+fn moved((mass, com, inertia): Mass, frame: &Isometry3<f64>) -> Mass {
+    let r = frame.rotation.to_rotation_matrix();
+    (mass, (frame * Point3::from(com)).coords, crate::formats::turned_inertia(&r, &inertia))
+}
+
+/// Two masses in one frame as one rigid body: the mass summed, the centre of mass
+/// weighted, the inertias moved to it (parallel axes) and summed.
+fn combined(a: Option<Mass>, b: Mass) -> Mass {
+    let Some(a) = a else { return b };
+    let mass = a.0 + b.0;
+    let com = (a.1 * a.0 + b.1 * b.0) / mass;
+    let about = |(m, c, inertia): Mass| {
+        let d = c - com;
+        inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m
+    };
+    (mass, com, about(a) + about(b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two unit point masses 2 m apart along x, each with a unit sphere's inertia: the
+    /// centre between them, 2 kg, and 1 kg·m² each added across x by the parallel axes.
+    #[test]
+    fn two_masses_combine_about_their_common_centre() {
+        let inertia = Matrix3::identity() * 0.4;
+        let a = (1.0, Vector3::zeros(), inertia);
+        let b = moved((1.0, Vector3::zeros(), inertia), &Isometry3::translation(2.0, 0.0, 0.0));
+        let (mass, com, total) = combined(Some(a), b);
+        assert_eq!((mass, com), (2.0, Vector3::new(1.0, 0.0, 0.0)));
+        assert!((total - Matrix3::from_diagonal(&Vector3::new(0.8, 2.8, 2.8))).norm() < 1e-12, "{total}");
+        assert_eq!(combined(None, b), b);
+    }
+}
