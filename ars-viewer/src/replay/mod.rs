@@ -384,7 +384,9 @@ fn pose_values(pose: &Isometry3<f64>) -> [f32; 7] {
 /// The triangles of a replay's parts, each shape's sent once (parts of the same shape
 /// share them), as the player reads them: positions (`f32`), unit normals (`i8`,
 /// WebGL's normalized bytes) and three vertex indices a triangle (`u16`, or `u32`
-/// for a mesh of more than 65536 vertices).
+/// for a mesh of more than 65536 vertices), each sent as its difference from the one
+/// before, wrapping (a grid's indices are the same few steps over and over: they
+/// deflate to half the size); the player sums them back.
 #[derive(Default)]
 struct Meshes {
     json: Vec<Value>,
@@ -403,8 +405,14 @@ impl Meshes {
         let t = tessellate(shape);
         let positions: Vec<f32> = t.positions.iter().flatten().copied().collect();
         let normals: Vec<i8> = t.normals.iter().flatten().map(|v| (v.clamp(-1.0, 1.0) * 127.0).round() as i8).collect();
-        let indices = t.indices.iter().flatten().copied();
+        let mut last = 0u32;
+        let indices = t.indices.iter().flatten().map(|i| {
+            let difference = i.wrapping_sub(last);
+            last = *i;
+            difference
+        });
         let indices = if t.positions.len() <= 1 << 16 {
+            // A difference's low 16 bits are the difference of the indices' as `u16`s.
             blob.u16s(&indices.map(|i| i as u16).collect::<Vec<_>>())
         } else {
             blob.u32s(&indices.collect::<Vec<_>>())
@@ -522,12 +530,47 @@ impl Drop for PendingFile {
 mod tests {
     use super::*;
     use ars_core::Mass;
-    use ars_core::nalgebra::Vector3;
+    use ars_core::nalgebra::{Point3, Vector3};
 
-    /// The floats, bytes and indices `at` (a reference to an array) names.
-    fn floats(arrays: &[u8], at: &Value) -> Vec<f32> {
-        let (offset, count) = (at["offset"].as_u64().unwrap() as usize, at["count"].as_u64().unwrap() as usize);
-        arrays[offset..offset + 4 * count].chunks(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect()
+    /// A mesh of the page's header, read back from its arrays: positions, normals
+    /// (as `i8`) and indices (summed back from their differences).
+    fn read_mesh(arrays: &[u8], mesh: &Value) -> (Vec<f32>, Vec<i8>, Vec<u32>) {
+        let at = |name: &str, size: usize| {
+            let (offset, count) = (mesh[name]["offset"].as_u64().unwrap(), mesh[name]["count"].as_u64().unwrap());
+            arrays[offset as usize..(offset + count * size as u64) as usize].chunks(size)
+        };
+        let positions = at("positions", 4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect();
+        let normals = at("normals", 1).map(|b| b[0] as i8).collect();
+        let mut sum = 0u32;
+        let indices = if mesh["indices"]["type"] == "u16" {
+            at("indices", 2)
+                .map(|b| {
+                    sum = u32::from((sum as u16).wrapping_add(u16::from_le_bytes(b.try_into().unwrap())));
+                    sum
+                })
+                .collect()
+        } else {
+            assert_eq!(mesh["indices"]["type"], "u32");
+            at("indices", 4)
+                .map(|b| {
+                    sum = sum.wrapping_add(u32::from_le_bytes(b.try_into().unwrap()));
+                    sum
+                })
+                .collect()
+        };
+        (positions, normals, indices)
+    }
+
+    /// `mesh` (read back) is `shape`'s tessellation, its normals to the nearest byte.
+    fn assert_sent_as_tessellated(arrays: &[u8], mesh: &Value, shape: &Shape) {
+        let t = tessellate(shape);
+        let (positions, normals, indices) = read_mesh(arrays, mesh);
+        assert_eq!(positions, t.positions.iter().flatten().copied().collect::<Vec<_>>());
+        assert_eq!(normals.len(), positions.len());
+        for (byte, normal) in normals.iter().zip(t.normals.iter().flatten()) {
+            assert!((f32::from(*byte) / 127.0 - normal).abs() <= 0.5 / 127.0, "{byte} for {normal}");
+        }
+        assert_eq!(indices, t.indices.iter().flatten().copied().collect::<Vec<_>>());
     }
 
     #[test]
@@ -556,22 +599,26 @@ mod tests {
         assert_eq!(shapes.len(), 3);
         assert_eq!(meshes, expected);
         assert_eq!(header["meshes"].as_array().unwrap().len(), shapes.len());
-        for (mesh, shape) in header["meshes"].as_array().unwrap().iter().zip(shapes) {
-            let t = tessellate(&shape);
-            let positions: Vec<f32> = t.positions.iter().flatten().copied().collect();
-            assert_eq!(floats(&arrays, &mesh["positions"]), positions);
-            let offset = mesh["normals"]["offset"].as_u64().unwrap() as usize;
-            let normals = &arrays[offset..offset + 3 * t.normals.len()];
-            for (byte, normal) in normals.iter().zip(t.normals.iter().flatten()) {
-                assert!((f32::from(*byte as i8) / 127.0 - normal).abs() <= 0.5 / 127.0, "{byte} for {normal}");
-            }
-            let (offset, count) = (mesh["indices"]["offset"].as_u64().unwrap() as usize, 3 * t.indices.len());
-            assert_eq!((&mesh["indices"]["type"], &mesh["indices"]["count"]), (&json!("u16"), &json!(count)));
-            let indices: Vec<u32> = arrays[offset..offset + 2 * count]
-                .chunks(2)
-                .map(|b| u32::from(u16::from_le_bytes(b.try_into().unwrap())))
-                .collect();
-            assert_eq!(indices, t.indices.iter().flatten().copied().collect::<Vec<_>>());
+        for (mesh, shape) in header["meshes"].as_array().unwrap().iter().zip(&shapes) {
+            assert_eq!(mesh["indices"]["type"], "u16");
+            assert_sent_as_tessellated(&arrays, mesh, shape);
         }
+    }
+
+    #[test]
+    fn a_mesh_of_more_than_65536_vertices_has_u32_indices() {
+        // 22000 triangles apart: 66000 vertices.
+        let vertices: Vec<Point3<f64>> = (0..22000)
+            .flat_map(|k| [[k as f64, 0.0, 0.0], [k as f64 + 0.5, 0.0, 0.0], [k as f64, 1.0, 0.0]])
+            .map(Point3::from)
+            .collect();
+        let triangles = (0..22000).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
+        let (big, small) = (Shape::TriMesh { vertices, triangles }, Shape::Sphere { radius: 1.0 });
+        let (mut meshes, mut blob) = (Meshes::default(), Blob::default());
+        assert_eq!([&big, &small, &big].map(|s| meshes.of(s, &mut blob)), [0, 1, 0]);
+        let (header, arrays) = encode::tests::unpack(&encode::pack(&json!(meshes.json), &blob));
+        assert_eq!(header[0]["indices"]["type"], "u32");
+        assert_sent_as_tessellated(&arrays, &header[0], &big);
+        assert_sent_as_tessellated(&arrays, &header[1], &small);
     }
 }

@@ -146,6 +146,9 @@
       return b;
     };
     const indices = array(mesh.indices), wide = indices instanceof Uint32Array;
+    // Each index came as its difference from the one before: summed back (wrapping as
+    // the array's type does, as Rust's differences did).
+    for (let i = 1; i < indices.length; i++) indices[i] += indices[i - 1];
     if (wide && !gl.getExtension("OES_element_index_uint"))
       throw new Error("this browser's WebGL cannot draw a mesh of more than 65536 vertices");
     return {
