@@ -7,7 +7,8 @@ use flate2::Compression;
 use flate2::write::ZlibEncoder;
 use serde_json::{Value, json};
 
-/// The arrays of a replay, one after the other, little-endian, each 4-byte aligned.
+/// The arrays of a replay, one after the other, little-endian, each starting 4-byte
+/// aligned.
 #[derive(Default)]
 pub(super) struct Blob {
     bytes: Vec<u8>,
@@ -27,6 +28,28 @@ impl Blob {
         let offset = self.bytes.len();
         self.bytes.extend(values.iter().flat_map(|v| v.to_le_bytes()));
         json!({ "type": "u32", "offset": offset, "count": values.len() })
+    }
+
+    /// As [`f32s`](Self::f32s), for small indices (padded to the next 4 bytes).
+    pub(super) fn u16s(&mut self, values: &[u16]) -> Value {
+        let offset = self.bytes.len();
+        self.bytes.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+        self.pad();
+        json!({ "type": "u16", "offset": offset, "count": values.len() })
+    }
+
+    /// As [`f32s`](Self::f32s), for bytes (padded to the next 4 bytes): unit normals
+    /// as WebGL's normalized `BYTE`s, say.
+    pub(super) fn i8s(&mut self, values: &[i8]) -> Value {
+        let offset = self.bytes.len();
+        self.bytes.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+        self.pad();
+        json!({ "type": "i8", "offset": offset, "count": values.len() })
+    }
+
+    /// Zeros up to the next multiple of 4 bytes, where the next array starts.
+    fn pad(&mut self) {
+        self.bytes.resize(self.bytes.len().next_multiple_of(4), 0);
     }
 }
 
@@ -70,7 +93,7 @@ pub(super) fn html_escape(text: &str) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     #[test]
@@ -83,12 +106,9 @@ mod tests {
         assert_eq!(base64(&[0xfb, 0xff]), "+/8=");
     }
 
-    #[test]
-    fn a_packed_block_inflates_to_the_header_and_the_arrays() {
+    /// A packed block back: its header and its arrays.
+    pub(crate) fn unpack(packed: &str) -> (Value, Vec<u8>) {
         use std::io::Read;
-        let mut blob = Blob::default();
-        let at = blob.f32s(&[1.5, -2.0]);
-        let packed = pack(&json!({ "a": at }), &blob);
         // Back from base64 by the standard alphabet.
         let alphabet = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
         let sextets: Vec<u32> = packed
@@ -106,9 +126,25 @@ mod tests {
         let length = u32::from_le_bytes(raw[..4].try_into().unwrap()) as usize;
         assert_eq!(length % 4, 0);
         let header: Value = serde_json::from_slice(&raw[4..4 + length]).unwrap();
+        (header, raw[4 + length..].to_vec())
+    }
+
+    #[test]
+    fn a_packed_block_inflates_to_the_header_and_the_arrays() {
+        let mut blob = Blob::default();
+        let at = blob.f32s(&[1.5, -2.0]);
+        let (header, arrays) = unpack(&pack(&json!({ "a": at }), &blob));
         assert_eq!(header["a"]["offset"], 0);
         assert_eq!(header["a"]["count"], 2);
-        let arrays = &raw[4 + length..];
         assert_eq!(f32::from_le_bytes(arrays[4..8].try_into().unwrap()), -2.0);
+    }
+
+    #[test]
+    fn short_arrays_are_padded_so_that_the_next_starts_4_byte_aligned() {
+        let mut blob = Blob::default();
+        let (bytes, small, after) = (blob.i8s(&[-127, 0, 127]), blob.u16s(&[1, 2, 65535]), blob.f32s(&[0.5]));
+        assert_eq!([&bytes["offset"], &small["offset"], &after["offset"]], [0, 4, 12]);
+        assert_eq!([&bytes["type"], &small["type"]], ["i8", "u16"]);
+        assert_eq!(blob.bytes, [0x81, 0, 0x7f, 0, 1, 0, 2, 0, 0xff, 0xff, 0, 0, 0, 0, 0, 0x3f]);
     }
 }

@@ -4,11 +4,16 @@
 //! library: the player is ARS's own JavaScript (`player.js`), inlined.
 //!
 //! The data is one deflated block, base64 in the page: a JSON header (the view, the
-//! objects and their parts, where the arrays are) followed by the arrays, `float32`
-//! and `uint32` little-endian. The browser inflates it with `DecompressionStream`.
+//! objects and their parts, where the arrays are) followed by the arrays, `float32`,
+//! `uint32`, `uint16` and `int8` little-endian. Every shape is sent as triangles with
+//! normals, made once here (`tessellate.rs`) and shared by the parts of that shape:
+//! the player draws them as they are. The browser inflates it with
+//! `DecompressionStream`.
 
 mod encode;
+mod tessellate;
 
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -18,9 +23,10 @@ use serde_json::{Value, json};
 
 use crate::driver::{BareSimulation, Driver};
 use crate::error::{Result, ViewerError};
-use crate::look::{Look, PLANE_HALF_SIZE, look_of};
+use crate::look::{Look, look_of};
 use crate::recorder::{frames_in, run_program};
 use encode::Blob;
+use tessellate::tessellate;
 
 /// The page around the player, with the places for the title, the script and the data.
 const PAGE: &str = include_str!("player.html");
@@ -375,33 +381,53 @@ fn pose_values(pose: &Isometry3<f64>) -> [f32; 7] {
     [t.x, t.y, t.z, q.i, q.j, q.k, q.w].map(|v| v as f32)
 }
 
-/// A shape as the player reads it; arrays go into `blob`.
-fn shape_json(shape: &Shape, blob: &mut Blob) -> Value {
-    match shape {
-        Shape::Sphere { radius } => json!({ "kind": "sphere", "radius": radius }),
-        Shape::Box { edges } => json!({ "kind": "box", "edges": [edges.x, edges.y, edges.z] }),
-        Shape::Capsule { radius, length } => json!({ "kind": "capsule", "radius": radius, "length": length }),
-        Shape::Cylinder { radius, length } => json!({ "kind": "cylinder", "radius": radius, "length": length }),
-        Shape::Cone { radius, height } => json!({ "kind": "cone", "radius": radius, "height": height }),
-        Shape::Plane { normal, distance } => json!({
-            "kind": "plane",
-            "normal": [normal.x, normal.y, normal.z],
-            "distance": distance,
-            "half_size": PLANE_HALF_SIZE,
-        }),
-        Shape::TriMesh { vertices, triangles } => {
-            let v: Vec<f32> = vertices.iter().flat_map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect();
-            let t: Vec<u32> = triangles.iter().flatten().copied().collect();
-            json!({ "kind": "mesh", "vertices": blob.f32s(&v), "triangles": blob.u32s(&t) })
+/// The triangles of a replay's parts, each shape's sent once (parts of the same shape
+/// share them), as the player reads them: positions (`f32`), unit normals (`i8`,
+/// WebGL's normalized bytes) and three vertex indices a triangle (`u16`, or `u32`
+/// for a mesh of more than 65536 vertices), each sent as its difference from the one
+/// before, wrapping (a grid's indices are the same few steps over and over: they
+/// deflate to half the size); the player sums them back.
+#[derive(Default)]
+struct Meshes {
+    json: Vec<Value>,
+    /// The number of each shape's, by the shape (its `Debug` form: every number exact).
+    known: HashMap<String, usize>,
+}
+
+impl Meshes {
+    /// The number of `shape`'s triangles in [`json`](Self::json), their arrays put
+    /// into `blob` if they are new.
+    fn of(&mut self, shape: &Shape, blob: &mut Blob) -> usize {
+        let key = format!("{shape:?}");
+        if let Some(index) = self.known.get(&key) {
+            return *index;
         }
-        // What the window draws for the rest (a ray's origin).
-        _ => json!({ "kind": "sphere", "radius": 0.05 }),
+        let t = tessellate(shape);
+        let positions: Vec<f32> = t.positions.iter().flatten().copied().collect();
+        let normals: Vec<i8> = t.normals.iter().flatten().map(|v| (v.clamp(-1.0, 1.0) * 127.0).round() as i8).collect();
+        let mut last = 0u32;
+        let indices = t.indices.iter().flatten().map(|i| {
+            let difference = i.wrapping_sub(last);
+            last = *i;
+            difference
+        });
+        let indices = if t.positions.len() <= 1 << 16 {
+            // A difference's low 16 bits are the difference of the indices' as `u16`s.
+            blob.u16s(&indices.map(|i| i as u16).collect::<Vec<_>>())
+        } else {
+            blob.u32s(&indices.collect::<Vec<_>>())
+        };
+        self.json
+            .push(json!({ "positions": blob.f32s(&positions), "normals": blob.i8s(&normals), "indices": indices }));
+        self.known.insert(key, self.json.len() - 1);
+        self.json.len() - 1
     }
 }
 
 /// The page of a replay.
 fn page(view: &WindowSettings, objects: &Objects, track: &Track, plots: Vec<(String, Vec<f32>, Vec<f32>)>) -> String {
     let mut blob = Blob::default();
+    let mut meshes = Meshes::default();
     let mut next_track = 0;
     let objects_json: Vec<Value> = objects
         .looks
@@ -410,7 +436,7 @@ fn page(view: &WindowSettings, objects: &Objects, track: &Track, plots: Vec<(Str
             let parts: Vec<Value> = look
                 .parts
                 .iter()
-                .map(|p| json!({ "shape": shape_json(&p.shape, &mut blob), "pose": pose_values(&p.local), "color": p.color }))
+                .map(|p| json!({ "mesh": meshes.of(&p.shape, &mut blob), "pose": pose_values(&p.local), "color": p.color }))
                 .collect();
             let track_index = look.dynamic.then(|| {
                 next_track += 1;
@@ -425,7 +451,7 @@ fn page(view: &WindowSettings, objects: &Objects, track: &Track, plots: Vec<(Str
         .map(|(label, t, v)| json!({ "label": label, "times": blob.f32s(t), "values": blob.f32s(v) }))
         .collect();
     let header = json!({
-        "version": 1,
+        "version": 2,
         "title": view.title,
         "view": {
             "size": [view.size.0, view.size.1],
@@ -440,6 +466,7 @@ fn page(view: &WindowSettings, objects: &Objects, track: &Track, plots: Vec<(Str
         "times": blob.f32s(&times),
         "poses": blob.f32s(&track.poses),
         "tracks": next_track,
+        "meshes": meshes.json,
         "objects": objects_json,
         "plots": plots_json,
     });
@@ -496,5 +523,102 @@ impl Drop for PendingFile {
         if self.temporary.exists() {
             let _ = std::fs::remove_file(&self.temporary);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ars_core::Mass;
+    use ars_core::nalgebra::{Point3, Vector3};
+
+    /// A mesh of the page's header, read back from its arrays: positions, normals
+    /// (as `i8`) and indices (summed back from their differences).
+    fn read_mesh(arrays: &[u8], mesh: &Value) -> (Vec<f32>, Vec<i8>, Vec<u32>) {
+        let at = |name: &str, size: usize| {
+            let (offset, count) = (mesh[name]["offset"].as_u64().unwrap(), mesh[name]["count"].as_u64().unwrap());
+            arrays[offset as usize..(offset + count * size as u64) as usize].chunks(size)
+        };
+        let positions = at("positions", 4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect();
+        let normals = at("normals", 1).map(|b| b[0] as i8).collect();
+        let mut sum = 0u32;
+        let indices = if mesh["indices"]["type"] == "u16" {
+            at("indices", 2)
+                .map(|b| {
+                    sum = u32::from((sum as u16).wrapping_add(u16::from_le_bytes(b.try_into().unwrap())));
+                    sum
+                })
+                .collect()
+        } else {
+            assert_eq!(mesh["indices"]["type"], "u32");
+            at("indices", 4)
+                .map(|b| {
+                    sum = sum.wrapping_add(u32::from_le_bytes(b.try_into().unwrap()));
+                    sum
+                })
+                .collect()
+        };
+        (positions, normals, indices)
+    }
+
+    /// `mesh` (read back) is `shape`'s tessellation, its normals to the nearest byte.
+    fn assert_sent_as_tessellated(arrays: &[u8], mesh: &Value, shape: &Shape) {
+        let t = tessellate(shape);
+        let (positions, normals, indices) = read_mesh(arrays, mesh);
+        assert_eq!(positions, t.positions.iter().flatten().copied().collect::<Vec<_>>());
+        assert_eq!(normals.len(), positions.len());
+        for (byte, normal) in normals.iter().zip(t.normals.iter().flatten()) {
+            assert!((f32::from(*byte) / 127.0 - normal).abs() <= 0.5 / 127.0, "{byte} for {normal}");
+        }
+        assert_eq!(indices, t.indices.iter().flatten().copied().collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn parts_of_one_shape_share_its_triangles_and_the_arrays_are_the_tessellation() {
+        let mut sim = Simulation::new().unwrap();
+        for x in [0.0, 1.0] {
+            sim.scene_mut().add_sphere(0.2, [x, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+        }
+        sim.scene_mut().add_sphere(0.3, [2.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+        sim.scene_mut().add_floor_plane(Vector3::y(), 0.0).unwrap();
+        let replay = ReplayRecorder::new().record_simulation(&mut sim, &WindowSettings::default(), 0.1).unwrap();
+        let data = replay.html().split("id=\"ars-data\">").nth(1).unwrap().split("</script>").next().unwrap();
+        let (header, arrays) = encode::tests::unpack(data);
+        let meshes: Vec<u64> =
+            header["objects"].as_array().unwrap().iter().map(|o| o["parts"][0]["mesh"].as_u64().unwrap()).collect();
+        // The objects in the replay's order, each shape's triangles sent the first time.
+        let mut shapes: Vec<Shape> = Vec::new();
+        let mut expected = Vec::new();
+        for (_, id) in sim.scene().objects() {
+            let shape = sim.scene().object(id).unwrap().shape().clone();
+            expected.push(shapes.iter().position(|s| *s == shape).unwrap_or_else(|| {
+                shapes.push(shape);
+                shapes.len() - 1
+            }) as u64);
+        }
+        assert_eq!(shapes.len(), 3);
+        assert_eq!(meshes, expected);
+        assert_eq!(header["meshes"].as_array().unwrap().len(), shapes.len());
+        for (mesh, shape) in header["meshes"].as_array().unwrap().iter().zip(&shapes) {
+            assert_eq!(mesh["indices"]["type"], "u16");
+            assert_sent_as_tessellated(&arrays, mesh, shape);
+        }
+    }
+
+    #[test]
+    fn a_mesh_of_more_than_65536_vertices_has_u32_indices() {
+        // 22000 triangles apart: 66000 vertices.
+        let vertices: Vec<Point3<f64>> = (0..22000)
+            .flat_map(|k| [[k as f64, 0.0, 0.0], [k as f64 + 0.5, 0.0, 0.0], [k as f64, 1.0, 0.0]])
+            .map(Point3::from)
+            .collect();
+        let triangles = (0..22000).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
+        let (big, small) = (Shape::TriMesh { vertices, triangles }, Shape::Sphere { radius: 1.0 });
+        let (mut meshes, mut blob) = (Meshes::default(), Blob::default());
+        assert_eq!([&big, &small, &big].map(|s| meshes.of(s, &mut blob)), [0, 1, 0]);
+        let (header, arrays) = encode::tests::unpack(&encode::pack(&json!(meshes.json), &blob));
+        assert_eq!(header[0]["indices"]["type"], "u32");
+        assert_sent_as_tessellated(&arrays, &header[0], &big);
+        assert_sent_as_tessellated(&arrays, &header[1], &small);
     }
 }

@@ -1,7 +1,8 @@
 // The ARS replay player: a small WebGL renderer of the replay's shapes (Lambert
 // shading as ARS's fast off-screen renderer draws them, checkered floors), an orbit
 // camera that starts where the program's camera is, play/pause, a time slider, speed
-// and plots of sensor columns. No library, no network.
+// and plots of sensor columns. No library, no network. The shapes come as triangles
+// with normals, made by ARS in Rust: nothing is tessellated here.
 //
 // Page API, for tests and embedding: window.arsReplay = { ready, error, start, end,
 // duration, frames, time, playing, speed, seek(t), play(), pause(), setSpeed(s),
@@ -29,9 +30,8 @@
     const length = new DataView(buffer).getUint32(0, true);
     const header = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
     const base = 4 + length;
-    const array = (r) => r.type === "u32"
-      ? new Uint32Array(buffer, base + r.offset, r.count)
-      : new Float32Array(buffer, base + r.offset, r.count);
+    const types = { f32: Float32Array, u32: Uint32Array, u16: Uint16Array, i8: Int8Array };
+    const array = (r) => new types[r.type](buffer, base + r.offset, r.count);
     return { header, array };
   }
 
@@ -80,97 +80,6 @@
     l = Math.sqrt(l) || 1;
     for (let i = 3; i < 7; i++) out[i] /= l;
     return out;
-  }
-
-  // ---- Shapes: triangles with normals, in the part's frame -----------------------
-  function builder() {
-    const p = [], n = [];
-    return {
-      p, n,
-      tri(a, b, c, na, nb, nc) {
-        if (!na) { na = nb = nc = norm(cross(sub(b, a), sub(c, a))); }
-        p.push(...a, ...b, ...c); n.push(...na, ...nb, ...nc);
-      },
-      quad(a, b, c, d, na, nb, nc, nd) { this.tri(a, b, c, na, nb, nc); this.tri(a, c, d, na, nc, nd); },
-    };
-  }
-  const SEGMENTS = 32;
-  // A surface of revolution about Z: profile points [radius, z] with their normals
-  // [nr, nz], bottom to top.
-  function revolve(g, profile) {
-    for (let i = 0; i < SEGMENTS; i++) {
-      const a0 = (2 * Math.PI * i) / SEGMENTS, a1 = (2 * Math.PI * (i + 1)) / SEGMENTS;
-      const [c0, s0, c1, s1] = [Math.cos(a0), Math.sin(a0), Math.cos(a1), Math.sin(a1)];
-      for (let j = 0; j + 1 < profile.length; j++) {
-        const [r0, z0, nr0, nz0] = profile[j], [r1, z1, nr1, nz1] = profile[j + 1];
-        g.quad([r0 * c0, r0 * s0, z0], [r0 * c1, r0 * s1, z0], [r1 * c1, r1 * s1, z1], [r1 * c0, r1 * s0, z1],
-          [nr0 * c0, nr0 * s0, nz0], [nr0 * c1, nr0 * s1, nz0], [nr1 * c1, nr1 * s1, nz1], [nr1 * c0, nr1 * s0, nz1]);
-      }
-    }
-  }
-  function arc(r, zc, from, to, steps) {
-    const out = [];
-    for (let i = 0; i <= steps; i++) {
-      const t = from + ((to - from) * i) / steps;
-      out.push([r * Math.cos(t), zc + r * Math.sin(t), Math.cos(t), Math.sin(t)]);
-    }
-    return out;
-  }
-  function shapeTriangles(shape, data) {
-    const g = builder();
-    switch (shape.kind) {
-      case "sphere":
-        revolve(g, arc(shape.radius, 0, -Math.PI / 2, Math.PI / 2, 16));
-        break;
-      case "capsule": {
-        const h = shape.length / 2;
-        revolve(g, arc(shape.radius, -h, -Math.PI / 2, 0, 8).concat(arc(shape.radius, h, 0, Math.PI / 2, 8)));
-        break;
-      }
-      case "cylinder": {
-        const [r, h] = [shape.radius, shape.length / 2];
-        revolve(g, [[0, -h, 0, -1], [r, -h, 0, -1]]);
-        revolve(g, [[r, -h, 1, 0], [r, h, 1, 0]]);
-        revolve(g, [[r, h, 0, 1], [0, h, 0, 1]]);
-        break;
-      }
-      case "cone": {
-        // The origin is the centre of mass, a quarter of the height above the base.
-        const [r, h] = [shape.radius, shape.height];
-        const [nr, nz] = norm([h, 0, r]);
-        revolve(g, [[0, -h / 4, 0, -1], [r, -h / 4, 0, -1]]);
-        revolve(g, [[r, -h / 4, nr, nz], [0, (3 * h) / 4, nr, nz]]);
-        break;
-      }
-      case "box": {
-        const [x, y, z] = shape.edges.map((e) => e / 2);
-        const c = (i, j, k) => [i * x, j * y, k * z];
-        g.quad(c(1, -1, -1), c(1, 1, -1), c(1, 1, 1), c(1, -1, 1));
-        g.quad(c(-1, -1, -1), c(-1, -1, 1), c(-1, 1, 1), c(-1, 1, -1));
-        g.quad(c(-1, 1, -1), c(-1, 1, 1), c(1, 1, 1), c(1, 1, -1));
-        g.quad(c(-1, -1, -1), c(1, -1, -1), c(1, -1, 1), c(-1, -1, 1));
-        g.quad(c(-1, -1, 1), c(1, -1, 1), c(1, 1, 1), c(-1, 1, 1));
-        g.quad(c(-1, -1, -1), c(-1, 1, -1), c(1, 1, -1), c(1, -1, -1));
-        break;
-      }
-      case "plane": {
-        // A large square in the plane, centred where the plane meets its normal.
-        const nn = norm(shape.normal), s = shape.half_size;
-        const helper = Math.abs(nn[1]) < 0.9 ? [0, 1, 0] : [1, 0, 0];
-        const u = norm(cross(helper, nn)), v = cross(nn, u);
-        const o = nn.map((c) => c * shape.distance);
-        const at = (i, j) => [0, 1, 2].map((k) => o[k] + s * (i * u[k] + j * v[k]));
-        g.quad(at(-1, -1), at(1, -1), at(1, 1), at(-1, 1), nn, nn, nn, nn);
-        break;
-      }
-      case "mesh": {
-        const v = data.array(shape.vertices), t = data.array(shape.triangles);
-        const vertex = (i) => [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
-        for (let i = 0; i + 2 < t.length; i += 3) g.tri(vertex(t[i]), vertex(t[i + 1]), vertex(t[i + 2]));
-        break;
-      }
-    }
-    return g;
   }
 
   // ---- WebGL ---------------------------------------------------------------------
@@ -227,14 +136,28 @@
     };
   }
 
-  function upload(gl, g) {
-    const buffer = (values) => {
+  // A mesh as Rust sent it (positions, normals as normalized bytes, three indices a
+  // triangle), into buffers once.
+  function upload(gl, mesh, array) {
+    const buffer = (target, values) => {
       const b = gl.createBuffer();
-      gl.bindBuffer(gl.ARRAY_BUFFER, b);
-      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(values), gl.STATIC_DRAW);
+      gl.bindBuffer(target, b);
+      gl.bufferData(target, values, gl.STATIC_DRAW);
       return b;
     };
-    return { positions: buffer(g.p), normals: buffer(g.n), count: g.p.length / 3 };
+    const indices = array(mesh.indices), wide = indices instanceof Uint32Array;
+    // Each index came as its difference from the one before: summed back (wrapping as
+    // the array's type does, as Rust's differences did).
+    for (let i = 1; i < indices.length; i++) indices[i] += indices[i - 1];
+    if (wide && !gl.getExtension("OES_element_index_uint"))
+      throw new Error("this browser's WebGL cannot draw a mesh of more than 65536 vertices");
+    return {
+      positions: buffer(gl.ARRAY_BUFFER, array(mesh.positions)),
+      normals: buffer(gl.ARRAY_BUFFER, array(mesh.normals)),
+      indices: buffer(gl.ELEMENT_ARRAY_BUFFER, indices),
+      count: indices.length,
+      type: wide ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT,
+    };
   }
 
   // ---- The player ----------------------------------------------------------------
@@ -258,12 +181,11 @@
     gl.enable(gl.DEPTH_TEST);
     const bg = view.background;
 
-    // Every part, uploaded once.
+    // Every mesh uploaded once; parts of the same shape share theirs.
+    const meshes = header.meshes.map((m) => upload(gl, m, array));
     const objects = header.objects.map((o) => ({
       floor: o.floor, pose: o.pose, track: o.track,
-      parts: o.parts.map((p) => ({
-        local: poseMatrix(p.pose), color: p.color, mesh: upload(gl, shapeTriangles(p.shape, { array })),
-      })),
+      parts: o.parts.map((p) => ({ local: poseMatrix(p.pose), color: p.color, mesh: meshes[p.mesh] })),
     }));
 
     // The orbit camera: yaw and pitch about the target, as kiss3d's.
@@ -316,8 +238,9 @@
           gl.vertexAttribPointer(shader.position, 3, gl.FLOAT, false, 0, 0);
           gl.bindBuffer(gl.ARRAY_BUFFER, p.mesh.normals);
           gl.enableVertexAttribArray(shader.normal);
-          gl.vertexAttribPointer(shader.normal, 3, gl.FLOAT, false, 0, 0);
-          gl.drawArrays(gl.TRIANGLES, 0, p.mesh.count);
+          gl.vertexAttribPointer(shader.normal, 3, gl.BYTE, true, 0, 0);
+          gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, p.mesh.indices);
+          gl.drawElements(gl.TRIANGLES, p.mesh.count, p.mesh.type, 0);
         }
       }
       drawPlots();
