@@ -48,6 +48,7 @@ mod offscreen;
 mod recorder;
 mod replay;
 mod scene;
+mod screenshots;
 mod session;
 mod state;
 mod video;
@@ -66,13 +67,11 @@ pub use error::{Result, ThreadEnd, ViewerError};
 pub use frames::FrameWriter;
 pub use image;
 pub use interact::{DragMode, Grab, SPRING_STIFFNESS, pick, ray_plane, spring_force, spring_torque};
-pub use offscreen::{
-    OffscreenRenderer, ScreenshotFrames, ScreenshotRecorder, init_offscreen_context, keep_rendering_context,
-    release_rendering_context,
-};
+pub use offscreen::{OffscreenRenderer, init_offscreen_context, keep_rendering_context, release_rendering_context};
 pub use recorder::{Recorder, RecordingOutput};
 pub use replay::{Replay, ReplayInProgress, ReplayRecorder};
 pub use scene::{DEFAULT_FORCE_SCALE, SceneMirror, force_arrow, joint_force_arrow};
+pub use screenshots::{ScreenshotFrames, ScreenshotRecorder};
 pub use state::{DragLine, Selected, ViewerState};
 pub use video::{
     MAX_VIDEO_FPS, MAX_VIDEO_SIDE, RecordedVideo, VideoFile, VideoRecorder, VideoWriter, check_video_settings,

@@ -1,0 +1,236 @@
+//! Loading: a [`SceneFile`] built into a simulation, from JSON text or a file.
+
+use crate::body::{BodyBuilder, MassSpec};
+use crate::error::{Error, Result};
+use crate::geom::GeomBuilder;
+use crate::handle::{ObjectId, SpaceHandle};
+use crate::joint::JointBuilder;
+use crate::scene::{ActuatorLimits, JointEnd};
+use crate::sensors::SensorKind;
+use crate::shape::Shape;
+use crate::simulation::{Simulation, SimulationBuilder};
+
+use super::{BodyFile, FORMAT, JointFile, ObjectFile, SceneFile, from_hex};
+
+impl Simulation {
+    /// A simulation built from JSON text written by [`save_scene`](Self::save_scene).
+    pub fn load_scene(text: &str) -> Result<Simulation> {
+        Simulation::load_scene_named(text, "<string>")
+    }
+
+    /// [`load_scene`](Self::load_scene) of the text of `file` (named in errors):
+    /// [`SceneFile::parse`], then [`SceneFile::build`].
+    fn load_scene_named(text: &str, file: &str) -> Result<Simulation> {
+        Simulation::built_as(&SceneFile::parse(text, file)?, file)
+    }
+
+    /// [`SceneFile::build`], its errors naming the file `file`.
+    fn built_as(scene: &SceneFile, file: &str) -> Result<Simulation> {
+        scene.build().map_err(|e| match e {
+            Error::Format { format: "scene file", element, line, column, problem, .. } => {
+                Error::Format { format: "scene file", file: file.to_string(), element, line, column, problem }
+            }
+            other => other,
+        })
+    }
+
+    /// A simulation built from a [`SceneFile`].
+    pub fn from_scene_file(file: &SceneFile) -> Result<Simulation> {
+        if file.format != FORMAT {
+            return Err(Error::Format {
+                format: "scene file",
+                file: "<string>".into(),
+                element: "\"format\"".into(),
+                line: None,
+                column: None,
+                problem: format!("is {:?}, expected {FORMAT:?}", file.format),
+            });
+        }
+        let mut sim = SimulationBuilder::default()
+            .gravity(file.gravity)
+            .time_step(file.time_step)
+            .steps_per_frame(file.steps_per_frame)
+            .erp(file.erp)
+            .cfm(file.cfm)
+            .stepper(file.stepper)
+            .contact_surface(file.surface)
+            .space(file.space)
+            .build()?;
+        let space = sim.scene().space();
+        for o in &file.objects {
+            o.add_to(&mut sim, space)?;
+        }
+        for (i, j) in file.joints.iter().enumerate() {
+            for w in file.world_joints.iter().filter(|w| w.after == i) {
+                w.add_to(&mut sim)?;
+            }
+            j.add_to(&mut sim)?;
+        }
+        for w in file.world_joints.iter().filter(|w| w.after >= file.joints.len()) {
+            w.add_to(&mut sim)?;
+        }
+        // Leaders may come later in creation order than their followers.
+        for j in &file.joints {
+            if let Some(m) = &j.mimic {
+                sim.scene_mut().joint_mut(j.name.as_str())?.set_mimic(m.leader.as_str(), m.multiplier, m.offset)?;
+            }
+        }
+        sim.scene.set_clock(file.time, file.step_count);
+        // After the clock: periodic sensors count their periods from the saved time.
+        for pair in &file.pair_surfaces {
+            let (a, b) = (sim.scene().object(pair.a.as_str())?.id(), sim.scene().object(pair.b.as_str())?.id());
+            sim.scene_mut().set_contact_surface(a, b, pair.surface)?;
+        }
+        for (a, b) in &file.excluded_contacts {
+            let (a, b) = (sim.scene().object(a.as_str())?.id(), sim.scene().object(b.as_str())?.id());
+            sim.scene_mut().exclude_contacts(a, b)?;
+        }
+        for sensor in &file.sensors {
+            sensor.add_to(&mut sim)?;
+        }
+        if let Some(hex) = &file.state {
+            sim.restore_saved_state(hex)?;
+        }
+        Ok(sim)
+    }
+
+    /// Restores the exact state a scene file holds (`hex`, hexadecimal digits), but
+    /// that of the sensors it does not rebuild.
+    fn restore_saved_state(&mut self, hex: &str) -> Result<()> {
+        let corrupt = |problem: String| Error::Format {
+            format: "scene file",
+            file: "<string>".into(),
+            element: "\"state\"".into(),
+            line: None,
+            column: None,
+            problem,
+        };
+        let bytes = from_hex(hex).ok_or_else(|| corrupt("is not hexadecimal digits".into()))?;
+        let mut state: crate::simulation::scene_state::SceneState =
+            crate::simulation::scene_state::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
+        // The sensors a scene file does not rebuild (named in `unsaved_sensors`) have
+        // no place for their state.
+        state.keep_sensors(|kind| SensorKind::of_type_name(kind).is_some());
+        self.restore_state(&state)
+    }
+}
+
+impl ObjectFile {
+    /// Makes the object in `sim`, its geoms in `space`, with its colour and visuals.
+    fn add_to(&self, sim: &mut Simulation, space: SpaceHandle) -> Result<()> {
+        let id = match &self.body {
+            Some(b) => self.add_body_to(sim, b, space)?,
+            None => self.add_static_to(sim, space)?,
+        };
+        if let Some(c) = self.color {
+            sim.scene_mut().set_color(id, c)?;
+        }
+        if !self.visuals.is_empty() {
+            sim.scene_mut().set_visuals(id, self.visuals.clone())?;
+        }
+        Ok(())
+    }
+
+    /// Makes the object with its body `b` (restored to the bit) and its geoms.
+    fn add_body_to(&self, sim: &mut Simulation, b: &BodyFile, space: SpaceHandle) -> Result<ObjectId> {
+        let geom = GeomBuilder::new(self.shape.clone());
+        let spec = MassSpec::Custom { mass: b.mass, inertia: b.inertia };
+        let body = sim.scene.world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
+        let g = if self.geom { Some(sim.scene.world.insert_geom(space, geom.attached_to(body))?) } else { None };
+        {
+            let mut m = sim.scene.world.body_mut(body)?;
+            // Both ODE's quaternion and its rotation matrix, to the bit.
+            m.restore_orientation(&b.quaternion, &b.rotation)?;
+            m.set_linear_velocity(b.linear_velocity)?;
+            m.set_angular_velocity(b.angular_velocity)?;
+        }
+        let id = sim.scene.register_object(&self.name, self.shape.clone(), Some(body), g)?;
+        let extra = self
+            .extra_shapes
+            .iter()
+            .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone()).attached_to(body)))
+            .collect::<Result<Vec<_>>>()?;
+        sim.scene.set_extra_geoms(id, extra)?;
+        Ok(id)
+    }
+
+    /// Makes the static object: its geom at its pose (a plane's is in its shape) and
+    /// its other geoms.
+    fn add_static_to(&self, sim: &mut Simulation, space: SpaceHandle) -> Result<ObjectId> {
+        let geom = GeomBuilder::new(self.shape.clone());
+        let geom = match (&self.shape, self.pose) {
+            (Shape::Plane { .. }, _) | (_, None) => geom,
+            (_, Some(pose)) => geom.pose(pose),
+        };
+        let g = sim.scene.world.insert_geom(space, geom)?;
+        let id = sim.scene.register_object(&self.name, self.shape.clone(), None, Some(g))?;
+        let extra = self
+            .extra_shapes
+            .iter()
+            .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone())))
+            .collect::<Result<Vec<_>>>()?;
+        sim.scene.set_extra_geoms(id, extra)?;
+        Ok(id)
+    }
+}
+
+impl JointFile {
+    /// Makes the joint in `sim` (its objects looked up by name) with its stops,
+    /// friction, actuator limits, spring and motor; not its mimic (its leader may be
+    /// made later).
+    fn add_to(&self, sim: &mut Simulation) -> Result<()> {
+        let object1 = sim.scene().object(self.object1.as_str())?.id();
+        let object2 = match &self.object2 {
+            Some(name) => JointEnd::Object(sim.scene().object(name.as_str())?.id()),
+            None => JointEnd::World,
+        };
+        let id = sim.scene.insert_sim_joint(
+            &self.name,
+            self.joint_type,
+            object1,
+            object2,
+            JointBuilder::new(self.kind.clone()),
+        )?;
+        if let Some((low, high)) = self.limits {
+            sim.scene_mut().joint_mut(id)?.set_limits(low, high)?;
+        }
+        let mut joint = sim.scene_mut().joint_mut(id)?;
+        if self.friction != 0.0 {
+            joint.set_viscous_friction(self.friction)?;
+        }
+        if self.effort_limit.is_some() || self.velocity_limit.is_some() {
+            let unlimited = f64::INFINITY;
+            joint.set_actuator_limits(ActuatorLimits {
+                effort: self.effort_limit.unwrap_or(unlimited),
+                velocity: self.velocity_limit.unwrap_or(unlimited),
+            })?;
+        }
+        if self.dry_friction != 0.0 {
+            joint.set_dry_friction(self.dry_friction)?;
+        }
+        if let Some((stiffness, rest)) = self.spring {
+            joint.set_spring(stiffness, rest)?;
+        }
+        if let Some((speed, max_force)) = self.motor {
+            // As it was, whatever the limits (the speed was held to them when set).
+            let handle = sim.scene.joint_data(id)?.handle;
+            sim.scene.world.joint_mut(handle)?.set_motor(0, speed, max_force)?;
+        }
+        Ok(())
+    }
+}
+
+/// Reads and writes scene files at paths.
+impl Simulation {
+    /// Saves the scene as JSON to `path`.
+    pub fn save_scene_to(&self, path: impl AsRef<std::path::Path>) -> Result<()> {
+        let path = path.as_ref();
+        std::fs::write(path, self.save_scene()?).map_err(|e| Error::io("write the scene file", path, &e))
+    }
+
+    /// Loads a scene saved with [`save_scene_to`](Self::save_scene_to).
+    pub fn load_scene_from(path: impl AsRef<std::path::Path>) -> Result<Simulation> {
+        let path = path.as_ref();
+        Simulation::built_as(&SceneFile::read(path)?, &path.display().to_string())
+    }
+}
