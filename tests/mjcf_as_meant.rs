@@ -83,3 +83,30 @@ fn a_model_opened_alone_steps_at_its_own_time_step() {
     assert_eq!((opened.scene().time_step(), opened.scene().steps_per_frame()), (0.002, 10));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A site of size 0 is a point, as MuJoCo takes it: the model loads and a frame sensor
+/// on the site reads where it is; a negative size is still refused.
+#[test]
+fn a_site_of_size_zero_is_a_point() {
+    let text = CROSSED
+        .replace(
+            r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+    <body name="b""#,
+            r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/><site name="tip" pos="0.5 0 0" size="0"/></body>
+    <body name="b""#,
+        )
+        .replace("</mujoco>", r#"<sensor><framepos name="tip_at" objtype="site" objname="tip"/></sensor></mujoco>"#);
+    assert!(text.contains(r#"size="0"/>"#), "the site is in the text");
+    let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
+    let model = sim.load_mjcf_text(&text, "point.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.sensors.len(), 1);
+    sim.step().unwrap();
+    let tables = sim.sensor_tables();
+    let row: Vec<f64> = tables[0].1.cells(0).into_iter().map(|v| v.unwrap()).collect();
+    // Z up becomes Y up: the tip at (0.5, 0, 0) stays at x = 0.5 on the still arm.
+    assert!((row[0] - 0.5).abs() < 1e-9 && row[1].abs() < 1e-9 && row[2].abs() < 1e-9, "{row:?}");
+
+    let negative = text.replace(r#"size="0"/>"#, r#"size="-0.1"/>"#);
+    let e = Simulation::new().unwrap().load_mjcf_text(&negative, "negative.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(e.to_string().contains("size -0.1 must be 0 or more"), "{e}");
+}

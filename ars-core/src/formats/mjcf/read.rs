@@ -286,8 +286,10 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             return Ok(None);
         }
         let size = a.numbers("size")?.unwrap_or_default();
-        if let Some(s) = size.iter().find(|s| **s <= 0.0) {
-            return Err(problem(&node, format!("size {s} must be positive")));
+        // A site of size 0 is a point, as MuJoCo takes it (frames and sensors need no
+        // size; a touch sensor on it is refused, having no zone).
+        if let Some(s) = size.iter().find(|s| !(s.is_finite() && **s >= 0.0)) {
+            return Err(problem(&node, format!("size {s} must be 0 or more")));
         }
         let at = |i: usize| size.get(i).copied().unwrap_or(SITE_SIZE);
         let zone = match a.get("type").unwrap_or("sphere") {
