@@ -110,3 +110,27 @@ fn a_site_of_size_zero_is_a_point() {
     let e = Simulation::new().unwrap().load_mjcf_text(&negative, "negative.xml", &MjcfOptions::new()).unwrap_err();
     assert!(e.to_string().contains("size -0.1 must be 0 or more"), "{e}");
 }
+
+/// A jointless body given a mass and no inertia (a point mass, `diaginertia="0 0 0"`, as
+/// robot files write small parts) loads as MuJoCo loads it: its ODE body, welded to its
+/// parent, takes the inertia of a solid sphere of that mass at water's density, said
+/// in `skipped`; its mass is the file's.
+#[test]
+fn a_welded_point_mass_loads_with_an_inertia_said_in_skipped() {
+    let text = CROSSED.replace(
+        r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+    <body name="b""#,
+        r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/>
+      <body name="knob" pos="0.5 0 0"><inertial pos="0 0 0" mass="0.2" diaginertia="0 0 0"/></body></body>
+    <body name="b""#,
+    );
+    assert!(text.contains("knob"), "the knob is in the text");
+    let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
+    let model = sim.load_mjcf_text(&text, "knob.xml", &MjcfOptions::new()).unwrap();
+    let said: Vec<&String> = model.skipped.iter().filter(|s| s.starts_with("\"knob\": inertia balanced")).collect();
+    assert_eq!(said.len(), 1, "{:#?}", model.skipped);
+    let knob = sim.scene().object(model.body("knob").unwrap()).unwrap().body_handle().unwrap();
+    assert_eq!(sim.scene().world().body(knob).unwrap().mass(), 0.2);
+    sim.scene_mut().set_controls(&[0.0, 1.0, 0.0]).unwrap();
+    sim.run_for(0.2).unwrap();
+}

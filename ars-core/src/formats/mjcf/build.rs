@@ -11,6 +11,7 @@ use super::read::read;
 use super::{CHAIN_LINK_FRACTION, MjcfModel, MjcfOptions, MjcfWeld};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::error::{Error, Result};
+use crate::formats::balance::balance_inertia;
 use crate::geom::GeomBuilder;
 use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
 use crate::scene::JointEnd;
@@ -399,6 +400,16 @@ fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
         (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
     };
     let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
+    // A jointless body with mass is welded to its parent by a fixed joint, on an ODE
+    // body of its own, which needs an inertia a body can have; MuJoCo takes any (a
+    // point mass: `diaginertia="0 0 0"`), the body moving only with its parent.
+    let inertia = match body.joints.is_empty().then(|| balance_inertia(mass, &inertia)).flatten() {
+        Some(balanced) => {
+            made.skipped.push(format!("{:?}: {} (a welded body of its own needs one)", body.name, balanced.note));
+            balanced.inertia
+        }
+        None => inertia,
+    };
     // The body is moved by its last joint, a chain link by its joint: each carries
     // its joint's armature.
     let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
