@@ -81,6 +81,19 @@ fn a_model_opened_alone_steps_at_its_own_time_step() {
     let opened = Simulation::open(&path).unwrap().simulation;
     assert_eq!(opened.scene().time_step(), ars::formats::mjcf::MUJOCO_TIMESTEP);
     assert_eq!((opened.scene().time_step(), opened.scene().steps_per_frame()), (0.002, 10));
+
+    // MuJoCo compiles any time step; one ARS cannot step at is the file's error, naming
+    // the file and the element.
+    for bad in ["0", "-1", "1e9"] {
+        let path = dir.join(format!("step_{bad}.xml"));
+        std::fs::write(
+            &path,
+            CROSSED.replace(r#"<option gravity="0 0 0"/>"#, &format!(r#"<option timestep="{bad}"/>"#)),
+        )
+        .unwrap();
+        let e = Simulation::open(&path).unwrap_err().to_string();
+        assert!(e.contains(&format!("step_{bad}.xml")) && e.contains("<option timestep>"), "{e}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

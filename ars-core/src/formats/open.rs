@@ -135,7 +135,17 @@ impl Simulation {
             FileFormat::Mjcf => {
                 let options = MjcfOptions::new().base_pose(base).skip_unsupported(true);
                 let file = MjcfFile::read(path, &options)?;
+                // MuJoCo compiles any time step; ARS steps only within its limits: a file
+                // outside them is said as the file's problem, naming it.
                 let dt = file.timestep().unwrap_or(MUJOCO_TIMESTEP);
+                crate::limits::time_step(dt).map_err(|e| Error::Format {
+                    format: "MJCF",
+                    file: path.display().to_string(),
+                    element: "<option timestep>".into(),
+                    line: None,
+                    column: None,
+                    problem: format!("ARS cannot step at it: {e}"),
+                })?;
                 let mut simulation = Simulation::builder()
                     .space(SpaceKind::Simple)
                     .time_step(dt)
