@@ -73,19 +73,26 @@ impl Meshes<'_> {
     }
 
     pub(super) fn shape(&mut self, geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
-        use urdf_rs::Geometry as G;
-        Ok(match geometry {
-            G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
-            G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },
-            G::Capsule { radius, length } => Shape::Capsule { radius: *radius, length: *length },
-            G::Sphere { radius } => Shape::Sphere { radius: *radius },
-            G::Mesh { filename, scale } => {
-                let path = self.resolve(filename)?;
-                let scale = Vector3::from(scale.as_ref().map_or([1.0; 3], |s| s.0));
-                self.loaded.load(&path, scale).map_err(|e| e.to_string())?
-            }
-        })
+        let urdf_rs::Geometry::Mesh { filename, scale } = geometry else {
+            return Ok(primitive_shape(geometry).expect("a geometry that is not a mesh is a primitive"));
+        };
+        let path = self.resolve(filename)?;
+        let scale = Vector3::from(scale.as_ref().map_or([1.0; 3], |s| s.0));
+        self.loaded.load(&path, scale).map_err(|e| e.to_string())
     }
+}
+
+/// The shape of a primitive geometry (box, cylinder, capsule, sphere), unchecked;
+/// `None` for a mesh, which must be found and loaded.
+pub(super) fn primitive_shape(geometry: &urdf_rs::Geometry) -> Option<Shape> {
+    use urdf_rs::Geometry as G;
+    Some(match geometry {
+        G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
+        G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },
+        G::Capsule { radius, length } => Shape::Capsule { radius: *radius, length: *length },
+        G::Sphere { radius } => Shape::Sphere { radius: *radius },
+        G::Mesh { .. } => return None,
+    })
 }
 
 /// A problem with a link (the file is named by the caller; urdf-rs gives no line).

@@ -300,17 +300,11 @@ impl UrdfFile {
     }
 }
 
-/// Whether a primitive's sizes are not all finite and positive: a shape with nothing to
-/// draw (a mesh is checked when it is loaded).
+/// Whether a primitive has nothing to draw: a shape ARS refuses (a size zero, negative
+/// or not finite; [`Shape`](crate::Shape)'s own check). A mesh is checked when it is
+/// loaded.
 fn degenerate(geometry: &urdf_rs::Geometry) -> bool {
-    use urdf_rs::Geometry;
-    let sizes: Vec<f64> = match geometry {
-        Geometry::Box { size } => size.0.to_vec(),
-        Geometry::Cylinder { radius, length } | Geometry::Capsule { radius, length } => vec![*radius, *length],
-        Geometry::Sphere { radius } => vec![*radius],
-        Geometry::Mesh { .. } => Vec::new(),
-    };
-    sizes.iter().any(|x| !(x.is_finite() && *x > 0.0))
+    build::primitive_shape(geometry).is_some_and(|shape| shape.validate().is_err())
 }
 
 /// A problem of the URDF file `file` at `element`.
