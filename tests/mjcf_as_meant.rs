@@ -125,9 +125,11 @@ fn a_site_of_size_zero_is_a_point() {
 }
 
 /// A jointless body given a mass and no inertia (a point mass, `diaginertia="0 0 0"`, as
-/// robot files write small parts) loads as MuJoCo loads it: its ODE body, welded to its
-/// parent, takes the inertia of a solid sphere of that mass at water's density, said
-/// in `skipped`; its mass is the file's.
+/// robot files write small parts) loads as MuJoCo loads it. Under a moving body it is
+/// part of that body's rigid body: its mass added at its place, nothing to balance.
+/// Of the world, it is an ODE body of its own fixed there, which needs an inertia: a
+/// solid sphere of its mass at water's density, said in `skipped`; its mass is the
+/// file's.
 #[test]
 fn a_welded_point_mass_loads_with_an_inertia_said_in_skipped() {
     let text = CROSSED.replace(
@@ -135,15 +137,65 @@ fn a_welded_point_mass_loads_with_an_inertia_said_in_skipped() {
     <body name="b""#,
         r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/>
       <body name="knob" pos="0.5 0 0"><inertial pos="0 0 0" mass="0.2" diaginertia="0 0 0"/></body></body>
+    <body name="weight" pos="0 -1 0"><inertial pos="0 0 0" mass="0.3" diaginertia="0 0 0"/></body>
     <body name="b""#,
     );
-    assert!(text.contains("knob"), "the knob is in the text");
+    assert!(text.contains("knob") && text.contains("weight"), "both are in the text");
     let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
     let model = sim.load_mjcf_text(&text, "knob.xml", &MjcfOptions::new()).unwrap();
-    let said: Vec<&String> = model.skipped.iter().filter(|s| s.starts_with("\"knob\": inertia balanced")).collect();
-    assert_eq!(said.len(), 1, "{:#?}", model.skipped);
-    let knob = sim.scene().object(model.body("knob").unwrap()).unwrap().body_handle().unwrap();
-    assert_eq!(sim.scene().world().body(knob).unwrap().mass(), 0.2);
+    let balanced =
+        |name: &str| model.skipped.iter().filter(|s| s.starts_with(&format!("{name:?}: inertia balanced"))).count();
+    assert_eq!((balanced("knob"), balanced("weight")), (0, 1), "{:#?}", model.skipped);
+    // The knob is the arm's: one rigid body of both masses.
+    assert_eq!(model.body("knob"), model.body("a"));
+    let a = sim.scene().body(model.body("a").unwrap()).unwrap().mass();
+    // Its geom has no type: MuJoCo's default, a sphere (of radius 0.05, at water's density).
+    let sphere = 1000.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.05f64.powi(3);
+    assert!((a - sphere - 0.2).abs() < 1e-12, "{a}");
+    let weight = sim.scene().object(model.body("weight").unwrap()).unwrap().body_handle().unwrap();
+    assert_eq!(sim.scene().world().body(weight).unwrap().mass(), 0.3);
     sim.scene_mut().set_controls(&[0.0, 1.0, 0.0]).unwrap();
     sim.run_for(0.2).unwrap();
+}
+
+/// A joint's `damping` is integrated as MuJoCo integrates it, implicitly: over one step
+/// of `h`, a body of inertia `I` about a fixed hinge turning at `ω` turns at
+/// `ω · I / (I + h·c)` after it (`(I + h·c)·ω′ = I·ω`), however large `h·c / I`. Here it
+/// is 100 (a wrist of robot files: damping 10, a link of grams): ARS's explicit viscous
+/// friction would turn the body back at 99 times its speed each step. A ball joint's
+/// and a free joint's damping slow every direction alike.
+#[test]
+fn joint_damping_is_implicit_and_stable_at_any_coefficient() {
+    // A rod along x (capsule, r = 0.01, length 0.1) turning about z at the origin.
+    let model_text = |joint: &str| {
+        format!(
+            r#"<mujoco><option timestep="0.001" gravity="0 0 0"/><worldbody>
+                 <body name="rod">{joint}<inertial pos="0 0 0" mass="0.1" diaginertia="1e-4 1e-4 1e-4"/>
+                 <geom type="sphere" size="0.01" contype="0" conaffinity="0"/></body>
+               </worldbody></mujoco>"#
+        )
+    };
+    let (inertia, damping, h) = (1e-4, 10.0, 0.001);
+    let decay = inertia / (inertia + h * damping);
+    for joint in [
+        r#"<joint name="j" type="hinge" axis="0 0 1" damping="10"/>"#,
+        r#"<joint name="j" type="ball" damping="10"/>"#,
+        r#"<joint name="j" type="free" damping="10"/>"#,
+    ] {
+        let text = model_text(joint);
+        let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::zeros()).time_step(h).build().unwrap();
+        let model = sim.load_mjcf_text(&text, "rod.xml", &MjcfOptions::new()).unwrap();
+        let rod = sim.scene().object(model.body("rod").unwrap()).unwrap().body_handle().unwrap();
+        let spin = ars::nalgebra::Vector3::new(0.0, 2.0, 0.0); // about MuJoCo's z: the simulation's y
+        sim.scene_mut().world_mut().body_mut(rod).unwrap().set_angular_velocity(spin).unwrap();
+        // A free joint's damping acts on its linear and its angular velocity: two motors.
+        let motors = if joint.contains("free") { 2 } else { 1 };
+        assert_eq!(model.dampers.len(), motors, "{joint}");
+        for n in 1..=20 {
+            sim.step_n(1).unwrap();
+            let w = sim.scene().world().body(rod).unwrap().angular_velocity();
+            let expected = spin * decay.powi(n);
+            assert!((w - expected).norm() <= 1e-9 * spin.norm(), "{joint}, step {n}: {w} against {expected}");
+        }
+    }
 }

@@ -68,39 +68,48 @@ def gymnasium_asset(name):
 
 def compare(path):
     """Loads `path` in ARS and in MuJoCo and compares every body's mass, centre of mass
-    (in the world, MuJoCo's (x, y, z) being ARS's (x, z, -y)) and principal moments."""
+    (in the world, MuJoCo's (x, y, z) being ARS's (x, z, -y)) and inertia. A jointless
+    body is welded into its parent (`model["welded"]`), one rigid body with it as in
+    MuJoCo: each ARS body is compared with MuJoCo's bodies it holds, combined."""
     sim = ars.Simulation()
     model = sim.load_mjcf(path, skip_unsupported=True)
     m = mujoco.MjModel.from_xml_path(str(path))
     d = mujoco.MjData(m)
     mujoco.mj_kinematics(m, d)
-    for name in model["bodies"]:
+    turn = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+
+    def index(name):
         i = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, name)
-        if i < 0:  # unnamed in the file: ARS names it body{id}
-            i = int(name.removeprefix("body"))
+        return i if i >= 0 else int(name.removeprefix("body"))  # unnamed: ARS's body{id}
+
+    for name in model["bodies"]:
+        held = [index(name)] + [index(w) for w, into in model["welded"].items() if into == name]
         body = sim.body(name)
         # A body lighter than ARS allows (a marker of milligrams) is raised to its
         # least mass, its inertia scaled alike, and said.
         scale = 1.0
         if any(s.startswith(f'"{name}": a mass of') and "raised" in s for s in model["skipped"]):
-            scale = 1e-9 / m.body_mass[i]
-            assert scale > 1.0, name
-        assert body.mass == pytest.approx(m.body_mass[i] * scale, rel=1e-9), name
-        x, y, z = d.xipos[i]
+            scale = 1e-9 / m.body_mass[held[0]]
+            assert scale > 1.0 and len(held) == 1, name
+        mass = sum(m.body_mass[i] for i in held) * scale
+        assert body.mass == pytest.approx(mass, rel=1e-9), name
+        centre = sum(m.body_mass[i] * scale * d.xipos[i] for i in held) / mass
+        x, y, z = centre
         assert body.position == pytest.approx([x, z, -y], rel=1e-9, abs=1e-12), name
+        # MuJoCo's bodies' inertias in the world, about their common centre.
+        theirs = np.zeros((3, 3))
+        for i in held:
+            frame = turn @ d.ximat[i].reshape(3, 3)
+            offset = turn @ (d.xipos[i] - centre)
+            theirs += frame @ np.diag(m.body_inertia[i] * scale) @ frame.T
+            theirs += m.body_mass[i] * scale * (offset @ offset * np.eye(3) - np.outer(offset, offset))
         # The inertia ARS adds for the armature of the joint moving it is MuJoCo's
         # dof_armature, not part of body_inertia.
         inertia = body.inertia - np.array(model["armature"].get(name, np.zeros((3, 3))))
-        moments = np.sort(np.linalg.eigvalsh(inertia))
-        assert moments == pytest.approx(np.sort(m.body_inertia[i]) * scale, rel=1e-9, abs=1e-15), (
-            name
-        )
-        # And the principal axes: the inertia tensors in the world agree.
-        turn = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
-        frame = turn @ d.ximat[i].reshape(3, 3)
-        theirs = frame @ np.diag(m.body_inertia[i] * scale) @ frame.T
         ours = body.rotation @ inertia @ body.rotation.T
         assert ours == pytest.approx(theirs, rel=1e-9, abs=1e-12 * np.abs(theirs).max()), name
+        moments = np.sort(np.linalg.eigvalsh(inertia))
+        assert moments == pytest.approx(np.sort(np.linalg.eigvalsh(theirs)), rel=1e-9, abs=1e-15), name
     return sim, model
 
 
@@ -262,14 +271,12 @@ def test_actuators_are_in_mujoco_s_ctrl_order(asset):
         sim.set_controls(action[:-1])
 
 
-@pytest.mark.parametrize("asset", [a for a in GYMNASIUM if not a.startswith("pusher")])
+@pytest.mark.parametrize("asset", GYMNASIUM)
 def test_gymnasium_models_run(asset):
     """Models written by others run 2 s, hopper, walker and half-cheetah with their
-    planar roots chained. (Gymnasium's reacher runs because its joints' armature is
-    modelled: its links weigh grams, and its joint damping, explicit in ARS, would
-    outweigh their inertia at 0.4 ms steps without it. The pushers do not: their goal
-    marker weighs milligrams on damped slides, and explicit damping outweighs it. The
-    humanoids run because a
+    planar roots chained. (The pushers run because joint damping is implicit, as
+    MuJoCo's: their goal marker weighs milligrams on damped slides, which explicit
+    damping would throw back faster each step. The humanoids run because a
     body chained to its parent, as their hips are, does not touch it, as in MuJoCo.)
     Without control they stand or fall, and come to rest: no body rises, none still
     moves fast after 2 s."""

@@ -79,7 +79,7 @@ impl PySimulation {
     /// the file's sensors made (`ars.Sensor`s by name; see the Rust `MjcfSensor` for the
     /// columns that hold MuJoCo's values), the bodies' named sites (`{name: body}`), the
     /// inertia (3×3, body frame) each object carries for its joint's armature, what was
-    /// skipped; `welded` maps each massless jointless body to the body it was merged
+    /// skipped; `welded` maps each jointless body to the body it was merged
     /// into (`None`: the world).
     #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false))]
     fn load_mjcf<'py>(
@@ -103,7 +103,7 @@ impl PySimulation {
         let actuators: Vec<(String, String, String)> =
             model.actuators.iter().map(|a| (a.name.clone(), a.kind.clone(), a.joint.clone())).collect();
         dict.set_item("actuators", actuators)?;
-        // Each massless jointless body merged into the body it is welded to (None: the world).
+        // Each jointless body merged into the body it is welded to (None: the world).
         let welded = pyo3::types::PyDict::new(py);
         for w in &model.welded {
             welded.set_item(&w.body, w.into.clone())?;

@@ -59,6 +59,9 @@ impl Scene {
                 .chain(made.chain_links.iter().copied())
                 .chain(made.world_geoms.iter().copied())
                 .collect();
+            for (_, motor) in made.dampers.iter().rev() {
+                let _ = self.world_mut().remove_joint(*motor);
+            }
             for id in ids.into_iter().rev() {
                 // Its joints go with it; what was made is removed whatever the error.
                 let _ = self.remove_object_with_joints(id);
@@ -187,6 +190,7 @@ impl Scene {
         }
         for (k, j) in body.joints.iter().enumerate() {
             if j.kind == JointKind::Free {
+                self.damp_mjcf_joint(j, Vector3::zeros(), id, JointEnd::World, made)?;
                 continue;
             }
             // Several joints in one body: a chain through light links at the body's
@@ -198,6 +202,7 @@ impl Scene {
                 id
             };
             let joint = self.add_mjcf_joint(j, &frame, child, end)?;
+            self.damp_mjcf_joint(j, frame.rotation * j.axis, child, end, made)?;
             made.joints.push((j.name.clone(), joint));
             if child != id {
                 made.chain_links.push(child);
@@ -287,8 +292,33 @@ impl Scene {
         self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)
     }
 
+    /// A joint's `damping`, when it has one: the motors that damp it (see `damper.rs`),
+    /// listed in [`MjcfModel::dampers`].
+    fn damp_mjcf_joint(
+        &mut self,
+        j: &Joint,
+        axis: Vector3<f64>,
+        child: ObjectId,
+        end: JointEnd,
+        made: &mut MjcfModel,
+    ) -> Result<()> {
+        if j.damping == 0.0 {
+            return Ok(());
+        }
+        let body = |scene: &Self, id: ObjectId| scene.object(id).map(|o| o.body_handle());
+        let child = body(self, child)?.ok_or_else(|| body_error(format!("the joint {:?} moves no body", j.name)))?;
+        let parent = match end {
+            JointEnd::Object(id) => body(self, id)?,
+            JointEnd::World => None,
+        };
+        for motor in self.add_mjcf_damper(j, axis, child, parent)? {
+            made.dampers.push((j.name.clone(), motor));
+        }
+        Ok(())
+    }
+
     /// Makes an MJCF joint moving `child` relative to `end` (at the joint's `ref`),
-    /// with its range, damping, spring and dry friction.
+    /// with its range, spring and dry friction (its damping: `damp_mjcf_joint`).
     fn add_mjcf_joint(&mut self, j: &Joint, frame: &Isometry3<f64>, child: ObjectId, end: JointEnd) -> Result<JointId> {
         let anchor = frame * nalgebra::Point3::from(j.pos);
         let axis = frame.rotation * j.axis;
@@ -327,9 +357,6 @@ impl Scene {
         let joint = joint?;
         if let Some((lo, hi)) = j.range {
             self.joint_mut(joint)?.set_limits(lo, hi)?;
-        }
-        if j.damping > 0.0 {
-            self.joint_mut(joint)?.set_viscous_friction(j.damping)?;
         }
         if j.spring.0 > 0.0 {
             self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
@@ -400,9 +427,9 @@ fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
         (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
     };
     let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
-    // A jointless body with mass is welded to its parent by a fixed joint, on an ODE
-    // body of its own, which needs an inertia a body can have; MuJoCo takes any (a
-    // point mass: `diaginertia="0 0 0"`), the body moving only with its parent.
+    // A jointless body with mass left after welding (one of the world) is fixed there
+    // by a fixed joint, on an ODE body of its own, which needs an inertia a body can
+    // have; MuJoCo takes any (a point mass: `diaginertia="0 0 0"`), the body static.
     let inertia = match body.joints.is_empty().then(|| balance_inertia(mass, &inertia)).flatten() {
         Some(balanced) => {
             made.skipped.push(format!("{:?}: {} (a welded body of its own needs one)", body.name, balanced.note));

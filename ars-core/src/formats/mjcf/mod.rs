@@ -24,19 +24,22 @@
 //!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
 //!   when one's type meets the other's affinity).
 //! - **Joints.** `hinge` (a hinge), `slide` (a slider), `ball`, `free` (a free body); a
-//!   body without joints is welded to its parent, as in MuJoCo: one with mass is an
-//!   object of its own fixed to its parent's (its mass MuJoCo's `body_mass`); one
-//!   without (a frame, a mount, a static prop: no `<inertial>` or one of mass 0, no geom
-//!   with mass) is no object: its geoms go onto its parent's object at their offsets
-//!   (static geoms when it is welded to the world), its sites and children are placed
-//!   through it, and [`MjcfModel::welded`] says where it went. A moving body (one with
-//!   joints) that weighs nothing takes in its jointless descendants, their masses
-//!   combined (MuJoCo's rigid body of welded bodies); when they weigh nothing either
-//!   (its mass is in bodies that move on joints of their own), it is refused, as MuJoCo
-//!   refuses it ("mass and inertia of moving bodies must be larger than mjMINVAL"). `range` (with `limited`, or
-//!   `<compiler autolimits>`, on by default) becomes stops, `damping` viscous friction
-//!   (explicit, from the rate at the start of the step: stable while `damping · dt`
-//!   stays below the inertia it acts on).
+//!   body without joints is welded to its parent, as in MuJoCo's compiler, which makes
+//!   it one rigid body with its parent: it is no object of its own. Its mass (if any) is
+//!   combined with its parent's about their common centre, its geoms go onto its
+//!   parent's object at their offsets, its sites and children are placed through it,
+//!   and [`MjcfModel::welded`] says where it went. A jointless body of the world that
+//!   weighs nothing is merged into the world (its geoms static); one with mass is an
+//!   object of its own fixed to the world, with its jointless descendants. A moving
+//!   body that weighs nothing with its welded descendants (its mass is in bodies that
+//!   move on joints of their own) is refused, as MuJoCo refuses it ("mass and inertia
+//!   of moving bodies must be larger than mjMINVAL"). `range` (with `limited`, or
+//!   `<compiler autolimits>`, on by default) becomes stops. `damping` is integrated as
+//!   MuJoCo integrates it, implicitly (stable at any coefficient): an ODE motor beside
+//!   the joint (an angular one about a hinge's axis and a ball's three, a linear one
+//!   along a slide, both for a free joint) holds the bodies' relative velocity at 0
+//!   with constraint force mixing `1 / damping`, so that ODE solves the damping force
+//!   from the velocity at the end of the step ([`MjcfModel::dampers`] lists them).
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
 //!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
 //!   slide z, hinge y) are chained through light links at the body's frame (each of
@@ -135,11 +138,12 @@ use nalgebra::{Isometry3, Matrix3, Vector3};
 
 use crate::control::Actuator;
 use crate::error::{Error, Result};
-use crate::handle::{JointId, ObjectId};
+use crate::handle::{JointHandle, JointId, ObjectId};
 use crate::sensors::{AnySensorId, Mount, TouchZone};
 use crate::simulation::Simulation;
 
 mod build;
+mod damper;
 mod defaults;
 mod include;
 mod mass;
@@ -208,11 +212,16 @@ pub struct MjcfModel {
     /// Every body made an object, by name, in the file's order (not those in
     /// [`welded`](Self::welded)).
     pub bodies: Vec<(String, ObjectId)>,
-    /// The massless jointless bodies merged into the body they are welded to (or into
-    /// the world), in the file's order (see the module docs).
+    /// The jointless bodies merged into the body they are welded to (or into the
+    /// world), in the file's order (see the module docs).
     pub welded: Vec<MjcfWeld>,
     /// Every joint made, by name.
     pub joints: Vec<(String, JointId)>,
+    /// The ODE motors that damp the joints with a `damping`, by joint name: one for a
+    /// hinge, a slide or a ball joint, a linear and an angular one for a free joint
+    /// (see the module docs). They are joints of the [`World`](crate::World), saved
+    /// with the scene.
+    pub dampers: Vec<(String, JointHandle)>,
     /// The static geoms of the world body.
     pub world_geoms: Vec<ObjectId>,
     /// `<option timestep>`, s.
@@ -235,7 +244,7 @@ pub struct MjcfModel {
     pub sites: Vec<MjcfSite>,
 }
 
-/// A massless jointless body of the file merged into the body it is welded to: it is
+/// A jointless body of the file merged into the body it is welded to: it is
 /// no object of its own.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MjcfWeld {

@@ -1,12 +1,12 @@
 //! Jointless bodies welded as MuJoCo welds them: a body without joints moves with its
-//! parent (MuJoCo's `body_weldid`). One that weighs nothing (a frame, a mount, a static
-//! prop of the world body) cannot be an ODE body of its own: it is merged into the body
-//! it is welded to (its geoms at their offsets on that body's ODE body, its sites and
-//! children placed through it), or into the world (its geoms static). Jointless bodies
-//! with mass stay ODE bodies of their own, fixed to their parent, with their own mass
-//! (each body's mass is MuJoCo's `body_mass`); except under a moving body that weighs
-//! nothing itself (MuJoCo's mass is then in its welded children): that body takes them
-//! all in, their masses combined, as MuJoCo's rigid body of welded bodies.
+//! parent (MuJoCo's `body_weldid`), one rigid body with it. It is merged into the body
+//! it is welded to: its mass combined with that body's about their common centre, its
+//! geoms at their offsets on that body's ODE body, its sites and children placed
+//! through it. A chain of ODE bodies held by fixed joints would be that rigid body only
+//! as nearly as the solver holds them, and not at all when one weighs grams against
+//! its neighbour's kilograms (robot files write 1e-8 kg hands). Of the world body, one
+//! that weighs nothing is merged into the world (its geoms static); one with mass stays
+//! an ODE body of its own fixed to the world, its jointless descendants merged into it.
 
 use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 
@@ -15,9 +15,9 @@ use super::model::{Body, Model, Welded};
 /// A body's mass, centre of mass and inertia about it, in its frame.
 type Mass = (f64, Vector3<f64>, Matrix3<f64>);
 
-/// Merges the model's massless jointless bodies into the bodies (or the world) they are
-/// welded to, and a massless moving body's jointless descendants into it; each merged
-/// body is listed in `model.welded`.
+/// Merges the model's jointless bodies into the bodies they are welded to (the
+/// massless ones of the world into the world); each merged body is listed in
+/// `model.welded`.
 pub(super) fn weld_jointless(model: &mut Model) {
     let mut top = Vec::new();
     for body in std::mem::take(&mut model.bodies) {
@@ -49,12 +49,11 @@ fn into_world(mut body: Body, parent: &Isometry3<f64>, model: &mut Model, top: &
     }
 }
 
-/// Merges into `body` its massless jointless children (all its jointless ones when it
-/// moves and weighs nothing), then does the same in each child it keeps.
+/// Merges into `body` its jointless children, then does the same in each child it
+/// keeps.
 fn merge_children(body: &mut Body, welded: &mut Vec<Welded>) {
-    let all = body.mass.is_none() && !body.joints.is_empty();
     for child in std::mem::take(&mut body.children) {
-        merge(body, child, &Isometry3::identity(), all, welded);
+        merge(body, child, &Isometry3::identity(), welded);
     }
     for child in &mut body.children {
         merge_children(child, welded);
@@ -62,11 +61,10 @@ fn merge_children(body: &mut Body, welded: &mut Vec<Welded>) {
 }
 
 /// Merges `child`, whose parent's frame is `parent` in `body`'s frame, into `body` when
-/// it is jointless and massless (or jointless and `all`), with its own children in
-/// turn; else makes it a child of `body`.
-fn merge(body: &mut Body, mut child: Body, parent: &Isometry3<f64>, all: bool, welded: &mut Vec<Welded>) {
+/// it is jointless, with its own children in turn; else makes it a child of `body`.
+fn merge(body: &mut Body, mut child: Body, parent: &Isometry3<f64>, welded: &mut Vec<Welded>) {
     child.frame = parent * child.frame;
-    if !(child.joints.is_empty() && (all || child.mass.is_none())) {
+    if !child.joints.is_empty() {
         body.children.push(child);
         return;
     }
@@ -93,7 +91,7 @@ fn merge(body: &mut Body, mut child: Body, parent: &Isometry3<f64>, all: bool, w
         principal: child.principal,
     });
     for grandchild in child.children {
-        merge(body, grandchild, &frame, all, welded);
+        merge(body, grandchild, &frame, welded);
     }
 }
 
