@@ -199,3 +199,30 @@ fn joint_damping_is_implicit_and_stable_at_any_coefficient() {
         }
     }
 }
+
+/// MuJoCo's legacy binary meshes (`.msh`: dm_control's test assets, robosuite's
+/// objects) load as the other mesh files: a cube of 0.1 m written as one weighs its
+/// volume at the geom's density.
+#[test]
+fn a_msh_mesh_loads_with_its_volume_s_mass() {
+    let dir = std::env::temp_dir().join(format!("ars-msh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let corners: Vec<f32> =
+        (0..8).flat_map(|i| [i & 1, (i >> 1) & 1, (i >> 2) & 1].map(|b| 0.1 * b as f32 - 0.05)).collect();
+    // Twelve triangles wound outwards (x-, x+, y-, y+, z-, z+ faces).
+    let faces: [i32; 36] =
+        [0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6];
+    let mut bytes: Vec<u8> = [8i32, 0, 0, 12].iter().flat_map(|c| c.to_le_bytes()).collect();
+    bytes.extend(corners.iter().flat_map(|f| f.to_le_bytes()));
+    bytes.extend(faces.iter().flat_map(|f| f.to_le_bytes()));
+    std::fs::write(dir.join("cube.msh"), bytes).unwrap();
+    let text = r#"<mujoco><asset><mesh name="cube" file="cube.msh"/></asset><worldbody>
+        <body name="box" pos="0 0 1"><freejoint/><geom type="mesh" mesh="cube" density="1000"/></body>
+      </worldbody></mujoco>"#;
+    std::fs::write(dir.join("cube.xml"), text).unwrap();
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf(dir.join("cube.xml"), &MjcfOptions::new()).unwrap();
+    let mass = sim.scene().body(model.body("box").unwrap()).unwrap().mass();
+    assert!((mass - 1.0).abs() < 1e-6, "{mass}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,5 +1,5 @@
-//! Triangle meshes from files (STL, OBJ, COLLADA), made fit for ODE's trimesh
-//! collider: every sub-mesh of a file merged into one, duplicate vertices welded,
+//! Triangle meshes from files (STL, OBJ, COLLADA, and MuJoCo's legacy binary `.msh`),
+//! made fit for ODE's trimesh collider: every sub-mesh of a file merged into one, duplicate vertices welded,
 //! degenerate triangles dropped, the scale applied.
 
 use std::collections::HashMap;
@@ -30,14 +30,23 @@ pub fn load_mesh(path: &Path, scale: Vector3<f64>) -> Result<Shape> {
     if !scale.iter().all(|s| s.is_finite() && *s != 0.0) {
         return Err(bad(format!("scale {scale:?} must be finite and non-zero")));
     }
-    // The loader is a dependency: a panic in it must not reach the caller.
-    let loaded = std::panic::catch_unwind(|| mesh_loader::Loader::default().merge_meshes(false).load(path))
-        .map_err(|_| bad("the mesh loader failed on this file".into()))?
-        .map_err(|e| bad(format!("cannot be loaded: {e}")))?;
+    let meshes = if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("msh")) {
+        let bytes = std::fs::read(path).map_err(|e| bad(format!("cannot be read: {e}")))?;
+        vec![read_msh(&bytes).map_err(bad)?]
+    } else {
+        // The loader is a dependency: a panic in it must not reach the caller.
+        std::panic::catch_unwind(|| mesh_loader::Loader::default().merge_meshes(false).load(path))
+            .map_err(|_| bad("the mesh loader failed on this file".into()))?
+            .map_err(|e| bad(format!("cannot be loaded: {e}")))?
+            .meshes
+            .into_iter()
+            .map(|m| RawMesh { vertices: m.vertices, faces: m.faces })
+            .collect()
+    };
     let mut vertices: Vec<Point3<f64>> = Vec::new();
     let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
     let mut triangles = Vec::new();
-    for mesh in &loaded.meshes {
+    for mesh in &meshes {
         let mut index = Vec::with_capacity(mesh.vertices.len());
         for v in &mesh.vertices {
             let p = Point3::new(f64::from(v[0]) * scale.x, f64::from(v[1]) * scale.y, f64::from(v[2]) * scale.z);
@@ -70,4 +79,86 @@ pub fn load_mesh(path: &Path, scale: Vector3<f64>) -> Result<Shape> {
         return Err(bad("it has no triangle with an area".into()));
     }
     Ok(Shape::TriMesh { vertices, triangles })
+}
+
+/// A mesh as a file gives it: vertices and triangles (indices into them).
+#[derive(Debug)]
+struct RawMesh {
+    vertices: Vec<[f32; 3]>,
+    faces: Vec<[u32; 3]>,
+}
+
+/// MuJoCo's legacy binary mesh (`.msh`, dm_control's and robosuite's older assets): four
+/// little-endian `i32` counts (vertices, normals, texture coordinates, faces), then
+/// the vertices (3 `f32` each), the normals (3 `f32`), the texture coordinates (2
+/// `f32`) and the faces (3 `i32`); the file's size must be exactly that.
+fn read_msh(bytes: &[u8]) -> std::result::Result<RawMesh, String> {
+    let word = |i: usize| -> [u8; 4] { bytes[4 * i..4 * i + 4].try_into().expect("four bytes") };
+    if bytes.len() < 16 {
+        return Err(format!("a .msh file starts with four counts (16 bytes); it has {} bytes", bytes.len()));
+    }
+    let counts: Vec<usize> = (0..4)
+        .map(|i| usize::try_from(i32::from_le_bytes(word(i))).map_err(|_| "a .msh count is negative".to_string()))
+        .collect::<std::result::Result<_, _>>()?;
+    let (nv, nn, nt, nf) = (counts[0], counts[1], counts[2], counts[3]);
+    let words = [3 * nv, 3 * nn, 2 * nt, 3 * nf].iter().try_fold(4usize, |sum, n| sum.checked_add(*n));
+    if words.and_then(|w| w.checked_mul(4)) != Some(bytes.len()) {
+        return Err(format!(
+            "a .msh file of {nv} vertices, {nn} normals, {nt} texture coordinates and {nf} faces \
+             cannot have {} bytes",
+            bytes.len()
+        ));
+    }
+    let vertices = (0..nv).map(|v| [0, 1, 2].map(|k| f32::from_le_bytes(word(4 + 3 * v + k)))).collect();
+    let first_face = 4 + 3 * nv + 3 * nn + 2 * nt;
+    let faces = (0..nf)
+        .map(|f| {
+            let face = [0, 1, 2].map(|k| i32::from_le_bytes(word(first_face + 3 * f + k)));
+            match face.map(u32::try_from) {
+                [Ok(a), Ok(b), Ok(c)] => Ok([a, b, c]),
+                _ => Err(format!("a .msh face has a negative vertex index: {face:?}")),
+            }
+        })
+        .collect::<std::result::Result<_, _>>()?;
+    Ok(RawMesh { vertices, faces })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn msh(counts: [i32; 4], floats: &[f32], faces: &[i32]) -> Vec<u8> {
+        let mut bytes: Vec<u8> = counts.iter().flat_map(|c| c.to_le_bytes()).collect();
+        bytes.extend(floats.iter().flat_map(|f| f.to_le_bytes()));
+        bytes.extend(faces.iter().flat_map(|f| f.to_le_bytes()));
+        bytes
+    }
+
+    /// A tetrahedron with normals: its vertices and faces come back, the normals skipped.
+    #[test]
+    fn a_msh_file_is_read_past_its_normals() {
+        let corners = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        let mut floats = corners.to_vec();
+        floats.extend([9.0; 12]); // four normals
+        let bytes = msh([4, 4, 0, 4], &floats, &[0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]);
+        let mesh = read_msh(&bytes).unwrap();
+        assert_eq!(mesh.vertices, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        assert_eq!(mesh.faces, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]);
+    }
+
+    /// Truncated, padded, negative or absurd counts and negative indices are errors, not
+    /// panics or huge allocations.
+    #[test]
+    fn a_broken_msh_file_is_an_error() {
+        let good = msh([3, 0, 0, 1], &[0.0; 9], &[0, 1, 2]);
+        assert!(read_msh(&good).is_ok());
+        assert!(read_msh(&good[..good.len() - 1]).unwrap_err().contains("cannot have"));
+        assert!(read_msh(&[good.clone(), vec![0]].concat()).unwrap_err().contains("cannot have"));
+        assert!(read_msh(&good[..10]).unwrap_err().contains("16 bytes"));
+        assert!(read_msh(&msh([-1, 0, 0, 0], &[], &[])).unwrap_err().contains("negative"));
+        assert!(
+            read_msh(&msh([i32::MAX, i32::MAX, i32::MAX, i32::MAX], &[], &[])).unwrap_err().contains("cannot have")
+        );
+        assert!(read_msh(&msh([3, 0, 0, 1], &[0.0; 9], &[0, -1, 2])).unwrap_err().contains("negative"));
+    }
 }

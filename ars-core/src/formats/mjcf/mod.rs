@@ -16,7 +16,7 @@
 //!   turned as the MJCF body, with the full inertia tensor.
 //! - **Geoms.** `plane` (static only: an infinite plane), `sphere`, `capsule`,
 //!   `cylinder`, `box`, and `ellipsoid` (as a sphere of the same volume, with a warning);
-//!   `mesh` (an `<asset><mesh>`'s STL or OBJ file, with its `scale`, in `<compiler
+//!   `mesh` (an `<asset><mesh>`'s STL, OBJ or MuJoCo's legacy `.msh` file, with its `scale`, in `<compiler
 //!   meshdir>` or `assetdir`, as a triangle mesh; its mass and inertia those of the
 //!   closed solid it bounds, as MuJoCo's for a convex mesh);
 //!   `fromto` for capsules and cylinders; `rgba` for the colour (else its
