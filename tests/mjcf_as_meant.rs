@@ -226,3 +226,30 @@ fn a_msh_mesh_loads_with_its_volume_s_mass() {
     assert!((mass - 1.0).abs() < 1e-6, "{mass}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A site placed by `fromto` (dm_control's quadruped places its rangefinders so) is
+/// centred between its two points with its z axis from the first to the second, as a
+/// geom is: a rangefinder on it looks that way. And a body of the file named as ARS
+/// names an unnamed world geom (`box`) keeps its name: the world's geoms are made after
+/// the bodies (Metaworld's box).
+#[test]
+fn a_site_placed_by_fromto_looks_along_it_and_a_body_keeps_its_name() {
+    let text = r#"<mujoco><worldbody>
+        <geom type="box" size="1 1 0.1" pos="0 0 -0.1"/>
+        <body name="box" pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/>
+          <site name="eye" type="capsule" size="0.005" fromto="0 0 0 0 0 -0.2"/></body>
+      </worldbody>
+      <sensor><rangefinder name="range" site="eye"/></sensor></mujoco>"#;
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(text, "eye.xml", &MjcfOptions::new()).unwrap();
+    let body = model.body("box").unwrap();
+    assert_eq!(sim.scene().object(body).unwrap().name(), "box");
+    let eye = model.site("eye").unwrap();
+    // In the body's frame (MuJoCo's axes): half-way down, its z axis pointing down.
+    assert!((eye.offset.translation.vector - ars::nalgebra::Vector3::new(0.0, 0.0, -0.1)).norm() < 1e-12);
+    let z = eye.offset.rotation * ars::nalgebra::Vector3::z();
+    assert!((z - ars::nalgebra::Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-12, "{z}");
+    let ars::sensors::TouchZone::Capsule { half_length, .. } = eye.zone else { panic!("{:?}", eye.zone) };
+    assert!((half_length - 0.1).abs() < 1e-12);
+    assert_eq!(model.sensors.len(), 1);
+}

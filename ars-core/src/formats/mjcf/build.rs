@@ -75,6 +75,11 @@ impl Scene {
         let world = placement(options);
         // Geoms by name, for `<contact><pair>`.
         let mut named = HashMap::new();
+        for body in &model.bodies {
+            self.add_mjcf_body(body, &world, None, made, &mut named)?;
+        }
+        // The world's geoms after the bodies: unnamed, they are named by their shape
+        // (`box`, `sphere`...), and so would take a body's name of the file.
         for g in &model.world_geoms {
             let pose = world * g.frame;
             let id = match g.kind {
@@ -96,9 +101,6 @@ impl Scene {
                 }
             }
             made.world_geoms.push(id);
-        }
-        for body in &model.bodies {
-            self.add_mjcf_body(body, &world, None, made, &mut named)?;
         }
         made.welded = welds(model, &world, made)?;
         for (k, (a, b)) in model.pairs.iter().enumerate() {

@@ -93,7 +93,9 @@
 //! - **Sites.** A body's named `<site>`s (`pos` and orientation, `type` `sphere`,
 //!   `capsule`, `cylinder`, `box` or `ellipsoid` with its `size`, MuJoCo's 0.005 m
 //!   where not given; classes as other elements) are listed in [`MjcfModel::sites`]
-//!   with their frames relative to their body's object; `fromto` is unsupported. Sites
+//!   with their frames relative to their body's object; `fromto` places one as it
+//!   places a geom (centred between its points, its z axis along them, its length
+//!   theirs: a rangefinder looks from one to the other). Sites
 //!   of the world body are read for their names only: a sensor on one is unsupported.
 //! - **Attributes.** Every attribute of the elements read is checked against MuJoCo's
 //!   schema (`mjcf/schema.rs`): one MuJoCo does not know (a typo) is an error naming it,

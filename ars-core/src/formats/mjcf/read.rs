@@ -281,18 +281,25 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
     pub(super) fn site(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Site>> {
         let a = Attrs::new(node, self.defaults, class);
         let Some(name) = node.attribute("name") else { return Ok(None) };
-        if a.get("fromto").is_some() {
-            self.unsupported(&node, "a site placed by fromto")?;
-            return Ok(None);
-        }
-        let size = a.numbers("size")?.unwrap_or_default();
+        let mut size = a.numbers("size")?.unwrap_or_default();
         // A site of size 0 is a point, as MuJoCo takes it (frames and sensors need no
         // size; a touch sensor on it is refused, having no zone).
         if let Some(s) = size.iter().find(|s| !(s.is_finite() && **s >= 0.0)) {
             return Err(problem(&node, format!("size {s} must be 0 or more")));
         }
+        // Placed by `fromto` as a geom is: centred between the points, its z axis along
+        // them, its half-length theirs.
+        let mut frame = frame(&a, &self.compiler)?;
+        let kind = a.get("type").unwrap_or("sphere");
+        if let Some(f) = a.fixed::<6>("fromto")? {
+            let (placed, half_length) = fromto_frame(&node, f)?;
+            frame = placed;
+            let along = if matches!(kind, "box" | "ellipsoid") { 2 } else { 1 };
+            size.resize(size.len().max(along + 1), SITE_SIZE);
+            size[along] = half_length;
+        }
         let at = |i: usize| size.get(i).copied().unwrap_or(SITE_SIZE);
-        let zone = match a.get("type").unwrap_or("sphere") {
+        let zone = match kind {
             "sphere" => TouchZone::Sphere { radius: at(0) },
             "capsule" => TouchZone::Capsule { radius: at(0), half_length: at(1) },
             "cylinder" => TouchZone::Cylinder { radius: at(0), half_length: at(1) },
@@ -303,7 +310,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 return Ok(None);
             }
         };
-        Ok(Some(Site { name: name.to_string(), frame: frame(&a, &self.compiler)?, zone, welded_from: None }))
+        Ok(Some(Site { name: name.to_string(), frame, zone, welded_from: None }))
     }
 
     /// The turn of an `<inertial>`'s principal axes from its body's frame: its
