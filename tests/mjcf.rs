@@ -136,10 +136,24 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
         model.skipped
     );
     assert!(!model.skipped.iter().any(|s| s.contains("coef")), "{:?}", model.skipped);
-    // MuJoCo's contact parameters are said unused, without skip_unsupported too.
-    let text = "<mujoco><worldbody><body><geom size='.1' friction='1 0.1 0.1'/></body></worldbody></mujoco>";
+    // The contact parameters ODE has no place for (margin, gap) are said unused, without
+    // skip_unsupported too; friction is used.
+    let text =
+        "<mujoco><worldbody><body><geom size='.1' friction='1 0.1 0.1' margin='0.01'/></body></worldbody></mujoco>";
     let model = Simulation::new().unwrap().load_mjcf_text(text, "friction.xml", &MjcfOptions::new()).unwrap();
-    assert!(model.skipped.iter().any(|s| s.contains("friction not used")), "{:?}", model.skipped);
+    assert!(model.skipped.iter().any(|s| s.contains(": margin not used")), "{:?}", model.skipped);
+    assert!(!model.skipped.iter().any(|s| s.contains("friction")), "{:?}", model.skipped);
+    // Bad contact parameters are the file's errors.
+    for (geom, says) in [
+        ("condim='2'", "condim 2 must be 1, 3, 4 or 6"),
+        ("friction='-1'", "friction -1 must be"),
+        ("solref='0.02 -1'", "solref"),
+        ("friction='1 2 3 4'", "friction takes 1 to 3 numbers"),
+    ] {
+        let text = format!("<mujoco><worldbody><body><geom size='.1' {geom}/></body></worldbody></mujoco>");
+        let e = Simulation::new().unwrap().load_mjcf_text(&text, "bad.xml", &MjcfOptions::new()).unwrap_err();
+        assert!(e.to_string().contains(says) && e.to_string().contains("<geom>"), "{e}");
+    }
     assert_eq!(sim.scene().objects().count(), 1);
     let missing = sim.load_mjcf("/nonexistent/model.xml", &MjcfOptions::new()).unwrap_err();
     assert!(matches!(missing, Error::Io { .. }), "{missing}");

@@ -253,3 +253,43 @@ fn a_site_placed_by_fromto_looks_along_it_and_a_body_keeps_its_name() {
     assert!((half_length - 0.1).abs() < 1e-12);
     assert_eq!(model.sensors.len(), 1);
 }
+
+/// A geom's `friction`, `condim`, `solref`, `solimp`, `priority` and `solmix` are its
+/// contacts' ([`ars::GeomContact`]): read with MuJoCo's defaults where not given, kept by
+/// scene files and snapshots, and they decide how the geoms touch: a puck given
+/// friction 0 glides on where one of friction 1 stops.
+#[test]
+fn geom_contact_parameters_are_read_kept_and_used() {
+    let text = r#"<mujoco><option timestep="0.002"/><worldbody>
+        <geom name="ground" type="plane" size="5 5 .1" friction="0.5"/>
+        <body name="slick" pos="0 0 0.05"><freejoint/>
+          <geom type="box" size=".05 .05 .05" friction="0" condim="3" priority="1"/></body>
+        <body name="rough" pos="0 1 0.05"><freejoint/>
+          <geom type="box" size=".05 .05 .05" friction="1 0.01" condim="4" solref="0.01 1" solimp="0.8 0.9 0.002" solmix="2"/></body>
+      </worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::new(0.0, -9.81, 0.0)).build().unwrap();
+    let model = sim.load_mjcf_text(text, "pucks.xml", &MjcfOptions::new()).unwrap();
+    let (slick, rough) = (model.body("slick").unwrap(), model.body("rough").unwrap());
+    let rough_contact = sim.scene().geom_contact(rough, 0).unwrap().unwrap();
+    assert_eq!(rough_contact.friction, [1.0, 0.01, 0.0001]);
+    assert_eq!((rough_contact.condim, rough_contact.solref, rough_contact.solmix), (4, [0.01, 1.0], 2.0));
+    assert_eq!(rough_contact.solimp, [0.8, 0.9, 0.002, 0.5, 2.0]);
+    assert_eq!(sim.scene().geom_contact(slick, 0).unwrap().unwrap().priority, 1);
+    assert_eq!(sim.scene().geom_contacts().len(), 3, "the ground's too");
+    // Kept by a scene file and by a snapshot.
+    let copy = ars::formats::scene_file::SceneFile::parse(&sim.save_scene().unwrap(), "pucks.json").unwrap();
+    assert_eq!(copy.build().unwrap().scene().geom_contacts().len(), 3);
+    let snapshot = sim.snapshot().unwrap();
+    // Both pushed along x at 2 m/s: the slick one glides, the rough one stops.
+    for id in [slick, rough] {
+        let body = sim.scene().object(id).unwrap().body_handle().unwrap();
+        sim.scene_mut().world_mut().body_mut(body).unwrap().set_linear_velocity([2.0, 0.0, 0.0].into()).unwrap();
+    }
+    sim.run_for(1.0).unwrap();
+    let x = |sim: &Simulation, id| sim.scene().object(id).unwrap().position().unwrap().x;
+    assert!(x(&sim, slick) > 1.9, "no friction: {}", x(&sim, slick));
+    // Coulomb's μ = 1 (the larger of the two): stopped after v² / (2·μ·g) = 0.2 m.
+    assert!((x(&sim, rough) - 0.204).abs() < 0.03, "μ = 1: {}", x(&sim, rough));
+    sim.restore(&snapshot).unwrap();
+    assert_eq!(sim.scene().geom_contacts().len(), 3);
+}

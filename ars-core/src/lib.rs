@@ -124,7 +124,7 @@ pub use program::{
     Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, WindowSettings,
 };
 pub use scene::{
-    ActuatorLimits, Color, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, Visual,
+    ActuatorLimits, Color, GeomContact, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint, Visual,
     heightfield_triangles,
 };
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorKind, SensorLog};

@@ -83,6 +83,14 @@ class _ContactSurface(TypedDict):
     approx1: bool
     max_contacts: int
 
+class _GeomContact(TypedDict):
+    friction: list[float]
+    condim: int
+    solref: list[float]
+    solimp: list[float]
+    priority: int
+    solmix: float
+
 class _Efforts(TypedDict):
     added: float
     controller: float
@@ -159,6 +167,20 @@ class Simulation:
     def exclude_contacts(self, a: str, b: str) -> None: ...
     def include_contacts(self, a: str, b: str) -> None: ...
     def excluded_contacts(self) -> list[tuple[str, str]]: ...
+    def set_geom_contact(
+        self,
+        name: str,
+        geom: int = 0,
+        *,
+        friction: Sequence[float] | None = None,
+        condim: int | None = None,
+        solref: Sequence[float] | None = None,
+        solimp: Sequence[float] | None = None,
+        priority: int | None = None,
+        solmix: float | None = None,
+    ) -> None: ...
+    def geom_contact(self, name: str, geom: int = 0) -> _GeomContact | None: ...
+    def geom_contacts(self) -> list[tuple[str, int, _GeomContact]]: ...
     def cast_ray(
         self, origin: _Vec3, direction: _Vec3, length: float
     ) -> tuple[float, tuple[float, float, float]] | None: ...

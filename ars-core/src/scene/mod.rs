@@ -9,6 +9,7 @@
 
 pub mod colors;
 mod floor;
+mod geom_contact;
 pub(crate) mod joints;
 mod names;
 pub(crate) mod objects;
@@ -19,6 +20,7 @@ mod views;
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
+pub use geom_contact::GeomContact;
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic};
 pub use objects::{Color, Visual};
 pub use sim_joint::SimJoint;

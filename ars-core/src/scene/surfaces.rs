@@ -5,6 +5,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::Scene;
+use super::geom_contact::GeomContact;
 use crate::contact::{CollisionHooks, ContactSurface, GeomPair};
 use crate::error::{Error, Result};
 use crate::handle::{GeomHandle, ObjectId, SpaceHandle};
@@ -19,23 +20,88 @@ pub(crate) struct PairSurfaces {
     /// Pairs that never touch, both orders.
     excluded: HashSet<(ObjectId, ObjectId)>,
     owner: HashMap<GeomHandle, ObjectId>,
+    /// The geoms with contact parameters of their own, each with its body's mass
+    /// (infinite: static) when they were set.
+    geom_contacts: HashMap<GeomHandle, (GeomContact, f64)>,
+    /// The time step of the collision under way, s (the geoms' parameters depend on it).
+    time_step: f64,
+    /// The surfaces made of geoms' parameters, by pair, at `time_step` (emptied when a
+    /// geom's parameters or the time step change).
+    made: HashMap<(GeomHandle, GeomHandle), ContactSurface>,
 }
 
 impl PairSurfaces {
     pub(crate) fn is_empty(&self) -> bool {
-        self.by_pair.is_empty() && self.excluded.is_empty()
+        self.by_pair.is_empty() && self.excluded.is_empty() && self.geom_contacts.is_empty()
     }
 
-    /// Forgets every pair with `object` (it is being removed).
+    /// Forgets every pair with `object` and its geoms' parameters (it is being removed).
     pub(crate) fn forget(&mut self, object: ObjectId) {
         self.by_pair.retain(|(a, b), _| *a != object && *b != object);
         self.excluded.retain(|(a, b)| *a != object && *b != object);
+        let owner = &self.owner;
+        self.geom_contacts.retain(|g, _| owner.get(g) != Some(&object));
+        self.made.clear();
         self.owner.retain(|_, o| *o != object);
     }
 
-    /// Whether `object` is in any pair (its geoms must be known).
+    /// Whether `object` is in any pair or has a geom with parameters of its own (its
+    /// geoms must be known).
     fn has(&self, object: ObjectId) -> bool {
         self.by_pair.keys().chain(&self.excluded).any(|(x, _)| *x == object)
+            || self.geom_contacts.keys().any(|g| self.owner.get(g) == Some(&object))
+    }
+
+    /// Gives `geom` (of `object`, whose body weighs `mass`) parameters of its own.
+    pub(super) fn set_geom_contact(&mut self, geom: GeomHandle, object: ObjectId, contact: GeomContact, mass: f64) {
+        self.owner.insert(geom, object);
+        self.geom_contacts.insert(geom, (contact, mass));
+        self.made.clear();
+    }
+
+    /// Sets the time step of the collision to come (the surfaces made are forgotten
+    /// when it changes).
+    pub(super) fn set_time_step(&mut self, dt: f64) {
+        if dt != self.time_step {
+            self.time_step = dt;
+            self.made.clear();
+        }
+    }
+
+    /// The parameters of `geom`'s own, if any.
+    pub(super) fn geom_contact(&self, geom: GeomHandle) -> Option<GeomContact> {
+        self.geom_contacts.get(&geom).map(|(c, _)| *c)
+    }
+
+    /// Forgets every geom's own parameters (a snapshot restores them).
+    pub(crate) fn clear_geom_contacts(&mut self) {
+        self.geom_contacts.clear();
+        self.made.clear();
+    }
+
+    /// The surface of two geoms of which one at least has parameters of its own: both
+    /// combined (MuJoCo's defaults for one that has none), at their reduced mass.
+    fn geom_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
+        let (first, second) = (self.geom_contacts.get(&pair.geom1), self.geom_contacts.get(&pair.geom2));
+        if first.is_none() && second.is_none() {
+            return None;
+        }
+        // (Made again when the world's default changed its most contact points.)
+        if let Some(surface) = self.made.get(&(pair.geom1, pair.geom2))
+            && surface.max_contacts == default.max_contacts
+        {
+            return Some(*surface);
+        }
+        let unknown = (GeomContact::default(), f64::INFINITY);
+        let ((a, mass_a), (b, mass_b)) = (first.unwrap_or(&unknown), second.unwrap_or(&unknown));
+        let mass = match (mass_a.is_finite(), mass_b.is_finite()) {
+            (true, true) => mass_a * mass_b / (mass_a + mass_b),
+            (true, false) => *mass_a,
+            _ => *mass_b,
+        };
+        let surface = a.combined(b).surface(self.time_step, mass, default.max_contacts);
+        self.made.insert((pair.geom1, pair.geom2), surface);
+        Some(surface)
     }
 }
 
@@ -44,10 +110,10 @@ impl CollisionHooks for PairSurfaces {
         let owners = (self.owner.get(&pair.geom1), self.owner.get(&pair.geom2));
         let surface = match owners {
             (Some(a), Some(b)) if self.excluded.contains(&(*a, *b)) => return None,
-            (Some(a), Some(b)) => self.by_pair.get(&(*a, *b)),
+            (Some(a), Some(b)) => self.by_pair.get(&(*a, *b)).copied(),
             _ => None,
         };
-        Some(*surface.unwrap_or(default))
+        Some(surface.or_else(|| self.geom_surface(pair, default)).unwrap_or(*default))
     }
 }
 
@@ -199,6 +265,7 @@ impl Scene {
 
     #[inline(never)]
     fn collide_with_surfaces_and_step(&mut self, space: SpaceHandle, dt: f64) -> CollideStepResult {
+        self.pair_surfaces.set_time_step(dt);
         if let Err(e) = self.world.collide_with(space, &mut self.pair_surfaces) {
             return Err(Box::new(CollideStepError::Collide(e)));
         }

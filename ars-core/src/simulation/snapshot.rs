@@ -206,6 +206,11 @@ impl Simulation {
             let (a, b) = (self.scene.object(pair.a.as_str())?.id(), self.scene.object(pair.b.as_str())?.id());
             self.scene.set_contact_surface(a, b, pair.surface)?;
         }
+        self.scene.clear_geom_contacts();
+        for g in &scene.geom_contacts {
+            let object = self.scene.object(g.object.as_str())?.id();
+            self.scene.set_geom_contact(object, g.geom, g.contact)?;
+        }
         for o in &scene.objects {
             let id = self.scene.object(o.name.as_str())?.id();
             if let Some(c) = o.color {

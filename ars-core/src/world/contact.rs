@@ -37,6 +37,11 @@ pub struct ContactSurface {
     /// Friction pyramid approximation: friction limits proportional to the normal force
     /// (Coulomb-like, `mu` is then a coefficient).
     pub approx1: bool,
+    /// Rolling friction `[rho, rho2, rhoN]` (ODE's `dContactRolling`): torque limits
+    /// against rolling about the two friction directions and spinning about the normal,
+    /// N·m (with `approx1` proportional to the normal force: lengths, m). `None`: none.
+    #[serde(default)]
+    pub rolling: Option<[f64; 3]>,
     /// Most contact points generated per pair (1 to [`MAX_CONTACTS_LIMIT`]).
     pub max_contacts: usize,
 }
@@ -50,6 +55,7 @@ impl Default for ContactSurface {
             soft_erp: None,
             soft_cfm: None,
             approx1: false,
+            rolling: None,
             max_contacts: MAX_CONTACTS_LIMIT,
         }
     }
@@ -86,6 +92,9 @@ impl ContactSurface {
         if let Some(c) = self.soft_cfm {
             validate::non_negative("contact soft CFM", c)?;
         }
+        for rho in self.rolling.iter().flatten() {
+            validate::non_negative("contact rolling friction", *rho)?;
+        }
         if self.max_contacts == 0 || self.max_contacts > MAX_CONTACTS_LIMIT {
             return Err(Error::OutOfRange {
                 what: "max contacts",
@@ -117,6 +126,10 @@ impl ContactSurface {
         }
         if self.approx1 {
             mode |= ffi::dContactApprox1;
+        }
+        if let Some([rho, rho2, rho_n]) = self.rolling {
+            mode |= ffi::dContactRolling;
+            (s.rho, s.rho2, s.rhoN) = (rho, rho2, rho_n);
         }
         s.mode = mode as i32;
         s

@@ -449,6 +449,7 @@ impl Harness {
                     soft_erp: (input.one_in(3)).then(|| input.real()),
                     soft_cfm: (input.one_in(3)).then(|| input.real()),
                     approx1: input.one_in(2),
+                    rolling: (input.one_in(3)).then(|| [input.real(), input.real(), input.real()]),
                     max_contacts: input.byte() as usize,
                 };
                 let _ = w.world.set_default_surface(surface);

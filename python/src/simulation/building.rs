@@ -285,6 +285,7 @@ impl PySimulation {
             soft_erp,
             soft_cfm,
             approx1,
+            rolling: None,
             max_contacts,
         };
         self.with(py, move |sim| match between {

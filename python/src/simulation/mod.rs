@@ -22,6 +22,7 @@ use pyo3::prelude::*;
 use crate::errors::{count, guarded, outcome, raise};
 
 mod building;
+mod contacts;
 mod files;
 mod sensing;
 

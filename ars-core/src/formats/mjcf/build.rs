@@ -92,6 +92,7 @@ impl Scene {
             if let Some(c) = g.rgba {
                 self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
             }
+            self.set_geom_contact(id, 0, g.contact)?;
             if let Some(handle) = self.object(id)?.geom_handle() {
                 let mut geom = self.world.geom_mut(handle)?;
                 geom.set_category_bits(g.bits.0);
@@ -235,7 +236,13 @@ impl Scene {
         let geoms = self.add_mjcf_geoms(body, frame, &body_frame, handle, named)?;
         let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
         let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
+        let count = geoms.len();
         self.set_extra_geoms(id, geoms.into_iter().skip(1).collect())?;
+        // The geoms made, in order (planes are the world's), with their own parameters.
+        let made_geoms = body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane));
+        for (k, g) in made_geoms.enumerate().take(count) {
+            self.set_geom_contact(id, k, g.contact)?;
+        }
         if let Some(c) = body.geoms.iter().find_map(|g| g.rgba) {
             self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
         }

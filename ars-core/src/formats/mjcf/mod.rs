@@ -71,9 +71,14 @@
 //!   across the axis that makes it one is added too, with a warning in
 //!   [`MjcfModel::skipped`]. A slide's or a free joint's armature (mass along some
 //!   directions only) is not modelled and is listed there.
-//! - **Contact parameters.** A geom's `friction`, `solref`, `solimp`, `condim`,
-//!   `margin` and `gap` are read and not used, with a warning in [`MjcfModel::skipped`]:
-//!   contacts take ARS's surfaces ([`Scene::set_contact_surface`](crate::Scene::set_contact_surface)).
+//! - **Contact parameters.** A geom's `friction`, `condim`, `solref`, `solimp`,
+//!   `priority` and `solmix` (MuJoCo's defaults where not given) are its own
+//!   ([`Scene::set_geom_contact`](crate::Scene::set_geom_contact)): each pair of geoms
+//!   that touch combines them as MuJoCo does and maps them onto ODE's contact, as
+//!   [`GeomContact`](crate::GeomContact)'s docs say (Coulomb friction, torsional and
+//!   rolling friction by `condim`, soft contacts of MuJoCo's resting depth and
+//!   rebound). `margin` and `gap` are read and said unused in [`MjcfModel::skipped`]:
+//!   ODE makes contacts only where geoms overlap.
 //! - **Defaults.** `<default>` classes with inheritance, `class` and `childclass`.
 //! - **Compiler.** `angle`, `eulerseq`, `autolimits`, `inertiafromgeom`,
 //!   `inertiagrouprange` (only geoms of those `group`s weigh), `meshdir`,
@@ -114,8 +119,8 @@
 //!   ([`Scene::exclude_contacts`](crate::Scene::exclude_contacts)). `<pair geom1 geom2>`: the two named geoms touch
 //!   whatever their `contype` and `conaffinity` say (each pair takes a bit of its own
 //!   among ODE's upper 32 category and collide bits, so at most [`MAX_CONTACT_PAIRS`];
-//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its contact
-//!   parameters are read and said unused. Unlike MuJoCo's, a pair does not override
+//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its own contact
+//!   parameters are read and said unused (its geoms' own combine). Unlike MuJoCo's, a pair does not override
 //!   an `<exclude>` or the rule that bodies one joint joins never touch; and a paired
 //!   geom also touches what was made outside the model (ARS's own shapes and floors,
 //!   URDF robots), whose collide bits take in ODE's upper 32.
@@ -145,6 +150,7 @@ use crate::sensors::{AnySensorId, Mount, TouchZone};
 use crate::simulation::Simulation;
 
 mod build;
+mod contact;
 mod damper;
 mod defaults;
 mod include;
@@ -335,7 +341,8 @@ pub struct MjcfSensor {
 pub const MAX_CONTACT_PAIRS: usize = 32;
 
 /// How a skipped line about a geom's or a pair's unused contact parameters ends.
-pub(crate) const CONTACT_PARAMETERS_UNUSED: &str = "not used (contacts take ARS's surface: Scene::set_contact_surface)";
+pub(crate) const CONTACT_PARAMETERS_UNUSED: &str =
+    "not used (ODE makes contacts where geoms overlap, with the touching geoms' own parameters)";
 
 /// The length of the ray of a `rangefinder` (MuJoCo's has none), m.
 pub const RANGEFINDER_LENGTH: f64 = 1e4;

@@ -38,6 +38,8 @@ pub(super) struct Geom {
     pub(super) rgba: Option<[f64; 4]>,
     /// `contype` and `conaffinity`: ODE's category and collide bits, the same rule.
     pub(super) bits: (u64, u64),
+    /// `friction`, `condim`, `solref`, `solimp`, `priority`, `solmix`.
+    pub(super) contact: crate::scene::GeomContact,
     /// Its name, for `<contact><pair>`.
     pub(super) name: Option<String>,
 }

@@ -7,12 +7,13 @@ use std::path::Path;
 use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 
 use super::MAX_CONTACT_PAIRS;
+use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
 use super::include::{Files, Includes, Tree, gather};
 use super::mass::{mass_of_geoms, scale_masses, total_mass};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
-use super::{CONTACT_PARAMETERS_UNUSED, MjcfActuator, MjcfOptions, SITE_SIZE};
+use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::Error;
 use crate::sensors::TouchZone;
@@ -60,19 +61,16 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             return Err(problem(&node, "density must not be negative"));
         }
         let bits = (collision_bits(&a, "contype")?, collision_bits(&a, "conaffinity")?);
-        // MuJoCo's contact model is not ODE's: its parameters are read and said unused.
-        let contact: Vec<&str> = ["friction", "solref", "solimp", "condim", "margin", "gap"]
-            .into_iter()
-            .filter(|k| a.get(k).is_some())
-            .collect();
-        contact_parameters_unused(&node, &contact, &mut self.skipped);
+        let contact = geom_contact(&a)?;
+        let unused: Vec<&str> = ["margin", "gap"].into_iter().filter(|k| a.get(k).is_some()).collect();
+        contact_parameters_unused(&node, &unused, &mut self.skipped);
         let name = node.attribute("name").map(str::to_string);
         // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
         let rgba = match a.fixed::<4>("rgba")? {
             Some(rgba) => Some(rgba),
             None => a.get("material").and_then(|m| self.materials.get(m)).copied(),
         };
-        Ok(Some(Geom { kind, frame, mass, density, rgba, bits, name }))
+        Ok(Some(Geom { kind, frame, mass, density, rgba, bits, contact, name }))
     }
 
     /// A geom's shape (its type and size) and its frame (the one `fromto` gives, if
@@ -444,19 +442,6 @@ pub(super) fn check_attributes(
     Ok(())
 }
 
-/// Says which of a geom's or a pair's contact parameters (MuJoCo's contact model, not
-/// ODE's) are read and not used, if any.
-pub(super) fn contact_parameters_unused(node: &roxmltree::Node<'_, '_>, names: &[&str], skipped: &mut Vec<String>) {
-    if !names.is_empty() {
-        skipped.push(format!(
-            "<{}> at line {}: {} {CONTACT_PARAMETERS_UNUSED}",
-            node.tag_name().name(),
-            problem(node, "").line,
-            names.join(", ")
-        ));
-    }
-}
-
 /// The frame of a capsule or cylinder placed by `fromto` (centred between its two
 /// points, its z axis from the first to the second) and its half-length.
 fn fromto_frame(node: &roxmltree::Node<'_, '_>, f: [f64; 6]) -> Parsed<(Isometry3<f64>, f64)> {
@@ -468,18 +453,6 @@ fn fromto_frame(node: &roxmltree::Node<'_, '_>, f: [f64; 6]) -> Parsed<(Isometry
     let turn = UnitQuaternion::rotation_between(&Vector3::z(), &along)
         .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
     Ok((Isometry3::from_parts(Translation3::from((from + to) / 2.0), turn), along.norm() / 2.0))
-}
-
-/// A geom's `contype` or `conaffinity` bits (1 when not given).
-fn collision_bits(a: &Attrs<'_, '_>, name: &str) -> Parsed<u64> {
-    match a.get(name) {
-        None => Ok(1),
-        // MuJoCo's are 32 bits; ODE's upper 32 are left for `<contact><pair>`.
-        Some(v) => v
-            .parse::<u32>()
-            .map(u64::from)
-            .map_err(|_| problem(&a.node, format!("{name}=\"{v}\" is not a whole number of at most 32 bits"))),
-    }
 }
 
 /// Reads the model from the text of a file (`name` resolves its includes).

@@ -85,6 +85,10 @@ impl Simulation {
             let (a, b) = (sim.scene().object(a.as_str())?.id(), sim.scene().object(b.as_str())?.id());
             sim.scene_mut().exclude_contacts(a, b)?;
         }
+        for g in &file.geom_contacts {
+            let object = sim.scene().object(g.object.as_str())?.id();
+            sim.scene_mut().set_geom_contact(object, g.geom, g.contact)?;
+        }
         for sensor in &file.sensors {
             sensor.add_to(&mut sim)?;
         }

@@ -27,6 +27,7 @@ use serde::{Deserialize, Serialize};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::joint::{JointBuilder, JointKind};
+use crate::scene::GeomContact;
 use crate::scene::{Color, JointType, Visual};
 use crate::sensors::SensorSettings;
 use crate::shape::Shape;
@@ -64,6 +65,10 @@ pub struct SceneFile {
     /// The pairs of objects (by name) that never touch.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub excluded_contacts: Vec<(String, String)>,
+    /// The geoms with contact parameters of their own (MJCF's), by object name and
+    /// index (see [`Scene::set_geom_contact`](crate::Scene::set_geom_contact)).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub geom_contacts: Vec<GeomContactFile>,
     /// The broad-phase space. A file that names none (written by hand, say) loads
     /// with [`SpaceKind::Simple`], the original's (and, before sweep and prune was the
     /// default, every simulation's).
@@ -185,6 +190,17 @@ impl SensorFile {
         sim.add_sensor_described(self.kind.parse()?, &objects, &joints, self.period, self.noise, self.settings.as_ref())
             .map(drop)
     }
+}
+
+/// A geom's own contact parameters, by its object's name and its index there.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GeomContactFile {
+    /// Its object.
+    pub object: String,
+    /// Its index among the object's geoms (0: the first).
+    pub geom: usize,
+    /// Its parameters.
+    pub contact: GeomContact,
 }
 
 /// The contact surface of a pair of objects, by name.

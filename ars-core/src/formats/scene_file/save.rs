@@ -9,7 +9,8 @@ use crate::shape::Shape;
 use crate::simulation::Simulation;
 
 use super::{
-    BodyFile, FORMAT, JointFile, MimicFile, ObjectFile, PairSurfaceFile, SceneFile, SensorFile, WorldJointFile, to_hex,
+    BodyFile, FORMAT, GeomContactFile, JointFile, MimicFile, ObjectFile, PairSurfaceFile, SceneFile, SensorFile,
+    WorldJointFile, to_hex,
 };
 
 impl Simulation {
@@ -71,6 +72,14 @@ impl Simulation {
                 .excluded_contacts()
                 .into_iter()
                 .map(|(a, b)| Ok((self.scene.object(a)?.name().to_string(), self.scene.object(b)?.name().to_string())))
+                .collect::<Result<_>>()?,
+            geom_contacts: self
+                .scene()
+                .geom_contacts()
+                .into_iter()
+                .map(|(object, geom, contact)| {
+                    Ok(GeomContactFile { object: self.scene.object(object)?.name().to_string(), geom, contact })
+                })
                 .collect::<Result<_>>()?,
             space: self.scene.space_kind(),
             time: self.scene.time(),
