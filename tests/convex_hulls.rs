@@ -96,7 +96,9 @@ fn a_hull_rests_on_the_floor_and_on_a_box_at_its_height() {
     // On a static box whose top is at y = 0.5: ODE's convex–box collider (libccd)
     // gives one point a step, which holds it at the right height, moving little.
     let mut sim = on_the_floor();
-    sim.scene_mut().add_static(Shape::Box { edges: Vector3::new(1.0, 0.5, 1.0) }, Isometry3::translation(0.0, 0.25, 0.0)).unwrap();
+    sim.scene_mut()
+        .add_static(Shape::Box { edges: Vector3::new(1.0, 0.5, 1.0) }, Isometry3::translation(0.0, 0.25, 0.0))
+        .unwrap();
     let id = sim.scene_mut().add_body(shape, [0.0, 0.56, 0.0], Mass::Total(1.0)).unwrap();
     sim.scene_mut().set_name(id, "hull").unwrap();
     let start = sim.scene().position(id).unwrap();
@@ -182,7 +184,8 @@ fn points_or_faces_that_make_no_hull_are_refused_by_name() {
 fn an_off_centre_hull_sits_where_its_vertices_say() {
     // A static hull whose vertices are 3 m along x from its origin, placed at z = 1:
     // its geom reports the pose it was given, and a ball dropped on its top lands there.
-    let corners: Vec<Point3<f64>> = box_corners([1.0, 1.0, 1.0]).iter().map(|p| p + Vector3::new(3.0, 0.5, 0.0)).collect();
+    let corners: Vec<Point3<f64>> =
+        box_corners([1.0, 1.0, 1.0]).iter().map(|p| p + Vector3::new(3.0, 0.5, 0.0)).collect();
     let mut sim = on_the_floor();
     let pose = Isometry3::translation(0.0, 0.0, 1.0);
     let block = sim.scene_mut().add_static(Shape::convex_hull(&corners).unwrap(), pose).unwrap();
