@@ -38,7 +38,7 @@ fn extent(points: &[Point3<f64>]) -> f64 {
 /// points, or all of them (to [`FLAT`] of their extent) on one line or one plane.
 fn check_solid(points: &[Point3<f64>]) -> Result<()> {
     let size = extent(points);
-    if !(size > 0.0) {
+    if size.is_nan() || size <= 0.0 {
         return Err(invalid(format!("no convex hull: its {} points are all the same point", points.len())));
     }
     let tolerance = FLAT * size;
@@ -168,7 +168,7 @@ pub(crate) fn check_convex(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> 
         let t = triangles[i].map(|k| vertices[k as usize]);
         let normal = (t[1] - t[0]).cross(&(t[2] - t[0]));
         let length = normal.norm();
-        if !(length > 0.0) {
+        if length.is_nan() || length <= 0.0 {
             continue; // a sliver of no area: its neighbours decide
         }
         let Some(&opposite) = triangles[j].iter().find(|&&k| k != a && k != b) else { continue };
@@ -179,7 +179,7 @@ pub(crate) fn check_convex(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> 
             )));
         }
     }
-    if euler != 2 || edges.len() % 2 != 0 {
+    if euler != 2 || !edges.len().is_multiple_of(2) {
         return Err(invalid("the convex hull is not one closed surface without holes (V − E + F ≠ 2)"));
     }
     if crate::shape::mass_properties(vertices, triangles).is_none() {

@@ -50,7 +50,7 @@ impl ConvexStorage {
             let [a, b, c] = t.map(|k| vertices[k as usize].coords - centre);
             let normal = (b - a).cross(&(c - a));
             let length = normal.norm();
-            if !(length > 0.0) {
+            if length.is_nan() || length <= 0.0 {
                 continue; // a sliver of no area has no plane; its neighbours bound the hull
             }
             let n = normal / length;

@@ -157,7 +157,7 @@ fn convex(o: &Point3<f64>, d: &Vector3<f64>, vertices: &[Point3<f64>], triangles
     for t in triangles {
         let [a, b, c] = t.map(|k| vertices[k as usize]);
         let n = (b - a).cross(&(c - a));
-        if !(n.norm_squared() > 0.0) {
+        if n.norm_squared().is_nan() || n.norm_squared() <= 0.0 {
             continue;
         }
         // The ray is inside this face's half-space where n·(o + t d − a) ≤ 0.
