@@ -479,10 +479,11 @@ fn a_geom_takes_its_material_s_colour_unless_it_has_its_own() {
 }
 
 #[test]
-fn a_mesh_that_encloses_nothing_is_refused() {
+fn a_flat_mesh_is_refused_as_mujoco_refuses_it() {
     let dir = std::env::temp_dir().join(format!("ars-mjcf-mesh-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    // One triangle: no volume.
+    // One triangle: no volume, and no convex hull to collide as (MuJoCo: "mesh has
+    // coplanar vertices, cannot compute convex hull").
     std::fs::write(dir.join("flat.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     let text = "<mujoco><asset><mesh file='flat.obj'/></asset>\
                 <worldbody><body><geom type='mesh' mesh='flat'/></body></worldbody></mujoco>";
@@ -490,7 +491,7 @@ fn a_mesh_that_encloses_nothing_is_refused() {
     std::fs::write(&path, text).unwrap();
     let mut sim = Simulation::builder().build().unwrap();
     let e = sim.load_mjcf(&path, &MjcfOptions::new()).unwrap_err().to_string();
-    assert!(e.contains("encloses no volume") && e.contains("line 1"), "{e}");
+    assert!(e.contains("no convex hull") && e.contains("\"flat\"") && e.contains("line 1"), "{e}");
     assert_eq!(sim.scene().objects().count(), 0);
     std::fs::remove_dir_all(&dir).unwrap();
 }

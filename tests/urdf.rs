@@ -202,11 +202,12 @@ fn a_robot_with_a_mesh_and_several_collision_elements_loads_and_moves() {
     let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
     let robot = sim.load_urdf(THREE_LINK_ARM, &UrdfOptions::new().fixed_base(true)).unwrap();
     assert_eq!(robot.joints.len(), 3);
-    // The gripper's mesh, found through package://, welded: a box of 8 corners, 12 triangles.
+    // The gripper's mesh, found through package://, welded: a box of 8 corners, 12
+    // triangles, colliding as its convex hull (the same box).
     let gripper = sim.scene().object("gripper").unwrap();
     match gripper.shape() {
-        ars::Shape::TriMesh { vertices, triangles } => assert_eq!((vertices.len(), triangles.len()), (8, 12)),
-        other => panic!("the gripper is a mesh, not {other:?}"),
+        ars::Shape::ConvexHull { vertices, triangles } => assert_eq!((vertices.len(), triangles.len()), (8, 12)),
+        other => panic!("the gripper is a mesh's hull, not {other:?}"),
     }
     // The upper arm has its cylinder and its sphere, the sphere offset from the body.
     assert_eq!(sim.scene().object("upper_arm").unwrap().geoms().count(), 2);

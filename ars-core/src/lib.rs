@@ -91,6 +91,7 @@ pub mod error;
 pub mod formats;
 pub mod guard;
 pub mod handle;
+mod hull;
 mod init;
 pub mod interrupt;
 pub mod limits;

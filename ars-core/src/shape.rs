@@ -70,6 +70,18 @@ pub enum Shape {
         /// Vertex indices, three per triangle.
         triangles: Vec<[u32; 3]>,
     },
+    /// A convex polyhedron, collided by ODE as a convex (`dCreateConvex`): how MuJoCo
+    /// collides every mesh, and PyBullet a URDF's collision meshes. Make it from any
+    /// points (a mesh's vertices) with [`Shape::convex_hull`]; one given directly must
+    /// be a convex hull: a closed surface of triangles wound counter-clockwise seen
+    /// from outside, convex at every edge, enclosing a volume (checked when a geom or
+    /// mass is made of it). Rays hit it as the solid it bounds.
+    ConvexHull {
+        /// Its corners, m (in the geom's frame).
+        vertices: Vec<Point3<f64>>,
+        /// Its faces: vertex indices, three per triangle.
+        triangles: Vec<[u32; 3]>,
+    },
 }
 
 impl Shape {
@@ -84,7 +96,29 @@ impl Shape {
             Shape::Plane { .. } => "plane",
             Shape::Ray { .. } => "ray",
             Shape::TriMesh { .. } => "trimesh",
+            Shape::ConvexHull { .. } => "hull",
         }
+    }
+
+    /// The convex hull of `points` (a mesh's vertices, say), as a
+    /// [`Shape::ConvexHull`] of the points it keeps, computed with Qhull as MuJoCo
+    /// computes its mesh hulls. `Err` ([`Error::InvalidMesh`]) names the problem:
+    /// fewer than 4 points, a coordinate that is not finite or beyond
+    /// [`MAX_COORDINATE`](limits::MAX_COORDINATE), or points that bound no solid (all
+    /// on one line or one plane).
+    ///
+    /// ```
+    /// use ars_core::Shape;
+    /// use nalgebra::Point3;
+    /// // A cube's corners and its centre: the hull keeps the 8 corners, 12 triangles.
+    /// let mut points: Vec<Point3<f64>> = (0..8).map(|i| Point3::new(f64::from(i & 1), f64::from(i >> 1 & 1), f64::from(i >> 2))).collect();
+    /// points.push(Point3::new(0.5, 0.5, 0.5));
+    /// let Shape::ConvexHull { vertices, triangles } = Shape::convex_hull(&points).unwrap() else { unreachable!() };
+    /// assert_eq!((vertices.len(), triangles.len()), (8, 12));
+    /// assert!(Shape::convex_hull(&points[..3]).is_err());
+    /// ```
+    pub fn convex_hull(points: &[Point3<f64>]) -> Result<Shape> {
+        crate::hull::convex_hull(points).map(|(vertices, triangles)| Shape::ConvexHull { vertices, triangles })
     }
 
     /// The volume it encloses, m³: `None` for a plane or a ray. A triangle mesh's is
@@ -106,7 +140,9 @@ impl Shape {
             Shape::Cylinder { radius, length } => Some(PI * radius.powi(2) * length),
             Shape::Cone { radius, height } => Some(PI * radius.powi(2) * height / 3.0),
             Shape::Plane { .. } | Shape::Ray { .. } => None,
-            Shape::TriMesh { vertices, triangles } => mass_properties(vertices, triangles).map(|m| m.volume),
+            Shape::TriMesh { vertices, triangles } | Shape::ConvexHull { vertices, triangles } => {
+                mass_properties(vertices, triangles).map(|m| m.volume)
+            }
         }
     }
 
@@ -131,12 +167,12 @@ impl Shape {
                 limits::coordinate("plane distance", *distance).map(drop)
             }
             Shape::Ray { length } => limits::size("ray length", *length).map(drop),
-            Shape::TriMesh { vertices, triangles } => {
+            Shape::TriMesh { vertices, triangles } | Shape::ConvexHull { vertices, triangles } => {
                 if triangles.is_empty() {
                     return Err(Error::InvalidMesh("it has no triangles".into()));
                 }
                 for (i, v) in vertices.iter().enumerate() {
-                    if let Err(e) = limits::point("trimesh vertex", v) {
+                    if let Err(e) = limits::point("mesh vertex", v) {
                         return Err(Error::InvalidMesh(format!("vertex {i}: {e}")));
                     }
                 }
@@ -151,6 +187,9 @@ impl Shape {
                 let limit = i32::MAX as usize / 3;
                 if vertices.len() > limit || triangles.len() > limit {
                     return Err(Error::InvalidMesh("too many vertices or triangles".into()));
+                }
+                if matches!(self, Shape::ConvexHull { .. }) {
+                    crate::hull::check_convex(vertices, triangles)?;
                 }
                 Ok(())
             }

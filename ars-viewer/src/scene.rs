@@ -300,7 +300,7 @@ fn add_shape(group: &mut SceneNode3d, shape: &Shape) -> SceneNode3d {
             q.set_position(convert::vector(&(n * *distance)));
             q
         }
-        Shape::TriMesh { vertices, triangles } => {
+        Shape::TriMesh { vertices, triangles } | Shape::ConvexHull { vertices, triangles } => {
             let v = vertices.iter().map(convert::point).collect();
             group.add_trimesh(v, triangles.clone(), Vec3::ONE, true)
         }

@@ -264,6 +264,7 @@ class Simulation:
         search_paths: Sequence[_Path] | None = None,
         ignore_visuals: bool = False,
         strict_inertia: bool = False,
+        triangle_mesh_collisions: bool = False,
     ) -> _UrdfRobot: ...
     def remove_object(self, name: str) -> None: ...
     @property

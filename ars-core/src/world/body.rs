@@ -89,7 +89,8 @@ pub enum Mass {
 pub enum MassSpec {
     /// A uniformly dense solid of this shape: sphere, box, capsule, cylinder (ODE's
     /// formulas) or cone (3/10 m r² about its axis, 3/20 m r² + 3/80 m h² across, about
-    /// its centre of mass). Planes, rays and meshes have no mass.
+    /// its centre of mass), or convex hull (the solid it bounds, whose centre of volume
+    /// must be its origin). Planes, rays and triangle meshes have no mass.
     Solid {
         /// The shape.
         shape: Shape,
@@ -169,6 +170,27 @@ impl MassSpec {
                     ffi::dMassSetCylinderTotal(&mut m, t, 3, *r, *l)
                 }
                 (Shape::Cylinder { radius: r, length: l }, Density(d)) => ffi::dMassSetCylinder(&mut m, d, 3, *r, *l),
+                (Shape::ConvexHull { vertices, triangles }, amount) => {
+                    // Validated above: a closed hull with a volume.
+                    let solid = crate::shape::mass_properties(vertices, triangles)
+                        .ok_or_else(|| Error::InvalidMesh("the convex hull encloses no volume".into()))?;
+                    let mass = match amount {
+                        Total(t) => t,
+                        Density(d) => d * solid.volume,
+                    };
+                    let mass = limits::mass("mass (from the density and the shape)", mass)?;
+                    // ODE's body origin is its centre of mass.
+                    if solid.centre.coords.norm() > 1e-9 * solid.volume.cbrt() {
+                        return Err(Error::Invalid {
+                            what: "a mass from a convex hull",
+                            problem: format!(
+                                "puts the centre of mass at the body origin, but the hull's centre of volume is at {:?}: move its vertices by the opposite, or give a custom mass",
+                                solid.centre.coords.as_slice()
+                            ),
+                        });
+                    }
+                    m = custom(mass, &(solid.inertia * (mass / solid.volume)));
+                }
                 (Shape::Cone { radius: r, height: h }, amount) => {
                     let volume = std::f64::consts::PI * r * r * h / 3.0;
                     let mass = match amount {

@@ -28,6 +28,59 @@ impl Drop for TriMeshStorage {
     }
 }
 
+/// The arrays ODE's convex points into (it copies none of them), freed after the
+/// geom: points relative to `centre`, a point inside the hull (ODE's convex colliders
+/// take the geom's origin as a point inside it, and warn on stdout when a face's
+/// plane does not have it behind), planes `(a, b, c, d)` with unit outward normals,
+/// and polygons `[3, i0, i1, i2]`, one per triangle of area.
+struct ConvexStorage {
+    _planes: Vec<f64>,
+    _points: Vec<f64>,
+    _polygons: Vec<u32>,
+}
+
+impl ConvexStorage {
+    /// The arrays of a valid hull, and its centre (its centre of volume).
+    fn build(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> (ConvexStorage, Vector3<f64>) {
+        let centre =
+            crate::shape::mass_properties(vertices, triangles).map_or_else(Vector3::zeros, |m| m.centre.coords);
+        let points: Vec<f64> = vertices.iter().flat_map(|p| (p.coords - centre).data.0[0]).collect();
+        let (mut planes, mut polygons) = (Vec::new(), Vec::new());
+        for t in triangles {
+            let [a, b, c] = t.map(|k| vertices[k as usize].coords - centre);
+            let normal = (b - a).cross(&(c - a));
+            let length = normal.norm();
+            if length.is_nan() || length <= 0.0 {
+                continue; // a sliver of no area has no plane; its neighbours bound the hull
+            }
+            let n = normal / length;
+            planes.extend([n.x, n.y, n.z, n.dot(&a)]);
+            polygons.extend([3, t[0], t[1], t[2]]);
+        }
+        (ConvexStorage { _planes: planes, _points: points, _polygons: polygons }, centre)
+    }
+
+    /// Creates ODE's convex geom in `space_raw`.
+    ///
+    /// # Safety
+    /// `space_raw` is live; the geom is destroyed before `self` is dropped.
+    unsafe fn create(&self, space_raw: ffi::dSpaceID) -> ffi::dGeomID {
+        // SAFETY: the caller's contract; the arrays stay where they are (their heap
+        // buffers do not move with `self`) and describe `planes.len() / 4` planes,
+        // `points.len() / 3` points and as many polygons, every index in range.
+        unsafe {
+            ffi::dCreateConvex(
+                space_raw,
+                self._planes.as_ptr(),
+                (self._planes.len() / 4) as u32,
+                self._points.as_ptr(),
+                (self._points.len() / 3) as u32,
+                self._polygons.as_ptr(),
+            )
+        }
+    }
+}
+
 pub(crate) struct GeomData {
     pub(crate) raw: ffi::dGeomID,
     pub(crate) shape: Shape,
@@ -37,6 +90,11 @@ pub(crate) struct GeomData {
     pub(crate) body_raw: ffi::dBodyID,
     pub(crate) space: SpaceHandle,
     _mesh: Option<TriMeshStorage>,
+    _convex: Option<ConvexStorage>,
+    /// Where ODE's geom is in the geom's frame: a convex hull's centre (ODE's convex
+    /// needs its origin inside), else zero. ODE's pose of the geom is its pose
+    /// translated by this.
+    pub(crate) centre: Vector3<f64>,
     /// A cone's collision mesh (vertices, triangles): what ODE collides and rays hit.
     pub(crate) cone_mesh: Option<Triangles>,
     /// The ray casts' tree of a mesh or a cone's mesh.
@@ -111,6 +169,11 @@ impl GeomBuilder {
     pub fn trimesh(vertices: Vec<Point3<f64>>, triangles: Vec<[u32; 3]>) -> Self {
         Self::new(Shape::TriMesh { vertices, triangles })
     }
+    /// The convex hull of `points` (see [`Shape::convex_hull`], which names what is
+    /// wrong with points that bound no solid).
+    pub fn convex_hull(points: &[Point3<f64>]) -> Result<Self> {
+        Shape::convex_hull(points).map(Self::new)
+    }
     /// Attaches the geom to a body (it then moves with the body).
     pub fn attached_to(mut self, body: BodyHandle) -> Self {
         self.body = Some(body);
@@ -150,6 +213,8 @@ pub struct GeomMut<'w> {
     handle: GeomHandle,
     raw: ffi::dGeomID,
     placeable: bool,
+    /// Where ODE's geom is in the geom's frame (see [`GeomData::centre`]).
+    centre: Vector3<f64>,
     kind: &'static str,
     is_ray: bool,
     /// The ODE body it is attached to (null: none).
@@ -204,6 +269,13 @@ impl TriMeshStorage {
                 flat_i.len() as i32,
                 (3 * size_of::<ffi::dTriIndex>()) as i32,
             );
+            // The convex–trimesh collider reads the angles between the faces (it
+            // asserts without them); no other collider does. ODE's preprocessing
+            // asserts that a mesh has at most three vertices per triangle.
+            if vertices.len() <= flat_i.len() {
+                let face_angles = 1u32 << ffi::dTRIDATAPREPROCESS_BUILD_FACE_ANGLES;
+                ffi::dGeomTriMeshDataPreprocess2(data, face_angles, std::ptr::null());
+            }
             data
         };
         TriMeshStorage { data, _vertices: flat_v, _indices: flat_i }
@@ -236,7 +308,12 @@ fn triangle_mesh_parts(shape: &Shape) -> (Option<TriMeshStorage>, Option<MeshTre
 ///
 /// # Safety
 /// `space_raw` is live, `shape` is valid, and `mesh` holds the data of a mesh or cone.
-unsafe fn create_ode_geom(space_raw: ffi::dSpaceID, shape: &Shape, mesh: Option<&TriMeshStorage>) -> ffi::dGeomID {
+unsafe fn create_ode_geom(
+    space_raw: ffi::dSpaceID,
+    shape: &Shape,
+    mesh: Option<&TriMeshStorage>,
+    convex: Option<&ConvexStorage>,
+) -> ffi::dGeomID {
     // SAFETY: the caller's contract.
     unsafe {
         match &shape {
@@ -250,6 +327,10 @@ unsafe fn create_ode_geom(space_raw: ffi::dSpaceID, shape: &Shape, mesh: Option<
                 let data = mesh.map_or(std::ptr::null_mut(), |m| m.data);
                 ffi::dCreateTriMesh(space_raw, data, None, None, None)
             }
+            Shape::ConvexHull { .. } => match convex {
+                Some(c) => c.create(space_raw),
+                None => unreachable!("a convex hull's arrays are built before its geom"),
+            },
         }
     }
 }
@@ -277,9 +358,16 @@ impl World {
         let pose = builder.pose.map(|p| check_isometry("geom pose", &p)).transpose()?;
 
         let (mesh, mesh_tree, cone) = triangle_mesh_parts(&shape);
+        let (convex, centre) = match &shape {
+            Shape::ConvexHull { vertices, triangles } => {
+                let (storage, centre) = ConvexStorage::build(vertices, triangles);
+                (Some(storage), centre)
+            }
+            _ => (None, Vector3::zeros()),
+        };
         // SAFETY: the space is live and every size was checked positive and finite; a
-        // trimesh's data was built above.
-        let raw = unsafe { create_ode_geom(space_raw, &shape, mesh.as_ref()) };
+        // trimesh's data and a hull's arrays were built above, kept with the geom.
+        let raw = unsafe { create_ode_geom(space_raw, &shape, mesh.as_ref(), convex.as_ref()) };
         if mesh.is_some() {
             self.trimesh_count += 1;
         }
@@ -297,6 +385,8 @@ impl World {
             body_raw: body_raw.unwrap_or(std::ptr::null_mut()),
             space,
             _mesh: mesh,
+            _convex: convex,
+            centre,
             cone_mesh: cone,
             mesh_tree,
         }));
@@ -307,6 +397,18 @@ impl World {
             // SAFETY: geom and body are live and belong to this world; the geom is placeable.
             unsafe { ffi::dGeomSetBody(g.raw, b) };
         }
+        // ODE's geom of a hull sits at the hull's centre.
+        let offset = match offset {
+            Some(o) if centre != Vector3::zeros() => Some(o * nalgebra::Translation3::from(centre)),
+            None if centre != Vector3::zeros() && body_raw.is_some() => {
+                Some(Isometry3::from_parts(nalgebra::Translation3::from(centre), UnitQuaternion::identity()))
+            }
+            other => other,
+        };
+        let pose = match pose {
+            None if centre != Vector3::zeros() && body_raw.is_none() => Some(Isometry3::identity()),
+            other => other,
+        };
         if let Some(o) = offset {
             let p = o.translation.vector;
             let q = convert::quaternion_to_ode(&o.rotation);
@@ -364,6 +466,7 @@ impl World {
             handle: geom,
             raw: data.raw,
             placeable: !matches!(data.shape, Shape::Plane { .. }),
+            centre: data.centre,
             kind: data.shape.kind_name(),
             is_ray: matches!(data.shape, Shape::Ray { .. }),
             body_raw: data.body_raw,
@@ -416,7 +519,11 @@ impl GeomRef<'_> {
             ffi::dGeomGetQuaternion(self.data.raw, q.as_mut_ptr());
             (convert::point_from_ode(p), convert::quaternion_from_ode(&q))
         };
-        Isometry3::from_parts(p.coords.into(), q)
+        let centre = self.data.centre;
+        if centre == Vector3::zeros() {
+            return Isometry3::from_parts(p.coords.into(), q);
+        }
+        Isometry3::from_parts((p.coords - q * centre).into(), q)
     }
     /// For a ray: its world origin and unit direction.
     pub fn ray(&self) -> Option<(Point3<f64>, Vector3<f64>)> {
@@ -456,10 +563,29 @@ impl GeomMut<'_> {
         Ok(())
     }
 
+    /// ODE's position of the geom (its centre, for a hull).
+    fn ode_position(&self) -> Vector3<f64> {
+        // SAFETY: the geom is live and placeable; ODE returns 3 reals.
+        unsafe { convert::point_from_ode(std::slice::from_raw_parts(ffi::dGeomGetPosition(self.raw), 3)).coords }
+    }
+
+    /// The geom's rotation, for placing a hull's centre (the identity for the other
+    /// shapes, whose centre is their origin: it turns nothing there).
+    fn rotation(&self) -> Rotation3<f64> {
+        if self.centre == Vector3::zeros() {
+            return Rotation3::identity();
+        }
+        let mut q = [0.0; 4];
+        // SAFETY: the geom is live and placeable; ODE fills 4 reals.
+        unsafe { ffi::dGeomGetQuaternion(self.raw, q.as_mut_ptr()) };
+        convert::quaternion_from_ode(&q).to_rotation_matrix()
+    }
+
     /// Sets the world position of a geom without a body.
     pub fn set_position(&mut self, p: Point3<f64>) -> Result<()> {
         self.check_movable("setting a position")?;
         let p = limits::point("geom position", &p)?;
+        let p = p + self.rotation() * self.centre;
         // SAFETY: the geom is live and placeable.
         unsafe { ffi::dGeomSetPosition(self.raw, p.x, p.y, p.z) };
         self.note_reach();
@@ -470,9 +596,16 @@ impl GeomMut<'_> {
     pub fn set_rotation(&mut self, r: Rotation3<f64>) -> Result<()> {
         self.check_movable("setting a rotation")?;
         let r = validate::rotation("geom rotation", &r)?;
+        // A hull turns about its own origin, not about ODE's (its centre).
+        let origin = (self.centre != Vector3::zeros()).then(|| self.ode_position() - self.rotation() * self.centre);
         let m = convert::rotation_to_ode(&r);
         // SAFETY: the geom is live and placeable; `m` is a dMatrix3.
         unsafe { ffi::dGeomSetRotation(self.raw, m.as_ptr()) };
+        if let Some(origin) = origin {
+            let p = origin + r * self.centre;
+            // SAFETY: the geom is live and placeable.
+            unsafe { ffi::dGeomSetPosition(self.raw, p.x, p.y, p.z) };
+        }
         self.note_reach();
         Ok(())
     }
@@ -481,11 +614,14 @@ impl GeomMut<'_> {
     pub fn set_pose(&mut self, pose: Isometry3<f64>) -> Result<()> {
         self.check_movable("setting a pose")?;
         let pose = check_isometry("geom pose", &pose)?;
-        self.set_position(Point3::from(pose.translation.vector))?;
         let q: UnitQuaternion<f64> = pose.rotation;
+        let p = pose.translation.vector + q * self.centre;
         let q = convert::quaternion_to_ode(&q);
         // SAFETY: the geom is live and placeable; `q` is a dQuaternion.
-        unsafe { ffi::dGeomSetQuaternion(self.raw, q.as_ptr()) };
+        unsafe {
+            ffi::dGeomSetPosition(self.raw, p.x, p.y, p.z);
+            ffi::dGeomSetQuaternion(self.raw, q.as_ptr());
+        }
         self.note_reach();
         Ok(())
     }

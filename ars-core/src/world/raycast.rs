@@ -144,9 +144,38 @@ impl Target<'_> {
                 [side, caps[0], caps[1]].into_iter().flatten().reduce(f64::min)
             }
             Shape::TriMesh { .. } | Shape::Cone { .. } => self.mesh.and_then(|mesh| mesh.nearest(&o, &d, reach)),
+            Shape::ConvexHull { vertices, triangles } => convex(&o, &d, vertices, triangles),
             Shape::Plane { .. } | Shape::Ray { .. } => None,
         }
     }
+}
+
+/// Where the ray from `o` along the unit `d` enters the solid a convex hull bounds (0
+/// from inside): the last entry through the faces' planes, if before the first exit.
+fn convex(o: &Point3<f64>, d: &Vector3<f64>, vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> Option<f64> {
+    let (mut enter, mut exit) = (0.0f64, f64::INFINITY);
+    for t in triangles {
+        let [a, b, c] = t.map(|k| vertices[k as usize]);
+        let n = (b - a).cross(&(c - a));
+        if n.norm_squared().is_nan() || n.norm_squared() <= 0.0 {
+            continue;
+        }
+        // The ray is inside this face's half-space where n·(o + t d − a) ≤ 0.
+        let (height, towards) = (n.dot(&(o - a)), n.dot(d));
+        if towards == 0.0 {
+            if height > 0.0 {
+                return None; // parallel, outside
+            }
+        } else if towards < 0.0 {
+            enter = enter.max(-height / towards);
+        } else {
+            exit = exit.min(-height / towards);
+        }
+        if enter > exit {
+            return None;
+        }
+    }
+    Some(enter)
 }
 
 fn sphere(o: &Vector3<f64>, d: &Vector3<f64>, r: f64) -> Option<f64> {

@@ -77,7 +77,9 @@ pub(super) fn tessellate(shape: &Shape) -> Triangles {
         }
         Shape::Box { edges } => cuboid(&mut t, edges / 2.0),
         Shape::Plane { normal, distance } => plane(&mut t, normal, *distance),
-        Shape::TriMesh { vertices, triangles } => mesh(&mut t, vertices, triangles),
+        Shape::TriMesh { vertices, triangles } | Shape::ConvexHull { vertices, triangles } => {
+            mesh(&mut t, vertices, triangles)
+        }
         _ => return tessellate(&Shape::Sphere { radius: DOT_RADIUS }),
     }
     t
@@ -288,5 +290,16 @@ mod tests {
         let square = tessellate(&Shape::TriMesh { vertices, triangles: vec![[0, 1, 4], [0, 4, 2]] });
         assert_eq!((square.indices.len(), square.positions.len()), (2, 4));
         assert!(square.normals.iter().all(|n| *n == [0.0, 0.0, 1.0]));
+    }
+
+    #[test]
+    fn a_convex_hull_is_drawn_as_its_faces() {
+        // The hull of a 2 × 1 × 1 box's corners: its 12 triangles, enclosing the box.
+        let corners: Vec<Point3<f64>> =
+            (0..8).map(|i| Point3::new(2.0 * f64::from(i & 1), f64::from(i >> 1 & 1), f64::from(i >> 2))).collect();
+        let hull = Shape::convex_hull(&corners).unwrap();
+        let t = tessellate(&hull);
+        assert_eq!(t.indices.len(), 12);
+        assert!((enclosed_volume(&t) - 2.0).abs() < 1e-9, "{}", enclosed_volume(&t));
     }
 }

@@ -14,10 +14,12 @@ impl PySimulation {
     /// `Scene::load_urdf` for the rules). Returns `{"name", "links", "joints",
     /// "base_joint", "adjusted"}`, links and joints by their URDF names in file order;
     /// `adjusted` says, a line per link, each inertia no body can have that was
-    /// corrected (refused instead with `strict_inertia=True`).
+    /// corrected (refused instead with `strict_inertia=True`). Collision meshes collide
+    /// as their convex hulls, as PyBullet's do (`triangle_mesh_collisions=True`: as
+    /// triangle meshes).
     #[pyo3(signature = (path, *, fixed_base=false, base_position=[0.0; 3], self_collision=false, y_up=false,
                         initial_positions=None, packages=None, search_paths=None, ignore_visuals=false,
-                        strict_inertia=false))]
+                        strict_inertia=false, triangle_mesh_collisions=false))]
     fn load_urdf<'py>(
         &self,
         py: Python<'py>,
@@ -31,9 +33,11 @@ impl PySimulation {
         search_paths: Option<Vec<std::path::PathBuf>>,
         ignore_visuals: bool,
         strict_inertia: bool,
+        triangle_mesh_collisions: bool,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let mut options = ars_core::UrdfOptions::new()
             .strict_inertia(strict_inertia)
+            .triangle_mesh_collisions(triangle_mesh_collisions)
             .fixed_base(fixed_base)
             .self_collision(self_collision)
             .ignore_visuals(ignore_visuals)

@@ -15,7 +15,7 @@ use crate::formats::balance::balance_inertia;
 use crate::geom::GeomBuilder;
 use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
 use crate::scene::JointEnd;
-use crate::scene::Scene;
+use crate::scene::{Scene, Visual};
 use crate::shape::Shape;
 
 /// MuJoCo (x, y, z) → simulation (x, z, −y), then the base pose.
@@ -89,6 +89,12 @@ impl Scene {
                 }
                 _ => self.add_static(g.shape(), pose)?,
             };
+            if matches!(g.kind, GeomKind::Mesh(_)) {
+                // Seen as its mesh, collided as its hull (as in MuJoCo).
+                let color = g.rgba.map(|c| [c[0] as f32, c[1] as f32, c[2] as f32]);
+                let visual = Visual { shape: g.drawn_shape(), offset: Isometry3::identity(), color };
+                self.set_visuals(id, vec![visual])?;
+            }
             if let Some(c) = g.rgba {
                 self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
             }
@@ -245,6 +251,20 @@ impl Scene {
         }
         if let Some(c) = body.geoms.iter().find_map(|g| g.rgba) {
             self.set_color(id, [c[0] as f32, c[1] as f32, c[2] as f32])?;
+        }
+        if body.geoms.iter().any(|g| matches!(g.kind, GeomKind::Mesh(_))) {
+            // Its meshes are seen as they are, and collide as their hulls (as in MuJoCo).
+            let visuals = body
+                .geoms
+                .iter()
+                .filter(|g| !matches!(g.kind, GeomKind::Plane))
+                .map(|g| Visual {
+                    shape: g.drawn_shape(),
+                    offset: body_frame.inverse() * frame * g.frame,
+                    color: g.rgba.map(|c| [c[0] as f32, c[1] as f32, c[2] as f32]),
+                })
+                .collect();
+            self.set_visuals(id, visuals)?;
         }
         made.bodies.push((self.object(id)?.name().to_string(), id));
         Ok((id, body_frame))

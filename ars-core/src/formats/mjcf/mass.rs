@@ -61,10 +61,19 @@ impl Geom {
         }
     }
 
-    /// The ODE shape (an ellipsoid as the sphere of its volume).
-    pub(super) fn shape(&self) -> Shape {
+    /// What it looks like: its mesh's triangles, else its ODE shape.
+    pub(super) fn drawn_shape(&self) -> Shape {
         match &self.kind {
             GeomKind::Mesh(mesh) => mesh.shape.clone(),
+            _ => self.shape(),
+        }
+    }
+
+    /// The ODE shape (a mesh as its convex hull, an ellipsoid as the sphere of its
+    /// volume).
+    pub(super) fn shape(&self) -> Shape {
+        match &self.kind {
+            GeomKind::Mesh(mesh) => mesh.hull.clone(),
             GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
             GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
             GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },

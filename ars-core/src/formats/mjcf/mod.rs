@@ -17,8 +17,12 @@
 //! - **Geoms.** `plane` (static only: an infinite plane), `sphere`, `capsule`,
 //!   `cylinder`, `box`, and `ellipsoid` (as a sphere of the same volume, with a warning);
 //!   `mesh` (an `<asset><mesh>`'s STL, OBJ or MuJoCo's legacy `.msh` file, with its `scale`, in `<compiler
-//!   meshdir>` or `assetdir`, as a triangle mesh; its mass and inertia those of the
-//!   closed solid it bounds, as MuJoCo's for a convex mesh);
+//!   meshdir>` or `assetdir`; it collides as its convex hull, as in MuJoCo
+//!   ([`Shape::ConvexHull`](crate::Shape::ConvexHull)), and is drawn as its triangles
+//!   (the object's visuals); its mass and inertia those of the closed solid it bounds,
+//!   as MuJoCo's for a convex mesh; a mesh that encloses no volume (open, or wound
+//!   inwards) weighs as its hull, said in `skipped`, and one whose hull is flat is
+//!   refused, as MuJoCo refuses it);
 //!   `fromto` for capsules and cylinders; `rgba` for the colour (else its
 //!   `material`'s, as MuJoCo draws it); `contype` and
 //!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide

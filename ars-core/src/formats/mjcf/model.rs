@@ -21,10 +21,14 @@ pub(super) enum GeomKind {
     Ellipsoid(Vector3<f64>),
 }
 
-/// A mesh asset as a geom uses it: its triangles (scaled) and their mass properties.
+/// A mesh asset as a geom uses it: its triangles (scaled), what it collides as (their
+/// convex hull, as in MuJoCo) and its mass properties.
 #[derive(Debug)]
 pub(super) struct MeshGeom {
+    /// The triangles, as drawn.
     pub(super) shape: Shape,
+    /// Their convex hull, as collided.
+    pub(super) hull: Shape,
     pub(super) mass: MeshMass,
 }
 

@@ -267,10 +267,22 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let Shape::TriMesh { vertices, triangles } = &shape else {
             return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
         };
-        let mass = crate::shape::mass_properties(vertices, triangles).ok_or_else(|| {
-            problem(node, format!("the mesh {name:?} encloses no volume (it must be closed and wound outwards)"))
-        })?;
-        let mesh = std::sync::Arc::new(MeshGeom { shape, mass });
+        // MuJoCo collides a mesh as its convex hull, and refuses one whose hull is flat.
+        let hull = Shape::convex_hull(vertices).map_err(|e| problem(node, format!("the mesh {name:?}: {e}")))?;
+        let mass = match crate::shape::mass_properties(vertices, triangles) {
+            Some(mass) => mass,
+            None => {
+                // An open or inside-out mesh weighs as its hull here (MuJoCo's legacy
+                // inertia sums the pyramids from its faces' centre instead).
+                self.skipped.push(format!(
+                    "the mesh {name:?} encloses no volume (it is open, or wound inwards): its mass and inertia are its convex hull's"
+                ));
+                let Shape::ConvexHull { vertices, triangles } = &hull else { unreachable!("a hull was made") };
+                crate::shape::mass_properties(vertices, triangles)
+                    .ok_or_else(|| problem(node, format!("the convex hull of the mesh {name:?} encloses no volume")))?
+            }
+        };
+        let mesh = std::sync::Arc::new(MeshGeom { shape, hull, mass });
         self.loaded.insert(name.to_string(), mesh.clone());
         Ok(mesh)
     }

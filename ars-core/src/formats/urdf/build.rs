@@ -24,6 +24,9 @@ pub(super) struct Meshes<'o> {
     /// The URDF file's folder.
     pub(super) base_dir: Option<PathBuf>,
     pub(super) loaded: crate::formats::MeshCache,
+    /// Collision meshes kept as triangle meshes because they bound no solid (a line
+    /// each, for [`UrdfRobot::adjusted`](super::UrdfRobot::adjusted)).
+    pub(super) notes: Vec<String>,
 }
 
 impl Meshes<'_> {
@@ -569,7 +572,17 @@ pub(super) fn link_geometry(
     let urdf_err = |problem: String| link_error(link, problem);
     let mut collisions = Vec::new();
     for c in &link.collision {
-        let shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
+        let mut shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
+        if let (Shape::TriMesh { vertices, .. }, false) = (&shape, meshes.options.triangle_mesh_collisions) {
+            // Collided as its convex hull, as PyBullet does; one that bounds no solid
+            // stays a triangle mesh.
+            match Shape::convex_hull(vertices) {
+                Ok(hull) => shape = hull,
+                Err(e) => {
+                    meshes.notes.push(format!("link {:?}: a collision mesh stays a triangle mesh: {e}", link.name))
+                }
+            }
+        }
         collisions.push((shape, frame.then(&Frame::from_pose(&c.origin))));
     }
     let mut looks = Vec::new();

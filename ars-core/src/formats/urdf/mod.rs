@@ -26,6 +26,11 @@
 //! - **Degenerate visuals.** A `<visual>` box, cylinder, capsule or sphere with a size
 //!   that is zero, negative or not finite has nothing to draw: it is skipped, with a
 //!   line in [`UrdfRobot::adjusted`]. (A collision element of that kind is refused.)
+//! - **Collision meshes** collide as their convex hulls (ODE convexes), as PyBullet
+//!   collides a URDF's meshes by default: far fewer contacts than the triangles, and
+//!   faster. [`UrdfOptions::triangle_mesh_collisions`] keeps them triangle meshes. A
+//!   mesh whose points bound no solid (flat) stays a triangle mesh, with a line in
+//!   [`UrdfRobot::adjusted`]. What is drawn is the `<visual>`s, unchanged.
 //! - **Joints.** `revolute` and `continuous` become hinges, `prismatic` sliders,
 //!   `fixed` fixed joints, at the joint's origin and about its axis, with the URDF's
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
@@ -110,6 +115,9 @@ pub struct UrdfOptions {
     /// triangle inequality) rather than correct it with a line in
     /// [`UrdfRobot::adjusted`] (see [the module docs](self)).
     pub strict_inertia: bool,
+    /// Collide `<collision>` meshes as triangle meshes rather than as their convex
+    /// hulls (the default, as PyBullet does; see [the module docs](self)).
+    pub triangle_mesh_collisions: bool,
 }
 
 impl UrdfOptions {
@@ -169,6 +177,12 @@ impl UrdfOptions {
     #[must_use]
     pub fn strict_inertia(mut self, strict: bool) -> Self {
         self.strict_inertia = strict;
+        self
+    }
+    /// Collide collision meshes as triangle meshes, not as their convex hulls.
+    #[must_use]
+    pub fn triangle_mesh_collisions(mut self, triangles: bool) -> Self {
+        self.triangle_mesh_collisions = triangles;
         self
     }
 }
@@ -256,12 +270,13 @@ impl UrdfFile {
         let robot = corrected.as_ref().unwrap_or(&self.robot);
         let plan = plan(robot, options).map_err(|(element, problem)| bad(element, problem))?;
         let base_dir = Path::new(&self.file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
-        let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default() };
+        let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default(), notes: Vec::new() };
         let mut made = sim.scene.build_urdf(&plan, options, &mut meshes).map_err(|(element, error)| match error {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })?;
         made.adjusted = adjusted;
+        made.adjusted.append(&mut meshes.notes);
         Ok(made)
     }
 
