@@ -210,6 +210,31 @@ def headline_rows(figures: dict[str, dict[str, tuple[int, int]]]) -> list[list[o
     return rows
 
 
+def definitions(seconds: float) -> list[str]:
+    """What the page's words count."""
+    return [
+        "What the figures count (`tools/corpus/summary.py` defines the words):",
+        "",
+        "- every figure is over the files the reference reads: the MJCF files MuJoCo compiles,",
+        "  the URDF files whose declared masses Python's XML parser reads (all but one);",
+        "- *strict*: ARS's load returned with its defaults; *skip_unsupported* (MJCF) or",
+        "  *ignore_visuals* (URDF): it returned with what ARS cannot read skipped, or with the",
+        "  visuals left out (a broken visual mesh);",
+        "- *exact mass*: the file loads (at least leniently) and ARS's total mass is MuJoCo's",
+        "  compiled `body_mass` summed (MJCF) or the masses the file declares (URDF), to a",
+        f"  relative {EXACT:g};",
+        "- *2 s stable*: `ars.Simulation.open` (MJCF; what `ars view` does) or the robot over",
+        f"  a floor (URDF) ran {seconds:g} s finite within the wall-time budget, no body faster",
+        f"  than {summary.SPEED_LIMIT:g} m/s; a file that does not load is not stable; *slow*: of",
+        "  these, the simulations that had not reached the end when their budget ran out;",
+        "- *ms per simulated s*: wall-clock milliseconds per simulated second, the median over",
+        "  the files both engines ran for the whole run at the file's own time step (MuJoCo:",
+        "  `mj_step` with its compiled model; each engine's state checked every 0.1 s of",
+        "  simulated time); *ARS / MuJoCo* is the median of the per-file ratios.",
+        "",
+    ]
+
+
 def docs_page(results: dict) -> str:
     meta = results.get("meta", {})
     options = meta.get("options", {})
@@ -240,25 +265,7 @@ def docs_page(results: dict) -> str:
             f" time each, {meta.get('jobs')} files at a time on {v.get('cpus', '?')} CPUs."
         ),
         "",
-        "What the figures count (`tools/corpus/summary.py` defines the words):",
-        "",
-        "- every figure is over the files the reference reads: the MJCF files MuJoCo compiles,",
-        "  the URDF files whose declared masses Python's XML parser reads (all but one);",
-        "- *strict*: ARS's load returned with its defaults; *skip_unsupported* (MJCF) or",
-        "  *ignore_visuals* (URDF): it returned with what ARS cannot read skipped, or with the",
-        "  visuals left out (a broken visual mesh);",
-        "- *exact mass*: the file loads (at least leniently) and ARS's total mass is MuJoCo's",
-        "  compiled `body_mass` summed (MJCF) or the masses the file declares (URDF), to a",
-        f"  relative {EXACT:g};",
-        "- *2 s stable*: `ars.Simulation.open` (MJCF; what `ars view` does) or the robot over",
-        f"  a floor (URDF) ran {seconds:g} s finite within the wall-time budget, no body faster",
-        f"  than {summary.SPEED_LIMIT:g} m/s; a file that does not load is not stable; *slow*: of",
-        "  these, the simulations that had not reached the end when their budget ran out;",
-        "- *ms per simulated s*: wall-clock milliseconds per simulated second, the median over",
-        "  the files both engines ran for the whole run at the file's own time step (MuJoCo:",
-        "  `mj_step` with its compiled model; each engine's state checked every 0.1 s of",
-        "  simulated time); *ARS / MuJoCo* is the median of the per-file ratios.",
-        "",
+        *definitions(seconds),
         "## Issue 37's targets",
         "",
     ]
