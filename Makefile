@@ -9,6 +9,7 @@
 #               instructions per step (callgrind), each printing Rust/C ratios
 #   make figures       the thesis' figures (PNG) and their CSVs, into figures/
 #   make readme-table  regenerate the README's table of thesis numbers
+#   make corpus-table  regenerate docs/corpus.md: ARS on the corpus of robot files from the wild
 
 # What the demo needs: ODE and its bindings, the plots' font, and off-screen rendering on
 # Mesa's software rasteriser. `make demo` installs only these.
@@ -34,7 +35,8 @@ define install_missing
 	@command -v cargo >/dev/null || { echo "cargo not found: install Rust (https://rustup.rs) first"; exit 1; }
 endef
 
-.PHONY: deps demo-deps python-deps demo test check bench figures readme-table python python-test
+.PHONY: deps demo-deps python-deps demo test check bench figures readme-table python python-test \
+	corpus-table
 
 # The Python package is built by pip (maturin, release profile) into this environment.
 VENV := .venv
@@ -106,3 +108,14 @@ figures: demo-deps
 
 readme-table: demo-deps
 	cargo run --release --example thesis_table -- --write-readme
+
+# docs/corpus.md, from the corpus test itself (python/tests/test_corpus.py, which `make test`
+# runs): the same report, so the page shows what CI holds to its floors. The corpus is fetched
+# into ~/.cache/ars-corpus if missing (about 650 MB, once). The page is copied even when a
+# floor fails (it then shows why), and the target fails with the test.
+CORPUS_REPORT := $(or $(ARS_CORPUS_CACHE),$(HOME)/.cache/ars-corpus)/report-test
+corpus-table: python
+	@status=0; ARS_CORPUS_REPORT="$(CORPUS_REPORT)" $(VENV)/bin/pytest -q python/tests/test_corpus.py \
+		|| status=$$?; \
+	cp "$(CORPUS_REPORT)/corpus.md" docs/corpus.md && echo "written: docs/corpus.md"; \
+	exit $$status

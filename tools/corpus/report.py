@@ -69,27 +69,79 @@ def parse_output(stdout: bytes) -> dict:
     return merged
 
 
+# The simulation stages of the workers, and how many wall seconds past `--sim-wall` one may
+# run before its process is stopped: a simulation checks its budget between batches of steps,
+# which a single step that outlasts the budget never lets it reach.
+SIM_STAGES = ("mujoco_sim", "ars_sim", "ars_sim_fixed")
+GRACE = 2.0
+
+
 def run_task(python: str, task: str, path: Path, options: dict, timeout: float, cwd: Path) -> dict:
-    """Runs one worker task; its findings, with `failure` set if it crashed or hung."""
+    """Runs one worker task; its findings, with `failure` set if it crashed or hung.
+
+    A simulation still running `GRACE` seconds past its wall-clock budget (a step that took
+    longer than the budget) is stopped and recorded as out of time (`stopped`), with the time
+    it had reached: a slow simulation, as one that stopped itself at its budget, not a crash.
+    A worker still running after `timeout` seconds in any other stage is a hang (a failure)."""
     command = [python, str(HERE / "workers.py"), task, str(path), json.dumps(options)]
     start = time.perf_counter()
     env = dict(os.environ, PYTHONFAULTHANDLER="1", RUST_BACKTRACE="1")
-    try:
-        done = subprocess.run(
-            command, check=False, cwd=cwd, capture_output=True, timeout=timeout, env=env
-        )
-        stdout, stderr, code, timed_out = done.stdout, done.stderr, done.returncode, False
-    except subprocess.TimeoutExpired as expired:
-        stdout, stderr = expired.stdout or b"", expired.stderr or b""
-        code, timed_out = None, True
-    found = parse_output(stdout)
+    process = subprocess.Popen(
+        command, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env
+    )
+    stdout: list[bytes] = []
+    stderr: list[bytes] = []
+    stage: list = [None, start]  # the stage running, and since when
+
+    def read_stdout() -> None:
+        for line in process.stdout:  # type: ignore[union-attr]
+            stdout.append(line)
+            running = parse_output(line).get("running")
+            if running:
+                stage[:] = [running, time.perf_counter()]
+
+    readers = [
+        threading.Thread(target=read_stdout),
+        threading.Thread(target=lambda: stderr.extend(process.stderr)),  # type: ignore[arg-type]
+    ]
+    for reader in readers:
+        reader.start()
+    stopped = None
+    while stopped is None:
+        try:
+            code = process.wait(timeout=0.2)
+            break
+        except subprocess.TimeoutExpired:
+            now = time.perf_counter()
+            if now - start > timeout:
+                stopped = "timeout"
+            elif stage[0] in SIM_STAGES and now - stage[1] > options["sim_wall"] + GRACE:
+                stopped = stage[0]
+    if stopped is not None:
+        process.kill()
+        code = process.wait()
+    for reader in readers:
+        reader.join()
+    found = parse_output(b"".join(stdout))
     found["wall"] = time.perf_counter() - start
-    if timed_out or code != 0 or not found.get("done"):
-        tail = stderr.decode("utf-8", "replace").strip().splitlines()[-12:]
+    progress = found.pop("progress", None) or {}
+    if stopped in SIM_STAGES:
+        reached = progress.get("time", 0.0) if progress.get("stage") == stopped else 0.0
+        found[stopped] = {
+            "finite": True,
+            "error": None,
+            "out_of_time": True,
+            "stopped": True,
+            "time": reached,
+            "wall": time.perf_counter() - stage[1],
+        }
+        found["done"] = True  # a simulation is the last stage of its worker
+    elif stopped == "timeout" or code != 0 or not found.get("done"):
+        tail = b"".join(stderr).decode("utf-8", "replace").strip().splitlines()[-12:]
         failure = {"task": task, "stage": found.get("running"), "stderr_tail": tail}
-        if timed_out:
+        if stopped == "timeout":
             failure["kind"] = "timeout"
-        elif code is not None and code < 0:
+        elif code < 0:
             failure["kind"] = "crash"
             failure["signal"] = (
                 signal.Signals(-code).name if -code in signal.valid_signals() else -code
@@ -178,7 +230,14 @@ class Runner:
                 record["pybullet"] = run_task(
                     self.args.pybullet_python, "pybullet", path, options, timeout, self.work
                 )
-            record["ars"] = run_task(sys.executable, "ars-urdf", path, options, timeout, self.work)
+            ars = run_task(sys.executable, "ars-urdf", path, options, timeout, self.work)
+            if (ars.get("ars_sim") or {}).get("stopped"):  # the fixed base's run, on its own
+                lenient = (ars.get("ars_mass") or {}).get("from") == "ignore_visuals"
+                again = dict(options, after="ars_sim", ignore_visuals=lenient)
+                more = run_task(sys.executable, "ars-urdf", path, again, timeout, self.work)
+                ars["wall"] += more.pop("wall")
+                ars.update(more)
+            record["ars"] = ars
         with self.lock:
             self.finished += 1
             print(
@@ -206,7 +265,12 @@ def pybullet_python(given: str | None, disabled: bool) -> str | None:
 def versions(pybullet: str | None) -> dict:
     """The versions of the engines compared, each read in its own interpreter."""
     probe = "import importlib.metadata as m, sys; print(m.version(sys.argv[1]))"
-    found = {"python": platform.python_version(), "platform": platform.platform()}
+    found = {
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "cpus": os.cpu_count(),
+        "commit": commit(),
+    }
     for name, python in (
         ("ars", sys.executable),
         ("mujoco", sys.executable),
@@ -220,6 +284,18 @@ def versions(pybullet: str | None) -> dict:
         )
         found[name] = done.stdout.strip() or None
     return found
+
+
+def commit() -> str | None:
+    """The repository's commit (`+` if its work tree has changes), as `git describe` says it:
+    what the installed `ars` was built from when it was built from this work tree."""
+    done = subprocess.run(
+        ["git", "-C", str(HERE), "describe", "--always", "--dirty=+", "--abbrev=12"],
+        check=False,
+        capture_output=True,
+        text=True,
+    )
+    return done.stdout.strip() or None
 
 
 def select(manifest: dict, args: argparse.Namespace) -> list[dict]:

@@ -23,7 +23,8 @@ What the tables count:
 - a simulation is *finite* when no position or velocity became NaN or infinite and ARS raised
   no error while it ran; *bounded* when it reached 2 s finite and no body ever went faster than
   100 m/s (a free fall of 2 s reaches 20 m/s); *slow* when it had not reached 2 s after the
-  wall-clock budget (finite up to there); the rates are over the files whose simulation started;
+  wall-clock budget (finite up to there; a single step that outlasts the budget is stopped a
+  few seconds past it); the rates are over the files whose simulation started;
 - a *crash* is a worker killed by a signal, one that exited without finishing, a Rust panic
   (PyO3's `PanicException`), or one that outran its time limit (a timeout).
 """
@@ -328,19 +329,13 @@ def slow_rows(records: list[dict], limit: int = 15) -> list[list[object]]:
     rows = []
     for r in records:
         for stage in ("ars_sim", "ars_sim_fixed"):
-            value = r["ars"].get(stage)
-            if value and value.get("wall") and value.get("time") and not value.get("error"):
-                factor = value.get("time", 0) / value["wall"]
-                rows.append(
-                    [
-                        factor,
-                        short(r),
-                        stage,
-                        value.get("bodies"),
-                        value.get("time", 0),
-                        value["wall"],
-                    ]
-                )
+            value = r["ars"].get(stage) or {}
+            # A simulation stopped in its first step reached t = 0: the slowest of all.
+            if not value.get("wall") or value.get("time") is None or value.get("error"):
+                continue
+            factor = value["time"] / value["wall"]
+            bodies = value.get("bodies", "–")
+            rows.append([factor, short(r), stage, bodies, value["time"], value["wall"]])
     rows.sort(key=lambda row: row[0])
     return [
         [f"{f:.3f}", *rest[:3], f"{rest[3]:.2f}", f"{rest[4]:.1f}"] for f, *rest in rows[:limit]

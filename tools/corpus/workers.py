@@ -7,7 +7,9 @@ TASK is `mujoco` (MuJoCo compiles an MJCF file, its masses, 2 s of its own simul
 `ars-urdf` (ARS loads a URDF, its masses, 2 s over a floor and 2 s with a fixed base) or
 `pybullet` (PyBullet loads a URDF, its masses). A task prints what it finds as it goes, one JSON
 object a line after the marker `@@corpus `, `{"running": STAGE}` before each stage: a crash or
-a hang then still leaves what was found, and the parent knows in which stage it happened.
+a hang then still leaves what was found, and the parent knows in which stage it happened. A
+simulation also prints `{"progress": {"stage": STAGE, "time": T}}` as it goes: the parent stops
+one whose single step outlasts the wall-clock budget, and records how far it got.
 
 Module level needs only the standard library (the parent imports `normalise` from here, and
 PyBullet may run under another interpreter); each task imports its engine.
@@ -110,6 +112,7 @@ def task_mujoco(path: str, options: dict) -> None:
         if not (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()):
             ok = False
             break
+        emit(progress={"stage": "mujoco_sim", "time": float(data.time)})
     bad = int(data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number)
     emit(
         mujoco_sim={
@@ -169,7 +172,8 @@ def simulate(label: str, sim: object, options: dict) -> None:
     `options["sim_wall"]` seconds of wall-clock time; emits `label`.
 
     Steps go in batches of 1 to 0.1 s worth, each batch sized to take about 0.1 to 1 s of wall
-    time, so that a slow model is stopped close to its budget."""
+    time, so that a slow model is stopped close to its budget (a single step that outlasts it is
+    stopped by the parent, `report.run_task`)."""
     import ars
     import numpy as np
 
@@ -209,6 +213,7 @@ def simulate(label: str, sim: object, options: dict) -> None:
             break
         speeds = [float(np.linalg.norm(b.linear_velocity)) for b in bodies]
         max_speed = max([max_speed, *speeds])
+        emit(progress={"stage": label, "time": float(sim.time)})  # type: ignore[attr-defined]
     record.update(
         time=float(sim.time),  # type: ignore[attr-defined]
         steps=int(sim.step_count),  # type: ignore[attr-defined]
@@ -244,6 +249,9 @@ def task_ars_mjcf(path: str, options: dict) -> None:
 
 
 def task_ars_urdf(path: str, options: dict) -> None:
+    """Loads, weighs, simulates over a floor, then with a fixed base; with `options["after"]`
+    set to `"ars_sim"` (the parent stopped that simulation), only the last, with
+    `options["ignore_visuals"]` as the first run found it needed."""
     import os
 
     import ars
@@ -254,6 +262,11 @@ def task_ars_urdf(path: str, options: dict) -> None:
         parents = sorted({os.path.dirname(d) for d in packages.values()})
         os.environ["ROS_PACKAGE_PATH"] = os.pathsep.join(parents)
     kwargs = {"packages": packages}
+    if options.get("after") == "ars_sim":
+        if options.get("ignore_visuals"):
+            kwargs["ignore_visuals"] = True
+        simulate_fixed(path, kwargs, options)
+        return
     strict_sim = ars.Simulation()
     robot, _ = load("ars_strict", strict_sim.load_urdf, path, **kwargs)
     sim, source = strict_sim, "strict"
@@ -270,6 +283,12 @@ def task_ars_urdf(path: str, options: dict) -> None:
     floored, _ = load("ars_open", floor_sim.load_urdf, path, **kwargs)
     if floored is not None:
         simulate("ars_sim", floor_sim, options)
+    simulate_fixed(path, kwargs, options)
+
+
+def simulate_fixed(path: str, kwargs: dict, options: dict) -> None:
+    import ars
+
     fixed_sim = ars.Simulation()
     fixed, _ = load("ars_open_fixed", fixed_sim.load_urdf, path, fixed_base=True, **kwargs)
     if fixed is not None:
