@@ -8,7 +8,7 @@ use nalgebra::{Point3, Vector3};
 
 use crate::error::{Error, Result};
 use crate::limits;
-use crate::shape::Triangles;
+use crate::mesh_mass::{Triangles, mass_properties};
 
 /// Points within this fraction of the set's extent of a line or a plane make no solid.
 const FLAT: f64 = 1e-9;
@@ -182,7 +182,7 @@ pub(crate) fn check_convex(vertices: &[Point3<f64>], triangles: &[[u32; 3]]) -> 
     if euler != 2 || !edges.len().is_multiple_of(2) {
         return Err(invalid("the convex hull is not one closed surface without holes (V − E + F ≠ 2)"));
     }
-    if crate::shape::mass_properties(vertices, triangles).is_none() {
+    if mass_properties(vertices, triangles).is_none() {
         return Err(invalid(
             "the convex hull encloses no volume (its triangles must be wound counter-clockwise seen from outside)",
         ));
@@ -206,7 +206,7 @@ mod tests {
         let (vertices, triangles) = convex_hull(&points).unwrap();
         assert_eq!(vertices.len(), 8);
         assert_eq!(triangles.len(), 12);
-        let mass = crate::shape::mass_properties(&vertices, &triangles).unwrap();
+        let mass = mass_properties(&vertices, &triangles).unwrap();
         assert!((mass.volume - 1.0).abs() < 1e-12, "{}", mass.volume);
         assert!((mass.centre - Point3::new(0.5, 0.5, 0.5)).norm() < 1e-12);
     }

@@ -95,6 +95,7 @@ mod hull;
 mod init;
 pub mod interrupt;
 pub mod limits;
+mod mesh_mass;
 mod panic;
 pub mod platform;
 pub mod program;

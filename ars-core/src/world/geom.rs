@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, GeomHandle, SpaceHandle};
 use crate::init::ensure_ode_ready;
 use crate::limits;
-use crate::shape::{Shape, Triangles, cone_mesh};
+use crate::mesh_mass::Triangles;
+use crate::shape::{Shape, cone_mesh};
 use crate::validate;
 
 /// The buffers ODE's trimesh data points into, freed after the geom.
@@ -397,31 +398,7 @@ impl World {
             // SAFETY: geom and body are live and belong to this world; the geom is placeable.
             unsafe { ffi::dGeomSetBody(g.raw, b) };
         }
-        // ODE's geom of a hull sits at the hull's centre.
-        let offset = match offset {
-            Some(o) if centre != Vector3::zeros() => Some(o * nalgebra::Translation3::from(centre)),
-            None if centre != Vector3::zeros() && body_raw.is_some() => {
-                Some(Isometry3::from_parts(nalgebra::Translation3::from(centre), UnitQuaternion::identity()))
-            }
-            other => other,
-        };
-        let pose = match pose {
-            None if centre != Vector3::zeros() && body_raw.is_none() => Some(Isometry3::identity()),
-            other => other,
-        };
-        if let Some(o) = offset {
-            let p = o.translation.vector;
-            let q = convert::quaternion_to_ode(&o.rotation);
-            // SAFETY: the geom is live and attached to a body (checked above).
-            unsafe {
-                ffi::dGeomSetOffsetPosition(g.raw, p.x, p.y, p.z);
-                ffi::dGeomSetOffsetQuaternion(g.raw, q.as_ptr());
-            }
-        }
-        if let Some(p) = pose {
-            g.set_pose(p)?;
-        }
-        g.note_reach();
+        place_new_geom(&mut g, offset, pose, centre, body_raw.is_some())?;
         if let Some(bits) = builder.category_bits {
             g.set_category_bits(bits);
         }
@@ -676,4 +653,41 @@ impl GeomMut<'_> {
         // SAFETY: the geom is live.
         unsafe { if enabled { ffi::dGeomEnable(self.raw) } else { ffi::dGeomDisable(self.raw) } }
     }
+}
+
+/// Sets a new geom's offset from its body (`attached`) or its pose, each moved by a
+/// hull's `centre`: ODE's geom of a hull sits at the hull's centre.
+fn place_new_geom(
+    g: &mut GeomMut<'_>,
+    offset: Option<Isometry3<f64>>,
+    pose: Option<Isometry3<f64>>,
+    centre: Vector3<f64>,
+    attached: bool,
+) -> Result<()> {
+    let offset = match offset {
+        Some(o) if centre != Vector3::zeros() => Some(o * nalgebra::Translation3::from(centre)),
+        None if centre != Vector3::zeros() && attached => {
+            Some(Isometry3::from_parts(nalgebra::Translation3::from(centre), UnitQuaternion::identity()))
+        }
+        other => other,
+    };
+    let pose = match pose {
+        None if centre != Vector3::zeros() && !attached => Some(Isometry3::identity()),
+        other => other,
+    };
+    if let Some(o) = offset {
+        let p = o.translation.vector;
+        let q = convert::quaternion_to_ode(&o.rotation);
+        // SAFETY: the geom is live, and attached to a body: an offset is given only with
+        // one (`check_placement`), and made for a hull only when `attached`.
+        unsafe {
+            ffi::dGeomSetOffsetPosition(g.raw, p.x, p.y, p.z);
+            ffi::dGeomSetOffsetQuaternion(g.raw, q.as_ptr());
+        }
+    }
+    if let Some(p) = pose {
+        g.set_pose(p)?;
+    }
+    g.note_reach();
+    Ok(())
 }

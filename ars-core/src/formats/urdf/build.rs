@@ -2,11 +2,11 @@
 //! through fixed joints where they can be), geometry and joints.
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Point3, Vector3};
 
 use super::frame::{Frame, z_up_to_y_up};
+use super::meshes::Meshes;
 use super::{UpAxis, UrdfOptions, UrdfRobot};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::convert::rotation_about_axis;
@@ -17,86 +17,6 @@ use crate::joint::JointBuilder;
 use crate::scene::JointEnd;
 use crate::scene::Scene;
 use crate::shape::Shape;
-
-/// Finds and loads the meshes a file names (each file once).
-pub(super) struct Meshes<'o> {
-    pub(super) options: &'o UrdfOptions,
-    /// The URDF file's folder.
-    pub(super) base_dir: Option<PathBuf>,
-    pub(super) loaded: crate::formats::MeshCache,
-    /// Collision meshes kept as triangle meshes because they bound no solid (a line
-    /// each, for [`UrdfRobot::adjusted`](super::UrdfRobot::adjusted)).
-    pub(super) notes: Vec<String>,
-}
-
-impl Meshes<'_> {
-    /// The first existing path for a URDF mesh filename, or every path tried.
-    pub(super) fn resolve(&self, filename: &str) -> std::result::Result<PathBuf, String> {
-        let name = filename.strip_prefix("file://").unwrap_or(filename);
-        let mut tried = Vec::new();
-        if let Some(rest) = name.strip_prefix("package://") {
-            let (package, rest) = rest.split_once('/').unwrap_or((rest, ""));
-            for (p, dir) in &self.options.package_dirs {
-                if p == package {
-                    tried.push(dir.join(rest));
-                }
-            }
-            for var in ["ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"] {
-                if let Some(paths) = std::env::var_os(var) {
-                    for dir in std::env::split_paths(&paths) {
-                        tried.push(dir.join(package).join(rest));
-                        tried.push(dir.join("share").join(package).join(rest));
-                    }
-                }
-            }
-            if let Some(base) = &self.base_dir {
-                tried.push(base.join(package).join(rest));
-                for ancestor in base.ancestors() {
-                    if ancestor.file_name().is_some_and(|n| n == package) {
-                        tried.push(ancestor.join(rest));
-                    }
-                }
-                tried.push(base.join(rest));
-            }
-            for dir in &self.options.search_paths {
-                tried.push(dir.join(package).join(rest));
-                tried.push(dir.join(rest));
-            }
-        } else if Path::new(name).is_absolute() {
-            tried.push(PathBuf::from(name));
-        } else {
-            if let Some(base) = &self.base_dir {
-                tried.push(base.join(name));
-            }
-            for dir in &self.options.search_paths {
-                tried.push(dir.join(name));
-            }
-        }
-        crate::formats::first_file(filename, &tried)
-    }
-
-    pub(super) fn shape(&mut self, geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
-        let urdf_rs::Geometry::Mesh { filename, scale } = geometry else {
-            return Ok(primitive_shape(geometry).expect("a geometry that is not a mesh is a primitive"));
-        };
-        let path = self.resolve(filename)?;
-        let scale = Vector3::from(scale.as_ref().map_or([1.0; 3], |s| s.0));
-        self.loaded.load(&path, scale).map_err(|e| e.to_string())
-    }
-}
-
-/// The shape of a primitive geometry (box, cylinder, capsule, sphere), unchecked;
-/// `None` for a mesh, which must be found and loaded.
-pub(super) fn primitive_shape(geometry: &urdf_rs::Geometry) -> Option<Shape> {
-    use urdf_rs::Geometry as G;
-    Some(match geometry {
-        G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
-        G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },
-        G::Capsule { radius, length } => Shape::Capsule { radius: *radius, length: *length },
-        G::Sphere { radius } => Shape::Sphere { radius: *radius },
-        G::Mesh { .. } => return None,
-    })
-}
 
 /// A problem with a link (the file is named by the caller; urdf-rs gives no line).
 pub(super) fn link_error(link: &urdf_rs::Link, problem: String) -> Error {

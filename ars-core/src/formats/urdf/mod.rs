@@ -75,8 +75,10 @@ use crate::simulation::Simulation;
 
 mod build;
 mod frame;
+mod meshes;
 
-use build::{Meshes, plan};
+use build::plan;
+use meshes::Meshes;
 
 /// The up axis a URDF file is written with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -319,7 +321,7 @@ impl UrdfFile {
 /// or not finite; [`Shape`](crate::Shape)'s own check). A mesh is checked when it is
 /// loaded.
 fn degenerate(geometry: &urdf_rs::Geometry) -> bool {
-    build::primitive_shape(geometry).is_some_and(|shape| shape.validate().is_err())
+    meshes::primitive_shape(geometry).is_some_and(|shape| shape.validate().is_err())
 }
 
 /// A problem of the URDF file `file` at `element`.
