@@ -190,7 +190,7 @@ fn joint_damping_is_implicit_and_stable_at_any_coefficient() {
         sim.scene_mut().world_mut().body_mut(rod).unwrap().set_angular_velocity(spin).unwrap();
         // A free joint's damping acts on its linear and its angular velocity: two motors.
         let motors = if joint.contains("free") { 2 } else { 1 };
-        assert_eq!(model.dampers.len(), motors, "{joint}");
+        assert_eq!(model.joint_motors.len(), motors, "{joint}");
         for n in 1..=20 {
             sim.step_n(1).unwrap();
             let w = sim.scene().world().body(rod).unwrap().angular_velocity();
@@ -292,4 +292,33 @@ fn geom_contact_parameters_are_read_kept_and_used() {
     assert!((x(&sim, rough) - 0.204).abs() < 0.03, "μ = 1: {}", x(&sim, rough));
     sim.restore(&snapshot).unwrap();
     assert_eq!(sim.scene().geom_contacts().len(), 3);
+}
+
+/// A ball joint's `frictionloss` (MuJoCo's dry friction on every axis) holds a pendulum
+/// whose weight turns it with less torque, and lets a heavier one swing: a motor at speed
+/// 0 with that torque limit on each of three axes beside the joint.
+#[test]
+fn a_ball_joint_s_frictionloss_holds_below_its_torque() {
+    // A 1 kg ball 0.5 m out along x from a ball joint: 4.905 N·m of weight about it.
+    for (frictionloss, holds) in [(6.0, true), (3.0, false)] {
+        let text = format!(
+            r#"<mujoco><option timestep="0.001"/><worldbody><body name="bob">
+                 <joint type="ball" frictionloss="{frictionloss}"/>
+                 <geom type="sphere" size="0.05" pos="0.5 0 0" mass="1" contype="0" conaffinity="0"/>
+               </body></worldbody></mujoco>"#
+        );
+        let mut sim = Simulation::builder().time_step(0.001).build().unwrap();
+        let model = sim.load_mjcf_text(&text, "bob.xml", &MjcfOptions::new()).unwrap();
+        assert!(model.skipped.is_empty(), "{:?}", model.skipped);
+        assert_eq!(model.joint_motors.len(), 1);
+        let bob = model.body("bob").unwrap();
+        let start = sim.scene().position(bob).unwrap();
+        sim.run_for(0.5).unwrap();
+        let fell = start.y - sim.scene().position(bob).unwrap().y;
+        if holds {
+            assert!(fell.abs() < 1e-3, "held: {fell}");
+        } else {
+            assert!(fell > 0.1, "swings down: {fell}");
+        }
+    }
 }

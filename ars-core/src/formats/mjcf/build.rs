@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use nalgebra::{Isometry3, Matrix3, Translation3, Unit, UnitQuaternion, Vector3};
 
+use super::damper::Resisting;
 use super::mass::{armature_inertia, at_least_ars_least_mass, find_body};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, Model};
 use super::read::read;
@@ -59,7 +60,7 @@ impl Scene {
                 .chain(made.chain_links.iter().copied())
                 .chain(made.world_geoms.iter().copied())
                 .collect();
-            for (_, motor) in made.dampers.iter().rev() {
+            for (_, motor) in made.joint_motors.iter().rev() {
                 let _ = self.world_mut().remove_joint(*motor);
             }
             for id in ids.into_iter().rev() {
@@ -321,8 +322,9 @@ impl Scene {
         self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)
     }
 
-    /// A joint's `damping`, when it has one: the motors that damp it (see `damper.rs`),
-    /// listed in [`MjcfModel::dampers`].
+    /// A joint's `damping`, and a ball's or free joint's `frictionloss`, when it has
+    /// them: the motors beside it (see `damper.rs`), listed in
+    /// [`MjcfModel::joint_motors`].
     fn damp_mjcf_joint(
         &mut self,
         j: &Joint,
@@ -331,7 +333,14 @@ impl Scene {
         end: JointEnd,
         made: &mut MjcfModel,
     ) -> Result<()> {
-        if j.damping == 0.0 {
+        let mut resisting = Vec::new();
+        if j.damping > 0.0 {
+            resisting.push(Resisting::Damping(j.damping));
+        }
+        if j.frictionloss > 0.0 && matches!(j.kind, JointKind::Ball | JointKind::Free) {
+            resisting.push(Resisting::Friction(j.frictionloss));
+        }
+        if resisting.is_empty() {
             return Ok(());
         }
         let body = |scene: &Self, id: ObjectId| scene.object(id).map(|o| o.body_handle());
@@ -340,8 +349,10 @@ impl Scene {
             JointEnd::Object(id) => body(self, id)?,
             JointEnd::World => None,
         };
-        for motor in self.add_mjcf_damper(j, axis, child, parent)? {
-            made.dampers.push((j.name.clone(), motor));
+        for r in resisting {
+            for motor in self.add_mjcf_joint_motors(j, axis, child, parent, r)? {
+                made.joint_motors.push((j.name.clone(), motor));
+            }
         }
         Ok(())
     }
@@ -390,7 +401,7 @@ impl Scene {
         if j.spring.0 > 0.0 {
             self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;
         }
-        if j.frictionloss > 0.0 {
+        if j.frictionloss > 0.0 && matches!(j.kind, JointKind::Hinge | JointKind::Slide) {
             self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
         }
         Ok(joint)

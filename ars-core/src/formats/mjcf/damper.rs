@@ -9,7 +9,9 @@
 //! relative velocity at 0 with constraint force mixing `1 / damping` and no force limit:
 //! ODE then solves its force `λ = −damping · v` with the step's own velocities
 //! (`λ = (target − J·v′) / CFM`), MuJoCo's `(M + h·D)·v′ = M·v + h·f`. The joint's own
-//! motor stays free for its dry friction (`frictionloss`) and for speeds.
+//! motor stays free for its dry friction (`frictionloss`) and for speeds. A ball's or a
+//! free joint's `frictionloss` (their ODE joints have no motor) is such a motor too,
+//! at speed 0 with that force limit about each of three axes.
 
 use nalgebra::Vector3;
 
@@ -20,16 +22,27 @@ use crate::limits;
 use crate::scene::Scene;
 use crate::world::joint::{AxisFrame, JointBuilder, JointKind as OdeJoint, JointParam};
 
+/// What the motors beside a joint hold against its motion.
+pub(super) enum Resisting {
+    /// `damping`: a force proportional to the velocity at the end of the step.
+    Damping(f64),
+    /// `frictionloss` of a ball or free joint (a hinge's or a slide's is the joint's own
+    /// dry friction): up to this force or torque about each axis.
+    Friction(f64),
+}
+
 impl Scene {
-    /// The motors that damp `joint` (of the MJCF joint `j`, whose axis is `axis` in the
-    /// simulation's frame) between `child` and `parent` (`None`: the world): one for a
-    /// hinge, a slide or a ball joint, two (linear and angular) for a free joint.
-    pub(super) fn add_mjcf_damper(
+    /// The motors beside an MJCF joint `j` (whose axis is `axis` in the simulation's
+    /// frame) between `child` and `parent` (`None`: the world) that resist its motion:
+    /// one for a hinge, a slide or a ball joint, two (linear and angular) for a free
+    /// joint.
+    pub(super) fn add_mjcf_joint_motors(
         &mut self,
         j: &Joint,
         axis: Vector3<f64>,
         child: BodyHandle,
         parent: Option<BodyHandle>,
+        resisting: Resisting,
     ) -> Result<Vec<JointHandle>> {
         let along = |a: Vector3<f64>| vec![(AxisFrame::Body1, a)];
         let every = || {
@@ -49,10 +62,14 @@ impl Scene {
                 None => builder.to_world(child),
             };
             for axis in 0..kind.param_axes() {
-                builder = builder
-                    .param(JointParam::MaxForce, axis, limits::MAX_FORCE)
-                    .param(JointParam::Velocity, axis, 0.0)
-                    .param(JointParam::Cfm, axis, 1.0 / j.damping);
+                builder = builder.param(JointParam::Velocity, axis, 0.0);
+                builder =
+                    match resisting {
+                        Resisting::Damping(damping) => builder
+                            .param(JointParam::MaxForce, axis, limits::MAX_FORCE)
+                            .param(JointParam::Cfm, axis, 1.0 / damping),
+                        Resisting::Friction(most) => builder.param(JointParam::MaxForce, axis, most),
+                    };
             }
             made.push(self.world_mut().insert_joint(builder)?);
         }

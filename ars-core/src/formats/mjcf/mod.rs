@@ -43,7 +43,7 @@
 //!   the joint (an angular one about a hinge's axis and a ball's three, a linear one
 //!   along a slide, both for a free joint) holds the bodies' relative velocity at 0
 //!   with constraint force mixing `1 / damping`, so that ODE solves the damping force
-//!   from the velocity at the end of the step ([`MjcfModel::dampers`] lists them).
+//!   from the velocity at the end of the step ([`MjcfModel::joint_motors`] lists them).
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
 //!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
 //!   slide z, hinge y) are chained through light links at the body's frame (each of
@@ -59,8 +59,10 @@
 //!   a spring ([`SimJoint::set_spring`](crate::SimJoint::set_spring): explicit, from
 //!   the position at the start of the step), `frictionloss` dry friction
 //!   ([`SimJoint::set_dry_friction`](crate::SimJoint::set_dry_friction): ODE's motor
-//!   at speed 0, a hard limit where MuJoCo's is soft). On ball and free joints they
-//!   are unsupported (an error, or skipped with a warning).
+//!   at speed 0, a hard limit where MuJoCo's is soft; on a ball or free joint a motor
+//!   beside it, at speed 0 with that limit about each of three axes: a box of torques
+//!   where MuJoCo's bounds each degree of freedom alike). On ball and free joints `ref`
+//!   and `stiffness` are unsupported (an error, or skipped with a warning).
 //! - **Armature.** ODE has no joint-space inertia, so a joint's `armature` (MuJoCo's
 //!   rotor inertia on the joint's own degree of freedom) is added to the inertia of
 //!   the body the joint moves: `armature · n nᵀ` about a hinge's axis `n`,
@@ -229,11 +231,12 @@ pub struct MjcfModel {
     pub welded: Vec<MjcfWeld>,
     /// Every joint made, by name.
     pub joints: Vec<(String, JointId)>,
-    /// The ODE motors that damp the joints with a `damping`, by joint name: one for a
-    /// hinge, a slide or a ball joint, a linear and an angular one for a free joint
-    /// (see the module docs). They are joints of the [`World`](crate::World), saved
-    /// with the scene.
-    pub dampers: Vec<(String, JointHandle)>,
+    /// The ODE motors beside the joints, by joint name: those that damp a joint with a
+    /// `damping`, and those that hold a ball or free joint with a `frictionloss` (one
+    /// for a hinge, a slide or a ball joint, a linear and an angular one for a free
+    /// joint; see the module docs). They are joints of the [`World`](crate::World),
+    /// saved with the scene.
+    pub joint_motors: Vec<(String, JointHandle)>,
     /// The static geoms of the world body.
     pub world_geoms: Vec<ObjectId>,
     /// `<option timestep>`, s.

@@ -161,19 +161,19 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         }
         let mut reference = a.number("ref")?.unwrap_or(0.0) * angle;
         let mut spring = (a.number("stiffness")?.unwrap_or(0.0), a.number("springref")?.unwrap_or(0.0) * angle);
-        let mut frictionloss = a.number("frictionloss")?.unwrap_or(0.0);
+        let frictionloss = a.number("frictionloss")?.unwrap_or(0.0);
         if spring.0 < 0.0 || frictionloss < 0.0 {
             return Err(problem(&node, "stiffness and frictionloss must not be negative"));
         }
-        // A ball's or a free joint's has no one position: ARS's springs, dry friction
-        // and reference positions are of hinges and slides.
+        // A ball's or a free joint's has no one position: ARS's springs and reference
+        // positions are of hinges and slides (their frictionloss is a motor's: build.rs).
         if matches!(kind, JointKind::Ball | JointKind::Free) {
-            for (attribute, value) in [("ref", reference), ("stiffness", spring.0), ("frictionloss", frictionloss)] {
+            for (attribute, value) in [("ref", reference), ("stiffness", spring.0)] {
                 if value != 0.0 {
                     self.unsupported(&node, &format!("{attribute} on a ball or free joint"))?;
                 }
             }
-            (reference, spring, frictionloss) = (0.0, (0.0, 0.0), 0.0);
+            (reference, spring) = (0.0, (0.0, 0.0));
         }
         Ok(Joint {
             name,
