@@ -150,6 +150,7 @@ def test_geom_contacts_are_read_set_and_checked(tmp_path):
     assert sim.body("puck").position[0] > 0.45
     for bad, says in [
         ({"condim": 2}, "condim 2"),
+        ({"condim": 300}, "condim 300"),
         ({"friction": (1.0, 2.0)}, "friction takes 3 numbers"),
         ({"solref": (0.02, -1.0)}, "solref"),
         ({"priority": 2**40}, "priority"),

@@ -53,8 +53,9 @@ impl PySimulation {
         let friction = friction.map(|f| numbers::<3>(py, "friction", f)).transpose()?;
         let solref = solref.map(|r| numbers::<2>(py, "solref", r)).transpose()?;
         let solimp = solimp.map(|s| numbers::<5>(py, "solimp", s)).transpose()?;
-        // Out of u8's range is a condim GeomContact refuses, naming the four it takes.
-        let condim = condim.map(|c| u8::try_from(c).unwrap_or(0));
+        let condim = condim
+            .map(|c| u8::try_from(c).map_err(|_| raise(py, "InputError", format!("condim {c} must be 1, 3, 4 or 6"))))
+            .transpose()?;
         let priority = priority
             .map(|p| i32::try_from(p).map_err(|_| raise(py, "InputError", format!("priority {p} is beyond ±2³¹"))))
             .transpose()?;
