@@ -10,6 +10,8 @@
 #   make figures       the thesis' figures (PNG) and their CSVs, into figures/
 #   make readme-table  regenerate the README's table of thesis numbers
 #   make corpus-table  regenerate docs/corpus.md: ARS on the corpus of robot files from the wild
+#   make bench-mujoco  ARS (exact and quick steppers) against MuJoCo per simulated second, side by
+#                      side on Gymnasium's MuJoCo models, then on every corpus MJCF file
 
 # What the demo needs: ODE and its bindings, the plots' font, and off-screen rendering on
 # Mesa's software rasteriser. `make demo` installs only these.
@@ -36,7 +38,7 @@ define install_missing
 endef
 
 .PHONY: deps demo-deps python-deps demo test check bench figures readme-table python python-test \
-	corpus-table
+	corpus-table bench-mujoco
 
 # The Python package is built by pip (maturin, release profile) into this environment.
 VENV := .venv
@@ -119,3 +121,9 @@ corpus-table: python
 		|| status=$$?; \
 	cp "$(CORPUS_REPORT)/corpus.md" docs/corpus.md && echo "written: docs/corpus.md"; \
 	exit $$status
+
+# ARS against MuJoCo per simulated second, in one run, one file after the other (issue 37).
+bench-mujoco: python
+	$(PYTHON) tools/corpus/fetch.py
+	$(PYTHON) tools/corpus/speed.py --gymnasium
+	$(PYTHON) tools/corpus/speed.py --repeat 1 --json corpus-speed.json
