@@ -427,9 +427,35 @@ impl Scene {
             error = error.sin().atan2(error.cos());
         }
         let speed = mimic.multiplier * leader.rate + self.world.erp() * error / self.time_step.get();
-        let max_force = self.joint_data(id)?.actuator.motor_force();
+        let data = self.joint_data(id)?;
+        let mut max_force = data.actuator.motor_force();
         let speed = speed.clamp(-crate::limits::MAX_SPEED, crate::limits::MAX_SPEED);
+        if data.limits.is_some_and(|(low, high)| state.position <= low || state.position >= high) {
+            // At a stop, ODE cannot make the motor a constraint beside the stop's: it puts
+            // the motor's largest force on the bodies as it is, for the whole step (a
+            // gripper's finger of grams resting on its stop took 1e9 N·m and spun at
+            // 1e9 rad/s). There the follower gets at most the push that brings its own
+            // body to the wanted speed in one step.
+            let needed =
+                self.joint_inertia(data.object1, handle, kind)? * (speed - state.rate).abs() / self.time_step.get();
+            max_force = max_force.min(needed);
+        }
         self.world.joint_mut(handle)?.set_motor(0, speed, max_force)
+    }
+
+    /// The inertia (kg·m², hinges) or mass (kg, sliders) of `object`'s body about or
+    /// along the joint's axis: what the joint's motor moves at least.
+    fn joint_inertia(&self, object: ObjectId, handle: JointHandle, kind: JointType) -> Result<f64> {
+        let Some(b) = self.object(object)?.body_handle() else { return Ok(0.0) };
+        let body = self.world.body(b)?;
+        let joint = self.world.joint(handle)?;
+        if !matches!(kind, JointType::Hinge | JointType::Universal) {
+            return Ok(body.mass());
+        }
+        let axis = joint.axis()?;
+        let arm = body.position() - joint.anchor()?;
+        let across = arm - axis * arm.dot(&axis);
+        Ok(axis.dot(&(body.inertia_world() * axis)) + body.mass() * across.norm_squared())
     }
 
     /// Puts a torque (hinge, universal) or force (slider, piston) on a joint for the

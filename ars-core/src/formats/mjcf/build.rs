@@ -111,6 +111,7 @@ impl Scene {
             made.world_geoms.push(id);
         }
         made.welded = welds(model, &world, made)?;
+        self.add_mjcf_equalities(model, &world, made)?;
         for (k, (a, b)) in model.pairs.iter().enumerate() {
             let unknown = |name: &str| Error::Invalid {
                 what: "an MJCF contact pair",

@@ -130,6 +130,16 @@
 //!   an `<exclude>` or the rule that bodies one joint joins never touch; and a paired
 //!   geom also touches what was made outside the model (ARS's own shapes and floors,
 //!   URDF robots), whose collide bits take in ODE's upper 32.
+//! - **Equality constraints.** `connect` (a ball joint at the anchor), `weld` (a fixed
+//!   joint, keeping the pose the file gives) and `joint` of degree 1 (`joint1` follows
+//!   `joint2` as a [`Mimic`](crate::scene::Mimic), with their `ref`s as MuJoCo's
+//!   `qpos0`), between bodies, sites or a body and the world; listed in
+//!   [`MjcfModel::equalities`]. They are hard, not softened by `solref`/`solimp` (said
+//!   unused), a coupling is one-way (the leader does not feel the follower's load), and
+//!   two bodies an equality joins never touch (ODE's rule for joined bodies). `tendon`
+//!   and `flex` equalities, `polycoef` beyond degree 1, a `joint` without `joint2`, a
+//!   `relpose` other than the file's pose and inactive equalities are skipped or
+//!   refused (see the `equality` module's docs).
 //! - **Sensors.** `jointpos` and `jointvel` of hinges and slides; `framepos`,
 //!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
 //!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
@@ -159,6 +169,7 @@ mod build;
 mod contact;
 mod damper;
 mod defaults;
+mod equality;
 mod include;
 mod mass;
 mod model;
@@ -255,6 +266,10 @@ pub struct MjcfModel {
     pub armature: Vec<(String, Matrix3<f64>)>,
     /// The sensors read, in the file's order, each with the ARS sensor made of it.
     pub sensors: Vec<MjcfSensor>,
+    /// The joints made of the file's `<equality>` constraints (`connect`: a ball joint,
+    /// `weld`: a fixed joint), in the file's order; a `joint` equality makes no joint
+    /// but a [`Mimic`](crate::scene::Mimic) on its `joint1` (see the module docs).
+    pub equalities: Vec<JointId>,
     /// The named `<site>`s of the bodies, in the file's order.
     pub sites: Vec<MjcfSite>,
 }

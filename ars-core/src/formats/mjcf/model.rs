@@ -147,5 +147,7 @@ pub(super) struct Model {
     pub(super) world_sites: Vec<String>,
     /// The jointless bodies merged into others, in the file's order.
     pub(super) welded: Vec<Welded>,
+    /// `<equality>`: its `connect`, `weld` and `joint` elements, in the file's order.
+    pub(super) equalities: Vec<super::equality::Equality>,
     pub(super) skipped: Vec<String>,
 }

@@ -527,6 +527,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         sensor_places: Vec::new(),
         world_sites: Vec::new(),
         welded: Vec::new(),
+        equalities: Vec::new(),
         skipped: Vec::new(),
     };
     for &node in &nodes {
@@ -731,6 +732,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             }
             "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
             "contact" => self.contacts(node, model)?,
+            "equality" => self.equalities(node, model)?,
             "sensor" => {
                 for (i, child) in tree.elements(node).into_iter().enumerate() {
                     if let Some(sensor) = self.sensor(child, i)? {
