@@ -322,3 +322,37 @@ fn a_ball_joint_s_frictionloss_holds_below_its_torque() {
         }
     }
 }
+
+/// A joint's stops are as soft as its `solreflimit` says: a hinge made 2° outside its
+/// range (Gymnasium's humanoid's knees) is eased back at MuJoCo's rate, `h·k / (h·k + b)`
+/// of the error per step (0.073 at the defaults and h = 3 ms), not thrown back at ODE's
+/// world ERP (0.2: 2.3 rad/s in one step).
+#[test]
+fn a_joint_outside_its_range_is_eased_back_as_solreflimit_says() {
+    let file = |solref: &str| {
+        format!(
+            r#"<mujoco><option timestep="0.003" gravity="0 0 0"/><worldbody>
+  <body name="shin"><joint name="knee" axis="0 1 0" range="-160 -2" {solref}/>
+    <geom type="capsule" fromto="0 0 0 0 0 -0.3" size="0.04"/></body>
+</worldbody></mujoco>"#
+        )
+    };
+    let first_rate = |solref: &str| {
+        let mut sim = Simulation::builder().time_step(0.003).gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
+        sim.load_mjcf_text(&file(solref), "knee.xml", &MjcfOptions::new()).unwrap();
+        sim.step().unwrap();
+        sim.scene().joint("knee").unwrap().state().unwrap().rate
+    };
+    let error = 2f64.to_radians();
+    let (h, dmax) = (0.003, 0.95);
+    let erp = |tc: f64| {
+        let (k, b) = (1.0 / (dmax * dmax * tc * tc), 2.0 / (dmax * tc));
+        h * k / (h * k + b)
+    };
+    for (solref, tc) in [("", 0.02), (r#"solreflimit="0.005 1""#, 0.005)] {
+        let rate = first_rate(solref);
+        let wanted = -erp(tc) * error / h;
+        assert!((rate - wanted).abs() < 1e-3 * wanted.abs(), "{solref}: {rate} rad/s, wanted {wanted}");
+    }
+    assert!((erp(0.02) - 0.073).abs() < 5e-4, "{}", erp(0.02));
+}

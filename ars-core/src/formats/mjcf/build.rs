@@ -18,6 +18,7 @@ use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
 use crate::scene::JointEnd;
 use crate::scene::{Scene, Visual};
 use crate::shape::Shape;
+use crate::world::joint::JointParam;
 
 /// MuJoCo (x, y, z) → simulation (x, z, −y), then the base pose.
 pub(super) fn placement(options: &MjcfOptions) -> Isometry3<f64> {
@@ -398,6 +399,10 @@ impl Scene {
         let joint = joint?;
         if let Some((lo, hi)) = j.range {
             self.joint_mut(joint)?.set_limits(lo, hi)?;
+            if let Some(erp) = j.stop_erp(self.time_step()) {
+                let handle = self.joint_data(joint)?.handle;
+                self.world.joint_mut(handle)?.set_param(JointParam::StopErp, 0, erp)?;
+            }
         }
         if j.spring.0 > 0.0 {
             self.joint_mut(joint)?.set_spring(j.spring.0, j.spring.1)?;

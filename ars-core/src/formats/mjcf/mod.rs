@@ -38,7 +38,11 @@
 //!   body that weighs nothing with its welded descendants (its mass is in bodies that
 //!   move on joints of their own) is refused, as MuJoCo refuses it ("mass and inertia
 //!   of moving bodies must be larger than mjMINVAL"). `range` (with `limited`, or
-//!   `<compiler autolimits>`, on by default) becomes stops. `damping` is integrated as
+//!   `<compiler autolimits>`, on by default) becomes stops, as soft as `solreflimit`
+//!   and `solimplimit`'s `dmax` say: their ERP is MuJoCo's reference acceleration as
+//!   ODE's spring at the time step the model is made at (0.073 at MuJoCo's defaults and
+//!   3 ms; kept if the time step changes later); their CFM stays the world's (MuJoCo's
+//!   impedance is not modelled). `damping` is integrated as
 //!   MuJoCo integrates it, implicitly (stable at any coefficient): an ODE motor beside
 //!   the joint (an angular one about a hinge's axis and a ball's three, a linear one
 //!   along a slide, both for a free joint) holds the bodies' relative velocity at 0

@@ -175,9 +175,12 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             }
             (reference, spring) = (0.0, (0.0, 0.0));
         }
+        let limit_solref = a.fixed::<2>("solreflimit")?.unwrap_or([0.02, 1.0]);
+        let limit_dmax = a.numbers("solimplimit")?.and_then(|s| s.get(1).copied()).unwrap_or(0.95);
         Ok(Joint {
             name,
             kind,
+            limit_softness: (limit_solref, limit_dmax),
             pos: Vector3::from(a.fixed::<3>("pos")?.unwrap_or([0.0; 3])),
             axis: axis.normalize(),
             range,
