@@ -81,6 +81,8 @@ pub(crate) struct JointData {
     pub(crate) mimic: Option<Mimic>,
     /// Its spring: stiffness and rest position (stiffness 0: none).
     pub(crate) spring: (f64, f64),
+    /// Its armature, if any (see [`armature`](super::armature)).
+    pub(crate) armature: Option<super::armature::Armature>,
 }
 
 /// What a joint's actuator can put out: its controller's output and its speed motor
@@ -211,6 +213,7 @@ impl Scene {
             dry_friction: 0.0,
             mimic: None,
             spring: (0.0, 0.0),
+            armature: None,
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;
@@ -358,6 +361,9 @@ impl Scene {
         for follower in followers {
             self.joint_mut(follower)?.clear_mimic()?;
         }
+        if let Some(armature) = data.armature {
+            self.world.remove_joint(armature.motor)?;
+        }
         self.world.remove_joint(data.handle)
     }
 
@@ -400,12 +406,15 @@ impl Scene {
             data.efforts.friction = friction;
             data.efforts.spring = spring;
             data.efforts.controller = controller;
-            let mimic = data.mimic;
+            let (mimic, armature) = (data.mimic, data.armature);
             if effort != 0.0 || data.friction != 0.0 || data.controller.is_some() || stiffness != 0.0 {
                 self.put_effort(id, handle, kind, effort, true)?;
             }
             if let Some(mimic) = mimic {
                 self.follow(id, handle, kind, state, mimic)?;
+            }
+            if let Some(armature) = armature {
+                self.hold_armature(armature, state.rate)?;
             }
         }
         Ok(())
@@ -578,9 +587,13 @@ impl Scene {
 
     /// Keeps the list of joints with friction or a controller.
     pub(super) fn update_driven(&mut self, id: JointId) {
-        let driven = self
-            .joint_data(id)
-            .is_ok_and(|d| d.friction != 0.0 || d.spring.0 != 0.0 || d.controller.is_some() || d.mimic.is_some());
+        let driven = self.joint_data(id).is_ok_and(|d| {
+            d.friction != 0.0
+                || d.spring.0 != 0.0
+                || d.controller.is_some()
+                || d.mimic.is_some()
+                || d.armature.is_some()
+        });
         match (driven, self.driven_joints.iter().position(|j| *j == id)) {
             (true, None) => {
                 self.driven_joints.push(id);

@@ -129,6 +129,20 @@ impl SimJoint<'_> {
         Ok(())
     }
 
+    /// Gives a hinge (a slider) an armature: `inertia` kg·m² (kg) that only the joint's
+    /// own motion feels, as a motor's rotor seen through its gearbox (MuJoCo's joint
+    /// `armature`), integrated implicitly (0 removes it). An ODE motor beside the joint
+    /// holds it, a joint of the world (see the `armature` module).
+    pub fn set_armature(&mut self, inertia: f64) -> Result<()> {
+        let id = self.id;
+        self.sim.set_joint_armature(id, inertia)
+    }
+
+    /// Its armature (0: none), kg·m² or kg.
+    pub fn armature(&self) -> f64 {
+        self.sim.joint_data(self.id).ok().and_then(|d| d.armature).map_or(0.0, |a| a.inertia)
+    }
+
     /// Makes the joint follow `leader` (see [`Mimic`]): a hinge follows a hinge, a
     /// slider a slider.
     pub fn set_mimic(&mut self, leader: impl JointKey, multiplier: f64, offset: f64) -> Result<()> {

@@ -410,6 +410,11 @@ impl Scene {
         if j.frictionloss > 0.0 && matches!(j.kind, JointKind::Hinge | JointKind::Slide) {
             self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
         }
+        if j.armature > 0.0 && matches!(j.kind, JointKind::Hinge | JointKind::Slide) {
+            // The joint's own inertia, held by a motor made right after the joint (as a
+            // scene file makes it again).
+            self.joint_mut(joint)?.set_armature(j.armature)?;
+        }
         Ok(joint)
     }
 }
@@ -487,25 +492,19 @@ fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
     // its joint's armature.
     let links_armature: Vec<Matrix3<f64>> = body.joints[..body.joints.len().saturating_sub(1)]
         .iter()
-        .map(|j| joint_armature(&format!("{}/{}", body.name, j.name), &link_inertia, Some(j), made))
+        .map(|j| joint_armature(&format!("{}/{}", body.name, j.name), Some(j), made))
         .collect();
-    let inertia = inertia + joint_armature(&body.name, &inertia, body.joints.last(), made);
+    let inertia = inertia + joint_armature(&body.name, body.joints.last(), made);
     Ok(BodyMasses { mass, com, inertia, link_mass, link_inertia, links_armature })
 }
 
-/// The inertia a joint's armature adds to `object` (of inertia `inertia`), which the
-/// joint moves; what was added is noted in `made`.
-fn joint_armature(object: &str, inertia: &Matrix3<f64>, joint: Option<&Joint>, made: &mut MjcfModel) -> Matrix3<f64> {
-    let Some(joint) = joint.filter(|j| j.armature > 0.0) else { return Matrix3::zeros() };
-    let (added, across) = armature_inertia(inertia, joint);
+/// The inertia a ball joint's armature adds to `object`, which the joint moves; what
+/// was added is noted in `made`.
+fn joint_armature(object: &str, joint: Option<&Joint>, made: &mut MjcfModel) -> Matrix3<f64> {
+    let Some(joint) = joint else { return Matrix3::zeros() };
+    let added = armature_inertia(joint);
     if added != Matrix3::zeros() {
         made.armature.push((object.to_string(), added));
-    }
-    if across > 0.0 {
-        made.skipped.push(format!(
-            "<joint> {:?}: its armature {} outweighs {object:?}'s inertia; {across:e} kg·m² was added across its axis too, to keep {object:?} a rigid body",
-            joint.name, joint.armature
-        ));
     }
     added
 }

@@ -115,48 +115,14 @@ pub(super) fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix
     Some((mass, com, inertia))
 }
 
-/// The inertia a joint's armature adds to the object it moves, in that object's frame
-/// (whose rotation is the MJCF body's): `armature · n nᵀ` about a hinge's axis `n`,
-/// `armature · 1` for a ball; nothing for slides and free joints (listed as skipped).
-///
-/// When `inertia` plus `armature · n nᵀ` is no rigid body's (a light link with a large
-/// armature: the moment about the axis exceeds the sum of the other two), the smallest
-/// inertia `t (1 − n nᵀ)` across the axis that makes it one is added too (at most
-/// `armature`: a thin disc's is `armature / 2`); returned as the second number.
-pub(super) fn armature_inertia(inertia: &Matrix3<f64>, joint: &Joint) -> (Matrix3<f64>, f64) {
-    let a = joint.armature;
-    if a <= 0.0 {
-        return (Matrix3::zeros(), 0.0);
-    }
+/// The inertia a ball joint's armature adds to the object it moves, in that object's
+/// frame: `armature · 1` (a hinge's and a slide's are the joint's own, held by a motor
+/// beside it: [`SimJoint::set_armature`](crate::SimJoint::set_armature); a free
+/// joint's is listed as skipped).
+pub(super) fn armature_inertia(joint: &Joint) -> Matrix3<f64> {
     match joint.kind {
-        JointKind::Ball => (Matrix3::identity() * a, 0.0),
-        JointKind::Hinge => {
-            let axial = joint.axis * joint.axis.transpose() * a;
-            let across = (Matrix3::identity() - joint.axis * joint.axis.transpose()) * a;
-            // A rigid body's principal moments: the largest at most the sum of the
-            // others, without the rounding slack of ARS's own check (`limits::inertia`),
-            // so that the body made with the sum passes it whatever the rounding.
-            let rigid = |t: f64| {
-                let moments = (inertia + axial + across * t).symmetric_eigenvalues();
-                let largest = moments.max();
-                largest <= moments.sum() - largest
-            };
-            if rigid(0.0) {
-                return (axial, 0.0);
-            }
-            // Rigid at t = 1 (an isotropic term keeps the inequality strict): bisect.
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if rigid(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
-            (axial + across * hi, hi * a)
-        }
-        JointKind::Slide | JointKind::Free => (Matrix3::zeros(), 0.0),
+        JointKind::Ball if joint.armature > 0.0 => Matrix3::identity() * joint.armature,
+        _ => Matrix3::zeros(),
     }
 }
 

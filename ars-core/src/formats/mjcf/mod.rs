@@ -67,20 +67,16 @@
 //!   beside it, at speed 0 with that limit about each of three axes: a box of torques
 //!   where MuJoCo's bounds each degree of freedom alike). On ball and free joints `ref`
 //!   and `stiffness` are unsupported (an error, or skipped with a warning).
-//! - **Armature.** ODE has no joint-space inertia, so a joint's `armature` (MuJoCo's
-//!   rotor inertia on the joint's own degree of freedom) is added to the inertia of
-//!   the body the joint moves: `armature · n nᵀ` about a hinge's axis `n`,
-//!   `armature · 1` for a ball joint ([`MjcfModel::armature`] lists what each object
-//!   got). That is MuJoCo's armature exactly for a joint whose axis stays put in the
-//!   world (the first hinge or ball of a fixed base). Below moving joints the added
-//!   inertia also turns with the joints above it: it adds `armature · (n·m)` to their
-//!   coupling and `armature · (n·m)²` to a joint of axis `m` above, and a gyroscopic
-//!   torque MuJoCo's armature has not. When the armature outweighs the body so much
-//!   that no rigid body has the sum (a moment above the sum of the other two: links of
-//!   grams with an armature of 1, as in Gymnasium's reacher), the smallest inertia
-//!   across the axis that makes it one is added too, with a warning in
-//!   [`MjcfModel::skipped`]. A slide's or a free joint's armature (mass along some
-//!   directions only) is not modelled and is listed there.
+//! - **Armature.** A hinge's or slide's `armature` (MuJoCo's rotor inertia on the
+//!   joint's own degree of freedom) is the joint's own
+//!   ([`SimJoint::set_armature`](crate::SimJoint::set_armature)): an ODE motor beside
+//!   the joint resists the change of its rate by `armature · Δrate / h`, implicitly, as
+//!   MuJoCo's joint-space armature does; the bodies' masses and inertias stay MuJoCo's.
+//!   ODE has no joint coordinate for a ball joint: its `armature · 1` is added to the
+//!   inertia of the body it moves ([`MjcfModel::armature`] lists what each object got;
+//!   exact for a ball whose parent stays put, and felt by that body's every turn
+//!   below moving joints). A free joint's armature (mass along some directions only)
+//!   is not modelled and is listed in [`MjcfModel::skipped`].
 //! - **Contact parameters.** A geom's `friction`, `condim`, `solref`, `solimp`,
 //!   `priority` and `solmix` (MuJoCo's defaults where not given) are its own
 //!   ([`Scene::set_geom_contact`](crate::Scene::set_geom_contact)): each pair of geoms
@@ -265,8 +261,9 @@ pub struct MjcfModel {
     /// The light links that chain several joints of one body (see the module docs).
     pub chain_links: Vec<ObjectId>,
     /// The inertia added to an object (by name: a body, or a chain link) for the
-    /// armature of the joint that moves it, in the object's frame, kg·m² (see the module
-    /// docs): subtract it to compare the object's inertia with MuJoCo's `body_inertia`.
+    /// armature of the ball joint that moves it, in the object's frame, kg·m² (see the
+    /// module docs): subtract it to compare the object's inertia with MuJoCo's
+    /// `body_inertia`. A hinge's or slide's armature is the joint's own, not here.
     pub armature: Vec<(String, Matrix3<f64>)>,
     /// The sensors read, in the file's order, each with the ARS sensor made of it.
     pub sensors: Vec<MjcfSensor>,

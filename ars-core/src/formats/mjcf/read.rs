@@ -234,16 +234,12 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
         }
-        // A slide's or a free joint's armature would be mass along some directions
-        // only: ODE's mass is the same along all.
-        for j in body.joints.iter().filter(|j| j.armature > 0.0 && matches!(j.kind, JointKind::Slide | JointKind::Free))
-        {
+        // A free joint's armature would be mass along some directions only: ODE's mass
+        // is the same along all.
+        for j in body.joints.iter().filter(|j| j.armature > 0.0 && j.kind == JointKind::Free) {
             self.skipped.push(format!(
-                "<joint> {:?} in body {:?}: the armature {} of a {} joint is not modelled (ODE's mass is the same in every direction)",
-                j.name,
-                body.name,
-                j.armature,
-                if j.kind == JointKind::Slide { "slide" } else { "free" }
+                "<joint> {:?} in body {:?}: the armature {} of a free joint is not modelled (ODE's mass is the same in every direction)",
+                j.name, body.name, j.armature,
             ));
         }
         Ok(body)

@@ -215,6 +215,10 @@ impl JointFile {
         if let Some((stiffness, rest)) = self.spring {
             joint.set_spring(stiffness, rest)?;
         }
+        if self.armature != 0.0 {
+            // Right after its joint, as it was made: the world's joints keep their order.
+            joint.set_armature(self.armature)?;
+        }
         if let Some((speed, max_force)) = self.motor {
             // As it was, whatever the limits (the speed was held to them when set).
             let handle = sim.scene.joint_data(id)?.handle;

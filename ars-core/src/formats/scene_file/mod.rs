@@ -304,6 +304,14 @@ pub struct JointFile {
     /// Its speed motor, when on: speed (rad/s or m/s) and largest force (N·m or N).
     #[serde(default)]
     pub motor: Option<(f64, f64)>,
+    /// Its armature, kg·m² or kg (0: none; see
+    /// [`SimJoint::set_armature`](crate::SimJoint::set_armature)).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub armature: f64,
+}
+
+fn is_zero(value: &f64) -> bool {
+    *value == 0.0
 }
 
 /// A joint made through the [`World`](crate::World) between objects' bodies, as saved.

@@ -164,6 +164,7 @@ impl Simulation {
                     })
                     .transpose()?,
                 motor,
+                armature: data.armature.map_or(0.0, |a| a.inertia),
             });
         }
         Ok(joints)
@@ -241,8 +242,16 @@ impl Simulation {
         let mut scene_serials: Vec<u64> =
             scene_handles.iter().filter_map(|h| world.joints.get(h.0, "joint").ok().map(|j| j.serial)).collect();
         scene_serials.sort_unstable();
-        let mut others: Vec<_> =
-            world.joints.iter().filter(|(h, _)| !scene_handles.contains(&crate::JointHandle(*h))).collect();
+        // An armature's motor is its joint's, made again with it.
+        let owned: Vec<crate::JointHandle> =
+            self.scene.joints_in_creation_order().filter_map(|d| d.armature.map(|a| a.motor)).collect();
+        let mut others: Vec<_> = world
+            .joints
+            .iter()
+            .filter(|(h, _)| {
+                !scene_handles.contains(&crate::JointHandle(*h)) && !owned.contains(&crate::JointHandle(*h))
+            })
+            .collect();
         others.sort_by_key(|(_, j)| j.serial);
         let object_of = |body: crate::BodyHandle| -> Result<String> {
             self.scene
