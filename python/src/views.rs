@@ -447,6 +447,19 @@ impl Joint {
         self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_dry_friction(max_effort))
     }
 
+    /// Its armature: inertia (kg·m², or kg for a slider) that only the joint's own
+    /// motion feels, as a motor's rotor through its gearbox (MuJoCo's joint `armature`),
+    /// integrated implicitly; 0 removes it. Hinges and sliders.
+    fn set_armature(&self, py: Python<'_>, inertia: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_armature(inertia))
+    }
+
+    /// Its armature (0: none), kg·m² or kg (see `set_armature`).
+    #[getter]
+    fn armature(&self, py: Python<'_>) -> PyResult<f64> {
+        self.act(py, |sim, id| Ok(sim.scene_mut().joint_mut(id)?.armature()))
+    }
+
     /// Limits of its actuator: the largest `effort` (N·m or N) and `velocity` (rad/s
     /// or m/s) its motor and controller may use (`math.inf`: none).
     #[pyo3(signature = (effort=f64::INFINITY, velocity=f64::INFINITY))]

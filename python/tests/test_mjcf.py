@@ -389,9 +389,14 @@ def test_hinge_armatures_converge_to_mujoco_s_with_the_time_step(tmp_path):
     reference = mujoco_angles_after_one_second(path, ["a1", "a2"])
     assert np.abs(reference - mujoco_angles_after_one_second(plain, ["a1", "a2"])).max() > 0.1
     assert_first_order(path, ["a1", "a2"], reference)
-    _, model = compare(path)
+    sim, model = compare(path)
     assert not model["armature"], model["armature"]
     assert not any("armature" in s for s in model["skipped"]), model["skipped"]
+    assert (sim.joint("a1").armature, sim.joint("a2").armature) == (0.05, 0.02)
+    sim.joint("a2").set_armature(0.0)
+    assert sim.joint("a2").armature == 0.0
+    with pytest.raises(ars.InputError, match="armature"):
+        sim.joint("a1").set_armature(-1.0)
 
 
 SPRUNG = """

@@ -372,6 +372,8 @@ PYTHON_FOR_RUST = {
     "SimJoint.add_force": "Joint.add_force",
     "SimJoint.set_speed": "Joint.set_speed",
     "SimJoint.set_dry_friction": "Joint.set_dry_friction",
+    "SimJoint.set_armature": "Joint.set_armature",
+    "SimJoint.armature": "Joint.armature",
     "SimJoint.set_actuator_limits": "Joint.set_actuator_limits",
     "SimJoint.set_mimic": "Joint.set_mimic",
     "SimJoint.clear_mimic": "Joint.clear_mimic",
