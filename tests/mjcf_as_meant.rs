@@ -400,3 +400,34 @@ fn a_hinge_s_armature_is_the_joint_s_own_inertia() {
     let state = |s: &Simulation| s.scene().joint("elbow").unwrap().state().unwrap();
     assert_eq!(state(&sim), state(&copy));
 }
+
+/// Two copies of one model share a simulation with `MjcfOptions::prefix` (as MuJoCo's
+/// `attach`): every name the file gives, and those ARS makes of them (a jointless
+/// body's weld), carry the prefix, and each copy's actuators drive its own joints.
+#[test]
+fn two_copies_of_a_model_share_a_simulation_under_prefixes() {
+    let text = CROSSED.replace(
+        r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+    <body name="b""#,
+        r#"<geom fromto="0 0 0 0.5 0 0" size="0.05"/></body>
+    <body name="post" pos="0 -1 0"><geom type="box" size="0.1 0.1 0.1" mass="1"/></body>
+    <body name="b""#,
+    );
+    assert!(text.contains("post"));
+    let mut sim = Simulation::builder().gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
+    sim.load_mjcf_text(&text, "crossed.xml", &MjcfOptions::new()).unwrap();
+    // A second copy without a prefix: its names are taken.
+    let clash = sim.load_mjcf_text(&text, "crossed.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(clash.contains("already taken"), "{clash}");
+    let second = MjcfOptions::new().prefix("two/").base_pose(ars::nalgebra::Isometry3::translation(0.0, 0.0, 5.0));
+    let model = sim.load_mjcf_text(&text, "crossed.xml", &second).unwrap();
+    assert!(model.joint("two/ja").is_some() && model.body("two/post").is_some(), "{:?}", model.joints);
+    assert!(sim.scene().joint("two/post_weld").is_ok());
+    let names = actuator_names(&sim);
+    assert_eq!(names, ["turn_c", "turn_a", "turn_b", "two/turn_c", "two/turn_a", "two/turn_b"]);
+    // Each copy's actuator drives its own joint.
+    sim.scene_mut().set_control("two/turn_a", 1.0).unwrap();
+    sim.run_for(0.1).unwrap();
+    let rate = |j: &str| sim.scene().joint(j).unwrap().state().unwrap().rate;
+    assert!(rate("two/ja") > 0.0 && rate("ja") == 0.0, "{} {}", rate("two/ja"), rate("ja"));
+}

@@ -254,6 +254,11 @@ pub struct Actuator {
 }
 
 impl Actuator {
+    /// Names it `name` (a model loaded with a prefix).
+    pub(crate) fn rename(&mut self, name: String) {
+        self.name = name;
+    }
+
     /// An actuator called `name` of this kind and gear, its control at 0, unlimited.
     pub fn new(name: impl Into<String>, kind: ActuatorKind, gear: f64) -> Result<Self> {
         if !gear.is_finite() || gear == 0.0 {

@@ -250,6 +250,7 @@ class Simulation:
         *,
         base_position: _Vec3 = (0.0, 0.0, 0.0),
         skip_unsupported: bool = False,
+        prefix: str = "",
     ) -> dict[str, Any]: ...
     def load_urdf(
         self,

@@ -82,21 +82,24 @@ impl PySimulation {
     /// their MJCF names in file order, the file's time step and gravity (not applied),
     /// the file's sensors made (`ars.Sensor`s by name; see the Rust `MjcfSensor` for the
     /// columns that hold MuJoCo's values), the bodies' named sites (`{name: body}`), the
-    /// inertia (3×3, body frame) each object carries for its joint's armature, what was
-    /// skipped; `welded` maps each jointless body to the body it was merged
-    /// into (`None`: the world).
-    #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false))]
+    /// inertia (3×3, body frame) each object carries for its ball joint's armature, what
+    /// was skipped; `welded` maps each jointless body to the body it was merged
+    /// into (`None`: the world). `prefix` goes before every name of the model, so that
+    /// two copies of a model share a simulation (as MuJoCo's `attach`).
+    #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false, prefix=String::new()))]
     fn load_mjcf<'py>(
         slf: Bound<'py, Self>,
         path: std::path::PathBuf,
         base_position: Vec3,
         skip_unsupported: bool,
+        prefix: String,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let py = slf.py();
         let [x, y, z] = base_position;
         let options = ars_core::MjcfOptions::new()
             .base_pose(ars_core::nalgebra::Isometry3::translation(x, y, z))
-            .skip_unsupported(skip_unsupported);
+            .skip_unsupported(skip_unsupported)
+            .prefix(prefix);
         let model = slf.get().with(py, move |sim| sim.load_mjcf(&path, &options))?;
         let dict = pyo3::types::PyDict::new(py);
         dict.set_item("name", &model.name)?;

@@ -43,6 +43,15 @@ impl Scene {
     /// Makes the bodies, joints and actuators of a read MJCF model, not its sensors (a
     /// scene has none), at `options.base_pose`.
     pub(super) fn insert_mjcf_model(&mut self, model: &Model, options: &MjcfOptions) -> Result<MjcfModel> {
+        let prefixed;
+        let model = if options.prefix.is_empty() {
+            model
+        } else {
+            let mut copy = model.clone();
+            super::prefix::prefix_names(&mut copy, &options.prefix);
+            prefixed = copy;
+            &prefixed
+        };
         // Built in one go; on an error everything made so far is removed.
         let mut made = MjcfModel {
             name: model.name.clone(),

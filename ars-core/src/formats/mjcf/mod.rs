@@ -173,6 +173,7 @@ mod equality;
 mod include;
 mod mass;
 mod model;
+mod prefix;
 mod problem;
 mod read;
 mod schema;
@@ -188,11 +189,15 @@ pub struct MjcfOptions {
     /// Skip what ARS cannot read (with a warning in [`MjcfModel::skipped`]) instead of
     /// refusing the file.
     pub skip_unsupported: bool,
+    /// Put before every name of the model (bodies, joints, geoms, sites, actuators,
+    /// sensors, and the names ARS makes of them), as MuJoCo's `attach` prefixes an
+    /// attached model's: two copies of a model then share a simulation. Default: none.
+    pub prefix: String,
 }
 
 impl Default for MjcfOptions {
     fn default() -> Self {
-        MjcfOptions { base_pose: Isometry3::identity(), skip_unsupported: false }
+        MjcfOptions { base_pose: Isometry3::identity(), skip_unsupported: false, prefix: String::new() }
     }
 }
 
@@ -211,6 +216,12 @@ impl MjcfOptions {
     #[must_use]
     pub fn skip_unsupported(mut self, skip: bool) -> Self {
         self.skip_unsupported = skip;
+        self
+    }
+    /// Prefix every name of the model with `prefix` (see [`MjcfOptions::prefix`]).
+    #[must_use]
+    pub fn prefix(mut self, prefix: impl Into<String>) -> Self {
+        self.prefix = prefix.into();
         self
     }
 }
