@@ -278,3 +278,11 @@ fn massless_links_between_hinges_borrow_mass_and_the_total_stays_the_files() {
     assert_eq!(virtual_mass, 10.0 * 1e-3);
     assert!(noted(&robot, &["link \"virtual\"", "by link \"pelvis\""]), "{:?}", robot.adjusted);
 }
+
+#[test]
+fn a_nul_byte_after_the_document_is_ignored() {
+    // pybullet_data/humanoid/humanoid.urdf ends with "</robot>\r\n\0".
+    let text = format!("<robot name=\"r\">{}</robot>\r\n\0", link("a", 1.0));
+    let (_, robot) = load(&text);
+    assert!(robot.link("a").is_some());
+}

@@ -37,6 +37,9 @@ pub(super) struct Read {
 
 /// Reads a URDF document (see the [module docs](self)).
 pub(super) fn read(text: &str) -> Parsed<Read> {
+    // NUL bytes after the document (pybullet_data/humanoid/humanoid.urdf ends with one)
+    // are no XML, but xml-rs and TinyXML read past them.
+    let text = text.trim_end_matches(|c: char| c == '\0' || c.is_whitespace());
     let options = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
     let document = roxmltree::Document::parse_with_options(text, options).map_err(|e| Problem {
         element: "robot".into(),
