@@ -13,8 +13,11 @@
 //!   it), as pybullet does. A massless link fixed to its parent (a tool frame, a
 //!   flange: the Panda's `panda_link8`) is merged into the nearest ancestor that is not
 //!   one: its geometry and looks join that link's object, [`UrdfRobot::link`] gives that
-//!   object for its name, and its fixed joint is not made. Any other link needs a
-//!   positive mass.
+//!   object for its name, and its fixed joint is not made. A massless link that moves
+//!   (between two hinges, as human models' `*_virtual` links) is lent a small mass by
+//!   the nearest link with mass, whose mass and inertia shrink alike, so that the total
+//!   is the file's (see `massless.rs`; a line in [`UrdfRobot::adjusted`] each); a robot
+//!   with no mass at all to lend is refused.
 //! - **Inertia.** An inertia no body can have is corrected, with a line naming the link
 //!   in [`UrdfRobot::adjusted`], in the tensor's principal frame (mass and centre of
 //!   mass untouched): no positive moment at all (a link given only its mass) becomes a
@@ -40,7 +43,10 @@
 //!   [`ActuatorLimits`](crate::scene::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
 //!   becomes viscous friction and `friction` dry friction
 //!   ([`SimJoint::set_dry_friction`](crate::scene::SimJoint::set_dry_friction)); `<mimic>` a
-//!   [`Mimic`](crate::scene::Mimic) (multiplier 1 and offset 0 unless given); `spherical` (an
+//!   [`Mimic`](crate::scene::Mimic) (multiplier 1 and offset 0 unless given; a mimic ARS
+//!   cannot follow, of a joint not in the file or of a joint that does not move alike,
+//!   is dropped with a line in [`UrdfRobot::adjusted`], as PyBullet ignores mimics);
+//!   `spherical` (an
 //!   extension some tools write) becomes a ball joint. `floating` and `planar` joints
 //!   are refused.
 //! - **Collisions.** Linked bodies never collide (ODE's rule). With
@@ -48,12 +54,22 @@
 //! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
 //!   link's Z, as in ODE), `sphere`, `capsule`, and `mesh` (STL, OBJ, COLLADA, with
 //!   `scale`) as a triangle mesh (see [`load_mesh`](crate::formats::mesh::load_mesh)).
+//!   A `<collision>` whose mesh file is not there is skipped, with a line in
+//!   [`UrdfRobot::adjusted`] (PyBullet loads the link without it; its `<inertial>`
+//!   stays); another shape (PyBullet's `<plane>`, `<cdf>`) is skipped alike.
 //! - **Mesh paths** (the first that exists; the error lists every path tried):
 //!   `file://` and absolute paths as written; relative ones in the URDF's folder, then
 //!   in [`UrdfOptions::search_paths`]; `package://NAME/REST` in the folder given for
 //!   NAME ([`UrdfOptions::package`]), in `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH`,
 //!   as `NAME/REST` beside the URDF, in a folder named NAME above it, as `REST` beside
-//!   it, then in the search paths.
+//!   it, in the search paths, then as `REST` in each folder above the URDF's (a package
+//!   whose meshes are in its `_description` folder; `package:///REST`).
+//! - **Reading.** The file is read as PyBullet and ROS's urdfdom read what people write
+//!   (see `read.rs`): vectors with commas, extra numbers cut (noted), xacro's
+//!   `$(optenv NAME default)` as xacro reads it (noted), absent `<limit>` attributes 0,
+//!   the first of repeated elements; what URDF does not define is ignored. A number
+//!   that is none is an error naming the file, the link or joint, the attribute and
+//!   the line.
 //!
 //! - **Looks.** The viewer draws a link's `<visual>` elements (any geometry, meshes
 //!   found as above, each in its material's colour: its own `<color>` or the
@@ -75,7 +91,11 @@ use crate::simulation::Simulation;
 
 mod build;
 mod frame;
+mod massless;
 mod meshes;
+mod model;
+mod read;
+mod values;
 
 use build::plan;
 use meshes::Meshes;
@@ -200,9 +220,11 @@ pub struct UrdfRobot {
     pub joints: Vec<(String, JointId)>,
     /// The fixed joint holding the root to the world, with [`UrdfOptions::fixed_base`].
     pub base_joint: Option<JointId>,
-    /// What was corrected to load the file, a sentence each naming its link (an
-    /// inertia no body can have, unless [`UrdfOptions::strict_inertia`]; a visual with
-    /// nothing to draw, skipped).
+    /// What was read leniently, corrected or skipped to load the file, a sentence each
+    /// naming its link or joint (an inertia no body can have, unless
+    /// [`UrdfOptions::strict_inertia`]; a visual with nothing to draw; a collision mesh
+    /// not found; mass lent to a massless moving link; a mimic dropped; extra numbers;
+    /// see [the module docs](self)).
     pub adjusted: Vec<String>,
 }
 
@@ -235,9 +257,11 @@ impl UrdfRobot {
 /// ```
 #[derive(Clone, Debug)]
 pub struct UrdfFile {
-    robot: urdf_rs::Robot,
+    robot: model::Robot,
     /// The file's name, in errors; its folder is where relative mesh paths start.
     file: String,
+    /// What was read leniently or skipped, a line each (for [`UrdfRobot::adjusted`]).
+    notes: Vec<String>,
 }
 
 impl UrdfFile {
@@ -251,12 +275,15 @@ impl UrdfFile {
     /// Parses URDF text; `file` names it in errors and its folder is where relative
     /// mesh paths start.
     pub fn parse(text: &str, file: &str) -> Result<UrdfFile> {
-        let bad = |problem: String| format_error(file, "robot".into(), problem);
-        // The parser is a dependency: a panic in it must not reach the caller either.
-        let parsed = std::panic::catch_unwind(|| urdf_rs::read_from_string(text))
-            .map_err(|_| bad("the URDF parser failed on this text".into()))?;
-        let robot = parsed.map_err(|e| bad(format!("not valid URDF: {e}")))?;
-        Ok(UrdfFile { robot, file: file.to_string() })
+        let read = read::read(text).map_err(|p| Error::Format {
+            format: "URDF",
+            file: file.to_string(),
+            element: p.element,
+            line: Some(p.line),
+            column: None,
+            problem: p.text,
+        })?;
+        Ok(UrdfFile { robot: read.robot, file: file.to_string(), notes: read.notes })
     }
 
     /// The robot's name.
@@ -267,7 +294,10 @@ impl UrdfFile {
     /// Makes the robot's links and joints in `sim` (see the [module docs](self)); on an
     /// error nothing of it is left.
     pub fn insert(&self, sim: &mut Simulation, options: &UrdfOptions) -> Result<UrdfRobot> {
-        let bad = |element: String, problem: String| format_error(&self.file, element, problem);
+        let bad = |element: String, problem: String| {
+            let line = self.line_of(&element);
+            Error::Format { format: "URDF", file: self.file.clone(), element, line, column: None, problem }
+        };
         let (corrected, adjusted) = self.corrected(options);
         let robot = corrected.as_ref().unwrap_or(&self.robot);
         let plan = plan(robot, options).map_err(|(element, problem)| bad(element, problem))?;
@@ -277,19 +307,31 @@ impl UrdfFile {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })?;
-        made.adjusted = adjusted;
+        made.adjusted = self.notes.clone();
+        made.adjusted.extend(adjusted);
         made.adjusted.append(&mut meshes.notes);
         Ok(made)
+    }
+
+    /// The line of the link or joint an error names (`link "arm"`, `joint "elbow"`).
+    fn line_of(&self, element: &str) -> Option<u32> {
+        let links = self.robot.links.iter().map(|l| (format!("link {:?}", l.name), l.line));
+        let joints = self.robot.joints.iter().map(|j| (format!("joint {:?}", j.name), j.line));
+        links.chain(joints).find(|(name, _)| name == element).map(|(_, line)| line)
     }
 
     /// The robot with what ARS corrects corrected (see the [module docs](self)), if
     /// anything was, and a line per correction: inertias no body can have (unless
     /// [`UrdfOptions::strict_inertia`]) and visuals with nothing to draw.
-    fn corrected(&self, options: &UrdfOptions) -> (Option<urdf_rs::Robot>, Vec<String>) {
-        let mut robot = None;
-        let mut adjusted = Vec::new();
-        for (k, link) in self.robot.links.iter().enumerate() {
-            let degenerate = |v: &urdf_rs::Visual| degenerate(&v.geometry);
+    fn corrected(&self, options: &UrdfOptions) -> (Option<model::Robot>, Vec<String>) {
+        let (lent, mut adjusted) = match massless::lend_masses(&self.robot) {
+            Some((lent, notes)) => (Some(lent), notes),
+            None => (None, Vec::new()),
+        };
+        let original = lent.as_ref().unwrap_or(&self.robot);
+        let mut robot = lent.clone();
+        for (k, link) in original.links.iter().enumerate() {
+            let degenerate = |v: &model::Visual| degenerate(&v.geometry);
             if link.visual.iter().any(degenerate) && !options.ignore_visuals {
                 for v in link.visual.iter().filter(|v| degenerate(v)) {
                     adjusted.push(format!(
@@ -297,7 +339,7 @@ impl UrdfFile {
                         link.name, v.geometry
                     ));
                 }
-                robot.get_or_insert_with(|| self.robot.clone()).links[k].visual.retain(|v| !degenerate(v));
+                robot.get_or_insert_with(|| original.clone()).links[k].visual.retain(|v| !degenerate(v));
             }
             if options.strict_inertia {
                 continue;
@@ -308,7 +350,7 @@ impl UrdfFile {
                 continue;
             };
             adjusted.push(format!("link {:?}: {}", link.name, b.note));
-            let fixed = &mut robot.get_or_insert_with(|| self.robot.clone()).links[k].inertial.inertia;
+            let fixed = &mut robot.get_or_insert_with(|| original.clone()).links[k].inertial.inertia;
             let m = b.inertia;
             (fixed.ixx, fixed.iyy, fixed.izz) = (m[(0, 0)], m[(1, 1)], m[(2, 2)]);
             (fixed.ixy, fixed.ixz, fixed.iyz) = (m[(0, 1)], m[(0, 2)], m[(1, 2)]);
@@ -320,13 +362,8 @@ impl UrdfFile {
 /// Whether a primitive has nothing to draw: a shape ARS refuses (a size zero, negative
 /// or not finite; [`Shape`](crate::Shape)'s own check). A mesh is checked when it is
 /// loaded.
-fn degenerate(geometry: &urdf_rs::Geometry) -> bool {
+fn degenerate(geometry: &model::Geometry) -> bool {
     meshes::primitive_shape(geometry).is_some_and(|shape| shape.validate().is_err())
-}
-
-/// A problem of the URDF file `file` at `element`.
-fn format_error(file: &str, element: String, problem: String) -> Error {
-    Error::Format { format: "URDF", file: file.to_string(), element, line: None, column: None, problem }
 }
 
 /// Loads URDF robots: a [`UrdfFile`] read and inserted.
