@@ -5,6 +5,21 @@
 //!   by one rotation, −90° about X (URDF (x, y, z) → simulation (x, z, −y)), then placed
 //!   at [`UrdfOptions::base_pose`]. A file written Y-up is loaded as is with
 //!   [`UpAxis::Y`].
+//! - **On the floor.** A robot free to move (no [`UrdfOptions::fixed_base`], a root
+//!   link with mass) whose collision geometry, at the base pose and initial joint
+//!   positions asked for, would reach into a floor of the scene is raised (+Y, nothing
+//!   else of the pose changes) just enough for its lowest collision point to rest on
+//!   that floor, with a line in [`UrdfRobot::adjusted`] saying by how much; so a robot
+//!   whose root frame is at its centre, or between its feet, starts standing on the
+//!   floor, not buried in it (where ODE would shoot it out). A pose that
+//!   reaches into no floor is kept exactly: a robot is never lowered, and one placed
+//!   above the floor falls onto it. A floor is a static plane of the scene facing up
+//!   (its normal within 45° of +Y: `Simulation::builder().floor_plane`,
+//!   [`Scene::add_floor_plane`](crate::scene::Scene::add_floor_plane), Python's
+//!   `add_floor`); terrain meshes, heightfields and other objects are not looked at.
+//!   [`UrdfOptions::exact_base_pose`] keeps the pose asked for whatever it reaches into
+//!   (PyBullet's `loadURDF` never moves a robot); a fixed base is always where it is
+//!   asked to be.
 //! - **Bodies.** ODE wants a body's frame at its centre of mass: each link's body frame
 //!   is its `<inertial>` frame (origin and `rpy`), where the URDF's inertia tensor is
 //!   given, so the tensor is used as written. Collision geometry is placed relative to
@@ -36,7 +51,10 @@
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
 //!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
 //!   the parent to the child about the negated axis); `revolute` and
-//!   `prismatic` limits become joint stops, their `effort` and `velocity` the joint's
+//!   `prismatic` limits become joint stops (ODE measures a hinge's angle within ±π:
+//!   revolute limits beyond ±(π − 0.05) are turned by whole turns and cut to that, or
+//!   dropped when they span a turn, each with a line in [`UrdfRobot::adjusted`]), their
+//!   `effort` and `velocity` the joint's
 //!   [`ActuatorLimits`](crate::scene::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
 //!   becomes viscous friction and `friction` dry friction
 //!   ([`SimJoint::set_dry_friction`](crate::scene::SimJoint::set_dry_friction)); `<mimic>` a
@@ -76,6 +94,8 @@ use crate::simulation::Simulation;
 mod build;
 mod frame;
 mod meshes;
+mod place;
+mod stops;
 
 use build::plan;
 use meshes::Meshes;
@@ -95,8 +115,14 @@ pub enum UpAxis {
 #[non_exhaustive]
 pub struct UrdfOptions {
     /// Where the root link's frame goes, in the simulation frame (after the up-axis
-    /// rotation).
+    /// rotation); a floating robot that would reach into a floor there is raised onto
+    /// it, unless [`exact_base_pose`](Self::exact_base_pose) (see [the module
+    /// docs](self)).
     pub base_pose: Isometry3<f64>,
+    /// Place the root at [`base_pose`](Self::base_pose) exactly, even where the robot's
+    /// collision geometry then reaches into a floor, rather than raise it to rest on the
+    /// floor (see [the module docs](self)).
+    pub exact_base_pose: bool,
     /// Fix the root link to the world.
     pub fixed_base: bool,
     /// Let links of the robot collide with each other (never a parent and its child).
@@ -123,7 +149,8 @@ pub struct UrdfOptions {
 }
 
 impl UrdfOptions {
-    /// The defaults: floating base at the origin, no self-collision, Z up.
+    /// The defaults: floating base at the origin (raised onto a floor it would reach
+    /// into), no self-collision, Z up.
     pub fn new() -> Self {
         Self::default()
     }
@@ -131,6 +158,13 @@ impl UrdfOptions {
     #[must_use]
     pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
         self.base_pose = pose;
+        self
+    }
+    /// Keep the base pose exactly, even in a floor (see
+    /// [`exact_base_pose`](Self::exact_base_pose)).
+    #[must_use]
+    pub fn exact_base_pose(mut self, exact: bool) -> Self {
+        self.exact_base_pose = exact;
         self
     }
     /// Fix the root link to the world.
@@ -202,7 +236,8 @@ pub struct UrdfRobot {
     pub base_joint: Option<JointId>,
     /// What was corrected to load the file, a sentence each naming its link (an
     /// inertia no body can have, unless [`UrdfOptions::strict_inertia`]; a visual with
-    /// nothing to draw, skipped).
+    /// nothing to draw, skipped), its joint (revolute limits beyond ±π) or the robot
+    /// (raised onto a floor, unless [`UrdfOptions::exact_base_pose`]).
     pub adjusted: Vec<String>,
 }
 
@@ -277,8 +312,9 @@ impl UrdfFile {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })?;
-        made.adjusted = adjusted;
+        let placed = std::mem::replace(&mut made.adjusted, adjusted);
         made.adjusted.append(&mut meshes.notes);
+        made.adjusted.extend(placed);
         Ok(made)
     }
 
