@@ -133,8 +133,11 @@ pub struct UrdfOptions {
     pub package_dirs: Vec<(String, PathBuf)>,
     /// More folders where relative mesh paths (and packages) are looked for.
     pub search_paths: Vec<PathBuf>,
-    /// Starting positions of joints, by name (rad or m; the others start at 0). The
-    /// joints read these positions: the robot is built at zero, joined, then posed.
+    /// Starting positions of joints, by name (rad or m). The others start at 0, but
+    /// a joint whose limits exclude 0, which starts at its limit nearest 0 (a line in
+    /// [`UrdfRobot::adjusted`]), and a mimic follower, which starts at `multiplier ·
+    /// leader + offset`. The joints read these positions: the robot is built at zero,
+    /// joined, then posed.
     pub initial_positions: Vec<(String, f64)>,
     /// Draw the collision geometry rather than the `<visual>` elements (whose meshes
     /// are then not loaded at all).
