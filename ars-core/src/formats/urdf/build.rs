@@ -32,6 +32,7 @@ pub(super) fn link_error(link: &model::Link, problem: String) -> Error {
 }
 
 /// A robot checked before anything is built.
+#[derive(Clone)]
 pub(super) struct Plan<'r> {
     robot: &'r model::Robot,
     /// Index of the root link.
@@ -40,8 +41,28 @@ pub(super) struct Plan<'r> {
     link_frames: Vec<Frame>,
     /// World frame of each joint.
     joint_frames: Vec<Frame>,
-    /// World frame of each link at the initial joint positions, if any were given.
+    /// World frame of each link at the joints' start positions, if any is not 0.
     posed_link_frames: Option<Vec<Frame>>,
+    /// Each joint's start position (see [`start_positions`](super::stops::start_positions)).
+    start: Vec<f64>,
+    /// A line for [`UrdfRobot::adjusted`] for each joint that does not start where
+    /// the file and the options say.
+    start_notes: Vec<String>,
+}
+
+impl Plan<'_> {
+    /// The plan with every frame `height` higher (+Y): the robot built there.
+    fn raised(&self, height: f64) -> Self {
+        let up = |frames: &[Frame]| -> Vec<Frame> {
+            frames.iter().map(|f| Frame { translation: f.translation + Vector3::y() * height, ..*f }).collect()
+        };
+        Plan {
+            link_frames: up(&self.link_frames),
+            joint_frames: up(&self.joint_frames),
+            posed_link_frames: self.posed_link_frames.as_deref().map(up),
+            ..self.clone()
+        }
+    }
 }
 
 impl Scene {
@@ -57,12 +78,18 @@ impl Scene {
         options: &UrdfOptions,
         meshes: &mut Meshes<'_>,
     ) -> std::result::Result<UrdfRobot, (String, Error)> {
+        let start = plan.posed_link_frames.as_ref().unwrap_or(&plan.link_frames);
+        let raise = self.floor_raise(plan.robot, plan.root, start, options, meshes);
+        let raised = raise.as_ref().map(|r| plan.raised(r.height));
         let mut created = Vec::new();
-        let built = self.build_urdf_parts(plan, options, meshes, &mut created);
-        if built.is_err() {
-            for (id, _) in created.iter().rev() {
-                let _ = self.remove_object_with_joints(*id);
+        let mut built = self.build_urdf_parts(raised.as_ref().unwrap_or(plan), options, meshes, &mut created);
+        match &mut built {
+            Err(_) => {
+                for (id, _) in created.iter().rev() {
+                    let _ = self.remove_object_with_joints(*id);
+                }
             }
+            Ok(robot) => robot.adjusted.extend(raise.map(|r| r.note(&robot.name))),
         }
         built
     }
@@ -223,10 +250,12 @@ impl Scene {
         Ok(())
     }
 
+    /// Makes a URDF joint at `frame` (world), its stops around where it starts
+    /// (`start`, its position).
     pub(super) fn add_urdf_joint(
         &mut self,
         joint: &model::Joint,
-        frame: &Frame,
+        (frame, start): (&Frame, f64),
         child: (ObjectId, Option<crate::handle::BodyHandle>),
         parent: (ObjectId, Option<crate::handle::BodyHandle>),
     ) -> Result<JointId> {
@@ -252,10 +281,8 @@ impl Scene {
             _ => unreachable!("refused when planned"),
         };
         let id = self.insert_sim_joint(&joint.name, kind, object1, object2, builder)?;
-        let limited = matches!(joint.joint_type, U::Revolute | U::Prismatic);
-        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
-        if limited && (lower != 0.0 || upper != 0.0) && lower <= upper {
-            self.joint_mut(id)?.set_limits(lower, upper)?;
+        if let Some((low, high)) = super::stops::joint_stops(joint, start) {
+            self.joint_mut(id)?.set_limits(low, high)?;
         }
         let moving = matches!(joint.joint_type, U::Revolute | U::Continuous | U::Prismatic);
         if let Some(d) = &joint.dynamics
@@ -306,7 +333,9 @@ impl Scene {
         if let Some(posed) = &plan.posed_link_frames {
             self.pose_urdf_links(robot, posed, &hosts, &made)?;
         }
-        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, adjusted: Vec::new() })
+        let mut adjusted = plan.start_notes.clone();
+        adjusted.extend(super::stops::stop_notes(robot, &plan.start));
+        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, adjusted })
     }
 
     /// Makes the links that are not merged into another, with their colours; each link
@@ -381,7 +410,7 @@ impl Scene {
                 continue; // merged: its link is part of its parent's body
             }
             let id = self
-                .add_urdf_joint(joint, &plan.joint_frames[j], made[child], made[parent])
+                .add_urdf_joint(joint, (&plan.joint_frames[j], plan.start[j]), made[child], made[parent])
                 .map_err(|e| (format!("joint {:?}", joint.name), e))?;
             joints.push((joint.name.clone(), id));
         }
@@ -636,13 +665,11 @@ pub(super) fn plan<'r>(
         UpAxis::Y => base,
     };
     let (link_frames, joint_frames) = frames(robot, &link_index, root, root_frame, None);
-    let posed_link_frames = if options.initial_positions.is_empty() {
-        None
-    } else {
-        let q = initial_positions(robot, options, &joint_names)?;
-        Some(frames(robot, &link_index, root, root_frame, Some(&q)).0)
-    };
-    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames })
+    let given = initial_positions(robot, options, &joint_names)?;
+    let (start, start_notes) = super::stops::start_positions(robot, &given);
+    let posed_link_frames =
+        start.iter().any(|&q| q != 0.0).then(|| frames(robot, &link_index, root, root_frame, Some(&start)).0);
+    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames, start, start_notes })
 }
 
 /// Checks every joint (a name of its own, links in the file, a link's only parent
@@ -720,14 +747,14 @@ fn root_link(robot: &model::Robot, parent_joint: &[Option<usize>]) -> std::resul
     }
 }
 
-/// The joint positions the options give (0 for the others), each checked: a moving
-/// joint of the file, a finite value.
+/// The joint positions the options give (`None` for the others), each checked: a
+/// moving joint of the file, a finite value.
 fn initial_positions(
     robot: &model::Robot,
     options: &UrdfOptions,
     joint_names: &HashMap<&str, usize>,
-) -> std::result::Result<Vec<f64>, (String, String)> {
-    let mut q = vec![0.0; robot.joints.len()];
+) -> std::result::Result<Vec<Option<f64>>, (String, String)> {
+    let mut q = vec![None; robot.joints.len()];
     for (name, value) in &options.initial_positions {
         let element = format!("joint {name:?}");
         let Some(&j) = joint_names.get(name.as_str()) else {
@@ -737,7 +764,7 @@ fn initial_positions(
         if fixed || !value.is_finite() {
             return Err((element, format!("initial position {value}: needs a moving joint and a finite value")));
         }
-        q[j] = *value;
+        q[j] = Some(*value);
     }
     Ok(q)
 }

@@ -5,6 +5,21 @@
 //!   by one rotation, −90° about X (URDF (x, y, z) → simulation (x, z, −y)), then placed
 //!   at [`UrdfOptions::base_pose`]. A file written Y-up is loaded as is with
 //!   [`UpAxis::Y`].
+//! - **On the floor.** A robot free to move (no [`UrdfOptions::fixed_base`], a root
+//!   link with mass) whose collision geometry, at the base pose and initial joint
+//!   positions asked for, would reach into a floor of the scene is raised (+Y, nothing
+//!   else of the pose changes) just enough for its lowest collision point to rest on
+//!   that floor, with a line in [`UrdfRobot::adjusted`] saying by how much; so a robot
+//!   whose root frame is at its centre, or between its feet, starts standing on the
+//!   floor, not buried in it (where ODE would shoot it out). A pose that
+//!   reaches into no floor is kept exactly: a robot is never lowered, and one placed
+//!   above the floor falls onto it. A floor is a static plane of the scene facing up
+//!   (its normal within 45° of +Y: `Simulation::builder().floor_plane`,
+//!   [`Scene::add_floor_plane`](crate::scene::Scene::add_floor_plane), Python's
+//!   `add_floor`); terrain meshes, heightfields and other objects are not looked at.
+//!   [`UrdfOptions::exact_base_pose`] keeps the pose asked for whatever it reaches into
+//!   (PyBullet's `loadURDF` never moves a robot); a fixed base is always where it is
+//!   asked to be.
 //! - **Bodies.** ODE wants a body's frame at its centre of mass: each link's body frame
 //!   is its `<inertial>` frame (origin and `rpy`), where the URDF's inertia tensor is
 //!   given, so the tensor is used as written. Collision geometry is placed relative to
@@ -39,7 +54,10 @@
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
 //!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
 //!   the parent to the child about the negated axis); `revolute` and
-//!   `prismatic` limits become joint stops, their `effort` and `velocity` the joint's
+//!   `prismatic` limits become joint stops (ODE measures a hinge's angle within ±π:
+//!   revolute limits beyond ±(π − 0.05) are turned by whole turns and cut to that, or
+//!   dropped when they span a turn, each with a line in [`UrdfRobot::adjusted`]), their
+//!   `effort` and `velocity` the joint's
 //!   [`ActuatorLimits`](crate::scene::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
 //!   becomes viscous friction and `friction` dry friction
 //!   ([`SimJoint::set_dry_friction`](crate::scene::SimJoint::set_dry_friction)); `<mimic>` a
@@ -94,7 +112,9 @@ mod frame;
 mod massless;
 mod meshes;
 mod model;
+mod place;
 mod read;
+mod stops;
 mod values;
 
 use build::plan;
@@ -115,8 +135,14 @@ pub enum UpAxis {
 #[non_exhaustive]
 pub struct UrdfOptions {
     /// Where the root link's frame goes, in the simulation frame (after the up-axis
-    /// rotation).
+    /// rotation); a floating robot that would reach into a floor there is raised onto
+    /// it, unless [`exact_base_pose`](Self::exact_base_pose) (see [the module
+    /// docs](self)).
     pub base_pose: Isometry3<f64>,
+    /// Place the root at [`base_pose`](Self::base_pose) exactly, even where the robot's
+    /// collision geometry then reaches into a floor, rather than raise it to rest on the
+    /// floor (see [the module docs](self)).
+    pub exact_base_pose: bool,
     /// Fix the root link to the world.
     pub fixed_base: bool,
     /// Let links of the robot collide with each other (never a parent and its child).
@@ -127,8 +153,11 @@ pub struct UrdfOptions {
     pub package_dirs: Vec<(String, PathBuf)>,
     /// More folders where relative mesh paths (and packages) are looked for.
     pub search_paths: Vec<PathBuf>,
-    /// Starting positions of joints, by name (rad or m; the others start at 0). The
-    /// joints read these positions: the robot is built at zero, joined, then posed.
+    /// Starting positions of joints, by name (rad or m). The others start at 0, but
+    /// a joint whose limits exclude 0, which starts at its limit nearest 0 (a line in
+    /// [`UrdfRobot::adjusted`]), and a mimic follower, which starts at `multiplier ·
+    /// leader + offset`. The joints read these positions: the robot is built at zero,
+    /// joined, then posed.
     pub initial_positions: Vec<(String, f64)>,
     /// Draw the collision geometry rather than the `<visual>` elements (whose meshes
     /// are then not loaded at all).
@@ -143,7 +172,8 @@ pub struct UrdfOptions {
 }
 
 impl UrdfOptions {
-    /// The defaults: floating base at the origin, no self-collision, Z up.
+    /// The defaults: floating base at the origin (raised onto a floor it would reach
+    /// into), no self-collision, Z up.
     pub fn new() -> Self {
         Self::default()
     }
@@ -151,6 +181,13 @@ impl UrdfOptions {
     #[must_use]
     pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
         self.base_pose = pose;
+        self
+    }
+    /// Keep the base pose exactly, even in a floor (see
+    /// [`exact_base_pose`](Self::exact_base_pose)).
+    #[must_use]
+    pub fn exact_base_pose(mut self, exact: bool) -> Self {
+        self.exact_base_pose = exact;
         self
     }
     /// Fix the root link to the world.
@@ -224,7 +261,8 @@ pub struct UrdfRobot {
     /// naming its link or joint (an inertia no body can have, unless
     /// [`UrdfOptions::strict_inertia`]; a visual with nothing to draw; a collision mesh
     /// not found; mass lent to a massless moving link; a mimic dropped; extra numbers;
-    /// see [the module docs](self)).
+    /// revolute limits beyond ±π) or the robot (raised onto a floor, unless
+    /// [`UrdfOptions::exact_base_pose`]); see [the module docs](self).
     pub adjusted: Vec<String>,
 }
 
@@ -307,9 +345,11 @@ impl UrdfFile {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })?;
-        made.adjusted = self.notes.clone();
-        made.adjusted.extend(adjusted);
+        let mut notes = self.notes.clone();
+        notes.extend(adjusted);
+        let placed = std::mem::replace(&mut made.adjusted, notes);
         made.adjusted.append(&mut meshes.notes);
+        made.adjusted.extend(placed);
         Ok(made)
     }
 
