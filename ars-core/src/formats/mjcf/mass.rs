@@ -6,6 +6,10 @@ use nalgebra::{Matrix3, Vector3};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind};
 use crate::shape::Shape;
 
+/// The radius of the sphere a flat mesh's geom (one that never collides: MuJoCo makes
+/// no hull for it) is built as in ODE, m.
+const FLAT_MESH_STAND_IN: f64 = 1e-6;
+
 impl Geom {
     pub(super) fn volume(&self) -> f64 {
         use std::f64::consts::PI;
@@ -70,10 +74,10 @@ impl Geom {
     }
 
     /// The ODE shape (a mesh as its convex hull, an ellipsoid as the sphere of its
-    /// volume).
+    /// volume; a flat mesh, in a geom that never collides, as a point-like sphere).
     pub(super) fn shape(&self) -> Shape {
         match &self.kind {
-            GeomKind::Mesh(mesh) => mesh.hull.clone(),
+            GeomKind::Mesh(mesh) => mesh.hull.clone().unwrap_or(Shape::Sphere { radius: FLAT_MESH_STAND_IN }),
             GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
             GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
             GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },

@@ -161,6 +161,7 @@ mod damper;
 mod defaults;
 mod include;
 mod mass;
+mod meshes;
 mod model;
 mod problem;
 mod read;
