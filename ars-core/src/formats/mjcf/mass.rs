@@ -119,6 +119,28 @@ pub(super) fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix
     Some((mass, com, inertia))
 }
 
+/// A body's mass and inertia raised to `<compiler boundmass boundinertia>` (`bounds`),
+/// as MuJoCo raises every body's: the mass to the first, each principal moment to the
+/// second; a body without mass (given `boundmass`) weighs it at its origin.
+pub(super) fn bounded(
+    mass: Option<(f64, Vector3<f64>, Matrix3<f64>)>,
+    (least_mass, least_moment): (f64, f64),
+) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
+    let (mass, centre, inertia) = match mass {
+        Some(m) => m,
+        None if least_mass > 0.0 => (0.0, Vector3::zeros(), Matrix3::zeros()),
+        None => return None,
+    };
+    let inertia = if least_moment > 0.0 {
+        let eigen = inertia.symmetric_eigen();
+        let moments = eigen.eigenvalues.map(|m| m.max(least_moment));
+        eigen.eigenvectors * Matrix3::from_diagonal(&moments) * eigen.eigenvectors.transpose()
+    } else {
+        inertia
+    };
+    Some((mass.max(least_mass), centre, inertia))
+}
+
 /// The inertia a joint's armature adds to the object it moves, in that object's frame
 /// (whose rotation is the MJCF body's): `armature · n nᵀ` about a hinge's axis `n`,
 /// `armature · 1` for a ball; nothing for slides and free joints (listed as skipped).

@@ -10,7 +10,7 @@ use super::MAX_CONTACT_PAIRS;
 use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
 use super::include::{Files, Includes, Tree, gather};
-use super::mass::{mass_of_geoms, scale_masses, total_mass};
+use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
 use super::meshes::{MeshAsset, mesh_assets};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
@@ -113,13 +113,25 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 };
                 if kind_name == "capsule" { GeomKind::Capsule(r, h) } else { GeomKind::Cylinder(r, h) }
             }
-            "box" => GeomKind::Box(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?)),
-            "ellipsoid" => {
-                self.skipped.push(format!(
-                    "<geom> at line {}: an ellipsoid collides as the sphere of its volume",
-                    problem(&node, "").line
-                ));
-                GeomKind::Ellipsoid(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?))
+            "box" | "ellipsoid" => {
+                // Placed by `fromto` as MuJoCo places them: the first size across, twice,
+                // the half-length along z.
+                let half_sizes = match fromto {
+                    Some(f) => {
+                        let (placed, half_length) = fromto_frame(&node, f)?;
+                        frame = placed;
+                        Vector3::new(size_at(0)?, size_at(0)?, half_length)
+                    }
+                    None => Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?),
+                };
+                if kind_name == "box" {
+                    GeomKind::Box(half_sizes)
+                } else {
+                    let line = problem(&node, "").line;
+                    self.skipped
+                        .push(format!("<geom> at line {line}: an ellipsoid collides as the sphere of its volume"));
+                    GeomKind::Ellipsoid(half_sizes)
+                }
             }
             other => {
                 self.unsupported(&node, &format!("a geom of type {other:?}"))?;
@@ -146,12 +158,16 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         }
         // A hinge's positions are angles, in the compiler's unit.
         let angle = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
+        let given = a.fixed::<2>("range")?;
+        // As MuJoCo: a free joint is never limited (its class's `limited` aside); "auto"
+        // limits a joint whose range is not empty (`<compiler autolimits>`).
         let limited = match a.get("limited") {
+            _ if kind == JointKind::Free => false,
             Some("true") => true,
             Some("false") => false,
-            _ => self.compiler.autolimits && a.get("range").is_some(),
+            _ => self.compiler.autolimits && given.is_some_and(|[lo, hi]| lo < hi),
         };
-        let range = match (limited, a.fixed::<2>("range")?) {
+        let range = match (limited, given) {
             (true, Some([lo, hi])) => {
                 if lo > hi {
                     return Err(problem(&node, format!("range {lo} {hi} is reversed")));
@@ -236,7 +252,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             Some(always) => always,
             None => inertial.is_none(),
         };
-        body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial.filter(|m| m.0 > 0.0) };
+        let mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial.filter(|m| m.0 > 0.0) };
+        body.mass = bounded(mass, self.compiler.bounds);
         body.principal = if from_geoms { None } else { principal };
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
@@ -646,6 +663,15 @@ fn read_compiler(node: roxmltree::Node<'_, '_>, compiler: &mut Compiler) -> Pars
             Ok(_) => None,
             Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
         };
+    }
+    let a = Attrs { node, class: None };
+    for (k, name) in ["boundmass", "boundinertia"].into_iter().enumerate() {
+        match a.number(name)? {
+            Some(bound) if bound < 0.0 => return Err(problem(&node, format!("{name} must not be negative"))),
+            Some(bound) if k == 0 => compiler.bounds.0 = bound,
+            Some(bound) => compiler.bounds.1 = bound,
+            None => {}
+        }
     }
     if let Some(dir) = node.attribute("meshdir").or(node.attribute("assetdir")) {
         compiler.meshdir = Some(dir.to_string());
