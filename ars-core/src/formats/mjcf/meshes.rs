@@ -4,14 +4,12 @@
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
 
 use super::defaults::{Attrs, Defaults};
 use super::model::MeshGeom;
 use super::problem::{Parsed, problem};
-use super::read::Reader;
 use crate::mesh_mass::{MeshInertia, mujoco_mass_properties};
 use crate::shape::Shape;
 
@@ -104,57 +102,46 @@ fn faces(a: &Attrs<'_, '_>) -> Parsed<Option<Vec<[u32; 3]>>> {
         .map(Some)
 }
 
-impl Reader<'_, '_, '_> {
-    /// The mesh asset `name` (loaded once), for a geom at `node`.
-    pub(super) fn mesh(&mut self, node: &roxmltree::Node<'_, '_>, name: Option<&str>) -> Parsed<Arc<MeshGeom>> {
-        let name = name.ok_or_else(|| problem(node, "a mesh geom needs a mesh"))?;
-        if let Some(mesh) = self.loaded.get(name) {
-            return Ok(mesh.clone());
-        }
-        let asset =
-            self.meshes.get(name).ok_or_else(|| problem(node, format!("no <mesh> asset is called {name:?}")))?.clone();
-        let of_mesh = |text: String| problem(node, format!("the mesh {name:?}: {text}"));
-        let (vertices, mut triangles) = match &asset.source {
-            MeshSource::File(file) => {
-                let dir = match &self.compiler.meshdir {
-                    Some(meshdir) => self.dir.join(meshdir),
-                    None => self.dir.clone(),
-                };
-                let path = crate::formats::first_file(file, &[dir.join(file)]).map_err(|e| problem(node, e))?;
-                match self.files.load(&path, asset.scale).map_err(|e| problem(node, e.to_string()))? {
-                    Shape::TriMesh { vertices, triangles } => (vertices, triangles),
-                    _ => return Err(of_mesh("it is not a triangle mesh".into())),
-                }
+/// The mesh `asset` loaded (its file looked for in `folder`, read once through
+/// `files`), its hull made and its mass computed; the error says what is wrong with it.
+pub(super) fn load_mesh(
+    asset: &MeshAsset,
+    folder: &Path,
+    files: &mut crate::formats::MeshCache,
+) -> Result<MeshGeom, String> {
+    let (vertices, mut triangles) = match &asset.source {
+        MeshSource::File(file) => {
+            let path = crate::formats::first_file(file, &[folder.join(file)])?;
+            match files.load(&path, asset.scale).map_err(|e| e.to_string())? {
+                Shape::TriMesh { vertices, triangles } => (vertices, triangles),
+                _ => return Err("it is not a triangle mesh".into()),
             }
-            MeshSource::Inline { vertices, faces } => {
-                let scaled: Vec<Point3<f64>> =
-                    vertices.iter().map(|p| Point3::from(p.coords.component_mul(&asset.scale))).collect();
-                let faces = match faces {
-                    Some(faces) => faces.clone(),
-                    // No faces: the hull's, as MuJoCo makes them.
-                    None => crate::hull::convex_hull(&scaled).map_err(|e| of_mesh(e.to_string()))?.1,
-                };
-                (scaled, faces)
-            }
-        };
-        // A mirroring scale turns the triangles inside out: MuJoCo winds them back.
-        if asset.scale.x * asset.scale.y * asset.scale.z < 0.0 {
-            triangles.iter_mut().for_each(|t| t.swap(1, 2));
         }
-        // MuJoCo collides a mesh as its convex hull; a flat one has none (MuJoCo refuses
-        // it in a geom that collides: see `Reader::geom`).
-        let hull = crate::hull::convex_hull(&vertices).ok();
-        let no_hull: (&[Point3<f64>], &[[u32; 3]]) = (&[], &[]);
-        let hull_triangles = hull.as_ref().map_or(no_hull, |(v, t)| (v.as_slice(), t.as_slice()));
-        if asset.inertia == MeshInertia::Convex && hull.is_none() {
-            return Err(of_mesh("it has no convex hull to weigh (its points are flat)".into()));
+        MeshSource::Inline { vertices, faces } => {
+            let scaled: Vec<Point3<f64>> =
+                vertices.iter().map(|p| Point3::from(p.coords.component_mul(&asset.scale))).collect();
+            let faces = match faces {
+                Some(faces) => faces.clone(),
+                // No faces: the hull's, as MuJoCo makes them.
+                None => crate::hull::convex_hull(&scaled).map_err(|e| e.to_string())?.1,
+            };
+            (scaled, faces)
         }
-        let mass = mujoco_mass_properties((&vertices, &triangles), hull_triangles, asset.inertia).map_err(|e| {
-            of_mesh(if hull.is_none() { format!("{e}; its points are flat, with no convex hull") } else { e })
-        })?;
-        let hull = hull.map(|(vertices, triangles)| Shape::ConvexHull { vertices, triangles });
-        let mesh = Arc::new(MeshGeom { shape: Shape::TriMesh { vertices, triangles }, hull, mass });
-        self.loaded.insert(name.to_string(), mesh.clone());
-        Ok(mesh)
+    };
+    // A mirroring scale turns the triangles inside out: MuJoCo winds them back.
+    if asset.scale.x * asset.scale.y * asset.scale.z < 0.0 {
+        triangles.iter_mut().for_each(|t| t.swap(1, 2));
     }
+    // MuJoCo collides a mesh as its convex hull; a flat one has none (MuJoCo refuses
+    // it in a geom that collides: see `Reader::geom`).
+    let hull = crate::hull::convex_hull(&vertices).ok();
+    if asset.inertia == MeshInertia::Convex && hull.is_none() {
+        return Err("it has no convex hull to weigh (its points are flat)".into());
+    }
+    let no_hull: (&[Point3<f64>], &[[u32; 3]]) = (&[], &[]);
+    let hull_triangles = hull.as_ref().map_or(no_hull, |(v, t)| (v.as_slice(), t.as_slice()));
+    let mass = mujoco_mass_properties((&vertices, &triangles), hull_triangles, asset.inertia)
+        .map_err(|e| if hull.is_none() { format!("{e}; its points are flat, with no convex hull") } else { e })?;
+    let hull = hull.map(|(vertices, triangles)| Shape::ConvexHull { vertices, triangles });
+    Ok(MeshGeom { shape: Shape::TriMesh { vertices, triangles }, hull, mass })
 }

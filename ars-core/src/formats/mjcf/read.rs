@@ -11,7 +11,7 @@ use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
 use super::include::{Files, Includes, Tree, gather};
 use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
-use super::meshes::{MeshAsset, mesh_assets};
+use super::meshes::{MeshAsset, load_mesh, mesh_assets};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
 use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
@@ -271,6 +271,25 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             ));
         }
         Ok(body)
+    }
+
+    /// The mesh asset `name` (loaded once), for a geom at `node`.
+    fn mesh(&mut self, node: &roxmltree::Node<'_, '_>, name: Option<&str>) -> Parsed<std::sync::Arc<MeshGeom>> {
+        let name = name.ok_or_else(|| problem(node, "a mesh geom needs a mesh"))?;
+        if let Some(mesh) = self.loaded.get(name) {
+            return Ok(mesh.clone());
+        }
+        let asset =
+            self.meshes.get(name).ok_or_else(|| problem(node, format!("no <mesh> asset is called {name:?}")))?;
+        let folder = match &self.compiler.meshdir {
+            Some(meshdir) => self.dir.join(meshdir),
+            None => self.dir.clone(),
+        };
+        let mesh =
+            load_mesh(asset, &folder, &mut self.files).map_err(|e| problem(node, format!("the mesh {name:?}: {e}")))?;
+        let mesh = std::sync::Arc::new(mesh);
+        self.loaded.insert(name.to_string(), mesh.clone());
+        Ok(mesh)
     }
 
     /// A `<site>`, or `None` when it has no name (no sensor can name it) or is skipped.
