@@ -89,8 +89,8 @@ fn bodies_weigh_what_mujoco_compiles_them_to() {
         assert!((at - expected).norm() < 1e-9, "{name}: centre {at} vs MuJoCo's {expected}");
         let mut ours: Vec<f64> = body.inertia().symmetric_eigenvalues().iter().copied().collect();
         ours.sort_by(f64::total_cmp);
-        for k in 0..3 {
-            assert!(close(ours[k], moments[k]), "{name}: moments {ours:?} vs MuJoCo's {moments:?}");
+        for (ours_k, mujocos) in ours.iter().zip(moments) {
+            assert!(close(*ours_k, mujocos), "{name}: moments {ours:?} vs MuJoCo's {moments:?}");
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();

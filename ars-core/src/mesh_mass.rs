@@ -243,13 +243,13 @@ mod tests {
     /// the mesh in a free body of density 1 (`body_mass`, `body_ipos`, `body_inertia`).
     fn assert_mujocos(m: &MeshMass, volume: f64, centre: [f64; 3], moments: [f64; 3]) {
         assert_close("volume", m.volume, volume);
-        for k in 0..3 {
-            assert_close("centre", m.centre[k], centre[k]);
+        for (ours, mujocos) in m.centre.iter().zip(centre) {
+            assert_close("centre", *ours, mujocos);
         }
         let mut ours: Vec<f64> = m.inertia.symmetric_eigenvalues().iter().copied().collect();
         ours.sort_by(f64::total_cmp);
-        for k in 0..3 {
-            assert_close("principal moment", ours[k], moments[k]);
+        for (ours, mujocos) in ours.iter().zip(moments) {
+            assert_close("principal moment", *ours, mujocos);
         }
     }
 
