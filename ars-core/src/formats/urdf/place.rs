@@ -5,9 +5,9 @@
 use nalgebra::{Isometry3, Vector3};
 
 use super::UrdfOptions;
-use super::model;
 use super::frame::Frame;
 use super::meshes::Meshes;
+use super::model;
 use crate::scene::Scene;
 use crate::shape::Shape;
 
