@@ -88,7 +88,10 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
             "<mujoco><worldbody><body><geom type='box' size='0.1 0 0.1'/></body></worldbody></mujoco>",
             "must be positive",
         ),
-        ("<mujoco><worldbody><body><joint range='10 -10'/><geom size='.1'/></body></worldbody></mujoco>", "reversed"),
+        (
+            "<mujoco><worldbody><body><joint limited='true' range='10 -10'/><geom size='.1'/></body></worldbody></mujoco>",
+            "reversed",
+        ),
         ("<mujoco><tendon/></mujoco>", "<tendon> is not supported (skip_unsupported skips what ARS cannot read"),
         ("<mujoco><worldbody><body><geom type='hfield' size='1'/></body></worldbody></mujoco>", "hfield"),
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),

@@ -266,6 +266,7 @@ class Simulation:
         ignore_visuals: bool = False,
         strict_inertia: bool = False,
         triangle_mesh_collisions: bool = False,
+        exact_base_pose: bool = False,
     ) -> _UrdfRobot: ...
     def remove_object(self, name: str) -> None: ...
     @property

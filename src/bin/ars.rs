@@ -258,7 +258,8 @@ impl Program for FileProgram {
         if let [first, ..] = robot.adjusted.as_slice() {
             let n = robot.adjusted.len();
             eprintln!(
-                "adjusted {n} item(s) of the file to load it (inertias no body can have, empty visuals); the first: {first}"
+                "adjusted {n} item(s) of the file to load it (inertias no body can have, empty visuals, hinge limits \
+                 beyond ±π, the robot raised onto the floor); the first: {first}"
             );
         }
         Ok(())

@@ -1,4 +1,4 @@
-//! Triangle meshes from files (STL, OBJ, COLLADA, and MuJoCo's legacy binary `.msh`),
+//! Triangle meshes from files (STL, text or binary, OBJ, COLLADA, and MuJoCo's legacy binary `.msh`),
 //! made fit for ODE's trimesh collider: every sub-mesh of a file merged into one, duplicate vertices welded,
 //! degenerate triangles dropped, the scale applied.
 
@@ -30,9 +30,17 @@ pub fn load_mesh(path: &Path, scale: Vector3<f64>) -> Result<Shape> {
     if !scale.iter().all(|s| s.is_finite() && *s != 0.0) {
         return Err(bad(format!("scale {scale:?} must be finite and non-zero")));
     }
-    let meshes = if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("msh")) {
+    let extension = |name: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(name));
+    let stl = if extension("stl") {
+        Some(std::fs::read(path).map_err(|e| bad(format!("cannot be read: {e}")))?)
+    } else {
+        None
+    };
+    let meshes = if extension("msh") {
         let bytes = std::fs::read(path).map_err(|e| bad(format!("cannot be read: {e}")))?;
         vec![read_msh(&bytes).map_err(bad)?]
+    } else if let Some(binary) = stl.as_deref().and_then(read_binary_stl) {
+        vec![binary]
     } else {
         // The loader is a dependency: a panic in it must not reach the caller.
         std::panic::catch_unwind(|| mesh_loader::Loader::default().merge_meshes(false).load(path))
@@ -86,6 +94,26 @@ pub fn load_mesh(path: &Path, scale: Vector3<f64>) -> Result<Shape> {
 struct RawMesh {
     vertices: Vec<[f32; 3]>,
     faces: Vec<[u32; 3]>,
+}
+
+/// A binary STL file: an 80-byte header, a little-endian `u32` count of triangles, then
+/// 50 bytes a triangle (a normal and three corners, 3 `f32` each, and 2 bytes of
+/// attributes); `None` when the file's size is not that of its count (it is text).
+/// Told apart by its size, not by its first bytes: some binary files' headers start
+/// with `solid`, as a text STL does (robosuite's Jaco shoulder).
+fn read_binary_stl(bytes: &[u8]) -> Option<RawMesh> {
+    let count = u32::from_le_bytes(bytes.get(80..84)?.try_into().ok()?) as usize;
+    if count.checked_mul(50).and_then(|n| n.checked_add(84)) != Some(bytes.len()) {
+        return None;
+    }
+    let float = |at: usize| f32::from_le_bytes(bytes[at..at + 4].try_into().expect("four bytes"));
+    let mut vertices = Vec::with_capacity(3 * count);
+    for t in 0..count {
+        let corners = 84 + 50 * t + 12;
+        vertices.extend((0..3).map(|c| [0, 1, 2].map(|k| float(corners + 12 * c + 4 * k))));
+    }
+    let faces = (0..count as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    Some(RawMesh { vertices, faces })
 }
 
 /// MuJoCo's legacy binary mesh (`.msh`, dm_control's and robosuite's older assets): four
@@ -144,6 +172,34 @@ mod tests {
         let mesh = read_msh(&bytes).unwrap();
         assert_eq!(mesh.vertices, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
         assert_eq!(mesh.faces, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]);
+    }
+
+    /// A binary STL whose header starts with `solid`, as a text STL does (robosuite's
+    /// Jaco shoulder): told apart by its size, 84 + 50 bytes a triangle.
+    #[test]
+    fn a_binary_stl_whose_header_says_solid_is_read_as_binary() {
+        let dir = std::env::temp_dir().join(format!("ars-binary-stl-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let corners = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        let mut bytes = b"solid exported by a CAD program".to_vec();
+        bytes.resize(80, b' ');
+        bytes.extend(4u32.to_le_bytes());
+        for face in faces {
+            bytes.extend([0.0f32; 3].iter().flat_map(|x| x.to_le_bytes()));
+            bytes.extend(face.iter().flat_map(|&k| corners[k]).flat_map(f32::to_le_bytes));
+            bytes.extend([0u8, 0]);
+        }
+        let path = dir.join("tetra.stl");
+        std::fs::write(&path, &bytes).unwrap();
+        let shape = load_mesh(&path, Vector3::repeat(2.0)).unwrap();
+        let Shape::TriMesh { vertices, triangles } = shape else { panic!("a triangle mesh") };
+        assert_eq!((vertices.len(), triangles.len()), (4, 4), "its shared corners welded");
+        assert!(vertices.contains(&Point3::new(0.0, 0.0, 2.0)), "scaled");
+        // A byte more or less is no binary STL: the text reader refuses it.
+        std::fs::write(&path, &bytes[..bytes.len() - 1]).unwrap();
+        assert!(load_mesh(&path, Vector3::repeat(1.0)).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// Truncated, padded, negative or absurd counts and negative indices are errors, not

@@ -94,7 +94,8 @@ impl Simulation {
     /// Opens `path` as a new simulation, by its [`FileFormat`]:
     /// - a scene file as saved, where it was saved (mid-run: exactly);
     /// - a URDF robot, Z up, its root at the origin over a floor plane at y = 0 (default
-    ///   [`UrdfOptions`]), in a simple space;
+    ///   [`UrdfOptions`]: raised to rest on the floor if it would reach into it), in a
+    ///   simple space;
     /// - a MuJoCo model as its file says: its own floor, gravity and time step
     ///   (MuJoCo's [`MUJOCO_TIMESTEP`] if it gives none; frames of about 20 ms), in a
     ///   simple space, what ARS cannot read skipped and listed in

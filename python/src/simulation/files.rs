@@ -13,13 +13,16 @@ impl PySimulation {
     /// Loads a robot from a URDF file (Z up unless `y_up`; see the Rust
     /// `Scene::load_urdf` for the rules). Returns `{"name", "links", "joints",
     /// "base_joint", "adjusted"}`, links and joints by their URDF names in file order;
-    /// `adjusted` says, a line per link, each inertia no body can have that was
-    /// corrected (refused instead with `strict_inertia=True`). Collision meshes collide
+    /// `adjusted` says, a line each, what was corrected to load it: an inertia no body
+    /// can have (refused instead with `strict_inertia=True`), a hinge's limits beyond
+    /// ±π, the robot raised onto a floor. Collision meshes collide
     /// as their convex hulls, as PyBullet's do (`triangle_mesh_collisions=True`: as
-    /// triangle meshes).
+    /// triangle meshes). A floating robot that would reach into a floor at
+    /// `base_position` is raised to rest on it, with a line in `adjusted`
+    /// (`exact_base_pose=True` keeps the position given).
     #[pyo3(signature = (path, *, fixed_base=false, base_position=[0.0; 3], self_collision=false, y_up=false,
                         initial_positions=None, packages=None, search_paths=None, ignore_visuals=false,
-                        strict_inertia=false, triangle_mesh_collisions=false))]
+                        strict_inertia=false, triangle_mesh_collisions=false, exact_base_pose=false))]
     fn load_urdf<'py>(
         &self,
         py: Python<'py>,
@@ -34,8 +37,10 @@ impl PySimulation {
         ignore_visuals: bool,
         strict_inertia: bool,
         triangle_mesh_collisions: bool,
+        exact_base_pose: bool,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let mut options = ars_core::UrdfOptions::new()
+            .exact_base_pose(exact_base_pose)
             .strict_inertia(strict_inertia)
             .triangle_mesh_collisions(triangle_mesh_collisions)
             .fixed_base(fixed_base)
@@ -187,8 +192,9 @@ impl PySimulation {
     }
 
     /// A simulation from any file ARS reads, by its extension: a scene file (`.json`), a
-    /// URDF robot with its root at the origin over a floor (`.urdf`) or a MuJoCo model (`.xml`, `.mjcf`;
-    /// what ARS cannot read is skipped, each with a `UserWarning`). What the viewer's
+    /// URDF robot with its root at the origin over a floor, raised to rest on it
+    /// (`.urdf`), or a MuJoCo model (`.xml`, `.mjcf`; what ARS cannot read is
+    /// skipped, each with a `UserWarning`). What the viewer's
     /// Open button and `ars view FILE` open.
     #[staticmethod]
     fn open(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {

@@ -24,6 +24,9 @@ pub(super) struct Compiler {
     pub(super) total_mass: Option<f64>,
     /// `meshdir` (else `assetdir`): where mesh files are, relative to the model's folder.
     pub(super) meshdir: Option<String>,
+    /// `boundmass` and `boundinertia`: the least mass and principal moment of every
+    /// moving body.
+    pub(super) bounds: (f64, f64),
 }
 
 impl Default for Compiler {
@@ -37,6 +40,7 @@ impl Default for Compiler {
             inertia_groups: [0.0, 5.0],
             total_mass: None,
             meshdir: None,
+            bounds: (0.0, 0.0),
         }
     }
 }

@@ -6,6 +6,10 @@ use nalgebra::{Matrix3, Vector3};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind};
 use crate::shape::Shape;
 
+/// The radius of the sphere a flat mesh's geom (one that never collides: MuJoCo makes
+/// no hull for it) is built as in ODE, m.
+const FLAT_MESH_STAND_IN: f64 = 1e-6;
+
 impl Geom {
     pub(super) fn volume(&self) -> f64 {
         use std::f64::consts::PI;
@@ -70,10 +74,10 @@ impl Geom {
     }
 
     /// The ODE shape (a mesh as its convex hull, an ellipsoid as the sphere of its
-    /// volume).
+    /// volume; a flat mesh, in a geom that never collides, as a point-like sphere).
     pub(super) fn shape(&self) -> Shape {
         match &self.kind {
-            GeomKind::Mesh(mesh) => mesh.hull.clone(),
+            GeomKind::Mesh(mesh) => mesh.hull.clone().unwrap_or(Shape::Sphere { radius: FLAT_MESH_STAND_IN }),
             GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
             GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
             GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },
@@ -113,6 +117,28 @@ pub(super) fn mass_of_geoms(geoms: &[Geom]) -> Option<(f64, Vector3<f64>, Matrix
         inertia += about_centre + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m;
     }
     Some((mass, com, inertia))
+}
+
+/// A body's mass and inertia raised to `<compiler boundmass boundinertia>` (`bounds`),
+/// as MuJoCo raises every body's: the mass to the first, each principal moment to the
+/// second; a body without mass (given `boundmass`) weighs it at its origin.
+pub(super) fn bounded(
+    mass: Option<(f64, Vector3<f64>, Matrix3<f64>)>,
+    (least_mass, least_moment): (f64, f64),
+) -> Option<(f64, Vector3<f64>, Matrix3<f64>)> {
+    let (mass, centre, inertia) = match mass {
+        Some(m) => m,
+        None if least_mass > 0.0 => (0.0, Vector3::zeros(), Matrix3::zeros()),
+        None => return None,
+    };
+    let inertia = if least_moment > 0.0 {
+        let eigen = inertia.symmetric_eigen();
+        let moments = eigen.eigenvalues.map(|m| m.max(least_moment));
+        eigen.eigenvectors * Matrix3::from_diagonal(&moments) * eigen.eigenvectors.transpose()
+    } else {
+        inertia
+    };
+    Some((mass.max(least_mass), centre, inertia))
 }
 
 /// The inertia a ball joint's armature adds to the object it moves, in that object's

@@ -172,6 +172,7 @@ mod defaults;
 mod equality;
 mod include;
 mod mass;
+mod meshes;
 mod model;
 mod prefix;
 mod problem;

@@ -22,13 +22,15 @@ pub(super) enum GeomKind {
 }
 
 /// A mesh asset as a geom uses it: its triangles (scaled), what it collides as (their
-/// convex hull, as in MuJoCo) and its mass properties.
+/// convex hull, as in MuJoCo) and its mass properties (MuJoCo's: see
+/// [`mujoco_mass_properties`](crate::mesh_mass::mujoco_mass_properties)).
 #[derive(Debug)]
 pub(super) struct MeshGeom {
     /// The triangles, as drawn.
     pub(super) shape: Shape,
-    /// Their convex hull, as collided.
-    pub(super) hull: Shape,
+    /// Their convex hull, as collided; `None` when they are flat (MuJoCo builds no hull
+    /// for a mesh no geom collides with, and refuses a flat one that does).
+    pub(super) hull: Option<Shape>,
     pub(super) mass: MeshMass,
 }
 

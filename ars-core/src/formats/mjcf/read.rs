@@ -10,14 +10,14 @@ use super::MAX_CONTACT_PAIRS;
 use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
 use super::include::{Files, Includes, Tree, gather};
-use super::mass::{mass_of_geoms, scale_masses, total_mass};
+use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
+use super::meshes::{MeshAsset, load_mesh, mesh_assets};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
 use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
 use crate::control::{Actuator, ActuatorKind};
 use crate::error::Error;
 use crate::sensors::TouchZone;
-use crate::shape::Shape;
 
 /// Reads the model's elements.
 pub(super) struct Reader<'d, 'a, 'input> {
@@ -28,8 +28,8 @@ pub(super) struct Reader<'d, 'a, 'input> {
     pub(super) skipped: Vec<String>,
     pub(super) bodies: usize,
     pub(super) joints: usize,
-    /// The `<asset><mesh>`es by name: their file (as written) and scale.
-    pub(super) meshes: HashMap<String, (String, Vector3<f64>)>,
+    /// The `<asset><mesh>`es by name.
+    pub(super) meshes: HashMap<String, MeshAsset>,
     /// The meshes loaded so far, by name.
     pub(super) loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
     /// The `<asset><material>`s' colours, by name.
@@ -61,6 +61,16 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             return Err(problem(&node, "density must not be negative"));
         }
         let bits = (collision_bits(&a, "contype")?, collision_bits(&a, "conaffinity")?);
+        if let GeomKind::Mesh(mesh) = &kind
+            && mesh.hull.is_none()
+            && bits != (0, 0)
+        {
+            let name = a.get("mesh").unwrap_or_default();
+            return Err(problem(
+                &node,
+                format!("the mesh {name:?} is flat: it has no convex hull to collide as (MuJoCo refuses it too)"),
+            ));
+        }
         let contact = geom_contact(&a)?;
         let unused: Vec<&str> = ["margin", "gap"].into_iter().filter(|k| a.get(k).is_some()).collect();
         contact_parameters_unused(&node, &unused, &mut self.skipped);
@@ -103,13 +113,25 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 };
                 if kind_name == "capsule" { GeomKind::Capsule(r, h) } else { GeomKind::Cylinder(r, h) }
             }
-            "box" => GeomKind::Box(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?)),
-            "ellipsoid" => {
-                self.skipped.push(format!(
-                    "<geom> at line {}: an ellipsoid collides as the sphere of its volume",
-                    problem(&node, "").line
-                ));
-                GeomKind::Ellipsoid(Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?))
+            "box" | "ellipsoid" => {
+                // Placed by `fromto` as MuJoCo places them: the first size across, twice,
+                // the half-length along z.
+                let half_sizes = match fromto {
+                    Some(f) => {
+                        let (placed, half_length) = fromto_frame(&node, f)?;
+                        frame = placed;
+                        Vector3::new(size_at(0)?, size_at(0)?, half_length)
+                    }
+                    None => Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?),
+                };
+                if kind_name == "box" {
+                    GeomKind::Box(half_sizes)
+                } else {
+                    let line = problem(&node, "").line;
+                    self.skipped
+                        .push(format!("<geom> at line {line}: an ellipsoid collides as the sphere of its volume"));
+                    GeomKind::Ellipsoid(half_sizes)
+                }
             }
             other => {
                 self.unsupported(&node, &format!("a geom of type {other:?}"))?;
@@ -136,12 +158,16 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         }
         // A hinge's positions are angles, in the compiler's unit.
         let angle = if kind == JointKind::Hinge && self.compiler.degrees { 1f64.to_radians() } else { 1.0 };
+        let given = a.fixed::<2>("range")?;
+        // As MuJoCo: a free joint is never limited (its class's `limited` aside); "auto"
+        // limits a joint whose range is not empty (`<compiler autolimits>`).
         let limited = match a.get("limited") {
+            _ if kind == JointKind::Free => false,
             Some("true") => true,
             Some("false") => false,
-            _ => self.compiler.autolimits && a.get("range").is_some(),
+            _ => self.compiler.autolimits && given.is_some_and(|[lo, hi]| lo < hi),
         };
-        let range = match (limited, a.fixed::<2>("range")?) {
+        let range = match (limited, given) {
             (true, Some([lo, hi])) => {
                 if lo > hi {
                     return Err(problem(&node, format!("range {lo} {hi} is reversed")));
@@ -229,7 +255,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             Some(always) => always,
             None => inertial.is_none(),
         };
-        body.mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial.filter(|m| m.0 > 0.0) };
+        let mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial.filter(|m| m.0 > 0.0) };
+        body.mass = bounded(mass, self.compiler.bounds);
         body.principal = if from_geoms { None } else { principal };
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
@@ -246,42 +273,20 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
     }
 
     /// The mesh asset `name` (loaded once), for a geom at `node`.
-    pub(super) fn mesh(
-        &mut self,
-        node: &roxmltree::Node<'_, '_>,
-        name: Option<&str>,
-    ) -> Parsed<std::sync::Arc<MeshGeom>> {
+    fn mesh(&mut self, node: &roxmltree::Node<'_, '_>, name: Option<&str>) -> Parsed<std::sync::Arc<MeshGeom>> {
         let name = name.ok_or_else(|| problem(node, "a mesh geom needs a mesh"))?;
         if let Some(mesh) = self.loaded.get(name) {
             return Ok(mesh.clone());
         }
-        let (file, scale) =
+        let asset =
             self.meshes.get(name).ok_or_else(|| problem(node, format!("no <mesh> asset is called {name:?}")))?;
-        let dir = match &self.compiler.meshdir {
+        let folder = match &self.compiler.meshdir {
             Some(meshdir) => self.dir.join(meshdir),
             None => self.dir.clone(),
         };
-        let path = crate::formats::first_file(file, &[dir.join(file)]).map_err(|e| problem(node, e))?;
-        let shape = self.files.load(&path, *scale).map_err(|e| problem(node, e.to_string()))?;
-        let Shape::TriMesh { vertices, triangles } = &shape else {
-            return Err(problem(node, format!("the mesh {name:?} is not a triangle mesh")));
-        };
-        // MuJoCo collides a mesh as its convex hull, and refuses one whose hull is flat.
-        let hull = Shape::convex_hull(vertices).map_err(|e| problem(node, format!("the mesh {name:?}: {e}")))?;
-        let mass = match crate::shape::mass_properties(vertices, triangles) {
-            Some(mass) => mass,
-            None => {
-                // An open or inside-out mesh weighs as its hull here (MuJoCo's legacy
-                // inertia sums the pyramids from its faces' centre instead).
-                self.skipped.push(format!(
-                    "the mesh {name:?} encloses no volume (it is open, or wound inwards): its mass and inertia are its convex hull's"
-                ));
-                let Shape::ConvexHull { vertices, triangles } = &hull else { unreachable!("a hull was made") };
-                crate::shape::mass_properties(vertices, triangles)
-                    .ok_or_else(|| problem(node, format!("the convex hull of the mesh {name:?} encloses no volume")))?
-            }
-        };
-        let mesh = std::sync::Arc::new(MeshGeom { shape, hull, mass });
+        let mesh =
+            load_mesh(asset, &folder, &mut self.files).map_err(|e| problem(node, format!("the mesh {name:?}: {e}")))?;
+        let mesh = std::sync::Arc::new(mesh);
         self.loaded.insert(name.to_string(), mesh.clone());
         Ok(mesh)
     }
@@ -499,6 +504,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     let flags_unused = std::mem::take(&mut settings.flags_unused);
     let (contacts_disabled, gravity_disabled) = (settings.contacts_disabled, settings.gravity_disabled);
     let materials = material_colors(&settings.material_nodes, &settings.defaults)?;
+    let meshes = mesh_assets(&settings.mesh_nodes, &settings.defaults)?;
     let mut reader = Reader {
         compiler: settings.compiler,
         defaults: &settings.defaults,
@@ -506,7 +512,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         skipped: schema_skips,
         bodies: 0,
         joints: 0,
-        meshes: settings.meshes,
+        meshes,
         materials,
         loaded: HashMap::new(),
         files: crate::formats::MeshCache::default(),
@@ -567,8 +573,8 @@ struct Settings<'a, 'input> {
     gravity_disabled: bool,
     /// The `<flag>`s read and not used, one line each.
     flags_unused: Vec<String>,
-    /// The `<asset><mesh>`es by name: their file (as written) and scale.
-    meshes: HashMap<String, (String, Vector3<f64>)>,
+    /// The `<asset><mesh>`es, read once every default class is known.
+    mesh_nodes: Vec<roxmltree::Node<'a, 'input>>,
     /// The `<asset><material>`s, read once every default class is known.
     material_nodes: Vec<roxmltree::Node<'a, 'input>>,
 }
@@ -587,7 +593,7 @@ fn read_settings<'a, 'input>(
         contacts_disabled: false,
         gravity_disabled: false,
         flags_unused: Vec::new(),
-        meshes: HashMap::new(),
+        mesh_nodes: Vec::new(),
         material_nodes: Vec::new(),
     };
     for &node in nodes {
@@ -595,10 +601,7 @@ fn read_settings<'a, 'input>(
             "compiler" => read_compiler(node, &mut settings.compiler)?,
             "default" => read_defaults(tree, node, &HashMap::new(), &mut settings.defaults),
             "asset" => {
-                for mesh in tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")) {
-                    let (name, file, scale) = mesh_asset(mesh)?;
-                    settings.meshes.insert(name, (file, scale));
-                }
+                settings.mesh_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")));
                 settings.material_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("material")));
             }
             "option" => {
@@ -680,6 +683,15 @@ fn read_compiler(node: roxmltree::Node<'_, '_>, compiler: &mut Compiler) -> Pars
             Err(_) => return Err(problem(&node, format!("settotalmass {total:?} is not a number"))),
         };
     }
+    let a = Attrs { node, class: None };
+    for (k, name) in ["boundmass", "boundinertia"].into_iter().enumerate() {
+        match a.number(name)? {
+            Some(bound) if bound < 0.0 => return Err(problem(&node, format!("{name} must not be negative"))),
+            Some(bound) if k == 0 => compiler.bounds.0 = bound,
+            Some(bound) => compiler.bounds.1 = bound,
+            None => {}
+        }
+    }
     if let Some(dir) = node.attribute("meshdir").or(node.attribute("assetdir")) {
         compiler.meshdir = Some(dir.to_string());
     }
@@ -687,19 +699,6 @@ fn read_compiler(node: roxmltree::Node<'_, '_>, compiler: &mut Compiler) -> Pars
         return Err(problem(&node, "coordinate=\"global\" is not supported (MuJoCo removed it too)"));
     }
     Ok(())
-}
-
-/// An `<asset><mesh>`: its name (else its file's stem), its file (as written) and
-/// its scale.
-fn mesh_asset(mesh: roxmltree::Node<'_, '_>) -> Parsed<(String, String, Vector3<f64>)> {
-    let file = mesh.attribute("file").ok_or_else(|| problem(&mesh, "needs a file"))?;
-    let name = match mesh.attribute("name") {
-        Some(name) => name.to_string(),
-        None => Path::new(file).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
-    };
-    let a = Attrs { node: mesh, class: None };
-    let scale = a.fixed::<3>("scale")?.map_or(Vector3::repeat(1.0), Vector3::from);
-    Ok((name, file.to_string(), scale))
 }
 
 /// The materials' colours by name, with their classes' defaults (read by now,

@@ -7,6 +7,7 @@ use nalgebra::{Isometry3, Point3, Vector3};
 
 use super::frame::{Frame, z_up_to_y_up};
 use super::meshes::Meshes;
+use super::model;
 use super::{UpAxis, UrdfOptions, UrdfRobot};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::convert::rotation_about_axis;
@@ -18,8 +19,8 @@ use crate::scene::JointEnd;
 use crate::scene::Scene;
 use crate::shape::Shape;
 
-/// A problem with a link (the file is named by the caller; urdf-rs gives no line).
-pub(super) fn link_error(link: &urdf_rs::Link, problem: String) -> Error {
+/// A problem with a link (the file and the line are named by the caller).
+pub(super) fn link_error(link: &model::Link, problem: String) -> Error {
     Error::Format {
         format: "URDF",
         file: String::new(),
@@ -31,16 +32,37 @@ pub(super) fn link_error(link: &urdf_rs::Link, problem: String) -> Error {
 }
 
 /// A robot checked before anything is built.
+#[derive(Clone)]
 pub(super) struct Plan<'r> {
-    robot: &'r urdf_rs::Robot,
+    robot: &'r model::Robot,
     /// Index of the root link.
     root: usize,
     /// World frame of each link (at zero joint positions).
     link_frames: Vec<Frame>,
     /// World frame of each joint.
     joint_frames: Vec<Frame>,
-    /// World frame of each link at the initial joint positions, if any were given.
+    /// World frame of each link at the joints' start positions, if any is not 0.
     posed_link_frames: Option<Vec<Frame>>,
+    /// Each joint's start position (see [`start_positions`](super::stops::start_positions)).
+    start: Vec<f64>,
+    /// A line for [`UrdfRobot::adjusted`] for each joint that does not start where
+    /// the file and the options say.
+    start_notes: Vec<String>,
+}
+
+impl Plan<'_> {
+    /// The plan with every frame `height` higher (+Y): the robot built there.
+    fn raised(&self, height: f64) -> Self {
+        let up = |frames: &[Frame]| -> Vec<Frame> {
+            frames.iter().map(|f| Frame { translation: f.translation + Vector3::y() * height, ..*f }).collect()
+        };
+        Plan {
+            link_frames: up(&self.link_frames),
+            joint_frames: up(&self.joint_frames),
+            posed_link_frames: self.posed_link_frames.as_deref().map(up),
+            ..self.clone()
+        }
+    }
 }
 
 impl Scene {
@@ -56,12 +78,18 @@ impl Scene {
         options: &UrdfOptions,
         meshes: &mut Meshes<'_>,
     ) -> std::result::Result<UrdfRobot, (String, Error)> {
+        let start = plan.posed_link_frames.as_ref().unwrap_or(&plan.link_frames);
+        let raise = self.floor_raise(plan.robot, plan.root, start, options, meshes);
+        let raised = raise.as_ref().map(|r| plan.raised(r.height));
         let mut created = Vec::new();
-        let built = self.build_urdf_parts(plan, options, meshes, &mut created);
-        if built.is_err() {
-            for (id, _) in created.iter().rev() {
-                let _ = self.remove_object_with_joints(*id);
+        let mut built = self.build_urdf_parts(raised.as_ref().unwrap_or(plan), options, meshes, &mut created);
+        match &mut built {
+            Err(_) => {
+                for (id, _) in created.iter().rev() {
+                    let _ = self.remove_object_with_joints(*id);
+                }
             }
+            Ok(robot) => robot.adjusted.extend(raise.map(|r| r.note(&robot.name))),
         }
         built
     }
@@ -76,8 +104,8 @@ impl Scene {
     /// static geometry for a massless root; with its geoms and visuals.
     pub(super) fn add_link(
         &mut self,
-        robot: &urdf_rs::Robot,
-        link: &urdf_rs::Link,
+        robot: &model::Robot,
+        link: &model::Link,
         frame: &Frame,
         root: bool,
         bits: Option<u64>,
@@ -94,8 +122,8 @@ impl Scene {
             return Err(link_error(
                 link,
                 format!(
-                    "mass {mass}: a moving link needs a positive mass (a massless link is merged into its parent \
-                     only when a fixed joint holds it)"
+                    "mass {mass}: a moving link needs a positive mass, and no link of the robot has one to lend it \
+                     (a massless link is merged into its parent only when a fixed joint holds it)"
                 ),
             ));
         }
@@ -105,7 +133,7 @@ impl Scene {
     /// A massless root link: static, its geometry collides and nothing moves it.
     fn add_static_link(
         &mut self,
-        link: &urdf_rs::Link,
+        link: &model::Link,
         collisions: Vec<(Shape, Frame)>,
         looks: &[Look],
         drawn: Shape,
@@ -133,7 +161,7 @@ impl Scene {
     /// on it.
     fn add_link_body(
         &mut self,
-        link: &urdf_rs::Link,
+        link: &model::Link,
         frame: &Frame,
         collisions: Vec<(Shape, Frame)>,
         looks: &[Look],
@@ -177,8 +205,8 @@ impl Scene {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn merge_link(
         &mut self,
-        robot: &urdf_rs::Robot,
-        link: &urdf_rs::Link,
+        robot: &model::Robot,
+        link: &model::Link,
         frame: &Frame,
         (host, body): (ObjectId, Option<crate::handle::BodyHandle>),
         host_frame: &Frame,
@@ -222,10 +250,12 @@ impl Scene {
         Ok(())
     }
 
+    /// Makes a URDF joint at `frame` (world), its stops around where it starts
+    /// (`start`, its position).
     pub(super) fn add_urdf_joint(
         &mut self,
-        joint: &urdf_rs::Joint,
-        frame: &Frame,
+        joint: &model::Joint,
+        (frame, start): (&Frame, f64),
         child: (ObjectId, Option<crate::handle::BodyHandle>),
         parent: (ObjectId, Option<crate::handle::BodyHandle>),
     ) -> Result<JointId> {
@@ -242,7 +272,7 @@ impl Scene {
                 return Err(Error::Invalid { what: "the joint's child link", problem: "has no mass".into() });
             }
         };
-        use urdf_rs::JointType as U;
+        use model::JointType as U;
         let (kind, builder) = match joint.joint_type {
             U::Revolute | U::Continuous => (crate::scene::JointType::Hinge, JointBuilder::hinge(anchor, axis)),
             U::Prismatic => (crate::scene::JointType::Slider, JointBuilder::slider(axis)),
@@ -251,10 +281,8 @@ impl Scene {
             _ => unreachable!("refused when planned"),
         };
         let id = self.insert_sim_joint(&joint.name, kind, object1, object2, builder)?;
-        let limited = matches!(joint.joint_type, U::Revolute | U::Prismatic);
-        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
-        if limited && (lower != 0.0 || upper != 0.0) && lower <= upper {
-            self.joint_mut(id)?.set_limits(lower, upper)?;
+        if let Some((low, high)) = super::stops::joint_stops(joint, start) {
+            self.joint_mut(id)?.set_limits(low, high)?;
         }
         let moving = matches!(joint.joint_type, U::Revolute | U::Continuous | U::Prismatic);
         if let Some(d) = &joint.dynamics
@@ -305,7 +333,9 @@ impl Scene {
         if let Some(posed) = &plan.posed_link_frames {
             self.pose_urdf_links(robot, posed, &hosts, &made)?;
         }
-        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, adjusted: Vec::new() })
+        let mut adjusted = plan.start_notes.clone();
+        adjusted.extend(super::stops::stop_notes(robot, &plan.start));
+        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, adjusted })
     }
 
     /// Makes the links that are not merged into another, with their colours; each link
@@ -380,7 +410,7 @@ impl Scene {
                 continue; // merged: its link is part of its parent's body
             }
             let id = self
-                .add_urdf_joint(joint, &plan.joint_frames[j], made[child], made[parent])
+                .add_urdf_joint(joint, (&plan.joint_frames[j], plan.start[j]), made[child], made[parent])
                 .map_err(|e| (format!("joint {:?}", joint.name), e))?;
             joints.push((joint.name.clone(), id));
         }
@@ -391,7 +421,7 @@ impl Scene {
     /// by name).
     fn set_urdf_mimics(
         &mut self,
-        robot: &urdf_rs::Robot,
+        robot: &model::Robot,
         joints: &[(String, JointId)],
     ) -> std::result::Result<(), (String, Error)> {
         for joint in &robot.joints {
@@ -431,7 +461,7 @@ impl Scene {
     /// joint positions (`posed`, the links' frames).
     fn pose_urdf_links(
         &mut self,
-        robot: &urdf_rs::Robot,
+        robot: &model::Robot,
         posed: &[Frame],
         hosts: &[Option<usize>],
         made: &[MadeLink],
@@ -484,14 +514,19 @@ fn visuals_of(looks: &[Look], object_pose: Isometry3<f64>) -> Vec<crate::scene::
 /// pose, colour) unless visuals are ignored.
 #[allow(clippy::type_complexity)]
 pub(super) fn link_geometry(
-    robot: &urdf_rs::Robot,
-    link: &urdf_rs::Link,
+    robot: &model::Robot,
+    link: &model::Link,
     frame: &Frame,
     meshes: &mut Meshes<'_>,
 ) -> Result<(Vec<(Shape, Frame)>, Vec<(Shape, Isometry3<f64>, Option<crate::scene::Color>)>)> {
     let urdf_err = |problem: String| link_error(link, problem);
     let mut collisions = Vec::new();
     for c in &link.collision {
+        if let Some(missing) = meshes.missing(&c.geometry) {
+            // PyBullet loads the link without it; so does ARS, saying so.
+            meshes.notes.push(format!("link {:?}: a <collision> is skipped: {missing}", link.name));
+            continue;
+        }
         let mut shape = meshes.shape(&c.geometry).map_err(urdf_err)?;
         if let (Shape::TriMesh { vertices, .. }, false) = (&shape, meshes.options.triangle_mesh_collisions) {
             // Collided as its convex hull, as PyBullet does; one that bounds no solid
@@ -524,11 +559,11 @@ pub(super) fn link_geometry(
 
 /// For each link, the link it is merged into: a massless link fixed to its parent goes
 /// into the nearest ancestor that is not such a link (`None`: it is made itself).
-pub(super) fn merge_hosts(robot: &urdf_rs::Robot, root: usize) -> Vec<Option<usize>> {
+pub(super) fn merge_hosts(robot: &model::Robot, root: usize) -> Vec<Option<usize>> {
     let index: HashMap<&str, usize> = robot.links.iter().enumerate().map(|(i, l)| (l.name.as_str(), i)).collect();
     let mut parent: Vec<Option<(usize, bool)>> = vec![None; robot.links.len()];
     for joint in &robot.joints {
-        let fixed = matches!(joint.joint_type, urdf_rs::JointType::Fixed);
+        let fixed = matches!(joint.joint_type, model::JointType::Fixed);
         parent[index[joint.child.link.as_str()]] = Some((index[joint.parent.link.as_str()], fixed));
     }
     let merged = |i: usize| i != root && robot.links[i].inertial.mass.value == 0.0 && parent[i].is_some_and(|p| p.1);
@@ -548,7 +583,7 @@ pub(super) fn merge_hosts(robot: &urdf_rs::Robot, root: usize) -> Vec<Option<usi
 /// joints at positions `q` (at zero when `None`: then no motion is composed at all, so
 /// the frames are the file's numbers exactly).
 pub(super) fn frames(
-    robot: &urdf_rs::Robot,
+    robot: &model::Robot,
     link_index: &HashMap<&str, usize>,
     root: usize,
     root_frame: Frame,
@@ -571,8 +606,8 @@ pub(super) fn frames(
             let axis = Vector3::from(joint.axis.xyz.0).normalize();
             links[child] = Some(match joint.joint_type {
                 _ if position == 0.0 => frame,
-                urdf_rs::JointType::Prismatic => frame.then(&Frame { rotation: None, translation: axis * position }),
-                urdf_rs::JointType::Spherical | urdf_rs::JointType::Fixed => frame,
+                model::JointType::Prismatic => frame.then(&Frame { rotation: None, translation: axis * position }),
+                model::JointType::Spherical | model::JointType::Fixed => frame,
                 _ => frame.then(&Frame {
                     rotation: Some(*rotation_about_axis(&axis, position).matrix()),
                     translation: Vector3::zeros(),
@@ -586,12 +621,12 @@ pub(super) fn frames(
 
 /// The colour of a link's first visual with a material: its own `<color>`, or that of
 /// the robot-level material it names (URDF allows both).
-pub(super) fn link_color(robot: &urdf_rs::Robot, link: &urdf_rs::Link) -> Option<crate::scene::Color> {
+pub(super) fn link_color(robot: &model::Robot, link: &model::Link) -> Option<crate::scene::Color> {
     link.visual.iter().filter_map(|v| v.material.as_ref()).find_map(|m| material_color(robot, m))
 }
 
 /// A material's colour: its own `<color>`, or that of the robot-level material it names.
-pub(super) fn material_color(robot: &urdf_rs::Robot, m: &urdf_rs::Material) -> Option<crate::scene::Color> {
+pub(super) fn material_color(robot: &model::Robot, m: &model::Material) -> Option<crate::scene::Color> {
     let rgba = match &m.color {
         Some(c) => c.rgba.0,
         None => robot.materials.iter().find(|r| r.name == m.name)?.color.as_ref()?.rgba.0,
@@ -602,7 +637,7 @@ pub(super) fn material_color(robot: &urdf_rs::Robot, m: &urdf_rs::Material) -> O
 /// Checks the tree (names, parents, one root, no loop, supported joints) and computes
 /// every frame.
 pub(super) fn plan<'r>(
-    robot: &'r urdf_rs::Robot,
+    robot: &'r model::Robot,
     options: &UrdfOptions,
 ) -> std::result::Result<Plan<'r>, (String, String)> {
     let mut link_index = HashMap::new();
@@ -630,13 +665,11 @@ pub(super) fn plan<'r>(
         UpAxis::Y => base,
     };
     let (link_frames, joint_frames) = frames(robot, &link_index, root, root_frame, None);
-    let posed_link_frames = if options.initial_positions.is_empty() {
-        None
-    } else {
-        let q = initial_positions(robot, options, &joint_names)?;
-        Some(frames(robot, &link_index, root, root_frame, Some(&q)).0)
-    };
-    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames })
+    let given = initial_positions(robot, options, &joint_names)?;
+    let (start, start_notes) = super::stops::start_positions(robot, &given);
+    let posed_link_frames =
+        start.iter().any(|&q| q != 0.0).then(|| frames(robot, &link_index, root, root_frame, Some(&start)).0);
+    Ok(Plan { robot, root, link_frames, joint_frames, posed_link_frames, start, start_notes })
 }
 
 /// Checks every joint (a name of its own, links in the file, a link's only parent
@@ -644,7 +677,7 @@ pub(super) fn plan<'r>(
 /// and each link's parent joint (`None`: the root).
 #[allow(clippy::type_complexity)]
 fn check_joints<'r>(
-    robot: &'r urdf_rs::Robot,
+    robot: &'r model::Robot,
     link_index: &HashMap<&str, usize>,
 ) -> std::result::Result<(HashMap<&'r str, usize>, Vec<Option<usize>>), (String, String)> {
     let mut joint_names = HashMap::new();
@@ -664,7 +697,7 @@ fn check_joints<'r>(
             return Err((element, format!("link {:?} is both its parent and its child", joint.parent.link)));
         }
         if let Some(other) = parent_joint[child] {
-            let other: &urdf_rs::Joint = &robot.joints[other];
+            let other: &model::Joint = &robot.joints[other];
             return Err((
                 element,
                 format!("link {:?} is already the child of joint {:?}: a loop", joint.child.link, other.name),
@@ -678,8 +711,8 @@ fn check_joints<'r>(
 
 /// Checks a joint's type (one ARS loads), its mimic's leader (in the file) and its axis
 /// (a direction, but for fixed and spherical joints).
-fn check_joint_kind(robot: &urdf_rs::Robot, joint: &urdf_rs::Joint) -> std::result::Result<(), String> {
-    use urdf_rs::JointType as U;
+fn check_joint_kind(robot: &model::Robot, joint: &model::Joint) -> std::result::Result<(), String> {
+    use model::JointType as U;
     match joint.joint_type {
         U::Revolute | U::Continuous | U::Prismatic | U::Fixed | U::Spherical => {}
         ref other => {
@@ -702,7 +735,7 @@ fn check_joint_kind(robot: &urdf_rs::Robot, joint: &urdf_rs::Joint) -> std::resu
 }
 
 /// The root: the one link that is no joint's child.
-fn root_link(robot: &urdf_rs::Robot, parent_joint: &[Option<usize>]) -> std::result::Result<usize, (String, String)> {
+fn root_link(robot: &model::Robot, parent_joint: &[Option<usize>]) -> std::result::Result<usize, (String, String)> {
     let roots: Vec<usize> = (0..robot.links.len()).filter(|&i| parent_joint[i].is_none()).collect();
     match roots[..] {
         [root] => Ok(root),
@@ -714,24 +747,24 @@ fn root_link(robot: &urdf_rs::Robot, parent_joint: &[Option<usize>]) -> std::res
     }
 }
 
-/// The joint positions the options give (0 for the others), each checked: a moving
-/// joint of the file, a finite value.
+/// The joint positions the options give (`None` for the others), each checked: a
+/// moving joint of the file, a finite value.
 fn initial_positions(
-    robot: &urdf_rs::Robot,
+    robot: &model::Robot,
     options: &UrdfOptions,
     joint_names: &HashMap<&str, usize>,
-) -> std::result::Result<Vec<f64>, (String, String)> {
-    let mut q = vec![0.0; robot.joints.len()];
+) -> std::result::Result<Vec<Option<f64>>, (String, String)> {
+    let mut q = vec![None; robot.joints.len()];
     for (name, value) in &options.initial_positions {
         let element = format!("joint {name:?}");
         let Some(&j) = joint_names.get(name.as_str()) else {
             return Err((element, "an initial position is given, but the file has no such joint".into()));
         };
-        let fixed = matches!(robot.joints[j].joint_type, urdf_rs::JointType::Fixed | urdf_rs::JointType::Spherical);
+        let fixed = matches!(robot.joints[j].joint_type, model::JointType::Fixed | model::JointType::Spherical);
         if fixed || !value.is_finite() {
             return Err((element, format!("initial position {value}: needs a moving joint and a finite value")));
         }
-        q[j] = *value;
+        q[j] = Some(*value);
     }
     Ok(q)
 }

@@ -2,6 +2,7 @@
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
+use super::model;
 use crate::convert::rotation_about_axis;
 use crate::scene::objects::multiply;
 
@@ -16,7 +17,7 @@ pub(super) struct Frame {
 impl Frame {
     pub(super) const IDENTITY: Frame = Frame { rotation: None, translation: Vector3::new(0.0, 0.0, 0.0) };
 
-    pub(super) fn from_pose(pose: &urdf_rs::Pose) -> Frame {
+    pub(super) fn from_pose(pose: &model::Pose) -> Frame {
         Frame { rotation: rpy_matrix(pose.rpy.0), translation: Vector3::from(pose.xyz.0) }
     }
 

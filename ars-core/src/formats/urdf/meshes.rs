@@ -5,8 +5,12 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::Vector3;
 
-use super::UrdfOptions;
+use super::{UrdfOptions, model};
 use crate::shape::Shape;
+
+/// How many folders above the URDF's a `package://` path's rest is looked for in (as
+/// PyBullet looks up to five).
+const PACKAGE_LEVELS_UP: usize = 5;
 
 /// Finds and loads the meshes a file names (each file once).
 pub(super) struct Meshes<'o> {
@@ -52,6 +56,12 @@ impl Meshes<'_> {
                 tried.push(dir.join(package).join(rest));
                 tried.push(dir.join(rest));
             }
+            // The package's folder under another name (a `_support` package whose
+            // meshes a `_description` folder holds), or no name (`package:///a/b`):
+            // `REST` in each folder above the URDF's.
+            if let Some(base) = &self.base_dir {
+                tried.extend(base.ancestors().skip(1).take(PACKAGE_LEVELS_UP).map(|dir| dir.join(rest)));
+            }
         } else if Path::new(name).is_absolute() {
             tried.push(PathBuf::from(name));
         } else {
@@ -62,11 +72,20 @@ impl Meshes<'_> {
                 tried.push(dir.join(name));
             }
         }
+        let mut seen = std::collections::HashSet::new();
+        tried.retain(|path| seen.insert(path.clone()));
         crate::formats::first_file(filename, &tried)
     }
 
-    pub(super) fn shape(&mut self, geometry: &urdf_rs::Geometry) -> std::result::Result<Shape, String> {
-        let urdf_rs::Geometry::Mesh { filename, scale } = geometry else {
+    /// Why a mesh geometry cannot be found (every path tried); `None` for one that is
+    /// found, or a primitive.
+    pub(super) fn missing(&self, geometry: &model::Geometry) -> Option<String> {
+        let model::Geometry::Mesh { filename, .. } = geometry else { return None };
+        self.resolve(filename).err()
+    }
+
+    pub(super) fn shape(&mut self, geometry: &model::Geometry) -> std::result::Result<Shape, String> {
+        let model::Geometry::Mesh { filename, scale } = geometry else {
             return Ok(primitive_shape(geometry).expect("a geometry that is not a mesh is a primitive"));
         };
         let path = self.resolve(filename)?;
@@ -77,8 +96,8 @@ impl Meshes<'_> {
 
 /// The shape of a primitive geometry (box, cylinder, capsule, sphere), unchecked;
 /// `None` for a mesh, which must be found and loaded.
-pub(super) fn primitive_shape(geometry: &urdf_rs::Geometry) -> Option<Shape> {
-    use urdf_rs::Geometry as G;
+pub(super) fn primitive_shape(geometry: &model::Geometry) -> Option<Shape> {
+    use model::Geometry as G;
     Some(match geometry {
         G::Box { size } => Shape::Box { edges: Vector3::from(size.0) },
         G::Cylinder { radius, length } => Shape::Cylinder { radius: *radius, length: *length },

@@ -5,6 +5,21 @@
 //!   by one rotation, −90° about X (URDF (x, y, z) → simulation (x, z, −y)), then placed
 //!   at [`UrdfOptions::base_pose`]. A file written Y-up is loaded as is with
 //!   [`UpAxis::Y`].
+//! - **On the floor.** A robot free to move (no [`UrdfOptions::fixed_base`], a root
+//!   link with mass) whose collision geometry, at the base pose and initial joint
+//!   positions asked for, would reach into a floor of the scene is raised (+Y, nothing
+//!   else of the pose changes) just enough for its lowest collision point to rest on
+//!   that floor, with a line in [`UrdfRobot::adjusted`] saying by how much; so a robot
+//!   whose root frame is at its centre, or between its feet, starts standing on the
+//!   floor, not buried in it (where ODE would shoot it out). A pose that
+//!   reaches into no floor is kept exactly: a robot is never lowered, and one placed
+//!   above the floor falls onto it. A floor is a static plane of the scene facing up
+//!   (its normal within 45° of +Y: `Simulation::builder().floor_plane`,
+//!   [`Scene::add_floor_plane`](crate::scene::Scene::add_floor_plane), Python's
+//!   `add_floor`); terrain meshes, heightfields and other objects are not looked at.
+//!   [`UrdfOptions::exact_base_pose`] keeps the pose asked for whatever it reaches into
+//!   (PyBullet's `loadURDF` never moves a robot); a fixed base is always where it is
+//!   asked to be.
 //! - **Bodies.** ODE wants a body's frame at its centre of mass: each link's body frame
 //!   is its `<inertial>` frame (origin and `rpy`), where the URDF's inertia tensor is
 //!   given, so the tensor is used as written. Collision geometry is placed relative to
@@ -13,8 +28,11 @@
 //!   it), as pybullet does. A massless link fixed to its parent (a tool frame, a
 //!   flange: the Panda's `panda_link8`) is merged into the nearest ancestor that is not
 //!   one: its geometry and looks join that link's object, [`UrdfRobot::link`] gives that
-//!   object for its name, and its fixed joint is not made. Any other link needs a
-//!   positive mass.
+//!   object for its name, and its fixed joint is not made. A massless link that moves
+//!   (between two hinges, as human models' `*_virtual` links) is lent a small mass by
+//!   the nearest link with mass, whose mass and inertia shrink alike, so that the total
+//!   is the file's (see `massless.rs`; a line in [`UrdfRobot::adjusted`] each); a robot
+//!   with no mass at all to lend is refused.
 //! - **Inertia.** An inertia no body can have is corrected, with a line naming the link
 //!   in [`UrdfRobot::adjusted`], in the tensor's principal frame (mass and centre of
 //!   mass untouched): no positive moment at all (a link given only its mass) becomes a
@@ -36,11 +54,17 @@
 //!   sign: a joint's angle (position) is the child's relative to the parent, and a
 //!   positive torque (force) turns (pushes) the child that way (ODE's joint then joins
 //!   the parent to the child about the negated axis); `revolute` and
-//!   `prismatic` limits become joint stops, their `effort` and `velocity` the joint's
+//!   `prismatic` limits become joint stops (ODE measures a hinge's angle within ±π:
+//!   revolute limits beyond ±(π − 0.05) are turned by whole turns and cut to that, or
+//!   dropped when they span a turn, each with a line in [`UrdfRobot::adjusted`]), their
+//!   `effort` and `velocity` the joint's
 //!   [`ActuatorLimits`](crate::scene::ActuatorLimits) (0 or absent: none); `<dynamics damping>`
 //!   becomes viscous friction and `friction` dry friction
 //!   ([`SimJoint::set_dry_friction`](crate::scene::SimJoint::set_dry_friction)); `<mimic>` a
-//!   [`Mimic`](crate::scene::Mimic) (multiplier 1 and offset 0 unless given); `spherical` (an
+//!   [`Mimic`](crate::scene::Mimic) (multiplier 1 and offset 0 unless given; a mimic ARS
+//!   cannot follow, of a joint not in the file or of a joint that does not move alike,
+//!   is dropped with a line in [`UrdfRobot::adjusted`], as PyBullet ignores mimics);
+//!   `spherical` (an
 //!   extension some tools write) becomes a ball joint. `floating` and `planar` joints
 //!   are refused.
 //! - **Collisions.** Linked bodies never collide (ODE's rule). With
@@ -48,12 +72,22 @@
 //! - **Geometry.** Every collision element of a link: `box`, `cylinder` (along the
 //!   link's Z, as in ODE), `sphere`, `capsule`, and `mesh` (STL, OBJ, COLLADA, with
 //!   `scale`) as a triangle mesh (see [`load_mesh`](crate::formats::mesh::load_mesh)).
+//!   A `<collision>` whose mesh file is not there is skipped, with a line in
+//!   [`UrdfRobot::adjusted`] (PyBullet loads the link without it; its `<inertial>`
+//!   stays); another shape (PyBullet's `<plane>`, `<cdf>`) is skipped alike.
 //! - **Mesh paths** (the first that exists; the error lists every path tried):
 //!   `file://` and absolute paths as written; relative ones in the URDF's folder, then
 //!   in [`UrdfOptions::search_paths`]; `package://NAME/REST` in the folder given for
 //!   NAME ([`UrdfOptions::package`]), in `ROS_PACKAGE_PATH` and `AMENT_PREFIX_PATH`,
 //!   as `NAME/REST` beside the URDF, in a folder named NAME above it, as `REST` beside
-//!   it, then in the search paths.
+//!   it, in the search paths, then as `REST` in each folder above the URDF's (a package
+//!   whose meshes are in its `_description` folder; `package:///REST`).
+//! - **Reading.** The file is read as PyBullet and ROS's urdfdom read what people write
+//!   (see `read.rs`): vectors with commas, extra numbers cut (noted), xacro's
+//!   `$(optenv NAME default)` as xacro reads it (noted), absent `<limit>` attributes 0,
+//!   the first of repeated elements; what URDF does not define is ignored. A number
+//!   that is none is an error naming the file, the link or joint, the attribute and
+//!   the line.
 //!
 //! - **Looks.** The viewer draws a link's `<visual>` elements (any geometry, meshes
 //!   found as above, each in its material's colour: its own `<color>` or the
@@ -75,7 +109,13 @@ use crate::simulation::Simulation;
 
 mod build;
 mod frame;
+mod massless;
 mod meshes;
+mod model;
+mod place;
+mod read;
+mod stops;
+mod values;
 
 use build::plan;
 use meshes::Meshes;
@@ -95,8 +135,14 @@ pub enum UpAxis {
 #[non_exhaustive]
 pub struct UrdfOptions {
     /// Where the root link's frame goes, in the simulation frame (after the up-axis
-    /// rotation).
+    /// rotation); a floating robot that would reach into a floor there is raised onto
+    /// it, unless [`exact_base_pose`](Self::exact_base_pose) (see [the module
+    /// docs](self)).
     pub base_pose: Isometry3<f64>,
+    /// Place the root at [`base_pose`](Self::base_pose) exactly, even where the robot's
+    /// collision geometry then reaches into a floor, rather than raise it to rest on the
+    /// floor (see [the module docs](self)).
+    pub exact_base_pose: bool,
     /// Fix the root link to the world.
     pub fixed_base: bool,
     /// Let links of the robot collide with each other (never a parent and its child).
@@ -107,8 +153,11 @@ pub struct UrdfOptions {
     pub package_dirs: Vec<(String, PathBuf)>,
     /// More folders where relative mesh paths (and packages) are looked for.
     pub search_paths: Vec<PathBuf>,
-    /// Starting positions of joints, by name (rad or m; the others start at 0). The
-    /// joints read these positions: the robot is built at zero, joined, then posed.
+    /// Starting positions of joints, by name (rad or m). The others start at 0, but
+    /// a joint whose limits exclude 0, which starts at its limit nearest 0 (a line in
+    /// [`UrdfRobot::adjusted`]), and a mimic follower, which starts at `multiplier ·
+    /// leader + offset`. The joints read these positions: the robot is built at zero,
+    /// joined, then posed.
     pub initial_positions: Vec<(String, f64)>,
     /// Draw the collision geometry rather than the `<visual>` elements (whose meshes
     /// are then not loaded at all).
@@ -123,7 +172,8 @@ pub struct UrdfOptions {
 }
 
 impl UrdfOptions {
-    /// The defaults: floating base at the origin, no self-collision, Z up.
+    /// The defaults: floating base at the origin (raised onto a floor it would reach
+    /// into), no self-collision, Z up.
     pub fn new() -> Self {
         Self::default()
     }
@@ -131,6 +181,13 @@ impl UrdfOptions {
     #[must_use]
     pub fn base_pose(mut self, pose: Isometry3<f64>) -> Self {
         self.base_pose = pose;
+        self
+    }
+    /// Keep the base pose exactly, even in a floor (see
+    /// [`exact_base_pose`](Self::exact_base_pose)).
+    #[must_use]
+    pub fn exact_base_pose(mut self, exact: bool) -> Self {
+        self.exact_base_pose = exact;
         self
     }
     /// Fix the root link to the world.
@@ -200,9 +257,12 @@ pub struct UrdfRobot {
     pub joints: Vec<(String, JointId)>,
     /// The fixed joint holding the root to the world, with [`UrdfOptions::fixed_base`].
     pub base_joint: Option<JointId>,
-    /// What was corrected to load the file, a sentence each naming its link (an
-    /// inertia no body can have, unless [`UrdfOptions::strict_inertia`]; a visual with
-    /// nothing to draw, skipped).
+    /// What was read leniently, corrected or skipped to load the file, a sentence each
+    /// naming its link or joint (an inertia no body can have, unless
+    /// [`UrdfOptions::strict_inertia`]; a visual with nothing to draw; a collision mesh
+    /// not found; mass lent to a massless moving link; a mimic dropped; extra numbers;
+    /// revolute limits beyond ±π) or the robot (raised onto a floor, unless
+    /// [`UrdfOptions::exact_base_pose`]); see [the module docs](self).
     pub adjusted: Vec<String>,
 }
 
@@ -235,9 +295,11 @@ impl UrdfRobot {
 /// ```
 #[derive(Clone, Debug)]
 pub struct UrdfFile {
-    robot: urdf_rs::Robot,
+    robot: model::Robot,
     /// The file's name, in errors; its folder is where relative mesh paths start.
     file: String,
+    /// What was read leniently or skipped, a line each (for [`UrdfRobot::adjusted`]).
+    notes: Vec<String>,
 }
 
 impl UrdfFile {
@@ -251,12 +313,15 @@ impl UrdfFile {
     /// Parses URDF text; `file` names it in errors and its folder is where relative
     /// mesh paths start.
     pub fn parse(text: &str, file: &str) -> Result<UrdfFile> {
-        let bad = |problem: String| format_error(file, "robot".into(), problem);
-        // The parser is a dependency: a panic in it must not reach the caller either.
-        let parsed = std::panic::catch_unwind(|| urdf_rs::read_from_string(text))
-            .map_err(|_| bad("the URDF parser failed on this text".into()))?;
-        let robot = parsed.map_err(|e| bad(format!("not valid URDF: {e}")))?;
-        Ok(UrdfFile { robot, file: file.to_string() })
+        let read = read::read(text).map_err(|p| Error::Format {
+            format: "URDF",
+            file: file.to_string(),
+            element: p.element,
+            line: Some(p.line),
+            column: None,
+            problem: p.text,
+        })?;
+        Ok(UrdfFile { robot: read.robot, file: file.to_string(), notes: read.notes })
     }
 
     /// The robot's name.
@@ -267,7 +332,10 @@ impl UrdfFile {
     /// Makes the robot's links and joints in `sim` (see the [module docs](self)); on an
     /// error nothing of it is left.
     pub fn insert(&self, sim: &mut Simulation, options: &UrdfOptions) -> Result<UrdfRobot> {
-        let bad = |element: String, problem: String| format_error(&self.file, element, problem);
+        let bad = |element: String, problem: String| {
+            let line = self.line_of(&element);
+            Error::Format { format: "URDF", file: self.file.clone(), element, line, column: None, problem }
+        };
         let (corrected, adjusted) = self.corrected(options);
         let robot = corrected.as_ref().unwrap_or(&self.robot);
         let plan = plan(robot, options).map_err(|(element, problem)| bad(element, problem))?;
@@ -277,19 +345,33 @@ impl UrdfFile {
             Error::Format { format: "URDF", element, problem, .. } => bad(element, problem),
             other => bad(element, other.to_string()),
         })?;
-        made.adjusted = adjusted;
+        let mut notes = self.notes.clone();
+        notes.extend(adjusted);
+        let placed = std::mem::replace(&mut made.adjusted, notes);
         made.adjusted.append(&mut meshes.notes);
+        made.adjusted.extend(placed);
         Ok(made)
+    }
+
+    /// The line of the link or joint an error names (`link "arm"`, `joint "elbow"`).
+    fn line_of(&self, element: &str) -> Option<u32> {
+        let links = self.robot.links.iter().map(|l| (format!("link {:?}", l.name), l.line));
+        let joints = self.robot.joints.iter().map(|j| (format!("joint {:?}", j.name), j.line));
+        links.chain(joints).find(|(name, _)| name == element).map(|(_, line)| line)
     }
 
     /// The robot with what ARS corrects corrected (see the [module docs](self)), if
     /// anything was, and a line per correction: inertias no body can have (unless
     /// [`UrdfOptions::strict_inertia`]) and visuals with nothing to draw.
-    fn corrected(&self, options: &UrdfOptions) -> (Option<urdf_rs::Robot>, Vec<String>) {
-        let mut robot = None;
-        let mut adjusted = Vec::new();
-        for (k, link) in self.robot.links.iter().enumerate() {
-            let degenerate = |v: &urdf_rs::Visual| degenerate(&v.geometry);
+    fn corrected(&self, options: &UrdfOptions) -> (Option<model::Robot>, Vec<String>) {
+        let (lent, mut adjusted) = match massless::lend_masses(&self.robot) {
+            Some((lent, notes)) => (Some(lent), notes),
+            None => (None, Vec::new()),
+        };
+        let original = lent.as_ref().unwrap_or(&self.robot);
+        let mut robot = lent.clone();
+        for (k, link) in original.links.iter().enumerate() {
+            let degenerate = |v: &model::Visual| degenerate(&v.geometry);
             if link.visual.iter().any(degenerate) && !options.ignore_visuals {
                 for v in link.visual.iter().filter(|v| degenerate(v)) {
                     adjusted.push(format!(
@@ -297,7 +379,7 @@ impl UrdfFile {
                         link.name, v.geometry
                     ));
                 }
-                robot.get_or_insert_with(|| self.robot.clone()).links[k].visual.retain(|v| !degenerate(v));
+                robot.get_or_insert_with(|| original.clone()).links[k].visual.retain(|v| !degenerate(v));
             }
             if options.strict_inertia {
                 continue;
@@ -308,7 +390,7 @@ impl UrdfFile {
                 continue;
             };
             adjusted.push(format!("link {:?}: {}", link.name, b.note));
-            let fixed = &mut robot.get_or_insert_with(|| self.robot.clone()).links[k].inertial.inertia;
+            let fixed = &mut robot.get_or_insert_with(|| original.clone()).links[k].inertial.inertia;
             let m = b.inertia;
             (fixed.ixx, fixed.iyy, fixed.izz) = (m[(0, 0)], m[(1, 1)], m[(2, 2)]);
             (fixed.ixy, fixed.ixz, fixed.iyz) = (m[(0, 1)], m[(0, 2)], m[(1, 2)]);
@@ -320,13 +402,8 @@ impl UrdfFile {
 /// Whether a primitive has nothing to draw: a shape ARS refuses (a size zero, negative
 /// or not finite; [`Shape`](crate::Shape)'s own check). A mesh is checked when it is
 /// loaded.
-fn degenerate(geometry: &urdf_rs::Geometry) -> bool {
+fn degenerate(geometry: &model::Geometry) -> bool {
     meshes::primitive_shape(geometry).is_some_and(|shape| shape.validate().is_err())
-}
-
-/// A problem of the URDF file `file` at `element`.
-fn format_error(file: &str, element: String, problem: String) -> Error {
-    Error::Format { format: "URDF", file: file.to_string(), element, line: None, column: None, problem }
 }
 
 /// Loads URDF robots: a [`UrdfFile`] read and inserted.
