@@ -17,20 +17,11 @@
 use nalgebra::Vector3;
 
 use super::Scene;
-use super::joints::JointType;
+use super::joints::{Armature, JointType};
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, JointHandle, JointId};
 use crate::limits;
 use crate::world::joint::{AxisFrame, JointBuilder, JointKind as OdeJoint, JointParam};
-
-/// A joint's armature and the motor that holds it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Armature {
-    /// kg·m² (hinges) or kg (sliders).
-    pub(crate) inertia: f64,
-    /// The motor beside the joint (a joint of the world, saved with it).
-    pub(crate) motor: JointHandle,
-}
 
 impl Scene {
     /// Gives joint `id` an armature of `inertia` (0: none); see the module docs.

@@ -82,7 +82,17 @@ pub(crate) struct JointData {
     /// Its spring: stiffness and rest position (stiffness 0: none).
     pub(crate) spring: (f64, f64),
     /// Its armature, if any (see [`armature`](super::armature)).
-    pub(crate) armature: Option<super::armature::Armature>,
+    pub(crate) armature: Option<Armature>,
+}
+
+/// A joint's armature and the motor that holds it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Armature {
+    /// kg·m² (hinges) or kg (sliders).
+    pub(crate) inertia: f64,
+    /// The motor beside the joint (a joint of the world, saved with it; see
+    /// [`armature`](super::armature)).
+    pub(crate) motor: JointHandle,
 }
 
 /// What a joint's actuator can put out: its controller's output and its speed motor

@@ -21,40 +21,12 @@ use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vect
 use super::MjcfModel;
 use super::defaults::Attrs;
 use super::mass::find_body;
-use super::model::{Body, Joint, JointKind, Model};
+use super::model::{Body, Equality, EqualityKind, Joint, JointKind, Model, Place};
 use super::problem::{Parsed, problem};
 use super::read::Reader;
 use crate::error::{Error, Result};
 use crate::handle::ObjectId;
 use crate::scene::{JointEnd, Scene};
-
-/// Where an end of a `connect` or `weld` is: a body (or `world`), or a site.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum Place {
-    Body(String),
-    Site(String),
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum EqualityKind {
-    /// A shared point: `anchor` in `first`'s frame (unused for sites: site1's origin).
-    Connect { first: Place, second: Option<Place>, anchor: Vector3<f64> },
-    /// A kept relative pose; `relpose`: the pose of `second` in `first`'s frame, when
-    /// the file gives one.
-    Weld { first: Place, second: Option<Place>, relpose: Option<Isometry3<f64>> },
-    /// `follower − ref = polycoef[0] + polycoef[1]·(leader − ref) + …`.
-    Joint { follower: String, leader: Option<String>, polycoef: [f64; 5] },
-}
-
-/// An `<equality>` element as read.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Equality {
-    pub(super) name: Option<String>,
-    pub(super) kind: EqualityKind,
-    /// Its tag and line, for what is said about it.
-    pub(super) tag: String,
-    pub(super) line: u32,
-}
 
 impl Equality {
     fn said(&self, text: impl std::fmt::Display) -> String {

@@ -175,6 +175,34 @@ pub(super) struct Model {
     /// The jointless bodies merged into others, in the file's order.
     pub(super) welded: Vec<Welded>,
     /// `<equality>`: its `connect`, `weld` and `joint` elements, in the file's order.
-    pub(super) equalities: Vec<super::equality::Equality>,
+    pub(super) equalities: Vec<Equality>,
     pub(super) skipped: Vec<String>,
+}
+
+/// Where an end of a `connect` or `weld` is: a body (or `world`), or a site.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Place {
+    Body(String),
+    Site(String),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum EqualityKind {
+    /// A shared point: `anchor` in `first`'s frame (unused for sites: site1's origin).
+    Connect { first: Place, second: Option<Place>, anchor: Vector3<f64> },
+    /// A kept relative pose; `relpose`: the pose of `second` in `first`'s frame, when
+    /// the file gives one.
+    Weld { first: Place, second: Option<Place>, relpose: Option<Isometry3<f64>> },
+    /// `follower − ref = polycoef[0] + polycoef[1]·(leader − ref) + …`.
+    Joint { follower: String, leader: Option<String>, polycoef: [f64; 5] },
+}
+
+/// An `<equality>` element as read.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Equality {
+    pub(super) name: Option<String>,
+    pub(super) kind: EqualityKind,
+    /// Its tag and line, for what is said about it.
+    pub(super) tag: String,
+    pub(super) line: u32,
 }

@@ -4,8 +4,7 @@
 //! reference to them (exclusions, pairs, equalities, what a sensor reads). The world
 //! body (`world`) stays the world.
 
-use super::equality::{EqualityKind, Place};
-use super::model::{Body, Model};
+use super::model::{Body, EqualityKind, Model, Place};
 
 /// Prefixes every name of `model` with `prefix`.
 pub(super) fn prefix_names(model: &mut Model, prefix: &str) {
