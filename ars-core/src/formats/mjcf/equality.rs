@@ -144,8 +144,8 @@ impl Scene {
             match &eq.kind {
                 EqualityKind::Connect { first, second, anchor } => {
                     let (a, b) = (
-                        self.locate(first, model, world, made, eq)?,
-                        self.locate_or_world(second, model, world, made, eq)?,
+                        self.locate(Some(first), model, world, made, eq)?,
+                        self.locate(second.as_ref(), model, world, made, eq)?,
                     );
                     let point = a.frame * Point3::from(*anchor);
                     if let (Place::Site(_), Some(Place::Site(_))) = (first, second) {
@@ -166,8 +166,8 @@ impl Scene {
                 }
                 EqualityKind::Weld { first, second, relpose } => {
                     let (a, b) = (
-                        self.locate(first, model, world, made, eq)?,
-                        self.locate_or_world(second, model, world, made, eq)?,
+                        self.locate(Some(first), model, world, made, eq)?,
+                        self.locate(second.as_ref(), model, world, made, eq)?,
                     );
                     let kept = a.frame.inverse() * b.frame;
                     let wanted = match (first, relpose) {
@@ -240,18 +240,19 @@ impl Scene {
         self.joint_mut(follower_id)?.set_mimic(leader_id, a1, a0 + ref1 - a1 * ref2)
     }
 
-    /// Where `place` is (see [`Located`]).
+    /// Where `place` is (see [`Located`]); `None`: the world.
     fn locate(
         &self,
-        place: &Place,
+        place: Option<&Place>,
         model: &Model,
         world: &Isometry3<f64>,
         made: &MjcfModel,
         eq: &Equality,
     ) -> Result<Located> {
         match place {
-            Place::Body(name) if name == "world" => Ok(Located { end: JointEnd::World, frame: *world }),
-            Place::Body(name) => {
+            None => Ok(Located { end: JointEnd::World, frame: *world }),
+            Some(Place::Body(name)) if name == "world" => Ok(Located { end: JointEnd::World, frame: *world }),
+            Some(Place::Body(name)) => {
                 if let Some(w) = made.welded.iter().find(|w| &w.body == name) {
                     return Ok(match w.object {
                         Some(id) => Located { end: JointEnd::Object(id), frame: self.pose(id)? * w.offset },
@@ -265,26 +266,12 @@ impl Scene {
                 let frame = self.pose(id)? * Translation3::from(-body.centre_of_mass());
                 Ok(Located { end: JointEnd::Object(id), frame })
             }
-            Place::Site(name) => {
+            Some(Place::Site(name)) => {
                 let site = made
                     .site(name)
                     .ok_or_else(|| invalid(eq, format!("names the site {name:?}, which no body of the model has")))?;
                 Ok(Located { end: JointEnd::Object(site.object), frame: self.pose(site.object)? * site.offset })
             }
-        }
-    }
-
-    fn locate_or_world(
-        &self,
-        place: &Option<Place>,
-        model: &Model,
-        world: &Isometry3<f64>,
-        made: &MjcfModel,
-        eq: &Equality,
-    ) -> Result<Located> {
-        match place {
-            Some(place) => self.locate(place, model, world, made, eq),
-            None => Ok(Located { end: JointEnd::World, frame: *world }),
         }
     }
 }
