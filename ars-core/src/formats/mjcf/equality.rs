@@ -141,6 +141,14 @@ impl Scene {
     ) -> Result<()> {
         for eq in &model.equalities {
             let name = eq.name.as_deref().unwrap_or("");
+            if let Some(mocap) = mocap_end(eq, model) {
+                made.skipped.push(eq.said(format!(
+                    "its end {mocap:?} is a mocap body, which ARS does not move (it stays welded to the world): \
+                     made hard, the weld would lock the robot's hand where the file puts that body, through a loop \
+                     of its arm's joints, where MuJoCo's soft weld pulls it towards wherever the body is moved"
+                )));
+                continue;
+            }
             match &eq.kind {
                 EqualityKind::Connect { first, second, anchor } => {
                     let (a, b) = (
@@ -293,6 +301,18 @@ fn ordered(a: JointEnd, b: JointEnd) -> Option<(ObjectId, JointEnd)> {
         (JointEnd::World, JointEnd::Object(y)) => Some((y, JointEnd::World)),
         (JointEnd::World, JointEnd::World) => None,
     }
+}
+
+/// The `mocap` body at an end of a `connect` or `weld`, if any.
+fn mocap_end<'m>(eq: &Equality, model: &'m Model) -> Option<&'m str> {
+    let (first, second) = match &eq.kind {
+        EqualityKind::Connect { first, second, .. } | EqualityKind::Weld { first, second, .. } => (first, second),
+        EqualityKind::Joint { .. } => return None,
+    };
+    std::iter::once(first).chain(second).find_map(|place| match place {
+        Place::Body(name) => model.mocap.iter().find(|m| *m == name).map(String::as_str),
+        Place::Site(_) => None,
+    })
 }
 
 /// The joint of the file named `name`, wherever it is.

@@ -176,6 +176,8 @@ pub(super) struct Model {
     pub(super) welded: Vec<Welded>,
     /// `<equality>`: its `connect`, `weld` and `joint` elements, in the file's order.
     pub(super) equalities: Vec<Equality>,
+    /// The `mocap` bodies, by name (welded to the world: ARS does not move them).
+    pub(super) mocap: Vec<String>,
     pub(super) skipped: Vec<String>,
 }
 

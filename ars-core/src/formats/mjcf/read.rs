@@ -38,6 +38,8 @@ pub(super) struct Reader<'d, 'a, 'input> {
     pub(super) files: crate::formats::MeshCache,
     /// The main file's folder.
     pub(super) dir: std::path::PathBuf,
+    /// The bodies the file makes `mocap`, by name.
+    pub(super) mocap: Vec<String>,
 }
 
 impl<'a, 'input> Reader<'_, 'a, 'input> {
@@ -224,6 +226,9 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let a = Attrs::new(node, self.defaults, class);
         let class = node.attribute("childclass").unwrap_or(class).to_string();
         let name = node.attribute("name").map_or_else(|| format!("body{index}"), str::to_string);
+        if a.get("mocap") == Some("true") {
+            self.mocap.push(name.clone());
+        }
         let mut body = Body {
             name,
             frame: frame(&a, &self.compiler)?,
@@ -518,6 +523,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         files: crate::formats::MeshCache::default(),
         tree,
         dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
+        mocap: Vec::new(),
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),
@@ -533,6 +539,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         world_sites: Vec::new(),
         welded: Vec::new(),
         equalities: Vec::new(),
+        mocap: Vec::new(),
         skipped: Vec::new(),
     };
     for &node in &nodes {
@@ -541,6 +548,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     super::weld::weld_jointless(&mut model);
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
+    model.mocap = reader.mocap;
     model.skipped.extend(flags_unused);
     if contacts_disabled {
         for geom in &mut model.world_geoms {
