@@ -1,4 +1,4 @@
-//! [`MjcfOptions::prefix`]: every name of a read model prefixed, as MuJoCo's `attach`
+//! [`MjcfOptions::prefix`](super::MjcfOptions::prefix): every name of a read model prefixed, as MuJoCo's `attach`
 //! prefixes an attached model's, so that two copies of a model (two robots of one file)
 //! share a simulation: bodies, joints, geoms, sites, actuators, sensors, and every
 //! reference to them (exclusions, pairs, equalities, what a sensor reads). The world
