@@ -173,3 +173,18 @@ fn a_weld_to_a_mocap_body_is_skipped_and_said() {
     assert!(model.skipped.iter().any(|s| s.contains("\"target\" is a mocap body")), "{:#?}", model.skipped);
     sim.run_for(0.5).unwrap();
 }
+
+/// Hostile numbers in an equality: an anchor at 1e308 m, a coupling of 1e308 per radian.
+/// Each is refused with an error, or loads and steps without harm; nothing aborts.
+#[test]
+fn an_equality_of_huge_numbers_is_refused_or_harmless() {
+    for bad in
+        [r#"<connect body1="a" anchor="1e308 0 0"/>"#, r#"<joint joint1="j2" joint2="j1" polycoef="0 1e308 0 0 0"/>"#]
+    {
+        let text = COUPLED.replace(r#"<joint joint1="j2" joint2="j1" polycoef="0.05 0.5 0 0 0"/>"#, bad);
+        let mut sim = Simulation::new().unwrap();
+        if sim.load_mjcf_text(&text, "huge.xml", &MjcfOptions::new()).is_ok() {
+            let _ = sim.run_for(0.01);
+        }
+    }
+}
