@@ -171,65 +171,6 @@ impl JointEfforts {
 }
 
 impl Scene {
-    pub(crate) fn insert_sim_joint(
-        &mut self,
-        name: &str,
-        kind: JointType,
-        object1: ObjectId,
-        object2: JointEnd,
-        builder: JointBuilder,
-    ) -> Result<JointId> {
-        let first = self.object_data(object1)?;
-        let body1 = first
-            .body
-            .ok_or_else(|| Error::NoBody { operation: "the first object of a joint", object: first.name.clone() })?;
-        let (object2, body2) = match object2 {
-            JointEnd::World => (None, None),
-            JointEnd::Object(o) => {
-                if o == object1 {
-                    return Err(Error::SelfJoint {
-                        joint: kind.default_name(),
-                        body: format!("object {:?}", self.object_data(o)?.name),
-                    });
-                }
-                (Some(o), self.object_data(o)?.body)
-            }
-        };
-        if !name.is_empty() {
-            // Check before creating anything.
-            if self.joint_names.get(name).is_ok() {
-                return Err(Error::DuplicateName { kind: "joint", name: name.to_string() });
-            }
-        }
-        let builder = match body2 {
-            Some(b2) => builder.between(body1, b2),
-            None => builder.to_world(body1),
-        };
-        let creation = builder.kind().clone();
-        let handle = self.world.insert_joint(builder.feedback())?;
-        let name = if name.is_empty() { self.joint_names.unique(kind.default_name()) } else { name.to_string() };
-        let data = JointData {
-            name: name.clone(),
-            kind,
-            handle,
-            object1,
-            object2,
-            friction: 0.0,
-            controller: None,
-            efforts: JointEfforts::default(),
-            creation,
-            limits: None,
-            actuator: ActuatorLimits::default(),
-            dry_friction: 0.0,
-            mimic: None,
-            spring: (0.0, 0.0),
-            armature: None,
-        };
-        let id = JointId(self.joints.insert(data));
-        self.joint_names.insert(name, id)?;
-        Ok(id)
-    }
-
     fn default_anchor(&self, object1: ObjectId, object2: JointEnd) -> Result<Point3<f64>> {
         match object2 {
             JointEnd::Object(o) => self.position(o),

@@ -11,6 +11,7 @@ mod armature;
 pub mod colors;
 mod floor;
 mod geom_contact;
+mod insert;
 pub(crate) mod joints;
 mod names;
 pub(crate) mod objects;
@@ -22,6 +23,7 @@ use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use geom_contact::GeomContact;
+pub(crate) use insert::{NewObject, ObjectName};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic};
 pub use objects::{Color, Visual};
 pub use sim_joint::SimJoint;
@@ -39,10 +41,10 @@ use surfaces::PairSurfaces;
 /// The objects, joints and world of a simulation, and its clock: everything a sensor
 /// reads. Built by [`SimulationBuilder::build`](crate::SimulationBuilder::build).
 pub struct Scene {
-    pub(crate) world: World,
+    world: World,
     space: SpaceHandle,
     space_kind: SpaceKind,
-    pub(crate) objects: Arena<ObjectData>,
+    objects: Arena<ObjectData>,
     object_names: Names<ObjectId>,
     joints: Arena<JointData>,
     joint_names: Names<JointId>,

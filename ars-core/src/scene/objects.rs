@@ -48,27 +48,6 @@ impl Scene {
         self.register_as(base, shape, body, geom)
     }
 
-    pub(crate) fn register_as(
-        &mut self,
-        base: &str,
-        shape: Shape,
-        body: Option<BodyHandle>,
-        geom: Option<GeomHandle>,
-    ) -> Result<ObjectId> {
-        let name = self.object_names.unique(base);
-        let id = ObjectId(self.objects.insert(ObjectData {
-            name: name.clone(),
-            shape,
-            body,
-            geom,
-            extra_geoms: Vec::new(),
-            visuals: Vec::new(),
-            color: None,
-        }));
-        self.object_names.insert(name, id)?;
-        Ok(id)
-    }
-
     /// Adds a dynamic body of `shape` centred at `center` (its centre of mass), with
     /// its mass given as a total or a density. ODE calls: create the body, set its mass
     /// and position, create the geom and attach it.
@@ -182,29 +161,9 @@ impl Scene {
         self.register_as("floor", shape, None, Some(g))
     }
 
-    /// A saved object, under its saved name.
-    pub(crate) fn register_object(
-        &mut self,
-        name: &str,
-        shape: Shape,
-        body: Option<BodyHandle>,
-        geom: Option<GeomHandle>,
-    ) -> Result<ObjectId> {
-        if self.object_names.contains(name) {
-            return Err(Error::DuplicateName { kind: "object", name: name.to_string() });
-        }
-        self.register_as(name, shape, body, geom)
-    }
-
     /// Every object with its data, in slot order (creation order when none was removed).
     pub(crate) fn objects_in_creation_order(&self) -> impl Iterator<Item = (ObjectId, &ObjectData)> + '_ {
         self.objects.iter().map(|(h, d)| (ObjectId(h), d))
-    }
-
-    /// Sets an object's other geoms (a scene file's robot link).
-    pub(crate) fn set_extra_geoms(&mut self, id: ObjectId, geoms: Vec<GeomHandle>) -> Result<()> {
-        self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms;
-        Ok(())
     }
 
     pub(crate) fn object_data(&self, id: ObjectId) -> Result<&ObjectData> {

@@ -329,7 +329,7 @@ impl Simulation {
         self.scene.apply_joint_drives()?;
         self.sensors.before_step(&self.scene)?;
         let scene = &mut self.scene;
-        let time_before = scene.world.time();
+        let time_before = scene.world().time();
         // The contact joints are destroyed once the world has stepped.
         if let Err(failed) = scene.collide_and_step() {
             return Err(failed_step(scene, *failed, time_before));
@@ -400,7 +400,7 @@ impl Simulation {
     /// Removes an object with its body and geom; joints attached to it are removed too,
     /// and sensors reading it stop.
     pub fn remove_object(&mut self, id: ObjectId) -> Result<()> {
-        self.scene.world.check_usable()?;
+        self.scene.world().check_usable()?;
         self.scene.object(id)?;
         for joint in self.scene.joints_of_object(id) {
             self.remove_joint(joint)?;
@@ -411,7 +411,7 @@ impl Simulation {
 
     /// Removes a joint; sensors reading it stop.
     pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
-        self.scene.world.check_usable()?;
+        self.scene.world().check_usable()?;
         self.scene.joint(id)?;
         self.sensors.forget_joint(id);
         self.scene.remove_joint(id)
@@ -490,7 +490,7 @@ impl Simulation {
 /// world's did (a failed step may not have advanced it).
 #[inline(always)]
 fn advance_clock(scene: &mut Scene, world_time_before: f64) {
-    if scene.world.time() != world_time_before {
+    if scene.world().time() != world_time_before {
         scene.time += scene.time_step();
         scene.step_count += 1;
     }
@@ -504,7 +504,7 @@ fn failed_step(scene: &mut Scene, failed: CollideStepError, world_time_before: f
     match failed {
         CollideStepError::Collide(e) => scene.name_handles(e),
         CollideStepError::Step(e) => {
-            scene.world.clear_contacts();
+            scene.world_mut().clear_contacts();
             advance_clock(scene, world_time_before);
             scene.name_handles(e)
         }

@@ -161,7 +161,7 @@ impl Simulation {
         self.scene.check_joint_drives_fit(&state.joints)?;
         self.sensors.check_fits(&state.sensors)?;
         self.hooks.check_fits(&state.hooks)?;
-        self.scene.world.restore_state(&state.world)?;
+        self.scene.world_mut().restore_state(&state.world)?;
         self.scene.restore_joint_drives(&state.joints)?;
         self.scene.order_actuators(&state.actuator_order);
         self.sensors.restore(&state.sensors)?;

@@ -16,7 +16,7 @@ use crate::formats::balance::balance_inertia;
 use crate::geom::GeomBuilder;
 use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
 use crate::scene::JointEnd;
-use crate::scene::{Scene, Visual};
+use crate::scene::{NewObject, ObjectName, Scene, Visual};
 use crate::shape::Shape;
 use crate::world::joint::JointParam;
 
@@ -111,7 +111,7 @@ impl Scene {
             }
             self.set_geom_contact(id, 0, g.contact)?;
             if let Some(handle) = self.object(id)?.geom_handle() {
-                let mut geom = self.world.geom_mut(handle)?;
+                let mut geom = self.world_mut().geom_mut(handle)?;
                 geom.set_category_bits(g.bits.0);
                 geom.set_collide_bits(g.bits.1);
                 if let Some(name) = &g.name {
@@ -136,8 +136,8 @@ impl Scene {
             let (second, bits) = named.get_mut(b).ok_or_else(|| unknown(b))?;
             bits.1 |= bit;
             let (second, collide) = (*second, bits.1);
-            self.world.geom_mut(first)?.set_category_bits(category);
-            self.world.geom_mut(second)?.set_collide_bits(collide);
+            self.world_mut().geom_mut(first)?.set_category_bits(category);
+            self.world_mut().geom_mut(second)?.set_collide_bits(collide);
         }
         self.place_mjcf_sensors(model, made)?;
         self.exclude_mjcf_contacts(model, made)?;
@@ -251,11 +251,18 @@ impl Scene {
             Isometry3::from_parts(Translation3::from(frame * nalgebra::Point3::from(masses.com)), frame.rotation);
         let handle =
             self.insert_body_at(&body_frame, mass, inertia).map_err(|e| body_error(format!("{:?}: {e}", body.name)))?;
-        let geoms = self.add_mjcf_geoms(body, frame, &body_frame, handle, named)?;
         let drawn = body.geoms.first().map_or(Shape::Sphere { radius: 0.01 }, Geom::shape);
-        let id = self.register_as(&body.name, drawn, Some(handle), geoms.first().copied())?;
+        let geoms = mjcf_geoms(body, frame, &body_frame, handle);
         let count = geoms.len();
-        self.set_extra_geoms(id, geoms.into_iter().skip(1).collect())?;
+        let id =
+            self.insert_object(NewObject::with_geoms(ObjectName::Unique(&body.name), drawn, Some(handle), geoms))?;
+        let handles: Vec<GeomHandle> = self.object(id)?.geoms().collect();
+        let made_geoms = body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane));
+        for (g, handle) in made_geoms.zip(handles) {
+            if let Some(name) = &g.name {
+                named.insert(name.clone(), (handle, g.bits));
+            }
+        }
         // The geoms made, in order (planes are the world's), with their own parameters.
         let made_geoms = body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane));
         for (k, g) in made_geoms.enumerate().take(count) {
@@ -282,33 +289,9 @@ impl Scene {
         Ok((id, body_frame))
     }
 
-    /// Attaches an MJCF body's geoms (not its planes) to its ODE body `handle`, whose
-    /// frame is `body_frame`; the named ones go in `named`.
-    fn add_mjcf_geoms(
-        &mut self,
-        body: &Body,
-        frame: &Isometry3<f64>,
-        body_frame: &Isometry3<f64>,
-        handle: BodyHandle,
-        named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
-    ) -> Result<Vec<GeomHandle>> {
-        let mut geoms = Vec::new();
-        for g in body.geoms.iter().filter(|g| !matches!(g.kind, GeomKind::Plane)) {
-            let offset = body_frame.inverse() * frame * g.frame;
-            let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
-            let geom = if offset == Isometry3::identity() { geom } else { geom.offset(offset) };
-            let handle = self.world.insert_geom(self.space(), geom)?;
-            if let Some(name) = &g.name {
-                named.insert(name.clone(), (handle, g.bits));
-            }
-            geoms.push(handle);
-        }
-        Ok(geoms)
-    }
-
     /// An ODE body of `mass` and `inertia` (about its centre) whose frame is `frame`.
     fn insert_body_at(&mut self, frame: &Isometry3<f64>, mass: f64, inertia: Matrix3<f64>) -> Result<BodyHandle> {
-        self.world.insert_body(
+        self.world_mut().insert_body(
             BodyBuilder::new()
                 .mass(MassSpec::Custom { mass, inertia })
                 .position(nalgebra::Point3::from(frame.translation.vector))
@@ -330,7 +313,8 @@ impl Scene {
         let link = self
             .insert_body_at(body_frame, mass, inertia)
             .map_err(|e| body_error(format!("{name:?}, the light link chaining {:?}: {e}", joint.name)))?;
-        self.register_as(&name, Shape::Sphere { radius: 0.01 }, Some(link), None)
+        let drawn = Shape::Sphere { radius: 0.01 };
+        self.insert_object(NewObject::with_geoms(ObjectName::Unique(&name), drawn, Some(link), Vec::new()))
     }
 
     /// A joint's `damping`, and a ball's or free joint's `frictionloss`, when it has
@@ -378,7 +362,7 @@ impl Scene {
         let moved = self.object(child)?.body_handle().filter(|_| j.reference != 0.0);
         let before = match moved {
             Some(b) => {
-                let body = self.world.body(b)?;
+                let body = self.world_mut().body(b)?;
                 let (position, rotation) = (body.position(), body.rotation());
                 let back = match j.kind {
                     JointKind::Hinge => {
@@ -387,7 +371,7 @@ impl Scene {
                     }
                     _ => Isometry3::from_parts(Translation3::from(axis * -j.reference), UnitQuaternion::identity()),
                 };
-                let mut body = self.world.body_mut(b)?;
+                let mut body = self.world_mut().body_mut(b)?;
                 body.set_position(back * position)?;
                 body.set_rotation(back.rotation.to_rotation_matrix() * rotation)?;
                 Some((b, position, rotation))
@@ -401,7 +385,7 @@ impl Scene {
         };
         if let Some((b, position, rotation)) = before {
             // Put back as it was made: ODE keeps the rotation matrix as set.
-            let mut body = self.world.body_mut(b)?;
+            let mut body = self.world_mut().body_mut(b)?;
             body.set_position(position)?;
             body.set_rotation(rotation)?;
         }
@@ -410,7 +394,7 @@ impl Scene {
             self.joint_mut(joint)?.set_limits(lo, hi)?;
             if let Some(erp) = j.stop_erp(self.time_step()) {
                 let handle = self.joint_data(joint)?.handle;
-                self.world.joint_mut(handle)?.set_param(JointParam::StopErp, 0, erp)?;
+                self.world_mut().joint_mut(handle)?.set_param(JointParam::StopErp, 0, erp)?;
             }
         }
         if j.spring.0 > 0.0 {
@@ -524,4 +508,24 @@ const MJ_MINVAL: f64 = 1e-15;
 /// A problem with an MJCF body.
 fn body_error(problem: String) -> Error {
     Error::Invalid { what: "an MJCF body", problem }
+}
+
+/// An MJCF body's geoms (not its planes) on its ODE body `handle`, whose frame is
+/// `body_frame`.
+fn mjcf_geoms(
+    body: &Body,
+    frame: &Isometry3<f64>,
+    body_frame: &Isometry3<f64>,
+    handle: BodyHandle,
+) -> Vec<GeomBuilder> {
+    let to_body = body_frame.inverse() * frame;
+    body.geoms
+        .iter()
+        .filter(|g| !matches!(g.kind, GeomKind::Plane))
+        .map(|g| {
+            let offset = to_body * g.frame;
+            let geom = GeomBuilder::new(g.shape()).attached_to(handle).category_bits(g.bits.0).collide_bits(g.bits.1);
+            if offset == Isometry3::identity() { geom } else { geom.offset(offset) }
+        })
+        .collect()
 }

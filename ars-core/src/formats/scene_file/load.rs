@@ -3,9 +3,9 @@
 use crate::body::{BodyBuilder, MassSpec};
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
-use crate::handle::{ObjectId, SpaceHandle};
+use crate::handle::ObjectId;
 use crate::joint::JointBuilder;
-use crate::scene::{ActuatorLimits, JointEnd};
+use crate::scene::{ActuatorLimits, JointEnd, NewObject, ObjectName};
 use crate::sensors::SensorKind;
 use crate::shape::Shape;
 use crate::simulation::{Simulation, SimulationBuilder};
@@ -56,9 +56,8 @@ impl Simulation {
             .contact_surface(file.surface)
             .space(file.space)
             .build()?;
-        let space = sim.scene().space();
         for o in &file.objects {
-            o.add_to(&mut sim, space)?;
+            o.add_to(&mut sim)?;
         }
         for (i, j) in file.joints.iter().enumerate() {
             for w in file.world_joints.iter().filter(|w| w.after == i) {
@@ -120,11 +119,11 @@ impl Simulation {
 }
 
 impl ObjectFile {
-    /// Makes the object in `sim`, its geoms in `space`, with its colour and visuals.
-    fn add_to(&self, sim: &mut Simulation, space: SpaceHandle) -> Result<()> {
+    /// Makes the object in `sim`, with its colour and visuals.
+    fn add_to(&self, sim: &mut Simulation) -> Result<()> {
         let id = match &self.body {
-            Some(b) => self.add_body_to(sim, b, space)?,
-            None => self.add_static_to(sim, space)?,
+            Some(b) => self.add_body_to(sim, b)?,
+            None => self.add_static_to(sim)?,
         };
         if let Some(c) = self.color {
             sim.scene_mut().set_color(id, c)?;
@@ -136,45 +135,42 @@ impl ObjectFile {
     }
 
     /// Makes the object with its body `b` (restored to the bit) and its geoms.
-    fn add_body_to(&self, sim: &mut Simulation, b: &BodyFile, space: SpaceHandle) -> Result<ObjectId> {
-        let geom = GeomBuilder::new(self.shape.clone());
+    fn add_body_to(&self, sim: &mut Simulation, b: &BodyFile) -> Result<ObjectId> {
         let spec = MassSpec::Custom { mass: b.mass, inertia: b.inertia };
-        let body = sim.scene.world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
-        let g = if self.geom { Some(sim.scene.world.insert_geom(space, geom.attached_to(body))?) } else { None };
+        let world = sim.scene.world_mut();
+        let body = world.insert_body(BodyBuilder::new().mass(spec).position(b.position))?;
         {
-            let mut m = sim.scene.world.body_mut(body)?;
+            let mut m = world.body_mut(body)?;
             // Both ODE's quaternion and its rotation matrix, to the bit.
             m.restore_orientation(&b.quaternion, &b.rotation)?;
             m.set_linear_velocity(b.linear_velocity)?;
             m.set_angular_velocity(b.angular_velocity)?;
         }
-        let id = sim.scene.register_object(&self.name, self.shape.clone(), Some(body), g)?;
-        let extra = self
-            .extra_shapes
-            .iter()
-            .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone()).attached_to(body)))
-            .collect::<Result<Vec<_>>>()?;
-        sim.scene.set_extra_geoms(id, extra)?;
-        Ok(id)
+        let on_body = |shape: &Shape| GeomBuilder::new(shape.clone()).attached_to(body);
+        sim.scene.insert_object(NewObject {
+            name: ObjectName::Exact(&self.name),
+            drawn: self.shape.clone(),
+            body: Some(body),
+            geom: self.geom.then(|| on_body(&self.shape)),
+            more_geoms: self.extra_shapes.iter().map(on_body).collect(),
+        })
     }
 
     /// Makes the static object: its geom at its pose (a plane's is in its shape) and
     /// its other geoms.
-    fn add_static_to(&self, sim: &mut Simulation, space: SpaceHandle) -> Result<ObjectId> {
+    fn add_static_to(&self, sim: &mut Simulation) -> Result<ObjectId> {
         let geom = GeomBuilder::new(self.shape.clone());
         let geom = match (&self.shape, self.pose) {
             (Shape::Plane { .. }, _) | (_, None) => geom,
             (_, Some(pose)) => geom.pose(pose),
         };
-        let g = sim.scene.world.insert_geom(space, geom)?;
-        let id = sim.scene.register_object(&self.name, self.shape.clone(), None, Some(g))?;
-        let extra = self
-            .extra_shapes
-            .iter()
-            .map(|shape| sim.scene.world.insert_geom(space, GeomBuilder::new(shape.clone())))
-            .collect::<Result<Vec<_>>>()?;
-        sim.scene.set_extra_geoms(id, extra)?;
-        Ok(id)
+        sim.scene.insert_object(NewObject {
+            name: ObjectName::Exact(&self.name),
+            drawn: self.shape.clone(),
+            body: None,
+            geom: Some(geom),
+            more_geoms: self.extra_shapes.iter().map(|shape| GeomBuilder::new(shape.clone())).collect(),
+        })
     }
 }
 
@@ -222,7 +218,7 @@ impl JointFile {
         if let Some((speed, max_force)) = self.motor {
             // As it was, whatever the limits (the speed was held to them when set).
             let handle = sim.scene.joint_data(id)?.handle;
-            sim.scene.world.joint_mut(handle)?.set_motor(0, speed, max_force)?;
+            sim.scene.world_mut().joint_mut(handle)?.set_motor(0, speed, max_force)?;
         }
         Ok(())
     }

@@ -15,8 +15,7 @@ use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
 use crate::handle::{JointId, ObjectId};
 use crate::joint::JointBuilder;
-use crate::scene::JointEnd;
-use crate::scene::Scene;
+use crate::scene::{JointEnd, NewObject, ObjectName, Scene};
 use crate::shape::Shape;
 
 /// A problem with a link (the file and the line are named by the caller).
@@ -139,19 +138,11 @@ impl Scene {
         drawn: Shape,
         bits: Option<u64>,
     ) -> Result<MadeLink> {
-        let mut geoms = Vec::new();
-        for (shape, at) in collisions {
-            let g = GeomBuilder::new(shape).pose(at.isometry());
-            match self.world.insert_geom(self.space(), with_robot_bits(g, bits)) {
-                Ok(g) => geoms.push(g),
-                Err(e) => {
-                    geoms.into_iter().try_for_each(|g| self.world.remove_geom(g))?;
-                    return Err(e);
-                }
-            }
-        }
-        let id = self.register_as(&link.name, drawn, None, geoms.first().copied())?;
-        self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
+        let geoms = collisions
+            .into_iter()
+            .map(|(shape, at)| with_robot_bits(GeomBuilder::new(shape).pose(at.isometry()), bits))
+            .collect();
+        let id = self.insert_object(NewObject::with_geoms(ObjectName::Unique(&link.name), drawn, None, geoms))?;
         let object_pose = self.pose(id).unwrap_or_else(|_| Isometry3::identity());
         self.set_visuals(id, visuals_of(looks, object_pose))?;
         Ok((id, None))
@@ -177,23 +168,16 @@ impl Scene {
         if inertial.rotation.is_some() {
             builder = builder.rotation(inertial.rotation3());
         }
-        let body = self.world.insert_body(builder)?;
-        let mut geoms = Vec::new();
-        for (shape, at) in collisions {
-            let mut g = GeomBuilder::new(shape).attached_to(body);
-            if !at.same_as(&inertial) {
-                g = g.offset(inertial.relative(&at));
-            }
-            match self.world.insert_geom(self.space(), with_robot_bits(g, bits)) {
-                Ok(g) => geoms.push(g),
-                Err(e) => {
-                    self.world.remove_body(body)?;
-                    return Err(e);
-                }
-            }
-        }
-        let id = self.register_as(&link.name, drawn, Some(body), geoms.first().copied())?;
-        self.objects.get_mut(id.0, ObjectId::KIND)?.extra_geoms = geoms.into_iter().skip(1).collect();
+        let body = self.world_mut().insert_body(builder)?;
+        let geoms = collisions
+            .into_iter()
+            .map(|(shape, at)| {
+                let g = GeomBuilder::new(shape).attached_to(body);
+                let g = if at.same_as(&inertial) { g } else { g.offset(inertial.relative(&at)) };
+                with_robot_bits(g, bits)
+            })
+            .collect();
+        let id = self.insert_object(NewObject::with_geoms(ObjectName::Unique(&link.name), drawn, Some(body), geoms))?;
         self.set_visuals(id, visuals_of(looks, inertial.isometry()))?;
         Ok((id, Some(body)))
     }
@@ -214,25 +198,18 @@ impl Scene {
         meshes: &mut Meshes<'_>,
     ) -> Result<()> {
         let (collisions, looks) = link_geometry(robot, link, frame, meshes)?;
-        let mut geoms = Vec::new();
-        for (shape, at) in collisions {
-            let mut g = GeomBuilder::new(shape);
-            g = match body {
-                Some(body) => g.attached_to(body).offset(host_frame.relative(&at)),
-                None => g.pose(at.isometry()),
-            };
-            if let Some(b) = bits {
-                g = g.category_bits(b).collide_bits(!b);
-            }
-            match self.world.insert_geom(self.space(), g) {
-                Ok(g) => geoms.push(g),
-                Err(e) => {
-                    geoms.into_iter().try_for_each(|g| self.world.remove_geom(g))?;
-                    return Err(e);
-                }
-            }
-        }
-        self.objects.get_mut(host.0, ObjectId::KIND)?.extra_geoms.extend(geoms);
+        let geoms = collisions
+            .into_iter()
+            .map(|(shape, at)| {
+                let g = GeomBuilder::new(shape);
+                let g = match body {
+                    Some(body) => g.attached_to(body).offset(host_frame.relative(&at)),
+                    None => g.pose(at.isometry()),
+                };
+                with_robot_bits(g, bits)
+            })
+            .collect();
+        self.attach_geoms(host, geoms)?;
         if !looks.is_empty() {
             let host_pose = match body {
                 Some(_) => host_frame.isometry(),
@@ -469,7 +446,7 @@ impl Scene {
         for (i, link) in robot.links.iter().enumerate() {
             let Some(body) = made[i].1.filter(|_| hosts[i].is_none()) else { continue };
             let at = posed[i].then(&Frame::from_pose(&link.inertial.origin));
-            self.world
+            self.world_mut()
                 .body_mut(body)
                 .and_then(|mut b| {
                     b.set_position(Point3::from(at.translation))?;
