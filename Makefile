@@ -13,9 +13,10 @@
 #   make bench-mujoco  ARS (exact and quick steppers) against MuJoCo per simulated second, side by
 #                      side on Gymnasium's MuJoCo models, then on every corpus MJCF file
 
-# What the demo needs: ODE and its bindings, the plots' font, and off-screen rendering on
-# Mesa's software rasteriser. `make demo` installs only these.
-DEMO_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
+# What the demo needs: ODE and its bindings, C and C++ compilers (ODE's guard, the video
+# encoder's OpenH264), the plots' font, and off-screen rendering on Mesa's software
+# rasteriser. `make demo` installs only these.
+DEMO_PACKAGES := libode-dev pkg-config libclang-dev gcc g++ make fonts-dejavu-core \
 	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri
 # The Python package's virtual environment (`make python`).
 PYTHON_PACKAGES := python3 python3-venv

@@ -64,8 +64,9 @@ impl Scene {
 
     /// How far up a robot whose links start at `link_frames` must go for none of its
     /// collision elements to reach into a floor of the scene: `None` when it need not
-    /// move, or when it is not free to (a fixed base, a massless root, which is static)
-    /// or [`UrdfOptions::exact_base_pose`] keeps it where asked.
+    /// move, or when it is not free to (a fixed base) or [`UrdfOptions::exact_base_pose`]
+    /// keeps it where asked. Under a massless root (static) only the links that move
+    /// count.
     pub(super) fn floor_raise(
         &self,
         robot: &model::Robot,
@@ -74,9 +75,13 @@ impl Scene {
         options: &UrdfOptions,
         meshes: &mut Meshes<'_>,
     ) -> Option<Raise> {
-        if options.fixed_base || options.exact_base_pose || robot.links[root].inertial.mass.value <= 0.0 {
+        if options.fixed_base || options.exact_base_pose {
             return None;
         }
+        let counted = match robot.links[root].inertial.mass.value > 0.0 {
+            true => vec![true; robot.links.len()],
+            false => moving_links(robot, root),
+        };
         let floors = self.floor_planes();
         if floors.is_empty() {
             return None;
@@ -84,7 +89,7 @@ impl Scene {
         // Each collision element placed where it starts (a mesh that cannot be loaded
         // is left out here: building the link says what is wrong with it).
         let mut placed = Vec::new();
-        for (link, frame) in robot.links.iter().zip(link_frames) {
+        for ((link, frame), _) in robot.links.iter().zip(link_frames).zip(&counted).filter(|(_, counted)| **counted) {
             for collision in &link.collision {
                 if let Ok(shape) = meshes.shape(&collision.geometry) {
                     placed.push((shape, frame.then(&Frame::from_pose(&collision.origin)).isometry()));
@@ -106,6 +111,33 @@ impl Scene {
         }
         raise
     }
+}
+
+/// Which links move under a static `root`: those behind a joint that is not fixed, on
+/// the way from the root.
+fn moving_links(robot: &model::Robot, root: usize) -> Vec<bool> {
+    let by_name: std::collections::HashMap<&str, usize> =
+        robot.links.iter().enumerate().map(|(k, l)| (l.name.as_str(), k)).collect();
+    let index = |name: &str| by_name.get(name).copied();
+    let mut moving = vec![false; robot.links.len()];
+    let mut reached = vec![false; robot.links.len()];
+    reached[root] = true;
+    // Parents before children: as many passes as the tree is deep, at most one a link.
+    for _ in 0..robot.links.len() {
+        let mut changed = false;
+        for joint in &robot.joints {
+            let (Some(parent), Some(child)) = (index(&joint.parent.link), index(&joint.child.link)) else { continue };
+            if reached[parent] && !reached[child] {
+                reached[child] = true;
+                moving[child] = moving[parent] || joint.joint_type != model::JointType::Fixed;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    moving
 }
 
 /// The least `direction · x` over the points of `shape` at `pose` (`direction` a unit
@@ -188,6 +220,29 @@ mod tests {
         // Half buried, ODE pushed it out at 250 m/s.
         assert!(fastest < 0.1, "it rests: {fastest} m/s");
         assert!((position(&sim, "ball").y - 0.5).abs() < 1e-3);
+    }
+
+    /// pybullet_data's `cube_no_rotation.urdf`, shortened: a 1 m cube centred at the
+    /// origin, moved from a massless `world` link by a prismatic joint along Z.
+    const CUBE_ON_A_SLIDER: &str = r#"<robot name="cube"><link name="world"/>
+      <link name="cube"><inertial><mass value="0.1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+        <collision><geometry><box size="1 1 1"/></geometry></collision></link>
+      <joint name="z" type="prismatic"><parent link="world"/><child link="cube"/><axis xyz="0 0 1"/>
+        <limit effort="0" lower="1" upper="-1" velocity="1000"/></joint>
+    </robot>"#;
+
+    #[test]
+    fn a_static_root_whose_moving_links_reach_into_the_floor_is_raised_with_them() {
+        let (mut sim, robot) = load(FLOOR, CUBE_ON_A_SLIDER, &UrdfOptions::new());
+        assert_eq!(position(&sim, "cube"), Point3::new(0.0, 0.5, 0.0));
+        assert!(robot.adjusted.iter().any(|a| a.starts_with("robot \"cube\": raised 0.500000 m")), "{:?}", robot.adjusted);
+        let mut fastest = 0.0_f64;
+        for _ in 0..1000 {
+            sim.step().unwrap();
+            fastest = fastest.max(sim.scene().object("cube").unwrap().body().unwrap().linear_velocity().norm());
+        }
+        // Half buried, ODE pushed it out at 250 m/s.
+        assert!(fastest < 0.1, "it rests: {fastest} m/s");
     }
 
     #[test]
