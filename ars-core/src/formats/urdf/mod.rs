@@ -10,9 +10,9 @@
 //!   positions asked for, would reach into a floor of the scene is raised (+Y, nothing
 //!   else of the pose changes) just enough for its lowest collision point to rest on
 //!   that floor. A robot whose root is massless (static: a `world` link) is raised the
-//!   same way when the links that move (those behind a joint that is not fixed) reach
-//!   into a floor, just enough for them to rest on it; its static links' geometry is
-//!   not looked at (nothing static collides with a floor). Either way there is a line
+//!   same way when its links with bodies (all but the root and the massless links
+//!   fixed to it) reach into a floor, just enough for them to rest on it; its static
+//!   geometry is not looked at (nothing static collides with a floor). Either way there is a line
 //!   in [`UrdfRobot::adjusted`] saying by how much; so a robot
 //!   whose root frame is at its centre, or between its feet, starts standing on the
 //!   floor, not buried in it (where ODE would shoot it out). A pose that

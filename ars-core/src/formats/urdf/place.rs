@@ -65,7 +65,7 @@ impl Scene {
     /// How far up a robot whose links start at `link_frames` must go for none of its
     /// collision elements to reach into a floor of the scene: `None` when it need not
     /// move, or when it is not free to (a fixed base) or [`UrdfOptions::exact_base_pose`]
-    /// keeps it where asked. Under a massless root (static) only the links that move
+    /// keeps it where asked. Under a massless root (static) only the links with bodies
     /// count.
     pub(super) fn floor_raise(
         &self,
@@ -78,10 +78,12 @@ impl Scene {
         if options.fixed_base || options.exact_base_pose {
             return None;
         }
-        let counted = match robot.links[root].inertial.mass.value > 0.0 {
-            true => vec![true; robot.links.len()],
-            false => moving_links(robot, root),
-        };
+        // A massless root is static, with the massless links fixed to it: what is static
+        // does not collide with a floor, every body does.
+        let hosts = super::build::merge_hosts(robot, root);
+        let static_root = robot.links[root].inertial.mass.value <= 0.0;
+        let counted: Vec<bool> =
+            (0..robot.links.len()).map(|i| !(static_root && (i == root || hosts[i] == Some(root)))).collect();
         let floors = self.floor_planes();
         if floors.is_empty() {
             return None;
@@ -111,33 +113,6 @@ impl Scene {
         }
         raise
     }
-}
-
-/// Which links move under a static `root`: those behind a joint that is not fixed, on
-/// the way from the root.
-fn moving_links(robot: &model::Robot, root: usize) -> Vec<bool> {
-    let by_name: std::collections::HashMap<&str, usize> =
-        robot.links.iter().enumerate().map(|(k, l)| (l.name.as_str(), k)).collect();
-    let index = |name: &str| by_name.get(name).copied();
-    let mut moving = vec![false; robot.links.len()];
-    let mut reached = vec![false; robot.links.len()];
-    reached[root] = true;
-    // Parents before children: as many passes as the tree is deep, at most one a link.
-    for _ in 0..robot.links.len() {
-        let mut changed = false;
-        for joint in &robot.joints {
-            let (Some(parent), Some(child)) = (index(&joint.parent.link), index(&joint.child.link)) else { continue };
-            if reached[parent] && !reached[child] {
-                reached[child] = true;
-                moving[child] = moving[parent] || joint.joint_type != model::JointType::Fixed;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    moving
 }
 
 /// The least `direction · x` over the points of `shape` at `pose` (`direction` a unit
@@ -248,6 +223,23 @@ mod tests {
         }
         // Half buried, ODE pushed it out at 250 m/s.
         assert!(fastest < 0.1, "it rests: {fastest} m/s");
+    }
+
+    #[test]
+    fn a_body_welded_to_a_static_root_counts_as_it_collides_with_the_floor() {
+        // example-robot-data's simple_humanoid: a massless `base_link`, a fixed joint to
+        // a 27 kg body whose 1 m cylinder reaches 0.5 m into the floor.
+        let text = r#"<robot name="welded"><link name="base_link"/>
+          <link name="body"><inertial><mass value="27"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+            <collision><geometry><cylinder radius="1" length="1"/></geometry></collision></link>
+          <joint name="waist" type="fixed"><parent link="base_link"/><child link="body"/></joint>
+        </robot>"#;
+        let (mut sim, robot) = load(FLOOR, text, &UrdfOptions::new());
+        assert!(robot.adjusted.iter().any(|a| a.contains("raised 0.500000 m")), "{:?}", robot.adjusted);
+        for _ in 0..500 {
+            sim.step().unwrap();
+        }
+        assert!((position(&sim, "body").y - 0.5).abs() < 1e-3, "{}", position(&sim, "body"));
     }
 
     #[test]
