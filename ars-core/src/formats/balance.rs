@@ -7,8 +7,11 @@
 //! (each at most the sum of the other two). ARS refuses those in a body
 //! ([`limits::inertia`](crate::limits)); a file reader can correct them instead, in
 //! the tensor's principal frame, the mass and the centre of mass untouched:
-//! 1. no positive moment at all (an inertia of zeros): the inertia of a solid sphere of
-//!    the body's mass at water's density, `0.4 m r²` with `r = (3m / 4πρ)^⅓`;
+//! 1. no moment worth the name (an inertia of zeros, or one whose largest moment is
+//!    below a millionth of that sphere's: iCub's links of 0.27 kg with 1e-20 kg·m²,
+//!    which ODE turns into infinite spins): the inertia of a solid sphere of the body's
+//!    mass at water's density, `0.4 m r²` with `r = (3m / 4πρ)^⅓`. This applies to
+//!    an inertia ARS would otherwise take as it is, too;
 //! 2. moments below a millionth of the largest (zero or negative included): raised to
 //!    that millionth;
 //! 3. a moment above the sum of the other two: all three set to their mean, as
@@ -24,6 +27,10 @@ const WATER_DENSITY: f64 = 1000.0;
 /// The smallest principal moment kept, as a fraction of the largest.
 const LEAST_MOMENT_FRACTION: f64 = 1e-6;
 
+/// A largest moment below this fraction of the water sphere's is no moment: its radius
+/// of gyration is a thousandth of the sphere's (a tungsten ball's is a third of it).
+const NEGLIGIBLE_MOMENT_FRACTION: f64 = 1e-6;
+
 /// An inertia that was corrected, and how.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Balanced {
@@ -38,23 +45,26 @@ pub(crate) struct Balanced {
 /// (a mass that is not positive, entries not finite or beyond [`MAX_INERTIA`]): the
 /// body's own checks then say what is wrong.
 pub(crate) fn balance_inertia(mass: f64, inertia: &Matrix3<f64>) -> Option<Balanced> {
-    if crate::limits::inertia(inertia).is_ok() {
-        return None;
-    }
     let usable = mass.is_finite() && mass > 0.0 && inertia.iter().all(|x| x.is_finite() && x.abs() <= MAX_INERTIA);
     if !usable {
         return None;
     }
+    let radius = (3.0 * mass / (4.0 * std::f64::consts::PI * WATER_DENSITY)).cbrt();
+    let sphere = 0.4 * mass * radius * radius;
     let symmetric = (inertia + inertia.transpose()) / 2.0;
     let eigen = symmetric.symmetric_eigen();
     let given = sorted(eigen.eigenvalues);
     let largest = given[2];
-    let (moments, why) = if largest <= MIN_INERTIA {
-        let radius = (3.0 * mass / (4.0 * std::f64::consts::PI * WATER_DENSITY)).cbrt();
-        let moment = 0.4 * mass * radius * radius;
+    let negligible = largest <= MIN_INERTIA.max(sphere * NEGLIGIBLE_MOMENT_FRACTION);
+    if !negligible && crate::limits::inertia(inertia).is_ok() {
+        return None;
+    }
+    let (moments, why) = if negligible {
         (
-            Vector3::repeat(moment),
-            format!("no positive moment: a solid sphere of its mass at water's density (radius {radius:.3e} m)"),
+            Vector3::repeat(sphere),
+            format!(
+                "no moment worth the name for {mass:e} kg: a solid sphere of its mass at water's density (radius {radius:.3e} m)"
+            ),
         )
     } else {
         let least = largest * LEAST_MOMENT_FRACTION;
@@ -115,6 +125,24 @@ mod tests {
             assert!((m - 0.4 * 1000.0 * r * r).abs() < 1e-9, "{m}");
         }
         assert!(b.note.contains("solid sphere"), "{}", b.note);
+    }
+
+    #[test]
+    fn moments_far_too_small_for_the_mass_become_the_sphere_too() {
+        // example-robot-data's iCub: 0.2675 kg, principal moments ±1.355e-20 (not positive
+        // definite), and 0.746 kg with 1e-20-ish moments that ARS would have taken.
+        let ankle = Matrix3::new(0.0, 0.0, 1.35525e-20, 0.0, 0.0, 0.0, 1.35525e-20, 0.0, 0.0);
+        let tiny = Matrix3::from_diagonal(&Vector3::new(2.7e-20, 5.4e-20, 4.0e-20));
+        for (mass, given) in [(0.2675, ankle), (0.746, tiny)] {
+            let b = balance_inertia(mass, &given).unwrap();
+            let r = (3.0 * mass / (4.0 * std::f64::consts::PI * 1000.0)).cbrt();
+            for m in moments(&b.inertia) {
+                assert!((m - 0.4 * mass * r * r).abs() < 1e-15, "{m}");
+            }
+            assert!(b.note.contains("no moment worth the name"), "{}", b.note);
+        }
+        // A light foot's own small inertia is its own (0.06 kg, 9.6e-6 kg·m²).
+        assert_eq!(balance_inertia(0.06, &Matrix3::from_diagonal(&Vector3::repeat(9.6e-6))), None);
     }
 
     #[test]

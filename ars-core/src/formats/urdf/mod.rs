@@ -39,8 +39,9 @@
 //!   with no mass at all to lend is refused.
 //! - **Inertia.** An inertia no body can have is corrected, with a line naming the link
 //!   in [`UrdfRobot::adjusted`], in the tensor's principal frame (mass and centre of
-//!   mass untouched): no positive moment at all (a link given only its mass) becomes a
-//!   solid sphere of its mass at water's density, `0.4 m r²` with `r = (3m / 4πρ)^⅓`;
+//!   mass untouched): no moment worth the name (a link given only its mass, or moments
+//!   below a millionth of the sphere's that follows) becomes a solid sphere of its
+//!   mass at water's density, `0.4 m r²` with `r = (3m / 4πρ)^⅓`;
 //!   a moment below a millionth of the largest (zero, or negative from rounded
 //!   products) is raised to that millionth; a moment above the sum of the other two
 //!   sets all three to their mean, as MuJoCo's `balanceinertia` does. With
