@@ -314,7 +314,9 @@ fn links_are_drawn_as_their_visuals_in_their_materials_colours() {
   <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint>
 </robot>"#;
     let mut sim = Simulation::new().unwrap();
-    sim.load_urdf_text(text, "painted.urdf", &UrdfOptions::new()).unwrap();
+    // Each link an object of its own, to see each one's colour (fused, b and c would
+    // be a's).
+    sim.load_urdf_text(text, "painted.urdf", &UrdfOptions::new().keep_fixed_links(true)).unwrap();
     assert_eq!(sim.scene().object("a").unwrap().color(), Some([1.0, 0.5, 0.0]), "its own colour");
     assert_eq!(sim.scene().object("b").unwrap().color(), Some([0.5, 0.5, 0.6]), "the robot-level material it names");
     assert_eq!(sim.scene().object("c").unwrap().color(), None, "no visual: the viewer's default");

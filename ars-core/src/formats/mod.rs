@@ -4,15 +4,16 @@
 //!
 //! What they share is here: the turn from a Z-up file to ARS's Y up
 //! ([`z_up_to_y_up`]), finding a file among the folders a format searches
-//! (`first_file`), loading each mesh file once (`MeshCache`), and inertia tensors
-//! (`inertia_tensor`, `turned_inertia`). Their errors are
+//! (`first_file`), loading each mesh file once (`MeshCache`), inertia tensors
+//! (`inertia_tensor`, `turned_inertia`), and rigid bodies made one (`RigidMass`,
+//! `moved_mass`, `combined_mass`: MJCF's welds, URDF's fused fixed links). Their errors are
 //! [`Error::Format`](crate::Error::Format) (a file, an element, a line where the
 //! format has one) and [`Error::Io`](crate::Error::Io).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Vector3};
 
 use crate::error::Result;
 use crate::shape::Shape;
@@ -34,6 +35,28 @@ pub fn z_up_to_y_up() -> Rotation3<f64> {
 /// (`ixx iyy izz ixy ixz iyz`) and MJCF (`fullinertia`) write them, kg·m².
 pub(crate) fn inertia_tensor([ixx, iyy, izz, ixy, ixz, iyz]: [f64; 6]) -> Matrix3<f64> {
     Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz)
+}
+
+/// A rigid body's mass (kg), centre of mass and inertia about it, in some frame.
+pub(crate) type RigidMass = (f64, Vector3<f64>, Matrix3<f64>);
+
+/// A mass given in a frame `frame` (relative to another), in that other frame.
+pub(crate) fn moved_mass((mass, com, inertia): RigidMass, frame: &Isometry3<f64>) -> RigidMass {
+    let r = frame.rotation.to_rotation_matrix();
+    (mass, (frame * Point3::from(com)).coords, turned_inertia(&r, &inertia))
+}
+
+/// Two masses in one frame as one rigid body: the mass summed, the centre of mass
+/// weighted, the inertias moved to it (parallel axes) and summed.
+pub(crate) fn combined_mass(a: Option<RigidMass>, b: RigidMass) -> RigidMass {
+    let Some(a) = a else { return b };
+    let mass = a.0 + b.0;
+    let com = (a.1 * a.0 + b.1 * b.0) / mass;
+    let about = |(m, c, inertia): RigidMass| {
+        let d = c - com;
+        inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m
+    };
+    (mass, com, about(a) + about(b))
 }
 
 /// An inertia tensor given in a frame turned by `rotation`, in the outer frame: `R I Rᵀ`.

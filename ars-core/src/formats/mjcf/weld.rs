@@ -8,12 +8,11 @@
 //! that weighs nothing is merged into the world (its geoms static); one with mass stays
 //! an ODE body of its own fixed to the world, its jointless descendants merged into it.
 
-use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
+use nalgebra::Isometry3;
 
 use super::model::{Body, Model, Welded};
 
-/// A body's mass, centre of mass and inertia about it, in its frame.
-type Mass = (f64, Vector3<f64>, Matrix3<f64>);
+use crate::formats::{combined_mass, moved_mass};
 
 /// Merges the model's jointless bodies into the bodies they are welded to (the
 /// massless ones of the world into the world); each merged body is listed in
@@ -79,7 +78,7 @@ fn merge(body: &mut Body, mut child: Body, parent: &Isometry3<f64>, welded: &mut
         body.sites.push(site);
     }
     if let Some(mass) = child.mass {
-        body.mass = Some(combined(body.mass, moved(mass, &frame)));
+        body.mass = Some(combined_mass(body.mass, moved_mass(mass, &frame)));
         // The combined body's principal axes are not the ones its `<inertial>` gave.
         body.principal = None;
     }
@@ -95,28 +94,10 @@ fn merge(body: &mut Body, mut child: Body, parent: &Isometry3<f64>, welded: &mut
     }
 }
 
-/// A mass given in a frame `frame` (relative to a body's), in the body's frame.
-fn moved((mass, com, inertia): Mass, frame: &Isometry3<f64>) -> Mass {
-    let r = frame.rotation.to_rotation_matrix();
-    (mass, (frame * Point3::from(com)).coords, crate::formats::turned_inertia(&r, &inertia))
-}
-
-/// Two masses in one frame as one rigid body: the mass summed, the centre of mass
-/// weighted, the inertias moved to it (parallel axes) and summed.
-fn combined(a: Option<Mass>, b: Mass) -> Mass {
-    let Some(a) = a else { return b };
-    let mass = a.0 + b.0;
-    let com = (a.1 * a.0 + b.1 * b.0) / mass;
-    let about = |(m, c, inertia): Mass| {
-        let d = c - com;
-        inertia + (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m
-    };
-    (mass, com, about(a) + about(b))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::{Matrix3, Vector3};
 
     /// Two unit point masses 2 m apart along x, each with a unit sphere's inertia: the
     /// centre between them, 2 kg, and 1 kg·m² each added across x by the parallel axes.
@@ -124,10 +105,10 @@ mod tests {
     fn two_masses_combine_about_their_common_centre() {
         let inertia = Matrix3::identity() * 0.4;
         let a = (1.0, Vector3::zeros(), inertia);
-        let b = moved((1.0, Vector3::zeros(), inertia), &Isometry3::translation(2.0, 0.0, 0.0));
-        let (mass, com, total) = combined(Some(a), b);
+        let b = moved_mass((1.0, Vector3::zeros(), inertia), &Isometry3::translation(2.0, 0.0, 0.0));
+        let (mass, com, total) = combined_mass(Some(a), b);
         assert_eq!((mass, com), (2.0, Vector3::new(1.0, 0.0, 0.0)));
         assert!((total - Matrix3::from_diagonal(&Vector3::new(0.8, 2.8, 2.8))).norm() < 1e-12, "{total}");
-        assert_eq!(combined(None, b), b);
+        assert_eq!(combined_mass(None, b), b);
     }
 }

@@ -114,6 +114,7 @@ use crate::simulation::Simulation;
 
 mod build;
 mod frame;
+mod fuse;
 mod massless;
 mod meshes;
 mod model;
@@ -171,6 +172,10 @@ pub struct UrdfOptions {
     /// triangle inequality) rather than correct it with a line in
     /// [`UrdfRobot::adjusted`] (see [the module docs](self)).
     pub strict_inertia: bool,
+    /// Make each link with mass on a fixed joint a body of its own, held by a fixed
+    /// joint, rather than fuse it into the body it is fixed to (the default, as
+    /// MuJoCo's `fusestatic` does; see `fuse.rs`).
+    pub keep_fixed_links: bool,
     /// Collide `<collision>` meshes as triangle meshes rather than as their convex
     /// hulls (the default, as PyBullet does; see [the module docs](self)).
     pub triangle_mesh_collisions: bool,
@@ -193,6 +198,13 @@ impl UrdfOptions {
     #[must_use]
     pub fn exact_base_pose(mut self, exact: bool) -> Self {
         self.exact_base_pose = exact;
+        self
+    }
+    /// Keep links with mass on fixed joints as bodies of their own (see
+    /// [`keep_fixed_links`](Self::keep_fixed_links)).
+    #[must_use]
+    pub fn keep_fixed_links(mut self, keep: bool) -> Self {
+        self.keep_fixed_links = keep;
         self
     }
     /// Fix the root link to the world.
@@ -341,8 +353,16 @@ impl UrdfFile {
             let line = self.line_of(&element);
             Error::Format { format: "URDF", file: self.file.clone(), element, line, column: None, problem }
         };
-        let (corrected, adjusted) = self.corrected(options);
+        let (corrected, mut adjusted) = self.corrected(options);
         let robot = corrected.as_ref().unwrap_or(&self.robot);
+        let fused = (!options.keep_fixed_links).then(|| fuse::fuse_fixed_links(robot)).flatten();
+        let robot = match &fused {
+            Some((fused, line)) => {
+                adjusted.push(line.clone());
+                fused
+            }
+            None => robot,
+        };
         let plan = plan(robot, options).map_err(|(element, problem)| bad(element, problem))?;
         let base_dir = Path::new(&self.file).parent().filter(|d| !d.as_os_str().is_empty()).map(Path::to_path_buf);
         let mut meshes = Meshes { options, base_dir, loaded: super::MeshCache::default(), notes: Vec::new() };
