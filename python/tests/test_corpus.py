@@ -61,8 +61,10 @@ FLOORS = {
         "strict": 95,  # 187/196; target: none
         "lenient": 96,  # 190/196 (ignore_visuals); target: none
         "exact_mass": 96,  # 190/196; target: 95 %
-        "stable": 81,  # 165/196 over a floor, as `ars view` shows a robot; target: 90 %
-        "stable_fixed": 87,  # 177/196 with a fixed base; target: 90 %
+        # 173/196 over a floor, as `ars view` shows a robot, at 06f0e54 (fixed links fused,
+        # static roots raised, iCub's inertias) on a machine busy with three builds; target: 90 %
+        "stable": 85,
+        "stable_fixed": 87,  # 178/196 with a fixed base (at 06f0e54, as above); target: 90 %
     },
 }
 
