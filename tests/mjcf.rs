@@ -92,7 +92,14 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
             "<mujoco><worldbody><body><joint limited='true' range='10 -10'/><geom size='.1'/></body></worldbody></mujoco>",
             "reversed",
         ),
-        ("<mujoco><tendon/></mujoco>", "<tendon> is not supported (skip_unsupported skips what ARS cannot read"),
+        (
+            "<mujoco><tendon><spatial/></tendon></mujoco>",
+            "a <spatial> tendon is not supported (skip_unsupported skips what ARS cannot read",
+        ),
+        (
+            "<mujoco><tendon><fixed range='-1 1'><joint joint='j' coef='1'/></fixed></tendon></mujoco>",
+            "a fixed tendon with a limit is not supported",
+        ),
         ("<mujoco><worldbody><body><geom type='hfield' size='1'/></body></worldbody></mujoco>", "hfield"),
         ("<mujoco><worldbody><body><joint axis='0 0 0'/><geom size='.1'/></body></worldbody></mujoco>", "axis is zero"),
         ("<mujoco><worldbody><body><geom type='mesh' mesh='m'/></body></worldbody></mujoco>", "no <mesh> asset"),
@@ -129,10 +136,10 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
     // With skip_unsupported, what cannot be read is listed instead; a tendon's own
     // elements are not a body's, and their attributes are not checked as if they were.
     let mut sim = Simulation::builder().build().unwrap();
-    let text = "<mujoco><tendon><fixed><joint joint='j' coef='1'/></fixed></tendon>\
+    let text = "<mujoco><tendon><fixed stiffness='2'><joint joint='j' coef='1'/></fixed></tendon>\
                 <worldbody><body><geom size='.1' sise='1'/></body></worldbody></mujoco>";
     let model = sim.load_mjcf_text(text, "skip.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
-    assert!(model.skipped.iter().any(|s| s.contains("<tendon>")), "{:?}", model.skipped);
+    assert!(model.skipped.iter().any(|s| s.contains("a fixed tendon with a spring")), "{:?}", model.skipped);
     assert!(
         model.skipped.iter().any(|s| s.starts_with("<geom> at line 1") && s.contains("sise")),
         "{:?}",

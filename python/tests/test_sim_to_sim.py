@@ -14,8 +14,8 @@ motor beside the joint). Where a difference decides the motion, the test is mark
 `xfail(strict=True)` with the numbers and the cause. Twin tests remove one cause in both
 engines (the hopper's armature, the humanoid's knees starting outside their range) and
 were how the armature and the stops' softness were found: they stay, as the cleanest
-checks of the rest. What ARS skips in these files (`margin`, the humanoid's two fixed
-tendons, which nothing drives or limits) warns and is ignored here.
+checks of the rest. What ARS skips in these files (`margin`) warns and is ignored here;
+the humanoid's two fixed tendons, which nothing drives or limits, do nothing in either.
 
 MuJoCo's axes are used throughout: ARS's (x, y, z) with Y up is MuJoCo's (x, -z, y);
 positions are centres of mass (ARS's bodies are at theirs; MuJoCo's `xipos`)."""

@@ -140,6 +140,9 @@
 //!   and `flex` equalities, `polycoef` beyond degree 1, a `joint` without `joint2`, a
 //!   `relpose` other than the file's pose and inactive equalities are skipped or
 //!   refused (see the `equality` module's docs).
+//! - **Tendons.** A fixed tendon that does nothing (no limit, spring, damping or
+//!   friction) is read and dropped, as it has no effect on the motion; any other tendon
+//!   is unsupported (see the `tendon` module's docs).
 //! - **Sensors.** `jointpos` and `jointvel` of hinges and slides; `framepos`,
 //!   `framelinvel` and `framequat` of a body's inertial frame (`objtype="body"`; for
 //!   `framequat` only when its `<inertial>` gives `diaginertia`), a body's frame
@@ -179,6 +182,7 @@ mod problem;
 mod read;
 mod schema;
 mod sensors;
+mod tendon;
 mod weld;
 
 /// How an MJCF model is loaded.

@@ -739,6 +739,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             "compiler" | "default" | "option" | "visual" | "asset" | "statistic" | "size" | "custom" => {}
             "contact" => self.contacts(node, model)?,
             "equality" => self.equalities(node, model)?,
+            "tendon" => self.tendons(node)?,
             "sensor" => {
                 for (i, child) in tree.elements(node).into_iter().enumerate() {
                     if let Some(sensor) = self.sensor(child, i)? {
