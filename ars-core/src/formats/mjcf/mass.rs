@@ -73,8 +73,9 @@ impl Geom {
         }
     }
 
-    /// The ODE shape (a mesh as its convex hull, an ellipsoid as the sphere of its
-    /// volume; a flat mesh, in a geom that never collides, as a point-like sphere).
+    /// The ODE shape (a mesh as its convex hull, an ellipsoid as the hull of
+    /// [`ELLIPSOID_POINTS`] points on it; a flat mesh, in a geom that never collides, as
+    /// a point-like sphere).
     pub(super) fn shape(&self) -> Shape {
         match &self.kind {
             GeomKind::Mesh(mesh) => mesh.hull.clone().unwrap_or(Shape::Sphere { radius: FLAT_MESH_STAND_IN }),
@@ -83,9 +84,35 @@ impl Geom {
             GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },
             GeomKind::Cylinder(r, h) => Shape::Cylinder { radius: *r, length: 2.0 * h },
             GeomKind::Box(s) => Shape::Box { edges: *s * 2.0 },
-            GeomKind::Ellipsoid(s) => Shape::Sphere { radius: (s.x * s.y * s.z).cbrt() },
+            GeomKind::Ellipsoid(s) => ellipsoid_hull(s),
         }
     }
+}
+
+/// How many points on an ellipsoid its hull is made of: the image of an even point set
+/// on a sphere (a Fibonacci lattice), so that along any direction the hull reaches
+/// within 1.5 % of the ellipsoid (inside it: it touches a little later), whatever the
+/// ellipsoid's proportions.
+pub(super) const ELLIPSOID_POINTS: usize = 258;
+
+/// The convex hull of [`ELLIPSOID_POINTS`] points on the ellipsoid of half-axes `radii`
+/// (ODE has no ellipsoid); a sphere of the same volume should the hull fail, which
+/// only degenerate radii could make it do (they are refused when read).
+fn ellipsoid_hull(radii: &Vector3<f64>) -> Shape {
+    let golden = std::f64::consts::PI * (3.0 - 5.0_f64.sqrt());
+    let n = ELLIPSOID_POINTS as f64;
+    let points: Vec<nalgebra::Point3<f64>> = (0..ELLIPSOID_POINTS)
+        .map(|k| {
+            let z = 1.0 - (2.0 * k as f64 + 1.0) / n;
+            let across = (1.0 - z * z).sqrt();
+            let (sin, cos) = (golden * k as f64).sin_cos();
+            // An even point set on the unit sphere, stretched: how far the hull falls
+            // short of the surface along a direction, relative to the surface, is the
+            // sphere's (a support function's ratio survives a linear map).
+            nalgebra::Point3::from(radii.component_mul(&Vector3::new(across * cos, across * sin, z)))
+        })
+        .collect();
+    Shape::convex_hull(&points).unwrap_or(Shape::Sphere { radius: (radii.x * radii.y * radii.z).cbrt() })
 }
 
 /// The first body of the tree (depth first, in the file's order) that `wanted` accepts.
@@ -185,5 +212,31 @@ pub(super) fn scale_masses(bodies: &mut [Body], factor: f64) {
             *inertia *= factor;
         }
         scale_masses(&mut b.children, factor);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_ellipsoid_collides_as_a_hull_close_to_it_not_as_a_sphere() {
+        let radii = Vector3::new(0.1, 0.2, 0.4);
+        let Shape::ConvexHull { vertices, .. } = ellipsoid_hull(&radii) else { panic!("not a hull") };
+        // Every point on the ellipsoid; the hull reaches to within 1.5 % of it along
+        // any direction (its support is the farthest point).
+        for v in &vertices {
+            let on = (v.x / radii.x).powi(2) + (v.y / radii.y).powi(2) + (v.z / radii.z).powi(2);
+            assert!((on - 1.0).abs() < 1e-12, "{v}");
+        }
+        for k in 0..20_000 {
+            // Directions spread over the sphere.
+            let z = 1.0 - (2.0 * k as f64 + 1.0) / 20_000.0;
+            let (s, c) = (2.4 * k as f64).sin_cos();
+            let d = Vector3::new((1.0 - z * z).sqrt() * c, (1.0 - z * z).sqrt() * s, z);
+            let support = vertices.iter().map(|v| d.dot(&v.coords)).fold(f64::NEG_INFINITY, f64::max);
+            let ellipsoid = (radii.component_mul(&d)).norm();
+            assert!(support <= ellipsoid + 1e-12 && support > 0.985 * ellipsoid, "{d}: {support} of {ellipsoid}");
+        }
     }
 }

@@ -126,14 +126,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                     }
                     None => Vector3::new(size_at(0)?, size_at(1)?, size_at(2)?),
                 };
-                if kind_name == "box" {
-                    GeomKind::Box(half_sizes)
-                } else {
-                    let line = problem(&node, "").line;
-                    self.skipped
-                        .push(format!("<geom> at line {line}: an ellipsoid collides as the sphere of its volume"));
-                    GeomKind::Ellipsoid(half_sizes)
-                }
+                if kind_name == "box" { GeomKind::Box(half_sizes) } else { GeomKind::Ellipsoid(half_sizes) }
             }
             other => {
                 self.unsupported(&node, &format!("a geom of type {other:?}"))?;
