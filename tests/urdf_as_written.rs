@@ -27,6 +27,14 @@ fn load_in(text: &str, file: &str) -> (Simulation, UrdfRobot) {
     (sim, robot)
 }
 
+/// Loaded with each link its own body, to see where a fixed joint puts it (fused, the
+/// links of these robots would be one body).
+fn load_apart(text: &str) -> (Simulation, UrdfRobot) {
+    let mut sim = Simulation::new().unwrap();
+    let robot = sim.load_urdf_text(text, "robot.urdf", &UrdfOptions::new().keep_fixed_links(true)).unwrap();
+    (sim, robot)
+}
+
 /// The error's element, line and problem; nothing was added.
 fn refusal(text: &str) -> (String, Option<u32>, String) {
     let mut sim = Simulation::new().unwrap();
@@ -57,7 +65,7 @@ fn vectors_written_with_commas_read_as_with_spaces() {
         link("a", 1.0),
         link("b", 1.0)
     );
-    let (sim, _) = load(&text);
+    let (sim, _) = load_apart(&text);
     let a = sim.scene().object("a").unwrap().position().unwrap();
     let b = sim.scene().object("b").unwrap().position().unwrap();
     // URDF (x, y, z) is (x, z, -y) in the simulation.
@@ -85,7 +93,7 @@ fn xacro_optenv_left_in_a_file_reads_as_its_default() {
         link("a", 1.0),
         link("b", 1.0)
     );
-    let (sim, robot) = load(&text);
+    let (sim, robot) = load_apart(&text);
     let a = sim.scene().object("a").unwrap().position().unwrap();
     let b = sim.scene().object("b").unwrap().position().unwrap();
     assert!(((b - a) - ars::nalgebra::Vector3::new(0.19, 0.149, 0.0)).norm() < 1e-12, "{}", b - a);
