@@ -148,7 +148,7 @@ impl From<Checked<i64>> for i64 {
 pub(crate) fn as_input_error(py: Python<'_>, value: &Bound<'_, PyAny>, error: PyErr) -> PyErr {
     use pyo3::exceptions::{PyOverflowError, PyValueError};
     let ty = error.get_type(py);
-    if ty.is(&py.get_type::<PyOverflowError>()) {
+    if ty.is(py.get_type::<PyOverflowError>()) {
         let shown = value.repr().map(|r| r.to_string()).unwrap_or_default();
         let shown = if shown.chars().count() > 40 {
             format!("{}...", shown.chars().take(40).collect::<String>())
@@ -157,7 +157,7 @@ pub(crate) fn as_input_error(py: Python<'_>, value: &Bound<'_, PyAny>, error: Py
         };
         return raise(py, "InputError", format!("the integer {shown} is out of range: {}", error.value(py)));
     }
-    if ty.is(&py.get_type::<PyValueError>()) {
+    if ty.is(py.get_type::<PyValueError>()) {
         return raise(py, "InputError", error.value(py).to_string());
     }
     error
