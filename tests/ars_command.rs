@@ -33,6 +33,9 @@ fn a_scene_saved_mid_run_goes_on_to_the_same_bits_under_ars_run() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // The time to the nanosecond: a sum of steps of 0.4 ms, not 1.7000000000000272.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("ran to t = 1.7 s (4250 steps)"), "{stdout}");
     let text = std::fs::read_to_string(&csv).unwrap();
     let last: Vec<f64> = text.lines().last().unwrap().split(',').map(|c| c.parse().unwrap()).collect();
     let ball = sim.scene().object("sphere/1").unwrap().id();
@@ -113,4 +116,27 @@ fn what_a_model_skipped_is_said_in_one_line() {
     assert_eq!(said.len(), 1, "{stderr}");
     let n = opened.skipped.len();
     assert!(said[0].starts_with(&format!("skipped {n} unsupported MJCF items (contact parameters of ")), "{stderr}");
+}
+
+/// A robot whose links have neither visuals nor collision geometry (the dynamics test
+/// arm) has nothing to draw: `ars record --video` says so and writes nothing, where it
+/// used to write 60 frames of the floor.
+#[test]
+fn a_video_of_a_robot_with_nothing_to_draw_is_refused() {
+    let dir = std::env::temp_dir().join(format!("ars-command-invisible-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let arm = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rnea_arm.urdf");
+    let video = dir.join("arm.mp4");
+    let out = Command::new(ARS)
+        .args(["record", arm, "--fixed-base", "--video", video.to_str().unwrap(), "--duration", "0.1"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stdout));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("nothing to record") && stderr.contains("without visuals or collision geometry"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing is written");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

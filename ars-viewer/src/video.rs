@@ -489,10 +489,11 @@ impl RecordingOutput for VideoFile {
         let count = video_frame_count(duration, fps)?;
         let (frames, start) = {
             let sim = driver.simulation();
-            let shown = |id| sim.scene().object(id).is_ok_and(|o| !matches!(o.shape(), ars_core::Shape::Plane { .. }));
-            if !sim.scene().objects().any(|(_, id)| shown(id)) {
+            if !sim.scene().objects().any(|(_, id)| drawn(&sim, id)) {
                 return Err(ViewerError::InvalidSetting(
-                    "nothing to record: the simulation has no objects (a floor plane alone)".into(),
+                    "nothing to record: the simulation has nothing to draw but a floor (no objects, or robot links \
+                     without visuals or collision geometry)"
+                        .into(),
                 ));
             }
             (frames_in(&sim, duration)?, sim.scene().time())
@@ -528,6 +529,16 @@ impl RecordingOutput for VideoFile {
         }
         writer.finish()
     }
+}
+
+/// Whether object `id` shows in a picture: it has visuals, or a geom that is not a
+/// plane (a robot link with neither is only a 1 mm placeholder).
+fn drawn(sim: &Simulation, id: ars_core::ObjectId) -> bool {
+    let world = sim.scene().world();
+    sim.scene().object(id).is_ok_and(|o| {
+        !o.visuals().is_empty()
+            || o.geoms().filter_map(|g| world.geom(g).ok()).any(|g| !matches!(g.shape(), ars_core::Shape::Plane { .. }))
+    })
 }
 
 #[cfg(test)]

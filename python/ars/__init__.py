@@ -10,9 +10,10 @@
 True
 """
 
-import atexit
-import importlib
-import os
+# Imported under private names: `dir(ars)` and completion show ARS's own names only.
+import atexit as _atexit
+import importlib as _importlib
+import os as _os
 
 from ars import _native
 from ars._errors import (
@@ -70,13 +71,18 @@ def __getattr__(name: str) -> object:
     module = _LATER.get(name)
     if module is None:
         raise AttributeError(f"module 'ars' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
+    value = getattr(_importlib.import_module(module), name)
     globals()[name] = value
     return value
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LATER))
+    # The public names, the submodules imported and the module's dunders; not the
+    # private helpers (`_native`, `_os`...) nor TYPE_CHECKING.
+    names = set(globals()) | set(_LATER)
+    return sorted(
+        n for n in names if (n.startswith("__") or not n.startswith("_")) and n != "TYPE_CHECKING"
+    )
 
 
 # Mesa's Vulkan device-selection layer asks libwayland for a display whenever Vulkan
@@ -85,11 +91,11 @@ def __dir__() -> list[str]:
 # window. The viewer's own switch-off only runs in a single-threaded program; a Python
 # process may run threads, so the package applies it here, before any rendering.
 if _native._device_select_would_print():
-    os.environ["NODEVICE_SELECT"] = "1"
+    _os.environ["NODEVICE_SELECT"] = "1"
 
 # The viewer keeps the rendering context of its windows for the next one; it is given
 # back before the interpreter's threads end.
-atexit.register(_native._release_viewer)
+_atexit.register(_native._release_viewer)
 
 __all__ = [
     "ArsError",

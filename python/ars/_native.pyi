@@ -349,6 +349,8 @@ class Simulation:
         duration: float,
         fps: float = 30.0,
         size: tuple[int, int] | None = None,
+        *,
+        allow_long: bool = False,
         **view: Unpack[_ImageView],
     ) -> _RecordedVideo: ...
     @staticmethod
@@ -385,6 +387,7 @@ class Simulation:
         *,
         fps: float | None = None,
         plots: Sequence[str] = ...,
+        allow_long: bool = False,
         **view: Unpack[_ReplayView],
     ) -> Replay: ...
     def replay(self, duration: float, **options: Any) -> Replay: ...

@@ -39,6 +39,28 @@ def _png(pixels: npt.NDArray[np.uint8]) -> bytes:
     )
 
 
+def _write_whole(path: str | os.PathLike[str], data: bytes, what: str) -> None:
+    """Writes ``data`` to ``path`` through a hidden temporary file beside it, renamed
+    into place: the file appears whole or not at all. An ``OSError`` comes out as an
+    ``ars.FileError`` naming ``what`` and the path."""
+    path = os.fspath(path)
+    temporary = os.path.join(
+        os.path.dirname(path) or ".", f".{os.path.basename(path)}.{os.getpid()}.partial"
+    )
+    try:
+        with open(temporary, "wb") as f:
+            f.write(data)
+        os.replace(temporary, path)
+    except OSError as e:
+        from ars import FileError
+
+        reason = e.strerror or str(e)
+        raise FileError(e.errno, f"cannot write {what} {path!r}: {reason}", path) from e
+    finally:
+        if os.path.exists(temporary):
+            os.remove(temporary)
+
+
 class Image(np.ndarray[Any, np.dtype[Any]]):
     """An image as ``Renderer.render`` returns it: a numpy array of shape (height,
     width, 3), ``uint8``, which Jupyter shows as a picture (``_repr_png_``). Everything
@@ -57,6 +79,20 @@ class Image(np.ndarray[Any, np.dtype[Any]]):
             return None
         return _png(np.asarray(self))
 
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Writes the image to ``path`` as a PNG file (whole: a temporary file
+        renamed). An image that is not (height, width[, 1, 3 or 4]) ``uint8`` is an
+        ``ars.InputError``, a folder that cannot be written an ``ars.FileError``."""
+        png = self._repr_png_()
+        if png is None:
+            from ars import InputError
+
+            raise InputError(
+                f"a PNG holds a (height, width[, 1, 3 or 4]) uint8 image, not an array of shape "
+                f"{self.shape} and type {self.dtype}"
+            )
+        _write_whole(path, png, "the PNG image")
+
 
 class Replay:
     """A browser replay: one self-contained HTML page (no network needed) that plays
@@ -73,19 +109,10 @@ class Replay:
         self.end = end
 
     def save(self, path: str | os.PathLike[str]) -> None:
-        """Writes the page to ``path`` (whole: a temporary file renamed)."""
-        path = os.fspath(path)
-        temporary = os.path.join(
-            os.path.dirname(path) or ".", f".{os.path.basename(path)}.{os.getpid()}.partial"
-        )
-        try:
-            with open(temporary, "w", encoding="utf-8") as f:
-                f.write(self.html)
-            os.replace(temporary, path)
-        finally:
-            if os.path.exists(temporary):
-                os.remove(temporary)
-        self.path = path
+        """Writes the page to ``path`` (whole: a temporary file renamed); a folder
+        that cannot be written is an ``ars.FileError``."""
+        _write_whole(path, self.html.encode("utf-8"), "the replay")
+        self.path = os.fspath(path)
 
     def _repr_html_(self) -> str:
         # In an iframe of its own: the page's script and ids stay out of the notebook's.

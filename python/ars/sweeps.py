@@ -20,6 +20,7 @@ parameters override (``ars.sweep(Example2, [{"MAX_TORQUE": 10.0}], ...)``).
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import importlib
@@ -29,7 +30,7 @@ import multiprocessing
 import os
 import pickle
 import sys
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from concurrent.futures import ProcessPoolExecutor
 from typing import TYPE_CHECKING, Any
 
@@ -110,7 +111,22 @@ class SweepResults(list[RunResult]):
             for r in self
         ]
         tables = {f"run_{i}": r.table for i, r in enumerate(self)}
-        np.savez(path, provenance=np.array(json.dumps(provenance)), **tables)  # type: ignore[arg-type]
+        with _file_errors("write the sweep", path):
+            np.savez(path, provenance=np.array(json.dumps(provenance)), **tables)  # type: ignore[arg-type]
+
+
+@contextlib.contextmanager
+def _file_errors(what: str, path: str | os.PathLike[str]) -> Iterator[None]:
+    """An ``OSError`` inside, as an ``ars.FileError`` naming ``what`` and ``path``."""
+    try:
+        yield
+    except OSError as e:
+        from ars import FileError
+
+        if isinstance(e, FileError):
+            raise
+        shown = os.fspath(path)
+        raise FileError(e.errno, f"cannot {what} {shown!r}: {e.strerror or e}", shown) from e
 
 
 def load_sweep(path: str | os.PathLike[str]) -> SweepResults:
@@ -118,7 +134,7 @@ def load_sweep(path: str | os.PathLike[str]) -> SweepResults:
     back as an ``ars.ArsError`` holding the message it had)."""
     from ars import ArsError
 
-    with np.load(path, allow_pickle=False) as data:
+    with _file_errors("read the sweep", path), np.load(path, allow_pickle=False) as data:
         provenance = json.loads(str(data["provenance"]))
         runs = SweepResults()
         for i, prov in enumerate(provenance):
@@ -344,6 +360,11 @@ def sweep(
     """
     sets = [dict(p) for p in params]
     fields = list(record)
+    repeated = sorted({f for f in fields if fields.count(f) > 1})
+    if repeated:
+        from ars import InputError
+
+        raise InputError(f"record names {repeated} more than once: name each entry once")
     if not isinstance(every, int) or every < 1:
         from ars import InputError
 
@@ -384,7 +405,8 @@ def _on_processes(
 ) -> list[Outcome]:
     _check_portable(build, "processes")
     context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=workers or os.cpu_count(), mp_context=context) as pool:
+    pool = ProcessPoolExecutor(max_workers=workers or os.cpu_count(), mp_context=context)
+    try:
         futures = [pool.submit(run_one, build, p, *args) for p in params]
         outcomes: list[Outcome] = []
         for f in futures:
@@ -393,7 +415,29 @@ def _on_processes(
             except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
                 outcomes.append((_table(args[1], []), e, {}))
             bar.step()
+    except BaseException:
+        # Ctrl-C (or any other way out): the runs not finished are dropped and their
+        # workers ended now, rather than waited for.
+        _stop_workers(pool)
+        raise
+    pool.shutdown()
     return outcomes
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Cancels the runs not started and ends the pool's worker processes at once
+    (rather than waiting for the runs they are in)."""
+    terminate = getattr(pool, "terminate_workers", None)  # Python 3.14
+    if terminate is not None:
+        terminate()
+        return
+    # Before Python 3.14: the processes, as the pool keeps them until its shutdown.
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for process in processes:
+        process.terminate()
+    pool.shutdown(wait=True, cancel_futures=True)
+    for process in processes:
+        process.join(timeout=5)
 
 
 def _on_ray(
@@ -437,12 +481,18 @@ def _on_ray(
         remote = ray.remote(num_cpus=1)(run_one)
         refs = [remote.remote(build, p, *args) for p in params]
         outcomes: list[Outcome] = []
-        for ref in refs:
-            try:
-                outcomes.append(ray.get(ref))
-            except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
-                outcomes.append((_table(args[1], []), e, {}))
-            bar.step()
+        try:
+            for ref in refs:
+                try:
+                    outcomes.append(ray.get(ref))
+                except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
+                    outcomes.append((_table(args[1], []), e, {}))
+                bar.step()
+        except KeyboardInterrupt:
+            # Ctrl-C: the runs not finished are cancelled (their tasks killed).
+            for ref in refs:
+                ray.cancel(ref, force=True)
+            raise
         return outcomes
     finally:
         if started:

@@ -112,11 +112,55 @@ fn format_error(
 /// `value` as a count (of steps, frames, pixels...) of type `T`: a negative or too large
 /// number is an `ars.InputError` naming `what`, where a conversion by PyO3 would raise
 /// `OverflowError`.
-pub(crate) fn count<T: TryFrom<i64>>(py: Python<'_>, what: &str, value: i64) -> PyResult<T> {
+pub(crate) fn count<T: TryFrom<i64>>(py: Python<'_>, what: &str, value: impl Into<i64>) -> PyResult<T> {
+    let value = value.into();
     T::try_from(value).map_err(|_| {
         let bound = if value < 0 { "must be 0 or more" } else { "is too large" };
         raise(py, "InputError", format!("{what} {bound}, got {value}"))
     })
+}
+
+/// A Python argument of type `T` whose wrong value is an `ars.InputError`: a sequence
+/// of the wrong length, or an integer beyond `T`'s range, where PyO3 raises a plain
+/// `ValueError` or `OverflowError` (a value of the wrong type stays a `TypeError`).
+/// PyO3 adds the argument's name as a note ("while processing 'center'").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Checked<T>(pub T);
+
+impl<'py, T: pyo3::conversion::FromPyObjectOwned<'py>> FromPyObject<'_, 'py> for Checked<T> {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
+        let py = obj.py();
+        obj.extract::<T>().map(Checked).map_err(|e| as_input_error(py, &obj, e.into()))
+    }
+}
+
+impl From<Checked<i64>> for i64 {
+    fn from(value: Checked<i64>) -> Self {
+        value.0
+    }
+}
+
+/// `error`, met converting `value`, as an `ars.InputError` if it is a plain
+/// `ValueError` (a wrong length) or an `OverflowError` (an integer out of range);
+/// any other error unchanged.
+pub(crate) fn as_input_error(py: Python<'_>, value: &Bound<'_, PyAny>, error: PyErr) -> PyErr {
+    use pyo3::exceptions::{PyOverflowError, PyValueError};
+    let ty = error.get_type(py);
+    if ty.is(py.get_type::<PyOverflowError>()) {
+        let shown = value.repr().map(|r| r.to_string()).unwrap_or_default();
+        let shown = if shown.chars().count() > 40 {
+            format!("{}...", shown.chars().take(40).collect::<String>())
+        } else {
+            shown
+        };
+        return raise(py, "InputError", format!("the integer {shown} is out of range: {}", error.value(py)));
+    }
+    if ty.is(py.get_type::<PyValueError>()) {
+        return raise(py, "InputError", error.value(py).to_string());
+    }
+    error
 }
 
 /// Runs `f`, turning an ARS error into its Python exception and a panic into

@@ -10,7 +10,9 @@
 
 mod classic;
 mod errors;
+mod interrupt;
 mod kinds;
+mod limits;
 mod many;
 mod replay;
 mod sensors;

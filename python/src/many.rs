@@ -19,15 +19,15 @@
 use std::cell::Cell;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender, TryRecvError};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
-use crate::errors::{count, raise};
-use crate::simulation::{PySimulation, python_signals};
+use crate::errors::{Checked, count, raise};
+use crate::simulation::{Int, PySimulation, SIGNAL_CHECK_PERIOD, python_signals};
 
 /// What one simulation's steps came to, by its index in the list.
 type Outcome = (usize, std::thread::Result<ars_core::Result<()>>);
@@ -132,8 +132,8 @@ fn serve(tasks: Receiver<Task>) {
 /// the exception of the first such simulation in the list is raised once all have
 /// finished. Ctrl-C stops every simulation between two steps with `KeyboardInterrupt`.
 #[pyfunction]
-#[pyo3(signature = (sims, n=1))]
-pub(crate) fn step_many(py: Python<'_>, sims: &Bound<'_, PyAny>, n: i64) -> PyResult<()> {
+#[pyo3(signature = (sims, n=Checked(1)))]
+pub(crate) fn step_many(py: Python<'_>, sims: &Bound<'_, PyAny>, n: Int) -> PyResult<()> {
     let n: u64 = count(py, "the number of steps", n)?;
     let mut list: Vec<Py<PySimulation>> = Vec::new();
     let mut seen: HashMap<usize, usize> = HashMap::new();
@@ -200,12 +200,38 @@ fn run_all(job: &Arc<Job>, interrupt: &Mutex<Option<PyErr>>) -> Vec<Outcome> {
         }
         job.stop.load(Ordering::Relaxed)
     });
-    // A worker that is gone sends nothing: its share was taken by the others.
+    // A worker that is gone sends nothing: its share was taken by the others. While
+    // the workers step on, the calling thread still looks for Ctrl-C.
     for _ in 0..sent {
-        match receive(&results) {
+        let more = receive_watching(&results, || {
+            if signals() {
+                job.stop.store(true, Ordering::Relaxed);
+            }
+        });
+        match more {
             Some(more) => outcomes.extend(more),
             None => break,
         }
     }
     outcomes
+}
+
+/// As [`receive`], calling `watch` every [`SIGNAL_CHECK_PERIOD`] while it waits.
+fn receive_watching<T>(channel: &Receiver<T>, mut watch: impl FnMut()) -> Option<T> {
+    let start = Instant::now();
+    loop {
+        match channel.try_recv() {
+            Ok(message) => return Some(message),
+            Err(TryRecvError::Disconnected) => return None,
+            Err(TryRecvError::Empty) if start.elapsed() < SPIN => std::hint::spin_loop(),
+            Err(TryRecvError::Empty) => break,
+        }
+    }
+    loop {
+        match channel.recv_timeout(SIGNAL_CHECK_PERIOD) {
+            Ok(message) => return Some(message),
+            Err(RecvTimeoutError::Disconnected) => return None,
+            Err(RecvTimeoutError::Timeout) => watch(),
+        }
+    }
 }

@@ -5,13 +5,17 @@
 
 use std::path::PathBuf;
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use ars_core::Simulation;
 
 use ars_viewer::{RecordedVideo, ThreadEnd, VideoRecorder, VideoWriter, ViewerError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{panic_message, raise};
-use crate::simulation::PySimulation;
+use crate::errors::{Checked, panic_message, raise};
+use crate::interrupt::{StoppableSimulation, on_thread_watching_signals};
+use crate::simulation::{Int, PySimulation};
 use crate::viewer::{Failure, IMAGE_KEYWORDS, PyRenderer, ViewKeywords, to_py_error};
 
 /// What a finished video holds, as a dict.
@@ -28,7 +32,8 @@ fn summary(py: Python<'_>, video: &RecordedVideo) -> PyResult<Py<PyDict>> {
 
 /// `sim.record_video(...)`: checks the settings, then runs the simulation with the GIL
 /// released, drawing on a thread of its own (each thread has its own rendering
-/// context, so this can be called again and again).
+/// context, so this can be called again and again) while the calling thread looks for
+/// Ctrl-C: `KeyboardInterrupt` after the frame being drawn, and no file left.
 pub(crate) fn record_video(
     py: Python<'_>,
     sim: &PySimulation,
@@ -36,59 +41,61 @@ pub(crate) fn record_video(
     duration: f64,
     fps: f64,
     view: ViewKeywords,
+    allow_long: bool,
 ) -> PyResult<Py<PyDict>> {
     if sim.in_own_hook() {
         return Err(raise(py, "BusyError", "a hook cannot record the simulation it runs in".into()));
     }
+    check_video_path(&path).map_err(|m| raise(py, "InputError", m))?;
     let options = view.options();
     let view = view.settings().map_err(|m| raise(py, "InputError", m))?;
     let checked = ars_viewer::check_video_settings(fps, view.size.0, view.size.1)
         .and_then(|()| ars_viewer::video_frame_count(duration, fps));
-    checked.map_err(|e| to_py_error(py, e))?;
+    let frames = checked.map_err(|e| to_py_error(py, e))?;
+    crate::limits::check_recording(duration, Some(frames), allow_long).map_err(|m| raise(py, "InputError", m))?;
     let recorder = VideoRecorder::new(path).fps(fps).options(options);
-    // The recorder's own error (or its thread's panic), kept whole (the step's error
-    // type cannot carry it).
-    let failure: Mutex<Option<Failure>> = Mutex::new(None);
-    let recorded: Mutex<Option<RecordedVideo>> = Mutex::new(None);
-    let ran = sim.advance(py, |sim| {
-        let outcome = std::thread::scope(|scope| {
-            let drawing = std::thread::Builder::new()
-                .name("ars-video".into())
-                .spawn_scoped(scope, || recorder.record_simulation(sim, &view, duration));
-            match drawing.map(|t| t.join()) {
-                Ok(Ok(outcome)) => outcome.map_err(Failure::Viewer),
-                Ok(Err(panic)) => Err(Failure::Panic(panic_message(&panic))),
-                Err(e) => Err(Failure::Viewer(ViewerError::ThreadDied {
-                    thread: "the video",
-                    end: ThreadEnd::NotStarted,
-                    source: Some(e),
-                })),
-            }
+    let stop = AtomicBool::new(false);
+    let interrupt: Mutex<Option<PyErr>> = Mutex::new(None);
+    let outcome = py.detach(|| {
+        let mut locked = sim.locked();
+        let sim: &mut Simulation = &mut locked;
+        let drawn = on_thread_watching_signals("ars-video", &stop, &interrupt, || {
+            let mut driver = StoppableSimulation { sim, stop: || stop.load(Ordering::Relaxed) };
+            recorder.record_driven(&mut driver, &view, duration)
         });
-        match outcome {
-            Ok(video) => {
-                *failure_free(&recorded) = Some(video);
-                Ok(())
-            }
-            Err(Failure::Viewer(ViewerError::Simulation(e))) => Err(e),
-            Err(f) => {
-                let message = match &f {
-                    Failure::Viewer(e) => e.to_string(),
-                    Failure::Panic(m) => format!("ARS panicked: {m}"),
-                };
-                *failure_free(&failure) = Some(f);
-                Err(ars_core::Error::User(message))
-            }
+        match drawn {
+            Ok(Ok(outcome)) => outcome.map_err(Failure::Viewer),
+            Ok(Err(panic)) => Err(Failure::Panic(panic_message(&panic))),
+            Err(e) => Err(Failure::Viewer(ViewerError::ThreadDied {
+                thread: "the video",
+                end: ThreadEnd::NotStarted,
+                source: Some(e),
+            })),
         }
     });
-    if let Some(f) = failure_free(&failure).take() {
-        return Err(f.into_py(py));
+    // Ctrl-C first, then a Python hook's own exception, then the recorder's error.
+    if let Some(e) = failure_free(&interrupt).take() {
+        sim.take_hook_exception();
+        return Err(e);
     }
-    ran?;
-    let video = failure_free(&recorded).take();
-    match video {
-        Some(video) => summary(py, &video),
-        None => Err(raise(py, "InternalError", "the video was not recorded".into())),
+    if let Some(e) = sim.take_hook_exception() {
+        return Err(e);
+    }
+    match outcome {
+        Ok(video) => summary(py, &video),
+        Err(f) => Err(f.into_py(py)),
+    }
+}
+
+/// Refuses a path whose suffix says another format than the MP4 written.
+fn check_video_path(path: &std::path::Path) -> Result<(), String> {
+    let suffix = path.extension().map(|s| s.to_string_lossy().to_ascii_lowercase());
+    match suffix.as_deref() {
+        Some("mp4" | "m4v") => Ok(()),
+        _ => Err(format!(
+            "a video is written as H.264 in MP4: give its path the suffix .mp4 (or .m4v), got {:?}",
+            path.display().to_string()
+        )),
     }
 }
 
@@ -115,12 +122,13 @@ impl PyVideoWriter {
     fn new(
         py: Python<'_>,
         path: PathBuf,
-        width: i64,
-        height: i64,
+        width: Int,
+        height: Int,
         fps: f64,
         view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         let mut view = ViewKeywords::from_kwargs("VideoWriter", view, &IMAGE_KEYWORDS)?;
+        let (width, height) = (width.0, height.0);
         view.size = (width, height);
         let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
             return Err(raise(
@@ -130,6 +138,7 @@ impl PyVideoWriter {
             ));
         };
         ars_viewer::check_video_settings(fps, w, h).map_err(|e| to_py_error(py, e))?;
+        check_video_path(&path).map_err(|m| raise(py, "InputError", m))?;
         let renderer = PyRenderer::start(py, view)?;
         let writer = VideoWriter::create(path, w, h, fps).map_err(|e| to_py_error(py, e))?;
         Ok(PyVideoWriter { renderer, writer: Mutex::new(Some(writer)) })
@@ -169,19 +178,23 @@ impl PySimulation {
     /// `path`: frame k is the picture at the first step at or after k/fps s (see
     /// `ars._native.VideoWriter` for frames one by one). A dict of what it holds.
     /// The viewer keywords as `ars.Renderer` takes them; `size` defaults to the
-    /// window's 1024 × 768 (both sides must be even).
-    #[pyo3(signature = (path, duration, fps=30.0, size=None, **view))]
+    /// window's 1024 × 768 (both sides must be even). The path ends in `.mp4` (or
+    /// `.m4v`); more than an hour of simulated time or 108,000 frames needs
+    /// `allow_long=True`. Ctrl-C stops it after the frame being drawn with
+    /// `KeyboardInterrupt`, leaving no file; the simulation can be run on.
+    #[pyo3(signature = (path, duration, fps=30.0, size=None, *, allow_long=false, **view))]
     fn record_video(
         &self,
         py: Python<'_>,
         path: std::path::PathBuf,
         duration: f64,
         fps: f64,
-        size: Option<(i64, i64)>,
+        size: Option<Checked<(i64, i64)>>,
+        allow_long: bool,
         view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
         let mut view = ViewKeywords::from_kwargs("record_video", view, &IMAGE_KEYWORDS)?;
-        view.size = size.unwrap_or(view.size);
-        record_video(py, self, path, duration, fps, view)
+        view.size = size.map_or(view.size, |s| s.0);
+        record_video(py, self, path, duration, fps, view, allow_long)
     }
 }

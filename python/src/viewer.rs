@@ -17,8 +17,8 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{io_file_error, panic_message, raise, to_py};
-use crate::simulation::{PySimulation, Vec3};
+use crate::errors::{Checked, io_file_error, panic_message, raise, to_py};
+use crate::simulation::{Int, PySimulation};
 
 /// The Python exception for a viewer error: a bad setting is an `ars.InputError`, no
 /// display an `ars.NoDisplayError`, a renderer, encoder or frame-writer thread that
@@ -48,9 +48,9 @@ pub(crate) struct ViewKeywords {
     pub title: String,
     /// Width and height in pixels, as given (checked by `settings`).
     pub size: (i64, i64),
-    pub camera: Vec3,
-    pub look_at: Vec3,
-    pub background: Vec3,
+    pub camera: [f64; 3],
+    pub look_at: [f64; 3],
+    pub background: [f64; 3],
     pub follow: Option<String>,
     pub quality: String,
     /// Draw the world axes (the window's `x` key toggles them).
@@ -100,9 +100,17 @@ impl ViewKeywords {
                     "{function}() got an unexpected keyword argument '{name}'"
                 )));
             }
-            keywords
-                .set(&name, &value)
-                .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("{function}() argument '{name}': {e}")))?;
+            keywords.set(&name, &value).map_err(|e| {
+                // A sequence of the wrong length or an integer out of range is a wrong
+                // value (`ars.InputError`), anything else a wrong type.
+                let py = value.py();
+                match crate::errors::as_input_error(py, &value, e) {
+                    e if e.is_instance_of::<pyo3::exceptions::PyTypeError>(py) => {
+                        pyo3::exceptions::PyTypeError::new_err(format!("{function}() argument '{name}': {e}"))
+                    }
+                    e => raise(py, "InputError", format!("{function}() argument '{name}': {e}")),
+                }
+            })?;
         }
         Ok(keywords)
     }
@@ -244,7 +252,14 @@ impl Driver for PythonDriver {
     fn key_up(&mut self, key: Key) -> ars_core::Result<()> {
         self.call_program("key", Some((key, false)))
     }
+    /// Also Ctrl-C: Python's signal handlers run once a drawn frame (the window is on
+    /// the main thread, which sees them); the exception one raises closes the window
+    /// and comes out of `show`.
     fn wants_to_close(&mut self) -> bool {
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            self.raised.get_or_insert(e);
+            return true;
+        }
         self.closing || self.frames_left == Some(0)
     }
 }
@@ -257,7 +272,7 @@ pub(crate) fn show(
     sim: Py<PySimulation>,
     program: Option<Py<PyAny>>,
     duration: Option<f64>,
-    frames: Option<i64>,
+    frames: Option<Int>,
     view: ViewKeywords,
 ) -> PyResult<Py<PyDict>> {
     if sim.get().in_own_hook() {
@@ -280,7 +295,7 @@ pub(crate) fn show(
     };
     let frames_left = match frames {
         None => None,
-        Some(n) => Some(
+        Some(Checked(n)) => Some(
             u64::try_from(n)
                 .map_err(|_| raise(py, "InputError", format!("the window's number of frames {n} must be 0 or more")))?,
         ),
@@ -322,7 +337,7 @@ pub(crate) fn show_program(
     py: Python<'_>,
     program: Py<PyAny>,
     duration: Option<f64>,
-    frames: Option<i64>,
+    frames: Option<Int>,
     view: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Py<PyDict>> {
     let view = ViewKeywords::from_kwargs("show_program", view, &VIEW_KEYWORDS)?;
@@ -455,12 +470,12 @@ impl PyRenderer {
     #[pyo3(signature = (width=None, height=None, **view))]
     pub(crate) fn new(
         py: Python<'_>,
-        width: Option<i64>,
-        height: Option<i64>,
+        width: Option<Int>,
+        height: Option<Int>,
         view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         let mut args = ViewKeywords::from_kwargs("Renderer", view, &IMAGE_KEYWORDS)?;
-        args.size = (width.unwrap_or(args.size.0), height.unwrap_or(args.size.1));
+        args.size = (width.map_or(args.size.0, |w| w.0), height.map_or(args.size.1, |h| h.0));
         Self::start(py, args)
     }
 
@@ -553,7 +568,7 @@ impl PySimulation {
     fn show(
         slf: &Bound<'_, Self>,
         duration: Option<f64>,
-        frames: Option<i64>,
+        frames: Option<Int>,
         view: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Py<pyo3::types::PyDict>> {
         let view = ViewKeywords::from_kwargs("show", view, &VIEW_KEYWORDS)?;

@@ -8,13 +8,25 @@ use ars_core::{JointId, ObjectId, Simulation};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
+use crate::errors::Checked;
 use crate::simulation::{PySimulation, Vec3};
 
-/// A set-point: a constant, or `(time, value)` breakpoints.
-#[derive(FromPyObject)]
+/// A set-point: a constant, or `(time, value)` breakpoints (a breakpoint that is not
+/// a pair is an `ars.InputError`).
 pub(crate) enum Setpoint {
     Constant(f64),
     Points(Vec<(f64, f64)>),
+}
+
+impl<'py> FromPyObject<'_, 'py> for Setpoint {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'_, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(value) = obj.extract::<f64>() {
+            return Ok(Setpoint::Constant(value));
+        }
+        obj.extract::<Checked<Vec<(f64, f64)>>>().map(|points| Setpoint::Points(points.0))
+    }
 }
 
 /// An object of a simulation, by name.
@@ -75,8 +87,8 @@ pub(crate) fn rotation(m: [[f64; 3]; 3]) -> ars_core::Result<Rotation3<f64>> {
 }
 
 /// A pose from a position and an optional 3×3 rotation (identity when `None`).
-pub(crate) fn pose(position: Vec3, rot: Option<[[f64; 3]; 3]>) -> ars_core::Result<Isometry3<f64>> {
-    let r = rot.map(rotation).transpose()?.unwrap_or_else(Rotation3::identity);
+pub(crate) fn pose(position: Vec3, rot: Option<Checked<[[f64; 3]; 3]>>) -> ars_core::Result<Isometry3<f64>> {
+    let r = rot.map(|r| rotation(r.0)).transpose()?.unwrap_or_else(Rotation3::identity);
     Ok(Isometry3::from_parts(Translation3::from(Vector3::from(position)), UnitQuaternion::from_rotation_matrix(&r)))
 }
 
@@ -201,14 +213,14 @@ impl Body {
 
     /// Sets its orientation to `rotation` (a 3×3 rotation matrix, world frame), about
     /// its centre; refused (`ars.InputError`) if it is not a rotation.
-    fn set_rotation(&self, py: Python<'_>, rotation: [[f64; 3]; 3]) -> PyResult<()> {
-        self.read(py, move |sim, id| sim.scene_mut().set_rotation(id, self::rotation(rotation)?))
+    fn set_rotation(&self, py: Python<'_>, rotation: Checked<[[f64; 3]; 3]>) -> PyResult<()> {
+        self.read(py, move |sim, id| sim.scene_mut().set_rotation(id, self::rotation(rotation.0)?))
     }
 
     /// Moves and turns it at once: its centre to `position`, its orientation to
     /// `rotation` (3×3, identity if not given); velocities are kept.
     #[pyo3(signature = (position, rotation=None))]
-    fn set_pose(&self, py: Python<'_>, position: Vec3, rotation: Option<[[f64; 3]; 3]>) -> PyResult<()> {
+    fn set_pose(&self, py: Python<'_>, position: Vec3, rotation: Option<Checked<[[f64; 3]; 3]>>) -> PyResult<()> {
         self.read(py, move |sim, id| sim.scene_mut().set_pose(id, pose(position, rotation)?))
     }
 
@@ -232,8 +244,8 @@ impl Body {
     }
 
     /// The colour the viewer draws it with (RGB, each in [0, 1]).
-    fn set_color(&self, py: Python<'_>, color: [f32; 3]) -> PyResult<()> {
-        self.read(py, |sim, id| sim.scene_mut().set_color(id, color))
+    fn set_color(&self, py: Python<'_>, color: Checked<[f32; 3]>) -> PyResult<()> {
+        self.read(py, |sim, id| sim.scene_mut().set_color(id, color.0))
     }
 
     fn __repr__(&self) -> String {

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
+from collections.abc import Callable
 from typing import Any, cast
 
 import gymnasium
@@ -75,7 +78,22 @@ class ArsEnv(gymnasium.Env[Array, Array]):
     #: The rendered image's (width, height), pixels.
     render_size: tuple[int, int] = (480, 360)
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        """Makes a subclass's own `__init__` forgiving (see `_forgiving_init`)."""
+        super().__init_subclass__(**kwargs)
+        init = cls.__dict__.get("__init__")
+        if init is not None and not getattr(init, "_ars_forgiving", False):
+            cls.__init__ = _forgiving_init(init)  # type: ignore[method-assign]
+
     def __init__(self, render_mode: str | None = None, max_episode_steps: int | None = None):
+        # What the environment was made with (`gymnasium.make`, `make_vec`), kept by a
+        # subclass's `__init__` wrapper: a subclass that does not pass `render_mode` or
+        # `max_episode_steps` on to this `__init__` still gets them.
+        requested = self.__dict__.pop("_ars_requested", {})
+        if render_mode is None:
+            render_mode = requested.get("render_mode", self.__dict__.get("render_mode"))
+        if max_episode_steps is None:
+            max_episode_steps = requested.get("max_episode_steps")
         if render_mode == "human" and not ars.has_display():
             raise ars.InputError('render_mode="human" needs a display: use "rgb_array"')
         if render_mode not in (None, "rgb_array", "human"):
@@ -218,6 +236,38 @@ class ArsEnv(gymnasium.Env[Array, Array]):
         """Puts the scene back as `build` made it: restores the exact snapshot taken
         then (bodies, joints, controllers, sensors, clock; records cleared)."""
         self.sim.restore(self._initial_state)
+
+
+#: The keywords `gymnasium.make` and `make_vec` pass to an environment's constructor.
+CONSTRUCTOR_KEYWORDS = ("render_mode", "max_episode_steps")
+
+
+def _forgiving_init(init: Callable[..., None]) -> Callable[..., None]:
+    """A subclass's `__init__`, forgiving about `ArsEnv.__init__`'s keywords
+    (`render_mode`, `max_episode_steps`): those it does not take are not passed to it,
+    and those given reach `ArsEnv.__init__` even when it calls `super().__init__()`
+    without them. So `gymnasium.make(id, render_mode="rgb_array")` renders, and
+    `make_vec` makes any registered `ArsEnv`, whichever way the subclass was written."""
+    parameters = inspect.signature(init).parameters
+    takes_any = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values())
+    taken = {k for k in CONSTRUCTOR_KEYWORDS if takes_any or k in parameters}
+
+    @functools.wraps(init)
+    def forgiving(self: ArsEnv, *args: Any, **kwargs: Any) -> None:
+        given = {k: kwargs[k] for k in CONSTRUCTOR_KEYWORDS if k in kwargs}
+        # The outermost subclass's wrapper runs first: it alone records them.
+        self.__dict__.setdefault("_ars_requested", given)
+        for k in given.keys() - taken:
+            del kwargs[k]
+        init(self, *args, **kwargs)
+        if "_ars_requested" in self.__dict__ and "sim" not in self.__dict__:
+            raise TypeError(
+                f"{type(self).__name__}.__init__ did not call super().__init__(): call it at "
+                "the end of __init__, after setting the spaces and your own attributes"
+            )
+
+    forgiving._ars_forgiving = True  # type: ignore[attr-defined]
+    return forgiving
 
 
 def float_box(low: npt.ArrayLike, high: npt.ArrayLike) -> gymnasium.spaces.Space[Array]:

@@ -152,13 +152,27 @@ class ArsVectorEnv(VectorEnv[Array, Array, Batch]):
             env.close()
 
 
-def make_vec(id: str, num_envs: int = 1, **kwargs: Any) -> ArsVectorEnv:
+#: The most environments `make_vec` makes without `allow_many=True`: each holds a
+#: simulation (and its snapshot), and more than a few per core only wait their turn.
+MAX_NUM_ENVS = 1024
+
+
+def make_vec(
+    id: str, num_envs: int = 1, *, allow_many: bool = False, **kwargs: Any
+) -> ArsVectorEnv:
     """`num_envs` copies of the registered ARS environment `id` (e.g.
-    `"ars/ConicalPendulum-v0"`, made with `kwargs`) as one `ArsVectorEnv`, stepped
-    together by `ars.step_many`. Also what `gymnasium.make_vec(id, num_envs)` gives
-    for the `ars/` environments."""
+    `"ars/ConicalPendulum-v0"`, or any registered `ArsEnv` subclass, made with
+    `kwargs`) as one `ArsVectorEnv`, stepped together by `ars.step_many`. Also what
+    `gymnasium.make_vec(id, num_envs)` gives for the `ars/` environments. More than
+    `MAX_NUM_ENVS` (1024) environments need `allow_many=True`."""
     if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
         raise ars.InputError(f"num_envs must be 1 or more, got {num_envs!r}")
+    if num_envs > MAX_NUM_ENVS and not allow_many:
+        raise ars.InputError(
+            f"num_envs={num_envs} is more than the limit of {MAX_NUM_ENVS} environments (each "
+            "holds a simulation; on a few cores more only wait their turn): pass "
+            "allow_many=True to make them"
+        )
     spec = gymnasium.spec(id)
     if spec.entry_point is None:
         raise ars.InputError(f"{id} has no entry point")

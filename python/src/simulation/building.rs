@@ -6,14 +6,15 @@ use ars_core::Shape;
 use ars_core::nalgebra::{Point3, Vector3};
 use pyo3::prelude::*;
 
-use super::{PySimulation, RayHit, Vec3, name_object};
+use super::{Int, PySimulation, RayHit, Vec3, name_object};
+use crate::errors::Checked;
 
 #[pymethods]
 impl PySimulation {
     /// A sphere of `radius` (m) centred at `center`, of total `mass` (kg) or
     /// `density` (kg/m³) (neither: ODE's default body, 1 kg with unit inertia); returns
     /// its name.
-    #[pyo3(signature = (radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    #[pyo3(signature = (radius, center=Checked([0.0; 3]), mass=None, density=None, *, name=None))]
     fn add_sphere(
         &self,
         py: Python<'_>,
@@ -27,7 +28,7 @@ impl PySimulation {
     }
 
     /// A box of full edge lengths `size` (m); see `add_sphere`.
-    #[pyo3(signature = (size, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    #[pyo3(signature = (size, center=Checked([0.0; 3]), mass=None, density=None, *, name=None))]
     fn add_box(
         &self,
         py: Python<'_>,
@@ -41,7 +42,7 @@ impl PySimulation {
     }
 
     /// A cylinder of `length` and `radius` (m) along its local Z; see `add_sphere`.
-    #[pyo3(signature = (length, radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    #[pyo3(signature = (length, radius, center=Checked([0.0; 3]), mass=None, density=None, *, name=None))]
     fn add_cylinder(
         &self,
         py: Python<'_>,
@@ -57,7 +58,7 @@ impl PySimulation {
 
     /// A capsule: a cylinder of `length` (without its caps) and `radius` (m) along its
     /// local Z, capped by hemispheres; see `add_sphere`.
-    #[pyo3(signature = (length, radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    #[pyo3(signature = (length, radius, center=Checked([0.0; 3]), mass=None, density=None, *, name=None))]
     fn add_capsule(
         &self,
         py: Python<'_>,
@@ -73,7 +74,7 @@ impl PySimulation {
 
     /// A cone of `height` and base `radius` (m) along its local Z, `center` its centre
     /// of mass; see `add_sphere`.
-    #[pyo3(signature = (height, radius, center=[0.0; 3], mass=None, density=None, *, name=None))]
+    #[pyo3(signature = (height, radius, center=Checked([0.0; 3]), mass=None, density=None, *, name=None))]
     fn add_cone(
         &self,
         py: Python<'_>,
@@ -88,7 +89,7 @@ impl PySimulation {
     }
 
     /// A static plane `normal · x = dist` (the floor); returns its name.
-    #[pyo3(signature = (normal=[0.0, 1.0, 0.0], dist=0.0, *, name=None))]
+    #[pyo3(signature = (normal=Checked([0.0, 1.0, 0.0]), dist=0.0, *, name=None))]
     fn add_floor(&self, py: Python<'_>, normal: Vec3, dist: f64, name: Option<String>) -> PyResult<String> {
         self.with(py, move |sim| {
             let id = sim.scene_mut().add_floor_plane(Vector3::from(normal), dist)?;
@@ -97,21 +98,22 @@ impl PySimulation {
     }
 
     /// A static triangle mesh (`vertices`: points; `faces`: index triples) at `center`.
-    #[pyo3(signature = (vertices, faces, center=[0.0; 3], *, name=None))]
+    #[pyo3(signature = (vertices, faces, center=Checked([0.0; 3]), *, name=None))]
     fn add_trimesh(
         &self,
         py: Python<'_>,
         vertices: Vec<Vec3>,
-        faces: Vec<[i64; 3]>,
+        faces: Checked<Vec<[i64; 3]>>,
         center: Vec3,
         name: Option<String>,
     ) -> PyResult<String> {
         let index = |i| count::<u32>(py, "a face's vertex index", i);
         let faces =
-            faces.into_iter().map(|[a, b, c]| Ok([index(a)?, index(b)?, index(c)?])).collect::<PyResult<Vec<_>>>()?;
+            faces.0.into_iter().map(|[a, b, c]| Ok([index(a)?, index(b)?, index(c)?])).collect::<PyResult<Vec<_>>>()?;
         self.with(py, move |sim| {
             let shape = Shape::TriMesh { vertices: vertices.into_iter().map(Point3::from).collect(), triangles: faces };
-            let pose = ars_core::nalgebra::Isometry3::translation(center[0], center[1], center[2]);
+            let [x, y, z] = center.0;
+            let pose = ars_core::nalgebra::Isometry3::translation(x, y, z);
             let id = sim.scene_mut().add_static(shape, pose)?;
             name_object(sim, id, name)
         })
@@ -120,7 +122,7 @@ impl PySimulation {
     /// A rotary joint (hinge) named `name` between objects `obj1` and `obj2` (`None`:
     /// the world) about the world `axis` through `anchor` (default: `obj2`'s position,
     /// or `obj1`'s when joined to the world).
-    #[pyo3(signature = (name, obj1, obj2, anchor=None, axis=[0.0, 0.0, 1.0]))]
+    #[pyo3(signature = (name, obj1, obj2, anchor=None, axis=Checked([0.0, 0.0, 1.0])))]
     fn add_rotary_joint(
         &self,
         py: Python<'_>,
@@ -263,11 +265,11 @@ impl PySimulation {
     /// `soft_erp`/`soft_cfm` (soft contacts; else the world's), `max_contacts=150`
     /// points per pair.
     #[pyo3(signature = (between=None, *, mu=500.0, mu2=None, bounce=0.2, bounce_velocity=0.0, soft_erp=None,
-                        soft_cfm=None, approx1=false, max_contacts=150))]
+                        soft_cfm=None, approx1=false, max_contacts=Checked(150)))]
     fn set_contact_surface(
         &self,
         py: Python<'_>,
-        between: Option<(String, String)>,
+        between: Option<Checked<(String, String)>>,
         mu: f64,
         mu2: Option<f64>,
         bounce: f64,
@@ -275,7 +277,7 @@ impl PySimulation {
         soft_erp: Option<f64>,
         soft_cfm: Option<f64>,
         approx1: bool,
-        max_contacts: i64,
+        max_contacts: Int,
     ) -> PyResult<()> {
         let max_contacts: usize = count(py, "max_contacts", max_contacts)?;
         let surface = ars_core::ContactSurface {
@@ -290,7 +292,7 @@ impl PySimulation {
         };
         self.with(py, move |sim| match between {
             None => sim.scene_mut().world_mut().set_default_surface(surface),
-            Some((a, b)) => {
+            Some(Checked((a, b))) => {
                 let (a, b) = (Self::object_id(sim, &a)?, Self::object_id(sim, &b)?);
                 sim.scene_mut().set_contact_surface(a, b, surface)
             }
@@ -303,11 +305,11 @@ impl PySimulation {
     fn contact_surface<'py>(
         &self,
         py: Python<'py>,
-        between: Option<(String, String)>,
+        between: Option<Checked<(String, String)>>,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let s = self.with(py, move |sim| match between {
             None => Ok(sim.scene().world().default_surface()),
-            Some((a, b)) => {
+            Some(Checked((a, b))) => {
                 let (a, b) = (Self::object_id(sim, &a)?, Self::object_id(sim, &b)?);
                 sim.scene().contact_surface(a, b)
             }

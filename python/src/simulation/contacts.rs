@@ -5,8 +5,8 @@ use ars_core::GeomContact;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::PySimulation;
-use crate::errors::{count, raise};
+use super::{Int, PySimulation};
+use crate::errors::{Checked, count, raise};
 
 /// A geom's parameters as the dict `geom_contact` returns.
 fn as_dict<'py>(py: Python<'py>, c: &GeomContact) -> PyResult<Bound<'py, PyDict>> {
@@ -35,18 +35,18 @@ impl PySimulation {
     /// (MuJoCo's defaults for a geom without any). Two touching geoms' parameters are
     /// combined as MuJoCo combines them and mapped onto ODE's contact (see the Rust
     /// `GeomContact`); a pair with a `set_contact_surface` of its own keeps it.
-    #[pyo3(signature = (name, geom=0, *, friction=None, condim=None, solref=None, solimp=None, priority=None,
+    #[pyo3(signature = (name, geom=Checked(0), *, friction=None, condim=None, solref=None, solimp=None, priority=None,
                         solmix=None))]
     fn set_geom_contact(
         &self,
         py: Python<'_>,
         name: &str,
-        geom: i64,
+        geom: Int,
         friction: Option<Vec<f64>>,
-        condim: Option<i64>,
+        condim: Option<Int>,
         solref: Option<Vec<f64>>,
         solimp: Option<Vec<f64>>,
-        priority: Option<i64>,
+        priority: Option<Int>,
         solmix: Option<f64>,
     ) -> PyResult<()> {
         let geom: usize = count(py, "geom", geom)?;
@@ -54,10 +54,14 @@ impl PySimulation {
         let solref = solref.map(|r| numbers::<2>(py, "solref", r)).transpose()?;
         let solimp = solimp.map(|s| numbers::<5>(py, "solimp", s)).transpose()?;
         let condim = condim
-            .map(|c| u8::try_from(c).map_err(|_| raise(py, "InputError", format!("condim {c} must be 1, 3, 4 or 6"))))
+            .map(|Checked(c)| {
+                u8::try_from(c).map_err(|_| raise(py, "InputError", format!("condim {c} must be 1, 3, 4 or 6")))
+            })
             .transpose()?;
         let priority = priority
-            .map(|p| i32::try_from(p).map_err(|_| raise(py, "InputError", format!("priority {p} is beyond ±2³¹"))))
+            .map(|Checked(p)| {
+                i32::try_from(p).map_err(|_| raise(py, "InputError", format!("priority {p} is beyond ±2³¹")))
+            })
             .transpose()?;
         self.with(py, move |sim| {
             let object = Self::object_id(sim, name)?;
@@ -74,8 +78,8 @@ impl PySimulation {
 
     /// The contact parameters of geom `geom` of object `name` (0: its first), as a dict
     /// of `set_geom_contact`'s keywords, or `None` when it has none of its own.
-    #[pyo3(signature = (name, geom=0))]
-    fn geom_contact<'py>(&self, py: Python<'py>, name: &str, geom: i64) -> PyResult<Option<Bound<'py, PyDict>>> {
+    #[pyo3(signature = (name, geom=Checked(0)))]
+    fn geom_contact<'py>(&self, py: Python<'py>, name: &str, geom: Int) -> PyResult<Option<Bound<'py, PyDict>>> {
         let geom: usize = count(py, "geom", geom)?;
         let contact = self.with(py, move |sim| sim.scene().geom_contact(Self::object_id(sim, name)?, geom))?;
         contact.map(|c| as_dict(py, &c)).transpose()

@@ -1,7 +1,7 @@
 //! `ars.Simulation`'s methods that read and write files and states: URDF and MJCF
 //! models, scene files, snapshots.
 
-use crate::errors::guarded;
+use crate::errors::{Checked, guarded};
 use ars_core::Simulation;
 use pyo3::prelude::*;
 use std::collections::HashMap;
@@ -20,7 +20,7 @@ impl PySimulation {
     /// triangle meshes). A floating robot that would reach into a floor at
     /// `base_position` is raised to rest on it, with a line in `adjusted`
     /// (`exact_base_pose=True` keeps the position given).
-    #[pyo3(signature = (path, *, fixed_base=false, base_position=[0.0; 3], self_collision=false, y_up=false,
+    #[pyo3(signature = (path, *, fixed_base=false, base_position=Checked([0.0; 3]), self_collision=false, y_up=false,
                         initial_positions=None, packages=None, search_paths=None, ignore_visuals=false,
                         strict_inertia=false, triangle_mesh_collisions=false, exact_base_pose=false))]
     fn load_urdf<'py>(
@@ -47,9 +47,9 @@ impl PySimulation {
             .self_collision(self_collision)
             .ignore_visuals(ignore_visuals)
             .base_pose(ars_core::nalgebra::Isometry3::translation(
-                base_position[0],
-                base_position[1],
-                base_position[2],
+                base_position.0[0],
+                base_position.0[1],
+                base_position.0[2],
             ));
         if y_up {
             options = options.up_axis(ars_core::UpAxis::Y);
@@ -91,7 +91,7 @@ impl PySimulation {
     /// was skipped; `welded` maps each jointless body to the body it was merged
     /// into (`None`: the world). `prefix` goes before every name of the model, so that
     /// two copies of a model share a simulation (as MuJoCo's `attach`).
-    #[pyo3(signature = (path, *, base_position=[0.0; 3], skip_unsupported=false, prefix=String::new()))]
+    #[pyo3(signature = (path, *, base_position=Checked([0.0; 3]), skip_unsupported=false, prefix=String::new()))]
     fn load_mjcf<'py>(
         slf: Bound<'py, Self>,
         path: std::path::PathBuf,
@@ -100,7 +100,7 @@ impl PySimulation {
         prefix: String,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let py = slf.py();
-        let [x, y, z] = base_position;
+        let [x, y, z] = base_position.0;
         let options = ars_core::MjcfOptions::new()
             .base_pose(ars_core::nalgebra::Isometry3::translation(x, y, z))
             .skip_unsupported(skip_unsupported)

@@ -19,15 +19,31 @@ use ars_core::{Error, HookId, HookPoint, Hooks, JointEnd, Mass, ObjectId, Shape,
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
-use crate::errors::{count, guarded, outcome, raise};
+use crate::errors::{Checked, count, guarded, outcome, raise};
 
 mod building;
 mod contacts;
 mod files;
 mod sensing;
 
-/// A vector given as any sequence of three numbers.
-pub(crate) type Vec3 = [f64; 3];
+/// A vector given as any sequence of three numbers (another length is an
+/// `ars.InputError`).
+pub(crate) type Vec3 = Checked<[f64; 3]>;
+
+/// An integer argument (one beyond 64 bits is an `ars.InputError`).
+pub(crate) type Int = Checked<i64>;
+
+impl From<Vec3> for Point3<f64> {
+    fn from(v: Vec3) -> Self {
+        Point3::from(v.0)
+    }
+}
+
+impl From<Vec3> for Vector3<f64> {
+    fn from(v: Vec3) -> Self {
+        Vector3::from(v.0)
+    }
+}
 
 /// A ray's hit: distance (m) and point.
 type RayHit = (f64, (f64, f64, f64));
@@ -84,7 +100,7 @@ impl HookContext {
 }
 
 /// How often a long `step`/`run` takes the GIL back to let Python handle its signals.
-const SIGNAL_CHECK_PERIOD: Duration = Duration::from_millis(5);
+pub(crate) const SIGNAL_CHECK_PERIOD: Duration = Duration::from_millis(5);
 
 /// The stop condition of a long `step`/`run` (called between steps or frames): every
 /// [`SIGNAL_CHECK_PERIOD`] it runs Python's signal handlers; if one raises (Ctrl-C's
@@ -264,6 +280,12 @@ impl PySimulation {
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sim.step_n_until(n, stop)))
     }
 
+    /// The exception a Python hook of this simulation raised and nobody took yet
+    /// (taken: a later call does not see it).
+    pub(crate) fn take_hook_exception(&self) -> Option<PyErr> {
+        lock(&self.context.raised).take()
+    }
+
     /// The exception for the outcome of [`step_detached`](Self::step_detached): the
     /// one a Python hook raised, unchanged, else the ARS error or panic, if any.
     pub(crate) fn stepped(&self, py: Python<'_>, caught: std::thread::Result<ars_core::Result<()>>) -> PyResult<()> {
@@ -334,11 +356,11 @@ impl PySimulation {
         gravity: Option<Vec3>,
         erp: Option<f64>,
         cfm: Option<f64>,
-        steps_per_frame: Option<i64>,
+        steps_per_frame: Option<Int>,
         space: Option<&str>,
         stepper: Option<&str>,
-        quick_iterations: Option<i64>,
-        seed: Option<i64>,
+        quick_iterations: Option<Int>,
+        seed: Option<Int>,
     ) -> PyResult<Self> {
         let steps_per_frame: Option<u32> = steps_per_frame.map(|n| count(py, "steps_per_frame", n)).transpose()?;
         let quick_iterations: Option<u32> = quick_iterations.map(|n| count(py, "quick_iterations", n)).transpose()?;
@@ -485,7 +507,7 @@ impl PySimulation {
     /// Chooses the stepper for the next steps: `"exact"` or `"quick"` with
     /// `quick_iterations` iterations per step (default 20).
     #[pyo3(signature = (stepper, quick_iterations=None))]
-    fn set_stepper(&self, py: Python<'_>, stepper: &str, quick_iterations: Option<i64>) -> PyResult<()> {
+    fn set_stepper(&self, py: Python<'_>, stepper: &str, quick_iterations: Option<Int>) -> PyResult<()> {
         let quick_iterations: Option<u32> = quick_iterations.map(|n| count(py, "quick_iterations", n)).transpose()?;
         let stepper =
             crate::kinds::stepper(Some(stepper), quick_iterations).map_err(|(class, e)| raise(py, class, e))?;
@@ -494,7 +516,7 @@ impl PySimulation {
 
     /// Seeds the world's own random generator (used by ODE's QuickStep; each world
     /// keeps its own, so a run steps the same in any process).
-    fn set_seed(&self, py: Python<'_>, seed: i64) -> PyResult<()> {
+    fn set_seed(&self, py: Python<'_>, seed: Int) -> PyResult<()> {
         let seed: u32 = count(py, "the seed", seed)?;
         self.with(py, move |sim| {
             sim.scene_mut().world_mut().set_random_seed(seed);
@@ -505,8 +527,8 @@ impl PySimulation {
     /// Takes `n` steps (in native code, without the GIL unless a Python hook runs).
     /// Ctrl-C stops it between two steps with `KeyboardInterrupt`; the simulation can
     /// be stepped on.
-    #[pyo3(signature = (n=1))]
-    fn step(&self, py: Python<'_>, n: i64) -> PyResult<()> {
+    #[pyo3(signature = (n=Checked(1)))]
+    fn step(&self, py: Python<'_>, n: Int) -> PyResult<()> {
         let n: u64 = count(py, "the number of steps", n)?;
         let context = Arc::clone(&self.context);
         self.advance(py, move |sim| sim.step_n_until(n, python_signals(&context.raised)))
@@ -582,7 +604,8 @@ impl PySimulation {
     }
 
     /// Removes a hook added with `add_pre_step` or `add_post_step`.
-    fn remove_hook(&self, py: Python<'_>, hook: i64) -> PyResult<()> {
+    fn remove_hook(&self, py: Python<'_>, hook: Int) -> PyResult<()> {
+        let hook = hook.0;
         let Some((id, _)) = u64::try_from(hook).ok().and_then(|key| lock(&self.hooks).remove(&key)) else {
             return Err(unknown_hook(py, hook));
         };
@@ -592,7 +615,8 @@ impl PySimulation {
     /// Turns a hook added with `add_pre_step` or `add_post_step` off (skipped at each
     /// step without taking the GIL) or back on; for `ars.model`, whose post-step hook
     /// is off while no one listens to its post-step signal.
-    fn _enable_hook(&self, py: Python<'_>, hook: i64, enabled: bool) -> PyResult<()> {
+    fn _enable_hook(&self, py: Python<'_>, hook: Int, enabled: bool) -> PyResult<()> {
+        let hook = hook.0;
         let hooks = lock(&self.hooks);
         let Some((_, switch)) = u64::try_from(hook).ok().and_then(|key| hooks.get(&key)) else {
             return Err(unknown_hook(py, hook));

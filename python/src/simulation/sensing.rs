@@ -3,7 +3,8 @@
 use crate::errors::count;
 use pyo3::prelude::*;
 
-use super::{PySimulation, Vec3};
+use super::{Int, PySimulation, Vec3};
+use crate::errors::Checked;
 
 #[pymethods]
 impl PySimulation {
@@ -15,21 +16,21 @@ impl PySimulation {
     /// Scans after every step or every `every` seconds; `noise` adds seeded Gaussian
     /// noise of that standard deviation (m) to the ranges. `Sensor.ranges()` gives the
     /// scans as an array.
-    #[pyo3(signature = (beams, fov, max_range, *, min_range=0.0, planes=None, on=None, position=[0.0; 3],
-                        rotation=None, every=None, noise=None, seed=0))]
+    #[pyo3(signature = (beams, fov, max_range, *, min_range=0.0, planes=None, on=None, position=Checked([0.0; 3]),
+                        rotation=None, every=None, noise=None, seed=Checked(0)))]
     fn add_lidar(
         slf: Bound<'_, Self>,
-        beams: i64,
+        beams: Int,
         fov: f64,
         max_range: f64,
         min_range: f64,
         planes: Option<Vec<f64>>,
         on: Option<String>,
         position: Vec3,
-        rotation: Option<[[f64; 3]; 3]>,
+        rotation: Option<Checked<[[f64; 3]; 3]>>,
         every: Option<f64>,
         noise: Option<f64>,
-        seed: i64,
+        seed: Int,
     ) -> PyResult<crate::sensors::PySensor> {
         let beams: u32 = count(slf.py(), "lidar beams", beams)?;
         let seed: u64 = count(slf.py(), "the seed", seed)?;
@@ -44,17 +45,17 @@ impl PySimulation {
     /// (rad), depths from `near` to `far` m along its optical axis (its −Z, +Y up in the
     /// image). Mounted as `add_lidar`'s lidar. `Sensor.images()` gives the images as an
     /// array.
-    #[pyo3(signature = (width, height, fov_y, near, far, *, on=None, position=[0.0; 3], rotation=None, every=None))]
+    #[pyo3(signature = (width, height, fov_y, near, far, *, on=None, position=Checked([0.0; 3]), rotation=None, every=None))]
     fn add_depth_camera(
         slf: Bound<'_, Self>,
-        width: i64,
-        height: i64,
+        width: Int,
+        height: Int,
         fov_y: f64,
         near: f64,
         far: f64,
         on: Option<String>,
         position: Vec3,
-        rotation: Option<[[f64; 3]; 3]>,
+        rotation: Option<Checked<[[f64; 3]; 3]>>,
         every: Option<f64>,
     ) -> PyResult<crate::sensors::PySensor> {
         let (width, height): (u32, u32) =
