@@ -267,6 +267,7 @@ class Simulation:
         strict_inertia: bool = False,
         triangle_mesh_collisions: bool = False,
         exact_base_pose: bool = False,
+        keep_fixed_links: bool = False,
     ) -> _UrdfRobot: ...
     def remove_object(self, name: str) -> None: ...
     @property

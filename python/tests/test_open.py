@@ -88,3 +88,23 @@ def test_a_urdf_inertia_no_body_can_have_is_corrected_with_a_warning(tmp_path):
     assert len(robot["adjusted"]) == 2 and "solid sphere" in robot["adjusted"][1]
     with pytest.raises(ars.FormatError, match="positive definite"):
         ars.Simulation().load_urdf(path, strict_inertia=True)
+
+
+def test_a_link_with_mass_on_a_fixed_joint_is_fused_unless_kept_apart(tmp_path):
+    inertia = '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>'
+    link = '<link name="{0}"><inertial><mass value="1"/>' + inertia + "</inertial></link>"
+    path = tmp_path / "welded.urdf"
+    path.write_text(
+        '<robot name="r">'
+        + link.format("a")
+        + link.format("b")
+        + '<joint name="weld" type="fixed"><origin xyz="1 0 0"/>'
+        '<parent link="a"/><child link="b"/></joint></robot>'
+    )
+    fused = ars.Simulation()
+    robot = fused.load_urdf(str(path))
+    assert "b" not in fused.objects and fused.body("a").mass == 2.0
+    assert any("fused" in line for line in robot["adjusted"]), robot["adjusted"]
+    apart = ars.Simulation()
+    apart.load_urdf(str(path), keep_fixed_links=True)
+    assert apart.body("a").mass == 1.0 and apart.body("b").mass == 1.0

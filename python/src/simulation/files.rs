@@ -19,10 +19,13 @@ impl PySimulation {
     /// as their convex hulls, as PyBullet's do (`triangle_mesh_collisions=True`: as
     /// triangle meshes). A floating robot that would reach into a floor at
     /// `base_position` is raised to rest on it, with a line in `adjusted`
-    /// (`exact_base_pose=True` keeps the position given).
+    /// (`exact_base_pose=True` keeps the position given). A link with mass on a fixed
+    /// joint is fused into the body it is fixed to, as MuJoCo does
+    /// (`keep_fixed_links=True`: each its own body, held by a fixed joint).
     #[pyo3(signature = (path, *, fixed_base=false, base_position=Checked([0.0; 3]), self_collision=false, y_up=false,
                         initial_positions=None, packages=None, search_paths=None, ignore_visuals=false,
-                        strict_inertia=false, triangle_mesh_collisions=false, exact_base_pose=false))]
+                        strict_inertia=false, triangle_mesh_collisions=false, exact_base_pose=false,
+                        keep_fixed_links=false))]
     fn load_urdf<'py>(
         &self,
         py: Python<'py>,
@@ -38,9 +41,11 @@ impl PySimulation {
         strict_inertia: bool,
         triangle_mesh_collisions: bool,
         exact_base_pose: bool,
+        keep_fixed_links: bool,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let mut options = ars_core::UrdfOptions::new()
             .exact_base_pose(exact_base_pose)
+            .keep_fixed_links(keep_fixed_links)
             .strict_inertia(strict_inertia)
             .triangle_mesh_collisions(triangle_mesh_collisions)
             .fixed_base(fixed_base)
