@@ -113,9 +113,19 @@ def reset(env):
 
 # (name, what is called given a fresh scene, positional arguments, keyword arguments)
 SIM = [
-    ("Simulation", lambda s: ars.Simulation, (), {
-        "time_step": 0.001, "gravity": (0.0, -9.81, 0.0), "steps_per_frame": 10,
-        "quick_iterations": 20, "seed": 3, "stepper": "quick"}),
+    (
+        "Simulation",
+        lambda s: ars.Simulation,
+        (),
+        {
+            "time_step": 0.001,
+            "gravity": (0.0, -9.81, 0.0),
+            "steps_per_frame": 10,
+            "quick_iterations": 20,
+            "seed": 3,
+            "stepper": "quick",
+        },
+    ),
     ("step", None, (5,), {}),
     ("run", None, (0.01,), {}),
     ("step_frame", None, (), {}),
@@ -126,9 +136,19 @@ SIM = [
     ("clear_contact_surface", None, ("ball", "floor"), {}),
     ("exclude_contacts", None, ("ball", "box"), {}),
     ("include_contacts", None, ("ball", "box"), {}),
-    ("set_geom_contact", None, ("ball", 0), {
-        "friction": (1.0, 0.005, 0.0001), "condim": 3, "solref": (0.02, 1.0),
-        "solimp": (0.9, 0.95, 0.001, 0.5, 2.0), "priority": 1, "solmix": 1.0}),
+    (
+        "set_geom_contact",
+        None,
+        ("ball", 0),
+        {
+            "friction": (1.0, 0.005, 0.0001),
+            "condim": 3,
+            "solref": (0.02, 1.0),
+            "solimp": (0.9, 0.95, 0.001, 0.5, 2.0),
+            "priority": 1,
+            "solmix": 1.0,
+        },
+    ),
     ("geom_contact", None, ("ball", 0), {}),
     ("cast_ray", None, ((0.0, 2.0, 0.0), (0.0, -1.0, 0.0), 5.0), {}),
     ("add_sphere", None, (0.1, (0.0, 2.0, 0.0), 1.0), {}),
@@ -137,48 +157,103 @@ SIM = [
     ("add_capsule", None, (0.2, 0.1, (0.0, 2.0, 0.0), 1.0), {}),
     ("add_cone", None, (0.2, 0.1, (0.0, 2.0, 0.0), 1.0), {}),
     ("add_floor", None, ((0.0, 1.0, 0.0), -1.0), {}),
-    ("add_trimesh", None, (
-        [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 1.0), (0.0, 1.0, 0.0)],
-        [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)], (0.0, 3.0, 0.0)), {}),
-    ("load_mjcf", None, (Path("m.xml", b'<mujoco><worldbody><body><freejoint/>'
-                                b'<geom type="sphere" size="0.1"/></body></worldbody></mujoco>'),),
-     {"base_position": (0.0, 1.0, 0.0)}),
-    ("load_urdf", None, (Path("arm.urdf", ARM.read_bytes()),),
-     {"fixed_base": True, "base_position": (0.0, 1.0, 0.0), "search_paths": [str(REPO)]}),
+    (
+        "add_trimesh",
+        None,
+        (
+            [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 1.0), (0.0, 1.0, 0.0)],
+            [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)],
+            (0.0, 3.0, 0.0),
+        ),
+        {},
+    ),
+    (
+        "load_mjcf",
+        None,
+        (
+            Path(
+                "m.xml",
+                b"<mujoco><worldbody><body><freejoint/>"
+                b'<geom type="sphere" size="0.1"/></body></worldbody></mujoco>',
+            ),
+        ),
+        {"base_position": (0.0, 1.0, 0.0)},
+    ),
+    (
+        "load_urdf",
+        None,
+        (Path("arm.urdf", ARM.read_bytes()),),
+        {"fixed_base": True, "base_position": (0.0, 1.0, 0.0), "search_paths": [str(REPO)]},
+    ),
     ("remove_object", None, ("box",), {}),
     ("body", None, ("ball",), {}),
     ("add_rotary_joint", None, ("r", "box", None, (1.0, 0.5, 0.0), (0.0, 0.0, 1.0)), {}),
     ("add_slider_joint", None, ("s", "box", None, (1.0, 0.0, 0.0)), {}),
     ("add_ball_socket_joint", None, ("b", "box", None, (1.0, 0.5, 0.0)), {}),
-    ("add_universal_joint", None, (
-        "u", "box", None, (1.0, 0.5, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)), {}),
+    (
+        "add_universal_joint",
+        None,
+        ("u", "box", None, (1.0, 0.5, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
+        {},
+    ),
     ("add_piston_joint", None, ("p", "box", None, (1.0, 0.5, 0.0), (1.0, 0.0, 0.0)), {}),
     ("add_fixed_joint", None, ("f", "box", None), {}),
     ("remove_joint", None, ("hinge",), {}),
     ("joint", None, ("hinge",), {}),
     ("add_sensor", None, ("gps", "box"), {"every": 0.01}),
-    ("add_lidar", None, (8, 1.0, 5.0), {
-        "planes": [0.0, 0.1], "position": (0.0, 1.0, 0.0),
-        "rotation": ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)), "seed": 2}),
-    ("add_depth_camera", None, (8, 6, 1.0, 0.1, 10.0), {
-        "position": (0.0, 1.0, 3.0),
-        "rotation": ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))}),
+    (
+        "add_lidar",
+        None,
+        (8, 1.0, 5.0),
+        {
+            "planes": [0.0, 0.1],
+            "position": (0.0, 1.0, 0.0),
+            "rotation": ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
+            "seed": 2,
+        },
+    ),
+    (
+        "add_depth_camera",
+        None,
+        (8, 6, 1.0, 0.1, 10.0),
+        {
+            "position": (0.0, 1.0, 3.0),
+            "rotation": ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
+        },
+    ),
     ("add_pre_step", None, (lambda: None,), {}),
     ("add_post_step", None, (lambda: None,), {}),
     ("remove_hook", None, (1,), {}),
     ("_enable_hook", None, (1, False), {}),
     ("save_scene_to", None, (Path("scene.json"),), {}),
     ("load_scene", lambda s: ars.Simulation.load_scene, (scene().save_scene(),), {}),
-    ("load_scene_from", lambda s: ars.Simulation.load_scene_from,
-     (Path("in.json", saved_scene),), {}),
+    (
+        "load_scene_from",
+        lambda s: ars.Simulation.load_scene_from,
+        (Path("in.json", saved_scene),),
+        {},
+    ),
     ("open", lambda s: ars.Simulation.open, (Path("in.json", saved_scene),), {}),
     ("from_snapshot", lambda s: ars.Simulation.from_snapshot, (snapshot(),), {}),
     ("restore", None, (snapshot(),), {}),
-    ("record_video", None, (Path("v.mp4"), 0.1), {
-        "fps": 30.0, "size": (64, 48), "camera": (3.0, 2.0, 3.0), "look_at": (0.0, 0.5, 0.0),
-        "background": (1.0, 1.0, 1.0)}),
-    ("save_replay", None, (Path("r.html"), 0.1), {
-        "size": (64, 48), "camera": (3.0, 2.0, 3.0), "background": (1.0, 1.0, 1.0)}),
+    (
+        "record_video",
+        None,
+        (Path("v.mp4"), 0.1),
+        {
+            "fps": 30.0,
+            "size": (64, 48),
+            "camera": (3.0, 2.0, 3.0),
+            "look_at": (0.0, 0.5, 0.0),
+            "background": (1.0, 1.0, 1.0),
+        },
+    ),
+    (
+        "save_replay",
+        None,
+        (Path("r.html"), 0.1),
+        {"size": (64, 48), "camera": (3.0, 2.0, 3.0), "background": (1.0, 1.0, 1.0)},
+    ),
     ("replay", None, (0.1,), {"size": (64, 48), "camera": (3.0, 2.0, 3.0)}),
     ("show", None, (1.0,), {"frames": 2, "size": (64, 48), "camera": (3.0, 2.0, 3.0)}),
     ("set_gravity", lambda s: lambda g: setattr(s, "gravity", g), ((0.0, -1.0, 0.0),), {}),
@@ -222,18 +297,39 @@ CALLS = (
     + [("Joint.add_force", lambda s: s.joint("slide").add_force, (1.0,), {})]
     + [
         ("Sensor.to_csv", lambda s: s.add_sensor("gps", "ball").to_csv, (Path("gps.csv"),), {}),
-        ("Renderer", lambda s: ars.Renderer, (32, 24), {
-            "camera": (3.0, 2.0, 3.0), "look_at": (0.0, 0.5, 0.0), "background": (1.0, 1.0, 1.0)}),
-        ("Renderer.save", lambda s: lambda p: ars.Renderer(32, 24).save(s, p), (Path("f.png"),), {}),
-        ("VideoWriter", lambda s: ars.VideoWriter, (Path("w.mp4"), 32, 24, 30.0), {
-            "camera": (3.0, 2.0, 3.0)}),
+        (
+            "Renderer",
+            lambda s: ars.Renderer,
+            (32, 24),
+            {"camera": (3.0, 2.0, 3.0), "look_at": (0.0, 0.5, 0.0), "background": (1.0, 1.0, 1.0)},
+        ),
+        (
+            "Renderer.save",
+            lambda s: lambda p: ars.Renderer(32, 24).save(s, p),
+            (Path("f.png"),),
+            {},
+        ),
+        (
+            "VideoWriter",
+            lambda s: ars.VideoWriter,
+            (Path("w.mp4"), 32, 24, 30.0),
+            {"camera": (3.0, 2.0, 3.0)},
+        ),
         ("step_many", lambda s: lambda n: ars.step_many([s, scene()], n), (5,), {}),
         ("Image.save", lambda s: ars.Renderer(32, 24).render(s).save, (Path("i.png"),), {}),
         ("Replay.save", lambda s: s.replay(0.05).save, (Path("r.html"),), {}),
-        ("sweep", lambda s: ars.sweep, (lambda p: scene(), [{}], 0.01), {
-            "record": ["ball.position"], "every": 2, "seed": 1, "progress": False}),
-        ("SweepResults.save", lambda s: ars.sweep(lambda p: scene(), [{}], 0.01).save,
-         (Path("s.npz"),), {}),
+        (
+            "sweep",
+            lambda s: ars.sweep,
+            (lambda p: scene(), [{}], 0.01),
+            {"record": ["ball.position"], "every": 2, "seed": 1, "progress": False},
+        ),
+        (
+            "SweepResults.save",
+            lambda s: ars.sweep(lambda p: scene(), [{}], 0.01).save,
+            (Path("s.npz"),),
+            {},
+        ),
         ("load_sweep", lambda s: ars.load_sweep, (Path("in.npz", saved_sweep),), {}),
         ("gym.make_vec", lambda s: ars.gym.make_vec, (gym_id(), 2), {}),
         ("gym.ArsEnv.step", lambda s: reset(Pendulum()).step, ([0.5],), {}),
@@ -244,8 +340,16 @@ CALLS = (
 
 # Public methods that take no argument worth varying (or none at all).
 NOTHING_TO_VARY = {
-    "Simulation": {"excluded_contacts", "geom_contacts", "save_scene", "snapshot", "set_control",
-                   "control", "set_controls", "__reduce__"},
+    "Simulation": {
+        "excluded_contacts",
+        "geom_contacts",
+        "save_scene",
+        "snapshot",
+        "set_control",
+        "control",
+        "set_controls",
+        "__reduce__",
+    },
     "Body": {"_position", "_rotation", "_linear_velocity", "_angular_velocity", "_inertia"},
     "Joint": {"clear_mimic"},
     "Sensor": {"records", "ranges", "points", "images", "clear", "remove"},
@@ -326,7 +430,9 @@ def test_a_wrong_length_a_huge_integer_or_a_missing_folder_is_an_ars_error(
             raised = attempt(call, a, k)
             where = f"argument {i if key is None else list(kwargs)[key]!r} = {label}"
             if raised is not None and not isinstance(raised, expected):
-                wrong.append(f"{where}: {type(raised).__module__}.{type(raised).__qualname__}: {raised}")
+                wrong.append(
+                    f"{where}: {type(raised).__module__}.{type(raised).__qualname__}: {raised}"
+                )
             if isinstance(raised, KeyboardInterrupt):
                 raise raised
     assert not wrong, f"{name}:\n" + "\n".join(wrong)
@@ -336,14 +442,16 @@ def test_a_wrong_length_a_huge_integer_or_a_missing_folder_is_an_ars_error(
 
 def public_methods(cls):
     return {
-        n for n, v in vars(cls).items()
+        n
+        for n, v in vars(cls).items()
         if callable(v) or isinstance(v, (staticmethod, classmethod))
         if not n.startswith("__") or n == "__reduce__"
     } - {"__new__"}
 
 
 @pytest.mark.parametrize(
-    "cls", [ars.Simulation, ars.Body, ars.Joint, ars.Sensor, ars.Renderer, ars.VideoWriter],
+    "cls",
+    [ars.Simulation, ars.Body, ars.Joint, ars.Sensor, ars.Renderer, ars.VideoWriter],
     ids=lambda c: c.__name__,
 )
 def test_every_public_method_is_walked(cls):
@@ -355,8 +463,11 @@ def test_every_public_method_is_walked(cls):
 
 def test_a_wrong_type_is_a_type_error():
     sim = scene()
-    for call in (lambda: sim.step("5"), lambda: sim.add_sphere(0.1, "abc"),
-                 lambda: ars.step_many([sim], "5")):
+    for call in (
+        lambda: sim.step("5"),
+        lambda: sim.add_sphere(0.1, "abc"),
+        lambda: ars.step_many([sim], "5"),
+    ):
         with pytest.raises(TypeError):
             call()
 

@@ -144,11 +144,7 @@ def test_ctrl_c_stops_a_long_record_video_allowed_with_a_python_hook(tmp_path):
 
 @pytest.mark.parametrize("call", ["save_replay", "replay"])
 def test_ctrl_c_stops_a_replay_and_leaves_no_file(tmp_path, call):
-    run = (
-        'sim.save_replay("long.html", 3000.0)'
-        if call == "save_replay"
-        else "sim.replay(3000.0)"
-    )
+    run = 'sim.save_replay("long.html", 3000.0)' if call == "save_replay" else "sim.replay(3000.0)"
     after, report = interrupt_child(tmp_path, "sim = ball_on_a_floor()\n", run, "usable(sim)")
     assert_prompt(after)
     only(tmp_path)

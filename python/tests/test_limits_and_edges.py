@@ -22,8 +22,10 @@ def ball():
     ("record", "words"),
     [
         (lambda sim, d: sim.record_video(d / "v.mp4", 1e9, size=(64, 48)), "limit of 3600"),
-        (lambda sim, d: sim.record_video(d / "v.mp4", 200.0, fps=1000, size=(64, 48)),
-         "limit of 108000 frames"),
+        (
+            lambda sim, d: sim.record_video(d / "v.mp4", 200.0, fps=1000, size=(64, 48)),
+            "limit of 108000 frames",
+        ),
         (lambda sim, d: sim.save_replay(d / "r.html", 1e9), "limit of 3600"),
         (lambda sim, d: sim.replay(3600.5), "limit of 3600"),
     ],
