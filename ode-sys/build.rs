@@ -18,6 +18,8 @@ fn main() {
     println!("cargo:rerun-if-changed=wrapper.h");
     println!("cargo:rerun-if-changed=src/guard.c");
     println!("cargo:rerun-if-changed=src/guard.h");
+    println!("cargo:rerun-if-changed=src/hull.c");
+    println!("cargo:rerun-if-changed=src/hull.h");
     println!("cargo:rerun-if-env-changed=PKG_CONFIG_PATH");
     println!("cargo:rerun-if-env-changed=LIBCLANG_PATH");
 
@@ -67,6 +69,7 @@ fn main() {
     // The guard that turns ODE's internal errors into return codes (src/guard.c).
     cc::Build::new()
         .file("src/guard.c")
+        .file("src/hull.c")
         .includes(&ode.include_paths)
         .flag_if_supported("-std=c11")
         .warnings(true)

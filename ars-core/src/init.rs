@@ -48,6 +48,10 @@ fn prepare_thread() {
         let ok = unsafe { ffi::dInitODE2(0) };
         crate::guard::install_handlers();
         assert!(ok != 0, "ODE failed to initialise (dInitODE2)");
+        // SAFETY: ODE is initialised (above) and no other thread uses it yet (this is
+        // the process-wide `Once`); registering the class writes ODE's global tables.
+        let hull_class = unsafe { ffi::odesys_hull_register() };
+        assert!(hull_class >= 0, "ODE refused the convex hull geom class");
         // SAFETY: the configuration string is NUL-terminated and static.
         let double = unsafe { ffi::dCheckConfiguration(c"ODE_double_precision".as_ptr()) };
         assert!(double == 1, "the loaded libode is not double precision");

@@ -72,7 +72,8 @@ pub enum Shape {
         /// Vertex indices, three per triangle.
         triangles: Vec<[u32; 3]>,
     },
-    /// A convex polyhedron, collided by ODE as a convex (`dCreateConvex`): how MuJoCo
+    /// A convex polyhedron, collided by ODE's convex colliders (`dCreateConvex`; its
+    /// geom's bounding box costs O(1) per step, not one per vertex): how MuJoCo
     /// collides every mesh, and PyBullet a URDF's collision meshes. Make it from any
     /// points (a mesh's vertices) with [`Shape::convex_hull`]; one given directly must
     /// be a convex hull: a closed surface of triangles wound counter-clockwise seen

@@ -61,16 +61,20 @@ impl ConvexStorage {
         (ConvexStorage { _planes: planes, _points: points, _polygons: polygons }, centre)
     }
 
-    /// Creates ODE's convex geom in `space_raw`.
+    /// Creates the hull's geom in `space_raw`: ode-sys's hull geom (`hull.c`), which
+    /// collides as ODE's convex of these arrays but whose bounding box costs O(1) per
+    /// step (ODE's convex transforms every vertex for it).
     ///
     /// # Safety
-    /// `space_raw` is live; the geom is destroyed before `self` is dropped.
+    /// `space_raw` is live and ODE is ready (`ensure_ode_ready`, which registers the
+    /// hull class); the geom is destroyed before `self` is dropped.
     unsafe fn create(&self, space_raw: ffi::dSpaceID) -> ffi::dGeomID {
         // SAFETY: the caller's contract; the arrays stay where they are (their heap
         // buffers do not move with `self`) and describe `planes.len() / 4` planes,
-        // `points.len() / 3` points and as many polygons, every index in range.
+        // `points.len() / 3` points (at least one: a valid hull) and as many polygons,
+        // every index in range.
         unsafe {
-            ffi::dCreateConvex(
+            ffi::odesys_hull_create(
                 space_raw,
                 self._planes.as_ptr(),
                 (self._planes.len() / 4) as u32,
@@ -369,6 +373,9 @@ impl World {
         // SAFETY: the space is live and every size was checked positive and finite; a
         // trimesh's data and a hull's arrays were built above, kept with the geom.
         let raw = unsafe { create_ode_geom(space_raw, &shape, mesh.as_ref(), convex.as_ref()) };
+        if raw.is_null() {
+            return Err(Error::Ode("create the geom (ODE gave none)"));
+        }
         if mesh.is_some() {
             self.trimesh_count += 1;
         }
@@ -691,3 +698,7 @@ fn place_new_geom(
     g.note_reach();
     Ok(())
 }
+
+#[cfg(test)]
+#[path = "hull_geom_tests.rs"]
+mod hull_geom_tests;
