@@ -519,7 +519,9 @@ impl GeomRef<'_> {
         unsafe { ffi::dGeomRayGet(self.data.raw, start.as_mut_ptr(), dir.as_mut_ptr()) };
         Some((convert::point_from_ode(&start), convert::vector_from_ode(&dir)))
     }
-    /// Axis-aligned bounding box `(min, max)` in world coordinates.
+    /// Axis-aligned bounding box `(min, max)` in world coordinates: ODE's broad phase
+    /// box. For a convex hull it holds the hull but is not always the tightest (the
+    /// hull's own box turned with it, clipped to a sphere: O(1) per step).
     pub fn aabb(&self) -> (Point3<f64>, Point3<f64>) {
         let mut a = [0.0; 6];
         // SAFETY: the geom is live; `a` holds 6 reals.
