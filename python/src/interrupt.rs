@@ -15,7 +15,7 @@ use ars_core::{Error, Key, Simulation};
 use ars_viewer::Driver;
 use pyo3::prelude::*;
 
-use crate::simulation::SIGNAL_CHECK_PERIOD;
+use crate::simulation::{SIGNAL_CHECK_PERIOD, signal_raised};
 
 /// A bare simulation (its own frames and hooks) that asks `stop` before every frame
 /// and ends there with [`Error::Interrupted`] when it says yes.
@@ -84,8 +84,7 @@ pub(crate) fn on_thread_watching_signals<R: Send>(
             if stop.load(Ordering::Relaxed) {
                 continue;
             }
-            if let Err(e) = Python::attach(|py| py.check_signals()) {
-                *raised.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(e);
+            if signal_raised(raised) {
                 stop.store(true, Ordering::Relaxed);
             }
         }
@@ -104,12 +103,6 @@ pub(crate) fn python_signals_per_frame(raised: &Mutex<Option<PyErr>>) -> impl Fn
             return false;
         }
         last = Instant::now();
-        match Python::attach(|py| py.check_signals()) {
-            Ok(()) => false,
-            Err(e) => {
-                *raised.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(e);
-                true
-            }
-        }
+        signal_raised(raised)
     }
 }

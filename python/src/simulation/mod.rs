@@ -102,6 +102,18 @@ impl HookContext {
 /// How often a long `step`/`run` takes the GIL back to let Python handle its signals.
 pub(crate) const SIGNAL_CHECK_PERIOD: Duration = Duration::from_millis(5);
 
+/// Runs Python's signal handlers (taking the GIL); if one raises (Ctrl-C's
+/// `KeyboardInterrupt`), keeps the exception in `raised` and says so.
+pub(crate) fn signal_raised(raised: &Mutex<Option<PyErr>>) -> bool {
+    match Python::attach(|py| py.check_signals()) {
+        Ok(()) => false,
+        Err(e) => {
+            *lock(raised) = Some(e);
+            true
+        }
+    }
+}
+
 /// The stop condition of a long `step`/`run` (called between steps or frames): every
 /// [`SIGNAL_CHECK_PERIOD`] it runs Python's signal handlers; if one raises (Ctrl-C's
 /// `KeyboardInterrupt`), the exception is kept in `raised` for the caller to raise and
@@ -116,13 +128,7 @@ pub(crate) fn python_signals(raised: &Mutex<Option<PyErr>>) -> impl FnMut() -> b
             return false;
         }
         last = Instant::now();
-        match Python::attach(|py| py.check_signals()) {
-            Ok(()) => false,
-            Err(e) => {
-                *lock(raised) = Some(e);
-                true
-            }
-        }
+        signal_raised(raised)
     }
 }
 
