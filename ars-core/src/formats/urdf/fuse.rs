@@ -178,4 +178,34 @@ mod tests {
             .sum();
         assert_eq!(total, 2.5);
     }
+
+    #[test]
+    fn fusing_hostile_masses_is_refused_or_finite_never_a_panic() {
+        // Two masses whose sum overflows, two far below ARS's least, and one link's
+        // inertia of 1e308: fused or not, a clear answer.
+        for (mass, inertia) in [("1e308", "1"), ("1e-300", "1e-300"), ("1", "1e308")] {
+            let link = |name: &str| {
+                format!(
+                    r#"<link name="{name}"><inertial><mass value="{mass}"/><inertia ixx="{inertia}" iyy="{inertia}" izz="{inertia}" ixy="0" ixz="0" iyz="0"/></inertial></link>"#
+                )
+            };
+            let text = format!(
+                r#"<robot name="r">{}{}<joint name="weld" type="fixed"><origin xyz="1 0 0"/><parent link="a"/><child link="b"/></joint></robot>"#,
+                link("a"),
+                link("b")
+            );
+            let mut sim = Simulation::new().unwrap();
+            match sim.load_urdf_text(&text, "hostile.urdf", &UrdfOptions::new()) {
+                Ok(robot) => {
+                    let body = sim.scene().object(robot.link("a").unwrap()).unwrap().body().unwrap();
+                    assert!(body.mass().is_finite() && body.inertia().iter().all(|x| x.is_finite()), "{mass}");
+                    sim.step().unwrap();
+                }
+                Err(e) => {
+                    assert!(e.to_string().contains("hostile.urdf"), "{e}");
+                    assert_eq!(sim.scene().objects().count(), 0, "nothing left behind: {e}");
+                }
+            }
+        }
+    }
 }
