@@ -13,17 +13,19 @@
 #   make bench-mujoco  ARS (exact and quick steppers) against MuJoCo per simulated second, side by
 #                      side on Gymnasium's MuJoCo models, then on every corpus MJCF file
 
-# What the demo needs: ODE and its bindings, C and C++ compilers (ODE's guard, the video
-# encoder's OpenH264), the plots' font, and off-screen rendering on Mesa's software
-# rasteriser. `make demo` installs only these.
-DEMO_PACKAGES := libode-dev pkg-config libclang-dev gcc g++ make fonts-dejavu-core \
+# What the demo needs: ODE and its bindings, a C compiler (ODE's guard), the plots'
+# font, and off-screen rendering on Mesa's software rasteriser. `make demo` installs
+# only these, and a C++ compiler where there is a display (the window's build has the
+# video encoder, OpenH264, in C++).
+DEMO_PACKAGES := libode-dev pkg-config libclang-dev gcc make fonts-dejavu-core \
 	libvulkan1 mesa-vulkan-drivers libegl1 libegl-mesa0 libgl1-mesa-dri
+WINDOW_PACKAGES := g++
 # The Python package's virtual environment (`make python`).
 PYTHON_PACKAGES := python3 python3-venv
 # What only the tests need: a display server and a pointer driver for the window tests,
 # Chromium for the browser replay, ffmpeg to read videos back, and the original ARS's
 # PyODE and numpy for the comparison with it. `make test` and CI install these too.
-TEST_PACKAGES := xvfb xdotool chromium ffmpeg python3-pyode python3-numpy
+TEST_PACKAGES := xvfb xdotool chromium ffmpeg python3-pyode python3-numpy $(WINDOW_PACKAGES)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 # Installs the Debian packages in $(1) that are missing.
@@ -49,24 +51,27 @@ PYTHON := $(VENV)/bin/python
 deps:
 	$(call install_missing,$(DEMO_PACKAGES) $(PYTHON_PACKAGES) $(TEST_PACKAGES))
 
+# The window's packages only where there is a display (make imports DISPLAY).
 demo-deps:
-	$(call install_missing,$(DEMO_PACKAGES))
+	$(call install_missing,$(DEMO_PACKAGES) $(if $(DISPLAY)$(WAYLAND_DISPLAY),$(WINDOW_PACKAGES)))
 
 python-deps:
-	$(call install_missing,$(DEMO_PACKAGES) $(PYTHON_PACKAGES))
+	$(call install_missing,$(DEMO_PACKAGES) $(WINDOW_PACKAGES) $(PYTHON_PACKAGES))
 
 # Where there is a display: the conical pendulum in a window. Otherwise: off-screen
-# frames, the CSV and the plots of the conical pendulum into demo-output/.
+# frames, the CSV and the plots of the conical pendulum into demo-output/, from a build
+# without the window and the video encoder (egui's crates and OpenH264's C++: a
+# seventh of a cold build), which a machine with no display cannot use.
 # The demo is built in the dev profile: a cold build takes a third of a release build's
 # time (the physics is native ODE either way, and the pictures Mesa's), and `make test`
-# then reuses what it built.
+# then reuses the dependencies it built.
 demo: demo-deps
-	cargo build --locked --example conical_pendulum
 	@if [ -n "$${DISPLAY}$${WAYLAND_DISPLAY}" ]; then \
 		cargo run --locked --example conical_pendulum -- --window; \
 	else \
-		cargo run --locked --example conical_pendulum -- --duration 10 --screenshots demo-output/frames \
-			--frame-every 10 --size 800x600 --csv demo-output/conical_pendulum.csv --every 40 --plot demo-output && \
+		cargo run --locked --no-default-features --features viewer --example conical_pendulum -- \
+			--duration 10 --screenshots demo-output/frames --frame-every 10 --size 800x600 \
+			--csv demo-output/conical_pendulum.csv --every 40 --plot demo-output && \
 		echo "no display: frames, CSV and plots of the conical pendulum are in $(CURDIR)/demo-output"; \
 	fi
 

@@ -69,6 +69,19 @@ pub enum ViewerError {
     /// what is allowed.
     #[error("{0}")]
     InvalidSetting(String),
+    /// The call needs a part of the viewer this build left out: the interactive
+    /// window (`feature` is `"window"`) or the video encoder (`"video"`), both on by
+    /// default.
+    #[error(
+        "{what} needs the viewer's `{feature}` feature, which this build of ARS left out; build with the \
+         default features (or `--features {feature}`)"
+    )]
+    NotBuilt {
+        /// The cargo feature, `"window"` or `"video"`.
+        feature: &'static str,
+        /// What was asked: "a window", "an MP4 video".
+        what: &'static str,
+    },
     /// The simulation failed.
     #[error(transparent)]
     Simulation(#[from] ars_core::Error),
@@ -150,6 +163,7 @@ impl ViewerError {
             ViewerError::Encoder(m) => ViewerError::Encoder(m.clone()),
             ViewerError::Write { path, source } => ViewerError::Write { path: path.clone(), source: copy_io(source) },
             ViewerError::InvalidSetting(m) => ViewerError::InvalidSetting(m.clone()),
+            ViewerError::NotBuilt { feature, what } => ViewerError::NotBuilt { feature, what },
             ViewerError::Simulation(e) => ViewerError::Simulation(e.clone()),
         }
     }

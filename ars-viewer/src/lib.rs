@@ -28,16 +28,29 @@
 //! 25.1, so the off-screen path is Mesa's surfaceless EGL (llvmpipe) or lavapipe
 //! Vulkan, through wgpu. On Debian: `apt-get install libvulkan1 mesa-vulkan-drivers
 //! libegl1 libegl-mesa0 libgl1-mesa-dri` (and `xvfb` for a virtual display).
+//!
+//! Features (both on by default): `window`, the interactive window with its egui
+//! panel, and `video`, the MP4 encoder (OpenH264). A build without them has the same
+//! API; the calls that need a missing part return [`ViewerError::NotBuilt`].
+
+// Without the window, its helpers in the shared modules (the scene's follow toggle,
+// the layout's panel arithmetic, the driver's shown simulation...) have no caller.
+#![cfg_attr(not(feature = "window"), allow(dead_code))]
 
 mod camera;
+#[cfg(feature = "window")]
 mod command;
 pub mod convert;
 mod driver;
 mod edit;
 mod error;
+#[cfg(feature = "window")]
 mod focus;
 mod frames;
+#[cfg(feature = "window")]
 mod gui;
+mod h264;
+#[cfg(feature = "window")]
 mod hand;
 mod interact;
 mod layout;
@@ -49,11 +62,17 @@ mod recorder;
 mod replay;
 mod scene;
 mod screenshots;
+#[cfg(feature = "window")]
+mod session;
+#[cfg(not(feature = "window"))]
+#[path = "without_window.rs"]
 mod session;
 mod state;
 mod video;
 mod viewports;
 mod window;
+#[cfg(feature = "window")]
+mod window_views;
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -153,8 +172,13 @@ fn require_display_in(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> Resul
     Err(ViewerError::NoDisplay { display, reason: None })
 }
 
-/// [`ViewerError::NoDisplay`] unless a display is named ([`has_display`]).
+/// What a window needs: this build's window ([`ViewerError::NotBuilt`] without the
+/// `window` feature), then a display ([`ViewerError::NoDisplay`] unless one is named,
+/// [`has_display`]).
 fn require_display() -> Result<()> {
+    if !cfg!(feature = "window") {
+        return Err(ViewerError::NotBuilt { feature: "window", what: "a window" });
+    }
     require_display_in(|name| std::env::var_os(name))
 }
 
@@ -179,7 +203,7 @@ pub trait ProgramViewer: Program + Sized {
     /// As [`show`](Self::show), drawing what `options` say (in the window, or in the
     /// frames recorded without a display).
     fn show_with(&mut self, options: &ViewerOptions) -> Result<ars_core::Simulation> {
-        if has_display() {
+        if has_display() || !cfg!(feature = "window") {
             return catch_window_panic(|| session::run_window(self, options));
         }
         let title = self.window_settings().title.to_lowercase().replace(|c: char| !c.is_ascii_alphanumeric(), "_");

@@ -28,8 +28,9 @@ use crate::layout;
 use crate::scene::DrawnScene;
 use crate::state::{DragLine, Selected, ViewerState};
 use crate::video::WindowVideo;
-use crate::viewports::{self, Viewports};
+use crate::viewports;
 use crate::window::{VIEWER_KEYS, WindowReport, open_window, resident_mb};
+use crate::window_views::Viewports;
 
 /// Opens the program's window and runs it until the window is closed; returns the
 /// simulation as it was then.

@@ -2,8 +2,8 @@
 //! `k` of a video at `fps` frames a second shows the simulation at `k / fps` simulated
 //! seconds from the start of the recording, whatever the wall clock does.
 //!
-//! The codec is Cisco's OpenH264, compiled from its bundled source by the `openh264`
-//! crate (no system ffmpeg or library needed); the MP4 container is ARS's own writer
+//! The codec is Cisco's OpenH264 (`h264.rs`, compiled from its bundled source: no
+//! system ffmpeg or library needed; feature `video`); the MP4 container is ARS's own writer
 //! (`mp4.rs`). A worker thread converts each frame to YUV 4:2:0, encodes it and
 //! writes it while the next one is drawn. The file appears whole at the end or not
 //! at all: frames go to hidden files beside it, renamed into place when the video is
@@ -16,14 +16,11 @@ use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::thread::JoinHandle;
 
 use ars_core::{Simulation, WindowSettings};
-use openh264::encoder::{
-    Encoder, EncoderConfig, FrameRate, IntraFramePeriod, Profile, QpRange, RateControlMode, UsageType, VuiConfig,
-};
-use openh264::formats::YUVBuffer;
 
 use crate::driver::Driver;
 use crate::error::{Result, ThreadEnd, ViewerError};
 use crate::frames::RawFrame;
+use crate::h264::H264;
 use crate::mp4::Mp4Track;
 use crate::recorder::{Recorder, RecordingOutput, frames_in};
 
@@ -169,25 +166,11 @@ impl VideoWriter {
         }
         let partial = PartialFiles::beside(&path);
         let file = File::create(&partial.frames).map_err(|e| ViewerError::write(&path, e))?;
-        let config = EncoderConfig::new()
-            .profile(Profile::Baseline)
-            .usage_type(UsageType::CameraVideoRealTime)
-            // No rate control: the quantiser range holds the quality (about 37 dB
-            // PSNR on the thesis scenes), whatever the size of the file.
-            .rate_control_mode(RateControlMode::Off)
-            .qp(QpRange::new(10, 30))
-            .max_frame_rate(FrameRate::from_hz(fps as f32))
-            .skip_frames(false)
-            .num_threads(1)
-            // A key frame every two seconds, to seek.
-            .intra_frame_period(IntraFramePeriod::from_num_frames((2.0 * fps).ceil().max(1.0) as u32))
-            .vui(VuiConfig::bt601());
-        let encoder = Encoder::with_api_config(openh264::OpenH264API::from_source(), config);
-        let encoder = match encoder {
+        let encoder = match H264::new(width, height, fps) {
             Ok(e) => e,
             Err(e) => {
                 partial.remove();
-                return Err(ViewerError::Encoder(format!("could not start the H.264 encoder: {e}")));
+                return Err(e);
             }
         };
         let track = match Mp4Track::new(width, height, fps) {
@@ -356,7 +339,7 @@ impl WindowVideo {
 /// The worker: converts, encodes and writes each frame until the queue closes.
 fn encode(
     queue: Receiver<Frame>,
-    mut encoder: Encoder,
+    mut encoder: H264,
     mut track: Mp4Track,
     mut payload: BufWriter<File>,
     (width, height): (u32, u32),
@@ -368,26 +351,12 @@ fn encode(
             Frame::Image(image) => rgb_to_yuv420(image.as_raw(), width as usize, height as usize, false, &mut yuv),
             Frame::Raw(raw) => rgb_to_yuv420(&raw.bottom_up, width as usize, height as usize, true, &mut yuv),
         }
-        let buffer = YUVBuffer::from_vec(std::mem::take(&mut yuv), width as usize, height as usize);
-        let encoded = encoder
-            .encode(&buffer)
-            .map_err(|e| ViewerError::Encoder(format!("H.264 encoding failed at frame {}: {e}", track.frames() + 1)))?;
-        let bytes = encoded.to_vec();
+        let (bytes, storage) = encoder.encode(std::mem::take(&mut yuv), track.frames() as u64 + 1)?;
         track.add_frame(&bytes, &mut payload).map_err(|e| ViewerError::write(shown, e))?;
-        yuv = buffer_into_vec(buffer);
+        yuv = storage;
     }
     payload.flush().map_err(|e| ViewerError::write(shown, e))?;
     Ok(track)
-}
-
-/// The buffer's storage back, for the next frame.
-fn buffer_into_vec(buffer: YUVBuffer) -> Vec<u8> {
-    use openh264::formats::YUVSource;
-    let mut v = Vec::with_capacity(buffer.y().len() + buffer.u().len() + buffer.v().len());
-    v.extend_from_slice(buffer.y());
-    v.extend_from_slice(buffer.u());
-    v.extend_from_slice(buffer.v());
-    v
 }
 
 /// RGB rows (top row first, or bottom row first if `bottom_up`) to planar YUV 4:2:0
