@@ -483,15 +483,22 @@ def _on_ray(
         outcomes: list[Outcome] = []
         try:
             for ref in refs:
+                # Waited for in short slices: Python sees Ctrl-C between two (a bare
+                # ray.get let it through half a second late).
+                while not ray.wait([ref], timeout=0.05)[0]:
+                    pass
                 try:
                     outcomes.append(ray.get(ref))
                 except Exception as e:  # noqa: BLE001  (the worker died: that run's result)
                     outcomes.append((_table(args[1], []), e, {}))
                 bar.step()
         except KeyboardInterrupt:
-            # Ctrl-C: the runs not finished are cancelled (their tasks killed).
+            # Ctrl-C: the runs not finished are cancelled (their tasks killed). The
+            # local cluster is left for Python's exit (or ray.shutdown()) to end: its
+            # shutdown takes over a second, and Ctrl-C must return at once.
             for ref in refs:
                 ray.cancel(ref, force=True)
+            started = False
             raise
         return outcomes
     finally:

@@ -231,31 +231,56 @@ def test_ctrl_c_stops_a_vector_environment_step(tmp_path):
     assert all(r["stepped_on"] for r in report)
 
 
-@pytest.mark.parametrize("backend", ["serial", "processes"])
+@pytest.mark.parametrize("backend", ["serial", "processes", "ray"])
 def test_ctrl_c_stops_a_sweep(tmp_path, backend):
+    if backend == "ray":
+        pytest.importorskip("ray")
+    # Each run leaves a mark when it starts: SIGINT goes once one has (the workers
+    # start first: processes are spawned, Ray starts a local cluster in seconds).
+    (tmp_path / "started").mkdir()
     (tmp_path / "sweepmodel.py").write_text(
-        textwrap.dedent("""
+        textwrap.dedent(f"""
+        import os
         import ars
 
         def falling(params):
+            open(os.path.join({str(tmp_path / "started")!r}, str(params["height"])), "w").close()
             sim = ars.Simulation()
             sim.add_floor()
             sim.add_sphere(0.1, (0.0, params["height"], 0.0), mass=1.0, name="ball")
             return sim
         """)
     )
-    setup = "import multiprocessing\nfrom sweepmodel import falling\n"
+    setup = """
+    import multiprocessing
+    from sweepmodel import falling
+
+    def ray_cpus_freed():
+        # Whether every CPU of the local cluster is free again (the tasks ended),
+        # within 5 s.
+        import ray
+        for _ in range(100):
+            if ray.available_resources().get("CPU") == ray.cluster_resources().get("CPU"):
+                return True
+            time.sleep(0.05)
+        return False
+    """
     call = (
         f"ars.sweep(falling, [{{'height': 1.0}}, {{'height': 2.0}}], duration=1e6, "
         f"backend={backend!r}, workers=2, progress=False)"
     )
-    wait = 0.3 if backend == "serial" else 3.0  # the workers start (spawn) first
+    # Ray's workers are not child processes of this one: after Ctrl-C, the cluster's
+    # CPUs must all be free again (the tasks cancelled).
+    after = "len(multiprocessing.active_children())" if backend != "ray" else "ray_cpus_freed()"
     after, report = interrupt_child(
-        tmp_path, setup, call, "len(multiprocessing.active_children())", wait=wait
+        tmp_path, setup, call, after, wait=0.1, ready=lambda: any((tmp_path / "started").iterdir())
     )
     assert_prompt(after)
-    assert report == 0, "worker processes were left running"
-    only(tmp_path, "sweepmodel.py")
+    if backend == "ray":
+        assert report is True, "Ray's tasks were left running"
+    else:
+        assert report == 0, "worker processes were left running"
+    only(tmp_path, "sweepmodel.py", "started")
 
 
 def test_ctrl_c_closes_the_window_of_show(tmp_path, display):
