@@ -390,6 +390,95 @@ fn actuators_drive_their_joints_as_mujoco_defines_them() {
     assert_eq!(sim.scene().control("hold").unwrap(), 0.4);
 }
 
+/// [`ACTUATED`]'s three arms driven by `<general>` actuators written as MuJoCo expands
+/// its shortcuts (`motor`: gain 1; `position`: gain kp, bias 0 −kp −kv; `velocity`:
+/// gain kv, bias 0 0 −kv), and a fourth arm with a scaled servo (gain 500, bias
+/// 0 −200 0: it holds at 2.5 × its control).
+fn general_actuated() -> String {
+    ACTUATED
+        .replace(
+            r#"<body name="c" pos="0 2 0"><joint name="jc"/><geom fromto="0 0 0 0.5 0 0"/></body>"#,
+            r#"<body name="c" pos="0 2 0"><joint name="jc"/><geom fromto="0 0 0 0.5 0 0"/></body>
+    <body name="d" pos="0 3 0"><joint name="jd" damping="5"/><geom fromto="0 0 0 0.5 0 0"/></body>"#,
+        )
+        .replace(r#"<motor name="push" joint="ja" gear="10"/>"#, r#"<general name="push" joint="ja" gear="10"/>"#)
+        .replace(
+            r#"<position name="hold" joint="jb" kp="30" kv="3" forcerange="-5 5"/>"#,
+            r#"<general name="hold" joint="jb" gainprm="30" biastype="affine" biasprm="0 -30 -3" forcerange="-5 5"/>"#,
+        )
+        .replace(
+            r#"<velocity name="spin" joint="jc" kv="2" gear="2" ctrllimited="false"/>"#,
+            r#"<general name="spin" joint="jc" gainprm="2" biastype="affine" biasprm="0 0 -2" gear="2" ctrllimited="false"/>
+    <general name="scaled" joint="jd" gainprm="500 0 0" biastype="affine" biasprm="0 -200 0"/>"#,
+        )
+}
+
+#[test]
+fn general_actuators_move_their_joints_as_the_shortcuts_they_expand_and_a_scaled_servo_holds() {
+    let run = |text: &str| {
+        let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+        sim.load_mjcf_text(text, "actuated.xml", &MjcfOptions::new()).unwrap();
+        for (name, ctrl) in [("push", 0.3), ("hold", 0.4), ("spin", 3.0)] {
+            sim.scene_mut().set_control(name, ctrl).unwrap();
+        }
+        if sim.scene().control("scaled").is_ok() {
+            sim.scene_mut().set_control("scaled", 0.2).unwrap();
+        }
+        sim.run_for(2.0).unwrap();
+        let state = |j: &str| sim.scene().joint(j).unwrap().state().unwrap();
+        let shortcuts: Vec<(u64, u64)> =
+            ["ja", "jb", "jc"].iter().map(|j| (state(j).position.to_bits(), state(j).rate.to_bits())).collect();
+        (shortcuts, sim.scene().joint("jd").ok().map(|_| state("jd").position))
+    };
+    let (shortcuts, _) = run(ACTUATED);
+    let (general, held) = run(&general_actuated());
+    assert_eq!(general, shortcuts, "a <general> written as a shortcut moves its joint bit for bit as the shortcut");
+    // 500·0.2 − 200·q = 0 at q = 0.5 rad (the sign: MuJoCo's Y axis is ARS's −Z).
+    let held = held.unwrap();
+    assert!((held.abs() - 0.5).abs() < 1e-6, "held at {held}");
+
+    // Activation dynamics are not modelled: refused naming them, or skipped.
+    let filtered = general_actuated().replace(r#"gainprm="500 0 0""#, r#"dyntype="filter" gainprm="500 0 0""#);
+    let mut sim = Simulation::builder().build().unwrap();
+    let e = sim.load_mjcf_text(&filtered, "f.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(e.contains("dyntype=\"filter\"") && e.contains("skip_unsupported"), "{e}");
+    let model = sim.load_mjcf_text(&filtered, "f.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
+    assert_eq!(model.actuators.len(), 3);
+    assert!(model.skipped.iter().any(|s| s.contains("dyntype")), "{:?}", model.skipped);
+}
+
+#[test]
+fn keyframes_are_read_and_listed_not_applied_as_mujoco_compiles_them() {
+    let with_keys = ACTUATED.replace(
+        "</mujoco>",
+        r#"<keyframe>
+    <key name="bent" qpos="0.5 -0.25 1" ctrl="1 0.4 0"/>
+    <key time="2" qvel="0 0 3"/>
+  </keyframe>
+</mujoco>"#,
+    );
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let model = sim.load_mjcf_text(&with_keys, "keys.xml", &MjcfOptions::new()).unwrap();
+    assert!(model.skipped.is_empty(), "{:?}", model.skipped);
+    let names: Vec<(&str, f64)> = model.keyframes.iter().map(|k| (k.name.as_str(), k.time)).collect();
+    assert_eq!(names, [("bent", 0.0), ("key1", 2.0)]);
+    assert_eq!(model.keyframes[0].qpos, [0.5, -0.25, 1.0]);
+    assert_eq!(model.keyframes[0].ctrl, [1.0, 0.4, 0.0]);
+    assert_eq!(model.keyframes[1].qvel, [0.0, 0.0, 3.0]);
+    assert!(model.keyframes[1].qpos.is_empty());
+    // Not applied: the joints start at 0 and the controls at 0, as MuJoCo's reset.
+    assert_eq!(sim.scene().joint("ja").unwrap().state().unwrap().position, 0.0);
+    assert_eq!(sim.scene().control("hold").unwrap(), 0.0);
+
+    // A bad number or an unknown attribute is said, with its line.
+    let bad = with_keys.replace(r#"qpos="0.5 -0.25 1""#, r#"qpos="0.5 nan 1""#);
+    let e = sim.load_mjcf_text(&bad, "keys.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(e.contains("qpos") && e.contains("line"), "{e}");
+    let typo = with_keys.replace(r#"qvel="0 0 3""#, r#"qvle="0 0 3""#);
+    let e = sim.load_mjcf_text(&typo, "keys.xml", &MjcfOptions::new()).unwrap_err().to_string();
+    assert!(e.contains("qvle"), "{e}");
+}
+
 #[test]
 fn an_actuator_on_a_missing_joint_is_refused_and_leaves_nothing() {
     let mut sim = Simulation::builder().build().unwrap();

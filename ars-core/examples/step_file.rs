@@ -1,5 +1,5 @@
 //! Opens a model file as `ars view` does and steps it, for profiling one file's step:
-//! `step_file FILE STEPS [WARMUP]` prints the wall time per step, the contact count
+//! `step_file FILE STEPS [WARMUP [quick]]` (`quick`: `dWorldQuickStep`, 20 iterations) prints the wall time per step, the contact count
 //! and a hash of every body's position and velocity (for checking that a change
 //! leaves a file's motion bit for bit the same).
 //!
@@ -7,10 +7,13 @@
 //! `STEPS` 0 and N under `valgrind --tool=callgrind` and divide the difference by N.
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args.get(1).ok_or("usage: step_file FILE STEPS [WARMUP]")?;
+    let path = args.get(1).ok_or("usage: step_file FILE STEPS [WARMUP [quick]]")?;
     let steps: usize = args.get(2).map_or(Ok(100), |s| s.parse())?;
     let warmup: usize = args.get(3).map_or(Ok(0), |s| s.parse())?;
     let mut sim = ars_core::Simulation::open(path)?.simulation;
+    if args.get(4).is_some_and(|s| s == "quick") {
+        sim.scene_mut().world_mut().set_stepper(ars_core::Stepper::Quick { iterations: 20 })?;
+    }
     for _ in 0..warmup {
         sim.step()?;
     }

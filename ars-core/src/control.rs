@@ -227,13 +227,22 @@ pub enum ActuatorKind {
         /// Velocity gain, N·m·s per rad (or N·s per m).
         kv: f64,
     },
+    /// `force = gain·ctrl + bias[0] + bias[1]·length + bias[2]·velocity` (MuJoCo's
+    /// `general` with no activation dynamics, a fixed gain and an affine bias: its
+    /// `gainprm[0]` and `biasprm[0..3]`; the shortcuts above are special cases).
+    General {
+        /// Force per unit of control.
+        gain: f64,
+        /// The bias: a constant force, then per unit of actuator length and of velocity.
+        bias: [f64; 3],
+    },
 }
 
 /// A named actuator on a joint, as MuJoCo models one: a control input `ctrl` (set
 /// with [`Scene::set_control`](crate::Scene::set_control), clamped to `ctrl_range`),
 /// an actuator length `gear·q` and velocity `gear·q̇`, a force from [`ActuatorKind`]
 /// clamped to `force_range`, and the joint torque (or force) `gear·force`. What an MJCF
-/// file's `<motor>`, `<position>` and `<velocity>` become.
+/// file's `<motor>`, `<position>`, `<velocity>` and `<general>` become.
 ///
 /// ```
 /// use ars_core::{Actuator, ActuatorKind, JointController, JointState};
@@ -271,6 +280,13 @@ impl Actuator {
             ActuatorKind::Motor => vec![],
             ActuatorKind::Position { kp, kv } => vec![kp, kv],
             ActuatorKind::Velocity { kv } => vec![kv],
+            // Any sign, as in MuJoCo (a bias that pushes is a spring of negative stiffness).
+            ActuatorKind::General { gain, bias } => {
+                if let Some(bad) = [gain].iter().chain(&bias).find(|g| !g.is_finite()) {
+                    return Err(Error::NotFinite { what: "an actuator's gain or bias", value: bad.to_string() });
+                }
+                vec![]
+            }
         };
         if let Some(bad) = gains.iter().find(|g| !(g.is_finite() && **g >= 0.0)) {
             return Err(Error::OutOfRange {
@@ -349,6 +365,7 @@ impl JointController for Actuator {
             ActuatorKind::Motor => self.ctrl,
             ActuatorKind::Position { kp, kv } => kp * (self.ctrl - length) - kv * velocity,
             ActuatorKind::Velocity { kv } => kv * (self.ctrl - velocity),
+            ActuatorKind::General { gain, bias } => gain * self.ctrl + bias[0] + bias[1] * length + bias[2] * velocity,
         };
         let force = self.force_range.map_or(force, |(lo, hi)| force.clamp(lo, hi));
         self.gear * force

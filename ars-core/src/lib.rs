@@ -115,7 +115,7 @@ pub use control::{
     TorqueMotor, VelocityServo,
 };
 pub use error::{Error, Result};
-pub use formats::mjcf::{MjcfActuator, MjcfFile, MjcfModel, MjcfOptions, MjcfSensor};
+pub use formats::mjcf::{MjcfActuator, MjcfFile, MjcfKeyframe, MjcfModel, MjcfOptions, MjcfSensor};
 pub use formats::open::{FileFormat, OpenedFile};
 pub use formats::urdf::{UpAxis, UrdfFile, UrdfOptions, UrdfRobot};
 pub use geom::{GeomBuilder, GeomMut, GeomRef};

@@ -741,3 +741,47 @@ def test_touch_reads_a_resting_box_s_weight(tmp_path):
     mujoco.mj_step(m, d, nstep=int(4.0 / m.opt.timestep))
     assert d.sensor("pad").data[0] == pytest.approx(force, rel=1e-6)
     assert d.sensor("lid").data[0] == 0.0
+
+
+def test_general_actuators_hold_where_mujoco_holds_and_keyframes_are_listed(tmp_path):
+    # A scaled servo (force 500·ctrl − 200·q) on a hinge in zero gravity, with a key.
+    text = """
+<mujoco>
+  <option gravity="0 0 0" timestep="0.002"/>
+  <worldbody>
+    <body name="arm"><joint name="hinge" axis="0 1 0" damping="5"/>
+      <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.03"/></body>
+  </worldbody>
+  <actuator>
+    <general name="servo" joint="hinge" gainprm="500" biastype="affine" biasprm="0 -200 0"/>
+  </actuator>
+  <keyframe><key name="home" qpos="0.3" ctrl="0.1"/></keyframe>
+</mujoco>"""
+    path = tmp_path / "servo.xml"
+    path.write_text(text)
+    sim = ars.Simulation()
+    model = sim.load_mjcf(str(path))
+    assert model["actuators"] == [("servo", "general", "hinge")]
+    assert model["keyframes"] == [
+        {
+            "name": "home",
+            "time": 0.0,
+            "qpos": [0.3],
+            "qvel": [],
+            "ctrl": [0.1],
+            "mpos": [],
+            "mquat": [],
+        }
+    ]
+    sim.time_step = 0.002
+    sim.set_control("servo", 0.2)
+    sim.run(3.0)
+    m = mujoco.MjModel.from_xml_path(str(path))
+    d = mujoco.MjData(m)
+    d.ctrl[0] = 0.2
+    while d.time < 3.0 - 1e-9:
+        mujoco.mj_step(m, d)
+    # Both settle at 500·0.2 / 200 = 0.5 rad (ARS's hinge angle is MuJoCo's about the
+    # simulation's −Z, MuJoCo's Y).
+    assert abs(d.qpos[0] - 0.5) < 1e-4
+    assert abs(abs(sim.joint("hinge").angle) - d.qpos[0]) < 1e-4

@@ -88,7 +88,9 @@ impl PySimulation {
 
     /// Loads a MuJoCo model from an MJCF file (see the Rust `Scene::load_mjcf` for what
     /// is read). Returns `{"name", "bodies", "joints", "timestep", "gravity",
-    /// "actuators", "welded", "sensors", "sites", "armature", "skipped"}`: bodies and joints by
+    /// "actuators", "welded", "sensors", "sites", "armature", "keyframes", "skipped"}`:
+    /// `keyframes` are the file's `<key>`s as dicts (`name`, `time`, `qpos`, `qvel`,
+    /// `ctrl`, `mpos`, `mquat`; read, not applied, as MuJoCo applies none); bodies and joints by
     /// their MJCF names in file order, the file's time step and gravity (not applied),
     /// the file's sensors made (`ars.Sensor`s by name; see the Rust `MjcfSensor` for the
     /// columns that hold MuJoCo's values), the bodies' named sites (`{name: body}`), the
@@ -148,6 +150,23 @@ impl PySimulation {
             sites.set_item(&site.name, &site.body)?;
         }
         dict.set_item("sites", sites)?;
+        let keyframes = pyo3::types::PyList::empty(py);
+        for key in &model.keyframes {
+            let k = pyo3::types::PyDict::new(py);
+            k.set_item("name", &key.name)?;
+            k.set_item("time", key.time)?;
+            for (field, values) in [
+                ("qpos", &key.qpos),
+                ("qvel", &key.qvel),
+                ("ctrl", &key.ctrl),
+                ("mpos", &key.mpos),
+                ("mquat", &key.mquat),
+            ] {
+                k.set_item(field, values.clone())?;
+            }
+            keyframes.append(k)?;
+        }
+        dict.set_item("keyframes", keyframes)?;
         let armature = pyo3::types::PyDict::new(py);
         for (name, inertia) in &model.armature {
             let rows: Vec<Vec<f64>> = (0..3).map(|r| (0..3).map(|c| inertia[(r, c)]).collect()).collect();

@@ -58,6 +58,7 @@ impl Scene {
             timestep: model.timestep,
             gravity: model.gravity.map(|g| placement(options).rotation * g),
             actuators: model.actuators.clone(),
+            keyframes: model.keyframes.clone(),
             skipped: model.skipped.clone(),
             ..MjcfModel::default()
         };

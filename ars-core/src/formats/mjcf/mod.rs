@@ -99,6 +99,10 @@
 //!   file, at any depth, as MuJoCo reads it; a cycle is refused): the included file's
 //!   top-level elements take its place whatever its root element is called
 //!   (`<mujocoinclude>` by convention), and an error in it names that file.
+//! - **Keyframes.** `<keyframe>`'s `<key>`s are read into [`MjcfModel::keyframes`]
+//!   (name, time, `qpos`, `qvel`, `ctrl`, `mpos`, `mquat` as written) and not applied:
+//!   MuJoCo applies none when it compiles a model (its reset goes to `qpos0`), so a
+//!   model starts where MuJoCo's starts.
 //! - **Ignored without a word** (they change no physics): `<visual>`, `<asset>`
 //!   (textures, materials beyond their colour, meshes not used by a geom),
 //!   `<statistic>`, `<size>`, `<custom>`, `<light>`, `<camera>`, unnamed `<site>`s
@@ -114,8 +118,10 @@
 //!   schema (`mjcf/schema.rs`): one MuJoCo does not know (a typo) is an error naming it,
 //!   its element and line (or skipped with a warning); one it knows and ARS does not
 //!   use is accepted (and said unused where it changes the physics).
-//! - **Actuators.** `motor`, `position` (`kp`, `kv`) and `velocity` (`kv`) on a joint
-//!   become [`Actuator`]s of the same names driving their joints, with `gear` (its
+//! - **Actuators.** `motor`, `position` (`kp`, `kv`), `velocity` (`kv`) and `general`
+//!   (a fixed gain `gainprm[0]` and an affine bias `biasprm[0..3]`, no activation
+//!   dynamics: [`ActuatorKind::General`](crate::ActuatorKind::General), or the shortcut it
+//!   spells out) on a joint become [`Actuator`]s of the same names driving their joints, with `gear` (its
 //!   first number), `ctrlrange`/`ctrllimited` and `forcerange`/`forcelimited` (with
 //!   `autolimits`), their defaults from a `<default>` class's actuator (in a class,
 //!   `<general>`, `<motor>`, `<position>`... all set the one actuator default, as in
@@ -170,12 +176,14 @@ use crate::handle::{JointHandle, JointId, ObjectId};
 use crate::sensors::{AnySensorId, Mount, TouchZone};
 use crate::simulation::Simulation;
 
+mod actuator;
 mod build;
 mod contact;
 mod damper;
 mod defaults;
 mod equality;
 mod include;
+mod keyframe;
 mod mass;
 mod meshes;
 mod model;
@@ -186,6 +194,8 @@ mod schema;
 mod sensors;
 mod tendon;
 mod weld;
+
+pub use keyframe::MjcfKeyframe;
 
 /// How an MJCF model is loaded.
 #[derive(Clone, Debug)]
@@ -291,6 +301,9 @@ pub struct MjcfModel {
     pub equalities: Vec<JointId>,
     /// The named `<site>`s of the bodies, in the file's order.
     pub sites: Vec<MjcfSite>,
+    /// The `<keyframe>`'s `<key>`s, in the file's order: read, not applied (MuJoCo
+    /// applies none when it compiles a model either; its reset goes to `qpos0`).
+    pub keyframes: Vec<MjcfKeyframe>,
 }
 
 /// A jointless body of the file merged into the body it is welded to: it is

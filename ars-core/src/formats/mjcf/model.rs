@@ -178,6 +178,8 @@ pub(super) struct Model {
     pub(super) equalities: Vec<Equality>,
     /// The `mocap` bodies, by name (welded to the world: ARS does not move them).
     pub(super) mocap: Vec<String>,
+    /// `<keyframe>`'s keys, read and kept (not applied, as MuJoCo applies none).
+    pub(super) keyframes: Vec<super::keyframe::MjcfKeyframe>,
     pub(super) skipped: Vec<String>,
 }
 

@@ -14,9 +14,7 @@ use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
 use super::meshes::{MeshAsset, load_mesh, mesh_assets};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
-use super::{MjcfActuator, MjcfOptions, SITE_SIZE};
-use crate::control::{Actuator, ActuatorKind};
-use crate::error::Error;
+use super::{MjcfOptions, SITE_SIZE};
 use crate::sensors::TouchZone;
 
 /// Reads the model's elements.
@@ -340,41 +338,6 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         Ok(Some(orientation(&a, &self.compiler)?))
     }
 
-    /// An actuator (the `index`-th), or `None` when skipped.
-    pub(super) fn actuator(&mut self, node: roxmltree::Node<'_, '_>, index: usize) -> Parsed<Option<MjcfActuator>> {
-        let tag = node.tag_name().name();
-        let a = Attrs::new(node, self.defaults, "main");
-        for transmission in ["tendon", "site", "jointinparent", "body", "cranksite"] {
-            if a.get(transmission).is_some() {
-                self.unsupported(&node, &format!("an actuator driving a {transmission} (only joints are)"))?;
-                return Ok(None);
-            }
-        }
-        let kind = match tag {
-            "motor" => ActuatorKind::Motor,
-            "position" => {
-                ActuatorKind::Position { kp: a.number("kp")?.unwrap_or(1.0), kv: a.number("kv")?.unwrap_or(0.0) }
-            }
-            "velocity" => ActuatorKind::Velocity { kv: a.number("kv")?.unwrap_or(1.0) },
-            other => {
-                self.unsupported(&node, &format!("an actuator of kind <{other}>"))?;
-                return Ok(None);
-            }
-        };
-        let joint = a.get("joint").ok_or_else(|| problem(&node, "needs a joint"))?.to_string();
-        let name = node.attribute("name").map_or_else(|| format!("actuator{index}"), str::to_string);
-        let gear = a.numbers("gear")?.and_then(|g| g.first().copied()).unwrap_or(1.0);
-        let to_problem = |e: Error| problem(&node, e.to_string());
-        let mut actuator = Actuator::new(&name, kind, gear).map_err(to_problem)?;
-        if let Some([lo, hi]) = self.limited(&a, "ctrl")? {
-            actuator = actuator.with_ctrl_range(lo, hi).map_err(to_problem)?;
-        }
-        if let Some([lo, hi]) = self.limited(&a, "force")? {
-            actuator = actuator.with_force_range(lo, hi).map_err(to_problem)?;
-        }
-        Ok(Some(MjcfActuator { name, kind: tag.to_string(), joint, actuator }))
-    }
-
     /// `{what}range` when `{what}limited` says it applies ("true", or "auto" with a
     /// range and `<compiler autolimits>`).
     pub(super) fn limited(&self, a: &Attrs<'_, '_>, what: &str) -> Parsed<Option<[f64; 2]>> {
@@ -533,6 +496,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         welded: Vec::new(),
         equalities: Vec::new(),
         mocap: Vec::new(),
+        keyframes: Vec::new(),
         skipped: Vec::new(),
     };
     for &node in &nodes {
@@ -733,6 +697,11 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             "contact" => self.contacts(node, model)?,
             "equality" => self.equalities(node, model)?,
             "tendon" => self.tendons(node)?,
+            "keyframe" => {
+                for (i, key) in tree.elements(node).into_iter().enumerate() {
+                    model.keyframes.push(super::keyframe::keyframe(key, i)?);
+                }
+            }
             "sensor" => {
                 for (i, child) in tree.elements(node).into_iter().enumerate() {
                     if let Some(sensor) = self.sensor(child, i)? {

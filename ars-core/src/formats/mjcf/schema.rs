@@ -5,8 +5,8 @@
 //! `python/tests/test_mjcf.py` holds this list against MuJoCo's schema.
 
 /// The sections of the file whose elements ARS reads and checks.
-pub(super) const READ_SECTIONS: [&str; 8] =
-    ["compiler", "option", "default", "asset", "worldbody", "contact", "actuator", "sensor"];
+pub(super) const READ_SECTIONS: [&str; 9] =
+    ["compiler", "option", "default", "asset", "worldbody", "contact", "actuator", "sensor", "keyframe"];
 
 /// The attributes every sensor has, besides its own.
 const SENSOR_ATTRIBUTES: [&str; 8] = ["cutoff", "delay", "interp", "interval", "name", "noise", "nsample", "user"];
@@ -17,6 +17,8 @@ const SENSOR_ATTRIBUTES: [&str; 8] = ["cutoff", "delay", "interp", "interval", "
 const ATTRIBUTES: &[(&str, &[&str])] = &[
     ("mujoco", &["model"]),
     ("include", &["file"]),
+    ("keyframe", &[]),
+    ("key", &["name", "time", "qpos", "qvel", "act", "ctrl", "mpos", "mquat"]),
     ("default", &["class"]),
     ("compiler", &[
         "alignfree", "angle", "assetdir", "autolimits", "balanceinertia", "boundinertia",
