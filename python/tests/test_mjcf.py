@@ -759,7 +759,8 @@ def test_general_actuators_hold_where_mujoco_holds_and_keyframes_are_listed(tmp_
 </mujoco>"""
     path = tmp_path / "servo.xml"
     path.write_text(text)
-    sim = ars.Simulation()
+    # The file's option is not applied by load_mjcf: the simulation is made so.
+    sim = ars.Simulation(gravity=(0.0, 0.0, 0.0), time_step=0.002)
     model = sim.load_mjcf(str(path))
     assert model["actuators"] == [("servo", "general", "hinge")]
     assert model["keyframes"] == [
@@ -773,7 +774,6 @@ def test_general_actuators_hold_where_mujoco_holds_and_keyframes_are_listed(tmp_
             "mquat": [],
         }
     ]
-    sim.time_step = 0.002
     sim.set_control("servo", 0.2)
     sim.run(3.0)
     m = mujoco.MjModel.from_xml_path(str(path))
