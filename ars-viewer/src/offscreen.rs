@@ -167,6 +167,11 @@ impl OffscreenRenderer {
         let views = (options.views > 1).then(|| OffscreenViewports::new(view, options.views, &mirror));
         let (w, h) = views.as_ref().map_or((w, h), OffscreenViewports::free_size);
         let (surface, shown) = surface_with_view(view, (w, h), &mirror);
+        // The last kiss3d window of a thread, dropped, resets the 2D materials after its
+        // textures are gone, making them first if no frame did: a panic (in kiss3d's
+        // texture_manager.rs). Made now, a renderer dropped before its first frame (a
+        // recording refused once its renderer had started) drops cleanly.
+        kiss3d::resource::MaterialManager2d::get_global_manager(|_| ());
         Ok(OffscreenRenderer { surface, view: shown, views })
     }
 
@@ -322,5 +327,21 @@ impl OffscreenViewports {
         }
         self.draw_borders(&mut image);
         Ok(image)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_renderer_dropped_before_its_first_frame_drops_without_a_panic() {
+        // On a thread of its own: dropping a thread's last window resets kiss3d's state.
+        let dropped = std::thread::spawn(|| {
+            let view = WindowSettings { size: (64, 48), ..WindowSettings::default() };
+            drop(OffscreenRenderer::new(&view).expect("Mesa's software renderer"));
+        })
+        .join();
+        assert!(dropped.is_ok(), "dropping an unused renderer panicked");
     }
 }

@@ -26,12 +26,14 @@ pub trait RecordingOutput: Sized {
     type Recorded;
     /// Runs what `driver` drives for `duration` seconds of simulated time (whole
     /// frames), seen as `view` says (at the recorder's size if it has one), into this
-    /// output.
+    /// output, drawing with `started` (from [`Recorder::start_renderer`]) or with a
+    /// renderer of its own when `None`.
     fn record_driven<D: Driver>(
         recorder: &Recorder<Self>,
         driver: &mut D,
         view: &WindowSettings,
         duration: f64,
+        started: Option<OffscreenRenderer>,
     ) -> Result<Self::Recorded>;
 }
 
@@ -83,19 +85,49 @@ impl<T: RecordingOutput> Recorder<T> {
         view: &WindowSettings,
         duration: f64,
     ) -> Result<T::Recorded> {
-        T::record_driven(self, driver, view, duration)
+        T::record_driven(self, driver, view, duration, None)
     }
 
-    /// The renderer this recording draws what `driver` drives with: `view` at the
-    /// recorder's size (if it has one), drawing what its options say; when it draws
-    /// forces, the simulation is asked to report them (the contacts' and every
-    /// joint's).
-    pub(crate) fn renderer<D: Driver>(&self, driver: &mut D, view: &WindowSettings) -> Result<OffscreenRenderer> {
+    /// Starts the renderer this recording draws with (`view` at the recorder's size,
+    /// its options), before any simulation is taken: the slow part of a recording's
+    /// start (the rendering context: half a second to seconds on Mesa's software
+    /// rasteriser). Give it to [`record_driven_with`](Self::record_driven_with) on this
+    /// thread. A front end that must answer Ctrl-C while it starts (the Python
+    /// package) starts it first, and takes the simulation only once it is there.
+    pub fn start_renderer(&self, view: &WindowSettings) -> Result<OffscreenRenderer> {
         let mut view = view.clone();
         if let Some(size) = self.size {
             view.size = size;
         }
-        let renderer = OffscreenRenderer::with_options(&view, &self.options)?;
+        OffscreenRenderer::with_options(&view, &self.options)
+    }
+
+    /// As [`record_driven`](Self::record_driven), drawing with `renderer`, which
+    /// [`start_renderer`](Self::start_renderer) of this recorder made on this thread.
+    pub fn record_driven_with<D: Driver>(
+        &self,
+        renderer: OffscreenRenderer,
+        driver: &mut D,
+        view: &WindowSettings,
+        duration: f64,
+    ) -> Result<T::Recorded> {
+        T::record_driven(self, driver, view, duration, Some(renderer))
+    }
+
+    /// The renderer this recording draws what `driver` drives with: `started` if
+    /// given, else one of `view` at the recorder's size (if it has one), drawing what
+    /// its options say; when it draws forces, the simulation is asked to report them
+    /// (the contacts' and every joint's).
+    pub(crate) fn renderer<D: Driver>(
+        &self,
+        driver: &mut D,
+        view: &WindowSettings,
+        started: Option<OffscreenRenderer>,
+    ) -> Result<OffscreenRenderer> {
+        let renderer = match started {
+            Some(renderer) => renderer,
+            None => self.start_renderer(view)?,
+        };
         if self.options.forces {
             crate::scene::report_forces(driver.simulation().scene_mut().world_mut());
         }

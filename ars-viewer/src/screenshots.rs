@@ -67,6 +67,7 @@ impl RecordingOutput for ScreenshotFrames {
         driver: &mut D,
         view: &WindowSettings,
         duration: f64,
+        started: Option<OffscreenRenderer>,
     ) -> Result<Vec<PathBuf>> {
         let output = &recorder.output;
         if output.every == 0 {
@@ -74,7 +75,7 @@ impl RecordingOutput for ScreenshotFrames {
         }
         let frames = frames_in(&driver.simulation(), duration)?;
         std::fs::create_dir_all(&output.dir).map_err(|e| ViewerError::write(&output.dir, e))?;
-        let mut renderer = recorder.renderer(driver, view)?;
+        let mut renderer = recorder.renderer(driver, view, started)?;
         let mut writer = FrameWriter::new();
         let mut written = vec![output.write(&mut writer, &mut renderer, &driver.simulation(), 1)?];
         for frame in 1..=frames {

@@ -22,6 +22,7 @@ use crate::error::{Result, ThreadEnd, ViewerError};
 use crate::frames::RawFrame;
 use crate::h264::H264;
 use crate::mp4::Mp4Track;
+use crate::offscreen::OffscreenRenderer;
 use crate::recorder::{Recorder, RecordingOutput, frames_in};
 
 /// The encoder's thread, as its errors name it.
@@ -450,6 +451,7 @@ impl RecordingOutput for VideoFile {
         driver: &mut D,
         view: &WindowSettings,
         duration: f64,
+        started: Option<OffscreenRenderer>,
     ) -> Result<RecordedVideo> {
         let (width, height) = recorder.size.unwrap_or(view.size);
         let VideoFile { path, fps } = &recorder.output;
@@ -468,7 +470,7 @@ impl RecordingOutput for VideoFile {
             (frames_in(&sim, duration)?, sim.scene().time())
         };
         let mut writer = VideoWriter::create(path, width, height, fps)?;
-        let mut renderer = recorder.renderer(driver, view)?;
+        let mut renderer = recorder.renderer(driver, view, started)?;
         let mut next = 0u64;
         let mut failure: Option<ViewerError> = None;
         // Pictures for every video frame due by the simulation's time now.

@@ -7,9 +7,11 @@
 //! recording leaves nothing behind, and the simulation is whole between two frames.
 
 use std::ops::DerefMut;
-use std::sync::Mutex;
+use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::sync::mpsc::RecvTimeoutError;
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Instant;
 
 use ars_core::{Error, Key, Simulation};
 use ars_viewer::Driver;
@@ -65,31 +67,93 @@ impl<F: FnMut() -> bool> Driver for StoppableSimulation<'_, F> {
     }
 }
 
-/// Runs `work` on a thread of its own (named `name`) while the calling thread, which
-/// holds no GIL, runs Python's signal handlers every [`SIGNAL_CHECK_PERIOD`] (only the
-/// main thread sees them). When one raises (Ctrl-C's `KeyboardInterrupt`), its
-/// exception is kept in `raised` and `stop` is set, for `work` to end at its next
-/// check. Returns what `work` returned, or its panic; `Err` if the thread could not
-/// start.
-pub(crate) fn on_thread_watching_signals<R: Send>(
+/// The threads of [`starting_on_thread_watching_signals`] abandoned while they
+/// started, not yet joined: [`join_abandoned`] waits for them.
+static ABANDONED: Mutex<Vec<std::thread::JoinHandle<()>>> = Mutex::new(Vec::new());
+
+/// Waits for the threads abandoned by Ctrl-C while they started (each ends once its
+/// renderer is up, within seconds): the package calls it when the interpreter exits,
+/// so that no thread is still starting a rendering context while the process tears
+/// down (which can crash it).
+pub(crate) fn join_abandoned() {
+    let threads = std::mem::take(&mut *ABANDONED.lock().unwrap_or_else(PoisonError::into_inner));
+    for thread in threads {
+        let _ = thread.join();
+    }
+}
+
+/// Where the work of [`starting_on_thread_watching_signals`] stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// `start` runs: Ctrl-C abandons the work and the caller returns at once.
+    Starting,
+    /// `run` runs: Ctrl-C asks it to stop, and the caller waits for it.
+    Running,
+    /// Ctrl-C came while starting: the thread ends once `start` returns.
+    Abandoned,
+}
+
+/// Runs `start`, then `run` with what it made, on a thread of its own (named `name`,
+/// not joined) while the calling thread, which holds no GIL, runs Python's signal
+/// handlers every [`SIGNAL_CHECK_PERIOD`]. When one raises (Ctrl-C's
+/// `KeyboardInterrupt`), its exception is kept in `raised` and:
+/// - while `start` runs (a renderer starting: up to seconds on Mesa's software
+///   rasteriser), this returns `Ok(None)` at once; the thread ends when `start`
+///   returns, without calling `run` (and is joined by [`join_abandoned`] at exit at
+///   the latest). So `start` must not touch what the caller holds;
+/// - once `run` began, `stop` is set for `run` to end at its next check, and this
+///   waits for it.
+///
+/// Otherwise the thread is joined before this returns what `run` returned (or a
+/// panic of either); `Err` if the thread could not start.
+pub(crate) fn starting_on_thread_watching_signals<S: 'static, R: Send + 'static>(
     name: &str,
     stop: &AtomicBool,
     raised: &Mutex<Option<PyErr>>,
-    work: impl FnOnce() -> R + Send,
-) -> std::io::Result<std::thread::Result<R>> {
-    std::thread::scope(|scope| {
-        let worker = std::thread::Builder::new().name(name.into()).spawn_scoped(scope, work)?;
-        while !worker.is_finished() {
-            std::thread::sleep(SIGNAL_CHECK_PERIOD.min(Duration::from_millis(5)));
-            if stop.load(Ordering::Relaxed) {
-                continue;
+    start: impl FnOnce() -> S + Send + 'static,
+    run: impl FnOnce(S) -> R + Send + 'static,
+) -> std::io::Result<Option<std::thread::Result<R>>> {
+    let phase = Arc::new(Mutex::new(Phase::Starting));
+    let (sender, outcome) = std::sync::mpsc::channel();
+    let worker_phase = Arc::clone(&phase);
+    let worker = std::thread::Builder::new().name(name.into()).spawn(move || {
+        let started = std::panic::catch_unwind(AssertUnwindSafe(start));
+        {
+            let mut now = worker_phase.lock().unwrap_or_else(PoisonError::into_inner);
+            if *now == Phase::Abandoned {
+                return;
             }
-            if signal_raised(raised) {
+            *now = Phase::Running;
+        }
+        let done = started.and_then(|s| std::panic::catch_unwind(AssertUnwindSafe(|| run(s))));
+        let _ = sender.send(done);
+    })?;
+    loop {
+        match outcome.recv_timeout(SIGNAL_CHECK_PERIOD) {
+            // Joined: the thread's rendering context is gone before the caller goes on
+            // (and before the interpreter may exit).
+            Ok(done) => {
+                let _ = worker.join();
+                return Ok(Some(done));
+            }
+            Err(RecvTimeoutError::Disconnected) => {
+                let _ = worker.join();
+                return Ok(Some(Err(Box::new(format!("{name} ended without its result")))));
+            }
+            Err(RecvTimeoutError::Timeout) => {
+                if stop.load(Ordering::Relaxed) || !signal_raised(raised) {
+                    continue;
+                }
                 stop.store(true, Ordering::Relaxed);
+                let mut now = phase.lock().unwrap_or_else(PoisonError::into_inner);
+                if *now == Phase::Starting {
+                    *now = Phase::Abandoned;
+                    ABANDONED.lock().unwrap_or_else(PoisonError::into_inner).push(worker);
+                    return Ok(None);
+                }
             }
         }
-        Ok(worker.join())
-    })
+    }
 }
 
 /// The stop condition of a recorder's frames: every [`SIGNAL_CHECK_PERIOD`] (the clock

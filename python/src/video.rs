@@ -4,17 +4,17 @@
 //! (the original-style `Program.record_video`, whose frames run in Python).
 
 use std::path::PathBuf;
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 
-use ars_core::Simulation;
+use ars_core::WindowSettings;
 
-use ars_viewer::{RecordedVideo, ThreadEnd, VideoRecorder, VideoWriter, ViewerError};
+use ars_viewer::{OffscreenRenderer, RecordedVideo, ThreadEnd, VideoRecorder, VideoWriter, ViewerError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::{Checked, panic_message, raise};
-use crate::interrupt::{StoppableSimulation, on_thread_watching_signals};
+use crate::interrupt::{StoppableSimulation, starting_on_thread_watching_signals};
 use crate::simulation::{Int, PySimulation};
 use crate::viewer::{Failure, IMAGE_KEYWORDS, PyRenderer, ViewKeywords, to_py_error};
 
@@ -30,19 +30,22 @@ fn summary(py: Python<'_>, video: &RecordedVideo) -> PyResult<Py<PyDict>> {
     Ok(dict.unbind())
 }
 
-/// `sim.record_video(...)`: checks the settings, then runs the simulation with the GIL
-/// released, drawing on a thread of its own (each thread has its own rendering
-/// context, so this can be called again and again) while the calling thread looks for
-/// Ctrl-C: `KeyboardInterrupt` after the frame being drawn, and no file left.
+/// `sim.record_video(...)`: checks the settings, then, with the GIL released, starts a
+/// renderer on a thread of its own (each thread has its own rendering context, so
+/// this can be called again and again) and runs the simulation there, while the
+/// calling thread looks for Ctrl-C: `KeyboardInterrupt` at once while the renderer
+/// starts (the simulation not yet taken, nothing written), after the frame being
+/// drawn once it records; no file left either way.
 pub(crate) fn record_video(
     py: Python<'_>,
-    sim: &PySimulation,
+    slf: &Bound<'_, PySimulation>,
     path: PathBuf,
     duration: f64,
     fps: f64,
     view: ViewKeywords,
     allow_long: bool,
 ) -> PyResult<Py<PyDict>> {
+    let sim = slf.get();
     if sim.in_own_hook() {
         return Err(raise(py, "BusyError", "a hook cannot record the simulation it runs in".into()));
     }
@@ -53,26 +56,24 @@ pub(crate) fn record_video(
         .and_then(|()| ars_viewer::video_frame_count(duration, fps));
     let frames = checked.map_err(|e| to_py_error(py, e))?;
     crate::limits::check_recording(duration, Some(frames), allow_long).map_err(|m| raise(py, "InputError", m))?;
-    let recorder = VideoRecorder::new(path).fps(fps).options(options);
-    let stop = AtomicBool::new(false);
+    let stop = Arc::new(AtomicBool::new(false));
     let interrupt: Mutex<Option<PyErr>> = Mutex::new(None);
-    let outcome = py.detach(|| {
-        let mut locked = sim.locked();
-        let sim: &mut Simulation = &mut locked;
-        let drawn = on_thread_watching_signals("ars-video", &stop, &interrupt, || {
-            let mut driver = StoppableSimulation { sim, stop: || stop.load(Ordering::Relaxed) };
-            recorder.record_driven(&mut driver, &view, duration)
-        });
-        match drawn {
-            Ok(Ok(outcome)) => outcome.map_err(Failure::Viewer),
-            Ok(Err(panic)) => Err(Failure::Panic(panic_message(&panic))),
-            Err(e) => Err(Failure::Viewer(ViewerError::ThreadDied {
-                thread: "the video",
-                end: ThreadEnd::NotStarted,
-                source: Some(e),
-            })),
-        }
-    });
+    // The renderer starts first, on the recording's thread, before the simulation is
+    // taken: Ctrl-C while it starts returns at once, and nothing was written.
+    let recorder = VideoRecorder::new(path).fps(fps).options(options);
+    let start = {
+        let (recorder, view) = (recorder.clone(), view.clone());
+        move || recorder.start_renderer(&view).map(|renderer| (recorder, view, renderer))
+    };
+    let owner = slf.clone().unbind();
+    let watched = Arc::clone(&stop);
+    let run = move |started: ars_viewer::Result<(VideoRecorder, WindowSettings, OffscreenRenderer)>| {
+        let (recorder, view, renderer) = started?;
+        let mut locked = owner.get().locked();
+        let mut driver = StoppableSimulation { sim: &mut locked, stop: || watched.load(Ordering::Relaxed) };
+        recorder.record_driven_with(renderer, &mut driver, &view, duration)
+    };
+    let outcome = py.detach(|| starting_on_thread_watching_signals("ars-video", &stop, &interrupt, start, run));
     // Ctrl-C first, then a Python hook's own exception, then the recorder's error.
     if let Some(e) = failure_free(&interrupt).take() {
         sim.take_hook_exception();
@@ -81,6 +82,17 @@ pub(crate) fn record_video(
     if let Some(e) = sim.take_hook_exception() {
         return Err(e);
     }
+    let outcome = match outcome {
+        Ok(Some(Ok(outcome))) => outcome.map_err(Failure::Viewer),
+        Ok(Some(Err(panic))) => Err(Failure::Panic(panic_message(&panic))),
+        // Abandoned while starting: only Ctrl-C does that, and it was raised above.
+        Ok(None) => Err(Failure::Panic("the video was abandoned with no Ctrl-C".into())),
+        Err(e) => Err(Failure::Viewer(ViewerError::ThreadDied {
+            thread: "the video",
+            end: ThreadEnd::NotStarted,
+            source: Some(e),
+        })),
+    };
     match outcome {
         Ok(video) => summary(py, &video),
         Err(f) => Err(f.into_py(py)),
@@ -184,7 +196,7 @@ impl PySimulation {
     /// `KeyboardInterrupt`, leaving no file; the simulation can be run on.
     #[pyo3(signature = (path, duration, fps=30.0, size=None, *, allow_long=false, **view))]
     fn record_video(
-        &self,
+        slf: &Bound<'_, Self>,
         py: Python<'_>,
         path: std::path::PathBuf,
         duration: f64,
@@ -195,6 +207,6 @@ impl PySimulation {
     ) -> PyResult<Py<pyo3::types::PyDict>> {
         let mut view = ViewKeywords::from_kwargs("record_video", view, &IMAGE_KEYWORDS)?;
         view.size = size.map_or(view.size, |s| s.0);
-        record_video(py, self, path, duration, fps, view, allow_long)
+        record_video(py, slf, path, duration, fps, view, allow_long)
     }
 }

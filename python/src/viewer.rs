@@ -345,11 +345,13 @@ pub(crate) fn show_program(
     show(py, sim, Some(program), duration, frames, view)
 }
 
-/// Gives back the rendering context the windows of this thread kept: the package
-/// calls it when the interpreter exits, before the thread's locals are destroyed.
+/// Gives back the rendering context the windows of this thread kept, and waits for
+/// the recordings abandoned by Ctrl-C while their renderer started: the package calls
+/// it when the interpreter exits, before the thread's locals are destroyed.
 #[pyfunction]
 #[pyo3(name = "_release_viewer")]
 pub(crate) fn release_viewer(py: Python<'_>) -> PyResult<()> {
+    py.detach(crate::interrupt::join_abandoned);
     crate::errors::guarded(py, || {
         ars_viewer::release_rendering_context();
         Ok(())

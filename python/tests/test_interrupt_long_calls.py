@@ -109,8 +109,8 @@ def only(tmp_path, *names):
 
 def frames_written(folder):
     """Whether a video's hidden frames file in `folder` holds frames: the renderer
-    has started (which takes half a second, more on a busy machine, and is not
-    interrupted) and the recording is under way."""
+    has started (which takes half a second, more on a busy machine) and the
+    recording is under way."""
     return lambda: any(
         p.name.endswith(".frames") and p.stat().st_size > 0 for p in folder.iterdir()
     )
@@ -127,6 +127,21 @@ def test_ctrl_c_stops_record_video_and_leaves_no_file(tmp_path):
     assert_prompt(after)
     only(tmp_path)
     assert report["stepped_on"] and 0 < report["steps"] < 3000 * 2500
+
+
+def test_ctrl_c_while_record_video_starts_its_renderer_returns_at_once(tmp_path):
+    # SIGINT 20 ms after the call began: the renderer is still starting (half a second
+    # to seconds on Mesa's software rasteriser), the simulation not yet taken.
+    after, report = interrupt_child(
+        tmp_path,
+        "sim = ball_on_a_floor()\n",
+        'sim.record_video("long.mp4", 3000.0, size=(64, 48))',
+        "usable(sim)",
+        wait=0.02,
+    )
+    assert_prompt(after)
+    only(tmp_path)
+    assert report["stepped_on"] and report["steps"] == 0
 
 
 def test_ctrl_c_stops_a_long_record_video_allowed_with_a_python_hook(tmp_path):
