@@ -154,6 +154,7 @@ def test_ars_knows_the_attributes_mujoco_s_schema_gives():
         "freejoint": "(world)body", "geom": "(world)body", "site": "(world)body",
         "mesh": "asset", "material": "asset", "pair": "contact", "exclude": "contact",
         "motor": "actuator", "position": "actuator", "velocity": "actuator", "general": "actuator",
+        "keyframe": "mujoco", "key": "keyframe",
     }  # fmt: skip
     checked = 0
     for tag, attributes in ours.items():
@@ -558,6 +559,8 @@ SITE_SENSORS = """
     <accelerometer name="box_acc" site="corner"/>
     <framepos name="corner_at" objtype="site" objname="corner"/>
     <framelinvel name="corner_v" objtype="site" objname="corner"/>
+    <velocimeter name="corner_vel" site="corner"/>
+    <velocimeter name="tip_vel" site="tip"/>
     <framequat name="box_turn" objtype="xbody" objname="box"/>
   </sensor>
 </mujoco>"""
@@ -647,6 +650,11 @@ def test_site_sensors_read_what_mujoco_s_read(tmp_path):
     # step, w^2 r dt (1.5^2 * 0.6 m * 1 us = 1.35e-6 m/s at most on this arm).
     assert ours["corner_v"][:3] == pytest.approx(TURN @ theirs("corner_v"), abs=1e-9)
     assert ours["tip_v"][:3] == pytest.approx(TURN @ theirs("tip_v"), abs=1.5**2 * 0.6 * 1e-6)
+    # The same velocities in the sites' own frames (MuJoCo's velocimeter).
+    assert kinds["corner_vel"] == "velocimeter"
+    assert ours["corner_vel"][:3] == pytest.approx(theirs("corner_vel"), abs=1e-9)
+    assert ours["tip_vel"][:3] == pytest.approx(theirs("tip_vel"), abs=1.5**2 * 0.6 * 1e-6)
+    assert np.abs(theirs("corner_vel")).max() > 0.1
     for name in ["tip_turn", "arm_turn", "arm_inertia", "box_turn"]:
         q = quat_mul(TURN_QUAT, theirs(name))
         q = q if q[0] >= 0 else -q

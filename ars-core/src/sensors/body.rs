@@ -119,7 +119,7 @@ impl Velometer {
     }
 }
 
-/// A [`Velometer`] measurement.
+/// A [`Velometer`] measurement (world frame), or a [`Velocimeter`]'s (its frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Velocity {
     /// Linear velocity of the point read (the centre of mass by default), m/s.
@@ -148,6 +148,49 @@ impl Sensor for Velometer {
     }
     fn settings(&self) -> Option<SensorSettings> {
         point_settings(&self.offset)
+    }
+}
+
+/// Linear velocity of a point fixed on a body and the body's angular velocity, in a
+/// frame fixed on the body (MuJoCo's `velocimeter`, with its `gyro`): `Rᵀ v` and
+/// `Rᵀ ω`, `R` the frame's rotation in the world, `v` the point's velocity. At the
+/// body's centre of mass and turned as the body unless mounted at an offset
+/// ([`at`](Self::at)). A [`Velometer`] reads the same in the world frame.
+#[derive(Clone, Debug)]
+pub struct Velocimeter {
+    object: ObjectId,
+    offset: Isometry3<f64>,
+}
+
+impl Velocimeter {
+    /// A velocimeter on `object`, at its centre of mass, turned as the object.
+    pub fn new(object: ObjectId) -> Self {
+        Velocimeter { object, offset: Isometry3::identity() }
+    }
+
+    /// Mounted at `offset` from the object's origin (its centre of mass), in the
+    /// object's frame: it reads that point's velocity, in that frame.
+    #[must_use]
+    pub fn at(mut self, offset: Isometry3<f64>) -> Self {
+        self.offset = offset;
+        self
+    }
+}
+
+impl Sensor for Velocimeter {
+    type Record = Velocity;
+    fn measure(&mut self, sim: &Scene) -> Result<Velocity> {
+        let b = sim.body(self.object)?;
+        let v = point_velocity(&b, &self.offset.translation.vector);
+        // Into the body's frame, then the sensor's.
+        let (to_body, to_frame) = (b.rotation().inverse(), self.offset.rotation.inverse());
+        Ok(Velocity { linear: to_frame * (to_body * v), angular: to_frame * (to_body * b.angular_velocity()) })
+    }
+    fn objects(&self) -> Vec<ObjectId> {
+        vec![self.object]
+    }
+    fn settings(&self) -> Option<SensorSettings> {
+        offset_settings(self.offset)
     }
 }
 

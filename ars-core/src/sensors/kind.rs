@@ -31,6 +31,8 @@ pub enum SensorKind {
     Gps,
     /// [`Velometer`](super::Velometer).
     Velometer,
+    /// [`Velocimeter`](super::Velocimeter).
+    Velocimeter,
     /// [`Accelerometer`](super::Accelerometer).
     Accelerometer,
     /// [`Orientation`](super::Orientation).
@@ -75,9 +77,10 @@ pub enum SensorKind {
 
 impl SensorKind {
     /// Every kind, in this order.
-    pub const ALL: [SensorKind; 22] = [
+    pub const ALL: [SensorKind; 23] = [
         SensorKind::Gps,
         SensorKind::Velometer,
+        SensorKind::Velocimeter,
         SensorKind::Accelerometer,
         SensorKind::Orientation,
         SensorKind::Inclinometer,
@@ -111,6 +114,7 @@ impl SensorKind {
         match self {
             SensorKind::Gps => "Gps",
             SensorKind::Velometer => "Velometer",
+            SensorKind::Velocimeter => "Velocimeter",
             SensorKind::Accelerometer => "Accelerometer",
             SensorKind::Orientation => "Orientation",
             SensorKind::Inclinometer => "Inclinometer",
@@ -194,7 +198,7 @@ mod tests {
         }
         let with_settings: Vec<_> = SensorKind::ALL.into_iter().filter(|k| k.target() == SensorTarget::Mount).collect();
         assert_eq!(with_settings, [SensorKind::Lidar, SensorKind::DepthCamera]);
-        assert_eq!(SensorKind::from_targets().count(), 20);
+        assert_eq!(SensorKind::from_targets().count(), 21);
         assert!("Gpss".parse::<SensorKind>().is_err());
         assert_eq!(SensorKind::of_type_name("Laser"), None);
     }

@@ -37,7 +37,7 @@ use std::marker::PhantomData;
 
 pub use body::{
     Acceleration, Accelerometer, Attitude, ContactForceReading, ContactForces, ContactReading, ContactSensor, Gps, Imu,
-    ImuReading, Inclination, Inclinometer, Orientation, Position, Velocity, Velometer,
+    ImuReading, Inclination, Inclinometer, Orientation, Position, Velocimeter, Velocity, Velometer,
 };
 pub use depth_camera::{DepthCamera, DepthImage};
 pub use energy::{Energy, Kinetic, KineticEnergy, Potential, PotentialEnergy, SystemTotalEnergy, TotalEnergy};

@@ -8,7 +8,7 @@ use crate::sensors::{
     Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
     Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, JointVelocities, KineticEnergy,
     Lidar, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorKind, SensorSettings, SystemTotalEnergy,
-    TotalEnergy, Touch, Velometer,
+    TotalEnergy, Touch, Velocimeter, Velometer,
 };
 
 impl Simulation {
@@ -84,6 +84,9 @@ impl Simulation {
             (K::Velometer, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Velometer::new(object()?).at(pose.translation.vector), period, noise)
             }
+            (K::Velocimeter, Some(SensorSettings::Offset { pose })) => {
+                self.add_noisy(Velocimeter::new(object()?).at(*pose), period, noise)
+            }
             (K::Accelerometer, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Accelerometer::new(object()?).at(pose.translation.vector), period, noise)
             }
@@ -102,6 +105,7 @@ impl Simulation {
             }),
             (K::Gps, _) => self.add_noisy(Gps::new(object()?), period, noise),
             (K::Velometer, _) => self.add_noisy(Velometer::new(object()?), period, noise),
+            (K::Velocimeter, _) => self.add_noisy(Velocimeter::new(object()?), period, noise),
             (K::Accelerometer, _) => self.add_noisy(Accelerometer::new(object()?), period, noise),
             (K::Inclinometer, _) => self.add_noisy(Inclinometer::new(object()?), period, noise),
             (K::Imu, _) => self.add_noisy(Imu::new(object()?), period, noise),

@@ -138,6 +138,7 @@ impl PySimulation {
                 "framelinvel" => "velometer",
                 "framequat" => "orientation",
                 "accelerometer" | "gyro" => "imu",
+                "velocimeter" => "velocimeter",
                 "touch" => "touch",
                 _ => "laser",
             };

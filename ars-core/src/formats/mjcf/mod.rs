@@ -362,6 +362,8 @@ pub struct MjcfSite {
 ///   site's velocity over the step (MuJoCo's is the acceleration at an instant): they
 ///   agree as the step shrinks, on a jointed body once ODE's error correction has
 ///   brought in the centripetal pull (a few steps after a state is set).
+/// - `velocimeter`: a [`Velocimeter`](crate::sensors::Velocimeter) at the site, in the
+///   site's frame (its first three columns; it lags on a jointed body as `framelinvel`).
 /// - `touch`: a [`Touch`](crate::sensors::Touch) on the site's body within the site's
 ///   volume (its second column, the normal force).
 /// - `rangefinder`: a [`Laser`](crate::sensors::Laser) of [`RANGEFINDER_LENGTH`] at the
@@ -375,7 +377,7 @@ pub struct MjcfSensor {
     /// Its name (`sensor{N}` when unnamed, N its index among the sensors).
     pub name: String,
     /// Its element: `jointpos`, `jointvel`, `framepos`, `framelinvel`, `framequat`,
-    /// `accelerometer`, `gyro`, `touch` or `rangefinder`.
+    /// `accelerometer`, `gyro`, `velocimeter`, `touch` or `rangefinder`.
     pub kind: String,
     /// What its target is: `joint`, `body` (its inertial frame), `xbody` (its frame) or
     /// `site`.

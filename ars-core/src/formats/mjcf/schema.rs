@@ -18,7 +18,7 @@ const ATTRIBUTES: &[(&str, &[&str])] = &[
     ("mujoco", &["model"]),
     ("include", &["file"]),
     ("keyframe", &[]),
-    ("key", &["name", "time", "qpos", "qvel", "act", "ctrl", "mpos", "mquat"]),
+    ("key", &["name", "time", "qpos", "qvel", "act", "ctrl", "mpos", "mquat", "plastic"]),
     ("default", &["class"]),
     ("compiler", &[
         "alignfree", "angle", "assetdir", "autolimits", "balanceinertia", "boundinertia",

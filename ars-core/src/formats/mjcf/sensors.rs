@@ -21,7 +21,7 @@ impl Reader<'_, '_, '_> {
         let needs = |what: &str| a.get(what).ok_or_else(|| problem(&node, format!("needs a {what}")));
         let (objtype, target) = match kind {
             "jointpos" | "jointvel" => ("joint", needs("joint")?),
-            "accelerometer" | "gyro" | "touch" | "rangefinder" => ("site", needs("site")?),
+            "accelerometer" | "gyro" | "velocimeter" | "touch" | "rangefinder" => ("site", needs("site")?),
             "framepos" | "framelinvel" | "framequat" => {
                 let objtype = match a.get("objtype") {
                     Some(t @ ("body" | "xbody" | "site")) => t,
@@ -191,6 +191,7 @@ pub(super) fn ars_kind(element: &str) -> Option<SensorKind> {
         "framelinvel" => SensorKind::Velometer,
         "framequat" => SensorKind::Orientation,
         "accelerometer" | "gyro" => SensorKind::Imu,
+        "velocimeter" => SensorKind::Velocimeter,
         "touch" => SensorKind::Touch,
         _ => return None,
     })
