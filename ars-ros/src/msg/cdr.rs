@@ -15,8 +15,8 @@ pub const CDR_LE_HEADER: [u8; 4] = [0x00, 0x01, 0x00, 0x00];
 /// MCAP `cdr` message's data.
 pub fn encode<T: Serialize>(message: &T) -> RosResult<Vec<u8>> {
     let mut bytes = CDR_LE_HEADER.to_vec();
-    let body = cdr_encoding::to_vec::<T, LittleEndian>(message)
-        .map_err(|e| RosError::Encoding { detail: e.to_string() })?;
+    let body =
+        cdr_encoding::to_vec::<T, LittleEndian>(message).map_err(|e| RosError::Encoding { detail: e.to_string() })?;
     bytes.extend_from_slice(&body);
     Ok(bytes)
 }
@@ -24,13 +24,10 @@ pub fn encode<T: Serialize>(message: &T) -> RosResult<Vec<u8>> {
 /// The message in `bytes` (encapsulation header first, little-endian CDR only).
 pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> RosResult<T> {
     let body = bytes.strip_prefix(&CDR_LE_HEADER[..]).ok_or_else(|| RosError::Encoding {
-        detail: format!(
-            "expected the little-endian CDR header 00 01 00 00, got {:02x?}",
-            &bytes[..bytes.len().min(4)]
-        ),
+        detail: format!("expected the little-endian CDR header 00 01 00 00, got {:02x?}", &bytes[..bytes.len().min(4)]),
     })?;
-    let (message, _) = cdr_encoding::from_bytes::<T, LittleEndian>(body)
-        .map_err(|e| RosError::Encoding { detail: e.to_string() })?;
+    let (message, _) =
+        cdr_encoding::from_bytes::<T, LittleEndian>(body).map_err(|e| RosError::Encoding { detail: e.to_string() })?;
     Ok(message)
 }
 

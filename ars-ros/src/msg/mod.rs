@@ -16,8 +16,8 @@ pub use builtin::{Clock, Header, StringMessage, Time, nanos_of};
 pub use cdr::{CDR_LE_HEADER, decode, encode};
 pub use definitions::schema;
 pub use geometry::{
-    Covariance6, Odometry, Point, Pose, PoseWithCovariance, Quaternion, TfMessage, Transform, TransformStamped,
-    Twist, TwistWithCovariance, Vector3,
+    Covariance6, Odometry, Point, Pose, PoseWithCovariance, Quaternion, TfMessage, Transform, TransformStamped, Twist,
+    TwistWithCovariance, Vector3,
 };
 pub use sensor::{CameraInfo, Image, Imu, JointState, LaserScan, RegionOfInterest};
 

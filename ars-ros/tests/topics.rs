@@ -1,0 +1,203 @@
+//! What a simulation publishes: the frame tree of a small URDF robot, joint states and
+//! laser scans equal to ARS's own sensor records of the same run, odometry, and the
+//! Z-up world.
+
+use ars_core::formats::urdf::UrdfOptions;
+use ars_core::nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use ars_core::sensors::{JointPositions, JointTorque, JointVelocities, Lidar};
+use ars_core::{Mass, Simulation};
+use ars_ros::msg::{JointState, LaserScan, TfMessage, TransformStamped, nanos_of};
+use ars_ros::{Message, Outgoing, Publisher, RosOptions};
+
+const ARM: &str = r#"<robot name="arm">
+  <link name="base"><inertial><origin xyz="0 0 0.1"/><mass value="1"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="upper"><inertial><origin xyz="0.2 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="tool"/>
+  <joint name="shoulder" type="continuous"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/><dynamics damping="0.3"/></joint>
+  <joint name="flange" type="fixed"><parent link="upper"/><child link="tool"/><origin xyz="0.1 0 0"/></joint>
+</robot>"#;
+
+/// A fixed arm that swings down under gravity, and a ball falling beside it.
+fn arm_and_ball() -> Simulation {
+    let mut sim = Simulation::new().unwrap();
+    let options = UrdfOptions::new().fixed_base(true).exact_base_pose(true);
+    sim.load_urdf_text(ARM, "arm.urdf", &options).unwrap();
+    sim.scene_mut().add_sphere(0.1, [1.0, 2.0, 3.0], Mass::Total(1.0)).unwrap();
+    sim
+}
+
+fn on<'a>(out: &'a [Outgoing], publisher: &Publisher, topic: &str) -> Vec<&'a Outgoing> {
+    out.iter().filter(|o| publisher.topics()[o.topic].name == topic).collect()
+}
+
+fn transforms(out: &[Outgoing], publisher: &Publisher, topic: &str) -> Vec<TransformStamped> {
+    on(out, publisher, topic)
+        .iter()
+        .flat_map(|o| match &o.message {
+            Message::Tf(TfMessage { transforms }) => transforms.clone(),
+            other => panic!("{topic} carries {other:?}"),
+        })
+        .collect()
+}
+
+fn find<'a>(transforms: &'a [TransformStamped], parent: &str, child: &str) -> &'a TransformStamped {
+    transforms
+        .iter()
+        .find(|t| t.header.frame_id == parent && t.child_frame_id == child)
+        .unwrap_or_else(|| panic!("no {parent} -> {child} in {transforms:#?}"))
+}
+
+fn isometry(t: &TransformStamped) -> Isometry3<f64> {
+    let (v, q) = (&t.transform.translation, &t.transform.rotation);
+    Isometry3::from_parts(
+        Vector3::new(v.x, v.y, v.z).into(),
+        UnitQuaternion::new_normalize(ars_core::nalgebra::Quaternion::new(q.w, q.x, q.y, q.z)),
+    )
+}
+
+#[test]
+fn a_urdf_robots_frames_follow_its_joint_tree_and_free_objects_are_in_map() {
+    let mut sim = arm_and_ball();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    let first = publisher.poll(&sim).unwrap();
+    let fixed = transforms(&first, &publisher, "/tf_static");
+    // The merged tool link is 0.1 m along the upper arm's X, fixed.
+    let tool = isometry(find(&fixed, "upper", "tool"));
+    assert!((tool.translation.vector - Vector3::new(0.1, 0.0, 0.0)).norm() < 1e-12, "{tool}");
+    let description = on(&first, &publisher, "/robot_description");
+    assert!(matches!(&description[0].message, Message::String(s) if s.data == ARM));
+    sim.run_for(0.3).unwrap();
+    let out = publisher.poll(&sim).unwrap();
+    let moving = transforms(&out, &publisher, "/tf");
+    // The shoulder: 0.5 m up the base's Z, turned about Y by the joint's angle.
+    let angle = sim.scene().joint_position(sim.scene().joint("shoulder").unwrap().id()).unwrap();
+    assert!(angle.abs() > 0.1, "the arm swung: {angle}");
+    let shoulder = isometry(find(&moving, "base", "upper"));
+    let expected = Isometry3::new(Vector3::new(0.0, 0.0, 0.5), Vector3::y() * angle);
+    // ODE holds the hinge's two anchors together within its constraint error (1.6 µm
+    // here, after 0.3 s of swinging): the published frames are the bodies' as they are.
+    let gap = (shoulder.translation.vector - expected.translation.vector).norm();
+    assert!(gap < 1e-5, "{shoulder} vs {expected}: {gap:e}");
+    let turn = shoulder.rotation.to_rotation_matrix().matrix() - expected.rotation.to_rotation_matrix().matrix();
+    assert!(turn.norm() < 1e-6, "{shoulder} vs {expected}: {}", turn.norm());
+    // The base stands in map as its file says: Z up, at the origin.
+    let base = isometry(find(&moving, "map", "base"));
+    assert!(base.translation.vector.norm() < 1e-6 && base.rotation.angle() < 1e-6, "{base}");
+    // The ball, at ARS (x, y, z), is at (x, −z, y) in map.
+    let ball = sim.scene().position(sim.scene().object("sphere").unwrap().id()).unwrap();
+    let in_map = isometry(find(&moving, "map", "sphere")).translation.vector;
+    assert_eq!(in_map, Vector3::new(ball.x, -ball.z, ball.y));
+    assert!(ball.y < 2.0, "it fell");
+}
+
+#[test]
+fn joint_states_equal_the_joint_sensors_records_of_the_same_run() {
+    let mut sim = arm_and_ball();
+    let shoulder = sim.scene().joint("shoulder").unwrap().id();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    let period = 1.0 / 50.0;
+    let q = sim.add_sensor_every(JointPositions::new(sim.scene(), &[shoulder]).unwrap(), period).unwrap();
+    let v = sim.add_sensor_every(JointVelocities::new(sim.scene(), &[shoulder]).unwrap(), period).unwrap();
+    let e = sim.add_sensor_every(JointTorque::new(shoulder), period).unwrap();
+    let mut out = Vec::new();
+    for _ in 0..10 {
+        sim.step_frame().unwrap();
+        out.extend(publisher.poll(&sim).unwrap());
+    }
+    let states: Vec<(u64, JointState)> = on(&out, &publisher, "/joint_states")
+        .iter()
+        .map(|o| match &o.message {
+            Message::JointState(s) => (o.stamp, s.clone()),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let (q, v, e) = (sim.records(q).unwrap(), sim.records(v).unwrap(), sim.records(e).unwrap());
+    assert_eq!(states.len(), q.len());
+    assert!(states.len() >= 9);
+    for (k, (stamp, state)) in states.iter().enumerate() {
+        assert_eq!(state.name, ["shoulder"]);
+        assert_eq!(*stamp, nanos_of(q.samples()[k].time));
+        assert_eq!(state.header.stamp.nanos(), *stamp);
+        assert_eq!(state.position, q.samples()[k].record.values);
+        assert_eq!(state.velocity, v.samples()[k].record.values);
+        assert_eq!(state.effort, [e.samples()[k].record.value]);
+    }
+    assert!(states.iter().any(|(_, s)| s.effort[0] != 0.0), "the damping put efforts");
+}
+
+#[test]
+fn laser_scans_equal_the_lidars_records_each_sample_once() {
+    let mut sim = Simulation::new().unwrap();
+    sim.scene_mut().add_box([1.0, 1.0, 1.0], [3.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    sim.scene_mut().world_mut().set_gravity(Vector3::zeros()).unwrap();
+    let lidar = Lidar::new(90, std::f64::consts::PI, 10.0).unwrap().min_range(0.05).unwrap();
+    let lidar = sim.add_sensor_every(lidar, 0.01).unwrap();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    let mut out = publisher.poll(&sim).unwrap();
+    for _ in 0..3 {
+        sim.step_frame().unwrap();
+        out.extend(publisher.poll(&sim).unwrap());
+    }
+    let scans: Vec<(u64, LaserScan)> = on(&out, &publisher, "/scan")
+        .iter()
+        .map(|o| match &o.message {
+            Message::LaserScan(s) => (o.stamp, s.clone()),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let records = sim.records(lidar).unwrap();
+    assert_eq!(scans.len(), records.len());
+    assert_eq!(scans.len(), 6, "every 10 ms over 60 ms");
+    let azimuths = sim.sensor(lidar).unwrap().azimuths();
+    for ((stamp, scan), sample) in scans.iter().zip(records.samples()) {
+        assert_eq!(*stamp, nanos_of(sample.time));
+        assert_eq!(scan.header.frame_id, "laser");
+        let expected: Vec<f32> = sample.record.ranges.iter().map(|r| *r as f32).collect();
+        assert_eq!(scan.ranges, expected);
+        assert_eq!((scan.angle_min, scan.angle_max), (azimuths[0] as f32, azimuths[89] as f32));
+        assert_eq!((scan.range_min, scan.range_max), (0.05, 10.0));
+    }
+    // The beam along ARS's +X (azimuth 0, the middle one) sees the box 2.5 m away.
+    assert!((scans[0].1.ranges[45] - 2.5).abs() < 1e-3 || (scans[0].1.ranges[44] - 2.5).abs() < 0.1);
+    // Its frame: in map, turned so that ROS's laser axes are ARS's lidar axes turned.
+    let fixed = transforms(&out, &publisher, "/tf_static");
+    let laser = isometry(find(&fixed, "map", "laser"));
+    assert!(laser.rotation.angle() < 1e-12, "a lidar upright at the origin is map's axes: {laser}");
+}
+
+#[test]
+fn a_vehicles_odometry_is_its_pose_in_odom_and_its_velocity_in_its_own_frame() {
+    let mut sim = Simulation::new().unwrap();
+    sim.scene_mut().world_mut().set_gravity(Vector3::zeros()).unwrap();
+    let chassis = sim.scene_mut().add_box([1.0, 0.2, 0.5], [0.0, 0.3, 0.0], Mass::Total(1.0)).unwrap();
+    // Turned 90° about up: its X points along ARS's −Z; moving that way at 2 m/s.
+    sim.scene_mut().rotate(chassis, Vector3::y(), std::f64::consts::FRAC_PI_2).unwrap();
+    sim.scene_mut().body_mut(chassis).unwrap().set_linear_velocity(Vector3::new(0.0, 0.0, -2.0)).unwrap();
+    let options = RosOptions { vehicles: vec![chassis], ..Default::default() };
+    let mut publisher = Publisher::attach(&mut sim, &options).unwrap();
+    let first = publisher.poll(&sim).unwrap();
+    find(&transforms(&first, &publisher, "/tf_static"), "map", "odom");
+    sim.step_frame().unwrap();
+    let out = publisher.poll(&sim).unwrap();
+    find(&transforms(&out, &publisher, "/tf"), "odom", "box");
+    let odometry = match &on(&out, &publisher, "/odom")[0].message {
+        Message::Odometry(o) => o.clone(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!((odometry.header.frame_id.as_str(), odometry.child_frame_id.as_str()), ("odom", "box"));
+    let twist = odometry.twist.twist.linear;
+    assert!((twist.x - 2.0).abs() < 1e-9 && twist.y.abs() < 1e-9 && twist.z.abs() < 1e-9, "{twist:?}");
+    // ARS's −Z is map's +Y: it drove 2 m/s × 20 ms along +Y, 0.3 m up.
+    let p = odometry.pose.pose.position;
+    assert!((p.y - 0.04).abs() < 1e-9 && p.x.abs() < 1e-9 && (p.z - 0.3).abs() < 1e-9, "{p:?}");
+}
+
+#[test]
+fn a_state_rate_out_of_range_is_refused_naming_it() {
+    let mut sim = Simulation::new().unwrap();
+    let err = Publisher::attach(&mut sim, &RosOptions { state_rate: 0.0, ..Default::default() }).unwrap_err();
+    assert!(err.to_string().contains("ROS state rate"), "{err}");
+}
