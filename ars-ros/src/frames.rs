@@ -6,12 +6,14 @@
 //! y = 0 is z = 0. It is the inverse of the turn that loads a Z-up URDF file into ARS,
 //! so a URDF robot's root link stands in `map` as its file says.
 //!
-//! Only what is given in the world turns: poses of frames whose parent is `map`,
-//! world-frame vectors. A frame on a body keeps the body's axes (a URDF link's frame is
-//! its file's), so transforms between two bodies are ARS's unchanged. A lidar's beams
-//! fan in its X–Z plane from +X towards −Z; a `LaserScan` fans in its frame's X–Y plane
-//! from +X towards +Y: a lidar's ROS frame is its mount turned by the same +90° about
-//! X ([`lidar_frame`]), and its angles are then ARS's azimuths unchanged.
+//! A frame on something built in ARS's Y-up world (an object of a scene, a lidar, an
+//! IMU on such an object) is given the same way: its ROS axes are its ARS axes turned
+//! +90° about X ([`ros_axes`]), so that its X stays, its ARS up (+Y) is its ROS +Z, and
+//! an upright object is upright in ROS (a vehicle's chassis is a Z-up `base_link`).
+//! A lidar's beams fan in its X–Z plane from +X towards −Z; a `LaserScan` fans in its
+//! frame's X–Y plane from +X towards +Y: in its ROS axes the scan's angles are ARS's
+//! azimuths unchanged. A URDF link's frame is its file's, Z-up already: it is not
+//! turned, and transforms between two links are ARS's unchanged.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 
@@ -33,9 +35,10 @@ pub fn world_vector_to_ros(v: &Vector3<f64>) -> Vector3<f64> {
     Vector3::new(v.x, -v.z, v.y)
 }
 
-/// The ROS frame of a lidar in its own ARS frame (see the [module docs](self)): what a
-/// lidar's mount pose is composed with.
-pub fn lidar_frame() -> Isometry3<f64> {
+/// The ROS axes of a frame built in ARS's Y-up world, in that frame (see the [module
+/// docs](self)): what an ARS object's pose, a lidar's mount and an IMU's mount are
+/// composed with. A vector `v` in the ARS frame is `ars_to_ros() * v` in the ROS one.
+pub fn ros_axes() -> Isometry3<f64> {
     Isometry3::from_parts(Vector3::zeros().into(), ars_to_ros().inverse())
 }
 
@@ -84,7 +87,7 @@ mod tests {
     fn a_lidar_beam_at_azimuth_a_is_at_angle_a_in_its_ros_frame() {
         for a in [0.0, 0.4, -1.2, 2.5] {
             let beam_ars = Vector3::new(f64::cos(a), 0.0, -f64::sin(a));
-            let in_ros_frame = lidar_frame().inverse() * beam_ars;
+            let in_ros_frame = ros_axes().inverse() * beam_ars;
             let expected = Vector3::new(f64::cos(a), f64::sin(a), 0.0);
             assert!((in_ros_frame - expected).norm() < 1e-15, "{a}: {in_ros_frame}");
         }

@@ -17,6 +17,6 @@ pub mod topics;
 
 pub use error::{RosError, RosResult};
 pub use joint_states::{JointStates, JointStatesReading};
-pub use mcap::{McapRecorder, McapSummary, record_mcap};
+pub use mcap::{FrameStepper, McapRecorder, McapSummary, record_mcap};
 pub use publish::{Publisher, RosOptions};
 pub use topics::{Durability, Message, Outgoing, Qos, Reliability, Topic};

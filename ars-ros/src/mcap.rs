@@ -9,7 +9,7 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use ars_core::Simulation;
+use ars_core::{Program, ProgramRunner, Simulation};
 
 use crate::error::{RosError, RosResult};
 use crate::msg;
@@ -55,6 +55,7 @@ impl McapRecorder {
     /// states sensor). A folder that does not exist is an [`ars_core::Error::Io`].
     pub fn create(path: impl AsRef<Path>, sim: &mut Simulation, options: &RosOptions) -> RosResult<McapRecorder> {
         let path = path.as_ref().to_path_buf();
+        options.check()?;
         let file = File::create(&path).map_err(|e| ars_core::Error::io("create the MCAP file", &path, &e))?;
         let mut writer = mcap::WriteOptions::new()
             .compression(None)
@@ -121,25 +122,78 @@ fn mcap_error(path: &Path, e: mcap::McapError) -> RosError {
     RosError::Mcap { file: path.display().to_string(), detail: e.to_string() }
 }
 
+/// What steps a simulation in frames, showing it after each step: a bare
+/// [`Simulation`] (its own hooks) or a [`ProgramRunner`] (its program's hooks too).
+pub trait FrameStepper {
+    /// The simulation.
+    fn simulation(&self) -> &Simulation;
+    /// The simulation, mutably (the recorder adds its joint states sensor).
+    fn simulation_mut(&mut self) -> &mut Simulation;
+    /// One step.
+    fn step(&mut self) -> ars_core::Result<()>;
+    /// One frame, showing the simulation to `after_step` after each step.
+    fn step_frame_observed(
+        &mut self,
+        after_step: &mut dyn FnMut(&Simulation) -> ars_core::Result<()>,
+    ) -> ars_core::Result<()>;
+}
+
+impl FrameStepper for Simulation {
+    fn simulation(&self) -> &Simulation {
+        self
+    }
+    fn simulation_mut(&mut self) -> &mut Simulation {
+        self
+    }
+    fn step(&mut self) -> ars_core::Result<()> {
+        Simulation::step(self)
+    }
+    fn step_frame_observed(
+        &mut self,
+        after_step: &mut dyn FnMut(&Simulation) -> ars_core::Result<()>,
+    ) -> ars_core::Result<()> {
+        Simulation::step_frame_observed(self, after_step)
+    }
+}
+
+impl<P: Program> FrameStepper for ProgramRunner<'_, P> {
+    fn simulation(&self) -> &Simulation {
+        ProgramRunner::simulation(self)
+    }
+    fn simulation_mut(&mut self) -> &mut Simulation {
+        ProgramRunner::simulation_mut(self)
+    }
+    fn step(&mut self) -> ars_core::Result<()> {
+        ProgramRunner::step(self)
+    }
+    fn step_frame_observed(
+        &mut self,
+        after_step: &mut dyn FnMut(&Simulation) -> ars_core::Result<()>,
+    ) -> ars_core::Result<()> {
+        ProgramRunner::step_frame_observed(self, after_step)
+    }
+}
+
 /// Runs `sim` for `duration` simulated seconds (whole steps, in frames) and records it
 /// into an MCAP file at `path`, asking `stop` before each frame. Stopped, the file is
 /// finished with what was recorded until then and the error is
 /// [`ars_core::Error::Interrupted`]; on any other error the file is left unfinished.
+/// `sim` is a [`Simulation`] or a [`ProgramRunner`] ([`FrameStepper`]).
 pub fn record_mcap(
-    sim: &mut Simulation,
+    sim: &mut impl FrameStepper,
     path: impl AsRef<Path>,
     duration: f64,
     options: &RosOptions,
     mut stop: impl FnMut() -> bool,
 ) -> RosResult<McapSummary> {
-    let mut steps = sim.scene().steps_in(duration)?;
-    let mut recorder = McapRecorder::create(path, sim, options)?;
-    recorder.record(sim)?;
-    let per_frame = u64::from(sim.scene().steps_per_frame());
+    let mut steps = sim.simulation().scene().steps_in(duration)?;
+    let mut recorder = McapRecorder::create(path, sim.simulation_mut(), options)?;
+    recorder.record(sim.simulation())?;
+    let per_frame = u64::from(sim.simulation().scene().steps_per_frame());
     while steps > 0 {
         if stop() {
             recorder.finish()?;
-            let scene = sim.scene();
+            let scene = sim.simulation().scene();
             return Err(ars_core::Error::Interrupted { time: scene.time(), steps: scene.step_count() }.into());
         }
         let mut failed = None;
@@ -153,7 +207,7 @@ pub fn record_mcap(
             steps -= per_frame;
         } else {
             sim.step()?;
-            failed = recorder.record(sim).err();
+            failed = recorder.record(sim.simulation()).err();
             steps -= 1;
         }
         if let Some(e) = failed {

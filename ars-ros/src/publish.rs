@@ -22,7 +22,7 @@ use ars_core::{ObjectId, SensorId, Simulation};
 use nalgebra::{Isometry3, UnitQuaternion};
 
 use crate::error::RosResult;
-use crate::frames::{self, lidar_frame, world_pose_to_ros};
+use crate::frames::{self, ros_axes, world_pose_to_ros};
 use crate::joint_states::JointStates;
 use crate::msg::{self, Header, Time, nanos_of};
 use crate::tf_tree::{FrameTree, ODOM};
@@ -42,6 +42,29 @@ pub struct RosOptions {
 impl Default for RosOptions {
     fn default() -> Self {
         RosOptions { state_rate: 50.0, vehicles: Vec::new() }
+    }
+}
+
+impl RosOptions {
+    /// The defaults, with every vehicle ARS builds in `scene` as a vehicle: the objects
+    /// named `chassis`, `chassis/1`... (the thesis' vehicles and mobile manipulators,
+    /// `ars_programs::build_vehicle`). What the `ars` command, the examples and Python
+    /// record with.
+    pub fn for_scene(scene: &ars_core::Scene) -> RosOptions {
+        let chassis =
+            |name: &str| name == "chassis" || name.strip_prefix("chassis/").is_some_and(|n| n.parse::<u32>().is_ok());
+        let vehicles = scene.objects().filter(|(name, _)| chassis(name)).map(|(_, id)| id).collect();
+        RosOptions { vehicles, ..RosOptions::default() }
+    }
+
+    /// Refuses a state rate outside 0.001 to 10⁶ a second, naming it.
+    pub fn check(&self) -> RosResult<()> {
+        let rate = self.state_rate;
+        if !(1e-3..=1e6).contains(&rate) {
+            let detail = format!("must be 0.001 to 1e6 messages per simulated second, got {rate}");
+            return Err(ars_core::Error::OutOfRange { what: "ROS state rate", detail }.into());
+        }
+        Ok(())
     }
 }
 
@@ -65,7 +88,10 @@ struct ImuTopic {
     frame: String,
     sent: usize,
     object: ObjectId,
+    /// Its ROS axes in the body's frame (its mount, turned Z-up on an ARS-built object).
     turn: UnitQuaternion<f64>,
+    /// Whether its ROS axes are its ARS axes turned ((x, y, z) ↦ (x, −z, y)).
+    turned: bool,
 }
 
 /// The topics' indices that every publisher has.
@@ -96,12 +122,8 @@ impl Publisher {
     /// IMUs it has now. Adds a sensor to it that reads the joints' states (and the
     /// efforts of each step, which only a sensor sees) at the state rate.
     pub fn attach(sim: &mut Simulation, options: &RosOptions) -> RosResult<Publisher> {
-        let rate = options.state_rate;
-        if !(1e-3..=1e6).contains(&rate) {
-            let detail = format!("must be 0.001 to 1e6 messages per simulated second, got {rate}");
-            return Err(ars_core::Error::OutOfRange { what: "ROS state rate", detail }.into());
-        }
-        let period = 1.0 / rate;
+        options.check()?;
+        let period = 1.0 / options.state_rate;
         let mut tree = FrameTree::of(sim.scene(), &options.vehicles)?;
         let joint_states = sim.add_sensor_every(JointStates::of(sim.scene()), period)?;
         let mut topics = vec![
@@ -269,7 +291,7 @@ fn lidar_topic(
         unreachable!("a lidar has its settings");
     };
     let object = ars_core::sensors::Sensor::objects(lidar).first().copied();
-    tree.add_sensor(&frame, object, pose, lidar_frame());
+    tree.add_sensor(&frame, object, pose, ros_axes());
     let increment = if azimuths.len() > 1 { azimuths[1] - azimuths[0] } else { 0.0 };
     let template = msg::LaserScan {
         header: header(0, &frame),
@@ -300,7 +322,8 @@ fn push_scans(sim: &Simulation, lidar: &mut LidarTopic, out: &mut Vec<Outgoing>)
     Ok(())
 }
 
-/// An IMU's topic and frame (its object's frame, turned by its mount).
+/// An IMU's topic and frame (its object's frame, turned by its mount, with ROS axes on
+/// an ARS-built object: see [`frames`](crate::frames)).
 fn imu_topic(
     sim: &Simulation,
     sensor: SensorId<Imu>,
@@ -314,20 +337,24 @@ fn imu_topic(
         _ => Isometry3::identity(),
     };
     let object = ars_core::sensors::Sensor::objects(imu)[0];
-    tree.add_sensor(&frame, Some(object), offset, Isometry3::identity());
-    Ok(ImuTopic { sensor, topic, frame, sent: 0, object, turn: offset.rotation })
+    let axes = if tree.is_ars_built(object) { ros_axes() } else { Isometry3::identity() };
+    tree.add_sensor(&frame, Some(object), offset, axes);
+    let turned = tree.is_ars_built(object);
+    Ok(ImuTopic { sensor, topic, frame, sent: 0, object, turn: offset.rotation * axes.rotation, turned })
 }
 
 /// Every reading of an IMU since the last call, with its orientation in `map` now.
 fn push_imu(sim: &Simulation, imu: &mut ImuTopic, out: &mut Vec<Outgoing>) -> RosResult<()> {
     let log = sim.records(imu.sensor)?;
     let orientation = sim.scene().body(imu.object).map(|b| frames::ars_to_ros() * b.quaternion() * imu.turn);
+    // The same swap as the world's, exact.
+    let in_axes = |v| if imu.turned { frames::world_vector_to_ros(&v) } else { v };
     for sample in log.samples().iter().skip(imu.sent) {
         let stamp = nanos_of(sample.time);
         let mut message = msg::Imu {
             header: header(stamp, &imu.frame),
-            angular_velocity: frames::vector(&sample.record.angular_velocity),
-            linear_acceleration: frames::vector(&sample.record.specific_force),
+            angular_velocity: frames::vector(&in_axes(sample.record.angular_velocity)),
+            linear_acceleration: frames::vector(&in_axes(sample.record.specific_force)),
             ..Default::default()
         };
         match &orientation {

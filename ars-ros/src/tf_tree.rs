@@ -5,8 +5,10 @@
 //!   URDF joint gives its child link relative to its parent link: on `/tf_static` for a
 //!   fixed joint, on `/tf` otherwise; the root link is given in `map` (on `/tf_static`
 //!   when it is static).
-//! - Every other object (free bodies, MJCF bodies, static shapes): a frame named after
-//!   it, at its body's frame, given in `map` (on `/tf_static` when it is static).
+//! - Every other object (free bodies, MJCF bodies, static shapes; not planes): a frame
+//!   named after it, at its body's origin with its ROS axes
+//!   ([`ros_axes`](crate::frames::ros_axes): Z up for an upright object), given in `map`
+//!   (on `/tf_static` when it is static).
 //! - A vehicle's chassis is given in `odom` instead, `odom` in `map` (the identity: the
 //!   simulation's odometry is exact).
 //! - Sensors: a frame each on the frame of the object they are mounted on, or in `map`,
@@ -18,10 +20,10 @@
 use std::collections::HashMap;
 
 use ars_core::scene::Scene;
-use ars_core::{ObjectId, Result};
+use ars_core::{ObjectId, Result, Shape};
 use nalgebra::Isometry3;
 
-use crate::frames::world_pose_to_ros;
+use crate::frames::{ros_axes, world_pose_to_ros};
 
 /// The world frame.
 pub const MAP: &str = "map";
@@ -43,6 +45,8 @@ enum Moving {
 /// The frame tree (see the [module docs](self)).
 #[derive(Clone, Debug, Default)]
 pub struct FrameTree {
+    /// The objects of URDF robots (their frames are Z-up links, not turned).
+    links: std::collections::HashSet<ObjectId>,
     /// (parent, child, how its pose is found), for `/tf`.
     moving: Vec<(String, String, Moving)>,
     /// (parent, child, pose), for `/tf_static`.
@@ -57,12 +61,13 @@ impl FrameTree {
         let mut tree = FrameTree::default();
         tree.add_robots(scene)?;
         for (name, id) in scene.objects() {
-            if tree.object_frames.contains_key(&id) {
+            let plane = matches!(scene.object(id)?.shape(), Shape::Plane { .. });
+            if tree.object_frames.contains_key(&id) || plane {
                 continue;
             }
-            tree.object_frames.insert(id, (name.to_string(), Isometry3::identity()));
+            tree.object_frames.insert(id, (name.to_string(), ros_axes()));
             let parent = if vehicles.contains(&id) { ODOM } else { MAP };
-            tree.add_in_world(scene, parent, name, (id, Isometry3::identity()))?;
+            tree.add_in_world(scene, parent, name, (id, ros_axes()))?;
         }
         if !vehicles.is_empty() {
             tree.fixed.push((MAP.into(), ODOM.into(), Isometry3::identity()));
@@ -76,6 +81,7 @@ impl FrameTree {
             let on: HashMap<&str, OnObject> =
                 robot.links.iter().map(|l| (l.name.as_str(), (l.object, l.offset))).collect();
             for link in &robot.links {
+                self.links.insert(link.object);
                 // An object is named after the link it was made for; links merged into
                 // it are frames of their own on it.
                 let own = scene.object(link.object).is_ok_and(|o| o.name() == link.name);
@@ -123,6 +129,12 @@ impl FrameTree {
             }
             None => self.fixed.push((MAP.into(), name.into(), world_pose_to_ros(&offset) * turn)),
         }
+    }
+
+    /// Whether `object` was built in ARS's Y-up world (not a URDF link's): a sensor on
+    /// it gets ROS axes turned from its own.
+    pub fn is_ars_built(&self, object: ObjectId) -> bool {
+        !self.links.contains(&object)
     }
 
     /// The frame an object's pose is published as: its name and where it is on the

@@ -107,3 +107,15 @@ fn a_folder_that_does_not_exist_is_an_io_error_naming_the_file() {
     assert!(matches!(err, ars_ros::RosError::Simulation(ars_core::Error::Io { .. })), "{err:?}");
     assert!(err.to_string().contains("run.mcap"), "{err}");
 }
+
+#[test]
+fn a_state_rate_out_of_range_is_refused_before_the_file_is_made() {
+    let mut sim = Simulation::new().unwrap();
+    let path = scratch("rate");
+    let options = RosOptions { state_rate: f64::NAN, ..Default::default() };
+    let err = record_mcap(&mut sim, &path, 0.1, &options, || false).unwrap_err();
+    assert!(err.to_string().contains("ROS state rate"), "{err}");
+    assert!(!path.exists());
+    assert!(sim.sensor_tables().is_empty(), "no sensor was added");
+    std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
+}

@@ -201,3 +201,37 @@ fn a_state_rate_out_of_range_is_refused_naming_it() {
     let err = Publisher::attach(&mut sim, &RosOptions { state_rate: 0.0, ..Default::default() }).unwrap_err();
     assert!(err.to_string().contains("ROS state rate"), "{err}");
 }
+
+#[test]
+fn an_imu_on_an_ars_object_reads_z_up_with_its_records_values() {
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let crate_ = sim.scene_mut().add_box([0.4, 0.2, 0.4], [0.0, 0.1, 0.0], Mass::Total(1.0)).unwrap();
+    let imu = sim.add_sensor_every(ars_core::sensors::Imu::new(crate_), 0.02).unwrap();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    sim.run_for(0.5).unwrap();
+    let out = publisher.poll(&sim).unwrap();
+    let readings: Vec<_> = on(&out, &publisher, "/imu")
+        .iter()
+        .map(|o| match &o.message {
+            Message::Imu(m) => m.clone(),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let records = sim.records(imu).unwrap();
+    assert_eq!(readings.len(), records.len());
+    for (message, sample) in readings.iter().zip(records.samples()) {
+        // ARS's (x, y, z) in the IMU's ROS axes: (x, −z, y).
+        let (f, a) = (sample.record.specific_force, &message.linear_acceleration);
+        assert_eq!((a.x, a.y, a.z), (f.x, -f.z, f.y));
+        let (w, g) = (sample.record.angular_velocity, &message.angular_velocity);
+        assert_eq!((g.x, g.y, g.z), (w.x, -w.z, w.y));
+        assert_eq!(message.header.frame_id, "imu");
+    }
+    // At rest on the floor: +9.81 m/s² along its ROS Z, level in map.
+    let last = readings.last().unwrap();
+    assert!((last.linear_acceleration.z - 9.81).abs() < 1e-3, "{:?}", last.linear_acceleration);
+    let q = &last.orientation;
+    assert!(q.x.abs() < 1e-6 && q.y.abs() < 1e-6 && q.z.abs() < 1e-6, "{q:?}");
+    let first = publisher.poll(&sim).unwrap();
+    assert!(on(&first, &publisher, "/tf_static").is_empty(), "sent once");
+}
