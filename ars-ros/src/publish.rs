@@ -231,7 +231,7 @@ impl Publisher {
         out.push(Outgoing { topic: TF, stamp, message: Message::Tf(msg::TfMessage { transforms }) });
         for (chassis, topic) in &self.vehicles {
             if let Some(odometry) = self.odometry(sim, *chassis, stamp)? {
-                out.push(Outgoing { topic: *topic, stamp, message: Message::Odometry(odometry) });
+                out.push(Outgoing { topic: *topic, stamp, message: Message::Odometry(Box::new(odometry)) });
             }
         }
         Ok(())

@@ -100,7 +100,7 @@ pub enum Message {
     /// `/joint_states`.
     JointState(msg::JointState),
     /// `/odom`.
-    Odometry(msg::Odometry),
+    Odometry(Box<msg::Odometry>),
     /// A lidar's scan.
     LaserScan(msg::LaserScan),
     /// An IMU's reading.

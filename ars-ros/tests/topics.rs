@@ -184,7 +184,7 @@ fn a_vehicles_odometry_is_its_pose_in_odom_and_its_velocity_in_its_own_frame() {
     let out = publisher.poll(&sim).unwrap();
     find(&transforms(&out, &publisher, "/tf"), "odom", "box");
     let odometry = match &on(&out, &publisher, "/odom")[0].message {
-        Message::Odometry(o) => o.clone(),
+        Message::Odometry(o) => (**o).clone(),
         other => panic!("{other:?}"),
     };
     assert_eq!((odometry.header.frame_id.as_str(), odometry.child_frame_id.as_str()), ("odom", "box"));

@@ -170,6 +170,13 @@ impl Scene {
         self.step_count = steps;
     }
 
+    /// The URDF robots loaded into this scene, in the order loaded (see
+    /// [`RobotDescription`](crate::formats::urdf::RobotDescription)). Not kept by scene
+    /// files or snapshots.
+    pub fn robot_descriptions(&self) -> &[crate::formats::urdf::RobotDescription] {
+        &self.robot_descriptions
+    }
+
     /// The kind of its collision space.
     pub fn space_kind(&self) -> SpaceKind {
         self.space_kind

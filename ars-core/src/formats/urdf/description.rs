@@ -12,9 +12,9 @@ use std::sync::Arc;
 use nalgebra::Isometry3;
 
 use crate::handle::ObjectId;
-use crate::scene::Scene;
 
-/// A URDF robot of a scene, as ROS describes it (see the [module docs](self)).
+/// A URDF robot of a scene, as ROS describes it (see the [module docs](self)): what
+/// [`Scene::robot_descriptions`](crate::scene::Scene::robot_descriptions) lists.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RobotDescription {
     /// The robot's name.
@@ -52,14 +52,6 @@ pub struct TreeJoint {
     pub child: String,
     /// Whether it is a `fixed` joint (the child never moves relative to the parent).
     pub fixed: bool,
-}
-
-impl Scene {
-    /// The URDF robots loaded into this scene, in the order loaded (see
-    /// [`RobotDescription`]). Not kept by scene files or snapshots.
-    pub fn robot_descriptions(&self) -> &[RobotDescription] {
-        &self.robot_descriptions
-    }
 }
 
 #[cfg(test)]
