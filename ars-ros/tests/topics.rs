@@ -235,3 +235,32 @@ fn an_imu_on_an_ars_object_reads_z_up_with_its_records_values() {
     let first = publisher.poll(&sim).unwrap();
     assert!(on(&first, &publisher, "/tf_static").is_empty(), "sent once");
 }
+
+#[test]
+fn the_thesis_mobile_manipulator_is_a_vehicle_whose_joints_and_odometry_are_published() {
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let spec = ars_programs::VehicleSpec::default();
+    let (vehicle, _) = ars_programs::build_mobile_manipulator(&mut sim, &spec, Mass::Total(1.0)).unwrap();
+    let options = RosOptions::for_scene(sim.scene());
+    assert_eq!(options.vehicles, [vehicle.chassis]);
+    let mut publisher = Publisher::attach(&mut sim, &options).unwrap();
+    assert_eq!(publisher.topics().iter().filter(|t| t.name == "/odom").count(), 1);
+    sim.run_for(0.1).unwrap();
+    let out = publisher.poll(&sim).unwrap();
+    let state = match &on(&out, &publisher, "/joint_states").last().unwrap().message {
+        Message::JointState(s) => s.clone(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(state.name, ["r1", "r2", "w1", "w2"], "hinges by name; the caster's ball joint has no position");
+    for (name, position) in state.name.iter().zip(&state.position) {
+        let id = sim.scene().joint(name.as_str()).unwrap().id();
+        assert_eq!(*position, sim.scene().joint_position(id).unwrap(), "{name}");
+    }
+    let odometry = match &on(&out, &publisher, "/odom")[0].message {
+        Message::Odometry(o) => (**o).clone(),
+        other => panic!("{other:?}"),
+    };
+    // Upright, the chassis is a Z-up frame in odom: (nearly) level.
+    let q = odometry.pose.pose.orientation;
+    assert!(q.x.abs() < 0.05 && q.y.abs() < 0.05, "{q:?}");
+}
