@@ -86,4 +86,9 @@ impl Sensor for JointStates {
     fn joints(&self) -> Vec<JointId> {
         self.joints.clone()
     }
+
+    /// Stateless: measured only when a sample is due (not at every step).
+    fn measures_every_step(&self) -> bool {
+        false
+    }
 }
