@@ -10,12 +10,12 @@
 //! | `/joint_states` | `sensor_msgs/msg/JointState` | [`Qos::DEFAULT`] | every state period |
 //! | `/odom` (`/odom_1`...) | `nav_msgs/msg/Odometry` | [`Qos::DEFAULT`] | every state period, per vehicle |
 //! | `/scan` (`/scan_1`...) | `sensor_msgs/msg/LaserScan` | [`Qos::SENSOR_DATA`] | every sample of each [`Lidar`] |
-//! | `/imu` (`/imu_1`...) | `sensor_msgs/msg/Imu` | [`Qos::SENSOR_DATA`] | every sample of each [`Imu`](ars_core::sensors::Imu) |
+//! | `/imu` (`/imu_1`...) | `sensor_msgs/msg/Imu` | [`Qos::SENSOR_DATA`] | every sample of each [`Imu`] |
 //!
 //! The state period is [`RosOptions::state_rate`] (50 Hz: an ARS frame of 20 ms).
 //! Sensors are published at their own rate: each of their samples once, stamped
 //! with its time. Frames are those of [`FrameTree`]; the world is turned Z-up as
-//! [`frames`](crate::frames) says.
+//! [`frames`] says.
 
 use ars_core::sensors::{Imu, Lidar, SensorSettings};
 use ars_core::{ObjectId, SensorId, Simulation};
@@ -323,7 +323,7 @@ fn push_scans(sim: &Simulation, lidar: &mut LidarTopic, out: &mut Vec<Outgoing>)
 }
 
 /// An IMU's topic and frame (its object's frame, turned by its mount, with ROS axes on
-/// an ARS-built object: see [`frames`](crate::frames)).
+/// an ARS-built object: see [`frames`]).
 fn imu_topic(
     sim: &Simulation,
     sensor: SensorId<Imu>,

@@ -7,7 +7,7 @@
 //!   when it is static).
 //! - Every other object (free bodies, MJCF bodies, static shapes; not planes): a frame
 //!   named after it, at its body's origin with its ROS axes
-//!   ([`ros_axes`](crate::frames::ros_axes): Z up for an upright object), given in `map`
+//!   ([`ros_axes`]: Z up for an upright object), given in `map`
 //!   (on `/tf_static` when it is static).
 //! - A vehicle's chassis is given in `odom` instead, `odom` in `map` (the identity: the
 //!   simulation's odometry is exact).

@@ -78,7 +78,7 @@ fn used_types(definition: &str) -> impl Iterator<Item = &str> {
 
 /// The `ros2msg` schema of the message type `name` (`"sensor_msgs/msg/JointState"`,
 /// or `"sensor_msgs/JointState"`): its definition, then each type it uses, directly or
-/// not, once, in the order first met (see the [module docs](self)). `None` for a type
+/// not, once, in the order first met, each after a line of 80 `=` and `MSG: package/Name`. `None` for a type
 /// this crate does not define.
 pub fn schema(name: &str) -> Option<String> {
     let short = name.replacen("/msg/", "/", 1);

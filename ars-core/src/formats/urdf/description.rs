@@ -13,8 +13,11 @@ use nalgebra::Isometry3;
 
 use crate::handle::ObjectId;
 
-/// A URDF robot of a scene, as ROS describes it (see the [module docs](self)): what
-/// [`Scene::robot_descriptions`](crate::scene::Scene::robot_descriptions) lists.
+/// A URDF robot of a scene, as ROS describes it: what
+/// [`Scene::robot_descriptions`](crate::scene::Scene::robot_descriptions) lists. Its
+/// links' frames are their URDF origins (what `robot_state_publisher` and RViz place
+/// meshes at), each at a fixed [`offset`](LinkFrame::offset) from the object that
+/// carries it (a body at the link's inertial frame, or the body it was merged into).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RobotDescription {
     /// The robot's name.
