@@ -60,7 +60,9 @@ def test_a_recording_reads_back_equal_to_the_sensor_records(tmp_path):
     assert len(scans) == len(ranges) == 10
     for message, row in zip(scans, ranges):
         assert message.ros_msg.header.frame_id == "laser"
-        np.testing.assert_array_equal(np.array(message.ros_msg.ranges, dtype=np.float32), row.astype(np.float32))
+        np.testing.assert_array_equal(
+            np.array(message.ros_msg.ranges, dtype=np.float32), row.astype(np.float32)
+        )
     assert np.isfinite(ranges).any(), "the lidar sees the floor or the arm"
     # The vehicle drove forward: its odometry is the chassis in Z-up map, (x, −z, y).
     odometry = messages["/odom"]
@@ -71,9 +73,15 @@ def test_a_recording_reads_back_equal_to_the_sensor_records(tmp_path):
     assert odometry[-1].ros_msg.child_frame_id == "chassis"
     # The frames: the chassis in odom, the arm's links in map, the laser on the chassis.
     tf = messages["/tf"][-1].ros_msg.transforms
-    assert {(t.header.frame_id, t.child_frame_id) for t in tf} >= {("odom", "chassis"), ("map", "link1")}
+    assert {(t.header.frame_id, t.child_frame_id) for t in tf} >= {
+        ("odom", "chassis"),
+        ("map", "link1"),
+    }
     static = messages["/tf_static"][0].ros_msg.transforms
-    assert {(t.header.frame_id, t.child_frame_id) for t in static} >= {("map", "odom"), ("chassis", "laser")}
+    assert {(t.header.frame_id, t.child_frame_id) for t in static} >= {
+        ("map", "odom"),
+        ("chassis", "laser"),
+    }
 
 
 def test_the_file_is_written_as_ros2_bag_writes_it(tmp_path):
