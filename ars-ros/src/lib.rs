@@ -6,6 +6,7 @@
 //! ARS's world is Y-up; ROS's is Z-up (REP 103). See [`frames`] for how poses are
 //! turned.
 
+pub mod camera;
 pub mod error;
 pub mod frames;
 pub mod joint_states;

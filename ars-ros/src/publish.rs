@@ -10,6 +10,8 @@
 //! | `/joint_states` | `sensor_msgs/msg/JointState` | [`Qos::DEFAULT`] | every state period |
 //! | `/odom` (`/odom_1`...) | `nav_msgs/msg/Odometry` | [`Qos::DEFAULT`] | every state period, per vehicle |
 //! | `/scan` (`/scan_1`...) | `sensor_msgs/msg/LaserScan` | [`Qos::SENSOR_DATA`] | every sample of each [`Lidar`] |
+//! | `/camera/depth/image_raw` (`/camera_1/...`) | `sensor_msgs/msg/Image` (`32FC1`) | [`Qos::SENSOR_DATA`] | every sample of each [`DepthCamera`] |
+//! | `/camera/depth/camera_info` (`/camera_1/...`) | `sensor_msgs/msg/CameraInfo` | [`Qos::SENSOR_DATA`] | with each image |
 //! | `/imu` (`/imu_1`...) | `sensor_msgs/msg/Imu` | [`Qos::SENSOR_DATA`] | every sample of each [`Imu`] |
 //!
 //! The state period is [`RosOptions::state_rate`] (50 Hz: an ARS frame of 20 ms).
@@ -17,10 +19,11 @@
 //! with its time. Frames are those of [`FrameTree`]; the world is turned Z-up as
 //! [`frames`] says.
 
-use ars_core::sensors::{Imu, Lidar, SensorSettings};
+use ars_core::sensors::{DepthCamera, Imu, Lidar, SensorSettings};
 use ars_core::{ObjectId, SensorId, Simulation};
 use nalgebra::{Isometry3, UnitQuaternion};
 
+use crate::camera::CameraTopics;
 use crate::error::RosResult;
 use crate::frames::{self, ros_axes, world_pose_to_ros};
 use crate::joint_states::JointStates;
@@ -110,6 +113,7 @@ pub struct Publisher {
     joint_states_sent: usize,
     lidars: Vec<LidarTopic>,
     imus: Vec<ImuTopic>,
+    cameras: Vec<CameraTopics>,
     /// (chassis, topic) of each vehicle.
     vehicles: Vec<(ObjectId, usize)>,
     period: f64,
@@ -151,6 +155,13 @@ impl Publisher {
             topics.push(Topic::of::<msg::Imu>(&numbered("/imu", k), Qos::SENSOR_DATA));
             imus.push(imu_topic(sim, id, frame, topic, &mut tree)?);
         }
+        let mut cameras = Vec::new();
+        for (k, id) in sim.sensor_ids_of::<DepthCamera>().into_iter().enumerate() {
+            let (name, topic) = (numbered("camera", k), topics.len());
+            topics.push(Topic::of::<msg::Image>(&format!("/{name}/depth/image_raw"), Qos::SENSOR_DATA));
+            topics.push(Topic::of::<msg::CameraInfo>(&format!("/{name}/depth/camera_info"), Qos::SENSOR_DATA));
+            cameras.push(CameraTopics::new(sim, id, format!("{name}_optical"), topic, &mut tree)?);
+        }
         let next_state = sim.scene().time();
         Ok(Publisher {
             topics,
@@ -159,6 +170,7 @@ impl Publisher {
             joint_states_sent: 0,
             lidars,
             imus,
+            cameras,
             vehicles,
             period,
             next_state,
@@ -204,6 +216,9 @@ impl Publisher {
         }
         for imu in &mut self.imus {
             push_imu(sim, imu, &mut out)?;
+        }
+        for camera in &mut self.cameras {
+            camera.push(sim, &mut out)?;
         }
         Ok(out)
     }

@@ -105,6 +105,10 @@ pub enum Message {
     LaserScan(msg::LaserScan),
     /// An IMU's reading.
     Imu(msg::Imu),
+    /// A depth camera's image.
+    Image(Box<msg::Image>),
+    /// A depth camera's calibration.
+    CameraInfo(Box<msg::CameraInfo>),
     /// `/robot_description`.
     String(msg::StringMessage),
 }
@@ -119,6 +123,8 @@ impl Message {
             Message::Odometry(_) => msg::Odometry::TYPE_NAME,
             Message::LaserScan(_) => msg::LaserScan::TYPE_NAME,
             Message::Imu(_) => msg::Imu::TYPE_NAME,
+            Message::Image(_) => msg::Image::TYPE_NAME,
+            Message::CameraInfo(_) => msg::CameraInfo::TYPE_NAME,
             Message::String(_) => msg::StringMessage::TYPE_NAME,
         }
     }
@@ -132,6 +138,8 @@ impl Message {
             Message::Odometry(m) => msg::encode(m),
             Message::LaserScan(m) => msg::encode(m),
             Message::Imu(m) => msg::encode(m),
+            Message::Image(m) => msg::encode(m),
+            Message::CameraInfo(m) => msg::encode(m),
             Message::String(m) => msg::encode(m),
         }
     }

@@ -264,3 +264,49 @@ fn the_thesis_mobile_manipulator_is_a_vehicle_whose_joints_and_odometry_are_publ
     let q = odometry.pose.pose.orientation;
     assert!(q.x.abs() < 0.05 && q.y.abs() < 0.05, "{q:?}");
 }
+
+#[test]
+fn a_depth_cameras_images_are_its_records_with_a_pinhole_calibration() {
+    use ars_core::sensors::DepthCamera;
+    let mut sim = Simulation::new().unwrap();
+    sim.scene_mut().world_mut().set_gravity(Vector3::zeros()).unwrap();
+    // A wall 3 m ahead of a camera at the origin looking along ARS's −Z.
+    sim.scene_mut().add_box([4.0, 4.0, 1.0], [0.0, 0.0, -3.5], Mass::Total(1.0)).unwrap();
+    let camera = sim.add_sensor_every(DepthCamera::new(8, 6, 1.0, 0.1, 10.0).unwrap(), 0.01).unwrap();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    let mut out = publisher.poll(&sim).unwrap();
+    sim.step_frame().unwrap();
+    out.extend(publisher.poll(&sim).unwrap());
+    let images: Vec<_> = on(&out, &publisher, "/camera/depth/image_raw")
+        .iter()
+        .map(|o| match &o.message {
+            Message::Image(m) => (**m).clone(),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let infos = on(&out, &publisher, "/camera/depth/camera_info");
+    let records = sim.records(camera).unwrap();
+    assert_eq!((images.len(), infos.len()), (records.len(), records.len()));
+    for (image, sample) in images.iter().zip(records.samples()) {
+        assert_eq!((image.encoding.as_str(), image.width, image.height, image.step), ("32FC1", 8, 6, 32));
+        let depths: Vec<f32> = image.data.chunks(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
+        assert_eq!(depths, sample.record.pixels);
+        assert!((depths[3 * 8 + 4] - 3.0).abs() < 1e-5);
+    }
+    // The optical frame looks along map's −Y (ARS's −Z), its y (down) along map's −Z.
+    let fixed = transforms(&out, &publisher, "/tf_static");
+    let optical = isometry(find(&fixed, "map", "camera_optical"));
+    let forward = optical.rotation * Vector3::z();
+    assert!((forward - Vector3::new(0.0, 1.0, 0.0)).norm() < 1e-12, "ARS's −Z is map's +Y: {forward}");
+    let down = optical.rotation * Vector3::y();
+    assert!((down - Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-12, "{down}");
+    // The centre pixel's ray is the optical axis: cx = 3.5, cy = 2.5, f = 3 / tan(0.5).
+    match &infos[0].message {
+        Message::CameraInfo(info) => {
+            let f = 3.0 / 0.5f64.tan();
+            assert_eq!(info.k, [f, 0.0, 3.5, 0.0, f, 2.5, 0.0, 0.0, 1.0]);
+            assert_eq!(info.header.frame_id, "camera_optical");
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -19,8 +19,8 @@ impl PySimulation {
     /// ARS publishes into the MCAP file at `path`, as `ros2 bag` writes them: `/clock`,
     /// `/tf` (every `1/state_rate` simulated seconds, default 50 a second),
     /// `/tf_static`, `/robot_description` (URDF robots), `/joint_states`, `/odom` (the
-    /// vehicles, objects named `chassis`), `/scan` (lidars, each sample) and `/imu`
-    /// (IMUs), CDR-encoded and stamped with simulated time; ARS's Y-up world is ROS's
+    /// vehicles, objects named `chassis`), `/scan` (lidars, each sample), `/imu`
+    /// (IMUs) and `/camera/depth/image_raw` (depth cameras), CDR-encoded and stamped with simulated time; ARS's Y-up world is ROS's
     /// Z-up `map` frame. The file opens in Foxglove, `ros2 bag` and Rerun (docs/ros2.md).
     /// Returns `{"path", "messages": {topic: count}, "end_time"}`. More than an hour
     /// of simulated time needs `allow_long=True`. A folder that does not exist is an
