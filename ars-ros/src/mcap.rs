@@ -34,7 +34,9 @@ impl McapSummary {
 }
 
 /// Writes what a [`Publisher`] publishes into an MCAP file: call
-/// [`record`](Self::record) after every step (or frame), then [`finish`](Self::finish).
+/// [`record`](Self::record) after every step (or when
+/// [`Publisher::state_due`] says so, and at the end of every frame), then
+/// [`finish`](Self::finish).
 pub struct McapRecorder {
     writer: mcap::Writer<BufWriter<File>>,
     publisher: Publisher,
@@ -199,11 +201,14 @@ pub fn record_mcap(
         let mut failed = None;
         if steps >= per_frame {
             sim.step_frame_observed(&mut |sim| {
-                if failed.is_none() {
+                if failed.is_none() && recorder.publisher.state_due(sim) {
                     failed = recorder.record(sim).err();
                 }
                 Ok(())
             })?;
+            if failed.is_none() {
+                failed = recorder.record(sim.simulation()).err();
+            }
             steps -= per_frame;
         } else {
             sim.step()?;

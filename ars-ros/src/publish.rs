@@ -193,6 +193,13 @@ impl Publisher {
         self.joint_states
     }
 
+    /// Whether the state (`/clock`, `/tf`, `/odom`) is due now: a caller that polls
+    /// only then, and at the end of each frame, loses nothing (the sensors' samples
+    /// wait in their records) and spares a poll at every step.
+    pub fn state_due(&self, sim: &Simulation) -> bool {
+        !self.started || sim.scene().time() + 0.5 * sim.scene().time_step() >= self.next_state
+    }
+
     /// The messages due since the last call (the first call: also `/tf_static` and
     /// `/robot_description`), oldest first within each topic. Call it after every step
     /// (or every frame: the sensors' samples are all there, each stamped with its own
@@ -204,7 +211,7 @@ impl Publisher {
             self.started = true;
             self.push_latched(sim, &mut out);
         }
-        if now + 0.5 * sim.scene().time_step() >= self.next_state {
+        if self.state_due(sim) {
             while self.next_state <= now + 0.5 * sim.scene().time_step() {
                 self.next_state += self.period;
             }
