@@ -10,6 +10,7 @@
 //! | `/joint_states` | `sensor_msgs/msg/JointState` | [`Qos::DEFAULT`] | every state period |
 //! | `/odom` (`/odom_1`...) | `nav_msgs/msg/Odometry` | [`Qos::DEFAULT`] | every state period, per vehicle |
 //! | `/scan` (`/scan_1`...) | `sensor_msgs/msg/LaserScan` | [`Qos::SENSOR_DATA`] | every sample of each [`Lidar`] |
+//! | `/range` (`/range_1`...) | `sensor_msgs/msg/LaserScan` (one beam) | [`Qos::SENSOR_DATA`] | every sample of each [`Laser`] |
 //! | `/camera/depth/image_raw` (`/camera_1/...`) | `sensor_msgs/msg/Image` (`32FC1`) | [`Qos::SENSOR_DATA`] | every sample of each [`DepthCamera`] |
 //! | `/camera/depth/camera_info` (`/camera_1/...`) | `sensor_msgs/msg/CameraInfo` | [`Qos::SENSOR_DATA`] | with each image |
 //! | `/imu` (`/imu_1`...) | `sensor_msgs/msg/Imu` | [`Qos::SENSOR_DATA`] | every sample of each [`Imu`] |
@@ -19,7 +20,7 @@
 //! with its time. Frames are those of [`FrameTree`]; the world is turned Z-up as
 //! [`frames`] says.
 
-use ars_core::sensors::{DepthCamera, Imu, Lidar, SensorSettings};
+use ars_core::sensors::{DepthCamera, Imu, Laser, Lidar, SensorSettings};
 use ars_core::{ObjectId, SensorId, Simulation};
 use nalgebra::{Isometry3, UnitQuaternion};
 
@@ -83,6 +84,15 @@ struct LidarTopic {
     beams: usize,
 }
 
+/// A laser range finder's topic: a scan of one beam.
+#[derive(Debug)]
+struct LaserTopic {
+    sensor: SensorId<Laser>,
+    topic: usize,
+    sent: usize,
+    template: msg::LaserScan,
+}
+
 /// An IMU's topic.
 #[derive(Debug)]
 struct ImuTopic {
@@ -113,6 +123,7 @@ pub struct Publisher {
     joint_states_sent: usize,
     lidars: Vec<LidarTopic>,
     imus: Vec<ImuTopic>,
+    lasers: Vec<LaserTopic>,
     cameras: Vec<CameraTopics>,
     /// (chassis, topic) of each vehicle.
     vehicles: Vec<(ObjectId, usize)>,
@@ -155,6 +166,12 @@ impl Publisher {
             topics.push(Topic::of::<msg::Imu>(&numbered("/imu", k), Qos::SENSOR_DATA));
             imus.push(imu_topic(sim, id, frame, topic, &mut tree)?);
         }
+        let mut lasers = Vec::new();
+        for (k, id) in sim.sensor_ids_of::<Laser>().into_iter().enumerate() {
+            let (frame, topic) = (numbered("range", k), topics.len());
+            topics.push(Topic::of::<msg::LaserScan>(&numbered("/range", k), Qos::SENSOR_DATA));
+            lasers.push(laser_topic(sim, id, frame, topic, &mut tree)?);
+        }
         let mut cameras = Vec::new();
         for (k, id) in sim.sensor_ids_of::<DepthCamera>().into_iter().enumerate() {
             let (name, topic) = (numbered("camera", k), topics.len());
@@ -170,6 +187,7 @@ impl Publisher {
             joint_states_sent: 0,
             lidars,
             imus,
+            lasers,
             cameras,
             vehicles,
             period,
@@ -223,6 +241,9 @@ impl Publisher {
         }
         for imu in &mut self.imus {
             push_imu(sim, imu, &mut out)?;
+        }
+        for laser in &mut self.lasers {
+            push_range(sim, laser, &mut out)?;
         }
         for camera in &mut self.cameras {
             camera.push(sim, &mut out)?;
@@ -341,6 +362,47 @@ fn push_scans(sim: &Simulation, lidar: &mut LidarTopic, out: &mut Vec<Outgoing>)
         out.push(Outgoing { topic: lidar.topic, stamp, message: Message::LaserScan(scan) });
     }
     lidar.sent = log.len();
+    Ok(())
+}
+
+/// A laser's topic and frame: its ray's, turned so that ROS's beam (+X) is ARS's (+Z).
+fn laser_topic(
+    sim: &Simulation,
+    sensor: SensorId<Laser>,
+    frame: String,
+    topic: usize,
+    tree: &mut FrameTree,
+) -> RosResult<LaserTopic> {
+    let laser = sim.sensor(sensor)?;
+    let ray = laser.ray().expect("a laser added to a simulation has its ray");
+    let ray_pose = sim.scene().world().geom(ray)?.pose();
+    let object = ars_core::sensors::Sensor::objects(laser).first().copied();
+    let offset = match object {
+        Some(o) => sim.scene().pose(o)?.inverse() * ray_pose,
+        None => ray_pose,
+    };
+    let beam_along_x = Isometry3::rotation(nalgebra::Vector3::y() * -std::f64::consts::FRAC_PI_2);
+    tree.add_sensor(&frame, object, offset, beam_along_x);
+    let template = msg::LaserScan {
+        header: header(0, &frame),
+        range_max: laser.max_distance() as f32,
+        ranges: Vec::new(),
+        ..Default::default()
+    };
+    Ok(LaserTopic { sensor, topic, sent: 0, template })
+}
+
+/// Every reading of a laser since the last call, as a scan of one beam (+∞: no hit).
+fn push_range(sim: &Simulation, laser: &mut LaserTopic, out: &mut Vec<Outgoing>) -> RosResult<()> {
+    let log = sim.records(laser.sensor)?;
+    for sample in log.samples().iter().skip(laser.sent) {
+        let stamp = nanos_of(sample.time);
+        let mut scan = laser.template.clone();
+        scan.header.stamp = Time::from_nanos(stamp);
+        scan.ranges = vec![sample.record.distance.map_or(f32::INFINITY, |d| d as f32)];
+        out.push(Outgoing { topic: laser.topic, stamp, message: Message::LaserScan(scan) });
+    }
+    laser.sent = log.len();
     Ok(())
 }
 

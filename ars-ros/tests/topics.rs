@@ -310,3 +310,35 @@ fn a_depth_cameras_images_are_its_records_with_a_pinhole_calibration() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn a_lasers_readings_are_one_beam_scans_along_its_ray() {
+    use ars_core::nalgebra::{Point3, Rotation3};
+    use ars_core::sensors::Laser;
+    let mut sim = Simulation::new().unwrap();
+    sim.scene_mut().world_mut().set_gravity(Vector3::zeros()).unwrap();
+    sim.scene_mut().add_sphere(1.0, [5.0, 0.0, 0.0], Mass::Total(1.0)).unwrap();
+    let along_x = Rotation3::from_axis_angle(&Vector3::y_axis(), std::f64::consts::FRAC_PI_2);
+    let laser = sim.add_sensor(Laser::new(100.0).at(Point3::origin(), along_x)).unwrap();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    let mut out = publisher.poll(&sim).unwrap();
+    sim.step_n(3).unwrap();
+    out.extend(publisher.poll(&sim).unwrap());
+    let scans: Vec<LaserScan> = on(&out, &publisher, "/range")
+        .iter()
+        .map(|o| match &o.message {
+            Message::LaserScan(s) => s.clone(),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let records = sim.records(laser).unwrap();
+    assert_eq!(scans.len(), 3);
+    for (scan, sample) in scans.iter().zip(records.samples()) {
+        assert_eq!(scan.ranges, [sample.record.distance.unwrap() as f32]);
+        assert_eq!((scan.angle_min, scan.angle_max, scan.range_max), (0.0, 0.0, 100.0));
+    }
+    assert!((scans[0].ranges[0] - 4.0).abs() < 1e-6);
+    // Its beam (the frame's +X) points along ARS's +X: map's +X.
+    let frame = isometry(find(&transforms(&out, &publisher, "/tf_static"), "map", "range"));
+    assert!((frame.rotation * Vector3::x() - Vector3::x()).norm() < 1e-12, "{frame}");
+}
