@@ -78,9 +78,10 @@ impl FrameTree {
     /// Every URDF robot's links, by its joint tree.
     fn add_robots(&mut self, scene: &Scene) -> Result<()> {
         for robot in scene.robot_descriptions() {
-            let on: HashMap<&str, OnObject> =
-                robot.links.iter().map(|l| (l.name.as_str(), (l.object, l.offset))).collect();
-            for link in &robot.links {
+            // Links whose object was removed since are left out.
+            let links: Vec<_> = robot.links.iter().filter(|l| scene.object(l.object).is_ok()).collect();
+            let on: HashMap<&str, OnObject> = links.iter().map(|l| (l.name.as_str(), (l.object, l.offset))).collect();
+            for link in links {
                 self.links.insert(link.object);
                 // An object is named after the link it was made for; links merged into
                 // it are frames of their own on it.

@@ -342,3 +342,16 @@ fn a_lasers_readings_are_one_beam_scans_along_its_ray() {
     let frame = isometry(find(&transforms(&out, &publisher, "/tf_static"), "map", "range"));
     assert!((frame.rotation * Vector3::x() - Vector3::x()).norm() < 1e-12, "{frame}");
 }
+
+#[test]
+fn a_robot_link_removed_before_publishing_is_left_out() {
+    let mut sim = arm_and_ball();
+    let upper = sim.scene().object("upper").unwrap().id();
+    sim.remove_object(upper).unwrap();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    sim.step().unwrap();
+    let out = publisher.poll(&sim).unwrap();
+    let moving = transforms(&out, &publisher, "/tf");
+    find(&moving, "map", "base");
+    assert!(moving.iter().all(|t| t.child_frame_id != "upper" && t.child_frame_id != "tool"), "{moving:?}");
+}
