@@ -45,6 +45,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..Default::default()
     };
     let mut capture = common::args::Capture::new(&args, view)?;
+    capture.record_ros(&mut sim)?;
     let spf = u64::from(sim.scene().steps_per_frame());
     for step in 1..=steps {
         if (step - 1) % spf == 0 {

@@ -27,6 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let shoulder = runner.simulation_mut().add_sensor(HingeSensor::new(parts.r2))?;
     let steps = runner.simulation().scene().steps_in(args.duration)?;
     let mut capture = common::args::Capture::new(&args, ars::Program::window_settings(runner.program()))?;
+    capture.record_ros(runner.simulation_mut())?;
     let spf = u64::from(runner.simulation().scene().steps_per_frame());
     for step in 0..steps {
         if step % spf == 0 {

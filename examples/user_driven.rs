@@ -47,6 +47,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steps_per_frame = u64::from(runner.simulation().scene().steps_per_frame());
     let frames = runner.simulation().scene().steps_in(args.duration)? / steps_per_frame;
     let mut capture = common::args::Capture::new(&args, ars::Program::window_settings(runner.program()))?;
+    capture.record_ros(runner.simulation_mut())?;
     for _ in 0..frames {
         capture.frame(runner.simulation())?;
         runner.run_script_frame(&script)?;

@@ -44,6 +44,7 @@ fn drive<P: Program>(
     let sim = runner.simulation_mut();
     let frame = sim.scene().time_step() * f64::from(sim.scene().steps_per_frame());
     let gps = sim.add_sensor_every(Gps::new(body), frame)?;
+    capture.record_ros(sim)?;
     let frames = sim.scene().steps_in(duration)? / u64::from(sim.scene().steps_per_frame());
     for _ in 0..frames {
         capture.frame(runner.simulation())?;

@@ -37,6 +37,9 @@ pub struct RunArgs {
     /// One CSV row every N steps
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = positive_every, allow_negative_numbers = true)]
     pub every: usize,
+    /// Record the run's ROS 2 messages (/tf, /joint_states, /scan...) into an MCAP file
+    #[arg(long, value_name = "OUT.mcap")]
+    pub mcap: Option<PathBuf>,
 }
 
 /// What to draw and where: off-screen frames, a video, a browser replay, and how the

@@ -3,6 +3,7 @@
 //! This crate gathers the ARS crates under one name:
 //! - [`core`] (`ars-core`): the safe ODE layer and the simulation model;
 //! - [`viewer`] (`ars-viewer`, default feature `viewer`): the 3D viewer;
+//! - [`ros`] (`ars-ros`, default feature `ros`): ROS 2 messages and MCAP recordings;
 //! - [`cli`]: the command-line options that the `ars` command and the examples share.
 //!
 //! The items of `ars-core` are also re-exported at the top level.
@@ -32,3 +33,7 @@ pub use ars_core::*;
 /// The 3D viewer (`ars-viewer`).
 #[cfg(feature = "viewer")]
 pub use ars_viewer as viewer;
+
+/// ROS 2 messages and MCAP recordings (`ars-ros`).
+#[cfg(feature = "ros")]
+pub use ars_ros as ros;

@@ -57,7 +57,9 @@ fn its_help_fits_a_screen_and_mistakes_are_said() {
         (vec!["fly", "x.json"], "unknown command"),
         (vec!["run"], "needs a FILE"),
         (vec!["run", "x.json", "--duration", "-1"], "--duration must be a positive number"),
-        (vec!["record", "x.urdf"], "needs --screenshots DIR, --video OUT.mp4 or --html OUT.html"),
+        (vec!["record", "x.urdf"], "needs --screenshots DIR, --video OUT.mp4, --html OUT.html or --mcap OUT.mcap"),
+        (vec!["view", "x.urdf", "--mcap", "a.mcap"], "--mcap goes with ars record or ars run"),
+        (vec!["record", "x.urdf", "--mcap", "a.mcap", "--video", "a.mp4"], "--mcap goes with ars record or ars run"),
         (vec!["run", "x.urdf", "--video", "a.mp4"], "--video goes with ars record or ars view"),
         (vec!["record", "x.urdf", "--video", "a.mp4", "--fps", "0"], "--fps must be a positive number"),
         (vec!["run", "x.json", "--frobnicate"], "unknown option"),
@@ -69,6 +71,25 @@ fn its_help_fits_a_screen_and_mistakes_are_said() {
     let missing = Command::new(ARS).args(["run", "/nonexistent/scene.json"]).output().unwrap();
     assert_eq!(missing.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("/nonexistent/scene.json"));
+}
+
+#[test]
+fn ars_record_writes_the_ros_2_messages_into_an_mcap_file() {
+    let dir = std::env::temp_dir().join(format!("ars-command-mcap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (file, mcap) = (dir.join("scene.json"), dir.join("run.mcap"));
+    scene().save_scene_to(&file).unwrap();
+    let out = Command::new(ARS)
+        .args(["record", file.to_str().unwrap(), "--mcap", mcap.to_str().unwrap(), "--duration", "0.1"])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    // 0.1 s at 50 a second: /clock and /tf 6 each, /joint_states 5, /tf_static 1.
+    assert!(said.contains("wrote 18 ROS 2 messages into"), "{said}");
+    let bytes = std::fs::read(&mcap).unwrap();
+    assert!(bytes.starts_with(b"\x89MCAP0\r\n") && bytes.ends_with(b"\x89MCAP0\r\n"), "an MCAP file, finished");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

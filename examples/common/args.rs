@@ -1,7 +1,8 @@
 //! The examples' command line (the options shared with the `ars` command are
 //! [`ars::cli`]'s): `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
 //! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
-//! [--axes] [--views N]`, and the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`.
+//! [--axes] [--views N]`, the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`,
+//! and the ROS 2 recording's `[--mcap OUT.mcap]`.
 
 use std::path::PathBuf;
 
@@ -16,6 +17,8 @@ pub struct Args {
     pub duration: f64,
     /// Where to write the CSV, if asked.
     pub csv: Option<PathBuf>,
+    /// Where to record the run's ROS 2 messages, if asked.
+    pub mcap: Option<PathBuf>,
     /// Folder to write the PNG plots into, if asked.
     pub plot: Option<PathBuf>,
     /// Keep one CSV row every N steps.
@@ -80,10 +83,14 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
     if !cli.pictures.html_plots.is_empty() && cli.pictures.html.is_none() {
         fail("--html-plot goes with --html");
     }
+    if cli.run.mcap.is_some() && cli.window {
+        fail("--mcap records a run of its own: give it without --window");
+    }
     let PictureArgs { screenshots, frame_every, video, fps, size, axes, views, html, html_plots } = cli.pictures;
     Args {
         duration: cli.run.duration.unwrap_or(default_duration),
         csv: cli.run.csv,
+        mcap: cli.run.mcap,
         plot: cli.plot,
         every: cli.run.every,
         screenshots,
@@ -142,14 +149,44 @@ pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulat
     if let Some(path) = &args.html {
         return replay(program, args, path);
     }
-    match &args.screenshots {
-        None => {
+    match (&args.screenshots, &args.mcap) {
+        (None, None) => {
             let mut runner = ars::ProgramRunner::new(program)?;
             stopped_early(runner.run_for(args.duration))?;
             Ok(runner.into_simulation())
         }
-        Some(dir) => record(program, args, dir),
+        (None, Some(path)) => {
+            let mut runner = ars::ProgramRunner::new(program)?;
+            stopped_early(record_mcap(&mut runner, path, args.duration))?;
+            Ok(runner.into_simulation())
+        }
+        (Some(dir), _) => record(program, args, dir),
     }
+}
+
+/// Runs for `duration` recording the ROS 2 messages into the MCAP file at `path`
+/// (finished with what was recorded when Ctrl-C stops it), and says so.
+#[cfg(feature = "ros")]
+fn record_mcap<P: ars::Program>(
+    runner: &mut ars::ProgramRunner<'_, P>,
+    path: &std::path::Path,
+    duration: f64,
+) -> ars::Result<()> {
+    let options = ars::ros::RosOptions::for_scene(runner.simulation().scene());
+    let recorded = ars::ros::record_mcap(runner, path, duration, &options, ars::interrupt::requested);
+    match recorded {
+        Ok(summary) => {
+            eprintln!("wrote {} ROS 2 messages into {}", summary.total(), path.display());
+            Ok(())
+        }
+        Err(ars::ros::RosError::Simulation(e)) => Err(e),
+        Err(other) => Err(ars::Error::User(other.to_string())),
+    }
+}
+
+#[cfg(not(feature = "ros"))]
+fn record_mcap<P: ars::Program>(_: &mut ars::ProgramRunner<'_, P>, _: &std::path::Path, _: f64) -> ars::Result<()> {
+    Err(ars::Error::User("--mcap needs the ros feature: build with the default features".into()))
 }
 
 /// A run's outcome, where Ctrl-C is not an error: it is said, and the example goes on
@@ -344,6 +381,9 @@ pub struct Capture {
     replay: Option<(ars::viewer::ReplayRecorder, ars::WindowSettings, PathBuf, Option<ars::viewer::ReplayInProgress>)>,
     #[cfg(feature = "viewer")]
     video: Option<CapturedVideo>,
+    /// `--mcap`: the file, then its recorder once begun ([`Capture::record_ros`]).
+    #[cfg(feature = "ros")]
+    mcap: Option<(PathBuf, Option<ars::ros::McapRecorder>)>,
 }
 
 impl Capture {
@@ -367,10 +407,26 @@ impl Capture {
                 }
                 None => None,
             };
-            let Some(dir) = &args.screenshots else { return Ok(Capture { inner: None, replay, video }) };
+            #[cfg(feature = "ros")]
+            let mcap = args.mcap.clone().map(|path| (path, None));
+            let Some(dir) = &args.screenshots else {
+                return Ok(Capture {
+                    inner: None,
+                    replay,
+                    video,
+                    #[cfg(feature = "ros")]
+                    mcap,
+                });
+            };
             std::fs::create_dir_all(dir)?;
             let renderer = ars::viewer::OffscreenRenderer::with_options(&view, &viewer_options(args))?;
-            Ok(Capture { inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)), replay, video })
+            Ok(Capture {
+                inner: Some((renderer, dir.clone(), args.frame_every, 0, 0)),
+                replay,
+                video,
+                #[cfg(feature = "ros")]
+                mcap,
+            })
         }
         #[cfg(not(feature = "viewer"))]
         {
@@ -378,13 +434,38 @@ impl Capture {
             if args.screenshots.is_some() || args.html.is_some() || args.video.is_some() {
                 return Err("--screenshots, --html and --video need the viewer: build with the default features".into());
             }
-            Ok(Capture {})
+            Ok(Capture {
+                #[cfg(feature = "ros")]
+                mcap: args.mcap.clone().map(|path| (path, None)),
+            })
         }
     }
 
+    /// Begins the `--mcap` recording of `sim` (it gets the recorder's joint states
+    /// sensor); call it once the simulation is built, before the first
+    /// [`frame`](Self::frame). Nothing without `--mcap`.
+    pub fn record_ros(&mut self, sim: &mut ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "ros")]
+        if let Some((path, recorder)) = &mut self.mcap {
+            let options = ars::ros::RosOptions::for_scene(sim.scene());
+            *recorder = Some(ars::ros::McapRecorder::create(path, sim, &options)?);
+        }
+        #[cfg(not(feature = "ros"))]
+        let _ = sim;
+        Ok(())
+    }
+
     /// Writes the current frame if one is due (the first, then every N frames), and
-    /// samples the replay and the video.
+    /// samples the replay, the video and the ROS 2 messages.
     pub fn frame(&mut self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "ros")]
+        match &mut self.mcap {
+            Some((_, Some(recorder))) => recorder.record(sim)?,
+            Some((_, None)) => {
+                return Err("--mcap: this example did not begin its recording (Capture::record_ros)".into());
+            }
+            None => {}
+        }
         #[cfg(feature = "viewer")]
         if let Some((recorder, view, path, recording)) = &mut self.replay {
             match recording {
@@ -413,6 +494,12 @@ impl Capture {
     /// `--html` asked for one, and the video, if `--video` did (with the frames still
     /// due).
     pub fn finish(self, sim: &ars::Simulation) -> Result<(), Box<dyn std::error::Error>> {
+        #[cfg(feature = "ros")]
+        if let Some((path, Some(mut recorder))) = self.mcap {
+            recorder.record(sim)?;
+            let summary = recorder.finish()?;
+            eprintln!("wrote {} ROS 2 messages into {}", summary.total(), path.display());
+        }
         #[cfg(feature = "viewer")]
         {
             if let Some((_, _, path, Some(recording))) = self.replay {

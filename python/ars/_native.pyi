@@ -392,6 +392,15 @@ class Simulation:
         **view: Unpack[_ReplayView],
     ) -> Replay: ...
     def replay(self, duration: float, **options: Any) -> Replay: ...
+    # ROS 2 recordings.
+    def record_mcap(
+        self,
+        path: _Path,
+        duration: float,
+        *,
+        state_rate: float = 50.0,
+        allow_long: bool = False,
+    ) -> dict[str, Any]: ...
 
 @final
 class Body:

@@ -14,6 +14,7 @@ mod interrupt;
 mod kinds;
 mod limits;
 mod many;
+mod mcap;
 mod replay;
 mod sensors;
 mod simulation;

@@ -1,5 +1,5 @@
 """Ctrl-C (SIGINT) stops every long call within 0.5 s with ``KeyboardInterrupt``:
-``record_video``, ``save_replay``, ``replay``, ``show``, ``step_many``, a vector
+``record_video``, ``save_replay``, ``replay``, ``record_mcap``, ``show``, ``step_many``, a vector
 environment's step and a sweep (serial and on processes). Each call runs in a child
 process, which is sent SIGINT once the call has started; the child then checks that
 no partial file is left and that the simulation steps on."""
@@ -161,6 +161,19 @@ def test_ctrl_c_stops_a_long_record_video_allowed_with_a_python_hook(tmp_path):
 def test_ctrl_c_stops_a_replay_and_leaves_no_file(tmp_path, call):
     run = 'sim.save_replay("long.html", 3000.0)' if call == "save_replay" else "sim.replay(3000.0)"
     after, report = interrupt_child(tmp_path, "sim = ball_on_a_floor()\n", run, "usable(sim)")
+    assert_prompt(after)
+    only(tmp_path)
+    assert report["stepped_on"] and 0 < report["steps"] < 3000 * 2500
+
+
+def test_ctrl_c_stops_record_mcap_and_leaves_no_file(tmp_path):
+    after, report = interrupt_child(
+        tmp_path,
+        "sim = ball_on_a_floor()\n",
+        'sim.record_mcap("long.mcap", 3000.0)',
+        "usable(sim)",
+        ready=lambda: (tmp_path / "long.mcap").exists(),
+    )
     assert_prompt(after)
     only(tmp_path)
     assert report["stepped_on"] and 0 < report["steps"] < 3000 * 2500

@@ -88,6 +88,7 @@ struct Command {
     duration: Option<f64>,
     csv: Option<PathBuf>,
     every: usize,
+    mcap: Option<PathBuf>,
     screenshots: Option<PathBuf>,
     html: Option<PathBuf>,
     html_plots: Vec<String>,
@@ -123,6 +124,7 @@ fn parse(args: &[String]) -> Result<Command, clap::Error> {
         duration: run.duration,
         csv: run.csv,
         every: run.every,
+        mcap: run.mcap,
         screenshots: pictures.screenshots,
         html: pictures.html,
         html_plots: pictures.html_plots,
@@ -164,8 +166,12 @@ fn refusal(args: &[String], e: &clap::Error) -> String {
 
 /// The choices that go together, checked once the options are read.
 fn check(command: &Command) -> Result<(), String> {
-    if command.verb == "record" && command.screenshots.is_none() && command.html.is_none() && command.video.is_none() {
-        return Err("ars record needs --screenshots DIR, --video OUT.mp4 or --html OUT.html".into());
+    let pictures = command.screenshots.is_some() || command.html.is_some() || command.video.is_some();
+    if command.verb == "record" && !pictures && command.mcap.is_none() {
+        return Err("ars record needs --screenshots DIR, --video OUT.mp4, --html OUT.html or --mcap OUT.mcap".into());
+    }
+    if command.mcap.is_some() && (command.verb == "view" || pictures) {
+        return Err("--mcap goes with ars record or ars run, without --screenshots, --video or --html".into());
     }
     if command.html.is_some() && (command.verb != "record" || command.screenshots.is_some()) {
         return Err("--html goes with ars record, without --screenshots".into());
@@ -301,32 +307,60 @@ fn run(command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut program = FileProgram { path: command.file.clone(), urdf, summary: String::new() };
     match command.verb.as_str() {
-        "run" => {
-            ars::interrupt::stop_on_ctrl_c()?;
-            let duration = command.duration.unwrap_or(10.0);
-            let mut runner = ars::ProgramRunner::new(&mut program)?;
-            let start = Instant::now();
-            let ran = runner.run_for(duration);
-            let wall = start.elapsed().as_secs_f64();
-            if let Err(ars::Error::Interrupted { time, .. }) = &ran {
-                eprintln!("interrupted (Ctrl-C) at t = {} s", seconds(*time));
-            } else {
-                ran?;
-            }
-            let sim = runner.into_simulation();
-            println!("{}", program.summary);
-            println!(
-                "ran to t = {} s ({} steps) in {wall:.3} s of wall time",
-                seconds(sim.scene().time()),
-                sim.scene().step_count()
-            );
-            if let Some(path) = &command.csv {
-                write_csv(&sim, path, command.every)?;
-            }
-            Ok(())
-        }
+        "run" => run_headless(&mut program, command),
+        "record" if command.mcap.is_some() => run_headless(&mut program, command),
         _ => show(&mut program, command),
     }
+}
+
+/// `ars run`, and `ars record --mcap`: runs without graphics, says how it went, and
+/// writes what was asked.
+fn run_headless(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
+    ars::interrupt::stop_on_ctrl_c()?;
+    let duration = command.duration.unwrap_or(10.0);
+    let mut runner = ars::ProgramRunner::new(program)?;
+    let start = Instant::now();
+    let ran = match &command.mcap {
+        None => runner.run_for(duration),
+        Some(path) => record_mcap(&mut runner, path, duration),
+    };
+    let wall = start.elapsed().as_secs_f64();
+    if let Err(ars::Error::Interrupted { time, .. }) = &ran {
+        eprintln!("interrupted (Ctrl-C) at t = {} s", seconds(*time));
+    } else {
+        ran?;
+    }
+    let sim = runner.into_simulation();
+    println!("{}", program.summary);
+    println!(
+        "ran to t = {} s ({} steps) in {wall:.3} s of wall time",
+        seconds(sim.scene().time()),
+        sim.scene().step_count()
+    );
+    if let Some(path) = &command.csv {
+        write_csv(&sim, path, command.every)?;
+    }
+    Ok(())
+}
+
+/// Runs for `duration` recording the ROS 2 messages into the MCAP file at `path`
+/// (finished with what was recorded when Ctrl-C stops it), and says what it wrote.
+#[cfg(feature = "ros")]
+fn record_mcap(runner: &mut ars::ProgramRunner<'_, FileProgram>, path: &Path, duration: f64) -> ars::Result<()> {
+    let options = ars::ros::RosOptions::for_scene(runner.simulation().scene());
+    match ars::ros::record_mcap(runner, path, duration, &options, ars::interrupt::requested) {
+        Ok(summary) => {
+            eprintln!("wrote {} ROS 2 messages into {}", summary.total(), path.display());
+            Ok(())
+        }
+        Err(ars::ros::RosError::Simulation(e)) => Err(e),
+        Err(other) => Err(ars::Error::User(other.to_string())),
+    }
+}
+
+#[cfg(not(feature = "ros"))]
+fn record_mcap(_: &mut ars::ProgramRunner<'_, FileProgram>, _: &Path, _: f64) -> ars::Result<()> {
+    Err(ars::Error::User("--mcap needs the ros feature: build ars with its default features".into()))
 }
 
 #[cfg(feature = "viewer")]

@@ -55,6 +55,8 @@ pub struct Scene {
     actuated_joints: Vec<JointId>,
     /// Robots loaded so far (each gets its own collision category).
     pub(crate) robots_loaded: u32,
+    /// The URDF robots loaded, as ROS describes them.
+    pub(crate) robot_descriptions: Vec<crate::formats::urdf::RobotDescription>,
     pair_surfaces: PairSurfaces,
     pub(crate) time: f64,
     pub(crate) step_count: u64,
@@ -95,6 +97,7 @@ impl Scene {
             driven_joints: Vec::new(),
             actuated_joints: Vec::new(),
             robots_loaded: 0,
+            robot_descriptions: Vec::new(),
             pair_surfaces: PairSurfaces::default(),
             time: 0.0,
             step_count: 0,
@@ -165,6 +168,13 @@ impl Scene {
     pub(crate) fn set_clock(&mut self, time: f64, steps: u64) {
         self.time = time;
         self.step_count = steps;
+    }
+
+    /// The URDF robots loaded into this scene, in the order loaded (see
+    /// [`RobotDescription`](crate::formats::urdf::RobotDescription)). Not kept by scene
+    /// files or snapshots.
+    pub fn robot_descriptions(&self) -> &[crate::formats::urdf::RobotDescription] {
+        &self.robot_descriptions
     }
 
     /// The kind of its collision space.

@@ -646,6 +646,15 @@ impl SensorSet {
         self.slots.values().filter_map(|slot| slot.as_any().downcast_ref::<Slot<S>>()).map(|slot| &slot.sensor)
     }
 
+    /// The id of every sensor of type `S`, in the order of their slots.
+    pub(crate) fn ids_of<S: Sensor>(&self) -> Vec<SensorId<S>> {
+        self.slots
+            .iter()
+            .filter(|(_, slot)| slot.as_any().downcast_ref::<Slot<S>>().is_some())
+            .map(|(handle, _)| SensorId { handle, _sensor: PhantomData })
+            .collect()
+    }
+
     pub(crate) fn is_detached<S: Sensor>(&self, id: SensorId<S>) -> Result<bool> {
         Ok(self.slot(id)?.detached)
     }

@@ -467,6 +467,26 @@ impl Simulation {
         self.sensors.of_type::<S>()
     }
 
+    /// The id of every sensor of type `S`: what reads the records of, say, every lidar
+    /// of a simulation without holding their ids (a ROS bridge publishing each one's
+    /// scans).
+    ///
+    /// ```
+    /// use ars_core::sensors::Lidar;
+    /// use ars_core::Simulation;
+    ///
+    /// let mut sim = Simulation::new()?;
+    /// let lidar = sim.add_sensor(Lidar::new(8, 1.0, 5.0)?)?;
+    /// sim.step()?;
+    /// let ids = sim.sensor_ids_of::<Lidar>();
+    /// assert_eq!(ids.len(), 1);
+    /// assert_eq!(sim.records(ids[0])?.len(), sim.records(lidar)?.len());
+    /// # Ok::<(), ars_core::Error>(())
+    /// ```
+    pub fn sensor_ids_of<S: Sensor>(&self) -> Vec<SensorId<S>> {
+        self.sensors.ids_of::<S>()
+    }
+
     /// Line segments (world frame) showing the latest record of every sensor that draws
     /// (see [`Sensor::lines`]): what a viewer overlays.
     pub fn sensor_lines(&self) -> Vec<(nalgebra::Point3<f64>, nalgebra::Point3<f64>)> {

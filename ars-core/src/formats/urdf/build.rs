@@ -312,7 +312,14 @@ impl Scene {
         }
         let mut adjusted = plan.start_notes.clone();
         adjusted.extend(super::stops::stop_notes(robot, &plan.start));
-        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, adjusted })
+        let frames = plan.posed_link_frames.as_ref().unwrap_or(&plan.link_frames);
+        let link_offsets = made
+            .iter()
+            .zip(frames)
+            .map(|((id, _), frame)| Ok(self.pose(*id)?.inverse() * frame.isometry()))
+            .collect::<Result<_>>()
+            .map_err(|e| ("robot".to_string(), e))?;
+        Ok(UrdfRobot { name: robot.name.clone(), links, joints, base_joint, link_offsets, adjusted })
     }
 
     /// Makes the links that are not merged into another, with their colours; each link

@@ -113,6 +113,7 @@ use crate::handle::{JointId, ObjectId};
 use crate::simulation::Simulation;
 
 mod build;
+mod description;
 mod frame;
 mod fuse;
 mod massless;
@@ -122,6 +123,8 @@ mod place;
 mod read;
 mod stops;
 mod values;
+
+pub use description::{LinkFrame, RobotDescription, TreeJoint};
 
 use build::plan;
 use meshes::Meshes;
@@ -274,6 +277,9 @@ pub struct UrdfRobot {
     pub joints: Vec<(String, JointId)>,
     /// The fixed joint holding the root to the world, with [`UrdfOptions::fixed_base`].
     pub base_joint: Option<JointId>,
+    /// Each link's frame in its object's frame, in the order of [`links`](Self::links)
+    /// (a link's object is a body at its inertial frame, or the body it was merged into).
+    pub link_offsets: Vec<Isometry3<f64>>,
     /// What was read leniently, corrected or skipped to load the file, a sentence each
     /// naming its link or joint (an inertia no body can have, unless
     /// [`UrdfOptions::strict_inertia`]; a visual with nothing to draw; a collision mesh
@@ -317,6 +323,8 @@ pub struct UrdfFile {
     file: String,
     /// What was read leniently or skipped, a line each (for [`UrdfRobot::adjusted`]).
     notes: Vec<String>,
+    /// The text as read (a scene keeps it in its [`RobotDescription`]s).
+    text: std::sync::Arc<str>,
 }
 
 impl UrdfFile {
@@ -338,7 +346,7 @@ impl UrdfFile {
             column: None,
             problem: p.text,
         })?;
-        Ok(UrdfFile { robot: read.robot, file: file.to_string(), notes: read.notes })
+        Ok(UrdfFile { robot: read.robot, file: file.to_string(), notes: read.notes, text: text.into() })
     }
 
     /// The robot's name.
@@ -375,7 +383,38 @@ impl UrdfFile {
         let placed = std::mem::replace(&mut made.adjusted, notes);
         made.adjusted.append(&mut meshes.notes);
         made.adjusted.extend(placed);
+        sim.scene.robot_descriptions.push(self.description(&made));
         Ok(made)
+    }
+
+    /// What the scene keeps of the robot `made` from this file.
+    fn description(&self, made: &UrdfRobot) -> RobotDescription {
+        let links = made
+            .links
+            .iter()
+            .zip(&made.link_offsets)
+            .map(|((name, object), offset)| LinkFrame { name: name.clone(), object: *object, offset: *offset })
+            .collect();
+        let joints = self
+            .robot
+            .joints
+            .iter()
+            .map(|j| TreeJoint {
+                name: j.name.clone(),
+                parent: j.parent.link.clone(),
+                child: j.child.link.clone(),
+                fixed: j.joint_type == model::JointType::Fixed,
+            })
+            .collect();
+        let children: Vec<&str> = self.robot.joints.iter().map(|j| j.child.link.as_str()).collect();
+        let root = self.robot.links.iter().find(|l| !children.contains(&l.name.as_str()));
+        RobotDescription {
+            name: made.name.clone(),
+            urdf: self.text.clone(),
+            links,
+            joints,
+            root: root.map(|l| l.name.clone()).unwrap_or_default(),
+        }
     }
 
     /// The line of the link or joint an error names (`link "arm"`, `joint "elbow"`).
