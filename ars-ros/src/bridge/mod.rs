@@ -25,6 +25,7 @@
 //! Bad input (a message that does not read as its type, a NaN, a wrong length, an
 //! unknown joint, commands faster than steps) is ignored with a logged warning.
 
+pub mod cli;
 pub mod commands;
 pub mod core;
 pub mod frames;
@@ -123,7 +124,7 @@ pub enum BridgeError {
     /// The simulation failed.
     #[error(transparent)]
     Simulation(#[from] ars_core::Error),
-    /// Ctrl-C.
+    /// Ctrl-C, in the middle of a `StepSimulation` (an end, not a failure, for [`run`]).
     #[error("interrupted (Ctrl-C)")]
     Interrupted,
 }
@@ -144,16 +145,23 @@ pub fn prepare(sim: Simulation, options: &BridgeOptions) -> Result<BridgeCore, B
     Ok(BridgeCore::new(sim, drive, options.gains, options.lock_step)?)
 }
 
-/// Runs `sim` as a ROS 2 node until Ctrl-C, a `SetSimulationState` to quit, or
-/// `options.duration`; gives the simulation back. Ctrl-C is an
-/// [`BridgeError::Interrupted`] (the caller says so and exits cleanly).
+/// Runs `sim` as a ROS 2 node until Ctrl-C (once
+/// [`stop_on_ctrl_c`](ars_core::interrupt::stop_on_ctrl_c) is set; see
+/// [`interrupt::requested`](ars_core::interrupt::requested)), a `SetSimulationState` to
+/// quit, or `options.duration`; gives the simulation back, as it is then.
 pub fn run(sim: Simulation, options: &BridgeOptions) -> Result<Simulation, BridgeError> {
-    let mut core = prepare(sim, options)?;
+    run_prepared(prepare(sim, options)?, options)
+}
+
+/// [`run`] with a core made by [`prepare`] with the same `options`.
+pub fn run_prepared(mut core: BridgeCore, options: &BridgeOptions) -> Result<Simulation, BridgeError> {
     check_network()?;
     let node = node::BridgeNode::new(options)?;
     node.publish_latched(&core, options.robot_description.as_deref())?;
-    node::run_loop(&node, &mut core, options)?;
-    Ok(core.into_simulation())
+    match node::run_loop(&node, &mut core, options) {
+        Ok(()) | Err(BridgeError::Interrupted) => Ok(core.into_simulation()),
+        Err(e) => Err(e),
+    }
 }
 
 /// A clear error where DDS would have no network: not even the loopback is up.
