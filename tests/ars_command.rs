@@ -152,8 +152,8 @@ fn ars_ros_runs_in_real_time_and_refuses_bad_options() {
     scene().save_scene_to(&file).unwrap();
     let domain = (200 + std::process::id() % 30).to_string();
     let start = std::time::Instant::now();
-    let out = Command::new(ARS).args(["ros", file.to_str().unwrap(), "--duration", "0.3", "--domain-id", &domain]);
-    let out = out.output().unwrap();
+    let args = ["ros", file.to_str().unwrap(), "--duration", "0.3", "--domain-id", &domain];
+    let out = Command::new(ARS).args(args).output().unwrap();
     let wall = start.elapsed().as_secs_f64();
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(out.status.success(), "{stderr}");

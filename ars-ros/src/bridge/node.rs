@@ -26,8 +26,6 @@ const TAKE_PER_TURN: usize = 64;
 
 /// The node's endpoints.
 pub(super) struct BridgeNode {
-    /// Kept alive: its endpoints live as long as it does.
-    _node: Node,
     clock: Publisher<Clock>,
     joint_states: Publisher<JointState>,
     tf: Publisher<TfMessage>,
@@ -41,6 +39,8 @@ pub(super) struct BridgeNode {
     reset: Server<ResetSimulationRequest, ResultResponse>,
     set_state: Server<SetSimulationStateRequest, ResultResponse>,
     get_state: Server<GetSimulationStateRequest, GetSimulationStateResponse>,
+    /// Dropped last (fields drop in order): the endpoints above are removed from it.
+    _node: Node,
 }
 
 fn qos(reliable: bool, latched: bool, depth: usize) -> QosProfile {
