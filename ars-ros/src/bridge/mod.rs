@@ -176,13 +176,15 @@ fn check_network() -> Result<(), BridgeError> {
     })
 }
 
-/// Prints the bridge's warnings (and other crates' errors) on standard error, for
-/// programs with no logger of their own. Does nothing if a logger is already set.
+/// Prints the bridge's warnings on standard error, for programs with no logger of
+/// their own. Does nothing if a logger is already set. RustDDS's own log is left out:
+/// it logs errors it recovers from (one per endpoint when a node is dropped), and a
+/// failure that matters reaches the bridge as an `Err`, which it logs.
 pub fn log_to_stderr() {
     struct Stderr;
     impl log::Log for Stderr {
         fn enabled(&self, meta: &log::Metadata) -> bool {
-            meta.level() <= if meta.target().starts_with("ars_ros") { log::Level::Warn } else { log::Level::Error }
+            meta.target().starts_with("ars_ros") && meta.level() <= log::Level::Warn
         }
         fn log(&self, record: &log::Record) {
             if self.enabled(record.metadata()) {
