@@ -241,7 +241,7 @@ def bridge(tmp_path, monkeypatch):
     monkeypatch.setenv("CYCLONEDDS_URI", CYCLONE_LOOPBACK)
     scene = tmp_path / "mobile_manipulator.json"
     SpeedProfileEnv().build().save_scene_to(scene)
-    domain = random.randrange(100, 200)
+    domain = random.randrange(1, 101)
     log = (tmp_path / "ars-ros.log").open("w")
     process = subprocess.Popen(
         [str(ars_binary()), "ros", str(scene), "--lock-step", "--domain-id", str(domain)]

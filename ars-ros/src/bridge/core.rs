@@ -1,5 +1,5 @@
 //! The bridge without the network: a simulation, its state (playing or paused), the
-//! commands it was given and the Simulation Interfaces calls. The node ([`super::node`])
+//! commands it was given and the Simulation Interfaces calls. The node (module `node`)
 //! feeds it what arrives and publishes what it makes; the tests drive it directly.
 
 use ars_core::{Simulation, Snapshot};
