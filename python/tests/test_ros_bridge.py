@@ -331,3 +331,45 @@ def test_ars_ros_talks_to_cyclone_dds(bridge):
     assert process.wait(timeout=20) == 0, log.read_text()
     output = log.read_text()
     assert "interrupted (Ctrl-C)" in output and "ran to t = 3 s" in output, output
+
+
+@dataclass
+class ShortTwist(IdlStruct, typename="geometry_msgs::msg::dds_::Twist_"):
+    """A malformed /cmd_vel: the right type name, one number where six are due."""
+
+    x: float64
+
+
+def test_ars_ros_ignores_bad_messages_with_a_warning(bridge):
+    scene, domain, process, log = bridge
+    dp = DomainParticipant(domain)
+    reliable = Qos(Policy.Reliability.Reliable(max_blocking_time=1_000_000_000))
+    malformed = DataWriter(dp, Topic(dp, "rt/cmd_vel", ShortTwist), qos=reliable)
+    cmd_vel = DataWriter(dp, Topic(dp, "rt/cmd_vel", Twist), qos=reliable)
+    step = Service(dp, "step_simulation", StepSimulationRequest, StepSimulationResponse)
+    get_state = Service(
+        dp, "get_simulation_state", GetSimulationStateRequest, GetSimulationStateResponse
+    )
+    for _ in range(60):
+        if get_state.call(0.5, structure_needs_at_least_one_member=0) is not None:
+            break
+    malformed.write(ShortTwist(0.5))
+    cmd_vel.write(Twist(linear=Vector3(x=float("nan"))))
+    time.sleep(0.2)
+    reply = step.call(60.0, steps=400)
+    assert reply is not None and reply.result.result == RESULT_OK, log.read_text()
+    # Nothing was applied: the run is the headless one.
+    tf = Latest(dp, "rt/tf", TFMessage, reliable)
+    time.sleep(0.5)
+    reply = step.call(60.0, steps=400)
+    assert reply is not None and reply.result.result == RESULT_OK
+    poses = tf.wait(lambda m: m.transforms[0].header.stamp.nanosec == 200_000_000)
+    headless = ars.Simulation.load_scene_from(scene)
+    headless.step(800)
+    at = chassis_at(poses)
+    assert [at.x, at.y, at.z] == list(headless.body("chassis").position)
+    process.send_signal(signal.SIGINT)
+    assert process.wait(timeout=20) == 0
+    output = log.read_text()
+    assert "/cmd_vel: a message that does not read as its type" in output, output
+    assert "/cmd_vel: linear.x = NaN, angular.z = 0: not finite; ignored" in output, output
