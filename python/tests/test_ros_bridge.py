@@ -235,25 +235,31 @@ def chassis_at(tf: TFMessage):
     return next(t.transform.translation for t in tf.transforms if t.child_frame_id == "chassis")
 
 
-@pytest.fixture
-def bridge(tmp_path, monkeypatch):
-    """`ars ros --lock-step` on the mobile manipulator, on a domain of its own."""
+def start_bridge(tmp_path, monkeypatch, *mode):
+    """`ars ros` on the mobile manipulator in `mode`, on a domain of its own."""
     monkeypatch.setenv("CYCLONEDDS_URI", CYCLONE_LOOPBACK)
     scene = tmp_path / "mobile_manipulator.json"
     SpeedProfileEnv().build().save_scene_to(scene)
     domain = random.randrange(1, 101)
     log = (tmp_path / "ars-ros.log").open("w")
     process = subprocess.Popen(
-        [str(ars_binary()), "ros", str(scene), "--lock-step", "--domain-id", str(domain)]
+        [str(ars_binary()), "ros", str(scene), *mode, "--domain-id", str(domain)]
         + ["--services", "cyclonedds", "--rate", "50"],
         stdout=log,
         stderr=subprocess.STDOUT,
         text=True,
     )
-    yield scene, domain, process, tmp_path / "ars-ros.log"
-    if process.poll() is None:
-        process.kill()
-        process.wait()
+    return scene, domain, process, tmp_path / "ars-ros.log"
+
+
+@pytest.fixture
+def bridge(tmp_path, monkeypatch):
+    """`ars ros --lock-step` on the mobile manipulator."""
+    started = start_bridge(tmp_path, monkeypatch, "--lock-step")
+    yield started
+    if started[2].poll() is None:
+        started[2].kill()
+        started[2].wait()
 
 
 def test_ars_ros_talks_to_cyclone_dds(bridge):
@@ -373,3 +379,26 @@ def test_ars_ros_ignores_bad_messages_with_a_warning(bridge):
     output = log.read_text()
     assert "/cmd_vel: a message that does not read as its type" in output, output
     assert "/cmd_vel: linear.x = NaN, angular.z = 0: not finite; ignored" in output, output
+
+
+def test_ars_ros_in_real_time_never_runs_ahead_of_the_wall_clock(tmp_path, monkeypatch):
+    _, domain, process, log = start_bridge(tmp_path, monkeypatch)
+    try:
+        dp = DomainParticipant(domain)
+        clock = Latest(dp, "rt/clock", Clock, Qos(Policy.Reliability.BestEffort))
+        first = clock.wait(lambda m: True, timeout=30.0)
+        start = time.monotonic()
+        time.sleep(2.0)
+        last = clock.poll()[-1]
+        wall = time.monotonic() - start
+        simulated = (last.clock.sec - first.clock.sec) + (
+            last.clock.nanosec - first.clock.nanosec
+        ) / 1e9
+        # Paced: never ahead of the wall clock (a loaded machine may fall behind it).
+        assert 0.1 * wall < simulated <= wall + 0.1, (simulated, wall)
+        process.send_signal(signal.SIGINT)
+        assert process.wait(timeout=20) == 0, log.read_text()
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
