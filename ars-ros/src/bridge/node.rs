@@ -168,7 +168,7 @@ impl BridgeNode {
         answer_each("set_simulation_state", &self.set_state, |r| core.set_state(r.state.state));
         answer_each("reset_simulation", &self.reset, |r| {
             let answer = core.reset(r.scope);
-            stepper.restart(core);
+            stepper.restart();
             answer
         });
         let mut failure = None;
@@ -197,14 +197,14 @@ impl BridgeNode {
 
 /// Steps a core and publishes at the rate asked, counted in simulated time.
 pub(super) struct Stepper {
-    /// Publications per simulated second.
+    /// Steps between two publications.
     period_steps: u64,
     /// The step count of the last publication.
     published_at: Option<u64>,
 }
 
 impl Stepper {
-    /// Publishes every `period` simulated seconds of `core`'s steps.
+    /// Publishes `rate` times per simulated second of `core`'s steps.
     pub(super) fn new(core: &BridgeCore, rate: f64) -> Stepper {
         let dt = core.sim().scene().time_step();
         let period_steps = ((1.0 / (rate * dt)).round() as u64).max(1);
@@ -217,12 +217,7 @@ impl Stepper {
             if ars_core::interrupt::requested() {
                 return Err(BridgeError::Interrupted);
             }
-            for warning in core.step()? {
-                warn!("{warning}");
-            }
-            if core.sim().scene().step_count().is_multiple_of(self.period_steps) {
-                self.publish(node, core)?;
-            }
+            self.step_quietly(node, core)?;
         }
         self.publish(node, core)
     }
@@ -238,7 +233,7 @@ impl Stepper {
     }
 
     /// After a reset: the next state is published whatever its step count.
-    pub(super) fn restart(&mut self, _core: &BridgeCore) {
+    pub(super) fn restart(&mut self) {
         self.published_at = None;
     }
 }
