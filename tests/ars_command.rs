@@ -161,3 +161,42 @@ fn a_video_of_a_robot_with_nothing_to_draw_is_refused() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing is written");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `ars ros` (the ROS 2 bridge): in real time, --duration simulated seconds take as
+/// long on the wall clock; its mistakes are said.
+#[cfg(feature = "ros")]
+#[test]
+fn ars_ros_runs_in_real_time_and_refuses_bad_options() {
+    let dir = std::env::temp_dir().join(format!("ars-command-ros-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("scene.json");
+    scene().save_scene_to(&file).unwrap();
+    let domain = (51 + std::process::id() % 50).to_string();
+    let start = std::time::Instant::now();
+    let args = ["ros", file.to_str().unwrap(), "--duration", "0.3", "--domain-id", &domain];
+    let out = Command::new(ARS).args(args).output().unwrap();
+    let wall = start.elapsed().as_secs_f64();
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{stderr}");
+    assert!(stdout.contains("ran to t = 0.3 s (750 steps)"), "{stdout}");
+    assert!(
+        stderr.contains("real time") && stderr.contains("joints (the forward controllers' order): pivot"),
+        "{stderr}"
+    );
+    assert!(wall >= 0.3, "paced to the wall clock: 0.3 s simulated in {wall} s");
+    for (args, says) in [
+        (vec!["ros"], "needs a FILE"),
+        (vec!["ros", "x.json", "--drive", "one"], "must name two wheel joints"),
+        (vec!["ros", "x.json", "--services", "zenoh"], "must be fastrtps or cyclonedds"),
+    ] {
+        let out = Command::new(ARS).args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains(says), "{args:?}");
+    }
+    let bad_domain = Command::new(ARS).args(["ros", file.to_str().unwrap(), "--domain-id", "300"]).output().unwrap();
+    assert_eq!(bad_domain.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad_domain.stderr).contains("ROS 2 domains are 0 to 232"));
+    let no_drive = Command::new(ARS).args(["ros", file.to_str().unwrap(), "--drive", "a,b"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&no_drive.stderr).contains("no hinge joint named \"a\""));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -51,6 +51,31 @@ enum Verb {
     /// No display or GPU is needed. --html-plot "Gps 1: y" plots a sensor column under the
     /// replay.
     Record(FileArgs),
+    /// Run as a ROS 2 node: /clock, /joint_states, /tf; /cmd_vel; Simulation Interfaces
+    ///
+    /// No ROS install is needed. Real time until Ctrl-C, or --lock-step (advances only
+    /// through /ars/step_simulation). docs/ros2.md ("Live topics") lists the topics and services.
+    #[cfg(feature = "ros")]
+    Ros(RosFileArgs),
+}
+
+/// `ars ros`'s file and options.
+#[cfg(feature = "ros")]
+#[derive(clap::Args)]
+struct RosFileArgs {
+    /// A scene file (.json), a robot (.urdf) or a MuJoCo model (.xml)
+    file: PathBuf,
+    /// (URDF) fix the robot's root to the world
+    #[arg(long)]
+    fixed_base: bool,
+    /// (URDF) the file is written Y up (URDF's convention is Z up)
+    #[arg(long)]
+    y_up: bool,
+    /// (URDF, MJCF) where its root starts, m (default 0,0,0)
+    #[arg(long, value_name = "X,Y,Z", value_parser = position, allow_hyphen_values = true)]
+    at: Option<Vector3<f64>>,
+    #[command(flatten)]
+    ros: ars_ros::bridge::cli::RosArgs,
 }
 
 /// A verb's file and options.
@@ -101,6 +126,9 @@ struct Command {
     fixed_base: bool,
     y_up: bool,
     at: Vector3<f64>,
+    /// `ars ros`'s options.
+    #[cfg(feature = "ros")]
+    ros: Option<ars_ros::bridge::cli::RosArgs>,
 }
 
 /// What the command line asks (`Err`: what clap said, help and version included).
@@ -116,6 +144,8 @@ fn parse(args: &[String]) -> Result<Command, clap::Error> {
         Verb::Run(file) => ("run", file),
         Verb::View(file) => ("view", file),
         Verb::Record(file) => ("record", file),
+        #[cfg(feature = "ros")]
+        Verb::Ros(args) => return Ok(ros_command(args)),
     };
     let FileArgs { file, run, pictures, fixed_base, y_up, at } = file;
     Ok(Command {
@@ -137,7 +167,35 @@ fn parse(args: &[String]) -> Result<Command, clap::Error> {
         fixed_base,
         y_up,
         at: at.unwrap_or_else(Vector3::zeros),
+        #[cfg(feature = "ros")]
+        ros: None,
     })
+}
+
+/// `ars ros`'s command: its file, and no pictures.
+#[cfg(feature = "ros")]
+fn ros_command(RosFileArgs { file, fixed_base, y_up, at, ros }: RosFileArgs) -> Command {
+    Command {
+        verb: "ros".into(),
+        file,
+        duration: ros.duration,
+        csv: None,
+        every: 1,
+        mcap: None,
+        screenshots: None,
+        html: None,
+        html_plots: Vec::new(),
+        frame_every: 1,
+        video: None,
+        fps: 30.0,
+        size: None,
+        axes: false,
+        views: 1,
+        fixed_base,
+        y_up,
+        at: at.unwrap_or_else(Vector3::zeros),
+        ros: Some(ros),
+    }
 }
 
 /// What clap refused, said as ARS says it: an unknown verb or option, or a missing
@@ -146,7 +204,7 @@ fn refusal(args: &[String], e: &clap::Error) -> String {
     use clap::error::{ContextKind, ErrorKind};
     let context = |kind| e.get(kind).map(|v| v.to_string()).unwrap_or_default();
     match e.kind() {
-        ErrorKind::InvalidSubcommand => format!("unknown command {:?}: run, view or record", args[0]),
+        ErrorKind::InvalidSubcommand => format!("unknown command {:?}: run, view, record or ros", args[0]),
         ErrorKind::UnknownArgument => match context(ContextKind::InvalidArg) {
             option if option.starts_with('-') => format!("unknown option {option:?}"),
             extra => format!("unexpected argument {extra:?}: a command takes one FILE"),
@@ -309,6 +367,8 @@ fn run(command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     match command.verb.as_str() {
         "run" => run_headless(&mut program, command),
         "record" if command.mcap.is_some() => run_headless(&mut program, command),
+        #[cfg(feature = "ros")]
+        "ros" => ros(&mut program, command),
         _ => show(&mut program, command),
     }
 }
@@ -361,6 +421,38 @@ fn record_mcap(runner: &mut ars::ProgramRunner<'_, FileProgram>, path: &Path, du
 #[cfg(not(feature = "ros"))]
 fn record_mcap(_: &mut ars::ProgramRunner<'_, FileProgram>, _: &Path, _: f64) -> ars::Result<()> {
     Err(ars::Error::User("--mcap needs the ros feature: build ars with its default features".into()))
+}
+
+/// `ars ros`: the file's simulation as a ROS 2 node until Ctrl-C (or --duration).
+#[cfg(feature = "ros")]
+fn ros(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
+    use ars_ros::bridge;
+    let args = command.ros.as_ref().ok_or("ars ros without its options")?;
+    let options = args.options(&command.file)?;
+    ars::interrupt::stop_on_ctrl_c()?;
+    bridge::log_to_stderr();
+    let sim = program.create_simulation()?;
+    let core = bridge::prepare(sim, &options)?;
+    let name = |id| core.sim().scene().joint(id).map(|j| j.name().to_string()).unwrap_or_default();
+    let drive = match core.drive() {
+        Some(d) => format!("/cmd_vel drives {} (left) and {} (right)", name(d.left.0), name(d.right.0)),
+        None => "no differential drive for /cmd_vel (--drive LEFT,RIGHT names one)".into(),
+    };
+    let joints: Vec<&str> = core.frames.joints.iter().map(|(n, _)| n.as_str()).collect();
+    eprintln!(
+        "{}\nars ros: node /{} on ROS domain {}, {}; {drive}; joints (the forward controllers' order): {}",
+        program.summary,
+        options.node_name,
+        options.domain_id,
+        if options.lock_step { "lock step (paused until /ars/step_simulation)" } else { "real time" },
+        if joints.is_empty() { "none".into() } else { joints.join(", ") }
+    );
+    let sim = bridge::run_prepared(core, &options)?;
+    if ars::interrupt::requested() {
+        eprintln!("interrupted (Ctrl-C) at t = {} s", seconds(sim.scene().time()));
+    }
+    println!("ran to t = {} s ({} steps)", seconds(sim.scene().time()), sim.scene().step_count());
+    Ok(())
 }
 
 #[cfg(feature = "viewer")]
