@@ -25,6 +25,34 @@
 
 use std::path::PathBuf;
 
+/// Runs what `runner` runs for `duration` simulated seconds, recording the ROS 2
+/// messages into the MCAP file at `path` (`--mcap`; finished with what was recorded
+/// when Ctrl-C stops it), and says what it wrote: what the `ars` command and the
+/// examples do with `--mcap`. Without the `ros` feature, an error saying so.
+pub fn record_mcap<P: crate::Program>(
+    runner: &mut crate::ProgramRunner<'_, P>,
+    path: &std::path::Path,
+    duration: f64,
+) -> crate::Result<()> {
+    #[cfg(feature = "ros")]
+    {
+        let options = crate::ros::RosOptions::for_scene(runner.simulation().scene());
+        match crate::ros::record_mcap(runner, path, duration, &options, crate::interrupt::requested) {
+            Ok(summary) => {
+                eprintln!("wrote {} ROS 2 messages into {}", summary.total(), path.display());
+                Ok(())
+            }
+            Err(crate::ros::RosError::Simulation(e)) => Err(e),
+            Err(other) => Err(crate::Error::User(other.to_string())),
+        }
+    }
+    #[cfg(not(feature = "ros"))]
+    {
+        let _ = (runner, path, duration);
+        Err(crate::Error::User("--mcap needs the ros feature: build ars with its default features".into()))
+    }
+}
+
 /// How long to run and which data to write.
 #[derive(clap::Args, Clone, Debug, PartialEq)]
 pub struct RunArgs {

@@ -157,36 +157,11 @@ pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulat
         }
         (None, Some(path)) => {
             let mut runner = ars::ProgramRunner::new(program)?;
-            stopped_early(record_mcap(&mut runner, path, args.duration))?;
+            stopped_early(ars::cli::record_mcap(&mut runner, path, args.duration))?;
             Ok(runner.into_simulation())
         }
         (Some(dir), _) => record(program, args, dir),
     }
-}
-
-/// Runs for `duration` recording the ROS 2 messages into the MCAP file at `path`
-/// (finished with what was recorded when Ctrl-C stops it), and says so.
-#[cfg(feature = "ros")]
-fn record_mcap<P: ars::Program>(
-    runner: &mut ars::ProgramRunner<'_, P>,
-    path: &std::path::Path,
-    duration: f64,
-) -> ars::Result<()> {
-    let options = ars::ros::RosOptions::for_scene(runner.simulation().scene());
-    let recorded = ars::ros::record_mcap(runner, path, duration, &options, ars::interrupt::requested);
-    match recorded {
-        Ok(summary) => {
-            eprintln!("wrote {} ROS 2 messages into {}", summary.total(), path.display());
-            Ok(())
-        }
-        Err(ars::ros::RosError::Simulation(e)) => Err(e),
-        Err(other) => Err(ars::Error::User(other.to_string())),
-    }
-}
-
-#[cfg(not(feature = "ros"))]
-fn record_mcap<P: ars::Program>(_: &mut ars::ProgramRunner<'_, P>, _: &std::path::Path, _: f64) -> ars::Result<()> {
-    Err(ars::Error::User("--mcap needs the ros feature: build with the default features".into()))
 }
 
 /// A run's outcome, where Ctrl-C is not an error: it is said, and the example goes on

@@ -382,7 +382,7 @@ fn run_headless(program: &mut FileProgram, command: &Command) -> Result<(), Box<
     let start = Instant::now();
     let ran = match &command.mcap {
         None => runner.run_for(duration),
-        Some(path) => record_mcap(&mut runner, path, duration),
+        Some(path) => ars::cli::record_mcap(&mut runner, path, duration),
     };
     let wall = start.elapsed().as_secs_f64();
     if let Err(ars::Error::Interrupted { time, .. }) = &ran {
@@ -401,26 +401,6 @@ fn run_headless(program: &mut FileProgram, command: &Command) -> Result<(), Box<
         write_csv(&sim, path, command.every)?;
     }
     Ok(())
-}
-
-/// Runs for `duration` recording the ROS 2 messages into the MCAP file at `path`
-/// (finished with what was recorded when Ctrl-C stops it), and says what it wrote.
-#[cfg(feature = "ros")]
-fn record_mcap(runner: &mut ars::ProgramRunner<'_, FileProgram>, path: &Path, duration: f64) -> ars::Result<()> {
-    let options = ars::ros::RosOptions::for_scene(runner.simulation().scene());
-    match ars::ros::record_mcap(runner, path, duration, &options, ars::interrupt::requested) {
-        Ok(summary) => {
-            eprintln!("wrote {} ROS 2 messages into {}", summary.total(), path.display());
-            Ok(())
-        }
-        Err(ars::ros::RosError::Simulation(e)) => Err(e),
-        Err(other) => Err(ars::Error::User(other.to_string())),
-    }
-}
-
-#[cfg(not(feature = "ros"))]
-fn record_mcap(_: &mut ars::ProgramRunner<'_, FileProgram>, _: &Path, _: f64) -> ars::Result<()> {
-    Err(ars::Error::User("--mcap needs the ros feature: build ars with its default features".into()))
 }
 
 /// `ars ros`: the file's simulation as a ROS 2 node until Ctrl-C (or --duration).
