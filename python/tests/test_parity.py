@@ -392,6 +392,8 @@ NOT_IN_PYTHON = {
     "Simulation.hooks_mut",
     "Simulation.sensor",
     "Simulation.sensors_of",
+    "Simulation.sensor_ids_of",
+    "Scene.robot_descriptions",
     "Simulation.sensor_lines",
     "Simulation.sensor_tables",
     "Simulation.step_frame_observed",
