@@ -52,10 +52,13 @@ JOBS = int(os.environ.get("ARS_CORPUS_JOBS", "2"))
 # (`figures.TARGETS`) are written next to them.
 FLOORS = {
     "mjcf": {
-        "strict": 75,  # 240/320 at 42d2fe7 (fixed tendons that do nothing load); target: none
+        # 252/320 at 9226db9 (general actuators, keyframes, velocimeters); target: none
+        "strict": 78,
         "lenient": 100,  # 320/320 (skip_unsupported); target: none
         "exact_mass": 100,  # 320/320; target: 95 %
-        "stable": 95,  # 314/320 at 6836101; target: 90 %
+        # 317/320 at 9226db9, 299/320 (93 %) on a machine at load 8 (hands and humanoids
+        # out of their 10 s); kept at 95; target: 90 %
+        "stable": 95,
     },
     "urdf": {
         "strict": 95,  # 187/196; target: none
