@@ -29,7 +29,7 @@ fn kind_of(name: &str) -> Option<SensorKind> {
 }
 
 /// `CamelCase` in snake case: `"JointPositions"` → `"joint_positions"`.
-fn snake_case(name: &str) -> String {
+pub(crate) fn snake_case(name: &str) -> String {
     let mut snake = String::new();
     for (i, c) in name.chars().enumerate() {
         if c.is_ascii_uppercase() {

@@ -131,19 +131,10 @@ impl PySimulation {
         let sensors = pyo3::types::PyDict::new(py);
         for sensor in &model.sensors {
             let Some(id) = sensor.id else { continue };
-            let kind = match sensor.kind.as_str() {
-                "jointpos" => "joint_positions",
-                "jointvel" => "joint_velocities",
-                "framepos" => "gps",
-                "framelinvel" => "velometer",
-                "framequat" => "orientation",
-                "accelerometer" | "gyro" => "imu",
-                "velocimeter" => "velocimeter",
-                "touch" => "touch",
-                _ => "laser",
-            };
+            // The kind's Python name (`"joint_positions"`), from the one list of kinds.
+            let kind = sensor.ars_kind().map_or_else(|| "laser".to_string(), |k| crate::sensors::snake_case(k.name()));
             let typed = crate::sensors::Typed::Table(id);
-            sensors.set_item(&sensor.name, crate::sensors::PySensor::new(slf.clone().unbind(), kind.into(), typed))?;
+            sensors.set_item(&sensor.name, crate::sensors::PySensor::new(slf.clone().unbind(), kind, typed))?;
         }
         dict.set_item("sensors", sensors)?;
         let sites = pyo3::types::PyDict::new(py);

@@ -181,6 +181,14 @@ impl Scene {
     }
 }
 
+impl MjcfSensor {
+    /// The ARS sensor kind this sensor became (see [`MjcfSensor`]); `None` for a
+    /// `rangefinder`, which becomes a [`Laser`].
+    pub fn ars_kind(&self) -> Option<SensorKind> {
+        ars_kind(&self.kind)
+    }
+}
+
 /// The ARS sensor kind an MJCF sensor element becomes (see [`MjcfSensor`]); `None` for
 /// a `rangefinder`, which becomes a [`Laser`], a sensor a scene file does not rebuild.
 pub(super) fn ars_kind(element: &str) -> Option<SensorKind> {
