@@ -1,6 +1,6 @@
 //! The window's extra views (keys `1`–`4`): each drawn off screen, sharing the
 //! window's rendering context, and shown in its quarter of the window as an egui image
-//! with a caption. What each view shows is [`viewports`](crate::viewports)'.
+//! with a caption. What each view shows is [`viewports`](mod@crate::viewports)'.
 
 use ars_core::nalgebra::Point3;
 use ars_core::{ObjectId, Simulation, WindowSettings};
