@@ -1,6 +1,6 @@
 //! Opening the on-screen viewer's window (and keeping Mesa's probe quiet), the viewer's
 //! keys, and what a window run measured; the window's loop is its
-//! [`Session`](crate::session::Session).
+//! `Session` (`session.rs`, with the `window` feature).
 
 use ars_core::{Program, ProgramRunner};
 use kiss3d::window::{CanvasSetup, NumSamples, Window};
