@@ -19,6 +19,12 @@ impl Time {
         Time { sec, nanosec: (nanoseconds % 1_000_000_000) as u32 }
     }
 
+    /// The stamp of `seconds` of simulated time, to the nanosecond; 0 for a negative
+    /// or non-finite time, `sec` at most `i32::MAX`.
+    pub fn from_seconds(seconds: f64) -> Time {
+        Time::from_nanos(nanos_of(seconds))
+    }
+
     /// The time in nanoseconds.
     pub fn nanos(&self) -> u64 {
         self.sec.max(0) as u64 * 1_000_000_000 + u64::from(self.nanosec)
