@@ -65,15 +65,8 @@ enum Verb {
 struct RosFileArgs {
     /// A scene file (.json), a robot (.urdf) or a MuJoCo model (.xml)
     file: PathBuf,
-    /// (URDF) fix the robot's root to the world
-    #[arg(long)]
-    fixed_base: bool,
-    /// (URDF) the file is written Y up (URDF's convention is Z up)
-    #[arg(long)]
-    y_up: bool,
-    /// (URDF, MJCF) where its root starts, m (default 0,0,0)
-    #[arg(long, value_name = "X,Y,Z", value_parser = position, allow_hyphen_values = true)]
-    at: Option<Vector3<f64>>,
+    #[command(flatten)]
+    placement: Placement,
     #[command(flatten)]
     ros: ars_ros::bridge::cli::RosArgs,
 }
@@ -87,6 +80,13 @@ struct FileArgs {
     run: RunArgs,
     #[command(flatten)]
     pictures: PictureArgs,
+    #[command(flatten)]
+    placement: Placement,
+}
+
+/// How a robot or model file is placed: every verb's, `ars ros`'s too.
+#[derive(clap::Args)]
+struct Placement {
     /// (URDF) fix the robot's root to the world
     #[arg(long)]
     fixed_base: bool,
@@ -147,7 +147,7 @@ fn parse(args: &[String]) -> Result<Command, clap::Error> {
         #[cfg(feature = "ros")]
         Verb::Ros(args) => return Ok(ros_command(args)),
     };
-    let FileArgs { file, run, pictures, fixed_base, y_up, at } = file;
+    let FileArgs { file, run, pictures, placement: Placement { fixed_base, y_up, at } } = file;
     Ok(Command {
         verb: verb.into(),
         file,
@@ -174,7 +174,7 @@ fn parse(args: &[String]) -> Result<Command, clap::Error> {
 
 /// `ars ros`'s command: its file, and no pictures.
 #[cfg(feature = "ros")]
-fn ros_command(RosFileArgs { file, fixed_base, y_up, at, ros }: RosFileArgs) -> Command {
+fn ros_command(RosFileArgs { file, placement: Placement { fixed_base, y_up, at }, ros }: RosFileArgs) -> Command {
     Command {
         verb: "ros".into(),
         file,
