@@ -71,16 +71,26 @@ impl<F: FnMut() -> bool> Driver for StoppableSimulation<'_, F> {
 /// started, not yet joined: [`join_abandoned`] waits for them.
 static ABANDONED: Mutex<Vec<std::thread::JoinHandle<()>>> = Mutex::new(Vec::new());
 
-/// Waits for the threads abandoned by Ctrl-C while they started (each ends once its
-/// renderer is up, within seconds): the package calls it when the interpreter exits,
+/// Waits, at most [`ABANDONED_WAIT`], for the threads abandoned by Ctrl-C while they
+/// started (each ends once its renderer is up, within seconds): the package calls it when the interpreter exits,
 /// so that no thread is still starting a rendering context while the process tears
 /// down (which can crash it).
 pub(crate) fn join_abandoned() {
     let threads = std::mem::take(&mut *ABANDONED.lock().unwrap_or_else(PoisonError::into_inner));
-    for thread in threads {
+    // Bounded: a renderer that never comes up (a broken graphics driver) must not hang
+    // the interpreter's exit; such a thread is left to the process's end.
+    let deadline = Instant::now() + ABANDONED_WAIT;
+    while threads.iter().any(|t| !t.is_finished()) && Instant::now() < deadline {
+        std::thread::sleep(SIGNAL_CHECK_PERIOD);
+    }
+    for thread in threads.into_iter().filter(|t| t.is_finished()) {
         let _ = thread.join();
     }
 }
+
+/// The longest [`join_abandoned`] waits for the abandoned threads at exit (a
+/// renderer starts in well under this, even on a busy machine).
+const ABANDONED_WAIT: std::time::Duration = std::time::Duration::from_secs(20);
 
 /// Where the work of [`starting_on_thread_watching_signals`] stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
