@@ -107,8 +107,14 @@ fn program_record<P: Program, S: Sensor>(
     let mut runner = ProgramRunner::new(&mut program)?;
     runner.run_for(duration)?;
     let sim = runner.into_simulation();
-    let id = record(&program).ok_or_else(|| ars_core::Error::User("the program made its record".into()))?;
-    csv(&[("", sim.records(id)?)])
+    record_csv(sim.records(record(&program).ok_or_else(|| ars_core::Error::User("no record was made".into()))?)?)
+}
+
+/// The CSV of one record, as a golden run of a thesis program writes it: to compare
+/// with the table a run stepped some other way (through the ROS 2 bridge in lock step,
+/// for example).
+pub fn record_csv(record: &dyn CsvColumns) -> Result<Vec<u8>> {
+    csv(&[("", record)])
 }
 
 fn conical_pendulum(duration: f64) -> Result<Vec<u8>> {

@@ -72,6 +72,11 @@ impl CameraTopics {
         Ok(CameraTopics { sensor, image_topic, info_topic: image_topic + 1, frame, sent: 0, info })
     }
 
+    /// Starts over (the records were cleared).
+    pub(crate) fn restart(&mut self) {
+        self.sent = 0;
+    }
+
     /// Every image since the last call, each with its calibration.
     pub(crate) fn push(&mut self, sim: &Simulation, out: &mut Vec<Outgoing>) -> RosResult<()> {
         let log = sim.records(self.sensor)?;

@@ -61,6 +61,17 @@ impl JointStates {
     pub fn names(&self) -> &[String] {
         &self.names
     }
+
+    /// The joints, in the order of [`names`](Self::names).
+    pub fn joint_ids(&self) -> &[JointId] {
+        &self.joints
+    }
+
+    /// The joints' names and ids, in order: what ros2_control's forward command
+    /// controllers index (one value per joint of `/joint_states`).
+    pub fn named_joints(&self) -> Vec<(String, JointId)> {
+        self.names.iter().cloned().zip(self.joints.iter().copied()).collect()
+    }
 }
 
 impl Sensor for JointStates {

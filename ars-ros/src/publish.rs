@@ -129,6 +129,8 @@ pub struct Publisher {
     vehicles: Vec<(ObjectId, usize)>,
     period: f64,
     next_state: f64,
+    /// The time of the last state published, ns.
+    last_state: Option<u64>,
     started: bool,
 }
 
@@ -192,6 +194,7 @@ impl Publisher {
             vehicles,
             period,
             next_state,
+            last_state: None,
             started: false,
         })
     }
@@ -251,6 +254,43 @@ impl Publisher {
         Ok(out)
     }
 
+    /// [`poll`](Self::poll), and the state now if it is not on the state period's grid:
+    /// `/clock`, `/tf` and `/odom` as they are, and `/joint_states` with the joints'
+    /// positions and velocities now and no efforts (a step's efforts are seen only by
+    /// the sensor, at the state period). What a lock-step bridge sends after each
+    /// `StepSimulation`, so that a client sees where its steps ended.
+    pub fn poll_with_state_now(&mut self, sim: &Simulation) -> RosResult<Vec<Outgoing>> {
+        let mut out = self.poll(sim)?;
+        let stamp = nanos_of(sim.scene().time());
+        if self.last_state != Some(stamp) {
+            self.push_state(sim, &mut out)?;
+            let sensor = sim.sensor(self.joint_states)?;
+            let name = sensor.names().to_vec();
+            let mut state = msg::JointState { header: header(stamp, ""), name, ..Default::default() };
+            for id in sensor.joint_ids() {
+                let joint = sim.scene().joint_state(*id)?;
+                state.position.push(joint.position);
+                state.velocity.push(joint.rate);
+            }
+            out.push(Outgoing { topic: JOINT_STATES, stamp, message: Message::JointState(state) });
+        }
+        Ok(out)
+    }
+
+    /// Starts over after the simulation was put back (a [`Simulation::restore`], which
+    /// clears the records): the next poll sends `/tf_static` and `/robot_description`
+    /// again, then the state from the simulation's time on its grid.
+    pub fn restart(&mut self, sim: &Simulation) {
+        self.joint_states_sent = 0;
+        self.lidars.iter_mut().for_each(|t| t.sent = 0);
+        self.imus.iter_mut().for_each(|t| t.sent = 0);
+        self.lasers.iter_mut().for_each(|t| t.sent = 0);
+        self.cameras.iter_mut().for_each(CameraTopics::restart);
+        self.next_state = sim.scene().time();
+        self.last_state = None;
+        self.started = false;
+    }
+
     /// `/tf_static` and `/robot_description`.
     fn push_latched(&self, sim: &Simulation, out: &mut Vec<Outgoing>) {
         let stamp = nanos_of(sim.scene().time());
@@ -263,8 +303,9 @@ impl Publisher {
     }
 
     /// `/clock`, `/tf` and `/odom` now.
-    fn push_state(&self, sim: &Simulation, out: &mut Vec<Outgoing>) -> RosResult<()> {
+    fn push_state(&mut self, sim: &Simulation, out: &mut Vec<Outgoing>) -> RosResult<()> {
         let stamp = nanos_of(sim.scene().time());
+        self.last_state = Some(stamp);
         out.push(Outgoing {
             topic: CLOCK,
             stamp,

@@ -131,16 +131,23 @@ impl Message {
 
     /// Its CDR bytes, encapsulation header first.
     pub fn encode(&self) -> RosResult<Vec<u8>> {
+        msg::encode(self)
+    }
+}
+
+/// Serialised as the message it holds (what a DDS writer of its topic sends).
+impl serde::Serialize for Message {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         match self {
-            Message::Clock(m) => msg::encode(m),
-            Message::Tf(m) => msg::encode(m),
-            Message::JointState(m) => msg::encode(m),
-            Message::Odometry(m) => msg::encode(m),
-            Message::LaserScan(m) => msg::encode(m),
-            Message::Imu(m) => msg::encode(m),
-            Message::Image(m) => msg::encode(m),
-            Message::CameraInfo(m) => msg::encode(m),
-            Message::String(m) => msg::encode(m),
+            Message::Clock(m) => m.serialize(serializer),
+            Message::Tf(m) => m.serialize(serializer),
+            Message::JointState(m) => m.serialize(serializer),
+            Message::Odometry(m) => m.serialize(serializer),
+            Message::LaserScan(m) => m.serialize(serializer),
+            Message::Imu(m) => m.serialize(serializer),
+            Message::Image(m) => m.serialize(serializer),
+            Message::CameraInfo(m) => m.serialize(serializer),
+            Message::String(m) => m.serialize(serializer),
         }
     }
 }

@@ -1,14 +1,16 @@
 """`ars ros` checked against an independent DDS: Eclipse Cyclone DDS's Python package.
 
-The thesis' mobile manipulator (as `ars.gym`'s SpeedProfile builds it, saved as a scene
-file) runs under `ars ros --lock-step`; this test, a Cyclone DDS participant with the
-ROS 2 wire types written out below, reads /clock, /joint_states, /tf and /tf_static,
+The thesis' mobile manipulator (as `ars.gym`'s SpeedProfile builds it, with a lidar on
+its chassis and a wall in front, saved as a scene file) runs under `ars ros
+--lock-step`; this test, a Cyclone DDS participant with the ROS 2 wire types written out
+below, reads /clock, /joint_states, /scan, /tf and /tf_static,
 steps the simulation through /ars/step_simulation (simulation_interfaces, with
 rmw_cyclonedds' request header), drives the vehicle with /cmd_vel, and ends the bridge
 with Ctrl-C. Both sides use unicast discovery on the loopback only (no multicast), as
 docs/ros2.md ("Live topics") shows.
 """
 
+import math
 import os
 import random
 import shutil
@@ -18,6 +20,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 cyclonedds = pytest.importorskip(
@@ -29,7 +32,7 @@ cyclonedds = pytest.importorskip(
 from cyclonedds.core import Policy, Qos
 from cyclonedds.domain import DomainParticipant
 from cyclonedds.idl import IdlStruct
-from cyclonedds.idl.types import array, float64, int32, sequence, uint8, uint32, uint64
+from cyclonedds.idl.types import array, float32, float64, int32, sequence, uint8, uint32, uint64
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
@@ -104,6 +107,20 @@ class TransformStamped(IdlStruct, typename="geometry_msgs::msg::dds_::TransformS
 @dataclass
 class TFMessage(IdlStruct, typename="tf2_msgs::msg::dds_::TFMessage_"):
     transforms: sequence[TransformStamped]
+
+
+@dataclass
+class LaserScan(IdlStruct, typename="sensor_msgs::msg::dds_::LaserScan_"):
+    header: Header
+    angle_min: float32
+    angle_max: float32
+    angle_increment: float32
+    time_increment: float32
+    scan_time: float32
+    range_min: float32
+    range_max: float32
+    ranges: sequence[float32]
+    intensities: sequence[float32]
 
 
 @dataclass
@@ -232,14 +249,24 @@ def stamp(seconds_times_1e9: int) -> tuple[int, int]:
 
 
 def chassis_at(tf: TFMessage):
-    return next(t.transform.translation for t in tf.transforms if t.child_frame_id == "chassis")
+    """The chassis' position in `odom` (ARS's Y-up world turned Z-up), as ARS's (x, y, z)."""
+    at = next(t.transform.translation for t in tf.transforms if t.child_frame_id == "chassis")
+    return [at.x, at.z, -at.y]
+
+
+def scanning_manipulator():
+    """The mobile manipulator with a lidar on its chassis, a wall in its view."""
+    sim = SpeedProfileEnv().build()
+    sim.add_box((0.2, 2.0, 6.0), (0.0, 1.0, 4.0), mass=100.0, name="wall")
+    lidar = sim.add_lidar(61, math.pi, 8.0, on="chassis", position=(1.1, 0.0, 0.0), every=0.1)
+    return sim, lidar
 
 
 def start_bridge(tmp_path, monkeypatch, *mode):
-    """`ars ros` on the mobile manipulator in `mode`, on a domain of its own."""
+    """`ars ros` on the scanning manipulator in `mode`, on a domain of its own."""
     monkeypatch.setenv("CYCLONEDDS_URI", CYCLONE_LOOPBACK)
     scene = tmp_path / "mobile_manipulator.json"
-    SpeedProfileEnv().build().save_scene_to(scene)
+    scanning_manipulator()[0].save_scene_to(scene)
     domain = random.randrange(1, 101)
     log = (tmp_path / "ars-ros.log").open("w")
     process = subprocess.Popen(
@@ -278,6 +305,7 @@ def test_ars_ros_talks_to_cyclone_dds(bridge):
     joint_states = Latest(dp, "rt/joint_states", JointState, reliable)
     tf = Latest(dp, "rt/tf", TFMessage, reliable)
     tf_static = Latest(dp, "rt/tf_static", TFMessage, latched)
+    scan = Latest(dp, "rt/scan", LaserScan, best_effort)
     cmd_vel = DataWriter(dp, Topic(dp, "rt/cmd_vel", Twist), qos=reliable)
     step = Service(dp, "step_simulation", StepSimulationRequest, StepSimulationResponse)
     get_state = Service(
@@ -295,12 +323,10 @@ def test_ars_ros_talks_to_cyclone_dds(bridge):
         "no answer from /ars/get_simulation_state in 30 s:\n" + log.read_text()
     )
     assert (state.state.state, state.result.result) == (STATE_PAUSED, RESULT_OK)
-    # Latched: ARS's Y-up world under ROS's Z-up one.
+    # Latched: the vehicle's odometry frame in the world's, the lidar on the chassis.
     static = tf_static.wait(lambda m: len(m.transforms) > 0)
-    assert (static.transforms[0].header.frame_id, static.transforms[0].child_frame_id) == (
-        "world",
-        "ars_world",
-    )
+    edges = {(t.header.frame_id, t.child_frame_id) for t in static.transforms}
+    assert {("map", "odom"), ("chassis", "laser")} <= edges, edges
 
     # Lock step: one second of 0.25 ms steps, the same bits as the same run headless.
     reply = step.call(60.0, steps=4000)
@@ -314,7 +340,23 @@ def test_ars_ros_talks_to_cyclone_dds(bridge):
     assert list(states.name) == ["r1", "r2", "w1", "w2"]
     assert list(states.position) == [headless.joint(n).position for n in states.name]
     at = chassis_at(poses)
-    assert [at.x, at.y, at.z] == list(headless.body("chassis").position)
+    assert at == list(headless.body("chassis").position)
+    # /scan: the lidar's records of the same run (every 0.1 s), as float32. Best
+    # effort: some may be lost in a burst, none is different.
+    same_run, lidar = scanning_manipulator()
+    same_run.step(4000)
+    records = lidar.records()
+    seen = {}
+    for message in scan.poll():
+        seen[message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec] = message
+    assert seen, "no /scan received"
+    for time_ns, message in seen.items():
+        row = next(k for k, r in enumerate(records) if round(r["time"] * 1e9) == time_ns)
+        assert message.header.frame_id == "laser"
+        np.testing.assert_array_equal(
+            np.array(message.ranges, dtype=np.float32), lidar.ranges()[row].astype(np.float32)
+        )
+    assert any(np.isfinite(m.ranges).any() for m in seen.values()), "the lidar sees the wall"
     # /clock at --rate 50: every 0.02 s of simulated time, in order, up to 1 s. Best
     # effort, as rclcpp's /clock: a burst of 50 in a fraction of a second loses some.
     stamps = [m.clock.sec * 1_000_000_000 + m.clock.nanosec for m in clock.poll()]
@@ -322,14 +364,14 @@ def test_ars_ros_talks_to_cyclone_dds(bridge):
     assert all(s % 20_000_000 == 0 for s in stamps), stamps
 
     # /cmd_vel at 10 Hz of simulated time: the vehicle drives forward (ARS's +X).
-    start = at.x
+    start = at[0]
     for _ in range(20):
         cmd_vel.write(Twist(linear=Vector3(x=0.5)))
         time.sleep(0.05)  # delivered before the step that follows
         reply = step.call(60.0, steps=400)
         assert reply is not None and reply.result.result == RESULT_OK, reply
     poses = tf.wait(lambda m: m.transforms[0].header.stamp.sec == 3)
-    moved = chassis_at(poses).x - start
+    moved = chassis_at(poses)[0] - start
     assert moved > 0.3, f"the chassis moved {moved} m in 2 s at 0.5 m/s"
 
     # Ctrl-C ends the bridge cleanly.
@@ -372,8 +414,7 @@ def test_ars_ros_ignores_bad_messages_with_a_warning(bridge):
     poses = tf.wait(lambda m: m.transforms[0].header.stamp.nanosec == 200_000_000)
     headless = ars.Simulation.load_scene_from(scene)
     headless.step(800)
-    at = chassis_at(poses)
-    assert [at.x, at.y, at.z] == list(headless.body("chassis").position)
+    assert chassis_at(poses) == list(headless.body("chassis").position)
     process.send_signal(signal.SIGINT)
     assert process.wait(timeout=20) == 0
     output = log.read_text()

@@ -408,25 +408,12 @@ fn run_headless(program: &mut FileProgram, command: &Command) -> Result<(), Box<
 fn ros(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     use ars_ros::bridge;
     let args = command.ros.as_ref().ok_or("ars ros without its options")?;
-    let options = args.options(&command.file)?;
+    let options = args.options()?;
     ars::interrupt::stop_on_ctrl_c()?;
     bridge::log_to_stderr();
     let sim = program.create_simulation()?;
     let core = bridge::prepare(sim, &options)?;
-    let name = |id| core.sim().scene().joint(id).map(|j| j.name().to_string()).unwrap_or_default();
-    let drive = match core.drive() {
-        Some(d) => format!("/cmd_vel drives {} (left) and {} (right)", name(d.left.0), name(d.right.0)),
-        None => "no differential drive for /cmd_vel (--drive LEFT,RIGHT names one)".into(),
-    };
-    let joints: Vec<&str> = core.frames.joints.iter().map(|(n, _)| n.as_str()).collect();
-    eprintln!(
-        "{}\nars ros: node /{} on ROS domain {}, {}; {drive}; joints (the forward controllers' order): {}",
-        program.summary,
-        options.node_name,
-        options.domain_id,
-        if options.lock_step { "lock step (paused until /ars/step_simulation)" } else { "real time" },
-        if joints.is_empty() { "none".into() } else { joints.join(", ") }
-    );
+    eprintln!("{}\n{}", program.summary, bridge::describe(&core, &options));
     let sim = bridge::run_prepared(core, &options)?;
     if ars::interrupt::requested() {
         eprintln!("interrupted (Ctrl-C) at t = {} s", seconds(sim.scene().time()));

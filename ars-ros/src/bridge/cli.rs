@@ -1,7 +1,5 @@
 //! The bridge's command-line options (`ars ros FILE ...`), read with `clap`.
 
-use std::path::Path;
-
 use super::{BridgeOptions, ServiceRmw};
 
 /// How `ars ros` runs the bridge.
@@ -14,8 +12,8 @@ pub struct RosArgs {
     /// The ROS domain ID, 0 to 232 (default: ROS_DOMAIN_ID, else 0)
     #[arg(long, value_name = "ID")]
     pub domain_id: Option<u16>,
-    /// State publications (/clock, /joint_states, /tf) per simulated second
-    #[arg(long, value_name = "HZ", default_value_t = 100.0, value_parser = positive_rate)]
+    /// State publications (/clock, /tf, /joint_states, /odom) per simulated second
+    #[arg(long, value_name = "HZ", default_value_t = 50.0, value_parser = positive_rate)]
     pub rate: f64,
     /// The differential drive /cmd_vel turns: its two wheel joints (default: w1,w2, or
     /// the hinges named *left*wheel* and *right*wheel*)
@@ -34,20 +32,14 @@ pub struct RosArgs {
 }
 
 impl RosArgs {
-    /// The bridge's options for `file` (a URDF file's text is `/robot_description`).
-    pub fn options(&self, file: &Path) -> Result<BridgeOptions, String> {
+    /// The bridge's options.
+    pub fn options(&self) -> Result<BridgeOptions, String> {
         let domain_id = match (self.domain_id, std::env::var("ROS_DOMAIN_ID")) {
             (Some(id), _) => id,
             (None, Ok(text)) if !text.trim().is_empty() => {
                 text.trim().parse().map_err(|_| format!("ROS_DOMAIN_ID={text:?} is not a domain ID (0 to 232)"))?
             }
             _ => 0,
-        };
-        let is_urdf = file.extension().is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
-        let robot_description = if is_urdf {
-            Some(std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?)
-        } else {
-            None
         };
         Ok(BridgeOptions {
             domain_id,
@@ -57,7 +49,6 @@ impl RosArgs {
             drive: self.drive.clone(),
             wheel_torque: self.wheel_torque,
             duration: self.duration,
-            robot_description,
             ..Default::default()
         })
     }
@@ -121,8 +112,8 @@ mod tests {
             "cyclonedds",
         ])
         .expect("good options");
-        let options = cli.ros.options(Path::new("scene.json")).expect("options");
-        assert!(options.lock_step && options.robot_description.is_none());
+        let options = cli.ros.options().expect("options");
+        assert!(options.lock_step && options.rate == 50.0);
         assert_eq!((options.domain_id, options.services), (7, ServiceRmw::CycloneDds));
         assert_eq!(options.drive, Some(("l".into(), "r".into())));
         let refused = |args: &[&str]| Cli::try_parse_from(args).err().expect("refused").to_string();

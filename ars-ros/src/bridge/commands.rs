@@ -4,7 +4,7 @@
 //! is refused whole with the reason, which the bridge logs as a warning.
 
 use ars_core::nalgebra::Vector3;
-use ars_core::{JointId, JointType, Result, Scene, Shape, Simulation};
+use ars_core::{JointId, JointType, ObjectId, Result, Scene, Shape, Simulation};
 
 use super::wire::{Float64MultiArray, JointState, Twist};
 
@@ -176,6 +176,8 @@ fn names(joints: &[(String, JointId)]) -> String {
 /// velocity motors, as ROS's `diff_drive_controller` would.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DiffDrive {
+    /// The body the wheels turn on (published as a vehicle: `/odom`).
+    pub chassis: ObjectId,
     /// Left wheel's joint and the sign of its rate that rolls the vehicle forward.
     pub left: (JointId, f64),
     /// Right wheel's joint and its forward sign.
@@ -265,6 +267,7 @@ impl DiffDrive {
             std::mem::swap(&mut left_at, &mut right_at);
         }
         Ok(DiffDrive {
+            chassis,
             left: (left, left_sign),
             right: (right, right_sign),
             wheel_radius: 0.5 * (left_radius + right_radius),

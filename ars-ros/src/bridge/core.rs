@@ -1,27 +1,32 @@
 //! The bridge without the network: a simulation, its state (playing or paused), the
-//! commands it was given and the Simulation Interfaces calls. The node (module `node`)
-//! feeds it what arrives and publishes what it makes; the tests drive it directly.
+//! commands it was given, the Simulation Interfaces calls, and the [`Publisher`] that
+//! turns it into messages. The node (module `node`) feeds it what arrives and sends
+//! what it makes; the tests drive it directly.
 
-use ars_core::{Simulation, Snapshot};
+use ars_core::{JointId, Simulation, Snapshot};
 
 use super::commands::{CheckResult, CommandGains, CommandKind, DiffDrive, HeldCommands};
-use super::frames::SceneFrames;
 use super::sim_interfaces::{
     CallResult, GetSimulationStateResponse, GetSimulatorFeaturesResponse, ResetSimulationRequest, ResultResponse,
     SimulationState, SimulatorFeatures,
 };
-use super::wire::{Clock, Float64MultiArray, JointState, Time, Twist};
+use super::wire::{Float64MultiArray, JointState, Twist};
+use crate::mcap::FrameStepper;
+use crate::publish::{Publisher, RosOptions};
+use crate::topics::{Outgoing, Topic};
 
 /// The most steps one `StepSimulation` call may ask for (about 11 simulated hours at
 /// ARS's 0.4 ms step); a larger request fails rather than hold the bridge.
 pub const MAX_STEPS_PER_CALL: u64 = 100_000_000;
 
-/// A simulation run by the bridge.
-pub struct BridgeCore {
-    sim: Simulation,
+/// A simulation run by the bridge: a [`Simulation`], or a program's
+/// ([`ProgramRunner`](ars_core::ProgramRunner)), stepped with its hooks.
+pub struct BridgeCore<S: FrameStepper = Simulation> {
+    stepper: S,
     initial: Snapshot,
-    /// The joints and frames published.
-    pub frames: SceneFrames,
+    publisher: Publisher,
+    /// The joints of `/joint_states`, in its order (the forward controllers').
+    joints: Vec<(String, JointId)>,
     drive: Option<DiffDrive>,
     gains: CommandGains,
     held: HeldCommands,
@@ -35,17 +40,34 @@ pub struct BridgeCore {
     commands_since_step: u32,
 }
 
-impl BridgeCore {
-    /// The bridge of `sim`, playing or (`paused`) waiting to be stepped, with `drive`
-    /// (if any) for `/cmd_vel`.
-    pub fn new(sim: Simulation, drive: Option<DiffDrive>, gains: CommandGains, paused: bool) -> ars_core::Result<Self> {
+impl<S: FrameStepper> BridgeCore<S> {
+    /// The bridge of `stepper`'s simulation, published as `ros` says, playing or
+    /// (`paused`) waiting to be stepped, with `drive` (if any) for `/cmd_vel`. Its
+    /// chassis is published as a vehicle (`/odom`) if `ros` does not already list it.
+    pub fn new(
+        mut stepper: S,
+        ros: &RosOptions,
+        drive: Option<DiffDrive>,
+        gains: CommandGains,
+        paused: bool,
+    ) -> crate::RosResult<Self> {
+        let mut ros = ros.clone();
+        if let Some(chassis) = drive.as_ref().map(|d| d.chassis)
+            && !ros.vehicles.contains(&chassis)
+        {
+            ros.vehicles.push(chassis);
+        }
+        let publisher = Publisher::attach(stepper.simulation_mut(), &ros)?;
+        let sim = stepper.simulation();
+        let joints = sim.sensor(publisher.joint_states_sensor())?.named_joints();
+        // After the publisher's sensor: a reset restores a simulation with it.
         let initial = sim.snapshot()?;
-        let frames = SceneFrames::of(sim.scene())?;
         let state = if paused { SimulationState::PAUSED } else { SimulationState::PLAYING };
         Ok(BridgeCore {
-            sim,
+            stepper,
             initial,
-            frames,
+            publisher,
+            joints,
             drive,
             gains,
             held: HeldCommands::default(),
@@ -59,12 +81,43 @@ impl BridgeCore {
 
     /// The simulation.
     pub fn sim(&self) -> &Simulation {
-        &self.sim
+        self.stepper.simulation()
     }
 
-    /// The simulation, given back.
-    pub fn into_simulation(self) -> Simulation {
-        self.sim
+    /// The simulation (or program) given back.
+    pub fn into_stepper(self) -> S {
+        self.stepper
+    }
+
+    /// The joints of `/joint_states`, in its order: the forward command controllers'.
+    pub fn joints(&self) -> &[(String, JointId)] {
+        &self.joints
+    }
+
+    /// The topics published, in the order [`Outgoing::topic`] indexes them.
+    pub fn topics(&self) -> &[Topic] {
+        self.publisher.topics()
+    }
+
+    /// The publisher.
+    pub fn publisher(&self) -> &Publisher {
+        &self.publisher
+    }
+
+    /// Whether the state (`/clock`, `/tf`...) is due at this step.
+    pub fn state_due(&self) -> bool {
+        self.publisher.state_due(self.stepper.simulation())
+    }
+
+    /// The messages due since the last call (see [`Publisher::poll`]).
+    pub fn poll(&mut self) -> crate::RosResult<Vec<Outgoing>> {
+        self.publisher.poll(self.stepper.simulation())
+    }
+
+    /// The messages due, and the state now (see [`Publisher::poll_with_state_now`]):
+    /// what is sent at the end of a `StepSimulation` call.
+    pub fn poll_with_state_now(&mut self) -> crate::RosResult<Vec<Outgoing>> {
+        self.publisher.poll_with_state_now(self.stepper.simulation())
     }
 
     /// The drive `/cmd_vel` turns, if any.
@@ -94,13 +147,13 @@ impl BridgeCore {
 
     /// A forward command controller's command.
     pub fn take_forward(&mut self, kind: CommandKind, message: &Float64MultiArray) -> CheckResult {
-        self.held.forward(kind, &self.frames.joints, message)?;
+        self.held.forward(kind, &self.joints, message)?;
         self.faster_than_steps(kind.controller())
     }
 
     /// A named command on `/joint_commands`.
     pub fn take_named(&mut self, message: &JointState) -> CheckResult {
-        self.held.named(&self.frames.joints, message)?;
+        self.held.named(&self.joints, message)?;
         self.faster_than_steps("/joint_commands")
     }
 
@@ -120,9 +173,10 @@ impl BridgeCore {
     /// Returns the warnings of commands that could not be applied.
     pub fn step(&mut self) -> ars_core::Result<Vec<String>> {
         let mut warnings = Vec::new();
-        let time = self.sim.scene().time();
+        let time = self.sim().scene().time();
+        let sim = self.stepper.simulation_mut();
         if let (Some(drive), Some(twist)) = (&self.drive, self.pending_twist.take()) {
-            match drive.drive(&mut self.sim, &twist) {
+            match drive.drive(sim, &twist) {
                 Ok(()) => self.last_twist_at = Some(time),
                 Err(e) => warnings.push(format!("/cmd_vel not applied: {e}")),
             }
@@ -130,22 +184,17 @@ impl BridgeCore {
             && time - at > self.twist_timeout
         {
             // No /cmd_vel for a while: stop, as diff_drive_controller does.
-            if let Err(e) = drive.drive(&mut self.sim, &Twist::default()) {
+            if let Err(e) = drive.drive(sim, &Twist::default()) {
                 warnings.push(format!("stopping the wheels: {e}"));
             }
             self.last_twist_at = None;
         }
         if !self.held.is_empty() {
-            warnings.extend(self.held.apply(&mut self.sim, self.gains));
+            warnings.extend(self.held.apply(sim, self.gains));
         }
         self.commands_since_step = 0;
-        self.sim.step()?;
+        self.stepper.step()?;
         Ok(warnings)
-    }
-
-    /// `/clock` now.
-    pub fn clock(&self) -> Clock {
-        Clock { clock: Time::from_seconds(self.sim.scene().time()) }
     }
 
     /// `GetSimulatorFeatures`.
@@ -199,8 +248,9 @@ impl BridgeCore {
                 ),
             };
         }
-        let result = match self.sim.restore(&self.initial) {
+        let result = match self.stepper.simulation_mut().restore(&self.initial) {
             Ok(()) => {
+                self.publisher.restart(self.stepper.simulation());
                 self.held.clear();
                 self.pending_twist = None;
                 self.last_twist_at = None;

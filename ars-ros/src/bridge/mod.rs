@@ -1,22 +1,25 @@
-//! The live ROS 2 bridge: a [`Simulation`] as a ROS 2 node, with no ROS installation
+//! The live ROS 2 bridge: a [`Simulation`](ars_core::Simulation) (or a program's
+//! [`ProgramRunner`](ars_core::ProgramRunner)) as a ROS 2 node, with no ROS installation
 //! (RustDDS through `ros2-client`).
+//!
+//! It publishes what the [`Publisher`](crate::Publisher) makes, the topics, types, QoS
+//! and frames an MCAP recording holds ([`crate::publish`]'s table: `/clock`, `/tf`,
+//! `/tf_static`, `/robot_description`, `/joint_states`, `/odom`, `/scan`, `/range`,
+//! `/imu`, depth images and their `CameraInfo`), and takes and serves:
 //!
 //! | name | type | QoS |
 //! | --- | --- | --- |
-//! | `/clock` (published) | `rosgraph_msgs/Clock` | best effort, keep last 1 (rclcpp's `ClockQoS`) |
-//! | `/joint_states` (published) | `sensor_msgs/JointState` | reliable, volatile, keep last 10 |
-//! | `/tf` (published) | `tf2_msgs/TFMessage` | reliable, volatile, keep last 100 |
-//! | `/tf_static` (published) | `tf2_msgs/TFMessage` | reliable, transient local, keep last 1 |
-//! | `/robot_description` (published, URDF only) | `std_msgs/String` | reliable, transient local, keep last 1 |
 //! | `/cmd_vel` (taken) | `geometry_msgs/Twist` | best effort (takes from either) |
 //! | `/position_controller/commands`, `/velocity_controller/commands`, `/effort_controller/commands` (taken) | `std_msgs/Float64MultiArray` | best effort |
 //! | `/joint_commands` (taken) | `sensor_msgs/JointState` | best effort |
 //! | `/ars/get_simulator_features`, `/ars/step_simulation`, `/ars/reset_simulation`, `/ars/set_simulation_state`, `/ars/get_simulation_state` | `simulation_interfaces/srv/...` | reliable |
 //!
-//! State is published every `1 / rate` simulated seconds and after every
-//! `StepSimulation` call, stamped with simulated time. The forward command controllers
-//! each take one value per joint of `/joint_states`, in its order; `/joint_commands`
-//! takes named joints. Frames: see [`frames`].
+//! The state is published every `1 / rate` simulated seconds (stamped with simulated
+//! time) and, in lock step, after every `StepSimulation` call as well; sensors at
+//! their own rates. Messages are handed to a publishing thread, so that DDS's writers
+//! do not hold the steps (a bounded queue: the simulation waits only when DDS cannot
+//! keep up). The forward command controllers each take one value per joint of
+//! `/joint_states`, in its order; `/joint_commands` takes named joints.
 //!
 //! Two modes: real time (playing, paced to the wall clock) and lock step (paused: the
 //! simulation advances only by `StepSimulation`, and gives the same bits as the same
@@ -28,7 +31,6 @@
 pub mod cli;
 pub mod commands;
 pub mod core;
-pub mod frames;
 mod node;
 pub mod sim_interfaces;
 pub mod wire;
@@ -36,7 +38,8 @@ pub mod wire;
 #[cfg(test)]
 mod tests;
 
-use ars_core::Simulation;
+use crate::mcap::FrameStepper;
+use crate::publish::RosOptions;
 
 pub use self::commands::{CommandGains, CommandKind, DiffDrive};
 pub use self::core::BridgeCore;
@@ -77,7 +80,8 @@ pub struct BridgeOptions {
     pub domain_id: u16,
     /// Start paused, advancing only by `StepSimulation` (lock step).
     pub lock_step: bool,
-    /// State publications per simulated second.
+    /// State publications (`/clock`, `/tf`, `/joint_states`, `/odom`) per simulated
+    /// second (default 50, an ARS frame).
     pub rate: f64,
     /// The node's name (its services are under `/<name>/`).
     pub node_name: String,
@@ -91,8 +95,6 @@ pub struct BridgeOptions {
     pub gains: CommandGains,
     /// Stop after this many simulated seconds (`None`: until Ctrl-C or quit).
     pub duration: Option<f64>,
-    /// The robot's URDF text, for `/robot_description`.
-    pub robot_description: Option<String>,
 }
 
 impl Default for BridgeOptions {
@@ -100,14 +102,13 @@ impl Default for BridgeOptions {
         BridgeOptions {
             domain_id: 0,
             lock_step: false,
-            rate: 100.0,
+            rate: RosOptions::default().state_rate,
             node_name: "ars".into(),
             services: ServiceRmw::default(),
             drive: None,
             wheel_torque: 30.0,
             gains: CommandGains::default(),
             duration: None,
-            robot_description: None,
         }
     }
 }
@@ -124,44 +125,66 @@ pub enum BridgeError {
     /// The simulation failed.
     #[error(transparent)]
     Simulation(#[from] ars_core::Error),
+    /// Publishing failed.
+    #[error(transparent)]
+    Ros(#[from] crate::RosError),
     /// Ctrl-C, in the middle of a `StepSimulation` (an end, not a failure, for [`run`]).
     #[error("interrupted (Ctrl-C)")]
     Interrupted,
 }
 
 /// Checks the options, finds the drive and makes the core (no network yet).
-pub fn prepare(sim: Simulation, options: &BridgeOptions) -> Result<BridgeCore, BridgeError> {
+/// `stepper` is a [`Simulation`](ars_core::Simulation) or a [`ProgramRunner`](ars_core::ProgramRunner).
+pub fn prepare<S: FrameStepper>(stepper: S, options: &BridgeOptions) -> Result<BridgeCore<S>, BridgeError> {
     if options.domain_id > 232 {
         return Err(BridgeError::Setup(format!("domain ID {}: ROS 2 domains are 0 to 232", options.domain_id)));
     }
-    if !(options.rate.is_finite() && options.rate > 0.0) {
-        return Err(BridgeError::Setup(format!("rate {}: must be a positive number per second", options.rate)));
-    }
+    let scene = stepper.simulation().scene();
+    let ros = RosOptions { state_rate: options.rate, ..RosOptions::for_scene(scene) };
+    ros.check().map_err(|e| BridgeError::Setup(e.to_string()))?;
     if options.duration.is_some_and(|d| !(d.is_finite() && d >= 0.0)) {
         return Err(BridgeError::Setup(format!("duration {:?}: must be a number of seconds ≥ 0", options.duration)));
     }
     let names = options.drive.as_ref().map(|(l, r)| (l.as_str(), r.as_str()));
-    let drive = DiffDrive::find(sim.scene(), names, options.wheel_torque).map_err(BridgeError::Setup)?;
-    Ok(BridgeCore::new(sim, drive, options.gains, options.lock_step)?)
+    let drive = DiffDrive::find(scene, names, options.wheel_torque).map_err(BridgeError::Setup)?;
+    Ok(BridgeCore::new(stepper, &ros, drive, options.gains, options.lock_step)?)
 }
 
-/// Runs `sim` as a ROS 2 node until Ctrl-C (once
+/// Runs `stepper` (a [`Simulation`](ars_core::Simulation) or a [`ProgramRunner`](ars_core::ProgramRunner)) as
+/// a ROS 2 node until Ctrl-C (once
 /// [`stop_on_ctrl_c`](ars_core::interrupt::stop_on_ctrl_c) is set; see
 /// [`interrupt::requested`](ars_core::interrupt::requested)), a `SetSimulationState` to
-/// quit, or `options.duration`; gives the simulation back, as it is then.
-pub fn run(sim: Simulation, options: &BridgeOptions) -> Result<Simulation, BridgeError> {
-    run_prepared(prepare(sim, options)?, options)
+/// quit, or `options.duration`; gives it back, as it is then.
+pub fn run<S: FrameStepper>(stepper: S, options: &BridgeOptions) -> Result<S, BridgeError> {
+    run_prepared(prepare(stepper, options)?, options)
 }
 
 /// [`run`] with a core made by [`prepare`] with the same `options`.
-pub fn run_prepared(mut core: BridgeCore, options: &BridgeOptions) -> Result<Simulation, BridgeError> {
+pub fn run_prepared<S: FrameStepper>(mut core: BridgeCore<S>, options: &BridgeOptions) -> Result<S, BridgeError> {
     check_network()?;
-    let node = node::BridgeNode::new(options)?;
-    node.publish_latched(&core, options.robot_description.as_deref())?;
+    let node = node::BridgeNode::new(options, core.topics())?;
     match node::run_loop(&node, &mut core, options) {
-        Ok(()) | Err(BridgeError::Interrupted) => Ok(core.into_simulation()),
+        Ok(()) | Err(BridgeError::Interrupted) => Ok(core.into_stepper()),
         Err(e) => Err(e),
     }
+}
+
+/// What the bridge of `core` is, in a line: its node, domain and mode, the drive
+/// `/cmd_vel` turns and the joints the forward controllers take, in their order.
+pub fn describe<S: FrameStepper>(core: &BridgeCore<S>, options: &BridgeOptions) -> String {
+    let name = |id| core.sim().scene().joint(id).map(|j| j.name().to_string()).unwrap_or_default();
+    let drive = match core.drive() {
+        Some(d) => format!("/cmd_vel drives {} (left) and {} (right)", name(d.left.0), name(d.right.0)),
+        None => "no differential drive for /cmd_vel (--drive LEFT,RIGHT names one)".into(),
+    };
+    let joints: Vec<&str> = core.joints().iter().map(|(n, _)| n.as_str()).collect();
+    format!(
+        "ars ros: node /{} on ROS domain {}, {}; {drive}; joints (the forward controllers' order): {}",
+        options.node_name,
+        options.domain_id,
+        if options.lock_step { "lock step (paused until /ars/step_simulation)" } else { "real time" },
+        if joints.is_empty() { "none".into() } else { joints.join(", ") }
+    )
 }
 
 /// A clear error where DDS would have no network: not even the loopback is up.

@@ -1,7 +1,10 @@
-//! The bridge on the network: a ROS 2 node (RustDDS, through `ros2-client`) with the
-//! publishers, subscriptions and services of [`super`]'s table, and the loop that
-//! feeds a [`BridgeCore`] what arrives and publishes what it makes.
+//! The bridge on the network: a ROS 2 node (RustDDS, through `ros2-client`) with a
+//! writer for each of the [`Publisher`](crate::Publisher)'s topics (fed by a publishing
+//! thread, the [`Outbox`]), the subscriptions and services of [`super`]'s table, and the
+//! loop that feeds a [`BridgeCore`] what arrives and hands over what it makes.
 
+use std::sync::mpsc;
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use log::warn;
@@ -17,8 +20,14 @@ use super::sim_interfaces::{
     GetSimulationStateRequest, GetSimulationStateResponse, GetSimulatorFeaturesRequest, GetSimulatorFeaturesResponse,
     ResetSimulationRequest, ResultResponse, SetSimulationStateRequest, StepSimulationRequest, service_type,
 };
-use super::wire::{Clock, Float64MultiArray, JointState, StringMessage, TfMessage, Twist, type_names};
+use super::wire::{Float64MultiArray, JointState, Twist, type_names};
 use super::{BridgeError, BridgeOptions};
+use crate::mcap::FrameStepper;
+use crate::topics::{self, Outgoing, Topic};
+
+/// How many batches of messages may wait for the publishing thread before the
+/// simulation waits for it.
+const OUTBOX_DEPTH: usize = 256;
 
 /// How many messages of one topic are taken per turn of the loop, so that a flood
 /// cannot hold it.
@@ -26,11 +35,8 @@ const TAKE_PER_TURN: usize = 64;
 
 /// The node's endpoints.
 pub(super) struct BridgeNode {
-    clock: Publisher<Clock>,
-    joint_states: Publisher<JointState>,
-    tf: Publisher<TfMessage>,
-    tf_static: Publisher<TfMessage>,
-    robot_description: Publisher<StringMessage>,
+    /// Dropped first: its thread ends before the node goes.
+    outbox: Outbox,
     cmd_vel: Subscription<Twist>,
     forward: Vec<(CommandKind, Subscription<Float64MultiArray>)>,
     joint_commands: Subscription<JointState>,
@@ -50,8 +56,34 @@ fn qos(reliable: bool, latched: bool, depth: usize) -> QosProfile {
     QosProfile::default().reliability(reliability).durability(durability).history(History::KeepLast { depth })
 }
 
+/// A topic's QoS as ros2-client takes it.
+fn qos_of(topic: &Topic) -> QosProfile {
+    qos(
+        topic.qos.reliability == topics::Reliability::Reliable,
+        topic.qos.durability == topics::Durability::TransientLocal,
+        topic.qos.depth as usize,
+    )
+}
+
 fn name(namespace: &str, base: &str) -> Result<Name, BridgeError> {
     Name::new(namespace, base).map_err(|e| BridgeError::Setup(format!("the name {namespace}/{base}: {e}")))
+}
+
+/// A full topic name (`/camera/depth/image_raw`) as a namespace and a base name.
+fn topic_name(full: &str) -> Result<Name, BridgeError> {
+    match full.rsplit_once('/') {
+        Some(("", base)) => name("/", base),
+        Some((namespace, base)) => name(namespace, base),
+        None => name("/", full),
+    }
+}
+
+/// A type name (`sensor_msgs/msg/JointState`) as ros2-client takes it.
+fn type_name(full: &str) -> Result<MessageTypeName, BridgeError> {
+    match full.split('/').collect::<Vec<_>>()[..] {
+        [package, "msg", name] => Ok(MessageTypeName::new(package, name)),
+        _ => Err(BridgeError::Setup(format!("the message type {full:?} is not package/msg/Name"))),
+    }
 }
 
 fn setup<T, E: std::fmt::Debug>(what: &str, made: Result<T, E>) -> Result<T, BridgeError> {
@@ -59,28 +91,26 @@ fn setup<T, E: std::fmt::Debug>(what: &str, made: Result<T, E>) -> Result<T, Bri
 }
 
 impl BridgeNode {
-    /// The node `options.node_name` on `options.domain_id`, with every endpoint.
-    pub(super) fn new(options: &BridgeOptions) -> Result<BridgeNode, BridgeError> {
+    /// The node `options.node_name` on `options.domain_id`, with a writer for each of
+    /// `published` and every subscription and service.
+    pub(super) fn new(options: &BridgeOptions, published: &[Topic]) -> Result<BridgeNode, BridgeError> {
         let context = Context::with_options(ContextOptions::new().domain_id(options.domain_id))
             .map_err(|e| BridgeError::Network(format!("starting DDS on domain {}: {e:?}", options.domain_id)))?;
         let node_name = NodeName::new("/", &options.node_name)
             .map_err(|e| BridgeError::Setup(format!("the node name {:?}: {e}", options.node_name)))?;
         let mut node = setup("the node", context.new_node(node_name, NodeOptions::new()))?;
+        let mut writers = Vec::with_capacity(published.len());
+        for topic in published {
+            let made = node.create_topic(&topic_name(&topic.name)?, type_name(topic.type_name)?, &qos_of(topic));
+            let dds_topic = setup(&topic.name, made)?;
+            writers.push((topic.name.clone(), setup(&topic.name, node.create_publisher(&dds_topic, None))?));
+        }
         let topic = |n: &str, t: MessageTypeName, q: &QosProfile| setup(n, node.create_topic(&name("/", n)?, t, q));
-        // /clock as rclcpp's ClockQoS; the rest reliable (as joint_state_publisher and
-        // tf2's broadcasters); /tf_static and /robot_description latched.
-        let state = qos(true, false, 10);
-        let latched = qos(true, true, 1);
         // Best effort subscriptions take from reliable and best effort publishers alike.
         let commands = qos(false, false, 10);
-        let clock_topic = topic("clock", type_names::clock(), &qos(false, false, 1))?;
-        let joint_states_topic = topic("joint_states", type_names::joint_state(), &state)?;
-        let tf_topic = topic("tf", type_names::tf(), &qos(true, false, 100))?;
-        let tf_static_topic = topic("tf_static", type_names::tf(), &latched)?;
-        let description_topic = topic("robot_description", type_names::string(), &latched)?;
         let cmd_vel_topic = topic("cmd_vel", type_names::twist(), &commands)?;
         let joint_commands_topic = topic("joint_commands", type_names::joint_state(), &commands)?;
-        let mut forward_topics = Vec::new();
+        let mut forward = Vec::new();
         for kind in CommandKind::ALL {
             let t = setup(
                 kind.controller(),
@@ -90,11 +120,7 @@ impl BridgeNode {
                     &commands,
                 ),
             )?;
-            forward_topics.push((kind, t));
-        }
-        let mut forward = Vec::new();
-        for (kind, t) in &forward_topics {
-            forward.push((*kind, setup(kind.controller(), node.create_subscription(t, None))?));
+            forward.push((kind, setup(kind.controller(), node.create_subscription(&t, None))?));
         }
         let mapping = options.services.mapping();
         let services = format!("/{}", options.node_name);
@@ -114,11 +140,6 @@ impl BridgeNode {
             };
         }
         Ok(BridgeNode {
-            clock: setup("/clock", node.create_publisher(&clock_topic, None))?,
-            joint_states: setup("/joint_states", node.create_publisher(&joint_states_topic, None))?,
-            tf: setup("/tf", node.create_publisher(&tf_topic, None))?,
-            tf_static: setup("/tf_static", node.create_publisher(&tf_static_topic, None))?,
-            robot_description: setup("/robot_description", node.create_publisher(&description_topic, None))?,
             cmd_vel: setup("/cmd_vel", node.create_subscription(&cmd_vel_topic, None))?,
             joint_commands: setup("/joint_commands", node.create_subscription(&joint_commands_topic, None))?,
             forward,
@@ -127,32 +148,20 @@ impl BridgeNode {
             reset: server!("reset_simulation", "ResetSimulation"),
             set_state: server!("set_simulation_state", "SetSimulationState"),
             get_state: server!("get_simulation_state", "GetSimulationState"),
+            outbox: Outbox::start(writers)?,
             _node: node,
         })
     }
 
-    /// Publishes what never changes: `/tf_static` and `/robot_description` (if any).
-    pub(super) fn publish_latched(&self, core: &BridgeCore, description: Option<&str>) -> Result<(), BridgeError> {
-        let tf_static = core.frames.tf_static(core.sim().scene())?;
-        sent("/tf_static", self.tf_static.publish(tf_static));
-        if let Some(text) = description {
-            sent("/robot_description", self.robot_description.publish(StringMessage { data: text.to_string() }));
-        }
-        Ok(())
-    }
-
-    /// Publishes `/clock`, `/joint_states` and `/tf` now.
-    pub(super) fn publish_state(&self, core: &BridgeCore) -> Result<(), BridgeError> {
-        let scene = core.sim().scene();
-        sent("/clock", self.clock.publish(core.clock()));
-        sent("/joint_states", self.joint_states.publish(core.frames.joint_states(scene)?));
-        sent("/tf", self.tf.publish(core.frames.tf(scene)?));
+    /// Hands over what is due since the last call.
+    pub(super) fn send_due<S: FrameStepper>(&self, core: &mut BridgeCore<S>) -> Result<(), BridgeError> {
+        self.outbox.send(core.poll()?);
         Ok(())
     }
 
     /// Takes what arrived on the subscriptions and gives it to `core`; what it refuses
     /// is logged.
-    pub(super) fn take_commands(&self, core: &mut BridgeCore) {
+    pub(super) fn take_commands<S: FrameStepper>(&self, core: &mut BridgeCore<S>) {
         take_each("/cmd_vel", &self.cmd_vel, |m| core.take_twist(m));
         take_each("/joint_commands", &self.joint_commands, |m| core.take_named(&m));
         for (kind, subscription) in &self.forward {
@@ -161,24 +170,26 @@ impl BridgeNode {
     }
 
     /// Answers the service calls that arrived; a `StepSimulation` steps `core`
-    /// (publishing as it goes) before its answer.
-    pub(super) fn serve(&self, core: &mut BridgeCore, stepper: &mut Stepper) -> Result<(), BridgeError> {
+    /// (publishing as it goes, then the state it ended in) before its answer.
+    pub(super) fn serve<S: FrameStepper>(&self, core: &mut BridgeCore<S>) -> Result<(), BridgeError> {
         answer_each("get_simulator_features", &self.get_features, |_| core.features());
         answer_each("get_simulation_state", &self.get_state, |_| core.get_state());
         answer_each("set_simulation_state", &self.set_state, |r| core.set_state(r.state.state));
+        let mut failure = None;
         answer_each("reset_simulation", &self.reset, |r| {
             let answer = core.reset(r.scope);
-            stepper.restart();
+            if let Err(e) = self.send_due(core) {
+                failure = Some(e);
+            }
             answer
         });
-        let mut failure = None;
         answer_each("step_simulation", &self.step, |r| {
             if let Err(result) = core.check_step_request(r.steps) {
                 return ResultResponse { result };
             }
             // Commands sent before the call count from its first step.
             self.take_commands(core);
-            let result = match stepper.step(self, core, r.steps) {
+            let result = match self.step_call(core, r.steps) {
                 Ok(()) => super::sim_interfaces::CallResult::ok(),
                 Err(e) => {
                     let answer = super::sim_interfaces::CallResult::failed(
@@ -193,56 +204,117 @@ impl BridgeNode {
         });
         failure.map_or(Ok(()), Err)
     }
-}
 
-/// Steps a core and publishes at the rate asked, counted in simulated time.
-pub(super) struct Stepper {
-    /// Steps between two publications.
-    period_steps: u64,
-    /// The step count of the last publication.
-    published_at: Option<u64>,
-}
-
-impl Stepper {
-    /// Publishes `rate` times per simulated second of `core`'s steps.
-    pub(super) fn new(core: &BridgeCore, rate: f64) -> Stepper {
-        let dt = core.sim().scene().time_step();
-        let period_steps = ((1.0 / (rate * dt)).round() as u64).max(1);
-        Stepper { period_steps, published_at: None }
-    }
-
-    /// Takes `n` steps, publishing on the way at the rate and after the last.
-    pub(super) fn step(&mut self, node: &BridgeNode, core: &mut BridgeCore, n: u64) -> Result<(), BridgeError> {
+    /// A `StepSimulation` of `n` steps: then the state it ended in, sent before the
+    /// call is answered.
+    fn step_call<S: FrameStepper>(&self, core: &mut BridgeCore<S>, n: u64) -> Result<(), BridgeError> {
         for _ in 0..n {
             if ars_core::interrupt::requested() {
                 return Err(BridgeError::Interrupted);
             }
-            self.step_quietly(node, core)?;
+            self.step(core)?;
         }
-        self.publish(node, core)
-    }
-
-    /// Publishes the state unless it already was at this step.
-    pub(super) fn publish(&mut self, node: &BridgeNode, core: &BridgeCore) -> Result<(), BridgeError> {
-        let count = core.sim().scene().step_count();
-        if self.published_at != Some(count) {
-            node.publish_state(core)?;
-            self.published_at = Some(count);
-        }
+        self.outbox.send(core.poll_with_state_now()?);
+        self.outbox.flush();
         Ok(())
     }
 
-    /// After a reset: the next state is published whatever its step count.
-    pub(super) fn restart(&mut self) {
-        self.published_at = None;
+    /// One step, handing over the state (and the sensors' samples) when it is due.
+    fn step<S: FrameStepper>(&self, core: &mut BridgeCore<S>) -> Result<(), BridgeError> {
+        for warning in core.step()? {
+            warn!("{warning}");
+        }
+        if core.state_due() {
+            self.send_due(core)?;
+        }
+        Ok(())
+    }
+}
+
+/// The publishing thread: it owns the topics' writers and publishes what it is handed,
+/// in order, so that DDS's writers do not hold the steps.
+struct Outbox {
+    sender: Option<mpsc::SyncSender<Outbound>>,
+    thread: Option<JoinHandle<()>>,
+}
+
+enum Outbound {
+    Messages(Vec<Outgoing>),
+    /// Answered once everything handed over before it is published.
+    Flush(mpsc::SyncSender<()>),
+}
+
+impl Outbox {
+    /// The thread, with a writer per topic (in the order [`Outgoing::topic`] indexes).
+    fn start(writers: Vec<(String, Publisher<topics::Message>)>) -> Result<Outbox, BridgeError> {
+        let (sender, receiver) = mpsc::sync_channel::<Outbound>(OUTBOX_DEPTH);
+        let thread = std::thread::Builder::new()
+            .name("ars-ros publisher".into())
+            .spawn(move || {
+                for outbound in receiver {
+                    match outbound {
+                        Outbound::Messages(messages) => {
+                            for Outgoing { topic, message, .. } in messages {
+                                let (name, writer) = &writers[topic];
+                                if let Err(e) = writer.publish(message) {
+                                    warn!("{name}: not published: {e:?}");
+                                }
+                            }
+                        }
+                        Outbound::Flush(done) => {
+                            let _ = done.send(());
+                        }
+                    }
+                }
+            })
+            .map_err(|e| BridgeError::Setup(format!("starting the publishing thread: {e}")))?;
+        Ok(Outbox { sender: Some(sender), thread: Some(thread) })
+    }
+
+    /// Hands `messages` to the thread (waiting only if it is [`OUTBOX_DEPTH`] batches
+    /// behind).
+    fn send(&self, messages: Vec<Outgoing>) {
+        if messages.is_empty() {
+            return;
+        }
+        if let Some(sender) = &self.sender
+            && sender.send(Outbound::Messages(messages)).is_err()
+        {
+            warn!("the publishing thread has stopped: messages not published");
+        }
+    }
+
+    /// Waits until everything handed over is published.
+    fn flush(&self) {
+        let (done, wait) = mpsc::sync_channel(1);
+        if let Some(sender) = &self.sender
+            && sender.send(Outbound::Flush(done)).is_ok()
+        {
+            let _ = wait.recv();
+        }
+    }
+}
+
+impl Drop for Outbox {
+    /// Publishes what is left, then ends the thread.
+    fn drop(&mut self) {
+        self.sender = None;
+        if let Some(thread) = self.thread.take()
+            && thread.join().is_err()
+        {
+            warn!("the publishing thread panicked");
+        }
     }
 }
 
 /// The loop: real time while playing, waiting for calls while paused, until Ctrl-C, a
 /// `SetSimulationState` to quit, or `options.duration` simulated seconds.
-pub(super) fn run_loop(node: &BridgeNode, core: &mut BridgeCore, options: &BridgeOptions) -> Result<(), BridgeError> {
-    let mut stepper = Stepper::new(core, options.rate);
-    stepper.publish(node, core)?;
+pub(super) fn run_loop<S: FrameStepper>(
+    node: &BridgeNode,
+    core: &mut BridgeCore<S>,
+    options: &BridgeOptions,
+) -> Result<(), BridgeError> {
+    node.send_due(core)?;
     let dt = core.sim().scene().time_step();
     // Real time: the wall clock instant at which the simulation was at `paced_from`.
     let mut pace: Option<(Instant, f64)> = None;
@@ -255,7 +327,7 @@ pub(super) fn run_loop(node: &BridgeNode, core: &mut BridgeCore, options: &Bridg
             return Ok(());
         }
         node.take_commands(core);
-        node.serve(core, &mut stepper)?;
+        node.serve(core)?;
         if !core.is_playing() {
             pace = None;
             std::thread::sleep(Duration::from_millis(1));
@@ -280,27 +352,10 @@ pub(super) fn run_loop(node: &BridgeNode, core: &mut BridgeCore, options: &Bridg
             continue;
         }
         for _ in 0..steps {
-            stepper.step_quietly(node, core)?;
+            node.step(core)?;
         }
-    }
-}
-
-impl Stepper {
-    /// One step, publishing if a publication is due, not after it otherwise.
-    fn step_quietly(&mut self, node: &BridgeNode, core: &mut BridgeCore) -> Result<(), BridgeError> {
-        for warning in core.step()? {
-            warn!("{warning}");
-        }
-        if core.sim().scene().step_count().is_multiple_of(self.period_steps) {
-            self.publish(node, core)?;
-        }
-        Ok(())
-    }
-}
-
-fn sent<E: std::fmt::Debug>(topic: &str, result: Result<(), E>) {
-    if let Err(e) = result {
-        warn!("{topic}: not published: {e:?}");
+        // The sensors' samples of these steps.
+        node.send_due(core)?;
     }
 }
 

@@ -1,14 +1,18 @@
 //! The bridge without the network, on the thesis' mobile manipulator.
 
 use ars_core::nalgebra::Vector3;
-use ars_core::{Mass, Simulation, SpaceKind};
-use ars_programs::{VehicleSpec, build_mobile_manipulator};
+use ars_core::{Mass, ProgramRunner, Simulation, SpaceKind};
+use ars_programs::golden::{GoldenTable, Verdict, record_csv};
+use ars_programs::{SpeedProfile, VehicleSpec, build_mobile_manipulator};
 
 use super::commands::{CommandGains, CommandKind};
-use super::frames::{ARS_WORLD, WORLD};
 use super::sim_interfaces::{CallResult, ResetSimulationRequest, SimulationState};
-use super::wire::{Float64MultiArray, JointState, Twist, Vector3 as RosVector3};
+use super::wire::{Float64MultiArray, JointState, Twist};
 use super::{BridgeCore, BridgeOptions, prepare};
+use crate::mcap::FrameStepper;
+use crate::msg::Vector3 as RosVector3;
+use crate::topics::{Message, Outgoing};
+use crate::{Publisher, RosOptions};
 
 /// The mobile manipulator on the floor, as the thesis builds it.
 fn mobile_manipulator() -> Simulation {
@@ -29,7 +33,7 @@ fn ball_wheeled() -> Simulation {
         Simulation::builder().space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0).build().expect("a simulation");
     let scene = sim.scene_mut();
     let chassis = scene.add_box([1.0, 0.1, 0.6], [0.3, 0.3, 0.0], Mass::Total(2.0)).expect("chassis");
-    scene.set_name(chassis, "chassis").expect("a name");
+    scene.set_name(chassis, "base_link").expect("a name");
     let left = scene.add_sphere(0.2, [0.0, 0.2, -0.4], Mass::Total(0.5)).expect("left wheel");
     let right = scene.add_sphere(0.2, [0.0, 0.2, 0.4], Mass::Total(0.5)).expect("right wheel");
     let caster = scene.add_sphere(0.1, [0.7, 0.1, 0.0], Mass::Total(0.1)).expect("caster");
@@ -44,15 +48,28 @@ fn lock_step() -> BridgeCore {
     lock_step_of(mobile_manipulator())
 }
 
-fn lock_step_of(sim: Simulation) -> BridgeCore {
+fn lock_step_of<S: FrameStepper>(sim: S) -> BridgeCore<S> {
     prepare(sim, &BridgeOptions { lock_step: true, ..Default::default() }).expect("a bridge")
 }
 
-fn steps(core: &mut BridgeCore, n: u64) {
+/// A `StepSimulation` of `n` steps, as the node takes it: the messages it sends.
+fn steps<S: FrameStepper>(core: &mut BridgeCore<S>, n: u64) -> Vec<Outgoing> {
     core.check_step_request(n).expect("paused");
+    let mut sent = Vec::new();
     for _ in 0..n {
         assert_eq!(core.step().expect("a step"), Vec::<String>::new());
+        if core.state_due() {
+            sent.extend(core.poll().expect("messages"));
+        }
     }
+    sent.extend(core.poll_with_state_now().expect("messages"));
+    sent
+}
+
+/// The messages of topic `name` in `sent`.
+fn on<'a>(core: &BridgeCore, sent: &'a [Outgoing], name: &str) -> Vec<&'a Message> {
+    let index = core.topics().iter().position(|t| t.name == name).expect(name);
+    sent.iter().filter(|o| o.topic == index).map(|o| &o.message).collect()
 }
 
 /// `n` steps with `command` on /cmd_vel every 0.1 s (250 steps), as a teleop node sends it.
@@ -69,13 +86,21 @@ fn twist(v: f64, w: f64) -> Twist {
 
 /// Joint `name`'s (position, velocity) now.
 fn joint(core: &BridgeCore, name: &str) -> (f64, f64) {
-    let states = core.frames.joint_states(core.sim().scene()).expect("states");
-    let i = states.name.iter().position(|n| n == name).expect(name);
-    (states.position[i], states.velocity[i])
+    let scene = core.sim().scene();
+    let state = scene.joint_state(scene.joint(name).expect(name).id()).expect("a state");
+    (state.position, state.rate)
 }
 
 fn snapshot_bytes(sim: &Simulation) -> Vec<u8> {
     sim.snapshot().expect("a snapshot").to_bytes()
+}
+
+/// The mobile manipulator with the publisher's sensor, as the bridge has it.
+fn published_mobile_manipulator() -> Simulation {
+    let mut sim = mobile_manipulator();
+    let options = RosOptions::for_scene(sim.scene());
+    Publisher::attach(&mut sim, &options).expect("a publisher");
+    sim
 }
 
 #[test]
@@ -83,14 +108,39 @@ fn lock_step_gives_the_bits_of_the_headless_run() {
     let mut core = lock_step();
     for n in [1, 10, 489, 500] {
         steps(&mut core, n);
-        // What is published reads the scene and changes nothing.
-        core.frames.tf(core.sim().scene()).expect("tf");
-        core.frames.joint_states(core.sim().scene()).expect("joint states");
     }
-    let mut headless = mobile_manipulator();
+    // The same simulation with the same sensors, stepped headless.
+    let mut headless = published_mobile_manipulator();
     headless.step_n(1000).expect("steps");
     assert_eq!(core.sim().scene().step_count(), 1000);
     assert_eq!(snapshot_bytes(core.sim()), snapshot_bytes(&headless));
+}
+
+#[test]
+fn lock_step_gives_the_golden_hash_of_the_headless_program() {
+    // The mobile manipulator tracking its speed profile (the golden run
+    // `speed_profile`: its program's hooks each step), stepped through the bridge in
+    // calls of uneven lengths, publishing at every state period and after each call.
+    let mut program = SpeedProfile::with_derivative_gain(0.0);
+    let runner = ProgramRunner::new(&mut program).expect("the program");
+    let mut core = lock_step_of(runner);
+    let steps_in_15_s = core.sim().scene().steps_in(15.0).expect("15 s");
+    let (mut done, mut sent) = (0, 0);
+    for n in [1, 7, 49, 500, 4_999].iter().cycle() {
+        let n = (*n).min(steps_in_15_s - done);
+        sent += steps(&mut core, n).len();
+        done += n;
+        if done == steps_in_15_s {
+            break;
+        }
+    }
+    assert!(sent > 750, "{sent} messages: the state every 20 ms");
+    let sim = core.into_stepper().into_simulation();
+    let csv = record_csv(sim.records(program.record.expect("the record")).expect("records")).expect("CSV");
+    match GoldenTable::committed().compare("speed_profile", &csv) {
+        Verdict::Identical => {}
+        other => panic!("the lock-stepped run is not the golden one: {other:?}"),
+    }
 }
 
 #[test]
@@ -102,13 +152,13 @@ fn the_mobile_manipulators_drive_is_found_with_its_wheels() {
     let w1 = core.sim().scene().joint("w1").expect("w1").id();
     assert_eq!(drive.left.0, w1);
     assert!((drive.track - 1.0).abs() < 1e-12, "{}", drive.track);
-    let names: Vec<&str> = core.frames.joints.iter().map(|(n, _)| n.as_str()).collect();
+    let names: Vec<&str> = core.joints().iter().map(|(n, _)| n.as_str()).collect();
     assert_eq!(names, ["r1", "r2", "w1", "w2"], "in the order of the scene's names");
 }
 
 #[test]
 fn cmd_vel_drives_the_vehicle_forward_and_turns_it_left() {
-    let chassis = |core: &BridgeCore| core.sim().scene().object("chassis").expect("chassis").id();
+    let chassis = |core: &BridgeCore| core.drive().expect("a drive").chassis;
     let mut core = lock_step();
     let start = core.sim().scene().position(chassis(&core)).expect("pose");
     drive_for(&mut core, twist(0.5, 0.0), 5000); // 2 s
@@ -149,7 +199,7 @@ fn bad_commands_are_refused_with_the_reason_and_change_nothing() {
     let why = core.take_named(&unknown).unwrap_err();
     assert!(why.contains("unknown joint \"elbow\""), "{why}");
     steps(&mut core, 100);
-    let mut headless = mobile_manipulator();
+    let mut headless = published_mobile_manipulator();
     headless.step_n(100).expect("steps");
     assert_eq!(snapshot_bytes(core.sim()), snapshot_bytes(&headless));
 }
@@ -195,7 +245,7 @@ fn the_simulation_interfaces_calls() {
     assert_eq!(core.sim().scene().step_count(), 0);
     // After a reset, the run is the start's again (the wheel motors too).
     steps(&mut core, 100);
-    let mut headless = mobile_manipulator();
+    let mut headless = published_mobile_manipulator();
     headless.step_n(100).expect("steps");
     assert_eq!(snapshot_bytes(core.sim()), snapshot_bytes(&headless));
 
@@ -213,34 +263,58 @@ fn the_simulation_interfaces_calls() {
 }
 
 #[test]
-fn frames_follow_the_joint_tree_under_ars_world() {
-    let core = lock_step();
-    let tf = core.frames.tf(core.sim().scene()).expect("tf");
-    let parent = |child: &str| {
-        tf.transforms.iter().find(|t| t.child_frame_id == child).map(|t| t.header.frame_id.clone()).expect(child)
-    };
-    assert_eq!(parent("chassis"), ARS_WORLD);
-    // The wheels and the caster on the chassis, the arm's links one on the other.
-    for child in ["cylinder", "cylinder/1", "sphere", "capsule"] {
-        assert_eq!(parent(child), "chassis", "{child}");
-    }
-    assert_eq!(parent("capsule/1"), "capsule");
-    let chassis = core.sim().scene().position(core.sim().scene().object("chassis").expect("chassis").id()).expect("at");
-    let t = tf.transforms.iter().find(|t| t.child_frame_id == "chassis").expect("chassis").transform.translation;
-    assert_eq!([t.x, t.y, t.z], [chassis.x, chassis.y, chassis.z], "ARS's own numbers");
-    let fixed = core.frames.tf_static(core.sim().scene()).expect("tf_static");
-    let up = &fixed.transforms[0];
-    assert_eq!((up.header.frame_id.as_str(), up.child_frame_id.as_str()), (WORLD, ARS_WORLD));
-    // A quarter turn about X takes ARS's +Y (up) to ROS's +Z.
-    let q = up.transform.rotation;
-    assert!((q.x - q.w).abs() < 1e-15 && q.y == 0.0 && q.z == 0.0 && (q.w - 0.5f64.sqrt()).abs() < 1e-15);
+fn what_the_bridge_sends_is_what_an_mcap_recording_holds() {
+    let mut core = lock_step();
+    let first = steps(&mut core, 0);
+    let tf_static = on(&core, &first, "/tf_static");
+    let Message::Tf(fixed) = tf_static[0] else { panic!("a TF message") };
+    assert!(
+        fixed.transforms.iter().any(|t| (t.header.frame_id.as_str(), t.child_frame_id.as_str()) == ("map", "odom"))
+    );
+    // 1 s at 50 Hz, then 1 step: the state every 20 ms, and where the call ended.
+    let sent = steps(&mut core, 2501);
+    let stamps: Vec<u64> = on(&core, &sent, "/clock")
+        .iter()
+        .map(|m| match m {
+            Message::Clock(c) => c.clock.sec as u64 * 1_000_000_000 + u64::from(c.clock.nanosec),
+            _ => panic!("a clock"),
+        })
+        .collect();
+    assert_eq!(stamps.len(), 51, "{stamps:?}");
+    assert!(stamps[..50].iter().enumerate().all(|(k, s)| *s == 20_000_000 * (k as u64 + 1)), "{stamps:?}");
+    assert_eq!(stamps[50], 1_000_400_000);
+    // The vehicle (found by its drive) has its odometry; the last is where it is now.
+    let odom = on(&core, &sent, "/odom");
+    assert_eq!(odom.len(), 51);
+    let Message::Odometry(last) = odom[50] else { panic!("odometry") };
+    let at = core.sim().scene().position(core.drive().expect("a drive").chassis).expect("at");
+    let p = last.pose.pose.position;
+    assert_eq!([p.x, p.y, p.z], [at.x, -at.z, at.y], "ARS's Y-up numbers, swapped into map's Z-up");
+    // /joint_states: the sensor's samples with their efforts, then the state now
+    // without efforts.
+    let states = on(&core, &sent, "/joint_states");
+    let Message::JointState(now) = states[states.len() - 1] else { panic!("joint states") };
+    assert_eq!(now.name, ["r1", "r2", "w1", "w2"]);
+    assert_eq!(now.position[2], joint(&core, "w1").0);
+    assert!(now.effort.is_empty());
+    let Message::JointState(sampled) = states[0] else { panic!("joint states") };
+    assert_eq!(sampled.effort.len(), 4);
+}
+
+#[test]
+fn a_vehicle_found_by_its_drive_has_its_odometry_whatever_its_name() {
+    let mut core = lock_step_of(ball_wheeled());
+    let sent = steps(&mut core, 50);
+    let Message::Odometry(odom) = on(&core, &sent, "/odom")[0] else { panic!("odometry") };
+    assert_eq!((odom.header.frame_id.as_str(), odom.child_frame_id.as_str()), ("odom", "base_link"));
 }
 
 #[test]
 fn bad_options_are_refused_before_any_network() {
     let refused = |options: BridgeOptions| prepare(mobile_manipulator(), &options).err().expect("refused").to_string();
     assert!(refused(BridgeOptions { domain_id: 300, ..Default::default() }).contains("0 to 232"));
-    assert!(refused(BridgeOptions { rate: 0.0, ..Default::default() }).contains("rate 0"));
+    let rate = refused(BridgeOptions { rate: 0.0, ..Default::default() });
+    assert!(rate.contains("state rate") && rate.contains("got 0"), "{rate}");
     let drive = Some(("left".to_string(), "w1".to_string()));
     assert!(refused(BridgeOptions { drive, ..Default::default() }).contains("no hinge joint named \"left\""));
     let _ = CommandGains::default();

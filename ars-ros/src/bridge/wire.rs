@@ -6,7 +6,7 @@ use ros2_client::{Message, MessageTypeName};
 use serde::{Deserialize, Serialize};
 
 pub use crate::msg::{
-    Clock, Header, JointState, Quaternion, StringMessage, TfMessage, Time, Transform, TransformStamped, Twist, Vector3,
+    CameraInfo, Clock, Image, Imu, JointState, LaserScan, Odometry, StringMessage, TfMessage, Time, Twist,
 };
 
 /// `std_msgs/MultiArrayDimension`.
@@ -38,11 +38,17 @@ pub struct Float64MultiArray {
     pub data: Vec<f64>,
 }
 
-impl Message for Clock {}
+// What the bridge takes, and what it sends (for other ros2-client nodes to take).
 impl Message for JointState {}
-impl Message for TfMessage {}
 impl Message for Twist {}
 impl Message for Float64MultiArray {}
+impl Message for Clock {}
+impl Message for TfMessage {}
+impl Message for Odometry {}
+impl Message for LaserScan {}
+impl Message for Imu {}
+impl Message for Image {}
+impl Message for CameraInfo {}
 impl Message for StringMessage {}
 
 /// The ROS type names of the messages (`package/Name`), for the DDS topics.
@@ -57,10 +63,6 @@ pub mod type_names {
     pub fn joint_state() -> MessageTypeName {
         MessageTypeName::new("sensor_msgs", "JointState")
     }
-    /// `tf2_msgs/TFMessage`.
-    pub fn tf() -> MessageTypeName {
-        MessageTypeName::new("tf2_msgs", "TFMessage")
-    }
     /// `geometry_msgs/Twist`.
     pub fn twist() -> MessageTypeName {
         MessageTypeName::new("geometry_msgs", "Twist")
@@ -68,10 +70,6 @@ pub mod type_names {
     /// `std_msgs/Float64MultiArray`.
     pub fn float64_multi_array() -> MessageTypeName {
         MessageTypeName::new("std_msgs", "Float64MultiArray")
-    }
-    /// `std_msgs/String`.
-    pub fn string() -> MessageTypeName {
-        MessageTypeName::new("std_msgs", "String")
     }
 }
 
