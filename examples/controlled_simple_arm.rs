@@ -17,7 +17,7 @@ use common::plot::{Series, line_chart};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(6.0);
     let mut program = ControlledSimpleArm::default();
-    if args.window {
+    if args.live() {
         // Live: the program's keys move the set-point.
         common::args::run(&mut program, &args)?;
         return Ok(());

@@ -16,7 +16,7 @@ use common::plot::{Series, line_chart, over_time};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = common::args::parse(3.0);
     let mut program = SimpleArm::default();
-    if args.window {
+    if args.live() {
         // Live: 'a'/'z' push the waist.
         common::args::run(&mut program, &args)?;
         return Ok(());

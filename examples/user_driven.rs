@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => KeyScript::parse(CIRCLE)?,
     };
     let mut program = UserDriven { paper_friction: paper, ..Default::default() };
-    if args.window {
+    if args.live() {
         return drive_live(&mut program, paper, &args);
     }
     let mut runner = ProgramRunner::new(&mut program)?;

@@ -32,7 +32,7 @@ fn drive<P: Program>(
     script: &KeyScript,
     args: &common::args::Args,
 ) -> Result<Path, Box<dyn std::error::Error>> {
-    if args.window {
+    if args.live() {
         // Live: the program's keys drive it.
         common::args::run(&mut program, args)?;
         return Ok(Path::default());
@@ -81,7 +81,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .into());
         }
     };
-    if args.window {
+    if args.live() {
         return Ok(());
     }
     for (t, p) in path.iter().map(|s| (s.time, s.record.position)) {

@@ -53,6 +53,54 @@ pub fn record_mcap<P: crate::Program>(
     }
 }
 
+/// `--ros`: the examples' run as a live ROS 2 node, with the bridge's options (those of
+/// `ars ros`, [`ros::bridge::cli::RosArgs`](crate::ros::bridge::cli::RosArgs)).
+#[derive(clap::Args, Clone, Debug)]
+pub struct BridgeArgs {
+    /// Run as a live ROS 2 node (docs/ros2.md; no ROS install needed): real time until
+    /// Ctrl-C or --duration, or --lock-step
+    #[arg(long)]
+    pub ros: bool,
+    /// The bridge's options (with --ros).
+    #[cfg(feature = "ros")]
+    #[command(flatten)]
+    pub options: crate::ros::bridge::cli::RosArgs,
+}
+
+/// Runs what `runner` runs as a live ROS 2 node ([`ros::bridge`](crate::ros::bridge))
+/// with `args`' options, until Ctrl-C, a `SetSimulationState` to quit, or `duration`
+/// simulated seconds; gives the simulation back as it is then, and says what ran:
+/// what the examples do with `--ros`. Without the `ros` feature, an error saying so.
+pub fn run_ros<P: crate::Program>(
+    runner: crate::ProgramRunner<'_, P>,
+    args: &BridgeArgs,
+    duration: Option<f64>,
+) -> crate::Result<crate::Simulation> {
+    #[cfg(feature = "ros")]
+    {
+        use crate::ros::bridge;
+        let options = args.options.options(duration).map_err(crate::Error::User)?;
+        let refused = |e: bridge::BridgeError| match e {
+            bridge::BridgeError::Simulation(e) => e,
+            other => crate::Error::User(format!("--ros: {other}")),
+        };
+        bridge::log_to_stderr();
+        let core = bridge::prepare(runner, &options).map_err(refused)?;
+        eprintln!("{}", bridge::describe(&core, &options));
+        let sim = bridge::run_prepared(core, &options).map_err(refused)?.into_simulation();
+        if crate::interrupt::requested() {
+            eprintln!("interrupted (Ctrl-C) at t = {:.6} s", sim.scene().time());
+        }
+        eprintln!("ran to t = {:.6} s ({} steps)", sim.scene().time(), sim.scene().step_count());
+        Ok(sim)
+    }
+    #[cfg(not(feature = "ros"))]
+    {
+        let _ = (runner, args, duration);
+        Err(crate::Error::User("--ros needs the ros feature: build ars with its default features".into()))
+    }
+}
+
 /// How long to run and which data to write.
 #[derive(clap::Args, Clone, Debug, PartialEq)]
 pub struct RunArgs {
@@ -103,7 +151,9 @@ pub struct PictureArgs {
     pub html_plots: Vec<String>,
 }
 
-fn positive_seconds(v: &str) -> Result<f64, String> {
+/// Reads a positive, finite number of seconds (`--duration`'s check), or says what is
+/// wrong.
+pub fn positive_seconds(v: &str) -> Result<f64, String> {
     match v.parse::<f64>() {
         Ok(d) if d.is_finite() && d > 0.0 => Ok(d),
         _ => Err(format!("must be a positive number of seconds, got {v:?}")),

@@ -2,11 +2,12 @@
 //! [`ars::cli`]'s): `[--duration S] [--csv PATH] [--plot DIR] [--every N]`, and
 //! the viewer's `[--window | --screenshots DIR [--frame-every N]] [--video OUT.mp4 [--fps N]] [--size WxH]
 //! [--axes] [--views N]`, the browser replay's `[--html OUT.html [--html-plot COLUMN]...]`,
-//! and the ROS 2 recording's `[--mcap OUT.mcap]`.
+//! the ROS 2 recording's `[--mcap OUT.mcap]` and the live ROS 2 node's `[--ros
+//! [--lock-step] [--domain-id ID] [--rate HZ] [--drive L,R] ...]`.
 
 use std::path::PathBuf;
 
-use ars::cli::{PictureArgs, RunArgs};
+use ars::cli::{BridgeArgs, PictureArgs, RunArgs};
 use clap::error::ErrorKind;
 use clap::{CommandFactory, FromArgMatches};
 
@@ -43,6 +44,17 @@ pub struct Args {
     pub html: Option<PathBuf>,
     /// The sensor columns the replay plots (`"Gps 1: y"`).
     pub html_plots: Vec<String>,
+    /// `--ros`: run as a live ROS 2 node with these options, for `--duration` if given
+    /// (else until Ctrl-C).
+    pub ros: Option<(BridgeArgs, Option<f64>)>,
+}
+
+impl Args {
+    /// Whether the program runs live, in a window or as a ROS 2 node (`--ros`), rather
+    /// than through an example's own recorded loop: [`run`] runs it then.
+    pub fn live(&self) -> bool {
+        self.window || self.ros.is_some()
+    }
 }
 
 /// The examples' own options around the shared ones ([`ars::cli`]).
@@ -59,6 +71,8 @@ struct ExampleCli {
     window: bool,
     #[command(flatten)]
     pictures: PictureArgs,
+    #[command(flatten)]
+    bridge: BridgeArgs,
 }
 
 /// Parses the command line; prints the usage and exits on `--help` or a mistake.
@@ -86,6 +100,20 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
     if cli.run.mcap.is_some() && cli.window {
         fail("--mcap records a run of its own: give it without --window");
     }
+    let pictures = &cli.pictures;
+    let drawn = cli.window || pictures.screenshots.is_some() || pictures.video.is_some() || pictures.html.is_some();
+    if cli.bridge.ros && (drawn || cli.run.mcap.is_some()) {
+        fail(
+            "--ros runs the simulation as a ROS 2 node: give it without --window, --screenshots, --video, --html and --mcap",
+        );
+    }
+    #[cfg(feature = "ros")]
+    for option in ["lock_step", "domain_id", "rate", "drive", "wheel_torque", "services"] {
+        if !cli.bridge.ros && matches.value_source(option) == Some(clap::parser::ValueSource::CommandLine) {
+            fail(&format!("--{} goes with --ros", option.replace('_', "-")));
+        }
+    }
+    let ros = cli.bridge.ros.then(|| (cli.bridge.clone(), cli.run.duration));
     let PictureArgs { screenshots, frame_every, video, fps, size, axes, views, html, html_plots } = cli.pictures;
     Args {
         duration: cli.run.duration.unwrap_or(default_duration),
@@ -103,6 +131,7 @@ pub fn parse_except(default_duration: f64, extra: &[&str]) -> Args {
         views,
         html,
         html_plots,
+        ros,
     }
 }
 
@@ -140,6 +169,9 @@ pub fn export_csv_table(
 /// returned (and written by the example); a second Ctrl-C ends the process at once.
 pub fn run<P: ars::Program>(program: &mut P, args: &Args) -> Result<ars::Simulation, Box<dyn std::error::Error>> {
     ars::interrupt::stop_on_ctrl_c()?;
+    if let Some((bridge, duration)) = &args.ros {
+        return Ok(ars::cli::run_ros(ars::ProgramRunner::new(program)?, bridge, *duration)?);
+    }
     if args.window {
         return show(program, args);
     }
@@ -365,6 +397,9 @@ impl Capture {
     /// Records when `--screenshots`, `--html` or `--video` was given, with `view` (the
     /// program's settings).
     pub fn new(args: &Args, view: ars::WindowSettings) -> Result<Self, Box<dyn std::error::Error>> {
+        if args.ros.is_some() {
+            return Err("--ros: this example runs a loop of its own, not a program a ROS 2 node can step".into());
+        }
         #[cfg(feature = "viewer")]
         {
             let replay = args.html.as_ref().map(|path| (replay_recorder(args), view.clone(), path.clone(), None));

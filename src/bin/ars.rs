@@ -51,7 +51,7 @@ enum Verb {
     /// No display or GPU is needed. --html-plot "Gps 1: y" plots a sensor column under the
     /// replay.
     Record(FileArgs),
-    /// Run as a ROS 2 node: /clock, /joint_states, /tf; /cmd_vel; Simulation Interfaces
+    /// Run as a ROS 2 node: /clock, /tf, /joint_states, /odom, /scan...; /cmd_vel; Simulation Interfaces
     ///
     /// No ROS install is needed. Real time until Ctrl-C, or --lock-step (advances only
     /// through /ars/step_simulation). docs/ros2.md ("Live topics") lists the topics and services.
@@ -67,6 +67,9 @@ struct RosFileArgs {
     file: PathBuf,
     #[command(flatten)]
     placement: Placement,
+    /// Stop after this many simulated seconds (default: until Ctrl-C)
+    #[arg(long, value_name = "S", value_parser = ars::cli::positive_seconds)]
+    duration: Option<f64>,
     #[command(flatten)]
     ros: ars_ros::bridge::cli::RosArgs,
 }
@@ -174,11 +177,13 @@ fn parse(args: &[String]) -> Result<Command, clap::Error> {
 
 /// `ars ros`'s command: its file, and no pictures.
 #[cfg(feature = "ros")]
-fn ros_command(RosFileArgs { file, placement: Placement { fixed_base, y_up, at }, ros }: RosFileArgs) -> Command {
+fn ros_command(
+    RosFileArgs { file, placement: Placement { fixed_base, y_up, at }, duration, ros }: RosFileArgs,
+) -> Command {
     Command {
         verb: "ros".into(),
         file,
-        duration: ros.duration,
+        duration,
         csv: None,
         every: 1,
         mcap: None,
@@ -408,7 +413,7 @@ fn run_headless(program: &mut FileProgram, command: &Command) -> Result<(), Box<
 fn ros(program: &mut FileProgram, command: &Command) -> Result<(), Box<dyn std::error::Error>> {
     use ars_ros::bridge;
     let args = command.ros.as_ref().ok_or("ars ros without its options")?;
-    let options = args.options()?;
+    let options = args.options(command.duration)?;
     ars::interrupt::stop_on_ctrl_c()?;
     bridge::log_to_stderr();
     let sim = program.create_simulation()?;

@@ -1,4 +1,5 @@
-//! The bridge's command-line options (`ars ros FILE ...`), read with `clap`.
+//! The bridge's command-line options (`ars ros FILE ...`, and the examples' `--ros`),
+//! read with `clap`.
 
 use super::{BridgeOptions, ServiceRmw};
 
@@ -26,14 +27,12 @@ pub struct RosArgs {
     /// (default: from RMW_IMPLEMENTATION)
     #[arg(long, value_name = "RMW", value_parser = rmw)]
     pub services: Option<ServiceRmw>,
-    /// Stop after this many simulated seconds (default: until Ctrl-C)
-    #[arg(long, value_name = "S", value_parser = positive_seconds)]
-    pub duration: Option<f64>,
 }
 
 impl RosArgs {
-    /// The bridge's options.
-    pub fn options(&self) -> Result<BridgeOptions, String> {
+    /// The bridge's options, to stop after `duration` simulated seconds (`None`: until
+    /// Ctrl-C or a `SetSimulationState` to quit).
+    pub fn options(&self, duration: Option<f64>) -> Result<BridgeOptions, String> {
         let domain_id = match (self.domain_id, std::env::var("ROS_DOMAIN_ID")) {
             (Some(id), _) => id,
             (None, Ok(text)) if !text.trim().is_empty() => {
@@ -48,7 +47,7 @@ impl RosArgs {
             services: self.services.unwrap_or_else(ServiceRmw::from_env),
             drive: self.drive.clone(),
             wheel_torque: self.wheel_torque,
-            duration: self.duration,
+            duration,
             ..Default::default()
         })
     }
@@ -67,10 +66,6 @@ fn positive_rate(v: &str) -> Result<f64, String> {
 
 fn positive_torque(v: &str) -> Result<f64, String> {
     positive(v, "of N·m")
-}
-
-fn positive_seconds(v: &str) -> Result<f64, String> {
-    positive(v, "of seconds")
 }
 
 fn two_names(v: &str) -> Result<(String, String), String> {
@@ -112,8 +107,8 @@ mod tests {
             "cyclonedds",
         ])
         .expect("good options");
-        let options = cli.ros.options().expect("options");
-        assert!(options.lock_step && options.rate == 50.0);
+        let options = cli.ros.options(Some(2.0)).expect("options");
+        assert!(options.lock_step && options.rate == 50.0 && options.duration == Some(2.0));
         assert_eq!((options.domain_id, options.services), (7, ServiceRmw::CycloneDds));
         assert_eq!(options.drive, Some(("l".into(), "r".into())));
         let refused = |args: &[&str]| Cli::try_parse_from(args).err().expect("refused").to_string();
