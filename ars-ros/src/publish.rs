@@ -296,8 +296,8 @@ impl Publisher {
         let stamp = nanos_of(sim.scene().time());
         let transforms = self.tree.fixed().iter().map(|(p, c, pose)| transform(stamp, p, c, pose)).collect();
         out.push(Outgoing { topic: TF_STATIC, stamp, message: Message::Tf(msg::TfMessage { transforms }) });
-        for robot in sim.scene().robot_descriptions() {
-            let text = msg::StringMessage { data: robot.urdf.to_string() };
+        for urdf in sim.scene().robot_descriptions().iter().filter_map(|r| r.urdf.as_ref()) {
+            let text = msg::StringMessage { data: urdf.to_string() };
             out.push(Outgoing { topic: ROBOT_DESCRIPTION, stamp, message: Message::String(text) });
         }
     }

@@ -1,14 +1,17 @@
 //! The frame tree of a simulation, as `/tf` and `/tf_static` publish it.
 //!
-//! - URDF robots ([`Scene::robot_descriptions`]): a frame per link, named after it,
-//!   at the link's own frame (its URDF origin, not its body's centre of mass). Each
-//!   URDF joint gives its child link relative to its parent link: on `/tf_static` for a
-//!   fixed joint, on `/tf` otherwise; the root link is given in `map` (on `/tf_static`
-//!   when it is static).
+//! - URDF robots and MJCF models ([`Scene::robot_descriptions`]): a frame per link
+//!   (MJCF: per body), named after it, at the link's own frame (its URDF origin, the
+//!   MJCF body's frame; not its body's centre of mass). Each joint gives its child link
+//!   relative to its parent link: on `/tf_static` for a fixed joint (a jointless MJCF
+//!   body), on `/tf` otherwise; the root links are given in `map` (on `/tf_static` when
+//!   static).
 //! - Every other object (free bodies, MJCF bodies, static shapes; not planes): a frame
 //!   named after it, at its body's origin with its ROS axes
-//!   ([`ros_axes`]: Z up for an upright object), given in `map`
-//!   (on `/tf_static` when it is static).
+//!   ([`ros_axes`]: Z up for an upright object). A moving body joined to another by a
+//!   joint whose first object is that other body is given in that body's frame (the
+//!   joint tree: an MJCF child body in its parent, a thesis vehicle's wheel in its
+//!   chassis); the others in `map` (on `/tf_static` when static).
 //! - A vehicle's chassis is given in `odom` instead, `odom` in `map` (the identity: the
 //!   simulation's odometry is exact).
 //! - Sensors: a frame each on the frame of the object they are mounted on, or in `map`,
@@ -60,14 +63,27 @@ impl FrameTree {
     pub fn of(scene: &Scene, vehicles: &[ObjectId]) -> Result<FrameTree> {
         let mut tree = FrameTree::default();
         tree.add_robots(scene)?;
+        let mut own = Vec::new();
         for (name, id) in scene.objects() {
             let plane = matches!(scene.object(id)?.shape(), Shape::Plane { .. });
             if tree.object_frames.contains_key(&id) || plane {
                 continue;
             }
             tree.object_frames.insert(id, (name.to_string(), ros_axes()));
-            let parent = if vehicles.contains(&id) { ODOM } else { MAP };
-            tree.add_in_world(scene, parent, name, (id, ros_axes()))?;
+            own.push((name, id));
+        }
+        let parents = joint_parents(scene)?;
+        for (name, id) in own {
+            match parents.get(&id).and_then(|p| Some((*p, tree.object_frames.get(p)?.clone()))) {
+                Some((parent, (parent_frame, on_parent))) if !vehicles.contains(&id) => {
+                    let edge = Moving::Between((parent, on_parent), (id, ros_axes()));
+                    tree.moving.push((parent_frame, name.to_string(), edge));
+                }
+                _ => {
+                    let parent = if vehicles.contains(&id) { ODOM } else { MAP };
+                    tree.add_in_world(scene, parent, name, (id, ros_axes()))?;
+                }
+            }
         }
         if !vehicles.is_empty() {
             tree.fixed.push((MAP.into(), ODOM.into(), Isometry3::identity()));
@@ -90,8 +106,10 @@ impl FrameTree {
                     self.object_frames.insert(link.object, (link.name.clone(), link.offset));
                 }
             }
-            if let Some(&root) = on.get(robot.root.as_str()) {
-                self.add_in_world(scene, MAP, &robot.root, root)?;
+            for root in &robot.roots {
+                if let Some(&on_root) = on.get(root.as_str()) {
+                    self.add_in_world(scene, MAP, root, on_root)?;
+                }
             }
             for joint in &robot.joints {
                 let (Some(&parent), Some(&child)) = (on.get(joint.parent.as_str()), on.get(joint.child.as_str()))
@@ -159,6 +177,35 @@ impl FrameTree {
             };
             Some((parent.as_str(), child.as_str(), pose))
         })
+    }
+}
+
+/// Each moving object's parent along the joint tree: the first object of a joint whose
+/// second it is, both moving bodies (the first such joint, in the order of the joints'
+/// names; none that would close a loop).
+fn joint_parents(scene: &Scene) -> Result<HashMap<ObjectId, ObjectId>> {
+    let mut parent: HashMap<ObjectId, ObjectId> = HashMap::new();
+    let moving = |o: ObjectId| scene.object(o).is_ok_and(|v| v.body_handle().is_some());
+    for (_, id) in scene.joints() {
+        let (first, second) = scene.joint(id)?.objects();
+        let Some(child) = second else { continue };
+        if moving(first) && moving(child) && !parent.contains_key(&child) && !is_above(&parent, child, first) {
+            parent.insert(child, first);
+        }
+    }
+    Ok(parent)
+}
+
+/// Whether `ancestor` is `object` or above it in the tree `parent`.
+fn is_above(parent: &HashMap<ObjectId, ObjectId>, ancestor: ObjectId, mut object: ObjectId) -> bool {
+    loop {
+        if object == ancestor {
+            return true;
+        }
+        match parent.get(&object) {
+            Some(p) => object = *p,
+            None => return false,
+        }
     }
 }
 

@@ -266,6 +266,53 @@ fn the_thesis_mobile_manipulator_is_a_vehicle_whose_joints_and_odometry_are_publ
 }
 
 #[test]
+fn frames_follow_the_joint_tree_of_ars_built_and_mjcf_bodies() {
+    // The thesis' mobile manipulator: its chassis in odom, the wheels and the caster on
+    // the chassis, the arm's links one on the other.
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let spec = ars_programs::VehicleSpec::default();
+    ars_programs::build_mobile_manipulator(&mut sim, &spec, Mass::Total(1.0)).unwrap();
+    let options = RosOptions::for_scene(sim.scene());
+    let mut publisher = Publisher::attach(&mut sim, &options).unwrap();
+    sim.run_for(0.2).unwrap();
+    let tf = transforms(&publisher.poll(&sim).unwrap(), &publisher, "/tf");
+    let parent = |child: &str| tf.iter().find(|t| t.child_frame_id == child).expect(child).header.frame_id.clone();
+    assert_eq!(parent("chassis"), "odom");
+    for child in ["cylinder", "cylinder/1", "sphere", "capsule"] {
+        assert_eq!(parent(child), "chassis", "{child}");
+    }
+    assert_eq!(parent("capsule/1"), "capsule");
+    // The pose on /tf is the child's in its parent's frame, both with ROS axes.
+    let scene = sim.scene();
+    let pose = |name: &str| scene.pose(scene.object(name).unwrap().id()).unwrap();
+    let expected = pose("capsule").inverse() * pose("capsule/1");
+    let published = isometry(tf.iter().find(|t| t.child_frame_id == "capsule/1").unwrap());
+    let ros_axes = ars_ros::frames::ros_axes();
+    let ars_relative = ros_axes * published * ros_axes.inverse();
+    assert!((ars_relative.translation.vector - expected.translation.vector).norm() < 1e-12);
+    assert!(ars_relative.rotation.angle_to(&expected.rotation) < 1e-9);
+
+    // An MJCF chain: each body in its parent's frame, with the file's own (Z-up) axes.
+    let mut sim = Simulation::new().unwrap();
+    let chain = r#"<mujoco><worldbody><body name="upper" pos="0 0 1"><joint name="j1" type="hinge" axis="0 1 0"/>
+        <geom type="capsule" size="0.05" fromto="0 0 0 0.3 0 0"/>
+        <body name="lower" pos="0.3 0 0"><joint name="j2" type="hinge" axis="0 1 0"/>
+        <geom type="capsule" size="0.04" fromto="0 0 0 0.3 0 0"/></body></body></worldbody></mujoco>"#;
+    sim.load_mjcf_text(chain, "chain.xml", &Default::default()).unwrap();
+    let mut publisher = Publisher::attach(&mut sim, &RosOptions::default()).unwrap();
+    sim.step().unwrap();
+    let tf = transforms(&publisher.poll(&sim).unwrap(), &publisher, "/tf");
+    let parent = |child: &str| tf.iter().find(|t| t.child_frame_id == child).expect(child).header.frame_id.clone();
+    assert_eq!((parent("upper"), parent("lower")), ("map".to_string(), "upper".to_string()));
+    let frame = |child: &str| isometry(tf.iter().find(|t| t.child_frame_id == child).expect(child));
+    // One 2 ms step from rest: the chain has barely moved.
+    let (upper, lower) = (frame("upper"), frame("lower"));
+    assert!((upper.translation.vector - Vector3::new(0.0, 0.0, 1.0)).norm() < 1e-4, "{upper}");
+    assert!(upper.rotation.angle() < 1e-3, "{upper}");
+    assert!((lower.translation.vector - Vector3::new(0.3, 0.0, 0.0)).norm() < 1e-4, "{lower}");
+}
+
+#[test]
 fn a_depth_cameras_images_are_its_records_with_a_pinhole_calibration() {
     use ars_core::sensors::DepthCamera;
     let mut sim = Simulation::new().unwrap();

@@ -170,7 +170,7 @@ impl Scene {
         self.step_count = steps;
     }
 
-    /// The URDF robots loaded into this scene, in the order loaded (see
+    /// The URDF robots and MJCF models loaded into this scene, in the order loaded (see
     /// [`RobotDescription`](crate::formats::urdf::RobotDescription)). Not kept by scene
     /// files or snapshots.
     pub fn robot_descriptions(&self) -> &[crate::formats::urdf::RobotDescription] {

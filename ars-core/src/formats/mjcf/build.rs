@@ -80,6 +80,7 @@ impl Scene {
             }
             return Err(e);
         }
+        self.robot_descriptions.push(super::tree::body_tree(self, model, &made, &placement(options)));
         Ok(made)
     }
 

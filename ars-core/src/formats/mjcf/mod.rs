@@ -193,6 +193,7 @@ mod read;
 mod schema;
 mod sensors;
 mod tendon;
+mod tree;
 mod weld;
 
 pub use keyframe::MjcfKeyframe;

@@ -1,6 +1,7 @@
-//! What a scene keeps of each URDF robot it loaded, for those who describe it to others
-//! (a ROS bridge's `/robot_description` and `/tf`): the file's text, its joint tree,
-//! and where each link's frame is on the object that carries it.
+//! What a scene keeps of each URDF robot and MJCF model it loaded, for those who
+//! describe it to others (a ROS bridge's `/robot_description` and `/tf`): a URDF file's
+//! text, the joint tree, and where each link's (or MJCF body's) frame is on the object
+//! that carries it.
 //!
 //! A link's object is a body at the link's inertial frame (ODE's body frame is the
 //! centre of mass), or the body of the link it was merged into, or static geometry; the
@@ -13,27 +14,31 @@ use nalgebra::Isometry3;
 
 use crate::handle::ObjectId;
 
-/// A URDF robot of a scene, as ROS describes it: what
+/// A URDF robot or an MJCF model of a scene, as ROS describes it: what
 /// [`Scene::robot_descriptions`](crate::scene::Scene::robot_descriptions) lists. Its
 /// links' frames are their URDF origins (what `robot_state_publisher` and RViz place
-/// meshes at), each at a fixed [`offset`](LinkFrame::offset) from the object that
-/// carries it (a body at the link's inertial frame, or the body it was merged into).
+/// meshes at), or an MJCF model's body frames, each at a fixed
+/// [`offset`](LinkFrame::offset) from the object that carries it (a body at the link's
+/// inertial frame, or the body it was merged into).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RobotDescription {
     /// The robot's name.
     pub name: String,
-    /// The URDF file's text, as read.
-    pub urdf: Arc<str>,
-    /// Every link of the file, in file order.
+    /// The URDF file's text, as read (`None` for an MJCF model: ROS's
+    /// `/robot_description` is URDF).
+    pub urdf: Option<Arc<str>>,
+    /// Every link of the file (MJCF: every body but those welded to the world), in
+    /// file order.
     pub links: Vec<LinkFrame>,
     /// Every joint of the file, in file order (also those of merged links, which have
-    /// no joint in the simulation).
+    /// no joint in the simulation); an MJCF body's is its last joint's name, or
+    /// `<body>_weld` for a body with none.
     pub joints: Vec<TreeJoint>,
-    /// The root link's name.
-    pub root: String,
+    /// The root links' names: a URDF robot's one, an MJCF model's top bodies.
+    pub roots: Vec<String>,
 }
 
-/// A URDF link and where its frame is.
+/// A URDF link (or an MJCF body) and where its frame is.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LinkFrame {
     /// The link's name.
@@ -44,7 +49,7 @@ pub struct LinkFrame {
     pub offset: Isometry3<f64>,
 }
 
-/// A URDF joint as an edge of the link tree.
+/// A URDF joint (or an MJCF body's joints) as an edge of the link tree.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TreeJoint {
     /// The joint's name.
@@ -81,8 +86,8 @@ mod tests {
         let options = UrdfOptions::new().fixed_base(true).exact_base_pose(true);
         let robot = sim.load_urdf_text(ARM, "arm.urdf", &options).unwrap();
         let [description] = sim.scene().robot_descriptions() else { panic!("one robot") };
-        assert_eq!(&*description.urdf, ARM);
-        assert_eq!((description.name.as_str(), description.root.as_str()), ("arm", "base"));
+        assert_eq!(description.urdf.as_deref(), Some(ARM));
+        assert_eq!((description.name.as_str(), description.roots.as_slice()), ("arm", ["base".to_string()].as_slice()));
         let tree: Vec<_> = description
             .joints
             .iter()

@@ -410,10 +410,10 @@ impl UrdfFile {
         let root = self.robot.links.iter().find(|l| !children.contains(&l.name.as_str()));
         RobotDescription {
             name: made.name.clone(),
-            urdf: self.text.clone(),
+            urdf: Some(self.text.clone()),
             links,
             joints,
-            root: root.map(|l| l.name.clone()).unwrap_or_default(),
+            roots: root.map(|l| l.name.clone()).into_iter().collect(),
         }
     }
 
