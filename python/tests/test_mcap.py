@@ -84,11 +84,13 @@ def test_a_recording_reads_back_equal_to_the_sensor_records(tmp_path):
     assert (last.x, last.y, last.z) == (x, -z, y)
     assert last.x > first.x + 0.05, (first, last)
     assert odometry[-1].ros_msg.child_frame_id == "chassis"
-    # The frames: the chassis in odom, the arm's links in map, the laser on the chassis.
+    # The frames: the chassis in odom, the arm along its joints from the chassis, the
+    # laser on the chassis.
     tf = messages["/tf"][-1].ros_msg.transforms
     assert {(t.header.frame_id, t.child_frame_id) for t in tf} >= {
         ("odom", "chassis"),
-        ("map", "link1"),
+        ("chassis", "link1"),
+        ("link1", "link2"),
     }
     static = messages["/tf_static"][0].ros_msg.transforms
     assert {(t.header.frame_id, t.child_frame_id) for t in static} >= {
