@@ -200,3 +200,19 @@ fn ars_ros_runs_in_real_time_and_refuses_bad_options() {
     assert!(String::from_utf8_lossy(&no_drive.stderr).contains("no hinge joint named \"a\""));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[cfg(feature = "ros")]
+#[test]
+fn ars_ros_without_a_network_says_so() {
+    // A network namespace of its own has no interface up, not even the loopback.
+    let isolated = Command::new("unshare").args(["-n", "true"]).status().is_ok_and(|s| s.success());
+    if !isolated {
+        println!("skipped: `unshare -n` is not allowed here (no network namespace to run in)");
+        return;
+    }
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rnea_arm.urdf");
+    let out = Command::new("unshare").args(["-n", ARS, "ros", file, "--duration", "1"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("ars: no network: no network interface is up, not even the loopback"), "{stderr}");
+}
