@@ -1,5 +1,5 @@
 //! What a scene keeps of an MJCF model's body tree (a
-//! [`RobotDescription`](crate::formats::urdf::RobotDescription), as of a URDF robot),
+//! [`RobotDescription`], as of a URDF robot),
 //! for those who describe it to others (a ROS bridge's `/tf`): each body's frame on the
 //! object that carries it, and which body each hangs from.
 
