@@ -51,7 +51,7 @@ enum Verb {
     /// No display or GPU is needed. --html-plot "Gps 1: y" plots a sensor column under the
     /// replay.
     Record(FileArgs),
-    /// Run as a ROS 2 node: /clock, /tf, /joint_states, /odom, /scan...; /cmd_vel; Simulation Interfaces
+    /// Run as a live ROS 2 node: /tf, /joint_states, /odom, /scan...; /cmd_vel; services
     ///
     /// No ROS install is needed. Real time until Ctrl-C, or --lock-step (advances only
     /// through /ars/step_simulation). docs/ros2.md ("Live topics") lists the topics and services.
