@@ -162,7 +162,14 @@ if (path === undefined) {
   console.error("usage: node foxglove_check.mjs FILE.mcap [--json]");
   process.exit(2);
 }
-const result = await check(path);
+let result;
+try {
+  result = await check(path);
+} catch (e) {
+  // A file the readers refuse whole (no summary, a compression ARS does not write...).
+  console.error(`${path}: ${e.message}`);
+  process.exit(1);
+}
 if (args.includes("--json")) {
   console.log(JSON.stringify({ ...result, topics: Object.fromEntries(result.topics) }, null, 1));
 } else {
