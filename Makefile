@@ -84,7 +84,7 @@ $(PYTHON):
 	$(PYTHON) -m pip install --quiet --upgrade pip
 
 python: python-deps $(PYTHON)
-	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0" nbclient ipykernel mcap mcap-ros2-support cyclonedds
+	$(PYTHON) -m pip install --quiet numpy pytest ruff mypy ray mujoco "gymnasium>=1.0" nbclient ipykernel mcap mcap-ros2-support rosbags cyclonedds
 	$(PYTHON) -m pip install --quiet --force-reinstall --no-deps ./python
 
 python-test: python
