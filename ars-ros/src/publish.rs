@@ -160,7 +160,7 @@ impl Publisher {
         for (k, id) in sim.sensor_ids_of::<Lidar>().into_iter().enumerate() {
             let (frame, topic) = (numbered("laser", k), topics.len());
             topics.push(Topic::of::<msg::LaserScan>(&numbered("/scan", k), Qos::SENSOR_DATA));
-            lidars.push(lidar_topic(sim, id, frame, topic, period, &mut tree)?);
+            lidars.push(lidar_topic(sim, id, frame, topic, &mut tree)?);
         }
         let mut imus = Vec::new();
         for (k, id) in sim.sensor_ids_of::<Imu>().into_iter().enumerate() {
@@ -365,7 +365,6 @@ fn lidar_topic(
     sensor: SensorId<Lidar>,
     frame: String,
     topic: usize,
-    period: f64,
     tree: &mut FrameTree,
 ) -> RosResult<LidarTopic> {
     let lidar = sim.sensor(sensor)?;
@@ -383,7 +382,8 @@ fn lidar_topic(
         angle_max: azimuths[azimuths.len() - 1] as f32,
         angle_increment: increment as f32,
         time_increment: 0.0,
-        scan_time: period as f32,
+        // The time between two scans: the lidar's sampling period.
+        scan_time: sim.sensor_period(sensor)?.unwrap_or(sim.scene().time_step()) as f32,
         range_min: min_range as f32,
         range_max: max_range as f32,
         ranges: Vec::new(),

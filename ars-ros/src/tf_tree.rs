@@ -62,7 +62,7 @@ impl FrameTree {
     /// The tree of `scene` now; `vehicles` are given in `odom`.
     pub fn of(scene: &Scene, vehicles: &[ObjectId]) -> Result<FrameTree> {
         let mut tree = FrameTree::default();
-        tree.add_robots(scene)?;
+        tree.add_robots(scene, vehicles)?;
         let mut own = Vec::new();
         for (name, id) in scene.objects() {
             let plane = matches!(scene.object(id)?.shape(), Shape::Plane { .. });
@@ -91,8 +91,9 @@ impl FrameTree {
         Ok(tree)
     }
 
-    /// Every URDF robot's links, by its joint tree.
-    fn add_robots(&mut self, scene: &Scene) -> Result<()> {
+    /// Every URDF robot's links, by its joint tree (a root that is a vehicle's chassis
+    /// in `odom`).
+    fn add_robots(&mut self, scene: &Scene, vehicles: &[ObjectId]) -> Result<()> {
         for robot in scene.robot_descriptions() {
             // Links whose object was removed since are left out.
             let links: Vec<_> = robot.links.iter().filter(|l| scene.object(l.object).is_ok()).collect();
@@ -108,7 +109,8 @@ impl FrameTree {
             }
             for root in &robot.roots {
                 if let Some(&on_root) = on.get(root.as_str()) {
-                    self.add_in_world(scene, MAP, root, on_root)?;
+                    let parent = if vehicles.contains(&on_root.0) { ODOM } else { MAP };
+                    self.add_in_world(scene, parent, root, on_root)?;
                 }
             }
             for joint in &robot.joints {

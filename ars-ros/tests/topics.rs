@@ -159,6 +159,7 @@ fn laser_scans_equal_the_lidars_records_each_sample_once() {
         assert_eq!(scan.ranges, expected);
         assert_eq!((scan.angle_min, scan.angle_max), (azimuths[0] as f32, azimuths[89] as f32));
         assert_eq!((scan.range_min, scan.range_max), (0.05, 10.0));
+        assert_eq!(scan.scan_time, 0.01, "the lidar's own period");
     }
     // The beam along ARS's +X (azimuth 0, the middle one) sees the box 2.5 m away.
     assert!((scans[0].1.ranges[45] - 2.5).abs() < 1e-3 || (scans[0].1.ranges[44] - 2.5).abs() < 0.1);
@@ -310,6 +311,22 @@ fn frames_follow_the_joint_tree_of_ars_built_and_mjcf_bodies() {
     assert!((upper.translation.vector - Vector3::new(0.0, 0.0, 1.0)).norm() < 1e-4, "{upper}");
     assert!(upper.rotation.angle() < 1e-3, "{upper}");
     assert!((lower.translation.vector - Vector3::new(0.3, 0.0, 0.0)).norm() < 1e-4, "{lower}");
+}
+
+#[test]
+fn a_urdf_vehicles_root_link_is_given_in_odom() {
+    let mut sim = Simulation::builder().floor_plane(Vector3::y(), 0.0).build().unwrap();
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/thesis_vehicle.urdf");
+    sim.load_urdf(file, &UrdfOptions::new()).unwrap();
+    let options = RosOptions::for_scene(sim.scene());
+    assert_eq!(options.vehicles.len(), 1, "its root link is named chassis");
+    let mut publisher = Publisher::attach(&mut sim, &options).unwrap();
+    sim.step().unwrap();
+    let out = publisher.poll(&sim).unwrap();
+    let tf = transforms(&out, &publisher, "/tf");
+    find(&tf, "odom", "chassis");
+    let fixed = transforms(&out, &publisher, "/tf_static");
+    find(&fixed, "map", "odom");
 }
 
 #[test]

@@ -632,6 +632,10 @@ impl SensorSet {
         Ok(&self.slot(id)?.log)
     }
 
+    pub(crate) fn period<S: Sensor>(&self, id: SensorId<S>) -> Result<Option<f64>> {
+        Ok(self.slot(id)?.period)
+    }
+
     pub(crate) fn clear<S: Sensor>(&mut self, id: SensorId<S>) -> Result<()> {
         self.slot_mut(id)?.log.samples.clear();
         Ok(())

@@ -440,6 +440,12 @@ impl Simulation {
         self.sensors.log(id)
     }
 
+    /// How often a sensor samples, in simulated seconds (`None`: after every step);
+    /// what [`add_sensor_every`](Self::add_sensor_every) was given.
+    pub fn sensor_period<S: Sensor>(&self, id: SensorId<S>) -> Result<Option<f64>> {
+        self.sensors.period(id)
+    }
+
     /// Forgets the samples of a sensor so far.
     pub fn clear_records<S: Sensor>(&mut self, id: SensorId<S>) -> Result<()> {
         self.sensors.clear(id)
