@@ -194,6 +194,8 @@ mod schema;
 mod sensors;
 mod tendon;
 mod weld;
+#[cfg(test)]
+mod welded_tests;
 
 pub use keyframe::MjcfKeyframe;
 
