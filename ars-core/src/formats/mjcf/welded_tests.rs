@@ -1,8 +1,42 @@
-//! What MuJoCo never collides or constrains stays out of ODE's step: a joint's damping
-//! and armature are unbounded rows of the step's LCP.
+//! What MuJoCo never collides or constrains stays out of ODE's step: bodies welded to
+//! the world do not touch the world or each other, and a joint's damping and armature
+//! are unbounded rows of the step's LCP.
 
 use crate::world::joint::JointParam;
 use crate::{MjcfOptions, Simulation};
+
+/// A table sunk 1 cm into the floor, a cabinet sunk 10 cm into the table (both
+/// jointless children of the world with mass: ODE bodies fixed to the world) and a
+/// block falling onto the table.
+const FURNITURE: &str = r#"<mujoco><option timestep="0.002"/><worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1"/>
+    <body name="table" pos="0 0 0.19"><geom type="box" size="0.5 0.5 0.2" mass="50"/></body>
+    <body name="cabinet" pos="0.6 0 0.3"><geom type="box" size="0.2 0.2 0.3" mass="20"/></body>
+    <body name="block" pos="0 0 0.45"><freejoint/><geom type="box" size="0.05 0.05 0.05" mass="1"/></body>
+  </worldbody></mujoco>"#;
+
+#[test]
+fn bodies_welded_to_the_world_touch_neither_the_world_nor_each_other() {
+    let mut sim = Simulation::builder().time_step(0.002).build().unwrap();
+    let model = sim.load_mjcf_text(FURNITURE, "furniture.xml", &MjcfOptions::new()).unwrap();
+    let (table, cabinet, block) =
+        (model.body("table").unwrap(), model.body("cabinet").unwrap(), model.body("block").unwrap());
+    let floor = model.world_geoms[0];
+    let excluded = sim.scene().excluded_contacts();
+    for pair in [(table, cabinet), (table, floor), (cabinet, floor)] {
+        assert!(excluded.contains(&pair) || excluded.contains(&(pair.1, pair.0)), "{pair:?} in {excluded:?}");
+    }
+    assert!(!excluded.iter().any(|(a, b)| *a == block || *b == block), "the block touches everything");
+    let block_body = sim.scene().object(block).unwrap().body_handle();
+    sim.run_for(0.4).unwrap();
+    let contacts = sim.scene().world().contacts();
+    assert!(!contacts.is_empty(), "the block rests on the table");
+    for c in contacts {
+        assert!(c.pair.body1 == block_body || c.pair.body2 == block_body, "only the block touches: {c:?}");
+    }
+    let z = sim.scene().position(block).unwrap();
+    assert!((z.y - 0.44).abs() < 0.01, "on the table top (0.39 m) with its half height: {z}");
+}
 
 #[test]
 fn a_joint_s_damping_and_armature_motors_have_no_force_limit() {
