@@ -184,6 +184,8 @@ mod defaults;
 mod equality;
 mod include;
 mod keyframe;
+#[cfg(test)]
+mod lean_step_tests;
 mod mass;
 mod meshes;
 mod model;
@@ -194,8 +196,6 @@ mod schema;
 mod sensors;
 mod tendon;
 mod weld;
-#[cfg(test)]
-mod welded_tests;
 
 pub use keyframe::MjcfKeyframe;
 

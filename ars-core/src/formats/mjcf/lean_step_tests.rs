@@ -1,6 +1,7 @@
 //! What MuJoCo never collides or constrains stays out of ODE's step: bodies welded to
-//! the world do not touch the world or each other, and a joint's damping and armature
-//! are unbounded rows of the step's LCP.
+//! the world do not touch the world or each other, a pair of geoms touches at no more
+//! points than MuJoCo's, and a joint's damping and armature are unbounded rows of the
+//! step's LCP.
 
 use crate::world::joint::JointParam;
 use crate::{MjcfOptions, Simulation};
@@ -59,4 +60,32 @@ fn a_joint_s_damping_and_armature_motors_have_no_force_limit() {
     sim.run_for(0.5).unwrap();
     let rate = sim.scene().joint_state(model.joint("hinge").unwrap()).unwrap().rate;
     assert!(rate.is_finite() && rate.abs() > 0.1, "{rate}");
+}
+
+#[test]
+fn a_pair_touches_at_most_at_mujoco_s_four_points_around_its_footprint() {
+    // A can on a tray: ODE's cylinder–box collider finds 8 points around the rim,
+    // MuJoCo keeps 4. A tilted can rests on its rim's lowest points: the deepest is kept.
+    const CAN: &str = r#"<mujoco><option timestep="0.002"/><worldbody>
+        <geom name="tray" type="box" size="0.5 0.5 0.1" pos="0 0 -0.1"/>
+        <body name="can" pos="0 0 0.05"><freejoint/><geom type="cylinder" size="0.1 0.05" mass="1"/></body>
+      </worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().time_step(0.002).build().unwrap();
+    let model = sim.load_mjcf_text(CAN, "can.xml", &MjcfOptions::new()).unwrap();
+    let can = model.body("can").unwrap();
+    for _ in 0..150 {
+        sim.step().unwrap();
+        let contacts = sim.scene().world().contacts();
+        assert!(contacts.len() <= 4, "{} points", contacts.len());
+    }
+    let contacts = sim.scene().world().contacts();
+    assert_eq!(contacts.len(), 4, "the can rests on its rim");
+    // Spread over the rim: the points span most of its 0.2 m diameter both ways.
+    let span = |f: fn(&crate::ContactPoint) -> f64| {
+        let v: Vec<f64> = contacts.iter().map(f).collect();
+        v.iter().copied().fold(f64::MIN, f64::max) - v.iter().copied().fold(f64::MAX, f64::min)
+    };
+    assert!(span(|c| c.position.x) > 0.15 && span(|c| c.position.z) > 0.15, "{contacts:?}");
+    let y = sim.scene().position(can).unwrap().y;
+    assert!((y - 0.05).abs() < 0.005, "it rests upright on the tray: {y}");
 }
