@@ -3,6 +3,9 @@
 //! and a hash of every body's position and velocity (for checking that a change
 //! leaves a file's motion bit for bit the same).
 //!
+//! With `STEP_FILE_CONTACTS` set in the environment it also lists the last step's
+//! contact points by the objects (or geoms) they join.
+//!
 //! Instructions per step with callgrind (stable on a loaded machine): run it with
 //! `STEPS` 0 and N under `valgrind --tool=callgrind` and divide the difference by N.
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -34,6 +37,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         [p.x, p.y, p.z, v.x, v.y, v.z].into_iter().for_each(&mut mix);
     }
     let contacts = world.contacts().len();
+    if std::env::var_os("STEP_FILE_CONTACTS").is_some() {
+        print_contacts(&sim);
+    }
     eprintln!("{steps} steps, {:.1} us/step, {contacts} contacts, state {hash:016x}", wall / steps as f64 * 1e6);
     Ok(())
+}
+
+/// The last step's contact points, one line per pair of geoms: their objects (by
+/// geom; `static` when the geom belongs to none), how many points and the deepest.
+fn print_contacts(sim: &ars_core::Simulation) {
+    let scene = sim.scene();
+    let mut owner = std::collections::HashMap::new();
+    for (name, id) in scene.objects() {
+        if let Ok(object) = scene.object(id) {
+            for g in object.geoms() {
+                owner.insert(g, name.to_string());
+            }
+        }
+    }
+    let name = |g| owner.get(&g).cloned().unwrap_or_else(|| format!("static {g}"));
+    let mut pairs: std::collections::BTreeMap<(String, String), (usize, f64)> = Default::default();
+    for c in scene.world().contacts() {
+        let entry = pairs.entry((name(c.pair.geom1), name(c.pair.geom2))).or_insert((0, 0.0));
+        entry.0 += 1;
+        entry.1 = entry.1.max(c.depth);
+    }
+    for ((a, b), (n, depth)) in pairs {
+        eprintln!("  {a} -- {b}: {n} points, deepest {depth:.2e} m");
+    }
 }

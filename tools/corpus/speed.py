@@ -3,6 +3,7 @@
     .venv/bin/python tools/corpus/speed.py --gymnasium        # Gymnasium's MuJoCo models
     .venv/bin/python tools/corpus/speed.py                    # every corpus MJCF file
     .venv/bin/python tools/corpus/speed.py --match hand --seconds 1
+    .venv/bin/python tools/corpus/speed.py --match sawyer_xyz --match fetch/ --limit 5
 
 For each file, in this one process and one after the other (nothing else of this run in
 parallel): MuJoCo steps its compiled model (`mj_step`, `nstep` at a time, a native loop),
@@ -130,8 +131,14 @@ def select(args: argparse.Namespace) -> list[tuple[str, Path]]:
     if args.gymnasium:
         entries = [e for e in entries if GYMNASIUM_ASSETS in e["path"]]
     if args.match:
-        entries = [e for e in entries if args.match in e["path"]]
-    if args.limit:
+        # Each text's files in the manifest's order (its first --limit), one text after
+        # the other, each file once.
+        chosen: list[dict] = []
+        for text in args.match:
+            found = [e for e in entries if text in e["path"] and e not in chosen]
+            chosen += found[: args.limit] if args.limit else found
+        entries = chosen
+    elif args.limit:
         entries = entries[: args.limit]
     return [(e["path"], cache / e["path"]) for e in entries]
 
@@ -142,8 +149,12 @@ def main(argv: list[str] | None = None) -> int:
         "--cache", help="corpus cache (default: $ARS_CORPUS_CACHE or ~/.cache/ars-corpus)"
     )
     parser.add_argument("--gymnasium", action="store_true", help="only Gymnasium's MuJoCo models")
-    parser.add_argument("--match", help="only files whose path holds this text")
-    parser.add_argument("--limit", type=int, help="only the first N files")
+    parser.add_argument(
+        "--match",
+        action="append",
+        help="only files whose path holds this text (repeat it for several: a subset of packages)",
+    )
+    parser.add_argument("--limit", type=int, help="only the first N files (of each --match)")
     parser.add_argument("--seconds", type=float, default=2.0, help="simulated seconds per run")
     parser.add_argument("--repeat", type=int, default=3, help="runs per engine; the fastest counts")
     parser.add_argument("--json", help="write every measurement to this file")

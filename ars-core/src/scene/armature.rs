@@ -63,7 +63,7 @@ impl Scene {
             JointType::Hinge => OdeJoint::AngularMotor { axes },
             _ => OdeJoint::LinearMotor { axes },
         };
-        let builder = JointBuilder::new(motor).param(JointParam::MaxForce, 0, limits::MAX_FORCE);
+        let builder = JointBuilder::new(motor).param(JointParam::MaxForce, 0, f64::INFINITY);
         let builder = match (body1, body2) {
             (Some(a), Some(b)) => builder.between(a, b),
             (Some(a), None) => builder.to_world(a),

@@ -45,6 +45,9 @@ use crate::handle::{GeomHandle, ObjectId};
 ///   the two bodies' reduced mass (a static geom's
 ///   is infinite, and so is that of a body whose geoms have no parameters of their
 ///   own), where MuJoCo uses the contact's own inverse inertia along its normal.
+/// - At most 4 points per pair, as MuJoCo keeps (where ODE finds more: up to 8 for a box
+///   on a box, every vertex below a plane for a convex hull), the deepest and those
+///   spread farthest kept (see [`ContactSurface::max_contacts`]).
 /// - `margin` and `gap` are not mapped: ODE makes contacts only where geoms overlap.
 ///
 /// The default is MuJoCo's default geom.
@@ -80,6 +83,15 @@ impl Default for GeomContact {
         }
     }
 }
+
+/// Most contact points MuJoCo 4.0 keeps for a pair of geoms: a box, a cylinder or a
+/// convex mesh on a plane, a box or another hull, resting on a face, gives 4 (its
+/// colliders return at most that many on the corpus' models); ODE's colliders return up
+/// to 8 (box on box) or every vertex below a plane (a hull). The pairs of geoms with
+/// contact parameters of their own keep this many, spread over what ODE finds (see
+/// [`ContactSurface::max_contacts`]): fewer rows for ODE's exact step, the same
+/// support.
+pub(crate) const MUJOCO_CONTACTS_PER_PAIR: usize = 4;
 
 /// Below this a mass, a weight or a time counts as 0 (MuJoCo's `mjMINVAL`).
 const MIN_VALUE: f64 = 1e-15;

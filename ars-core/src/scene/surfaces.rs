@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::Scene;
-use super::geom_contact::GeomContact;
+use super::geom_contact::{GeomContact, MUJOCO_CONTACTS_PER_PAIR};
 use crate::contact::{CollisionHooks, ContactSurface, GeomPair};
 use crate::error::{Error, Result};
 use crate::handle::{GeomHandle, ObjectId, SpaceHandle};
@@ -86,9 +86,11 @@ impl PairSurfaces {
         if first.is_none() && second.is_none() {
             return None;
         }
-        // (Made again when the world's default changed its most contact points.)
+        // At most MuJoCo's points per pair. (Made again when the world's default changed
+        // its most contact points.)
+        let most = default.max_contacts.min(MUJOCO_CONTACTS_PER_PAIR);
         if let Some(surface) = self.made.get(&(pair.geom1, pair.geom2))
-            && surface.max_contacts == default.max_contacts
+            && surface.max_contacts == most
         {
             return Some(*surface);
         }
@@ -99,7 +101,7 @@ impl PairSurfaces {
             (true, false) => *mass_a,
             _ => *mass_b,
         };
-        let surface = a.combined(b).surface(self.time_step, mass, default.max_contacts);
+        let surface = a.combined(b).surface(self.time_step, mass, most);
         self.made.insert((pair.geom1, pair.geom2), surface);
         Some(surface)
     }

@@ -554,18 +554,25 @@ impl World {
         let Some(surface) = self.pair_surface(hooks, &pair, ray1 || ray2) else {
             return Ok(());
         };
-        let max = match surface {
-            PairSurface::Ray => MAX_CONTACTS_LIMIT,
-            PairSurface::Default => self.collision.default_surface.max_contacts,
-            PairSurface::Chosen(_, max) => max,
+        // A surface the hooks chose keeps its most points spread over all the collider
+        // finds (`spread`); the default surface keeps ODE's first, as the plain
+        // collision in C does.
+        let (asked, max) = match surface {
+            PairSurface::Ray => (MAX_CONTACTS_LIMIT, MAX_CONTACTS_LIMIT),
+            PairSurface::Default => {
+                let max = self.collision.default_surface.max_contacts;
+                (max, max)
+            }
+            PairSurface::Chosen(_, max) => (MAX_CONTACTS_LIMIT, max),
         };
         let scratch = &mut self.collision.scratch;
-        // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `max`
+        // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `asked`
         // entries of dContactGeom.
-        let n = match unsafe { guard::collide(o1, o2, max as i32, scratch.as_mut_ptr()) } {
-            Ok(n) => n.min(max),
+        let found = match unsafe { guard::collide(o1, o2, asked as i32, scratch.as_mut_ptr()) } {
+            Ok(n) => n.min(asked),
             Err(failure) => return Err(PairFailure::Ode(g1, g2, failure)),
         };
+        let n = if found > max { super::spread::keep_spread(&mut scratch[..found], max) } else { found };
         match surface {
             PairSurface::Ray => {
                 let (ray, other, flip) = if ray1 { (g1, g2, false) } else { (g2, g1, true) };

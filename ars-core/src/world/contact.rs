@@ -42,7 +42,11 @@ pub struct ContactSurface {
     /// N·m (with `approx1` proportional to the normal force: lengths, m). `None`: none.
     #[serde(default)]
     pub rolling: Option<[f64; 3]>,
-    /// Most contact points generated per pair (1 to [`MAX_CONTACTS_LIMIT`]).
+    /// Most contact points generated per pair (1 to [`MAX_CONTACTS_LIMIT`]). The world's
+    /// default surface keeps the collider's first points (ODE's order, as the original
+    /// ARS); a surface chosen by [`CollisionHooks`] keeps, when the collider finds more,
+    /// the deepest and those spread farthest from it and each other (a footprint's
+    /// corners, not the first vertices of a hull's list).
     pub max_contacts: usize,
 }
 

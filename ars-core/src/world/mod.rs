@@ -13,6 +13,7 @@ mod grid;
 pub mod joint;
 pub(crate) mod mesh_tree;
 pub mod raycast;
+mod spread;
 pub(crate) mod state;
 mod step;
 

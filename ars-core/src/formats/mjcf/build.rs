@@ -143,6 +143,7 @@ impl Scene {
         }
         self.place_mjcf_sensors(model, made)?;
         self.exclude_mjcf_contacts(model, made)?;
+        self.exclude_welded_to_world(model, made)?;
         for a in &model.actuators {
             let joint = made.joint(&a.joint).ok_or_else(|| Error::Invalid {
                 what: "an MJCF actuator",
@@ -183,6 +184,24 @@ impl Scene {
                     "<exclude> of {a:?} and {b:?}: a body welded to the world (its geoms static) is not \
                      excluded from contacts"
                 )),
+            }
+        }
+        Ok(())
+    }
+
+    /// MuJoCo never collides two geoms that are both welded to the world (`body_weldid`
+    /// 0: the world body's own geoms, and those of its jointless children and their
+    /// jointless descendants). A jointless child of the world that has mass is an ODE
+    /// body held to the world by a fixed joint (see the `weld` module), which ODE would
+    /// collide with the world's static geoms and with every other such body: a table
+    /// resting on the floor, a cabinet against the table, each contact fighting the
+    /// fixed joints in every step. Those pairs are excluded here, as MuJoCo excludes them.
+    fn exclude_welded_to_world(&mut self, model: &Model, made: &MjcfModel) -> Result<()> {
+        let welded: Vec<ObjectId> =
+            model.bodies.iter().filter(|b| b.joints.is_empty()).filter_map(|b| made.body(&b.name)).collect();
+        for (k, &a) in welded.iter().enumerate() {
+            for &b in welded[k + 1..].iter().chain(&made.world_geoms) {
+                self.exclude_contacts(a, b)?;
             }
         }
         Ok(())

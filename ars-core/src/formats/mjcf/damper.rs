@@ -6,7 +6,9 @@
 //! diverges once `damping · dt` outgrows the inertia it acts on, which robot files do
 //! all the time (damping 10 N·m·s/rad on a wrist of 3·10⁻⁴ kg·m² at dt 2.5 ms). Here an
 //! ODE motor beside the joint, on the same bodies and about the same axes, holds their
-//! relative velocity at 0 with constraint force mixing `1 / damping` and no force limit:
+//! relative velocity at 0 with constraint force mixing `1 / damping` and no force limit
+//! (an infinite one: ODE's LCP factors such unbounded rows with the joints' own at once,
+//! where a bounded row costs a pass of its own):
 //! ODE then solves its force `λ = −damping · v` with the step's own velocities
 //! (`λ = (target − J·v′) / CFM`), MuJoCo's `(M + h·D)·v′ = M·v + h·f`. The joint's own
 //! motor stays free for its dry friction (`frictionloss`) and for speeds. A ball's or a
@@ -18,7 +20,6 @@ use nalgebra::Vector3;
 use super::model::{Joint, JointKind};
 use crate::error::Result;
 use crate::handle::{BodyHandle, JointHandle};
-use crate::limits;
 use crate::scene::Scene;
 use crate::world::joint::{AxisFrame, JointBuilder, JointKind as OdeJoint, JointParam};
 
@@ -63,13 +64,14 @@ impl Scene {
             };
             for axis in 0..kind.param_axes() {
                 builder = builder.param(JointParam::Velocity, axis, 0.0);
-                builder =
-                    match resisting {
-                        Resisting::Damping(damping) => builder
-                            .param(JointParam::MaxForce, axis, limits::MAX_FORCE)
-                            .param(JointParam::Cfm, axis, 1.0 / damping),
-                        Resisting::Friction(most) => builder.param(JointParam::MaxForce, axis, most),
-                    };
+                builder = match resisting {
+                    Resisting::Damping(damping) => builder.param(JointParam::MaxForce, axis, f64::INFINITY).param(
+                        JointParam::Cfm,
+                        axis,
+                        1.0 / damping,
+                    ),
+                    Resisting::Friction(most) => builder.param(JointParam::MaxForce, axis, most),
+                };
             }
             made.push(self.world_mut().insert_joint(builder)?);
         }

@@ -184,6 +184,8 @@ mod defaults;
 mod equality;
 mod include;
 mod keyframe;
+#[cfg(test)]
+mod lean_step_tests;
 mod mass;
 mod meshes;
 mod model;

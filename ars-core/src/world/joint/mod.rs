@@ -318,7 +318,10 @@ pub enum JointParam {
     HiStop,
     /// Motor target velocity (rad/s or m/s).
     Velocity,
-    /// Maximum motor force or torque (0 turns the motor off).
+    /// Maximum motor force or torque (0 turns the motor off), at most
+    /// [`MAX_FORCE`](crate::limits::MAX_FORCE), or `f64::INFINITY`: no limit, and a row
+    /// that ODE's exact step solves with the joints' own at once (a bounded row takes a
+    /// pass of the LCP of its own).
     MaxForce,
     /// Motor fudge factor.
     FudgeFactor,
@@ -605,7 +608,10 @@ fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> 
             }
         }
         JointParam::MaxForce => {
-            limits::in_range("joint motor max force", value, 0.0, limits::MAX_FORCE)?;
+            // Infinity: a motor without a limit (ODE's unbounded row).
+            if value != f64::INFINITY {
+                limits::in_range("joint motor max force", value, 0.0, limits::MAX_FORCE)?;
+            }
         }
         JointParam::Cfm | JointParam::StopCfm => {
             validate::non_negative("joint CFM", value)?;
@@ -655,5 +661,22 @@ impl JointReference {
     pub(crate) unsafe fn of(b1: ffi::dBodyID, b2: ffi::dBodyID) -> JointReference {
         // SAFETY: the caller's contract.
         unsafe { JointReference { body1: ExactPose::of(b1), body2: (!b2.is_null()).then(|| ExactPose::of(b2)) } }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_motor_s_force_is_limited_within_max_force_or_unlimited() {
+        let motor = JointKind::AngularMotor { axes: vec![(AxisFrame::Body1, nalgebra::Vector3::x())] };
+        let check = |value| check_param(&motor, JointParam::MaxForce, 0, value);
+        for fine in [0.0, 10.0, limits::MAX_FORCE, f64::INFINITY] {
+            assert!(check(fine).is_ok(), "{fine}");
+        }
+        for bad in [-1.0, 2.0 * limits::MAX_FORCE, f64::NAN, f64::NEG_INFINITY] {
+            assert!(check(bad).is_err(), "{bad}");
+        }
     }
 }
