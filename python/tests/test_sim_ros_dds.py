@@ -1,0 +1,174 @@
+"""`sim.ros(...)` checked against an independent DDS, Eclipse Cyclone DDS's Python
+package, as test_ros_bridge.py checks `ars ros`: the thesis' mobile manipulator runs
+under `sim.ros(..., lock_step=True)` in a Python thread (the call releases the GIL)
+while this test, a Cyclone DDS participant in the same process, steps it through
+/ars/step_simulation and reads /clock and /joint_states, which equal the same steps run
+headless; the simulation given back is the headless one to the bit. A real-time
+`sim.ros` with no duration ends on SetSimulationState's QUITTING. Both sides use
+unicast discovery on the loopback only."""
+
+import random
+import threading
+from dataclasses import dataclass
+
+import pytest
+
+pytest.importorskip(
+    "cyclonedds",
+    reason="the ROS 2 bridge test needs Eclipse Cyclone DDS (pip install cyclonedds)",
+    exc_type=ImportError,
+)
+pytest.importorskip("gymnasium", reason="the mobile manipulator is built by ars.gym")
+
+from cyclonedds.core import Policy, Qos
+from cyclonedds.domain import DomainParticipant
+from cyclonedds.idl import IdlStruct
+from cyclonedds.idl.types import array, int32, uint8, uint32
+from test_ros_bridge import (
+    CYCLONE_LOOPBACK,
+    RESULT_OK,
+    STATE_PAUSED,
+    CallResult,
+    Clock,
+    GetSimulationStateRequest,
+    GetSimulationStateResponse,
+    JointState,
+    Latest,
+    Service,
+    SimulationState,
+    StepSimulationRequest,
+    StepSimulationResponse,
+)
+
+from ars.gym.envs import SpeedProfileEnv
+
+STATE_PLAYING = 1
+STATE_QUITTING = 3
+
+
+@dataclass
+class SetSimulationStateRequest(
+    IdlStruct, typename="simulation_interfaces::srv::dds_::SetSimulationState_Request_"
+):
+    client: array[uint8, 8]
+    sequence_high: int32
+    sequence_low: uint32
+    state: SimulationState
+
+
+@dataclass
+class SetSimulationStateResponse(
+    IdlStruct, typename="simulation_interfaces::srv::dds_::SetSimulationState_Response_"
+):
+    client: array[uint8, 8]
+    sequence_high: int32
+    sequence_low: uint32
+    result: CallResult
+
+
+class InThread:
+    """`sim.ros(**options)` on a Python thread of its own: what it returned or raised."""
+
+    def __init__(self, sim, **options):
+        self.returned = self.raised = None
+
+        def run():
+            try:
+                self.returned = sim.ros(**options)
+            except BaseException as e:  # noqa: BLE001  (handed to the test)
+                self.raised = e
+
+        self.thread = threading.Thread(target=run, daemon=True)
+        self.thread.start()
+
+    def result(self, timeout):
+        self.thread.join(timeout)
+        assert not self.thread.is_alive(), f"sim.ros still running after {timeout} s"
+        if self.raised is not None:
+            raise self.raised
+        return self.returned
+
+
+def answered(get_state, bridge):
+    """The bridge's state once it answers (discovery), asking for 30 s."""
+    for _ in range(60):
+        assert bridge.thread.is_alive(), f"sim.ros ended: {bridge.raised!r}"
+        state = get_state.call(0.5, structure_needs_at_least_one_member=0)
+        if state is not None:
+            return state
+    raise AssertionError("no answer from /ars/get_simulation_state in 30 s")
+
+
+@pytest.fixture
+def domain(monkeypatch):
+    """A ROS domain of the test's own, with Cyclone DDS on the loopback only."""
+    monkeypatch.setenv("CYCLONEDDS_URI", CYCLONE_LOOPBACK)
+    return random.randrange(201, 233)
+
+
+def test_sim_ros_in_lock_step_gives_the_headless_bits_over_dds(domain):
+    sim = SpeedProfileEnv().build()
+    bridge = InThread(
+        sim, duration=1.0, lock_step=True, rate=50, domain_id=domain, services="cyclonedds"
+    )
+    dp = DomainParticipant(domain)
+    best_effort = Qos(Policy.Reliability.BestEffort, Policy.History.KeepLast(100))
+    reliable = Qos(
+        Policy.Reliability.Reliable(max_blocking_time=1_000_000_000), Policy.History.KeepLast(100)
+    )
+    clock = Latest(dp, "rt/clock", Clock, best_effort)
+    joint_states = Latest(dp, "rt/joint_states", JointState, reliable)
+    step = Service(dp, "step_simulation", StepSimulationRequest, StepSimulationResponse)
+    get_state = Service(
+        dp, "get_simulation_state", GetSimulationStateRequest, GetSimulationStateResponse
+    )
+    state = answered(get_state, bridge)
+    assert (state.state.state, state.result.result) == (STATE_PAUSED, RESULT_OK)
+
+    # One second of 0.25 ms steps in two calls; the bridge ends at its duration.
+    for steps in (1000, 3000):
+        reply = step.call(60.0, steps=steps)
+        assert reply is not None and reply.result.result == RESULT_OK, reply
+    summary = bridge.result(timeout=30)
+    headless = SpeedProfileEnv().build()
+    headless.step(4000)
+    assert summary == {"end_time": headless.time, "steps": 4000}
+
+    after_first = joint_states.wait(
+        lambda m: (m.header.stamp.sec, m.header.stamp.nanosec) == (0, 250_000_000)
+    )
+    last = joint_states.wait(lambda m: (m.header.stamp.sec, m.header.stamp.nanosec) == (1, 0))
+    assert list(last.name) == ["r1", "r2", "w1", "w2"]
+    assert list(last.position) == [headless.joint(n).position for n in last.name]
+    assert list(last.velocity) == [headless.joint(n).velocity for n in last.name]
+    first = SpeedProfileEnv().build()
+    first.step(1000)
+    assert list(after_first.position) == [first.joint(n).position for n in after_first.name]
+    # /clock at rate 50: every 0.02 s of simulated time, in order, up to 1 s (best
+    # effort: a burst may lose some).
+    stamps = [m.clock.sec * 1_000_000_000 + m.clock.nanosec for m in clock.poll()]
+    assert stamps and stamps == sorted(stamps) and stamps[-1] == 1_000_000_000, stamps
+    assert all(s % 20_000_000 == 0 for s in stamps), stamps
+    # The simulation given back is the headless run's, to the bit, and steps on.
+    assert sim.snapshot() == headless.snapshot()
+    sim.step(10)
+    assert sim.step_count == 4010
+
+
+def test_sim_ros_in_real_time_ends_when_asked_to_quit(domain):
+    sim = SpeedProfileEnv().build()
+    bridge = InThread(sim, domain_id=domain, services="cyclonedds")
+    dp = DomainParticipant(domain)
+    get_state = Service(
+        dp, "get_simulation_state", GetSimulationStateRequest, GetSimulationStateResponse
+    )
+    set_state = Service(
+        dp, "set_simulation_state", SetSimulationStateRequest, SetSimulationStateResponse
+    )
+    state = answered(get_state, bridge)
+    assert state.state.state == STATE_PLAYING
+    reply = set_state.call(10.0, state=SimulationState(STATE_QUITTING))
+    assert reply is not None and reply.result.result == RESULT_OK, reply
+    summary = bridge.result(timeout=30)
+    assert summary["steps"] == sim.step_count > 0
+    assert summary["end_time"] == sim.time
