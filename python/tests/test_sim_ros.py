@@ -82,7 +82,7 @@ def test_a_bad_option_is_an_input_error_naming_it_and_the_simulation_is_untouche
     sim = pendulum()
     sim.step(3)
     with pytest.raises(ars.InputError, match=named) as raised:
-        sim.ros(0.1, domain_id=keywords.pop("domain_id", DOMAIN), **keywords)
+        sim.ros(**{"duration": 0.1, "domain_id": DOMAIN, **keywords})
     assert isinstance(raised.value, ValueError)
     assert sim.step_count == 3
     sim.step(2)
