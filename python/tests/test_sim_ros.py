@@ -5,6 +5,9 @@ exception comes out of it. Talking to it over DDS: test_sim_ros_dds.py; Ctrl-C:
 test_interrupt_long_calls.py."""
 
 import random
+import shutil
+import subprocess
+import sys
 import threading
 import time
 
@@ -130,3 +133,36 @@ def test_a_hook_cannot_run_its_own_simulation_as_a_ros_node():
     sim.add_pre_step(hook)
     sim.step()
     assert len(refused) == 1
+
+
+NO_NETWORK = """
+import ars
+sim = ars.Simulation()
+sim.add_sphere(0.1, (0.0, 1.0, 0.0), mass=1.0)
+try:
+    sim.ros(0.1)
+except ars.ArsError as e:
+    print(type(e).__name__, e)
+sim.step(3)
+print(sim.step_count)
+"""
+
+
+def test_no_network_is_an_ars_error_and_the_simulation_is_untouched():
+    # A network namespace of its own, where not even the loopback is up.
+    if shutil.which("unshare") is None:
+        pytest.skip("no unshare command")
+    made = subprocess.run(["unshare", "-n", "true"], check=False, capture_output=True)
+    if made.returncode != 0:
+        pytest.skip("not allowed to make a network namespace (unshare -n)")
+    run = subprocess.run(
+        ["unshare", "-n", sys.executable, "-c", NO_NETWORK],
+        check=False,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert run.returncode == 0, run.stderr
+    said, steps = run.stdout.splitlines()
+    assert said.startswith("ArsError sim.ros: no network: no network interface is up"), said
+    assert steps == "3"
