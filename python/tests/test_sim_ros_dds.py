@@ -4,12 +4,13 @@ under `sim.ros(..., lock_step=True)` in a Python thread (the call releases the G
 while this test, a Cyclone DDS participant in the same process, steps it through
 /ars/step_simulation and reads /clock and /joint_states, which equal the same steps run
 headless; the simulation given back is the headless one to the bit. A real-time
-`sim.ros` with no duration ends on SetSimulationState's QUITTING. Both sides use
-unicast discovery on the loopback only."""
+`sim.ros` with no duration ends on SetSimulationState's QUITTING, and a URDF robot's
+text is /robot_description. Both sides use unicast discovery on the loopback only."""
 
 import random
 import threading
 from dataclasses import dataclass
+from pathlib import Path
 
 import pytest
 
@@ -40,6 +41,7 @@ from test_ros_bridge import (
     StepSimulationResponse,
 )
 
+import ars
 from ars.gym.envs import SpeedProfileEnv
 
 STATE_PLAYING = 1
@@ -174,3 +176,33 @@ def test_sim_ros_in_real_time_ends_when_asked_to_quit(domain):
     summary = bridge.result(timeout=30)
     assert summary["steps"] == sim.step_count > 0
     assert summary["end_time"] == sim.time
+
+
+@dataclass
+class String(IdlStruct, typename="std_msgs::msg::dds_::String_"):
+    data: str
+
+
+def test_sim_ros_publishes_the_urdf_robots_description(domain):
+    urdf = Path(__file__).resolve().parents[2] / "tests" / "data" / "rnea_arm.urdf"
+    sim = ars.Simulation()
+    sim.load_urdf(str(urdf), fixed_base=True)
+    bridge = InThread(sim, lock_step=True, domain_id=domain, services="cyclonedds")
+    dp = DomainParticipant(domain)
+    latched = Qos(
+        Policy.Reliability.Reliable(max_blocking_time=1_000_000_000),
+        Policy.Durability.TransientLocal,
+        Policy.History.KeepLast(1),
+    )
+    description = Latest(dp, "rt/robot_description", String, latched)
+    get_state = Service(
+        dp, "get_simulation_state", GetSimulationStateRequest, GetSimulationStateResponse
+    )
+    set_state = Service(
+        dp, "set_simulation_state", SetSimulationStateRequest, SetSimulationStateResponse
+    )
+    answered(get_state, bridge)
+    assert description.wait(lambda m: True).data == urdf.read_text()
+    reply = set_state.call(10.0, state=SimulationState(STATE_QUITTING))
+    assert reply is not None and reply.result.result == RESULT_OK, reply
+    assert bridge.result(timeout=30) == {"end_time": 0.0, "steps": 0}
