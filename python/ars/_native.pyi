@@ -401,6 +401,19 @@ class Simulation:
         state_rate: float = 50.0,
         allow_long: bool = False,
     ) -> dict[str, Any]: ...
+    # The live ROS 2 bridge.
+    def ros(
+        self,
+        duration: float | None = None,
+        *,
+        lock_step: bool = False,
+        rate: float | None = None,
+        domain_id: int | None = None,
+        node_name: str = "ars",
+        services: str | None = None,
+        drive: tuple[str, str] | None = None,
+        wheel_torque: float | None = None,
+    ) -> _RosSummary: ...
 
 @final
 class Body:
@@ -531,6 +544,10 @@ class Renderer:
     def size(self) -> tuple[int, int]: ...
     def render(self, sim: Simulation) -> Image: ...
     def save(self, sim: Simulation, path: _Path) -> None: ...
+
+class _RosSummary(TypedDict):
+    end_time: float
+    steps: int
 
 class _RecordedVideo(TypedDict):
     path: str

@@ -16,6 +16,7 @@ mod limits;
 mod many;
 mod mcap;
 mod replay;
+mod ros;
 mod sensors;
 mod simulation;
 mod verify;

@@ -256,6 +256,7 @@ SIM = [
     ),
     ("replay", None, (0.1,), {"size": (64, 48), "camera": (3.0, 2.0, 3.0)}),
     ("record_mcap", None, (Path("run.mcap"), 0.1), {"state_rate": 25.0}),
+    ("ros", None, (0.01,), {"domain_id": 150, "rate": 50.0}),
     ("show", None, (1.0,), {"frames": 2, "size": (64, 48), "camera": (3.0, 2.0, 3.0)}),
     ("set_gravity", lambda s: lambda g: setattr(s, "gravity", g), ((0.0, -1.0, 0.0),), {}),
 ]

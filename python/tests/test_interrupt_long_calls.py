@@ -322,3 +322,28 @@ def test_ctrl_c_closes_the_window_of_show(tmp_path, display):
     )
     assert_prompt(after)
     assert report["stepped_on"]
+
+
+@pytest.mark.parametrize("lock_step", [False, True], ids=["real_time", "lock_step"])
+def test_ctrl_c_stops_the_ros_bridge_and_gives_the_simulation_back(tmp_path, lock_step):
+    # Real time: ready once it steps (a hook leaves a file at the first step). Lock step
+    # waits for StepSimulation calls that never come: ready once its node is up.
+    setup = """
+    sim = ball_on_a_floor()
+    sim.add_post_step(lambda: sim.step_count == 1 and open("stepping", "w").close())
+    """
+    domain = 100 + os.getpid() % 100
+    after, report = interrupt_child(
+        tmp_path,
+        setup,
+        f"sim.ros(lock_step={lock_step}, domain_id={domain})",
+        "usable(sim)",
+        wait=1.5 if lock_step else 0.0,
+        ready=None if lock_step else (lambda: (tmp_path / "stepping").exists()),
+    )
+    assert_prompt(after)
+    assert report["stepped_on"]
+    if lock_step:
+        assert report["steps"] == 0, "paused: nothing stepped it"
+    else:
+        assert 0 < report["steps"] < 60 * 2500, "real time: some steps, no more than a minute's"

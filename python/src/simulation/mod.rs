@@ -10,7 +10,7 @@
 
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError, TryLockError};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError, TryLockError};
 use std::time::{Duration, Instant};
 
 use ars_core::body::MassSpec;
@@ -188,6 +188,10 @@ pub struct PySimulation {
     /// The Python hooks by the id Python knows them by.
     hooks: Mutex<HashMap<u64, AddedHook>>,
     next_hook: Mutex<u64>,
+    /// Why the simulation is gone, if it is: `sim.ros` hands the simulation to the
+    /// ROS 2 bridge, which drops it when it fails (see `crate::ros`); `sim` then holds
+    /// an empty stand-in, and every later call is refused with this reason.
+    lost: OnceLock<String>,
 }
 
 impl PySimulation {
@@ -202,6 +206,7 @@ impl PySimulation {
             context: Arc::default(),
             hooks: Mutex::default(),
             next_hook: Mutex::new(1),
+            lost: OnceLock::new(),
         }
     }
 
@@ -212,6 +217,7 @@ impl PySimulation {
         py: Python<'_>,
         f: impl FnOnce(&mut Simulation) -> ars_core::Result<R> + Send,
     ) -> PyResult<R> {
+        self.check_not_lost(py)?;
         if let Some(sim) = self.context.current() {
             // SAFETY: `sim` is the `&mut Simulation` a hook running on this thread was
             // handed (PyHook::call); that hook does not use it until its Python call
@@ -226,6 +232,21 @@ impl PySimulation {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(&mut sim)))
         });
         outcome(py, caught)
+    }
+
+    /// Refuses the call if the simulation was lost (see [`mark_lost`](Self::mark_lost)):
+    /// an `ars.SimulationError` naming why.
+    pub(crate) fn check_not_lost(&self, py: Python<'_>) -> PyResult<()> {
+        match self.lost.get() {
+            Some(why) => Err(raise(py, "SimulationError", format!("this simulation is gone: {why}; build a new one"))),
+            None => Ok(()),
+        }
+    }
+
+    /// Records that the simulation was lost (`sim` holds a stand-in): every later call
+    /// is refused with `why`. Call it while holding the lock of `sim`.
+    pub(crate) fn mark_lost(&self, why: String) {
+        let _ = self.lost.set(why);
     }
 
     /// Whether a Python hook of this simulation is running on this thread (the
@@ -252,6 +273,7 @@ impl PySimulation {
         py: Python<'_>,
         f: impl FnOnce(&mut Simulation) -> ars_core::Result<()> + Send,
     ) -> PyResult<()> {
+        self.check_not_lost(py)?;
         if self.context.current().is_some() {
             return Err(raise(py, "BusyError", "a hook cannot step the simulation it runs in".into()));
         }
@@ -282,6 +304,9 @@ impl PySimulation {
         n: u64,
         stop: impl FnMut() -> bool,
     ) -> std::thread::Result<ars_core::Result<()>> {
+        if let Some(why) = self.lost.get() {
+            return Ok(Err(Error::User(format!("this simulation is gone: {why}; build a new one"))));
+        }
         let mut sim = lock(&self.sim);
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sim.step_n_until(n, stop)))
     }
