@@ -391,6 +391,7 @@ NOT_IN_PYTHON = {
     "Simulation.hooks",
     "Simulation.hooks_mut",
     "Simulation.sensor",
+    "Simulation.sensor_period",
     "Simulation.sensors_of",
     "Simulation.sensor_ids_of",
     "Scene.robot_descriptions",
