@@ -20,8 +20,8 @@ use std::sync::Mutex;
 use std::sync::mpsc::{Receiver, RecvTimeoutError};
 
 use ars_core::Simulation;
-use ars_ros::bridge::{self, BridgeError, BridgeOptions, DiffDrive, ServiceRmw};
-use ars_ros::{RosError, RosOptions};
+use ars_ros::RosError;
+use ars_ros::bridge::{self, BridgeError, BridgeOptions, ServiceRmw};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -155,27 +155,14 @@ enum Ended {
     Panicked(String),
 }
 
-/// What [`bridge::prepare`] would refuse, checked with the simulation still in hand.
+/// What the bridge would refuse ([`bridge::check`]: the options, the network), and a
+/// simulation it could not reset to, checked with the simulation still in hand.
 fn check_before(sim: &Simulation, options: &BridgeOptions) -> Result<(), Ended> {
-    let names = options.drive.as_ref().map(|(l, r)| (l.as_str(), r.as_str()));
-    DiffDrive::find(sim.scene(), names, options.wheel_torque)
-        .map_err(|e| Ended::BadOption(format!("drive: {}", e.trim_start_matches("--drive: "))))?;
-    let publishing = RosOptions { state_rate: options.rate, ..RosOptions::for_scene(sim.scene()) };
-    publishing.check().map_err(|e| Ended::BadOption(format!("rate: {e}")))?;
-    sim.snapshot().map_err(Ended::Refused)?;
-    check_network().map_err(Ended::NoNetwork)
-}
-
-/// The bridge's own check: DDS needs at least the loopback up.
-fn check_network() -> Result<(), String> {
-    let socket = std::net::UdpSocket::bind(("0.0.0.0", 0))
-        .map_err(|e| format!("no network: cannot open a UDP socket ({e}); DDS needs one"))?;
-    // Connecting a UDP socket sends nothing: it only finds a route.
-    socket.connect(("127.0.0.1", 7400)).map(drop).map_err(|e| {
-        format!(
-            "no network: no network interface is up, not even the loopback ({e}); DDS needs one (`ip link set lo up`)"
-        )
-    })
+    bridge::check(sim.scene(), options).map_err(|e| match e {
+        BridgeError::Network(_) => Ended::NoNetwork(e.to_string()),
+        other => Ended::BadOption(other.to_string()),
+    })?;
+    sim.snapshot().map(drop).map_err(Ended::Refused)
 }
 
 /// Runs the bridge on `owner`'s simulation, locked throughout; gives it back to

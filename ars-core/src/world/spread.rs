@@ -39,8 +39,10 @@ pub(super) fn keep_spread(points: &mut [ffi::dContactGeom], most: usize) -> usiz
     let mut kept: Vec<usize> = Vec::with_capacity(most);
     // The deepest (the first of equals).
     kept.push((0..points.len()).fold(0, |b, i| if points[i].depth > points[b].depth { i } else { b }));
+    // The kept points' positions, beside their indices.
+    let mut chosen: Vec<Vector3<f64>> = Vec::with_capacity(most);
+    chosen.push(point(&points[kept[0]]));
     while kept.len() < most {
-        let chosen: Vec<Vector3<f64>> = kept.iter().map(|&i| point(&points[i])).collect();
         let next = match chosen.len() {
             1 => best(points, &kept, |p| (p - chosen[0]).norm_squared()),
             2 => best(points, &kept, |p| (chosen[1] - chosen[0]).cross(&(p - chosen[0])).norm_squared()),
@@ -51,7 +53,10 @@ pub(super) fn keep_spread(points: &mut [ffi::dContactGeom], most: usize) -> usiz
             _ => best(points, &kept, |p| chosen.iter().map(|c| (p - c).norm_squared()).fold(f64::INFINITY, f64::min)),
         };
         match next {
-            Some(i) => kept.push(i),
+            Some(i) => {
+                kept.push(i);
+                chosen.push(point(&points[i]));
+            }
             None => break,
         }
     }

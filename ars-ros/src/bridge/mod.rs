@@ -136,10 +136,24 @@ pub enum BridgeError {
 /// Checks the options, finds the drive and makes the core (no network yet).
 /// `stepper` is a [`Simulation`](ars_core::Simulation) or a [`ProgramRunner`](ars_core::ProgramRunner).
 pub fn prepare<S: FrameStepper>(stepper: S, options: &BridgeOptions) -> Result<BridgeCore<S>, BridgeError> {
+    let (ros, drive) = checked(stepper.simulation().scene(), options)?;
+    Ok(BridgeCore::new(stepper, &ros, drive, options.gains, options.lock_step)?)
+}
+
+/// What [`run`] refuses before it takes the simulation: `options` on `scene` (the
+/// domain, the rate, the duration, the drive) and the network. A front end that hands
+/// a simulation over (Python's `sim.ros`) asks first, so that a refusal leaves the
+/// simulation with it.
+pub fn check(scene: &ars_core::Scene, options: &BridgeOptions) -> Result<(), BridgeError> {
+    checked(scene, options)?;
+    check_network()
+}
+
+/// The publisher's options and the drive of `options` on `scene`, once checked.
+fn checked(scene: &ars_core::Scene, options: &BridgeOptions) -> Result<(RosOptions, Option<DiffDrive>), BridgeError> {
     if options.domain_id > 232 {
         return Err(BridgeError::Setup(format!("domain ID {}: ROS 2 domains are 0 to 232", options.domain_id)));
     }
-    let scene = stepper.simulation().scene();
     let ros = RosOptions { state_rate: options.rate, ..RosOptions::for_scene(scene) };
     ros.check().map_err(|e| BridgeError::Setup(e.to_string()))?;
     if options.duration.is_some_and(|d| !(d.is_finite() && d >= 0.0)) {
@@ -147,7 +161,7 @@ pub fn prepare<S: FrameStepper>(stepper: S, options: &BridgeOptions) -> Result<B
     }
     let names = options.drive.as_ref().map(|(l, r)| (l.as_str(), r.as_str()));
     let drive = DiffDrive::find(scene, names, options.wheel_torque).map_err(BridgeError::Setup)?;
-    Ok(BridgeCore::new(stepper, &ros, drive, options.gains, options.lock_step)?)
+    Ok((ros, drive))
 }
 
 /// Runs `stepper` (a [`Simulation`](ars_core::Simulation) or a [`ProgramRunner`](ars_core::ProgramRunner)) as

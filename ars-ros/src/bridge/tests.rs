@@ -317,5 +317,10 @@ fn bad_options_are_refused_before_any_network() {
     assert!(rate.contains("state rate") && rate.contains("got 0"), "{rate}");
     let drive = Some(("left".to_string(), "w1".to_string()));
     assert!(refused(BridgeOptions { drive, ..Default::default() }).contains("no hinge joint named \"left\""));
+    // What a front end asks before it hands a simulation over: the same refusal.
+    let sim = mobile_manipulator();
+    let drive = Some(("left".to_string(), "w1".to_string()));
+    let asked = super::check(sim.scene(), &BridgeOptions { drive, ..Default::default() }).unwrap_err().to_string();
+    assert!(asked.contains("no hinge joint named \"left\""), "{asked}");
     let _ = CommandGains::default();
 }
