@@ -554,6 +554,10 @@ impl World {
         let Some(surface) = self.pair_surface(hooks, &pair, ray1 || ray2) else {
             return Ok(());
         };
+        // SAFETY: both geoms are live.
+        if !ray1 && !ray2 && unsafe { above_plane(o1, shape1, o2) || above_plane(o2, shape2, o1) } {
+            return Ok(());
+        }
         // A surface the hooks chose keeps its most points spread over all the collider
         // finds (`spread`); the default surface keeps ODE's first, as the plain
         // collision in C does.
@@ -675,6 +679,30 @@ unsafe fn pair_may_touch(b1: ffi::dBodyID, b2: ffi::dBodyID, ray1: bool, ray2: b
         return false;
     }
     true
+}
+
+/// Whether `plane` is a plane and `other`'s bounding box lies wholly on its open side,
+/// where no collider of ODE's finds a point (each reports only depths ≥ 0): a robot's
+/// links above the floor then cost no pass over their hulls' vertices each step.
+/// Nothing else changes: those pairs made no contact.
+///
+/// # Safety
+/// Both geoms are live.
+#[inline]
+unsafe fn above_plane(plane: ffi::dGeomID, shape: &crate::shape::Shape, other: ffi::dGeomID) -> bool {
+    if !matches!(shape, crate::shape::Shape::Plane { .. }) {
+        return false;
+    }
+    let (mut p, mut b) = ([0.0; 4], [0.0; 6]);
+    // SAFETY: `plane` is a live plane geom and `other` a live geom (the caller's
+    // contract); both buffers are as long as ODE writes.
+    unsafe {
+        ffi::dGeomPlaneGetParams(plane, p.as_mut_ptr());
+        ffi::dGeomGetAABB(other, b.as_mut_ptr());
+    }
+    // The box's least height over the plane (n·x at its lowest corner, less d).
+    let lowest: f64 = (0..3).map(|i| p[i] * if p[i] >= 0.0 { b[2 * i] } else { b[2 * i + 1] }).sum();
+    lowest - p[3] > 0.0
 }
 
 /// One contact joint per finite contact point, with `contact`'s surface, attached to
