@@ -15,6 +15,8 @@ pub enum SensorTarget {
     Joint,
     /// A list of joints.
     Joints,
+    /// A list of objects.
+    Objects,
     /// The whole simulation.
     Simulation,
     /// A pose in the world, or on at most one object, given with its settings.
@@ -69,6 +71,8 @@ pub enum SensorKind {
     JointPositions,
     /// [`JointVelocities`](super::JointVelocities).
     JointVelocities,
+    /// [`Momentum`](super::Momentum).
+    Momentum,
     /// [`Lidar`](super::Lidar): made from its settings only.
     Lidar,
     /// [`DepthCamera`](super::DepthCamera): made from its settings only.
@@ -77,7 +81,7 @@ pub enum SensorKind {
 
 impl SensorKind {
     /// Every kind, in this order.
-    pub const ALL: [SensorKind; 23] = [
+    pub const ALL: [SensorKind; 24] = [
         SensorKind::Gps,
         SensorKind::Velometer,
         SensorKind::Velocimeter,
@@ -99,6 +103,7 @@ impl SensorKind {
         SensorKind::JointReaction,
         SensorKind::JointPositions,
         SensorKind::JointVelocities,
+        SensorKind::Momentum,
         SensorKind::Lidar,
         SensorKind::DepthCamera,
     ];
@@ -133,6 +138,7 @@ impl SensorKind {
             SensorKind::JointReaction => "JointReaction",
             SensorKind::JointPositions => "JointPositions",
             SensorKind::JointVelocities => "JointVelocities",
+            SensorKind::Momentum => "Momentum",
             SensorKind::Lidar => "Lidar",
             SensorKind::DepthCamera => "DepthCamera",
         }
@@ -148,6 +154,7 @@ impl SensorKind {
             | SensorKind::JointPower
             | SensorKind::JointReaction => SensorTarget::Joint,
             SensorKind::JointPositions | SensorKind::JointVelocities => SensorTarget::Joints,
+            SensorKind::Momentum => SensorTarget::Objects,
             SensorKind::Lidar | SensorKind::DepthCamera => SensorTarget::Mount,
             _ => SensorTarget::Object,
         }
@@ -198,7 +205,7 @@ mod tests {
         }
         let with_settings: Vec<_> = SensorKind::ALL.into_iter().filter(|k| k.target() == SensorTarget::Mount).collect();
         assert_eq!(with_settings, [SensorKind::Lidar, SensorKind::DepthCamera]);
-        assert_eq!(SensorKind::from_targets().count(), 21);
+        assert_eq!(SensorKind::from_targets().count(), 22);
         assert!("Gpss".parse::<SensorKind>().is_err());
         assert_eq!(SensorKind::of_type_name("Laser"), None);
     }

@@ -8,6 +8,7 @@ use super::body::{
 use super::energy::{Energy, Kinetic, Potential};
 use super::joint::{Effort, Power, Reaction};
 use super::laser::LaserReading;
+use super::momentum::MomentumReading;
 use super::touch::TouchReading;
 use super::{Record, Sensor};
 use crate::control::JointState;
@@ -45,6 +46,11 @@ perturb_fields!(Position, |r, n| { p3(&mut r.position, n) });
 perturb_fields!(Velocity, |r, n| {
     v3(&mut r.linear, n);
     v3(&mut r.angular, n)
+});
+perturb_fields!(MomentumReading, |r, n| {
+    p3(&mut r.centre, n);
+    v3(&mut r.velocity, n);
+    v3(&mut r.angular_momentum, n)
 });
 perturb_fields!(Acceleration, |r, n| {
     v3(&mut r.linear, n);

@@ -7,8 +7,8 @@ use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
     Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
     Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, JointVelocities, KineticEnergy,
-    Lidar, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorKind, SensorSettings, SystemTotalEnergy,
-    TotalEnergy, Touch, Velocimeter, Velometer,
+    Lidar, Momentum, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorKind, SensorSettings,
+    SystemTotalEnergy, TotalEnergy, Touch, Velocimeter, Velometer,
 };
 
 impl Simulation {
@@ -135,6 +135,8 @@ impl Simulation {
                 self.add_any(sensor, period)
             }
             (K::JointVelocities, _) => Err(wrong("joints only")),
+            (K::Momentum, _) if joints.is_empty() => self.add_noisy(Momentum::new(objects)?, period, noise),
+            (K::Momentum, _) => Err(wrong("objects only")),
             (K::Lidar | K::DepthCamera, None) => Err(Error::Invalid {
                 what: "a sensor",
                 problem: format!("of kind {kind} is made from its settings (range, field of view, pose)"),
