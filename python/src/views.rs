@@ -329,7 +329,7 @@ impl Joint {
 
     /// Sets one of ODE's parameters of its first axis, by name: `"lo_stop"`,
     /// `"hi_stop"`, `"velocity"`, `"max_force"`, `"fudge_factor"`, `"bounce"`, `"cfm"`,
-    /// `"stop_erp"`, `"stop_cfm"`.
+    /// `"stop_erp"`, `"stop_cfm"`; a fixed or ball joint takes only `"erp"` and `"cfm"`.
     fn set_param(&self, py: Python<'_>, name: &str, value: f64) -> PyResult<()> {
         use ars_core::JointParam as P;
         let param = match name {
@@ -342,6 +342,7 @@ impl Joint {
             "cfm" => P::Cfm,
             "stop_erp" => P::StopErp,
             "stop_cfm" => P::StopCfm,
+            "erp" => P::Erp,
             other => {
                 let known = [
                     "lo_stop",
@@ -353,6 +354,7 @@ impl Joint {
                     "cfm",
                     "stop_erp",
                     "stop_cfm",
+                    "erp",
                 ]
                 .map(String::from)
                 .to_vec();

@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use super::World;
 use super::body::ExactPose;
-use super::joint::{JointKind, JointParam, JointReference, create_ode_joint, set_raw_param};
+use super::joint::{JointKind, JointReference, create_ode_joint, set_raw_param};
 use crate::contact::ContactSurface;
 use crate::error::{Error, Result};
 use crate::world::Stepper;
@@ -73,7 +73,7 @@ struct JointState {
     body1: u32,
     body2: Option<u32>,
     reference: JointReference,
-    /// Every parameter of every axis, in the order of [`JointParam::ALL`].
+    /// Every parameter of every axis, in the order of its kind's parameters.
     params: Vec<f64>,
     /// The forces of the last step (`dJointFeedback`: f1, t1, f2, t2, 4 reals each).
     feedback: Option<Vec<f64>>,
@@ -157,7 +157,7 @@ impl WorldState {
             if let Some(p) = &j.reference.body2 {
                 pose("a joint's reference pose", p)?;
             }
-            if j.params.len() != 9 * j.kind.param_axes() || j.params.iter().any(|v| v.is_nan()) {
+            if j.params.len() != j.kind.params().len() * j.kind.param_axes() || j.params.iter().any(|v| v.is_nan()) {
                 return Err(corrupt("a joint's parameters are not the ones of its kind".into()));
             }
             if j.feedback.as_ref().is_some_and(|f| f.len() != 16) {
@@ -372,7 +372,7 @@ impl World {
     ) -> JointState {
         let joint = self.joint(crate::handle::JointHandle(handle)).expect("a joint of the arena");
         let params = (0..j.kind.param_axes())
-            .flat_map(|axis| JointParam::ALL.iter().map(move |p| (axis, *p)))
+            .flat_map(|axis| j.kind.params().iter().map(move |p| (axis, *p)))
             .map(|(axis, p)| joint.param(p, axis).expect("a parameter of the joint's kind"))
             .collect();
         let feedback = j.feedback.as_ref().map(|f| [f.f1, f.t1, f.f2, f.t2].concat());
@@ -510,7 +510,7 @@ impl World {
             let axes = s.kind.param_axes();
             let mut values = s.params.iter();
             for axis in 0..axes {
-                for p in JointParam::ALL {
+                for &p in s.kind.params() {
                     if let Some(v) = values.next() {
                         set_raw_param(data.raw, &s.kind, p, axis, *v);
                     }

@@ -155,7 +155,7 @@ macro_rules! joint_getters {
         /// A parameter of axis `axis` (0-based).
         pub fn param(&self, param: JointParam, axis: usize) -> Result<f64> {
             check_param(&self.data.kind, param, axis, 0.0).or_else(|e| match e {
-                Error::OutOfRange { what: "joint axis index", .. } => Err(e),
+                Error::OutOfRange { what: "joint axis index", .. } | Error::WrongJointKind { .. } => Err(e),
                 _ => Ok(()),
             })?;
             let j = self.data.raw;
@@ -170,7 +170,8 @@ macro_rules! joint_getters {
                     JointKind::Piston { .. } => ffi::dJointGetPistonParam(j, p),
                     JointKind::AngularMotor { .. } => ffi::dJointGetAMotorParam(j, p),
                     JointKind::LinearMotor { .. } => ffi::dJointGetLMotorParam(j, p),
-                    JointKind::Fixed | JointKind::Ball { .. } => return Err(self.wrong("parameters")),
+                    JointKind::Fixed => ffi::dJointGetFixedParam(j, p),
+                    JointKind::Ball { .. } => ffi::dJointGetBallParam(j, p),
                 }
             })
         }
@@ -207,9 +208,6 @@ impl JointMut<'_> {
                 what: "joint limits",
                 detail: format!("must not cross: {param:?} {value} would cross the other stop (set_limits moves both)"),
             });
-        }
-        if matches!(self.data.kind, JointKind::Fixed | JointKind::Ball { .. }) {
-            return Err(self.wrong("parameters"));
         }
         // SAFETY: the joint is live and of its kind; axis and value checked.
         unsafe { set_raw_param(self.data.raw, &self.data.kind, param, axis, value) };

@@ -103,13 +103,22 @@ impl JointKind {
         }
     }
 
-    /// Number of axes that take parameters (limits, motors).
+    /// Number of axes that take parameters (limits, motors; for a fixed or ball joint,
+    /// one: its ERP and CFM).
     pub(crate) fn param_axes(&self) -> usize {
         match self {
-            JointKind::Fixed | JointKind::Ball { .. } => 0,
+            JointKind::Fixed | JointKind::Ball { .. } => 1,
             JointKind::Hinge { .. } | JointKind::Slider { .. } => 1,
             JointKind::Universal { .. } | JointKind::Hinge2 { .. } | JointKind::Piston { .. } => 2,
             JointKind::AngularMotor { axes } | JointKind::LinearMotor { axes } => axes.len(),
+        }
+    }
+
+    /// The parameters each of its axes takes, in the order a snapshot keeps them.
+    pub(crate) fn params(&self) -> &'static [JointParam] {
+        match self {
+            JointKind::Fixed | JointKind::Ball { .. } => &JointParam::FIXED,
+            _ => &JointParam::ALL,
         }
     }
 
@@ -240,8 +249,7 @@ pub(crate) unsafe fn create_ode_joint(
 
 /// Sets parameter `param` of axis `axis` of a joint of `kind` as given, unchecked
 /// (what [`JointMut::set_param`] does once it has checked the value, and what a
-/// snapshot's restore does with values read back from ODE); fixed and ball joints
-/// have none.
+/// snapshot's restore does with values read back from ODE).
 ///
 /// # Safety
 /// `raw` is a live joint of `kind`; `axis` is below the kind's parameter axes.
@@ -257,7 +265,8 @@ pub(crate) unsafe fn set_raw_param(raw: ffi::dJointID, kind: &JointKind, param: 
             JointKind::Piston { .. } => ffi::dJointSetPistonParam(raw, p, value),
             JointKind::AngularMotor { .. } => ffi::dJointSetAMotorParam(raw, p, value),
             JointKind::LinearMotor { .. } => ffi::dJointSetLMotorParam(raw, p, value),
-            JointKind::Fixed | JointKind::Ball { .. } => {}
+            JointKind::Fixed => ffi::dJointSetFixedParam(raw, p, value),
+            JointKind::Ball { .. } => ffi::dJointSetBallParam(raw, p, value),
         }
     }
 }
@@ -333,6 +342,11 @@ pub enum JointParam {
     StopErp,
     /// CFM of the stops.
     StopCfm,
+    /// Error reduction of a fixed joint's three position rows, or of a ball joint's
+    /// rows (ODE's `dParamERP`): the joint's own, the world's until set; the only
+    /// parameters of those two kinds, with [`Cfm`](Self::Cfm). A fixed joint's three
+    /// rotation rows keep the world's ERP and CFM (ODE has no parameter for them).
+    Erp,
 }
 
 impl JointParam {
@@ -349,6 +363,26 @@ impl JointParam {
         JointParam::StopCfm,
     ];
 
+    /// The parameters of a fixed or ball joint (one "axis" of them), in the order a
+    /// snapshot keeps them.
+    pub(crate) const FIXED: [JointParam; 2] = [JointParam::Erp, JointParam::Cfm];
+
+    /// Its name, as in errors ("setting the parameter Erp").
+    fn name(self) -> &'static str {
+        match self {
+            JointParam::LoStop => "setting the parameter LoStop",
+            JointParam::HiStop => "setting the parameter HiStop",
+            JointParam::Velocity => "setting the parameter Velocity",
+            JointParam::MaxForce => "setting the parameter MaxForce",
+            JointParam::FudgeFactor => "setting the parameter FudgeFactor",
+            JointParam::Bounce => "setting the parameter Bounce",
+            JointParam::Cfm => "setting the parameter Cfm",
+            JointParam::StopErp => "setting the parameter StopErp",
+            JointParam::StopCfm => "setting the parameter StopCfm",
+            JointParam::Erp => "setting the parameter Erp",
+        }
+    }
+
     fn code(self) -> i32 {
         (match self {
             JointParam::LoStop => ffi::dParamLoStop,
@@ -360,6 +394,7 @@ impl JointParam {
             JointParam::Cfm => ffi::dParamCFM,
             JointParam::StopErp => ffi::dParamStopERP,
             JointParam::StopCfm => ffi::dParamStopCFM,
+            JointParam::Erp => ffi::dParamERP,
         }) as i32
     }
 }
@@ -601,6 +636,9 @@ fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> 
             ),
         });
     }
+    if !kind.params().contains(&param) {
+        return Err(Error::WrongJointKind { operation: param.name(), kind: kind.name() });
+    }
     match param {
         JointParam::LoStop | JointParam::HiStop => {
             if value.is_nan() {
@@ -616,7 +654,7 @@ fn check_param(kind: &JointKind, param: JointParam, axis: usize, value: f64) -> 
         JointParam::Cfm | JointParam::StopCfm => {
             validate::non_negative("joint CFM", value)?;
         }
-        JointParam::StopErp | JointParam::FudgeFactor | JointParam::Bounce => {
+        JointParam::Erp | JointParam::StopErp | JointParam::FudgeFactor | JointParam::Bounce => {
             if !(0.0..=1.0).contains(&value) {
                 return Err(Error::OutOfRange {
                     what: "joint parameter",
@@ -678,5 +716,24 @@ mod tests {
         for bad in [-1.0, 2.0 * limits::MAX_FORCE, f64::NAN, f64::NEG_INFINITY] {
             assert!(check(bad).is_err(), "{bad}");
         }
+    }
+
+    /// A fixed or ball joint takes its own ERP (within [0, 1]) and CFM and nothing else;
+    /// the other kinds have no ERP of their own.
+    #[test]
+    fn only_fixed_and_ball_joints_take_an_erp() {
+        let ball = JointKind::Ball { anchor: Point3::origin() };
+        for kind in [JointKind::Fixed, ball] {
+            assert!(check_param(&kind, JointParam::Erp, 0, 0.05).is_ok());
+            assert!(check_param(&kind, JointParam::Cfm, 0, 1e-5).is_ok());
+            for bad in [-0.1, 1.5, f64::NAN] {
+                assert!(check_param(&kind, JointParam::Erp, 0, bad).is_err(), "{bad}");
+            }
+            let err = check_param(&kind, JointParam::LoStop, 0, 0.0).unwrap_err().to_string();
+            assert!(err.contains("LoStop") && err.contains("not available"), "{err}");
+            assert!(check_param(&kind, JointParam::Erp, 1, 0.05).is_err(), "one axis");
+        }
+        let hinge = JointKind::Hinge { anchor: Point3::origin(), axis: Vector3::x() };
+        assert!(check_param(&hinge, JointParam::Erp, 0, 0.05).is_err());
     }
 }
