@@ -252,6 +252,13 @@ class Simulation:
         skip_unsupported: bool = False,
         prefix: str = "",
     ) -> dict[str, Any]: ...
+    def set_mocap_pose(
+        self,
+        body: str,
+        position: _Vec3,
+        quaternion: tuple[float, float, float, float] | Sequence[float] = (1.0, 0.0, 0.0, 0.0),
+    ) -> None: ...
+    def mocap_pose(self, body: str) -> tuple[list[float], list[float]]: ...
     def load_urdf(
         self,
         path: _Path,

@@ -47,7 +47,7 @@ class Path:
 
 def scene():
     """A floor, a ball and a bob on hinges, a box on a slider, a GPS on the ball, a
-    hook."""
+    hook, an MJCF mocap body."""
     sim = ars.Simulation()
     sim.add_floor()
     sim.add_sphere(0.1, (0.0, 1.0, 0.0), mass=1.0, name="ball")
@@ -58,6 +58,11 @@ def scene():
     sim.add_slider_joint("slide", "box", None, (1.0, 0.0, 0.0))
     sim.add_sensor("gps", "ball")
     sim.add_pre_step(lambda: None)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "mocap.xml")
+        with open(path, "w") as f:
+            f.write('<mujoco><worldbody><body name="hand" mocap="true" pos="0 0 3"/></worldbody></mujoco>')
+        sim.load_mjcf(path)
     sim.step(5)
     return sim
 
@@ -185,6 +190,8 @@ SIM = [
         (Path("arm.urdf", ARM.read_bytes()),),
         {"fixed_base": True, "base_position": (0.0, 1.0, 0.0), "search_paths": [str(REPO)]},
     ),
+    ("set_mocap_pose", None, ("hand", (0.0, 0.0, 2.0), (1.0, 0.0, 0.0, 0.0)), {}),
+    ("mocap_pose", None, ("hand",), {}),
     ("remove_object", None, ("box",), {}),
     ("body", None, ("ball",), {}),
     ("add_rotary_joint", None, ("r", "box", None, (1.0, 0.5, 0.0), (0.0, 0.0, 1.0)), {}),

@@ -366,6 +366,8 @@ PYTHON_FOR_RUST = {
     "Scene.contact_surfaces": "Simulation.contact_surface",
     "Simulation.load_urdf": "Simulation.load_urdf",
     "Simulation.load_mjcf": "Simulation.load_mjcf",
+    "Simulation.set_mocap_pose": "Simulation.set_mocap_pose",
+    "Simulation.mocap_pose": "Simulation.mocap_pose",
     # SimJoint (what `joint_mut` hands out)
     "SimJoint.id": "Joint.name",
     "SimJoint.add_torque": "Joint.add_torque",
@@ -392,6 +394,7 @@ NOT_IN_PYTHON = {
     "Simulation.hooks_mut",
     "Simulation.sensor",
     "Simulation.sensor_period",
+    "Simulation.mocap_bodies",
     "Simulation.sensors_of",
     "Simulation.sensor_ids_of",
     "Scene.robot_descriptions",

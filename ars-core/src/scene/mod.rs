@@ -13,7 +13,7 @@ mod floor;
 mod geom_contact;
 mod insert;
 pub(crate) mod joints;
-mod names;
+pub(crate) mod names;
 pub(crate) mod objects;
 mod sim_joint;
 mod surfaces;
@@ -57,6 +57,8 @@ pub struct Scene {
     pub(crate) robots_loaded: u32,
     /// The URDF robots loaded, as ROS describes them.
     pub(crate) robot_descriptions: Vec<crate::formats::urdf::RobotDescription>,
+    /// The mocap bodies of the MJCF models loaded (moved by `set_mocap_pose`).
+    pub(crate) mocap_bodies: Vec<crate::formats::mjcf::MjcfMocap>,
     pair_surfaces: PairSurfaces,
     pub(crate) time: f64,
     pub(crate) step_count: u64,
@@ -98,6 +100,7 @@ impl Scene {
             actuated_joints: Vec::new(),
             robots_loaded: 0,
             robot_descriptions: Vec::new(),
+            mocap_bodies: Vec::new(),
             pair_surfaces: PairSurfaces::default(),
             time: 0.0,
             step_count: 0,

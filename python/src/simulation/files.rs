@@ -88,14 +88,14 @@ impl PySimulation {
 
     /// Loads a MuJoCo model from an MJCF file (see the Rust `Scene::load_mjcf` for what
     /// is read). Returns `{"name", "bodies", "joints", "timestep", "gravity",
-    /// "actuators", "welded", "sensors", "sites", "armature", "keyframes", "skipped"}`:
+    /// "actuators", "welded", "sensors", "sites", "armature", "keyframes", "mocap", "skipped"}`:
     /// `keyframes` are the file's `<key>`s as dicts (`name`, `time`, `qpos`, `qvel`,
     /// `ctrl`, `mpos`, `mquat`; read, not applied, as MuJoCo applies none); bodies and joints by
     /// their MJCF names in file order, the file's time step and gravity (not applied),
     /// the file's sensors made (`ars.Sensor`s by name; see the Rust `MjcfSensor` for the
     /// columns that hold MuJoCo's values), the bodies' named sites (`{name: body}`), the
-    /// inertia (3×3, body frame) each object carries for its ball joint's armature, what
-    /// was skipped; `welded` maps each jointless body to the body it was merged
+    /// inertia (3×3, body frame) each object carries for its ball joint's armature, the
+    /// mocap bodies (moved by `set_mocap_pose`), what was skipped; `welded` maps each jointless body to the body it was merged
     /// into (`None`: the world). `prefix` goes before every name of the model, so that
     /// two copies of a model share a simulation (as MuJoCo's `attach`).
     #[pyo3(signature = (path, *, base_position=Checked([0.0; 3]), skip_unsupported=false, prefix=String::new()))]
@@ -165,8 +165,32 @@ impl PySimulation {
             armature.set_item(name, rows)?;
         }
         dict.set_item("armature", armature)?;
+        dict.set_item("mocap", model.mocap.iter().map(|m| m.body.clone()).collect::<Vec<_>>())?;
         dict.set_item("skipped", &model.skipped)?;
         Ok(dict)
+    }
+
+    /// Puts the MJCF mocap body `body` (its name in the file, with the model's
+    /// `prefix`) at `position`, turned by `quaternion` (w, x, y, z; normalised), both in
+    /// the file's world frame: what MuJoCo's `data.mocap_pos` and `data.mocap_quat` hold.
+    /// A mocap body is kinematic: it stays there, still, until moved again, and what a
+    /// `weld` or `connect` joins to it follows. `load_mjcf` lists them as `"mocap"`.
+    #[pyo3(signature = (body, position, quaternion=Checked([1.0, 0.0, 0.0, 0.0])))]
+    fn set_mocap_pose(
+        &self,
+        py: Python<'_>,
+        body: String,
+        position: Vec3,
+        quaternion: Checked<[f64; 4]>,
+    ) -> PyResult<()> {
+        self.with(py, move |sim| sim.set_mocap_pose(&body, position.0, quaternion.0))
+    }
+
+    /// Where the MJCF mocap body `body` is: `(position, quaternion)` (w, x, y, z) in the
+    /// file's world frame (see `set_mocap_pose`).
+    #[allow(clippy::type_complexity)]
+    fn mocap_pose(&self, py: Python<'_>, body: String) -> PyResult<([f64; 3], [f64; 4])> {
+        self.with(py, move |sim| sim.mocap_pose(&body))
     }
 
     /// Writes the scene (see `save_scene`) to the file `path`.

@@ -9,7 +9,7 @@ use super::damper::Resisting;
 use super::mass::{armature_inertia, at_least_ars_least_mass, find_body};
 use super::model::{Body, Geom, GeomKind, Joint, JointKind, Model};
 use super::read::read;
-use super::{CHAIN_LINK_FRACTION, MjcfModel, MjcfOptions, MjcfWeld};
+use super::{CHAIN_LINK_FRACTION, MjcfMocap, MjcfModel, MjcfOptions, MjcfWeld};
 use crate::body::{BodyBuilder, MassSpec};
 use crate::error::{Error, Result};
 use crate::formats::balance::balance_inertia;
@@ -81,6 +81,7 @@ impl Scene {
             return Err(e);
         }
         self.robot_descriptions.push(super::tree::body_tree(self, model, &made, &placement(options)));
+        self.mocap_bodies.extend(made.mocap.iter().cloned());
         Ok(made)
     }
 
@@ -226,7 +227,19 @@ impl Scene {
         if let (Some(parent), true) = (parent, body.joints.len() > 1) {
             self.exclude_contacts(parent, id)?;
         }
-        if body.joints.is_empty() {
+        if body.mocap {
+            // Moved by the user only (`set_mocap_pose`): a kinematic ODE body, as
+            // MuJoCo's mocap body has no degree of freedom; what is welded to it follows.
+            let handle =
+                self.object(id)?.body_handle().ok_or_else(|| body_error(format!("{:?}: no body", body.name)))?;
+            self.world_mut().body_mut(handle)?.set_kinematic(true);
+            made.mocap.push(MjcfMocap {
+                body: body.name.clone(),
+                object: id,
+                placement: *parent_frame,
+                offset: Isometry3::translation(masses.com.x, masses.com.y, masses.com.z),
+            });
+        } else if body.joints.is_empty() {
             let name = format!("{}_weld", body.name);
             self.add_fixed_joint(&name, id, end)?;
         }
@@ -475,7 +488,15 @@ struct BodyMasses {
 fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
     // Jointless bodies without mass were merged into their parent (`weld`): a body
     // still without one moves, as one lighter than MuJoCo's least, which MuJoCo refuses.
-    let (mass, com, inertia) = body.mass.unwrap_or((0.0, Vector3::zeros(), Matrix3::zeros()));
+    let (mass, com, inertia) = match body.mass {
+        Some(mass) => mass,
+        // A massless mocap body still needs an ODE body to be moved: the least ARS
+        // takes, which its kinematic body never feels.
+        None if body.mocap => {
+            (crate::limits::MIN_MASS, Vector3::zeros(), Matrix3::identity() * crate::limits::MIN_MASS)
+        }
+        None => (0.0, Vector3::zeros(), Matrix3::zeros()),
+    };
     if !body.joints.is_empty() && (mass < MJ_MINVAL || inertia.trace() < MJ_MINVAL) {
         return Err(body_error(format!(
             "{:?} moves (it has joints) but its mass {mass:e} kg or its inertia (trace {:e} kg·m²), with its \

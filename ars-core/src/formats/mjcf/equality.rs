@@ -4,13 +4,22 @@
 //!   the anchor (`anchor` in `body1`'s frame, or where `site1` is).
 //! - `weld` (two bodies, or a body and the world, keep their relative pose): a fixed
 //!   joint, holding the pose they have in the file.
+//! - Either end may be a mocap body (a kinematic body the user moves): what is joined
+//!   to it follows it.
 //! - `joint` (`joint1 − ref1 = a0 + a1·(joint2 − ref2)`, MuJoCo's `polycoef` of
 //!   degree 1): `joint1` [follows](crate::scene::Mimic) `joint2`.
 //!
+//! A MuJoCo equality is soft (`solref`, `solimp`, 0.02 s and critically damped by
+//! default). A `connect`'s ball joint and a `weld`'s fixed joint take the ERP of
+//! MuJoCo's reference acceleration at the scene's time step (as a joint's stops do:
+//! then ODE's joint lags a moving end as MuJoCo's does, `b / k` per m/s), and the CFM of
+//! its impedance for the two bodies' reduced mass (as a contact's); a fixed joint's
+//! three rotation rows keep the world's ERP and CFM (ODE's fixed joint has parameters
+//! for its position rows only).
+//!
 //! What the mapping cannot carry is said in the model's `skipped` list:
-//! - a MuJoCo equality is soft (`solref`, `solimp`); an ODE joint is as stiff as every
-//!   joint of the world (its ERP and CFM), and a follower's motor is one-way (the
-//!   leader does not feel the follower's load);
+//! - a `joint` equality's `solref` and `solimp`, and a `weld`'s `torquescale`: a
+//!   follower's motor is one-way (the leader does not feel the follower's load);
 //! - a `weld`'s `relpose` other than the file's pose, sites that do not coincide in the
 //!   file's pose, `polycoef` beyond degree 1, a `joint` without `joint2`, and
 //!   `tendon` and `flex` equalities are skipped, as is an equality the file makes
@@ -21,11 +30,12 @@ use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vect
 use super::MjcfModel;
 use super::defaults::Attrs;
 use super::mass::find_body;
-use super::model::{Body, Equality, EqualityKind, Joint, JointKind, Model, Place};
+use super::model::{Body, Equality, EqualityKind, Joint, JointKind, Model, Place, reference_erp};
 use super::problem::{Parsed, problem};
 use super::read::Reader;
 use crate::error::{Error, Result};
-use crate::handle::ObjectId;
+use crate::handle::{JointId, ObjectId};
+use crate::joint::JointParam;
 use crate::scene::{JointEnd, Scene};
 
 impl Equality {
@@ -58,14 +68,19 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 ));
                 continue;
             }
-            let soft: Vec<&str> =
-                ["solref", "solimp", "torquescale"].into_iter().filter(|k| a.get(k).is_some()).collect();
+            // A connect's and a weld's softness is their joint's ERP; a joint coupling's is
+            // a one-way motor's, and `torquescale` has no counterpart.
+            let unused: &[&str] = if tag == "joint" { &["solref", "solimp", "torquescale"] } else { &["torquescale"] };
+            let soft: Vec<&str> = unused.iter().copied().filter(|k| a.get(k).is_some()).collect();
             if !soft.is_empty() {
                 self.skipped.push(format!(
                     "<{tag}> at line {line}: {} not used (ARS's equality is an ODE joint, as stiff as every joint)",
                     soft.join(", ")
                 ));
             }
+            let solref = a.fixed::<2>("solref")?.unwrap_or([0.02, 1.0]);
+            let solimp = a.numbers("solimp")?.unwrap_or_default();
+            let impedance = [solimp.first().copied().unwrap_or(0.9), solimp.get(1).copied().unwrap_or(0.95)];
             let kind = match tag {
                 "joint" => {
                     let follower = a.get("joint1").ok_or_else(|| problem(&child, "needs a joint1"))?.to_string();
@@ -95,7 +110,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 }
             };
             let name = child.attribute("name").map(str::to_string);
-            model.equalities.push(Equality { name, kind, tag: tag.to_string(), line });
+            model.equalities.push(Equality { name, kind, softness: (solref, impedance), tag: tag.to_string(), line });
         }
         Ok(())
     }
@@ -141,14 +156,6 @@ impl Scene {
     ) -> Result<()> {
         for eq in &model.equalities {
             let name = eq.name.as_deref().unwrap_or("");
-            if let Some(mocap) = mocap_end(eq, model) {
-                made.skipped.push(eq.said(format!(
-                    "its end {mocap:?} is a mocap body, which ARS does not move (it stays welded to the world): \
-                     made hard, the weld would lock the robot's hand where the file puts that body, through a loop \
-                     of its arm's joints, where MuJoCo's soft weld pulls it towards wherever the body is moved"
-                )));
-                continue;
-            }
             match &eq.kind {
                 EqualityKind::Connect { first, second, anchor } => {
                     let (a, b) = (
@@ -167,6 +174,7 @@ impl Scene {
                     match ordered(a.end, b.end) {
                         Some((object, other)) => {
                             let joint = self.add_ball_joint(name, object, other, Some(point))?;
+                            self.soften(joint, eq, object, other)?;
                             made.equalities.push(joint);
                         }
                         None => made.skipped.push(eq.said("both ends are on one rigid body: nothing to join")),
@@ -192,6 +200,7 @@ impl Scene {
                     match ordered(a.end, b.end) {
                         Some((object, other)) => {
                             let joint = self.add_fixed_joint(name, object, other)?;
+                            self.soften(joint, eq, object, other)?;
                             made.equalities.push(joint);
                         }
                         None => made.skipped.push(eq.said("both ends are on one rigid body: nothing to weld")),
@@ -201,6 +210,46 @@ impl Scene {
                     self.follow_mjcf_joint(eq, follower, leader.as_deref(), polycoef, model, made)?
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// Gives a connect's or weld's joint between `object` and `other` the ERP of its
+    /// `solref` (see [`reference_erp`]) at the scene's time step, and the CFM of
+    /// MuJoCo's impedance at rest (`solimp`'s `dmin`, as an equality's violation stays
+    /// far below its width): `h·(1 − d) / (d·m)`, `m` the two objects' reduced mass (a
+    /// contact's CFM, the same approximation: the bodies' own masses, not the chains
+    /// they hang in), the world's when an end is the world or kinematic. Without it the
+    /// joint is as stiff as every joint, and fights a stop it starts beyond: a
+    /// Meta-World arm whose shoulder starts 0.5 rad outside its range and whose hand is
+    /// welded to its mocap body whipped at 60 m/s, where MuJoCo's moves at 3 m/s.
+    fn soften(&mut self, joint: JointId, eq: &Equality, object: ObjectId, other: JointEnd) -> Result<()> {
+        let (solref, [d_min, d_max]) = eq.softness;
+        let h = self.time_step();
+        if let Some(erp) = reference_erp(solref, d_max, h) {
+            self.joint_mut(joint)?.set_param(JointParam::Erp, erp)?;
+        }
+        let mass = |id: ObjectId| -> Result<f64> {
+            let body = self.body(id)?;
+            Ok(if body.is_kinematic() { f64::INFINITY } else { body.mass() })
+        };
+        let m = match other {
+            JointEnd::Object(o) => {
+                let (a, b) = (mass(object)?, mass(o)?);
+                if a.is_infinite() {
+                    b
+                } else if b.is_infinite() {
+                    a
+                } else {
+                    a * b / (a + b)
+                }
+            }
+            JointEnd::World => mass(object)?,
+        };
+        let d = d_min.clamp(1e-4, 1.0 - 1e-4);
+        let cfm = h * (1.0 - d) / (d * m);
+        if m.is_finite() && cfm.is_finite() && cfm > self.world().cfm() {
+            self.joint_mut(joint)?.set_param(JointParam::Cfm, cfm)?;
         }
         Ok(())
     }
@@ -301,18 +350,6 @@ fn ordered(a: JointEnd, b: JointEnd) -> Option<(ObjectId, JointEnd)> {
         (JointEnd::World, JointEnd::Object(y)) => Some((y, JointEnd::World)),
         (JointEnd::World, JointEnd::World) => None,
     }
-}
-
-/// The `mocap` body at an end of a `connect` or `weld`, if any.
-fn mocap_end<'m>(eq: &Equality, model: &'m Model) -> Option<&'m str> {
-    let (first, second) = match &eq.kind {
-        EqualityKind::Connect { first, second, .. } | EqualityKind::Weld { first, second, .. } => (first, second),
-        EqualityKind::Joint { .. } => return None,
-    };
-    std::iter::once(first).chain(second).find_map(|place| match place {
-        Place::Body(name) => model.mocap.iter().find(|m| *m == name).map(String::as_str),
-        Place::Site(_) => None,
-    })
 }
 
 /// The joint of the file named `name`, wherever it is.

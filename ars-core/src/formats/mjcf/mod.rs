@@ -69,6 +69,13 @@
 //!   beside it, at speed 0 with that limit about each of three axes: a box of torques
 //!   where MuJoCo's bounds each degree of freedom alike). On ball and free joints `ref`
 //!   and `stiffness` are unsupported (an error, or skipped with a warning).
+//! - **Mocap bodies.** A `mocap="true"` body (a jointless child of the world, as MuJoCo
+//!   requires) is a kinematic ODE body with its jointless descendants: gravity and
+//!   contacts do not move it, [`Simulation::set_mocap_pose`] does (in the file's
+//!   frame, as MuJoCo's `mocap_pos` and `mocap_quat`), and what an `<equality>` joins
+//!   to it follows ([`MjcfModel::mocap`]). Like the bodies welded to the world, it
+//!   touches neither the world's geoms nor them. A massless one carries ARS's least
+//!   mass, which its kinematic body never feels.
 //! - **Armature.** A hinge's or slide's `armature` (MuJoCo's rotor inertia on the
 //!   joint's own degree of freedom) is the joint's own
 //!   ([`SimJoint::set_armature`](crate::SimJoint::set_armature)): an ODE motor beside
@@ -188,6 +195,7 @@ mod keyframe;
 mod lean_step_tests;
 mod mass;
 mod meshes;
+mod mocap;
 mod model;
 mod prefix;
 mod problem;
@@ -199,6 +207,7 @@ mod tree;
 mod weld;
 
 pub use keyframe::MjcfKeyframe;
+pub use mocap::MjcfMocap;
 
 /// How an MJCF model is loaded.
 #[derive(Clone, Debug)]
@@ -307,6 +316,9 @@ pub struct MjcfModel {
     /// The `<keyframe>`'s `<key>`s, in the file's order: read, not applied (MuJoCo
     /// applies none when it compiles a model either; its reset goes to `qpos0`).
     pub keyframes: Vec<MjcfKeyframe>,
+    /// The mocap bodies, in the file's order: kinematic bodies moved by
+    /// [`Simulation::set_mocap_pose`].
+    pub mocap: Vec<MjcfMocap>,
 }
 
 /// A jointless body of the file merged into the body it is welded to: it is
@@ -369,6 +381,11 @@ pub struct MjcfSite {
 ///   site's frame (its first three columns; it lags on a jointed body as `framelinvel`).
 /// - `touch`: a [`Touch`](crate::sensors::Touch) on the site's body within the site's
 ///   volume (its second column, the normal force).
+/// - `subtreecom`, `subtreelinvel`, `subtreeangmom`: a
+///   [`Momentum`](crate::sensors::Momentum) of the body's object and those of the bodies
+///   below it (its columns `x y z`, `vx vy vz` and `Lx Ly Lz`, world frame). A body
+///   merged into the body it is welded to has no object of its own: its subtree sensors
+///   are skipped.
 /// - `rangefinder`: a [`Laser`](crate::sensors::Laser) of [`RANGEFINDER_LENGTH`] at the
 ///   site along its +Z, not seeing the site's body (its first column; empty where MuJoCo
 ///   reads −1, nothing hit).
@@ -380,10 +397,11 @@ pub struct MjcfSensor {
     /// Its name (`sensor{N}` when unnamed, N its index among the sensors).
     pub name: String,
     /// Its element: `jointpos`, `jointvel`, `framepos`, `framelinvel`, `framequat`,
-    /// `accelerometer`, `gyro`, `velocimeter`, `touch` or `rangefinder`.
+    /// `accelerometer`, `gyro`, `velocimeter`, `touch`, `rangefinder`, `subtreecom`,
+    /// `subtreelinvel` or `subtreeangmom`.
     pub kind: String,
-    /// What its target is: `joint`, `body` (its inertial frame), `xbody` (its frame) or
-    /// `site`.
+    /// What its target is: `joint`, `body` (its inertial frame), `xbody` (its frame),
+    /// `site`, or `subtree` (a body and the bodies below it).
     pub objtype: String,
     /// The joint, body or site it reads, by name.
     pub target: String,
@@ -391,6 +409,9 @@ pub struct MjcfSensor {
     /// the object's origin (the body's centre of mass, turned as the body); `None` for
     /// a joint's sensor.
     pub mount: Option<Mount>,
+    /// What a `subtreecom`, `subtreelinvel` or `subtreeangmom` reads: the objects of its
+    /// body and of the bodies below it; empty for the other kinds.
+    pub subtree: Vec<ObjectId>,
     /// The ARS sensor made of it (see above); `None` until made.
     pub id: Option<AnySensorId>,
 }

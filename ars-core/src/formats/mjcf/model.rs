@@ -79,26 +79,34 @@ pub(super) struct Joint {
 }
 
 impl Joint {
-    /// The ERP of its stops at time step `h`: MuJoCo's reference acceleration at a stop,
-    /// `−b·v − k·r` (`solreflimit` `(timeconst, dampratio)`: `b = 2 / (dmax·timeconst)`,
-    /// `k = 1 / (dmax²·timeconst²·dampratio²)`; negative: `(−stiffness, −damping)`, `k =
-    /// stiffness / dmax²`, `b = damping / dmax`), as ODE's spring: `h·k / (h·k + b)`.
-    /// With MuJoCo's defaults (0.02 s, 1, dmax 0.95) and h = 3 ms: 0.073, where ODE's
-    /// world ERP (0.2) threw the humanoid's knees, which start 2° outside their range,
-    /// back at 2.3 rad/s. `None` when the numbers make no spring (then the world's).
+    /// The ERP of its stops at time step `h` ([`reference_erp`] of `solreflimit` and
+    /// `solimplimit`'s `dmax`). With MuJoCo's defaults (0.02 s, 1, dmax 0.95) and h =
+    /// 3 ms: 0.073, where ODE's world ERP (0.2) threw the humanoid's knees, which start
+    /// 2° outside their range, back at 2.3 rad/s.
     pub(super) fn stop_erp(&self, h: f64) -> Option<f64> {
-        let ([s0, s1], dmax) = self.limit_softness;
-        let dmax = dmax.clamp(1e-4, 1.0 - 1e-4);
-        let (k, b) = if s0 > 0.0 && s1 > 0.0 {
-            (1.0 / (dmax * dmax * s0 * s0 * s1 * s1), 2.0 / (dmax * s0))
-        } else if s0 < 0.0 && s1 <= 0.0 {
-            (-s0 / (dmax * dmax), -s1 / dmax)
-        } else {
-            return None;
-        };
-        let erp = h * k / (h * k + b);
-        (erp.is_finite() && erp > 0.0).then_some(erp.min(1.0))
+        let (solref, dmax) = self.limit_softness;
+        reference_erp(solref, dmax, h)
     }
+}
+
+/// MuJoCo's reference acceleration of a soft constraint, `−b·v − k·r` (`solref`
+/// `(timeconst, dampratio)`: `b = 2 / (dmax·timeconst)`, `k = 1 / (dmax²·timeconst²·
+/// dampratio²)`; negative: `(−stiffness, −damping)`, `k = stiffness / dmax²`, `b =
+/// damping / dmax`), as ODE's spring at time step `h`: the ERP `h·k / (h·k + b)`, with
+/// which ODE's hard constraint lags a moving target as MuJoCo's does (`b / k` per m/s).
+/// `None` when the numbers make no spring (then the world's ERP).
+pub(super) fn reference_erp(solref: [f64; 2], dmax: f64, h: f64) -> Option<f64> {
+    let [s0, s1] = solref;
+    let dmax = dmax.clamp(1e-4, 1.0 - 1e-4);
+    let (k, b) = if s0 > 0.0 && s1 > 0.0 {
+        (1.0 / (dmax * dmax * s0 * s0 * s1 * s1), 2.0 / (dmax * s0))
+    } else if s0 < 0.0 && s1 <= 0.0 {
+        (-s0 / (dmax * dmax), -s1 / dmax)
+    } else {
+        return None;
+    };
+    let erp = h * k / (h * k + b);
+    (erp.is_finite() && erp > 0.0).then_some(erp.min(1.0))
 }
 
 #[derive(Clone, Debug)]
@@ -116,6 +124,9 @@ pub(super) struct Body {
     /// The turn of its inertial frame from its frame, when its `<inertial>` gives it
     /// (`diaginertia`, used for its mass).
     pub(super) principal: Option<UnitQuaternion<f64>>,
+    /// `mocap="true"`: a jointless child of the world that the user moves
+    /// ([`Simulation::set_mocap_pose`](crate::Simulation::set_mocap_pose)); a kinematic body.
+    pub(super) mocap: bool,
 }
 
 impl Body {
@@ -176,8 +187,6 @@ pub(super) struct Model {
     pub(super) welded: Vec<Welded>,
     /// `<equality>`: its `connect`, `weld` and `joint` elements, in the file's order.
     pub(super) equalities: Vec<Equality>,
-    /// The `mocap` bodies, by name (welded to the world: ARS does not move them).
-    pub(super) mocap: Vec<String>,
     /// `<keyframe>`'s keys, read and kept (not applied, as MuJoCo applies none).
     pub(super) keyframes: Vec<super::keyframe::MjcfKeyframe>,
     pub(super) skipped: Vec<String>,
@@ -206,6 +215,9 @@ pub(super) enum EqualityKind {
 pub(super) struct Equality {
     pub(super) name: Option<String>,
     pub(super) kind: EqualityKind,
+    /// `solref`, and `solimp`'s `dmin` and `dmax` (MuJoCo's defaults 0.02 s, 1, and
+    /// 0.9, 0.95, when not given).
+    pub(super) softness: ([f64; 2], [f64; 2]),
     /// Its tag and line, for what is said about it.
     pub(super) tag: String,
     pub(super) line: u32,

@@ -33,7 +33,6 @@ pub(super) fn prefix_names(model: &mut Model, prefix: &str) {
         p(&mut s.target);
     }
     model.world_sites.iter_mut().for_each(p);
-    model.mocap.iter_mut().for_each(p);
     for w in &mut model.welded {
         p(&mut w.name);
         w.into.as_mut().map(p);

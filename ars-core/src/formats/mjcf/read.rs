@@ -36,8 +36,6 @@ pub(super) struct Reader<'d, 'a, 'input> {
     pub(super) files: crate::formats::MeshCache,
     /// The main file's folder.
     pub(super) dir: std::path::PathBuf,
-    /// The bodies the file makes `mocap`, by name.
-    pub(super) mocap: Vec<String>,
 }
 
 impl<'a, 'input> Reader<'_, 'a, 'input> {
@@ -217,9 +215,6 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let a = Attrs::new(node, self.defaults, class);
         let class = node.attribute("childclass").unwrap_or(class).to_string();
         let name = node.attribute("name").map_or_else(|| format!("body{index}"), str::to_string);
-        if a.get("mocap") == Some("true") {
-            self.mocap.push(name.clone());
-        }
         let mut body = Body {
             name,
             frame: frame(&a, &self.compiler)?,
@@ -229,6 +224,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             children: Vec::new(),
             sites: Vec::new(),
             principal: None,
+            mocap: a.get("mocap") == Some("true"),
         };
         let mut inertial = None;
         let mut principal = None;
@@ -237,7 +233,13 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 "geom" => body.geoms.extend(self.geom(child, &class)?),
                 "joint" => body.joints.push(self.joint(child, &class, false)?),
                 "freejoint" => body.joints.push(self.joint(child, &class, true)?),
-                "body" => body.children.push(self.body(child, &class)?),
+                "body" => {
+                    let inner = self.body(child, &class)?;
+                    if inner.mocap {
+                        return Err(problem(&child, "a mocap body must be a child of the world body (as MuJoCo says)"));
+                    }
+                    body.children.push(inner)
+                }
                 "inertial" => {
                     inertial = Some(self.inertial(child, &class)?);
                     principal = self.principal_axes(child, &class)?;
@@ -254,6 +256,12 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let mass = if from_geoms { mass_of_geoms(&body.geoms) } else { inertial.filter(|m| m.0 > 0.0) };
         body.mass = bounded(mass, self.compiler.bounds);
         body.principal = if from_geoms { None } else { principal };
+        if body.mocap && !body.joints.is_empty() {
+            return Err(problem(
+                &node,
+                "a mocap body cannot have joints (as MuJoCo says): it is moved by set_mocap_pose",
+            ));
+        }
         if body.joints.len() > 1 && body.joints.iter().any(|j| j.kind == JointKind::Free) {
             return Err(problem(&node, "a free joint cannot be combined with other joints in one body"));
         }
@@ -479,7 +487,6 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         files: crate::formats::MeshCache::default(),
         tree,
         dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
-        mocap: Vec::new(),
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),
@@ -495,7 +502,6 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         world_sites: Vec::new(),
         welded: Vec::new(),
         equalities: Vec::new(),
-        mocap: Vec::new(),
         keyframes: Vec::new(),
         skipped: Vec::new(),
     };
@@ -505,7 +511,6 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     super::weld::weld_jointless(&mut model);
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
-    model.mocap = reader.mocap;
     model.skipped.extend(flags_unused);
     if contacts_disabled {
         for geom in &mut model.world_geoms {

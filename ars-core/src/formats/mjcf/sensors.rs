@@ -10,6 +10,7 @@ use super::problem::{Parsed, Problem, problem, skip_or_refuse};
 use super::read::Reader;
 use super::{MjcfModel, MjcfSensor, MjcfSite, RANGEFINDER_LENGTH};
 use crate::error::{Error, Result};
+use crate::handle::ObjectId;
 use crate::scene::Scene;
 use crate::sensors::{Laser, Mount, SensorKind, SensorSettings, SensorTarget};
 
@@ -22,6 +23,7 @@ impl Reader<'_, '_, '_> {
         let (objtype, target) = match kind {
             "jointpos" | "jointvel" => ("joint", needs("joint")?),
             "accelerometer" | "gyro" | "velocimeter" | "touch" | "rangefinder" => ("site", needs("site")?),
+            "subtreecom" | "subtreelinvel" | "subtreeangmom" => ("subtree", needs("body")?),
             "framepos" | "framelinvel" | "framequat" => {
                 let objtype = match a.get("objtype") {
                     Some(t @ ("body" | "xbody" | "site")) => t,
@@ -63,6 +65,7 @@ impl Reader<'_, '_, '_> {
             objtype: objtype.to_string(),
             target: target.to_string(),
             mount: None,
+            subtree: Vec::new(),
             id: None,
         }))
     }
@@ -82,6 +85,14 @@ impl Reader<'_, '_, '_> {
                         .ok_or_else(missing)?;
                     None
                 }
+                "subtree" if find_body(&model.bodies, &|b| b.name == sensor.target).is_some() => None,
+                "subtree" if sensor.target == "world" => Some(format!("a {} of the world body", sensor.kind)),
+                "subtree" if model.welded.iter().any(|w| w.name == sensor.target) => Some(format!(
+                    "a {} of {:?}, a body merged into the one it is welded to (its own mass is not told apart \
+                     there),",
+                    sensor.kind, sensor.target
+                )),
+                "subtree" => return Err(missing()),
                 "site" => match find_body(&model.bodies, &|b| b.sites.iter().any(|s| s.name == sensor.target)) {
                     Some(_) => None,
                     None if model.world_sites.contains(&sensor.target) => {
@@ -145,6 +156,12 @@ impl Scene {
         sites(&model.bodies, made)?;
         let mut sensors = model.sensors.clone();
         for sensor in &mut sensors {
+            if sensor.objtype == "subtree" {
+                let body = find_body(&model.bodies, &|b| b.name == sensor.target);
+                let body = body.ok_or_else(|| unknown_target(&sensor.target))?;
+                sensor.subtree = subtree_objects(body, made)?;
+                continue;
+            }
             sensor.mount = match sensor.objtype.as_str() {
                 "joint" => None,
                 "site" => {
@@ -201,6 +218,7 @@ pub(super) fn ars_kind(element: &str) -> Option<SensorKind> {
         "accelerometer" | "gyro" => SensorKind::Imu,
         "velocimeter" => SensorKind::Velocimeter,
         "touch" => SensorKind::Touch,
+        "subtreecom" | "subtreelinvel" | "subtreeangmom" => SensorKind::Momentum,
         _ => return None,
     })
 }
@@ -219,6 +237,9 @@ impl crate::Simulation {
                 Some(kind) if kind.target() == SensorTarget::Joints => {
                     let joint = model.joint(target).ok_or_else(|| unknown_target(target))?;
                     self.add_sensor_described(kind, &[], &[joint], None, None, None)?
+                }
+                Some(kind) if kind.target() == SensorTarget::Objects => {
+                    self.add_sensor_described(kind, &sensor.subtree, &[], None, None, None)?
                 }
                 Some(kind) => {
                     let (object, pose) = mounted()?;
@@ -239,6 +260,21 @@ impl crate::Simulation {
         }
         Ok(model)
     }
+}
+
+/// The objects of `body` and of the bodies below it (not the light links chaining a
+/// body's joints, which MuJoCo does not have), each once.
+fn subtree_objects(body: &Body, made: &MjcfModel) -> Result<Vec<ObjectId>> {
+    let mut objects = Vec::new();
+    let mut stack = vec![body];
+    while let Some(b) = stack.pop() {
+        let object = made.body(&b.name).ok_or_else(|| unknown_target(&b.name))?;
+        if !objects.contains(&object) {
+            objects.push(object);
+        }
+        stack.extend(b.children.iter());
+    }
+    Ok(objects)
 }
 
 /// A body's `<inertial>` turn (when known) and the body it is made in (itself, or the

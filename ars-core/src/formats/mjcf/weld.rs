@@ -7,6 +7,8 @@
 //! its neighbour's kilograms (robot files write 1e-8 kg hands). Of the world body, one
 //! that weighs nothing is merged into the world (its geoms static); one with mass stays
 //! an ODE body of its own fixed to the world, its jointless descendants merged into it.
+//! A mocap body is never merged into the world: it is a kinematic ODE body of its own
+//! (with its jointless descendants), which the user moves.
 
 use nalgebra::Isometry3;
 
@@ -33,7 +35,8 @@ pub(super) fn weld_jointless(model: &mut Model) {
 /// in turn; any other goes to `top`.
 fn into_world(mut body: Body, parent: &Isometry3<f64>, model: &mut Model, top: &mut Vec<Body>) {
     body.frame = parent * body.frame;
-    if !(body.joints.is_empty() && body.mass.is_none()) {
+    // A mocap body moves (the user moves it): never merged into the world.
+    if body.mocap || !(body.joints.is_empty() && body.mass.is_none()) {
         top.push(body);
         return;
     }
