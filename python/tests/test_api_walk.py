@@ -61,7 +61,9 @@ def scene():
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "mocap.xml")
         with open(path, "w") as f:
-            f.write('<mujoco><worldbody><body name="hand" mocap="true" pos="0 0 3"/></worldbody></mujoco>')
+            f.write(
+                '<mujoco><worldbody><body name="hand" mocap="true" pos="0 0 3"/></worldbody></mujoco>'
+            )
         sim.load_mjcf(path)
     sim.step(5)
     return sim
