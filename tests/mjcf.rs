@@ -1160,3 +1160,70 @@ fn only_geoms_in_the_inertia_group_range_weigh() {
     assert_eq!(sim.scene().body(model.body("puck").unwrap()).unwrap().mass(), 2.0);
     assert_eq!(sim.scene().object(model.body("puck").unwrap()).unwrap().geoms().count(), 2, "both still collide");
 }
+
+/// A 3 × 4 height field of `elevation` numbers (MuJoCo's first row at +y), 4 m × 2 m,
+/// 0.5 m high, and a crate.
+const HFIELD: &str = r#"
+<mujoco>
+  <asset>
+    <hfield name="hill" nrow="3" ncol="4" size="2 1 0.5 0.1" elevation="0 1 2 3  4 5 6 7  8 9 10 20"/>
+  </asset>
+  <worldbody>
+    <geom name="terrain" type="hfield" hfield="hill" pos="0 0 0.2"/>
+    <body name="crate" pos="0.1 0.1 1.5"><freejoint/><geom type="box" size="0.05 0.05 0.05"/></body>
+  </worldbody>
+</mujoco>"#;
+
+/// A height field is static terrain with MuJoCo's heights: the elevations scaled to
+/// [0, 1] over their span, times the size's top, the file's first row at +y (the heights
+/// at the corners are MuJoCo's, read with its own ray); a crate dropped on it comes to
+/// rest on its slope.
+#[test]
+fn a_height_field_is_terrain_at_mujoco_s_heights() {
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(HFIELD, "hfield.xml", &MjcfOptions::new()).unwrap();
+    assert!(model.skipped.is_empty(), "{:#?}", model.skipped);
+    // MuJoCo's (x, y) is the simulation's (x, −z); heights are its y.
+    let height = |sim: &Simulation, x: f64, y: f64| {
+        let ray = ars::world::raycast::Ray { origin: [x, 5.0, -y].into(), direction: Vector3::new(0.0, -1.0, 0.0) };
+        let hit = sim.scene().world().cast_ray(ray, 10.0, None).unwrap().expect("the terrain is there");
+        hit.position.y
+    };
+    // Corners: (−2, −1) holds the last row's first number (8 of 0..20: 0.4), (2, −1) the
+    // last (20: 1), (−2, 1) the first (0), (2, 1) 3 (0.15); each times 0.5, plus 0.2.
+    for (x, y, expected) in [(-2.0, -1.0, 0.4), (2.0, -1.0, 1.0), (-2.0, 1.0, 0.0), (2.0, 1.0, 0.15)] {
+        let got = height(&sim, x * 0.9999, y * 0.9999);
+        assert!((got - (0.2 + 0.5 * expected)).abs() < 1e-3, "({x}, {y}): {got}");
+    }
+    sim.run_for(1.0).unwrap();
+    let crate_ = model.body("crate").unwrap();
+    let at = sim.scene().position(crate_).unwrap();
+    // Just beside it (a ray down on it would stop at its top): the slope there is 0.04.
+    let ground = height(&sim, at.x + 0.08, -at.z);
+    assert!((at.y - 0.05 - ground).abs() < 0.01, "the crate rests on the terrain: {at:?} over {ground}");
+    assert!(sim.scene().body(crate_).unwrap().linear_velocity().norm() < 1e-3, "and stays");
+}
+
+#[test]
+fn a_bad_height_field_is_refused_naming_it() {
+    for (bad, said) in [
+        (r#"nrow="3" ncol="4" size="2 1 0.5 0.1" elevation="1 2 3""#, "elevation has 3 numbers"),
+        (r#"nrow="3" ncol="4" size="2 1 -0.5 0.1""#, "must be three positive numbers"),
+        (r#"nrow="1" ncol="4" size="2 1 0.5 0.1""#, "nrow 1 must be a whole number of at least 2"),
+        (r#"nrow="100000" ncol="100000" size="2 1 0.5 0.1""#, "more than"),
+        (r#"nrow="3" ncol="4" size="2 1 0.5 0.1" elevation="0 1 2 3 4 5 6 7 8 9 10 nan""#, "finite numbers"),
+        (r#"file="missing.png" size="2 1 0.5 0.1""#, "cannot open"),
+    ] {
+        let text =
+            HFIELD.replace(r#"nrow="3" ncol="4" size="2 1 0.5 0.1" elevation="0 1 2 3  4 5 6 7  8 9 10 20""#, bad);
+        let mut sim = Simulation::new().unwrap();
+        let err = sim.load_mjcf_text(&text, "hfield.xml", &MjcfOptions::new()).unwrap_err().to_string();
+        assert!(err.contains(said) && err.contains("line"), "{bad}: {err}");
+        assert_eq!(sim.scene().objects().count(), 0, "nothing left");
+    }
+    // On a moving body: refused by name.
+    let moving =
+        HFIELD.replace(r#"<geom type="box" size="0.05 0.05 0.05"/>"#, r#"<geom type="hfield" hfield="hill"/>"#);
+    let err = Simulation::new().unwrap().load_mjcf_text(&moving, "h.xml", &MjcfOptions::new()).unwrap_err();
+    assert!(err.to_string().contains("\"crate\": an hfield geom on a body"), "{err}");
+}

@@ -219,6 +219,13 @@ impl Scene {
         named: &mut HashMap<String, (GeomHandle, (u64, u64))>,
     ) -> Result<()> {
         let frame = parent_frame * body.frame;
+        if body.geoms.iter().any(|g| matches!(g.kind, GeomKind::Hfield(_))) {
+            return Err(body_error(format!(
+                "{:?}: an hfield geom on a body of its own (one that moves, or has mass) is not supported: ARS makes \
+                 height fields as static terrain, in the world body",
+                body.name
+            )));
+        }
         let masses = body_masses(body, made)?;
         let (id, body_frame) = self.add_mjcf_object(body, &frame, &masses, made, named)?;
         let mut end = parent.map_or(JointEnd::World, JointEnd::Object);

@@ -15,7 +15,8 @@ impl Geom {
         use std::f64::consts::PI;
         match &self.kind {
             GeomKind::Mesh(mesh) => mesh.mass.volume,
-            GeomKind::Plane => 0.0,
+            // Static terrain: nothing to weigh.
+            GeomKind::Plane | GeomKind::Hfield(_) => 0.0,
             GeomKind::Sphere(r) => 4.0 / 3.0 * PI * r.powi(3),
             GeomKind::Capsule(r, h) => PI * r * r * 2.0 * h + 4.0 / 3.0 * PI * r.powi(3),
             GeomKind::Cylinder(r, h) => PI * r * r * 2.0 * h,
@@ -41,7 +42,7 @@ impl Geom {
     pub(super) fn inertia(&self) -> Vector3<f64> {
         let m = self.mass();
         match &self.kind {
-            GeomKind::Plane | GeomKind::Mesh(_) => Vector3::zeros(),
+            GeomKind::Plane | GeomKind::Hfield(_) | GeomKind::Mesh(_) => Vector3::zeros(),
             GeomKind::Sphere(r) => Vector3::repeat(0.4 * m * r * r),
             GeomKind::Capsule(r, h) => {
                 let height = 2.0 * h;
@@ -80,6 +81,7 @@ impl Geom {
         match &self.kind {
             GeomKind::Mesh(mesh) => mesh.hull.clone().unwrap_or(Shape::Sphere { radius: FLAT_MESH_STAND_IN }),
             GeomKind::Plane => Shape::Plane { normal: Vector3::z(), distance: 0.0 },
+            GeomKind::Hfield(field) => field.shape(),
             GeomKind::Sphere(r) => Shape::Sphere { radius: *r },
             GeomKind::Capsule(r, h) => Shape::Capsule { radius: *r, length: 2.0 * h },
             GeomKind::Cylinder(r, h) => Shape::Cylinder { radius: *r, length: 2.0 * h },

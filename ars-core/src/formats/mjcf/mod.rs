@@ -25,6 +25,9 @@
 //!   as MuJoCo's for a convex mesh; a mesh that encloses no volume (open, or wound
 //!   inwards) weighs as its hull, said in `skipped`, and one whose hull is flat is
 //!   refused, as MuJoCo refuses it);
+//!   `hfield` (an `<asset><hfield>` of `elevation` numbers, a PNG file's grey levels, or
+//!   zeros; static terrain only: a triangle mesh of its grid at MuJoCo's heights, see
+//!   the `hfield` module; its base box is not made);
 //!   `fromto` for capsules and cylinders; `rgba` for the colour (else its
 //!   `material`'s, as MuJoCo draws it); `contype` and
 //!   `conaffinity` as ODE's category and collide bits (the same rule: two geoms collide
@@ -189,6 +192,7 @@ mod contact;
 mod damper;
 mod defaults;
 mod equality;
+mod hfield;
 mod include;
 mod keyframe;
 #[cfg(test)]

@@ -13,6 +13,8 @@ use crate::shape::Shape;
 #[derive(Clone, Debug)]
 pub(super) enum GeomKind {
     Mesh(std::sync::Arc<MeshGeom>),
+    /// A height field: static, made as the triangle mesh of its grid.
+    Hfield(std::sync::Arc<super::hfield::Hfield>),
     Plane,
     Sphere(f64),
     Capsule(f64, f64),

@@ -9,6 +9,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 use super::MAX_CONTACT_PAIRS;
 use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
+use super::hfield::{Hfield, hfield_asset};
 use super::include::{Files, Includes, Tree, gather};
 use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
 use super::meshes::{MeshAsset, load_mesh, mesh_assets};
@@ -28,6 +29,8 @@ pub(super) struct Reader<'d, 'a, 'input> {
     pub(super) joints: usize,
     /// The `<asset><mesh>`es by name.
     pub(super) meshes: HashMap<String, MeshAsset>,
+    /// The `<asset><hfield>`s by name.
+    pub(super) hfields: HashMap<String, std::sync::Arc<Hfield>>,
     /// The meshes loaded so far, by name.
     pub(super) loaded: HashMap<String, std::sync::Arc<MeshGeom>>,
     /// The `<asset><material>`s' colours, by name.
@@ -98,6 +101,13 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let mut frame = frame(a, &self.compiler)?;
         let kind = match kind_name {
             "mesh" => GeomKind::Mesh(self.mesh(&node, a.get("mesh"))?),
+            "hfield" => {
+                let name = a.get("hfield").ok_or_else(|| problem(&node, "an hfield geom needs an hfield"))?;
+                let field = self.hfields.get(name);
+                GeomKind::Hfield(
+                    field.ok_or_else(|| problem(&node, format!("no <hfield> asset is called {name:?}")))?.clone(),
+                )
+            }
             "plane" => GeomKind::Plane,
             "sphere" => GeomKind::Sphere(size_at(0)?),
             "capsule" | "cylinder" => {
@@ -474,6 +484,16 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     let (contacts_disabled, gravity_disabled) = (settings.contacts_disabled, settings.gravity_disabled);
     let materials = material_colors(&settings.material_nodes, &settings.defaults)?;
     let meshes = mesh_assets(&settings.mesh_nodes, &settings.defaults)?;
+    let dir = Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default();
+    let folder = match &settings.compiler.meshdir {
+        Some(meshdir) => dir.join(meshdir),
+        None => dir.clone(),
+    };
+    let mut hfields = HashMap::new();
+    for &node in &settings.hfield_nodes {
+        let (name, field) = hfield_asset(&Attrs::new(node, &settings.defaults, "main"), &folder)?;
+        hfields.insert(name, std::sync::Arc::new(field));
+    }
     let mut reader = Reader {
         compiler: settings.compiler,
         defaults: &settings.defaults,
@@ -486,7 +506,8 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         loaded: HashMap::new(),
         files: crate::formats::MeshCache::default(),
         tree,
-        dir: Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default(),
+        dir,
+        hfields,
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),
@@ -547,6 +568,8 @@ struct Settings<'a, 'input> {
     mesh_nodes: Vec<roxmltree::Node<'a, 'input>>,
     /// The `<asset><material>`s, read once every default class is known.
     material_nodes: Vec<roxmltree::Node<'a, 'input>>,
+    /// The `<asset><hfield>`s.
+    hfield_nodes: Vec<roxmltree::Node<'a, 'input>>,
 }
 
 /// The first pass over the top-level elements: `<compiler>`, `<default>`, `<asset>`
@@ -565,6 +588,7 @@ fn read_settings<'a, 'input>(
         flags_unused: Vec::new(),
         mesh_nodes: Vec::new(),
         material_nodes: Vec::new(),
+        hfield_nodes: Vec::new(),
     };
     for &node in nodes {
         match node.tag_name().name() {
@@ -573,6 +597,7 @@ fn read_settings<'a, 'input>(
             "asset" => {
                 settings.mesh_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("mesh")));
                 settings.material_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("material")));
+                settings.hfield_nodes.extend(tree.elements(node).into_iter().filter(|c| c.has_tag_name("hfield")));
             }
             "option" => {
                 let a = Attrs { node, class: None };
