@@ -558,17 +558,7 @@ impl World {
         if !ray1 && !ray2 && unsafe { above_plane(o1, shape1, o2) || above_plane(o2, shape2, o1) } {
             return Ok(());
         }
-        // A surface the hooks chose keeps its most points spread over all the collider
-        // finds (`spread`); the default surface keeps ODE's first, as the plain
-        // collision in C does.
-        let (asked, max) = match surface {
-            PairSurface::Ray => (MAX_CONTACTS_LIMIT, MAX_CONTACTS_LIMIT),
-            PairSurface::Default => {
-                let max = self.collision.default_surface.max_contacts;
-                (max, max)
-            }
-            PairSurface::Chosen(_, max) => (MAX_CONTACTS_LIMIT, max),
-        };
+        let (asked, max) = self.contact_counts(&surface);
         let scratch = &mut self.collision.scratch;
         // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `asked`
         // entries of dContactGeom.
@@ -611,6 +601,21 @@ impl World {
             }
         }
         Ok(())
+    }
+
+    /// How many points to ask the collider for, and how many to keep. A surface the
+    /// hooks chose keeps its most points spread over all the collider finds (`spread`);
+    /// the default surface keeps ODE's first, as the plain collision in C does.
+    #[inline]
+    fn contact_counts(&self, surface: &PairSurface) -> (usize, usize) {
+        match surface {
+            PairSurface::Ray => (MAX_CONTACTS_LIMIT, MAX_CONTACTS_LIMIT),
+            PairSurface::Default => {
+                let max = self.collision.default_surface.max_contacts;
+                (max, max)
+            }
+            PairSurface::Chosen(_, max) => (MAX_CONTACTS_LIMIT, *max),
+        }
     }
 
     /// The surface of a pair's contacts: a ray's hits, the default surface, or the one

@@ -10,7 +10,6 @@ use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vect
 
 use crate::error::{Error, Result};
 use crate::handle::ObjectId;
-use crate::simulation::Simulation;
 
 /// A mocap body of an MJCF model: its object (a kinematic body) and how the file's
 /// pose of the body maps onto the object's pose in the simulation.
@@ -53,42 +52,5 @@ impl MjcfMocap {
         let p: Point3<f64> = body.translation.vector.into();
         let q = body.rotation.into_inner();
         ([p.x, p.y, p.z], [q.w, q.i, q.j, q.k])
-    }
-}
-
-/// Moves MJCF models' mocap bodies.
-impl Simulation {
-    /// The mocap bodies of the MJCF models loaded, in the order loaded.
-    pub fn mocap_bodies(&self) -> &[MjcfMocap] {
-        &self.scene.mocap_bodies
-    }
-
-    /// Puts the mocap body `body` (its name in the file, with the model's prefix) at
-    /// `position`, turned by `quaternion` (w, x, y, z), in the file's world frame: what
-    /// MuJoCo's `data.mocap_pos` and `data.mocap_quat` hold. It stays there, still,
-    /// until moved again. Errors: an unknown name, a non-finite number, a zero
-    /// quaternion; nothing is moved then.
-    pub fn set_mocap_pose(&mut self, body: &str, position: [f64; 3], quaternion: [f64; 4]) -> Result<()> {
-        let mocap = self.mocap(body)?;
-        let (object, pose) = (mocap.object, mocap.object_pose(position, quaternion)?);
-        self.scene.set_pose(object, pose)
-    }
-
-    /// Where the mocap body `body` is: its position and quaternion (w, x, y, z) in the
-    /// file's world frame.
-    pub fn mocap_pose(&self, body: &str) -> Result<([f64; 3], [f64; 4])> {
-        let mocap = self.mocap(body)?;
-        Ok(mocap.body_pose(&self.scene.pose(mocap.object)?))
-    }
-
-    fn mocap(&self, body: &str) -> Result<&MjcfMocap> {
-        self.scene.mocap_bodies.iter().find(|m| m.body == body).ok_or_else(|| Error::UnknownName {
-            kind: "mocap body",
-            name: body.to_string(),
-            close_matches: crate::scene::names::close_matches(
-                body,
-                self.scene.mocap_bodies.iter().map(|m| m.body.as_str()),
-            ),
-        })
     }
 }
