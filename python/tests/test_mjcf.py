@@ -562,6 +562,8 @@ SITE_SENSORS = """
     <velocimeter name="corner_vel" site="corner"/>
     <velocimeter name="tip_vel" site="tip"/>
     <framequat name="box_turn" objtype="xbody" objname="box"/>
+    <magnetometer name="tip_compass" site="tip"/>
+    <magnetometer name="corner_compass" site="corner"/>
   </sensor>
 </mujoco>"""
 
@@ -612,8 +614,8 @@ def last_row(sensor):
 
 
 def test_site_sensors_read_what_mujoco_s_read(tmp_path):
-    """gyro, framepos, framequat, framelinvel on sites and body frames, and
-    rangefinders, as MuJoCo computes them: after one step of a microsecond, ARS's
+    """gyro, framepos, framequat, framelinvel and magnetometer on sites and body frames,
+    and rangefinders, as MuJoCo computes them: after one step of a microsecond, ARS's
     records equal MuJoCo's sensordata after the same step to 1e-9 (MuJoCo's (x, y, z)
     being ARS's (x, z, -y); a quaternion turned the same way, up to its sign)."""
     path = tmp_path / "sites.xml"
@@ -659,6 +661,11 @@ def test_site_sensors_read_what_mujoco_s_read(tmp_path):
         q = quat_mul(TURN_QUAT, theirs(name))
         q = q if q[0] >= 0 else -q
         assert ours[name] == pytest.approx(q, abs=1e-9), name
+    # MuJoCo's default field, (0, -0.5, 0), in each site's frame.
+    for name in ["tip_compass", "corner_compass"]:
+        assert kinds[name] == "magnetometer"
+        assert ours[name] == pytest.approx(theirs(name), abs=1e-9), name
+        assert np.abs(theirs(name)).max() > 0.1, name
     # The inertial frame is not the body's: the two quaternions differ.
     assert np.abs(ours["arm_turn"] - ours["arm_inertia"]).max() > 0.1
     # The ray down meets the floor; the one up meets nothing (MuJoCo's -1, NaN here).

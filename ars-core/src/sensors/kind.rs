@@ -73,6 +73,9 @@ pub enum SensorKind {
     JointVelocities,
     /// [`Momentum`](super::Momentum).
     Momentum,
+    /// [`Magnetometer`](super::Magnetometer) (in MuJoCo's default field unless its
+    /// settings give one).
+    Magnetometer,
     /// [`Lidar`](super::Lidar): made from its settings only.
     Lidar,
     /// [`DepthCamera`](super::DepthCamera): made from its settings only.
@@ -81,7 +84,7 @@ pub enum SensorKind {
 
 impl SensorKind {
     /// Every kind, in this order.
-    pub const ALL: [SensorKind; 24] = [
+    pub const ALL: [SensorKind; 25] = [
         SensorKind::Gps,
         SensorKind::Velometer,
         SensorKind::Velocimeter,
@@ -104,6 +107,7 @@ impl SensorKind {
         SensorKind::JointPositions,
         SensorKind::JointVelocities,
         SensorKind::Momentum,
+        SensorKind::Magnetometer,
         SensorKind::Lidar,
         SensorKind::DepthCamera,
     ];
@@ -139,6 +143,7 @@ impl SensorKind {
             SensorKind::JointPositions => "JointPositions",
             SensorKind::JointVelocities => "JointVelocities",
             SensorKind::Momentum => "Momentum",
+            SensorKind::Magnetometer => "Magnetometer",
             SensorKind::Lidar => "Lidar",
             SensorKind::DepthCamera => "DepthCamera",
         }
@@ -205,7 +210,7 @@ mod tests {
         }
         let with_settings: Vec<_> = SensorKind::ALL.into_iter().filter(|k| k.target() == SensorTarget::Mount).collect();
         assert_eq!(with_settings, [SensorKind::Lidar, SensorKind::DepthCamera]);
-        assert_eq!(SensorKind::from_targets().count(), 22);
+        assert_eq!(SensorKind::from_targets().count(), 23);
         assert!("Gpss".parse::<SensorKind>().is_err());
         assert_eq!(SensorKind::of_type_name("Laser"), None);
     }

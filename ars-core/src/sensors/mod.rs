@@ -27,6 +27,7 @@ mod kind;
 mod laser;
 mod lidar;
 mod log;
+mod magnetometer;
 mod momentum;
 mod mount;
 mod noise;
@@ -50,6 +51,7 @@ pub use kind::{SensorKind, SensorTarget};
 pub use laser::{Laser, LaserReading};
 pub use lidar::{Lidar, Scan};
 pub use log::{CsvColumns, Record, Sample, SensorLog, write_csv_table};
+pub use magnetometer::{MagneticField, Magnetometer};
 pub use momentum::{Momentum, MomentumReading};
 pub use mount::Mount;
 pub use noise::{Noisy, Perturb};
@@ -195,6 +197,13 @@ pub enum SensorSettings {
         /// The zone.
         zone: TouchZone,
         /// Where the zone is, in the object's frame.
+        pose: nalgebra::Isometry3<f64>,
+    },
+    /// A [`Magnetometer`]: the world's field and the sensor's frame on its object.
+    Magnetometer {
+        /// The world's field.
+        field: nalgebra::Vector3<f64>,
+        /// The sensor's frame, in the object's frame.
         pose: nalgebra::Isometry3<f64>,
     },
 }

@@ -8,6 +8,7 @@ use super::body::{
 use super::energy::{Energy, Kinetic, Potential};
 use super::joint::{Effort, Power, Reaction};
 use super::laser::LaserReading;
+use super::magnetometer::MagneticField;
 use super::momentum::MomentumReading;
 use super::touch::TouchReading;
 use super::{Record, Sensor};
@@ -47,6 +48,7 @@ perturb_fields!(Velocity, |r, n| {
     v3(&mut r.linear, n);
     v3(&mut r.angular, n)
 });
+perturb_fields!(MagneticField, |r, n| { v3(&mut r.field, n) });
 perturb_fields!(MomentumReading, |r, n| {
     p3(&mut r.centre, n);
     v3(&mut r.velocity, n);

@@ -7,7 +7,7 @@ use crate::handle::{JointId, ObjectId};
 use crate::sensors::{
     Accelerometer, AnySensorId, ContactForces, ContactSensor, CsvColumns, DepthCamera, Gps, HingeSensor, Imu,
     Inclinometer, JointForce, JointPositions, JointPower, JointReaction, JointTorque, JointVelocities, KineticEnergy,
-    Lidar, Momentum, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorKind, SensorSettings,
+    Lidar, Magnetometer, Momentum, Noisy, Orientation, Perturb, PotentialEnergy, Sensor, SensorKind, SensorSettings,
     SystemTotalEnergy, TotalEnergy, Touch, Velocimeter, Velometer,
 };
 
@@ -96,6 +96,9 @@ impl Simulation {
             (K::Imu, Some(SensorSettings::Offset { pose })) => {
                 self.add_noisy(Imu::new(object()?).at(*pose), period, noise)
             }
+            (K::Magnetometer, Some(SensorSettings::Magnetometer { field, pose })) => {
+                self.add_noisy(Magnetometer::new(object()?, *field)?.at(*pose), period, noise)
+            }
             (K::Touch, Some(SensorSettings::Touch { zone, pose })) => {
                 self.add_noisy(Touch::new(object()?).within(*zone, *pose), period, noise)
             }
@@ -111,6 +114,9 @@ impl Simulation {
             (K::Imu, _) => self.add_noisy(Imu::new(object()?), period, noise),
             (K::Orientation, _) => self.add_noisy(Orientation::new(object()?), period, noise),
             (K::Touch, _) => self.add_noisy(Touch::new(object()?), period, noise),
+            (K::Magnetometer, _) => {
+                self.add_noisy(Magnetometer::new(object()?, Magnetometer::MUJOCO_DEFAULT_FIELD)?, period, noise)
+            }
             (K::ContactSensor, _) => self.add_noisy(ContactSensor::new(object()?), period, noise),
             (K::ContactForces, _) => self.add_noisy(ContactForces::new(object()?), period, noise),
             (K::KineticEnergy, _) => self.add_noisy(KineticEnergy::new(object()?), period, noise),

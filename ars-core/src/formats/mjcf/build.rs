@@ -57,6 +57,7 @@ impl Scene {
             name: model.name.clone(),
             timestep: model.timestep,
             gravity: model.gravity.map(|g| placement(options).rotation * g),
+            magnetic: placement(options).rotation * model.magnetic,
             actuators: model.actuators.clone(),
             keyframes: model.keyframes.clone(),
             skipped: model.skipped.clone(),

@@ -298,6 +298,9 @@ pub struct MjcfModel {
     pub timestep: Option<f64>,
     /// `<option gravity>`, in the simulation's frame, m/s².
     pub gravity: Option<Vector3<f64>>,
+    /// `<option magnetic>` (MuJoCo's `(0, −0.5, 0)` when not given), in the simulation's
+    /// frame: what the model's magnetometers read.
+    pub magnetic: Vector3<f64>,
     /// The actuators read.
     pub actuators: Vec<MjcfActuator>,
     /// What was skipped, and why.
@@ -385,6 +388,9 @@ pub struct MjcfSite {
 ///   site's frame (its first three columns; it lags on a jointed body as `framelinvel`).
 /// - `touch`: a [`Touch`](crate::sensors::Touch) on the site's body within the site's
 ///   volume (its second column, the normal force).
+/// - `magnetometer`: a [`Magnetometer`](crate::sensors::Magnetometer) at the site, in
+///   the site's frame, in the model's [`magnetic`](MjcfModel::magnetic) field (its
+///   three columns).
 /// - `subtreecom`, `subtreelinvel`, `subtreeangmom`: a
 ///   [`Momentum`](crate::sensors::Momentum) of the body's object and those of the bodies
 ///   below it (its columns `x y z`, `vx vy vz` and `Lx Ly Lz`, world frame). A body
@@ -401,7 +407,7 @@ pub struct MjcfSensor {
     /// Its name (`sensor{N}` when unnamed, N its index among the sensors).
     pub name: String,
     /// Its element: `jointpos`, `jointvel`, `framepos`, `framelinvel`, `framequat`,
-    /// `accelerometer`, `gyro`, `velocimeter`, `touch`, `rangefinder`, `subtreecom`,
+    /// `accelerometer`, `gyro`, `velocimeter`, `touch`, `rangefinder`, `magnetometer`, `subtreecom`,
     /// `subtreelinvel` or `subtreeangmom`.
     pub kind: String,
     /// What its target is: `joint`, `body` (its inertial frame), `xbody` (its frame),

@@ -175,6 +175,8 @@ pub(super) struct Model {
     pub(super) bodies: Vec<Body>,
     pub(super) timestep: Option<f64>,
     pub(super) gravity: Option<Vector3<f64>>,
+    /// `<option magnetic>` (MuJoCo's default if not given), in the file's frame.
+    pub(super) magnetic: Vector3<f64>,
     pub(super) actuators: Vec<MjcfActuator>,
     /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
     pub(super) excluded: Vec<(String, String)>,

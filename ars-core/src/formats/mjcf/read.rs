@@ -515,6 +515,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         bodies: Vec::new(),
         timestep: settings.timestep,
         gravity: settings.gravity,
+        magnetic: settings.magnetic,
         actuators: Vec::new(),
         excluded: Vec::new(),
         pairs: Vec::new(),
@@ -558,6 +559,8 @@ struct Settings<'a, 'input> {
     defaults: Defaults,
     timestep: Option<f64>,
     gravity: Option<Vector3<f64>>,
+    /// `<option magnetic>`, MuJoCo's `(0, −0.5, 0)` if not given.
+    magnetic: Vector3<f64>,
     /// `<option><flag contact="disable">`: no contact at all.
     contacts_disabled: bool,
     /// `<option><flag gravity="disable">`.
@@ -583,6 +586,7 @@ fn read_settings<'a, 'input>(
         defaults: Defaults::new(),
         timestep: None,
         gravity: None,
+        magnetic: Vector3::new(0.0, -0.5, 0.0),
         contacts_disabled: false,
         gravity_disabled: false,
         flags_unused: Vec::new(),
@@ -603,6 +607,9 @@ fn read_settings<'a, 'input>(
                 let a = Attrs { node, class: None };
                 settings.timestep = a.number("timestep")?;
                 settings.gravity = a.fixed::<3>("gravity")?.map(Vector3::from);
+                if let Some(m) = a.fixed::<3>("magnetic")? {
+                    settings.magnetic = Vector3::from(m);
+                }
                 for flag in tree.elements(node).into_iter().filter(|c| c.has_tag_name("flag")) {
                     read_flags(flag, &mut settings);
                 }

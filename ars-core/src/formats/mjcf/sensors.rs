@@ -22,7 +22,9 @@ impl Reader<'_, '_, '_> {
         let needs = |what: &str| a.get(what).ok_or_else(|| problem(&node, format!("needs a {what}")));
         let (objtype, target) = match kind {
             "jointpos" | "jointvel" => ("joint", needs("joint")?),
-            "accelerometer" | "gyro" | "velocimeter" | "touch" | "rangefinder" => ("site", needs("site")?),
+            "accelerometer" | "gyro" | "velocimeter" | "touch" | "rangefinder" | "magnetometer" => {
+                ("site", needs("site")?)
+            }
             "subtreecom" | "subtreelinvel" | "subtreeangmom" => ("subtree", needs("body")?),
             "framepos" | "framelinvel" | "framequat" => {
                 let objtype = match a.get("objtype") {
@@ -218,6 +220,7 @@ pub(super) fn ars_kind(element: &str) -> Option<SensorKind> {
         "accelerometer" | "gyro" => SensorKind::Imu,
         "velocimeter" => SensorKind::Velocimeter,
         "touch" => SensorKind::Touch,
+        "magnetometer" => SensorKind::Magnetometer,
         "subtreecom" | "subtreelinvel" | "subtreeangmom" => SensorKind::Momentum,
         _ => return None,
     })
@@ -243,11 +246,13 @@ impl crate::Simulation {
                 }
                 Some(kind) => {
                     let (object, pose) = mounted()?;
-                    let settings = if kind == SensorKind::Touch {
-                        let zone = model.site(target).ok_or_else(|| unknown_target(target))?.zone;
-                        SensorSettings::Touch { zone, pose }
-                    } else {
-                        SensorSettings::Offset { pose }
+                    let settings = match kind {
+                        SensorKind::Touch => {
+                            let zone = model.site(target).ok_or_else(|| unknown_target(target))?.zone;
+                            SensorSettings::Touch { zone, pose }
+                        }
+                        SensorKind::Magnetometer => SensorSettings::Magnetometer { field: model.magnetic, pose },
+                        _ => SensorSettings::Offset { pose },
                     };
                     self.add_sensor_described(kind, &[object], &[], None, None, Some(&settings))?
                 }
