@@ -766,7 +766,7 @@ fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
     // What is not supported is refused, or skipped and said.
     let text = SITES.replace(
         "</sensor>",
-        r#"<magnetometer site="top"/>
+        r#"<force site="top"/>
     <framequat objtype="body" objname="box"/>
     <gyro site="in_the_world"/>
     <framepos objtype="geom" objname="floor"/>
@@ -776,10 +776,10 @@ fn a_sensor_on_a_site_the_model_lacks_is_refused_with_its_line() {
     );
     let mut sim = Simulation::new().unwrap();
     let e = sim.load_mjcf_text(&text, "sites.xml", &MjcfOptions::new()).unwrap_err().to_string();
-    assert!(e.contains("<magnetometer>"), "{e}");
+    assert!(e.contains("<force>"), "{e}");
     let model = sim.load_mjcf_text(&text, "sites.xml", &MjcfOptions::new().skip_unsupported(true)).unwrap();
     assert_eq!(model.sensors.len(), 9, "the supported ones only");
-    for what in ["<magnetometer>", "inertial frame", "world body", "objtype geom", "cutoff", "other than \"dist\""] {
+    for what in ["<force>", "inertial frame", "world body", "objtype geom", "cutoff", "other than \"dist\""] {
         assert!(model.skipped.iter().any(|s| s.contains(what)), "{what} in {:?}", model.skipped);
     }
 }
