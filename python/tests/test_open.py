@@ -36,7 +36,9 @@ def test_an_mjcf_model_opens_and_says_what_it_skipped():
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         sim = ars.Simulation.open(ant)
-    assert any("margin" in str(w.message) for w in caught)
+    # The geoms' margins ARS cannot use, counted in one warning.
+    said = [str(w.message) for w in caught]
+    assert len(said) == 1 and "contact parameters of" in said[0] and "<geom>" in said[0], said
     sim.run(0.1)
     assert sim.body("torso").position[1] > 0.0
 
@@ -108,3 +110,24 @@ def test_a_link_with_mass_on_a_fixed_joint_is_fused_unless_kept_apart(tmp_path):
     apart = ars.Simulation()
     apart.load_urdf(str(path), keep_fixed_links=True)
     assert apart.body("a").mass == 1.0 and apart.body("b").mass == 1.0
+
+
+def test_what_a_mujoco_file_skips_is_one_warning(tmp_path):
+    """Opening an MJCF file whose geoms carry parameters ARS cannot use says so in one
+    warning counting them by kind, not a warning per geom (issue 37: 36 lines for
+    Gymnasium's humanoid); `load_mjcf` lists each."""
+    path = tmp_path / "margins.xml"
+    geoms = "".join(
+        f'<geom type="sphere" size="0.1" pos="{k} 0 1" margin="0.01"/>' for k in range(5)
+    )
+    path.write_text(f"<mujoco><worldbody>{geoms}</worldbody></mujoco>")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ars.Simulation.open(path)
+    said = [str(w.message) for w in caught]
+    assert len(said) == 1, said
+    assert (
+        said[0].startswith("skipped 5 unsupported MJCF items")
+        and "skip_unsupported=True" in said[0]
+    ), said
+    assert len(ars.Simulation().load_mjcf(path, skip_unsupported=True)["skipped"]) == 5

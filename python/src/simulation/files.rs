@@ -234,13 +234,17 @@ impl PySimulation {
     /// A simulation from any file ARS reads, by its extension: a scene file (`.json`), a
     /// URDF robot with its root at the origin over a floor, raised to rest on it
     /// (`.urdf`), or a MuJoCo model (`.xml`, `.mjcf`; what ARS cannot read is
-    /// skipped, each with a `UserWarning`). What the viewer's
-    /// Open button and `ars view FILE` open.
+    /// skipped, said in one `UserWarning` that counts them by kind:
+    /// `load_mjcf(path, skip_unsupported=True)["skipped"]` lists each). What ARS
+    /// corrected is said in a `UserWarning` each. What the viewer's Open button and
+    /// `ars view FILE` open.
     #[staticmethod]
     fn open(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         let opened = guarded(py, || Simulation::open(&path))?;
-        let said = opened.skipped.iter().map(|s| format!("skipped: {s}"));
-        for line in said.chain(opened.adjusted.iter().map(|a| format!("adjusted: {a}"))) {
+        let summary = opened
+            .skipped_summary()
+            .map(|line| format!("{line} (in Python: load_mjcf(path, skip_unsupported=True)[\"skipped\"])"));
+        for line in summary.into_iter().chain(opened.adjusted.iter().map(|a| format!("adjusted: {a}"))) {
             let message = std::ffi::CString::new(line).unwrap_or_default();
             PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
         }
