@@ -1227,3 +1227,38 @@ fn a_bad_height_field_is_refused_naming_it() {
     let err = Simulation::new().unwrap().load_mjcf_text(&moving, "h.xml", &MjcfOptions::new()).unwrap_err();
     assert!(err.to_string().contains("\"crate\": an hfield geom on a body"), "{err}");
 }
+
+/// A file's magnetometers read its `<option magnetic>`, MuJoCo's `(0, −0.5, 0)` when it
+/// gives none: in the simulation's frame, the field Python's magnetometers read.
+#[test]
+fn the_magnetic_field_is_the_file_s_or_mujoco_s_default() {
+    let mut sim = Simulation::new().unwrap();
+    let model = sim.load_mjcf_text(HFIELD, "field.xml", &MjcfOptions::new()).unwrap();
+    // The turn to Y-up leaves 1e-16 where MuJoCo's y was.
+    assert!((model.magnetic - ars::sensors::Magnetometer::MUJOCO_DEFAULT_FIELD).norm() < 1e-15, "{}", model.magnetic);
+    let given = HFIELD.replace("<asset>", r#"<option magnetic="0.1 0.2 0.3"/><asset>"#);
+    let model = Simulation::new().unwrap().load_mjcf_text(&given, "field.xml", &MjcfOptions::new()).unwrap();
+    assert!((model.magnetic - Vector3::new(0.1, 0.3, -0.2)).norm() < 1e-15, "{}", model.magnetic);
+}
+
+/// A height field whose file is not a PNG is refused naming the file and the element.
+#[test]
+fn a_height_field_of_a_file_that_is_no_png_is_refused() {
+    let folder = std::env::temp_dir().join(format!("ars-hfield-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::write(folder.join("terrain.png"), b"not a picture at all").unwrap();
+    std::fs::write(folder.join("empty.png"), b"").unwrap();
+    for file in ["terrain.png", "empty.png"] {
+        let text = HFIELD.replace(
+            r#"nrow="3" ncol="4" size="2 1 0.5 0.1" elevation="0 1 2 3  4 5 6 7  8 9 10 20""#,
+            &format!(r#"file="{file}" size="2 1 0.5 0.1""#),
+        );
+        let path = folder.join("model.xml");
+        std::fs::write(&path, text).unwrap();
+        let mut sim = Simulation::new().unwrap();
+        let err = sim.load_mjcf(&path, &MjcfOptions::new()).unwrap_err().to_string();
+        assert!(err.contains(file) && err.contains("not a PNG") && err.contains("<hfield>"), "{err}");
+        assert_eq!(sim.scene().objects().count(), 0);
+    }
+    std::fs::remove_dir_all(&folder).unwrap();
+}

@@ -231,6 +231,12 @@ fn set_mocap_pose_refuses_an_unknown_body_and_bad_numbers_and_moves_nothing() {
         assert_eq!(pose(&sim, &model, "target"), before);
     }
     sim.run_for(0.1).unwrap();
+    // A mocap body removed since: an error naming a stale object, not a panic.
+    sim.remove_object(model.body("target").unwrap()).unwrap();
+    let err = sim.set_mocap_pose("target", [0.0; 3], [1.0, 0.0, 0.0, 0.0]).unwrap_err();
+    assert!(matches!(err, ars::Error::StaleHandle { .. }), "{err}");
+    assert!(sim.mocap_pose("target").is_err());
+    sim.run_for(0.1).unwrap();
 }
 
 /// A mocap body must be a jointless child of the world, as MuJoCo requires.
@@ -292,4 +298,27 @@ fn a_saved_scene_keeps_the_mocap_body_kinematic_and_the_hand_welded() {
     again.run_for(0.5).unwrap();
     let hand = again.scene().object("hand").unwrap().id();
     assert_eq!(again.scene().pose(hand).unwrap(), pose(&sim, &model, "hand"));
+}
+
+/// Hostile softness on a weld: time constants of 1e-300 and 1e300 s, negative ones, an
+/// impedance outside (0, 1). Each loads and steps with finite bodies, or is refused.
+#[test]
+fn a_weld_of_hostile_softness_is_refused_or_harmless() {
+    for (solref, solimp) in [
+        ("1e-300 1", "0.9 0.95"),
+        ("1e300 1", "0.9 0.95"),
+        ("-1e308 -1e308", "2 -5"),
+        ("0.02 -1", "0 0"),
+        ("0.02 1", "1e308 1e308"),
+    ] {
+        let text = MOCAP_ARM.replace(
+            r#"<weld body1="target" body2="hand"/>"#,
+            &format!(r#"<weld body1="target" body2="hand" solref="{solref}" solimp="{solimp}"/>"#),
+        );
+        let Ok((mut sim, model)) = load(&text, &MjcfOptions::new()) else { continue };
+        sim.set_mocap_pose("target", [0.2, 0.0, 0.9], [1.0, 0.0, 0.0, 0.0]).unwrap();
+        sim.run_for(0.2).unwrap();
+        let hand = pose(&sim, &model, "hand").translation.vector;
+        assert!(hand.iter().all(|x| x.is_finite()), "{solref} / {solimp}: {hand:?}");
+    }
 }

@@ -96,6 +96,23 @@ pub(crate) const MUJOCO_CONTACTS_PER_PAIR: usize = 4;
 /// Below this a mass, a weight or a time counts as 0 (MuJoCo's `mjMINVAL`).
 const MIN_VALUE: f64 = 1e-15;
 
+/// The reduced mass of two bodies, kg: `a·b / (a + b)`, or the other's when one is
+/// infinite (static, or kinematic).
+pub(crate) fn reduced_mass(a: f64, b: f64) -> f64 {
+    match (a.is_finite(), b.is_finite()) {
+        (true, true) => a * b / (a + b),
+        (true, false) => a,
+        _ => b,
+    }
+}
+
+/// ODE's constraint force mixing that gives a constraint of effective mass `mass` kg
+/// MuJoCo's impedance `d` at a time step of `h` s: `h·(1 − d) / (d·m)` (a compliance per
+/// unit force); 0 against an infinite mass, which MuJoCo's impedance cannot soften.
+pub(crate) fn impedance_cfm(h: f64, d: f64, mass: f64) -> f64 {
+    if mass.is_finite() && mass > MIN_VALUE { h * (1.0 - d) / (d * mass) } else { 0.0 }
+}
+
 impl GeomContact {
     /// Checks every field: frictions finite and not negative, `condim` 1, 3, 4 or 6, a
     /// `solref` of two positive or two non-positive finite numbers (not both 0), a
@@ -185,7 +202,7 @@ impl GeomContact {
         // ODE's CFM is a compliance per unit force: the effective mass makes it MuJoCo's
         // impedance; against the static world (an infinite mass) the contact is as hard
         // as the world's CFM.
-        let cfm = if mass.is_finite() && mass > MIN_VALUE { h * (1.0 - d) / (d * mass) } else { 0.0 };
+        let cfm = impedance_cfm(h, d, mass);
         let friction = self.condim > 1;
         let rolling = match self.condim {
             4 => Some([0.0, 0.0, self.friction[1]]),

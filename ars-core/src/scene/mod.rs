@@ -23,6 +23,7 @@ use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use geom_contact::GeomContact;
+pub(crate) use geom_contact::{impedance_cfm, reduced_mass};
 pub(crate) use insert::{NewObject, ObjectName};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic};
 pub use objects::{Color, Visual};

@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::Scene;
-use super::geom_contact::{GeomContact, MUJOCO_CONTACTS_PER_PAIR};
+use super::geom_contact::{GeomContact, MUJOCO_CONTACTS_PER_PAIR, reduced_mass};
 use crate::contact::{CollisionHooks, ContactSurface, GeomPair};
 use crate::error::{Error, Result};
 use crate::handle::{GeomHandle, ObjectId, SpaceHandle};
@@ -96,12 +96,7 @@ impl PairSurfaces {
         }
         let unknown = (GeomContact::default(), f64::INFINITY);
         let ((a, mass_a), (b, mass_b)) = (first.unwrap_or(&unknown), second.unwrap_or(&unknown));
-        let mass = match (mass_a.is_finite(), mass_b.is_finite()) {
-            (true, true) => mass_a * mass_b / (mass_a + mass_b),
-            (true, false) => *mass_a,
-            _ => *mass_b,
-        };
-        let surface = a.combined(b).surface(self.time_step, mass, most);
+        let surface = a.combined(b).surface(self.time_step, reduced_mass(*mass_a, *mass_b), most);
         self.made.insert((pair.geom1, pair.geom2), surface);
         Some(surface)
     }

@@ -72,17 +72,21 @@ impl Record for MomentumReading {
 impl Sensor for Momentum {
     type Record = MomentumReading;
     fn measure(&mut self, sim: &Scene) -> Result<MomentumReading> {
-        let bodies = self.objects.iter().map(|o| sim.body(*o)).collect::<Result<Vec<_>>>()?;
-        let mass: f64 = bodies.iter().map(|b| b.mass()).sum();
-        let centre = bodies.iter().map(|b| b.mass() * b.position().coords).sum::<Vector3<f64>>() / mass;
-        let velocity = bodies.iter().map(|b| b.mass() * b.linear_velocity()).sum::<Vector3<f64>>() / mass;
-        let angular_momentum = bodies
-            .iter()
-            .map(|b| {
-                let (r, v) = (b.position().coords - centre, b.linear_velocity() - velocity);
-                b.inertia_world() * b.angular_velocity() + b.mass() * r.cross(&v)
-            })
-            .sum();
+        // Two passes over the bodies (it samples every step: nothing is allocated).
+        let (mut mass, mut moment, mut momentum) = (0.0, Vector3::zeros(), Vector3::zeros());
+        for o in &self.objects {
+            let b = sim.body(*o)?;
+            mass += b.mass();
+            moment += b.mass() * b.position().coords;
+            momentum += b.mass() * b.linear_velocity();
+        }
+        let (centre, velocity) = (moment / mass, momentum / mass);
+        let mut angular_momentum = Vector3::zeros();
+        for o in &self.objects {
+            let b = sim.body(*o)?;
+            let (r, v) = (b.position().coords - centre, b.linear_velocity() - velocity);
+            angular_momentum += b.inertia_world() * b.angular_velocity() + b.mass() * r.cross(&v);
+        }
         Ok(MomentumReading { centre: Point3::from(centre), velocity, angular_momentum })
     }
     fn objects(&self) -> Vec<ObjectId> {

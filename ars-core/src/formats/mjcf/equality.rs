@@ -36,7 +36,7 @@ use super::read::Reader;
 use crate::error::{Error, Result};
 use crate::handle::{JointId, ObjectId};
 use crate::joint::JointParam;
-use crate::scene::{JointEnd, Scene};
+use crate::scene::{JointEnd, Scene, impedance_cfm, reduced_mass};
 
 impl Equality {
     fn said(&self, text: impl std::fmt::Display) -> String {
@@ -73,10 +73,12 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             let unused: &[&str] = if tag == "joint" { &["solref", "solimp", "torquescale"] } else { &["torquescale"] };
             let soft: Vec<&str> = unused.iter().copied().filter(|k| a.get(k).is_some()).collect();
             if !soft.is_empty() {
-                self.skipped.push(format!(
-                    "<{tag}> at line {line}: {} not used (ARS's equality is an ODE joint, as stiff as every joint)",
-                    soft.join(", ")
-                ));
+                let why = if tag == "joint" {
+                    "a coupling is a one-way motor, as stiff as every joint"
+                } else {
+                    "ODE's fixed joint holds turn and position alike"
+                };
+                self.skipped.push(format!("<{tag}> at line {line}: {} not used ({why})", soft.join(", ")));
             }
             let solref = a.fixed::<2>("solref")?.unwrap_or([0.02, 1.0]);
             let solimp = a.numbers("solimp")?.unwrap_or_default();
@@ -234,21 +236,11 @@ impl Scene {
             Ok(if body.is_kinematic() { f64::INFINITY } else { body.mass() })
         };
         let m = match other {
-            JointEnd::Object(o) => {
-                let (a, b) = (mass(object)?, mass(o)?);
-                if a.is_infinite() {
-                    b
-                } else if b.is_infinite() {
-                    a
-                } else {
-                    a * b / (a + b)
-                }
-            }
+            JointEnd::Object(o) => reduced_mass(mass(object)?, mass(o)?),
             JointEnd::World => mass(object)?,
         };
-        let d = d_min.clamp(1e-4, 1.0 - 1e-4);
-        let cfm = h * (1.0 - d) / (d * m);
-        if m.is_finite() && cfm.is_finite() && cfm > self.world().cfm() {
+        let cfm = impedance_cfm(h, d_min.clamp(1e-4, 1.0 - 1e-4), m);
+        if cfm.is_finite() && cfm > self.world().cfm() {
             self.joint_mut(joint)?.set_param(JointParam::Cfm, cfm)?;
         }
         Ok(())
