@@ -1,15 +1,27 @@
-"""Shared test helpers: where the repository is, the Rust examples' output, and a
-virtual display for the window tests."""
+"""Shared test helpers: where the repository is, the Rust examples' output, a file of
+the corpus of robot files, and a virtual display for the window tests."""
 
 import csv
 import os
 import pathlib
 import shutil
 import subprocess
+import sys
 
 import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
+
+
+def corpus_file(relative):
+    """A file of the corpus `tools/corpus/fetch.py` fetches (`test_corpus.py` fetches it
+    first in a whole run), by its path under the cache's `unpacked/`; `None` where it
+    is not there."""
+    sys.path.insert(0, str(REPO / "tools" / "corpus"))
+    import fetch  # tools/corpus, on the path just above
+
+    path = fetch.cache_dir() / "unpacked" / relative
+    return path if path.exists() else None
 
 
 def run_rust_example(name, *args, tmp_path):

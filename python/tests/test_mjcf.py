@@ -9,6 +9,7 @@ import re
 
 import numpy as np
 import pytest
+from conftest import corpus_file
 
 import ars
 
@@ -917,7 +918,7 @@ def test_height_fields_stand_where_mujoco_s_do(tmp_path):
     rng = np.random.default_rng(7)
     for file in [
         path,
-        corpus_or_none("dm-control-1.0.50/dm_control/mjcf/test_assets/model_with_assets.xml"),
+        corpus_file("dm-control-1.0.50/dm_control/mjcf/test_assets/model_with_assets.xml"),
     ]:
         if file is None:
             continue
@@ -936,9 +937,3 @@ def test_height_fields_stand_where_mujoco_s_do(tmp_path):
         worst = max(abs(theirs - ours) for theirs, ours in pairs)
         assert worst < 1e-9, (file, worst)
         assert np.ptp([theirs for theirs, _ in pairs]) > 0.1 * size[2], "the terrain is not flat"
-
-
-def corpus_or_none(relative):
-    cache = os.environ.get("ARS_CORPUS_CACHE", os.path.expanduser("~/.cache/ars-corpus"))
-    path = pathlib.Path(cache) / "unpacked" / relative
-    return path if path.exists() else None

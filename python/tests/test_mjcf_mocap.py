@@ -3,11 +3,10 @@
 following it."""
 
 import math
-import os
-import pathlib
 
 import numpy as np
 import pytest
+from conftest import corpus_file
 
 import ars
 
@@ -166,16 +165,6 @@ def test_a_moving_mocap_body_pushes_what_it_meets_and_not_the_floor(arm):
     assert sim.mocap_pose("pusher")[0] == pytest.approx([-0.5, 0.0, 0.05], abs=1e-12)
 
 
-def corpus_file(relative):
-    """A file of the corpus `tools/corpus/fetch.py` fetches (`test_corpus.py` fetches it
-    first in a whole run), or a skip where it is not there."""
-    cache = os.environ.get("ARS_CORPUS_CACHE", os.path.expanduser("~/.cache/ars-corpus"))
-    path = pathlib.Path(cache) / "unpacked" / relative
-    if not path.exists():
-        pytest.skip(f"the corpus is not fetched ({path})")
-    return path
-
-
 def test_meta_world_s_sawyer_is_held_by_its_mocap_weld_as_in_mujoco():
     """Meta-World's Sawyer hangs from its mocap body by a soft weld, and its shoulder
     (right_j1, range -3.8 to -0.5 rad) starts at 0, outside its range. MuJoCo lets the
@@ -184,6 +173,8 @@ def test_meta_world_s_sawyer_is_held_by_its_mocap_weld_as_in_mujoco():
     stiff as every joint, it fought the stop and whipped the arm at 30 to 130 m/s; with
     the ERP alone, at 30 to 60 m/s."""
     path = corpus_file("metaworld-3.1.1/metaworld/assets/sawyer_xyz/sawyer_reach_v3.xml")
+    if path is None:
+        pytest.skip("the corpus is not fetched (test_corpus.py fetches it)")
     m, d = mujoco_of(path)
     mujoco.mj_forward(m, d)
     link = m.body("right_l6").id
