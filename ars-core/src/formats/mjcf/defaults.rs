@@ -124,6 +124,22 @@ pub(super) fn frame(a: &Attrs<'_, '_>, compiler: &Compiler) -> Parsed<Isometry3<
     Ok(Isometry3::from_parts(Translation3::from(pos), orientation(a, compiler)?))
 }
 
+/// The turn of Euler angles `e`, in the compiler's unit and sequence.
+pub(super) fn euler_turn(e: [f64; 3], compiler: &Compiler) -> UnitQuaternion<f64> {
+    let mut q = UnitQuaternion::identity();
+    for (i, axis) in compiler.eulerseq.iter().enumerate() {
+        let unit = match axis {
+            0 => Vector3::x_axis(),
+            1 => Vector3::y_axis(),
+            _ => Vector3::z_axis(),
+        };
+        let angle = if compiler.degrees { e[i].to_radians() } else { e[i] };
+        let turn = UnitQuaternion::from_axis_angle(&unit, angle);
+        q = if compiler.extrinsic { turn * q } else { q * turn };
+    }
+    q
+}
+
 pub(super) fn orientation(a: &Attrs<'_, '_>, compiler: &Compiler) -> Parsed<UnitQuaternion<f64>> {
     let angle = |x: f64| if compiler.degrees { x.to_radians() } else { x };
     let given: Vec<&str> = ["quat", "euler", "axisangle", "xyaxes", "zaxis"]
@@ -146,17 +162,7 @@ pub(super) fn orientation(a: &Attrs<'_, '_>, compiler: &Compiler) -> Parsed<Unit
         return Ok(UnitQuaternion::from_axis_angle(&axis, angle(t)));
     }
     if let Some(e) = a.fixed::<3>("euler")? {
-        let mut q = UnitQuaternion::identity();
-        for (i, axis) in compiler.eulerseq.iter().enumerate() {
-            let unit = match axis {
-                0 => Vector3::x_axis(),
-                1 => Vector3::y_axis(),
-                _ => Vector3::z_axis(),
-            };
-            let turn = UnitQuaternion::from_axis_angle(&unit, angle(e[i]));
-            q = if compiler.extrinsic { turn * q } else { q * turn };
-        }
-        return Ok(q);
+        return Ok(euler_turn(e, compiler));
     }
     if let Some(v) = a.fixed::<6>("xyaxes")? {
         let x = Vector3::new(v[0], v[1], v[2]);

@@ -8,6 +8,15 @@
 //!   `<inertial>`; angles in degrees unless `<compiler angle="radian">`. MJCF is Z-up:
 //!   the model is turned by −90° about X (MuJoCo (x, y, z) → simulation (x, z, −y)), then
 //!   placed at [`MjcfOptions::base_pose`].
+//! - **`<frame>` and `<replicate>`** in the world body, in bodies and in each other
+//!   (`formats/mjcf/frame.rs`). A frame places what it holds, with its `childclass`. A
+//!   replicate makes `count` copies, each moved by `offset` and turned by `euler` once
+//!   more than the last, every name suffixed with `sep` and the copy's number
+//!   (zero-padded to the digits of `count`, as MuJoCo names them); the actuators and
+//!   sensors naming a replicated joint, body or site are repeated per copy, after the
+//!   others (MuJoCo's order). At most [`MAX_REPLICATED`] elements and copies in all;
+//!   an equality, tendon or contact exclusion naming a replicated element is not
+//!   repeated (its name is not found).
 //! - **Mass.** `<inertial>` (`mass`, `diaginertia` or `fullinertia`, its own frame), or,
 //!   without one (or with `<compiler inertiafromgeom="true">`), the mass and inertia of
 //!   the body's geoms as MuJoCo's compiler computes them: each geom's `mass`, or its
@@ -192,6 +201,7 @@ mod contact;
 mod damper;
 mod defaults;
 mod equality;
+mod frame;
 mod hfield;
 mod include;
 mod keyframe;
@@ -429,6 +439,8 @@ pub struct MjcfSensor {
 /// Most `<contact><pair>`s a model may have: each takes one of the upper 32 of ODE's
 /// 64 category and collide bits (MuJoCo's `contype` and `conaffinity` take the lower).
 pub const MAX_CONTACT_PAIRS: usize = 32;
+
+pub use frame::MAX_REPLICATED;
 
 /// How a skipped line about a geom's or a pair's unused contact parameters ends.
 pub(crate) const CONTACT_PARAMETERS_UNUSED: &str =

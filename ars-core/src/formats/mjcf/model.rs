@@ -168,7 +168,7 @@ pub(super) struct Welded {
 }
 
 /// Everything read from the file before anything is built.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub(super) struct Model {
     pub(super) name: String,
     pub(super) world_geoms: Vec<Geom>,

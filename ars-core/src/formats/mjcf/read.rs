@@ -9,6 +9,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 use super::MAX_CONTACT_PAIRS;
 use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
+use super::frame::{Named, Placed, Replicas};
 use super::hfield::{Hfield, hfield_asset};
 use super::include::{Files, Includes, Tree, gather};
 use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
@@ -39,6 +40,16 @@ pub(super) struct Reader<'d, 'a, 'input> {
     pub(super) files: crate::formats::MeshCache,
     /// The main file's folder.
     pub(super) dir: std::path::PathBuf,
+    /// Where the `<frame>`s around the element being read place it in its body.
+    pub(super) place: Isometry3<f64>,
+    /// The suffix the `<replicate>`s around it add to its name ("" outside them).
+    pub(super) suffix: String,
+    /// The innermost replicate copy it is in (0 outside them).
+    pub(super) copy: usize,
+    /// The replicated names, and their copies' suffixes.
+    pub(super) replicas: Replicas,
+    /// The elements and copies `<replicate>`s made so far.
+    pub(super) replicated: usize,
 }
 
 impl<'a, 'input> Reader<'_, 'a, 'input> {
@@ -75,12 +86,13 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let contact = geom_contact(&a)?;
         let unused: Vec<&str> = ["margin", "gap"].into_iter().filter(|k| a.get(k).is_some()).collect();
         contact_parameters_unused(&node, &unused, &mut self.skipped);
-        let name = node.attribute("name").map(str::to_string);
+        let name = node.attribute("name").map(|n| self.renamed(Named::Geom, n));
         // Its own rgba (or its class's), else its material's colour, as MuJoCo draws it.
         let rgba = match a.fixed::<4>("rgba")? {
             Some(rgba) => Some(rgba),
             None => a.get("material").and_then(|m| self.materials.get(m)).copied(),
         };
+        let frame = self.place * frame;
         Ok(Some(Geom { kind, frame, mass, density, rgba, bits, contact, name }))
     }
 
@@ -152,7 +164,10 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             (_, "ball") => JointKind::Ball,
             (_, other) => return Err(problem(&node, format!("a joint of type {other:?} is not supported"))),
         };
-        let name = a.node.attribute("name").map_or_else(|| format!("joint{}", self.joints - 1), str::to_string);
+        let name = match a.node.attribute("name") {
+            Some(name) => self.renamed(Named::Joint, name),
+            None => format!("joint{}", self.joints - 1),
+        };
         let axis = Vector3::from(a.fixed::<3>("axis")?.unwrap_or([0.0, 0.0, 1.0]));
         if axis.norm() == 0.0 {
             return Err(problem(&node, "axis is zero"));
@@ -208,8 +223,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
             name,
             kind,
             limit_softness: (limit_solref, limit_dmax),
-            pos: Vector3::from(a.fixed::<3>("pos")?.unwrap_or([0.0; 3])),
-            axis: axis.normalize(),
+            pos: (self.place * nalgebra::Point3::from(a.fixed::<3>("pos")?.unwrap_or([0.0; 3]))).coords,
+            axis: self.place.rotation * axis.normalize(),
             range,
             damping,
             armature,
@@ -224,10 +239,13 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let index = self.bodies;
         let a = Attrs::new(node, self.defaults, class);
         let class = node.attribute("childclass").unwrap_or(class).to_string();
-        let name = node.attribute("name").map_or_else(|| format!("body{index}"), str::to_string);
+        let name = match node.attribute("name") {
+            Some(name) => self.renamed(Named::Body, name),
+            None => format!("body{index}"),
+        };
         let mut body = Body {
             name,
-            frame: frame(&a, &self.compiler)?,
+            frame: self.place * frame(&a, &self.compiler)?,
             mass: None,
             geoms: Vec::new(),
             joints: Vec::new(),
@@ -238,7 +256,8 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         };
         let mut inertial = None;
         let mut principal = None;
-        for child in self.tree.elements(node) {
+        for Placed { node: child, class, frame, suffix, copy } in self.placed_children(node, &class)? {
+            (self.place, self.suffix, self.copy) = (frame, suffix, copy);
             match child.tag_name().name() {
                 "geom" => body.geoms.extend(self.geom(child, &class)?),
                 "joint" => body.joints.push(self.joint(child, &class, false)?),
@@ -309,6 +328,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
     pub(super) fn site(&mut self, node: roxmltree::Node<'_, '_>, class: &str) -> Parsed<Option<Site>> {
         let a = Attrs::new(node, self.defaults, class);
         let Some(name) = node.attribute("name") else { return Ok(None) };
+        let name = self.renamed(Named::Site, name);
         let mut size = a.numbers("size")?.unwrap_or_default();
         // A site of size 0 is a point, as MuJoCo takes it (frames and sensors need no
         // size; a touch sensor on it is refused, having no zone).
@@ -338,7 +358,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 return Ok(None);
             }
         };
-        Ok(Some(Site { name: name.to_string(), frame, zone, welded_from: None }))
+        Ok(Some(Site { name, frame: self.place * frame, zone, welded_from: None }))
     }
 
     /// The turn of an `<inertial>`'s principal axes from its body's frame: its
@@ -353,7 +373,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if a.get("diaginertia").is_none() {
             return Ok(None);
         }
-        Ok(Some(orientation(&a, &self.compiler)?))
+        Ok(Some(self.place.rotation * orientation(&a, &self.compiler)?))
     }
 
     /// `{what}range` when `{what}limited` says it applies ("true", or "auto" with a
@@ -378,7 +398,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         if mass < 0.0 {
             return Err(problem(&node, format!("mass {mass} must not be negative")));
         }
-        let frame = frame(&a, &self.compiler)?;
+        let frame = self.place * frame(&a, &self.compiler)?;
         let local = match (a.fixed::<3>("diaginertia")?, a.fixed::<6>("fullinertia")?) {
             (Some(d), None) => Matrix3::from_diagonal(&Vector3::from(d)),
             (None, Some(f)) => crate::formats::inertia_tensor(f),
@@ -387,54 +407,6 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         let r = frame.rotation.to_rotation_matrix();
         Ok((mass, frame.translation.vector, crate::formats::turned_inertia(&r, &local)))
     }
-}
-
-/// Checks every element ARS reads against MuJoCo's schema
-/// ([`schema`](super::schema)): an unknown attribute is an error naming it, its
-/// element and line (with `skip`, a line in `skipped`).
-pub(super) fn check_attributes(
-    tree: &Tree<'_, '_>,
-    root: roxmltree::Node<'_, '_>,
-    skip: bool,
-    skipped: &mut Vec<String>,
-) -> Parsed<()> {
-    pub(super) fn walk(
-        tree: &Tree<'_, '_>,
-        node: roxmltree::Node<'_, '_>,
-        in_sensor: bool,
-        skip: bool,
-        skipped: &mut Vec<String>,
-    ) -> Parsed<()> {
-        let tag = node.tag_name().name();
-        for attribute in node.attributes() {
-            let name = attribute.name();
-            if super::schema::is_unknown(tag, name, in_sensor) {
-                {
-                    let p =
-                        problem(&node, format!("unknown attribute {name:?} (MuJoCo's <{tag}> has no such attribute)"));
-                    skip_or_refuse(p, skip, skipped)?;
-                }
-            }
-        }
-        // Into the sections ARS reads, and the bodies and classes in them; not into the
-        // others (a tendon's <joint> is not a body's) nor below the elements read.
-        let holds_elements = match tag {
-            "mujoco" => node.parent().is_some_and(|p| p.is_root()),
-            "body" | "worldbody" | "default" => true,
-            _ => {
-                super::schema::READ_SECTIONS.contains(&tag)
-                    && node.parent_element().is_some_and(|p| p.has_tag_name("mujoco"))
-            }
-        };
-        if holds_elements {
-            for child in tree.elements(node) {
-                walk(tree, child, in_sensor || tag == "sensor", skip, skipped)?;
-            }
-        }
-        Ok(())
-    }
-    walk(tree, root, false, skip, skipped)?;
-    Ok(())
 }
 
 /// The frame of a capsule or cylinder placed by `fromto` (centred between its two
@@ -478,7 +450,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     let root = tree.documents[0].root_element();
     let nodes = tree.elements(root);
     let mut schema_skips = Vec::new();
-    check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
+    super::schema::check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
     let mut settings = read_settings(tree, &nodes)?;
     let flags_unused = std::mem::take(&mut settings.flags_unused);
     let (contacts_disabled, gravity_disabled) = (settings.contacts_disabled, settings.gravity_disabled);
@@ -508,28 +480,23 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
         tree,
         dir,
         hfields,
+        place: Isometry3::identity(),
+        suffix: String::new(),
+        copy: 0,
+        replicas: Replicas::new(),
+        replicated: 0,
     };
     let mut model = Model {
         name: root.attribute("model").unwrap_or("").to_string(),
-        world_geoms: Vec::new(),
-        bodies: Vec::new(),
         timestep: settings.timestep,
         gravity: settings.gravity,
         magnetic: settings.magnetic,
-        actuators: Vec::new(),
-        excluded: Vec::new(),
-        pairs: Vec::new(),
-        sensors: Vec::new(),
-        sensor_places: Vec::new(),
-        world_sites: Vec::new(),
-        welded: Vec::new(),
-        equalities: Vec::new(),
-        keyframes: Vec::new(),
-        skipped: Vec::new(),
+        ..Model::default()
     };
     for &node in &nodes {
         reader.section(node, &mut model)?;
     }
+    super::frame::replicate_references(&mut model, &reader.replicas);
     super::weld::weld_jointless(&mut model);
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
@@ -754,15 +721,17 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
 
     /// The `<worldbody>`: its geoms, bodies and sites.
     fn world_body(&mut self, node: roxmltree::Node<'a, 'input>, model: &mut Model) -> Parsed<()> {
-        for child in self.tree.elements(node) {
+        for Placed { node: child, class, frame, suffix, copy } in self.placed_children(node, "main")? {
+            (self.place, self.suffix, self.copy) = (frame, suffix, copy);
             match child.tag_name().name() {
-                "geom" => model.world_geoms.extend(self.geom(child, "main")?),
-                "body" => model.bodies.push(self.body(child, "main")?),
-                "site" => model.world_sites.extend(self.site(child, "main")?.map(|s| s.name)),
+                "geom" => model.world_geoms.extend(self.geom(child, &class)?),
+                "body" => model.bodies.push(self.body(child, &class)?),
+                "site" => model.world_sites.extend(self.site(child, &class)?.map(|s| s.name)),
                 "camera" | "light" => {}
                 other => self.unsupported(&child, &format!("<{other}> in the world body"))?,
             }
         }
+        (self.place, self.suffix, self.copy) = (Isometry3::identity(), String::new(), 0);
         Ok(())
     }
 

@@ -4,6 +4,9 @@
 //! is accepted (and, where it changes physics, said unused where it is read).
 //! `python/tests/test_mjcf.py` holds this list against MuJoCo's schema.
 
+use super::include::Tree;
+use super::problem::{Parsed, problem, skip_or_refuse};
+
 /// The sections of the file whose elements ARS reads and checks.
 pub(super) const READ_SECTIONS: [&str; 9] =
     ["compiler", "option", "default", "asset", "worldbody", "contact", "actuator", "sensor", "keyframe"];
@@ -118,4 +121,49 @@ pub(super) fn is_unknown(tag: &str, attribute: &str, in_sensor: bool) -> bool {
         Some((_, known)) => !(known.contains(&attribute) || in_sensor && SENSOR_ATTRIBUTES.contains(&attribute)),
         None => false,
     }
+}
+
+/// Checks every element ARS reads against MuJoCo's schema
+/// ([`schema`](super::schema)): an unknown attribute is an error naming it, its
+/// element and line (with `skip`, a line in `skipped`).
+pub(super) fn check_attributes(
+    tree: &Tree<'_, '_>,
+    root: roxmltree::Node<'_, '_>,
+    skip: bool,
+    skipped: &mut Vec<String>,
+) -> Parsed<()> {
+    pub(super) fn walk(
+        tree: &Tree<'_, '_>,
+        node: roxmltree::Node<'_, '_>,
+        in_sensor: bool,
+        skip: bool,
+        skipped: &mut Vec<String>,
+    ) -> Parsed<()> {
+        let tag = node.tag_name().name();
+        for attribute in node.attributes() {
+            let name = attribute.name();
+            if is_unknown(tag, name, in_sensor) {
+                {
+                    let p =
+                        problem(&node, format!("unknown attribute {name:?} (MuJoCo's <{tag}> has no such attribute)"));
+                    skip_or_refuse(p, skip, skipped)?;
+                }
+            }
+        }
+        // Into the sections ARS reads, and the bodies and classes in them; not into the
+        // others (a tendon's <joint> is not a body's) nor below the elements read.
+        let holds_elements = match tag {
+            "mujoco" => node.parent().is_some_and(|p| p.is_root()),
+            "body" | "worldbody" | "default" | "frame" | "replicate" => true,
+            _ => READ_SECTIONS.contains(&tag) && node.parent_element().is_some_and(|p| p.has_tag_name("mujoco")),
+        };
+        if holds_elements {
+            for child in tree.elements(node) {
+                walk(tree, child, in_sensor || tag == "sensor", skip, skipped)?;
+            }
+        }
+        Ok(())
+    }
+    walk(tree, root, false, skip, skipped)?;
+    Ok(())
 }

@@ -1,0 +1,84 @@
+//! MJCF `<frame>` and `<replicate>`: what they hold placed and named as MuJoCo places
+//! and names it (python/tests/test_mjcf_frames.py holds the same against MuJoCo's
+//! compiled model); hostile counts refused with nothing left.
+
+use ars::nalgebra::Vector3;
+use ars::{MjcfOptions, Simulation};
+
+fn load(text: &str) -> ars::Result<(Simulation, ars::MjcfModel)> {
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(text, "frames.xml", &MjcfOptions::new())?;
+    Ok((sim, model))
+}
+
+#[test]
+fn a_frame_places_its_bodies_and_an_included_leg_as_its_parent_s_child() {
+    // MyoSuite's legs: a <frame> in a body around an <include>.
+    let dir = std::env::temp_dir().join(format!("ars-mjcf-frames-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("leg.xml"),
+        r#"<mujocoinclude><body name="thigh" pos="0 0 -0.1"><joint name="hip" axis="0 1 0"/>
+             <geom type="sphere" size="0.05"/></body></mujocoinclude>"#,
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("model.xml"),
+        r#"<mujoco><compiler angle="radian"/><worldbody>
+             <body name="pelvis" pos="0 0 1"><freejoint/><geom type="sphere" size="0.1"/>
+               <frame pos="0.2 0 0" euler="0 0 1.5707963267948966"><include file="leg.xml"/></frame>
+             </body></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf(dir.join("model.xml"), &MjcfOptions::new()).unwrap();
+    let thigh = sim.scene().body(model.body("thigh").unwrap()).unwrap().position();
+    // MuJoCo (0.2, 0, 0.9) is ARS's (0.2, 0.9, 0).
+    assert!((thigh.coords - Vector3::new(0.2, 0.9, 0.0)).norm() < 1e-12, "{thigh}");
+    // The hinge's y axis, turned 90° about z by the frame, is along −x.
+    let hip = sim.scene().joint("hip").unwrap().ode().unwrap().axis().unwrap();
+    assert!((hip - Vector3::new(-1.0, 0.0, 0.0)).norm() < 1e-12, "{hip}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn replicated_names_take_their_copy_s_suffix_and_their_actuators_repeat() {
+    let (_, model) = load(
+        r#"<mujoco><worldbody>
+             <body name="hub"><joint name="spin"/><geom size="0.1"/></body>
+             <replicate count="11" offset="1 0 0" sep="-">
+               <body name="wheel" pos="0 0 1"><joint name="axle"/><geom size="0.1"/></body>
+             </replicate></worldbody>
+           <actuator><motor name="drive" joint="axle"/><motor name="turn" joint="spin"/></actuator></mujoco>"#,
+    )
+    .unwrap();
+    let bodies: Vec<&str> = model.bodies.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(bodies.len(), 12);
+    assert_eq!(&bodies[..3], ["hub", "wheel-00", "wheel-01"]);
+    assert_eq!(bodies[11], "wheel-10");
+    // MuJoCo's order: what names nothing replicated first, then copy by copy.
+    let actuators: Vec<(&str, &str)> = model.actuators.iter().map(|a| (a.name.as_str(), a.joint.as_str())).collect();
+    assert_eq!(actuators[..3], [("turn", "spin"), ("drive-00", "axle-00"), ("drive-01", "axle-01")]);
+    assert_eq!(actuators.len(), 12);
+}
+
+#[test]
+fn replicate_counts_past_the_limit_or_not_whole_are_refused_with_nothing_left() {
+    for (body, text) in [
+        (r#"<replicate count="400"><replicate count="400"><geom size=".1"/></replicate></replicate>"#, "more than"),
+        (r#"<replicate count="9999999999"><replicate count="9999999999"/></replicate>"#, "more than"),
+        (r#"<replicate count="two"><geom size=".1"/></replicate>"#, "not a whole number"),
+        (r#"<frame pos="0 0 inf"><body><freejoint/><geom size=".1"/></body></frame>"#, "inf"),
+    ] {
+        let mut sim = Simulation::builder().build().unwrap();
+        let file = format!(
+            "<mujoco><worldbody><body name='kept'><freejoint/><geom size='.1'/></body>{body}</worldbody></mujoco>"
+        );
+        let error = sim.load_mjcf_text(&file, "bad.xml", &MjcfOptions::new()).unwrap_err().to_string();
+        assert!(error.contains(text) && error.contains("line 1"), "{body}: {error}");
+        assert_eq!(sim.scene().objects().count(), 0, "{body}");
+    }
+    // A count of 0 (or less: MuJoCo's too) makes nothing.
+    let (_, model) = load(r#"<mujoco><worldbody><replicate count="-1"><body><freejoint/><geom size=".1"/></body></replicate></worldbody></mujoco>"#).unwrap();
+    assert!(model.bodies.is_empty());
+}
