@@ -101,7 +101,14 @@ def test_frames_and_replicates_place_what_they_hold_as_mujoco_does(tmp_path):
     for dx, dy in rng.uniform(-0.03, 0.03, size=(20, 2)):
         x, y = d.geom_xpos[block][:2] + (dx, dy)
         theirs = 10.0 - mujoco.mj_ray(
-            m, d, np.array([x, y, 10.0]), np.array([0.0, 0.0, -1.0]), None, 1, -1, np.zeros(1, np.int32)
+            m,
+            d,
+            np.array([x, y, 10.0]),
+            np.array([0.0, 0.0, -1.0]),
+            None,
+            1,
+            -1,
+            np.zeros(1, np.int32),
         )
         hit = sim.cast_ray((x, 10.0, -y), (0.0, -1.0, 0.0), 20.0)
         assert hit is not None and hit[1][1] == pytest.approx(theirs, abs=1e-9)
@@ -115,13 +122,19 @@ def test_frames_and_replicates_refuse_bad_counts_naming_the_element(tmp_path):
     allows, are refused with the element and line, leaving nothing; a count of 0 makes
     nothing."""
     bad = [
-        ('<replicate count="2.5" offset="1 0 0"><geom size=".1"/></replicate>', "not a whole number"),
+        (
+            '<replicate count="2.5" offset="1 0 0"><geom size=".1"/></replicate>',
+            "not a whole number",
+        ),
         ('<replicate offset="1 0 0"><geom size=".1"/></replicate>', "needs a count"),
         (
             '<replicate count="1000"><replicate count="1000"><geom size=".1"/></replicate></replicate>',
             "more than 100000",
         ),
-        ('<replicate count="1000000000"><replicate count="1000000000"/></replicate>', "more than 100000"),
+        (
+            '<replicate count="1000000000"><replicate count="1000000000"/></replicate>',
+            "more than 100000",
+        ),
         ('<frame pos="0 0 nan"><geom size=".1"/></frame>', "nan"),
     ]
     path = tmp_path / "bad.xml"
