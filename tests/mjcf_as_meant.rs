@@ -422,7 +422,8 @@ fn two_copies_of_a_model_share_a_simulation_under_prefixes() {
     let second = MjcfOptions::new().prefix("two/").base_pose(ars::nalgebra::Isometry3::translation(0.0, 0.0, 5.0));
     let model = sim.load_mjcf_text(&text, "crossed.xml", &second).unwrap();
     assert!(model.joint("two/ja").is_some() && model.body("two/post").is_some(), "{:?}", model.joints);
-    assert!(sim.scene().joint("two/post_weld").is_ok());
+    let post = sim.scene().object(model.body("two/post").unwrap()).unwrap().body_handle().unwrap();
+    assert!(sim.scene().world().body(post).unwrap().is_kinematic(), "welded to the world");
     let names = actuator_names(&sim);
     assert_eq!(names, ["turn_c", "turn_a", "turn_b", "two/turn_c", "two/turn_a", "two/turn_b"]);
     // Each copy's actuator drives its own joint.

@@ -193,11 +193,11 @@ impl Scene {
 
     /// MuJoCo never collides two geoms that are both welded to the world (`body_weldid`
     /// 0: the world body's own geoms, and those of its jointless children and their
-    /// jointless descendants). A jointless child of the world that has mass is an ODE
-    /// body held to the world by a fixed joint (see the `weld` module), which ODE would
-    /// collide with the world's static geoms and with every other such body: a table
-    /// resting on the floor, a cabinet against the table, each contact fighting the
-    /// fixed joints in every step. Those pairs are excluded here, as MuJoCo excludes them.
+    /// jointless descendants). A jointless child of the world that has mass is a
+    /// kinematic ODE body (see the `weld` module), which ODE would collide with the
+    /// world's static geoms and with every other such body: a table resting on the
+    /// floor, a cabinet against the table, contacts between bodies that no force moves.
+    /// Those pairs are excluded here, as MuJoCo excludes them.
     fn exclude_welded_to_world(&mut self, model: &Model, made: &MjcfModel) -> Result<()> {
         let welded: Vec<ObjectId> =
             model.bodies.iter().filter(|b| b.joints.is_empty()).filter_map(|b| made.body(&b.name)).collect();
@@ -235,21 +235,23 @@ impl Scene {
         if let (Some(parent), true) = (parent, body.joints.len() > 1) {
             self.exclude_contacts(parent, id)?;
         }
-        if body.mocap {
-            // Moved by the user only (`set_mocap_pose`): a kinematic ODE body, as
-            // MuJoCo's mocap body has no degree of freedom; what is welded to it follows.
+        if body.joints.is_empty() {
+            // Welded to the world (a jointless body of the world that has mass, its
+            // jointless descendants merged into it: the `weld` module) or moved by the
+            // user only (a mocap body, `set_mocap_pose`): a kinematic ODE body, as
+            // MuJoCo's has no degree of freedom. It keeps its mass, which it never
+            // feels, and adds no row to the step, where a fixed joint would add six.
             let handle =
                 self.object(id)?.body_handle().ok_or_else(|| body_error(format!("{:?}: no body", body.name)))?;
             self.world_mut().body_mut(handle)?.set_kinematic(true);
-            made.mocap.push(MjcfMocap {
-                body: body.name.clone(),
-                object: id,
-                placement: *parent_frame,
-                offset: Isometry3::translation(masses.com.x, masses.com.y, masses.com.z),
-            });
-        } else if body.joints.is_empty() {
-            let name = format!("{}_weld", body.name);
-            self.add_fixed_joint(&name, id, end)?;
+            if body.mocap {
+                made.mocap.push(MjcfMocap {
+                    body: body.name.clone(),
+                    object: id,
+                    placement: *parent_frame,
+                    offset: Isometry3::translation(masses.com.x, masses.com.y, masses.com.z),
+                });
+            }
         }
         for (k, j) in body.joints.iter().enumerate() {
             if j.kind == JointKind::Free {
@@ -521,9 +523,9 @@ fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
         (mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION)
     };
     let (mass, inertia) = at_least_ars_least_mass(&format!("{:?}", body.name), mass, inertia, &mut made.skipped);
-    // A jointless body with mass left after welding (one of the world) is fixed there
-    // by a fixed joint, on an ODE body of its own, which needs an inertia a body can
-    // have; MuJoCo takes any (a point mass: `diaginertia="0 0 0"`), the body static.
+    // A jointless body with mass left after welding (one of the world) is a kinematic
+    // ODE body of its own, which ODE makes only with an inertia a body can have;
+    // MuJoCo takes any (a point mass: `diaginertia="0 0 0"`), the body static.
     let inertia = match body.joints.is_empty().then(|| balance_inertia(mass, &inertia)).flatten() {
         Some(balanced) => {
             made.skipped.push(format!("{:?}: {} (a welded body of its own needs one)", body.name, balanced.note));

@@ -7,7 +7,7 @@ use crate::world::joint::JointParam;
 use crate::{MjcfOptions, Simulation};
 
 /// A table sunk 1 cm into the floor, a cabinet sunk 10 cm into the table (both
-/// jointless children of the world with mass: ODE bodies fixed to the world) and a
+/// jointless children of the world with mass: kinematic ODE bodies) and a
 /// block falling onto the table.
 const FURNITURE: &str = r#"<mujoco><option timestep="0.002"/><worldbody>
     <geom name="floor" type="plane" size="5 5 0.1"/>

@@ -48,7 +48,9 @@
 //!   parent's object at their offsets, its sites and children are placed through it,
 //!   and [`MjcfModel::welded`] says where it went. A jointless body of the world that
 //!   weighs nothing is merged into the world (its geoms static); one with mass is an
-//!   object of its own fixed to the world, with its jointless descendants. A moving
+//!   object of its own, with its jointless descendants, whose ODE body is kinematic:
+//!   nothing moves it, and it adds no constraint row to the step (a fixed joint to the
+//!   world would add six to every step of what hangs from it). A moving
 //!   body that weighs nothing with its welded descendants (its mass is in bodies that
 //!   move on joints of their own) is refused, as MuJoCo refuses it ("mass and inertia
 //!   of moving bodies must be larger than mjMINVAL"). `range` (with `limited`, or

@@ -6,7 +6,8 @@
 //! as nearly as the solver holds them, and not at all when one weighs grams against
 //! its neighbour's kilograms (robot files write 1e-8 kg hands). Of the world body, one
 //! that weighs nothing is merged into the world (its geoms static); one with mass stays
-//! an ODE body of its own fixed to the world, its jointless descendants merged into it.
+//! an ODE body of its own, kinematic (nothing moves it), its jointless descendants
+//! merged into it.
 //! A mocap body is never merged into the world: it is a kinematic ODE body of its own
 //! (with its jointless descendants), which the user moves.
 
