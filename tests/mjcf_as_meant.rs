@@ -188,9 +188,13 @@ fn joint_damping_is_implicit_and_stable_at_any_coefficient() {
         let rod = sim.scene().object(model.body("rod").unwrap()).unwrap().body_handle().unwrap();
         let spin = ars::nalgebra::Vector3::new(0.0, 2.0, 0.0); // about MuJoCo's z: the simulation's y
         sim.scene_mut().world_mut().body_mut(rod).unwrap().set_angular_velocity(spin).unwrap();
-        // A free joint's damping acts on its linear and its angular velocity: two motors.
-        let motors = if joint.contains("free") { 2 } else { 1 };
+        // A free joint's damping acts on its linear and its angular velocity: two motors;
+        // a hinge's is its own (the motor that would hold its armature).
+        let motors = if joint.contains("free") { 2 } else { usize::from(joint.contains("ball")) };
         assert_eq!(model.joint_motors.len(), motors, "{joint}");
+        // ODE's joints: the hinge and its motor, the ball and its motor, the free
+        // body's two motors.
+        assert_eq!(sim.scene().world().joint_count(), 2, "{joint}");
         for n in 1..=20 {
             sim.step_n(1).unwrap();
             let w = sim.scene().world().body(rod).unwrap().angular_velocity();
@@ -399,6 +403,52 @@ fn a_hinge_s_armature_is_the_joint_s_own_inertia() {
     copy.run_for(0.2).unwrap();
     let state = |s: &Simulation| s.scene().joint("elbow").unwrap().state().unwrap();
     assert_eq!(state(&sim), state(&copy));
+}
+
+/// A hinge's `damping` and `armature` are held by one motor beside it (one LCP row, not
+/// two) and act as MuJoCo's implicit Euler makes them act: under a torque `τ`, each step
+/// `(I + A)·(v′ − v) = h·(τ − c·v′)`. The rate follows that recursion to 1e-9; a saved
+/// scene keeps both, and its run goes on to the bit.
+#[test]
+fn a_hinge_s_damping_and_armature_are_one_implicit_motor() {
+    let text = r#"<mujoco><option gravity="0 0 0"/><worldbody>
+  <body name="wheel"><joint name="axle" axis="0 0 1" armature="0.5" damping="2"/>
+    <inertial pos="0 0 0" mass="1" diaginertia="0.01 0.01 0.02"/></body></worldbody>
+  <actuator><motor joint="axle" gear="1"/></actuator></mujoco>"#;
+    let h = 0.002;
+    let mut sim = Simulation::builder().time_step(h).gravity(ars::nalgebra::Vector3::zeros()).build().unwrap();
+    sim.load_mjcf_text(text, "wheel.xml", &MjcfOptions::new()).unwrap();
+    // The hinge and one motor beside it.
+    assert_eq!(sim.scene().world().joint_count(), 2);
+    let axle = sim.scene_mut().joint_mut("axle").unwrap();
+    assert_eq!((axle.armature(), axle.damping()), (0.5, 2.0));
+    let (inertia, armature, damping, torque) = (0.02, 0.5, 2.0, 0.3);
+    sim.scene_mut().set_controls(&[torque]).unwrap();
+    let mut expected = 0.0;
+    for _ in 0..250 {
+        sim.step().unwrap();
+        expected = ((inertia + armature) * expected + h * torque) / (inertia + armature + h * damping);
+    }
+    let rate = sim.scene().joint("axle").unwrap().state().unwrap().rate;
+    assert!((rate - expected).abs() < 1e-9 * expected, "{rate} rad/s, wanted {expected}");
+    // Half-way to the terminal rate τ / c: damping and armature both felt.
+    assert!(expected > 0.2 * torque / damping && expected < 0.9 * torque / damping, "{expected}");
+    let path = std::env::temp_dir().join(format!("ars-damping-{}.json", std::process::id()));
+    sim.save_scene_to(&path).unwrap();
+    let mut copy = Simulation::load_scene_from(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(copy.scene_mut().joint_mut("axle").unwrap().damping(), 2.0);
+    sim.run_for(0.2).unwrap();
+    copy.run_for(0.2).unwrap();
+    let state = |s: &Simulation| s.scene().joint("axle").unwrap().state().unwrap();
+    assert_eq!(state(&sim), state(&copy));
+    // Either can go on its own: damping 0 leaves the armature's motor, both 0 none.
+    let mut axle = sim.scene_mut().joint_mut("axle").unwrap();
+    axle.set_damping(0.0).unwrap();
+    assert_eq!((axle.armature(), axle.damping()), (0.5, 0.0));
+    axle.set_armature(0.0).unwrap();
+    assert!(axle.set_damping(f64::NAN).is_err() && axle.set_damping(-1.0).is_err());
+    assert_eq!(sim.scene().world().joint_count(), 1);
 }
 
 /// Two copies of one model share a simulation with `MjcfOptions::prefix` (as MuJoCo's

@@ -474,6 +474,20 @@ impl Joint {
         self.act(py, |sim, id| Ok(sim.scene_mut().joint_mut(id)?.armature()))
     }
 
+    /// Its damping: a viscous torque (force) of `coefficient` N·m·s/rad (N·s/m) against
+    /// the joint's rate at the end of each step, as MuJoCo's joint `damping` (stable at
+    /// any coefficient, where `set_viscous_friction`, the original's, takes the rate at
+    /// the step's start); 0 removes it. Hinges and sliders.
+    fn set_damping(&self, py: Python<'_>, coefficient: f64) -> PyResult<()> {
+        self.act(py, |sim, id| sim.scene_mut().joint_mut(id)?.set_damping(coefficient))
+    }
+
+    /// Its damping (0: none), N·m·s/rad or N·s/m (see `set_damping`).
+    #[getter]
+    fn damping(&self, py: Python<'_>) -> PyResult<f64> {
+        self.act(py, |sim, id| Ok(sim.scene_mut().joint_mut(id)?.damping()))
+    }
+
     /// Limits of its actuator: the largest `effort` (N·m or N) and `velocity` (rad/s
     /// or m/s) its motor and controller may use (`math.inf`: none).
     #[pyo3(signature = (effort=f64::INFINITY, velocity=f64::INFINITY))]

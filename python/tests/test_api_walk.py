@@ -296,6 +296,7 @@ JOINT = [
     ("set_viscous_friction", (0.1,)),
     ("set_dry_friction", (0.1,)),
     ("set_armature", (0.1,)),
+    ("set_damping", (0.1,)),
     ("set_spring", (1.0, 0.0)),
     ("set_actuator_limits", (1.0, 1.0)),
     ("set_mimic", ("hinge2", 1.0, 0.0)),

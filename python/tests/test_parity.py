@@ -376,6 +376,8 @@ PYTHON_FOR_RUST = {
     "SimJoint.set_dry_friction": "Joint.set_dry_friction",
     "SimJoint.set_armature": "Joint.set_armature",
     "SimJoint.armature": "Joint.armature",
+    "SimJoint.set_damping": "Joint.set_damping",
+    "SimJoint.damping": "Joint.damping",
     "SimJoint.set_actuator_limits": "Joint.set_actuator_limits",
     "SimJoint.set_mimic": "Joint.set_mimic",
     "SimJoint.clear_mimic": "Joint.clear_mimic",

@@ -1,17 +1,24 @@
-//! A joint's armature: inertia felt by the joint's own motion alone (a motor's rotor
-//! seen through its gearbox; MuJoCo's `armature`), integrated implicitly as MuJoCo
-//! integrates it.
+//! A joint's armature and damping, integrated implicitly as MuJoCo integrates them: an
+//! armature is inertia felt by the joint's own motion alone (a motor's rotor seen
+//! through its gearbox; MuJoCo's `armature`), damping a force against the joint's rate
+//! taken at the end of the step (MuJoCo's `damping`, stable at any coefficient, where
+//! [`SimJoint::set_viscous_friction`](crate::SimJoint::set_viscous_friction), the
+//! original's, takes the rate at its start).
 //!
 //! ODE moves bodies, not joint coordinates: it has no place for an inertia only the
-//! joint's motion feels. An ODE motor beside the joint supplies it: an angular motor
+//! joint's motion feels. One ODE motor beside the joint supplies both: an angular motor
 //! about a hinge's axis (a linear one along a slider's) between the same bodies, with no
-//! force limit, whose target speed is, each step, the joint's rate at the start of the
-//! step, and whose constraint force mixing is `h / armature`. ODE then solves its force
-//! `λ = (target − J·v′) / CFM = −armature · (v′ − v) / h` with the step's own
+//! force limit. For an armature `A` alone its target speed is, each step, the joint's
+//! rate `v` at the start of the step, and its constraint force mixing `h / A`; ODE then
+//! solves its force `λ = (target − J·v′) / CFM = −A · (v′ − v) / h` with the step's own
 //! velocities: the armature resisting the change of the joint's rate, as MuJoCo's
-//! `(M + A)·v′ = (M + A)·v + h·f` does in the joint's coordinate. Adding the armature
-//! to the moving body's inertia instead would make it felt by every motion of that
-//! body, and by no other: a light leg with a heavy armature becomes a flywheel that
+//! `(M + A)·v′ = (M + A)·v + h·f` does in the joint's coordinate. For a damping `c`
+//! alone its target is 0 and its CFM `1 / c`: `λ = −c · v′`, MuJoCo's
+//! `(M + h·c)·v′ = M·v + h·f`. For both, the one row whose force is their sum,
+//! `λ = −c · v′ − A · (v′ − v) / h`: CFM `1 / (c + A/h)`, target `(A/h) · v / (c + A/h)`
+//! (one row where two motors would make two: an LCP row costs every step). Adding the
+//! armature to the moving body's inertia instead would make it felt by every motion of
+//! that body, and by no other: a light leg with a heavy armature becomes a flywheel that
 //! turns its torso.
 
 use nalgebra::Vector3;
@@ -24,20 +31,35 @@ use crate::limits;
 use crate::world::joint::{AxisFrame, JointBuilder, JointKind as OdeJoint, JointParam};
 
 impl Scene {
-    /// Gives joint `id` an armature of `inertia` (0: none); see the module docs.
+    /// Gives joint `id` an armature of `inertia` (0: none), its damping kept; see the
+    /// module docs.
     pub(super) fn set_joint_armature(&mut self, id: JointId, inertia: f64) -> Result<()> {
-        if !(inertia.is_finite() && inertia >= 0.0) {
-            return Err(Error::OutOfRange {
-                what: "armature",
-                detail: format!("must be finite and ≥ 0, got {inertia}"),
-            });
+        let damping = self.joint_data(id)?.armature.map_or(0.0, |a| a.damping);
+        self.set_joint_resistance(id, "armature", inertia, damping)
+    }
+
+    /// Gives joint `id` an implicit damping of `damping` (0: none), its armature kept;
+    /// see the module docs.
+    pub(super) fn set_joint_damping(&mut self, id: JointId, damping: f64) -> Result<()> {
+        let inertia = self.joint_data(id)?.armature.map_or(0.0, |a| a.inertia);
+        self.set_joint_resistance(id, "damping", inertia, damping)
+    }
+
+    /// Sets joint `id`'s armature and damping (`what` the one the caller sets), making
+    /// or removing the motor that holds them.
+    fn set_joint_resistance(&mut self, id: JointId, what: &'static str, inertia: f64, damping: f64) -> Result<()> {
+        for value in [inertia, damping] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(Error::OutOfRange { what, detail: format!("must be finite and ≥ 0, got {value}") });
+            }
         }
         let data = self.joint_data(id)?;
         let (kind, handle, existing) = (data.kind, data.handle, data.armature);
         if !matches!(kind, JointType::Hinge | JointType::Slider) {
-            return Err(Error::WrongJointKind { operation: "an armature", kind: kind.default_name() });
+            let operation = if what == "armature" { "an armature" } else { "damping" };
+            return Err(Error::WrongJointKind { operation, kind: kind.default_name() });
         }
-        let motor = match (existing, inertia > 0.0) {
+        let motor = match (existing, inertia > 0.0 || damping > 0.0) {
             (Some(a), true) => a.motor,
             (Some(a), false) => {
                 self.joints.get_mut(id.0, JointId::KIND)?.armature = None;
@@ -47,10 +69,11 @@ impl Scene {
             (None, false) => return Ok(()),
             (None, true) => self.insert_armature_motor(handle, kind)?,
         };
-        self.joints.get_mut(id.0, JointId::KIND)?.armature = Some(Armature { inertia, motor });
+        let armature = Armature { inertia, damping, motor };
+        self.joints.get_mut(id.0, JointId::KIND)?.armature = Some(armature);
         self.update_driven(id);
         let rate = self.joint_state(id)?.rate;
-        self.hold_armature(Armature { inertia, motor }, rate)
+        self.hold_armature(armature, rate)
     }
 
     /// The motor about (along) the axis of the joint `handle`, between its bodies.
@@ -75,12 +98,23 @@ impl Scene {
         self.world.insert_joint(builder)
     }
 
-    /// Sets an armature's motor for the coming step, the joint turning at `rate` now.
+    /// Sets an armature's (and damping's) motor for the coming step, the joint turning
+    /// at `rate` now.
     #[inline]
     pub(super) fn hold_armature(&mut self, armature: Armature, rate: f64) -> Result<()> {
         let h = self.time_step.get();
+        let rate = rate.clamp(-limits::MAX_SPEED, limits::MAX_SPEED);
+        let Armature { inertia, damping, .. } = armature;
+        let (target, cfm) = if damping == 0.0 {
+            (rate, h / inertia)
+        } else if inertia == 0.0 {
+            (0.0, 1.0 / damping)
+        } else {
+            let k = inertia / h;
+            (k * rate / (damping + k), 1.0 / (damping + k))
+        };
         let mut motor = self.world.joint_mut(armature.motor)?;
-        motor.set_param(JointParam::Velocity, 0, rate.clamp(-limits::MAX_SPEED, limits::MAX_SPEED))?;
-        motor.set_param(JointParam::Cfm, 0, (h / armature.inertia).min(1e30))
+        motor.set_param(JointParam::Velocity, 0, target)?;
+        motor.set_param(JointParam::Cfm, 0, cfm.min(1e30))
     }
 }

@@ -85,11 +85,13 @@ pub(crate) struct JointData {
     pub(crate) armature: Option<Armature>,
 }
 
-/// A joint's armature and the motor that holds it.
+/// A joint's armature and implicit damping, and the motor that holds them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Armature {
-    /// kg·m² (hinges) or kg (sliders).
+    /// kg·m² (hinges) or kg (sliders); 0: none.
     pub(crate) inertia: f64,
+    /// N·m·s/rad (hinges) or N·s/m (sliders); 0: none.
+    pub(crate) damping: f64,
     /// The motor beside the joint (a joint of the world, saved with it; see
     /// [`armature`](super::armature)).
     pub(crate) motor: JointHandle,
@@ -543,7 +545,7 @@ impl Scene {
                 || d.spring.0 != 0.0
                 || d.controller.is_some()
                 || d.mimic.is_some()
-                || d.armature.is_some()
+                || d.armature.is_some_and(|a| a.inertia > 0.0)
         });
         match (driven, self.driven_joints.iter().position(|j| *j == id)) {
             (true, None) => {

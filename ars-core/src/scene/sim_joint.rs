@@ -143,6 +143,23 @@ impl SimJoint<'_> {
         self.sim.joint_data(self.id).ok().and_then(|d| d.armature).map_or(0.0, |a| a.inertia)
     }
 
+    /// Gives a hinge (a slider) a viscous damping of `coefficient` N·m·s/rad (N·s/m)
+    /// integrated implicitly, from the joint's rate at the end of the step, as MuJoCo's
+    /// joint `damping`: stable at any coefficient (0 removes it). The original's
+    /// [`set_viscous_friction`](Self::set_viscous_friction) takes the rate at the
+    /// start of the step, and diverges once `coefficient · dt` outgrows the inertia it
+    /// acts on. The motor beside the joint that holds an armature holds it too (see
+    /// the `armature` module).
+    pub fn set_damping(&mut self, coefficient: f64) -> Result<()> {
+        let id = self.id;
+        self.sim.set_joint_damping(id, coefficient)
+    }
+
+    /// Its implicit damping (0: none; see [`set_damping`](Self::set_damping)).
+    pub fn damping(&self) -> f64 {
+        self.sim.joint_data(self.id).ok().and_then(|d| d.armature).map_or(0.0, |a| a.damping)
+    }
+
     /// Makes the joint follow `leader` (see [`Mimic`]): a hinge follows a hinge, a
     /// slider a slider.
     pub fn set_mimic(&mut self, leader: impl JointKey, multiplier: f64, offset: f64) -> Result<()> {

@@ -2,7 +2,9 @@
 //! pads, a ball that bounces off one wall only. Every other pair touches with the
 //! world's default surface ([`World::set_default_surface`](crate::World::set_default_surface)).
 
-use std::collections::{HashMap, HashSet};
+// Looked up for every pair of geoms whose boxes overlap, every step: a fast hash of
+// the small integer handles (no input an adversary chooses reaches these keys).
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use super::Scene;
 use super::geom_contact::{GeomContact, MUJOCO_CONTACTS_PER_PAIR, reduced_mass};

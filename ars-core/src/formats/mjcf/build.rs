@@ -373,7 +373,8 @@ impl Scene {
         made: &mut MjcfModel,
     ) -> Result<()> {
         let mut resisting = Vec::new();
-        if j.damping > 0.0 {
+        // A hinge's or a slide's damping is its own (`add_mjcf_joint`).
+        if j.damping > 0.0 && matches!(j.kind, JointKind::Ball | JointKind::Free) {
             resisting.push(Resisting::Damping(j.damping));
         }
         if j.frictionloss > 0.0 && matches!(j.kind, JointKind::Ball | JointKind::Free) {
@@ -447,10 +448,15 @@ impl Scene {
         if j.frictionloss > 0.0 && matches!(j.kind, JointKind::Hinge | JointKind::Slide) {
             self.joint_mut(joint)?.set_dry_friction(j.frictionloss)?;
         }
-        if j.armature > 0.0 && matches!(j.kind, JointKind::Hinge | JointKind::Slide) {
-            // The joint's own inertia, held by a motor made right after the joint (as a
-            // scene file makes it again).
-            self.joint_mut(joint)?.set_armature(j.armature)?;
+        if matches!(j.kind, JointKind::Hinge | JointKind::Slide) {
+            // The joint's own inertia and its damping, held by one motor made right
+            // after the joint (as a scene file makes it again).
+            if j.armature > 0.0 {
+                self.joint_mut(joint)?.set_armature(j.armature)?;
+            }
+            if j.damping > 0.0 {
+                self.joint_mut(joint)?.set_damping(j.damping)?;
+            }
         }
         Ok(joint)
     }

@@ -1,5 +1,8 @@
-//! A joint's `damping` as MuJoCo integrates it: implicitly, the damping force taken
-//! from the velocity at the end of the step, stable at any coefficient.
+//! A ball's or a free joint's `damping` as MuJoCo integrates it: implicitly, the
+//! damping force taken from the velocity at the end of the step, stable at any
+//! coefficient (a hinge's or a slide's is the joint's own,
+//! [`SimJoint::set_damping`](crate::SimJoint::set_damping), made the same way on the
+//! motor that holds its armature: one row where two motors would be two).
 //!
 //! ARS's [`SimJoint::set_viscous_friction`](crate::SimJoint::set_viscous_friction) is
 //! the original's explicit friction, from the velocity at the start of the step: it

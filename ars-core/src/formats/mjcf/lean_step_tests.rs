@@ -40,22 +40,23 @@ fn bodies_welded_to_the_world_touch_neither_the_world_nor_each_other() {
 }
 
 #[test]
-fn a_joint_s_damping_and_armature_motors_have_no_force_limit() {
+fn a_joint_s_damping_and_armature_are_one_motor_without_force_limit() {
     // ODE's LCP factors the rows without bounds at once and takes each bounded row
-    // alone: an unbounded damping row costs a fraction of a bounded one.
+    // alone: an unbounded damping row costs a fraction of a bounded one, and one row
+    // for both a fraction of two.
     const DAMPED: &str = r#"<mujoco><worldbody>
         <body name="arm" pos="0 0 1"><joint name="hinge" axis="0 1 0" damping="2" armature="0.01"/>
           <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05"/></body>
       </worldbody></mujoco>"#;
     let mut sim = Simulation::builder().build().unwrap();
     let model = sim.load_mjcf_text(DAMPED, "damped.xml", &MjcfOptions::new()).unwrap();
-    let [(_, motor)] = model.joint_motors[..] else { panic!("one damping motor: {:?}", model.joint_motors) };
-    let world = sim.scene().world();
-    assert_eq!(world.joint(motor).unwrap().param(JointParam::MaxForce, 0).unwrap(), f64::INFINITY);
-    // The armature's motor too.
+    assert!(model.joint_motors.is_empty(), "a hinge's damping is its own: {:?}", model.joint_motors);
     let hinge = model.joint("hinge").unwrap();
-    let armature = sim.scene().joint_data(hinge).unwrap().armature.expect("an armature");
-    assert_eq!(world.joint(armature.motor).unwrap().param(JointParam::MaxForce, 0).unwrap(), f64::INFINITY);
+    let held = sim.scene().joint_data(hinge).unwrap().armature.expect("an armature");
+    assert_eq!((held.inertia, held.damping), (0.01, 2.0));
+    let world = sim.scene().world();
+    assert_eq!(world.joint_count(), 2, "the hinge and one motor");
+    assert_eq!(world.joint(held.motor).unwrap().param(JointParam::MaxForce, 0).unwrap(), f64::INFINITY);
     // Released horizontal, it swings down under its damping, as before.
     sim.run_for(0.5).unwrap();
     let rate = sim.scene().joint_state(model.joint("hinge").unwrap()).unwrap().rate;

@@ -60,10 +60,12 @@
 //!   3 ms; kept if the time step changes later); their CFM stays the world's (MuJoCo's
 //!   impedance is not modelled). `damping` is integrated as
 //!   MuJoCo integrates it, implicitly (stable at any coefficient): an ODE motor beside
-//!   the joint (an angular one about a hinge's axis and a ball's three, a linear one
-//!   along a slide, both for a free joint) holds the bodies' relative velocity at 0
-//!   with constraint force mixing `1 / damping`, so that ODE solves the damping force
-//!   from the velocity at the end of the step ([`MjcfModel::joint_motors`] lists them).
+//!   the joint holds the bodies' relative velocity at 0 with constraint force mixing
+//!   `1 / damping`, so that ODE solves the damping force from the velocity at the end
+//!   of the step. A hinge's or a slide's is the joint's own
+//!   ([`SimJoint::set_damping`](crate::SimJoint::set_damping)), on the one motor that
+//!   also holds its armature; a ball's (an angular motor about three axes) and a free
+//!   joint's (a linear and an angular one) are listed in [`MjcfModel::joint_motors`].
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
 //!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
 //!   slide z, hinge y) are chained through light links at the body's frame (each of
@@ -298,11 +300,11 @@ pub struct MjcfModel {
     pub welded: Vec<MjcfWeld>,
     /// Every joint made, by name.
     pub joints: Vec<(String, JointId)>,
-    /// The ODE motors beside the joints, by joint name: those that damp a joint with a
-    /// `damping`, and those that hold a ball or free joint with a `frictionloss` (one
-    /// for a hinge, a slide or a ball joint, a linear and an angular one for a free
-    /// joint; see the module docs). They are joints of the [`World`](crate::World),
-    /// saved with the scene.
+    /// The ODE motors beside the ball and free joints, by joint name: those that damp
+    /// one with a `damping`, and those that hold one with a `frictionloss` (one for a
+    /// ball joint, a linear and an angular one for a free joint; see the module docs; a
+    /// hinge's or a slide's damping is the joint's own, [`SimJoint::damping`](crate::SimJoint::damping)).
+    /// They are joints of the [`World`](crate::World), saved with the scene.
     pub joint_motors: Vec<(String, JointHandle)>,
     /// The static geoms of the world body.
     pub world_geoms: Vec<ObjectId>,

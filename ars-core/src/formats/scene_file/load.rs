@@ -215,6 +215,10 @@ impl JointFile {
             // Right after its joint, as it was made: the world's joints keep their order.
             joint.set_armature(self.armature)?;
         }
+        if self.damping != 0.0 {
+            // On the armature's motor, or on one made here as it was.
+            joint.set_damping(self.damping)?;
+        }
         if let Some((speed, max_force)) = self.motor {
             // As it was, whatever the limits (the speed was held to them when set).
             let handle = sim.scene.joint_data(id)?.handle;

@@ -308,6 +308,10 @@ pub struct JointFile {
     /// [`SimJoint::set_armature`](crate::SimJoint::set_armature)).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub armature: f64,
+    /// Its implicit damping, N·m·s/rad or N·s/m (0: none; see
+    /// [`SimJoint::set_damping`](crate::SimJoint::set_damping)).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub damping: f64,
 }
 
 fn is_zero(value: &f64) -> bool {

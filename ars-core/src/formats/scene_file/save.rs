@@ -165,6 +165,7 @@ impl Simulation {
                     .transpose()?,
                 motor,
                 armature: data.armature.map_or(0.0, |a| a.inertia),
+                damping: data.armature.map_or(0.0, |a| a.damping),
             });
         }
         Ok(joints)
