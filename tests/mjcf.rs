@@ -536,15 +536,32 @@ fn a_contact_pair_touches_whatever_its_bits_say_and_nothing_else_does() {
     <body name="held" pos="0 0 0.5"><freejoint/><geom name="held" type="sphere" size="0.1" contype="0" conaffinity="0"/></body>
     <body name="loose" pos="0.15 0 0.5"><freejoint/><geom type="sphere" size="0.1" contype="0" conaffinity="0"/></body>
   </worldbody>
-  <contact><pair geom1="held" geom2="plate" condim="3" friction="1 1 0.005 0.0001 0.0001"/></contact>
+  <contact><pair geom1="held" geom2="plate" condim="3" friction="0.7 0.7 0.005 0.0001 0.0001" solref="0.01 1" margin="0.001"/></contact>
 </mujoco>"#;
     let mut sim = Simulation::builder().build().unwrap();
     let model = sim.load_mjcf_text(text, "pair.xml", &MjcfOptions::new()).unwrap();
-    assert!(
-        model.skipped.iter().any(|s| s.starts_with("<pair>") && s.contains("condim, friction")),
-        "{:?}",
-        model.skipped
-    );
+    // Its own parameters are the pair's contacts' (MuJoCo's defaults for the rest);
+    // its margin is said unused.
+    let pairs = sim.scene().geom_pair_contacts();
+    let [((held, 0), (plate, 0), contact)] = pairs[..] else { panic!("{pairs:?}") };
+    assert_eq!((held, plate), (model.body("held").unwrap(), model.world_geoms[0]));
+    assert_eq!((contact.friction, contact.solref, contact.condim), ([0.7, 0.005, 0.0001], [0.01, 1.0], 3));
+    assert_eq!(contact.solimp, ars::GeomContact::default().solimp);
+    assert!(model.skipped.iter().any(|s| s.starts_with("<pair>") && s.contains(": margin ")), "{:?}", model.skipped);
+    // Kept by a scene file and by a snapshot.
+    let copy = ars::formats::scene_file::SceneFile::parse(&sim.save_scene().unwrap(), "pair.json").unwrap();
+    let copied = copy.build().unwrap().scene().geom_pair_contacts();
+    assert_eq!((copied.len(), copied[0].0.1, copied[0].1.1, copied[0].2), (1, 0, 0, contact), "another world's ids");
+    let snapshot = sim.snapshot().unwrap();
+    sim.restore(&snapshot).unwrap();
+    assert_eq!(sim.scene().geom_pair_contacts(), pairs);
+    // A geom cannot pair with itself; a bad index or bad parameters are refused.
+    let scene = sim.scene_mut();
+    assert!(scene.set_geom_pair_contact((held, 0), (held, 0), contact).is_err());
+    assert!(scene.set_geom_pair_contact((held, 0), (plate, 3), contact).is_err());
+    let bad = ars::GeomContact { condim: 2, ..contact };
+    assert!(scene.set_geom_pair_contact((held, 0), (plate, 0), bad).is_err());
+    assert_eq!(scene.geom_pair_contacts(), pairs);
     sim.run_for(1.0).unwrap();
     let y = |name: &str| sim.scene().object(name).unwrap().position().unwrap().y;
     assert!((y("held") - 0.15).abs() < 0.01, "the paired ball rests on the plate: {}", y("held"));

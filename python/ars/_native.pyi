@@ -181,6 +181,19 @@ class Simulation:
     ) -> None: ...
     def geom_contact(self, name: str, geom: int = 0) -> _GeomContact | None: ...
     def geom_contacts(self) -> list[tuple[str, int, _GeomContact]]: ...
+    def set_geom_pair_contact(
+        self,
+        a: str,
+        b: str,
+        a_geom: int = 0,
+        b_geom: int = 0,
+        *,
+        friction: Sequence[float] | None = None,
+        condim: int | None = None,
+        solref: Sequence[float] | None = None,
+        solimp: Sequence[float] | None = None,
+    ) -> None: ...
+    def geom_pair_contacts(self) -> list[tuple[str, int, str, int, _GeomContact]]: ...
     def cast_ray(
         self, origin: _Vec3, direction: _Vec3, length: float
     ) -> tuple[float, tuple[float, float, float]] | None: ...

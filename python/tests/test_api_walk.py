@@ -157,6 +157,17 @@ SIM = [
         },
     ),
     ("geom_contact", None, ("ball", 0), {}),
+    (
+        "set_geom_pair_contact",
+        None,
+        ("ball", "box", 0, 0),
+        {
+            "friction": (0.5, 0.005, 0.0001),
+            "condim": 3,
+            "solref": (0.02, 1.0),
+            "solimp": (0.9, 0.95, 0.001, 0.5, 2.0),
+        },
+    ),
     ("cast_ray", None, ((0.0, 2.0, 0.0), (0.0, -1.0, 0.0), 5.0), {}),
     ("add_sphere", None, (0.1, (0.0, 2.0, 0.0), 1.0), {}),
     ("add_box", None, ((0.1, 0.2, 0.3), (0.0, 2.0, 0.0), 1.0), {}),
@@ -355,6 +366,7 @@ NOTHING_TO_VARY = {
     "Simulation": {
         "excluded_contacts",
         "geom_contacts",
+        "geom_pair_contacts",
         "save_scene",
         "snapshot",
         "set_control",

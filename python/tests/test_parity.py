@@ -361,6 +361,8 @@ PYTHON_FOR_RUST = {
     "Scene.set_geom_contact": "Simulation.set_geom_contact",
     "Scene.geom_contact": "Simulation.geom_contact",
     "Scene.geom_contacts": "Simulation.geom_contacts",
+    "Scene.set_geom_pair_contact": "Simulation.set_geom_pair_contact",
+    "Scene.geom_pair_contacts": "Simulation.geom_pair_contacts",
     "Scene.contact_surface": "Simulation.contact_surface",
     "Scene.clear_contact_surface": "Simulation.clear_contact_surface",
     "Scene.contact_surfaces": "Simulation.contact_surface",

@@ -261,6 +261,10 @@ impl GeomContact {
     }
 }
 
+/// A geom named by its object and its index there (0: the object's first geom), as
+/// [`Scene::set_geom_contact`] takes it.
+pub type GeomOf = (ObjectId, usize);
+
 /// The gravity under which the mapping makes a contact rest as deep as MuJoCo's, m/s²
 /// (see [`GeomContact`]).
 const RESTING_GRAVITY: f64 = 9.81;
@@ -303,6 +307,50 @@ impl Scene {
             }
         }
         all
+    }
+
+    /// Gives the pair of geoms `a` and `b` (each its object and its index there, as
+    /// [`set_geom_contact`](Self::set_geom_contact) takes it) contact parameters of
+    /// their own: used as they are in place of the two geoms' combined, as MuJoCo's
+    /// `<contact><pair>` gives its own. The effective mass is the two objects'
+    /// reduced mass now. Setting it again replaces it.
+    pub fn set_geom_pair_contact(&mut self, a: GeomOf, b: GeomOf, contact: GeomContact) -> Result<()> {
+        contact.validate()?;
+        let (first, second) = (self.geom_of(a.0, a.1)?, self.geom_of(b.0, b.1)?);
+        if first == second {
+            return Err(Error::Invalid {
+                what: "a pair of geoms",
+                problem: "a geom cannot make a pair with itself".into(),
+            });
+        }
+        let mass = |scene: &Self, object: ObjectId| -> Result<f64> {
+            Ok(match scene.object(object)?.body_handle() {
+                Some(body) => scene.world.body(body)?.mass(),
+                None => f64::INFINITY,
+            })
+        };
+        let mass = reduced_mass(mass(self, a.0)?, mass(self, b.0)?);
+        self.pair_surfaces.set_pair_contact((first, a.0), (second, b.0), contact, mass);
+        Ok(())
+    }
+
+    /// Every pair of geoms with contact parameters of its own (see
+    /// [`set_geom_pair_contact`](Self::set_geom_pair_contact)): each geom as its object
+    /// and index, in the order the pairs were set.
+    pub fn geom_pair_contacts(&self) -> Vec<(GeomOf, GeomOf, GeomContact)> {
+        self.pair_surfaces
+            .pair_contacts()
+            .filter_map(|(a, b, contact)| Some((self.geom_place(a)?, self.geom_place(b)?, contact)))
+            .collect()
+    }
+
+    /// The object and index (as [`set_geom_contact`](Self::set_geom_contact) takes
+    /// them) of a geom that has contact parameters of its own or is in a pair that has.
+    pub(crate) fn geom_place(&self, geom: GeomHandle) -> Option<GeomOf> {
+        let object = self.pair_surfaces.owner(geom)?;
+        let data = self.objects.get(object.0, ObjectId::KIND).ok()?;
+        let k = data.geom.iter().chain(&data.extra_geoms).position(|g| *g == geom)?;
+        Some((object, k))
     }
 
     /// Forgets every geom's own parameters (a snapshot restores its own).

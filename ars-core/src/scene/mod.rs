@@ -22,7 +22,7 @@ mod views;
 use nalgebra::Vector3;
 
 pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
-pub use geom_contact::GeomContact;
+pub use geom_contact::{GeomContact, GeomOf};
 pub(crate) use geom_contact::{impedance_cfm, reduced_mass};
 pub(crate) use insert::{NewObject, ObjectName};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic};

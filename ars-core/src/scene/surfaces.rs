@@ -30,11 +30,19 @@ pub(crate) struct PairSurfaces {
     /// The surfaces made of geoms' parameters, by pair, at `time_step` (emptied when a
     /// geom's parameters or the time step change).
     made: HashMap<(GeomHandle, GeomHandle), ContactSurface>,
+    /// Pairs of geoms with parameters of their own, both orders, each with the pair's
+    /// reduced mass when they were set.
+    pair_contacts: HashMap<(GeomHandle, GeomHandle), (GeomContact, f64)>,
+    /// Those pairs, once each, in the order they were first set.
+    pair_order: Vec<(GeomHandle, GeomHandle)>,
 }
 
 impl PairSurfaces {
     pub(crate) fn is_empty(&self) -> bool {
-        self.by_pair.is_empty() && self.excluded.is_empty() && self.geom_contacts.is_empty()
+        self.by_pair.is_empty()
+            && self.excluded.is_empty()
+            && self.geom_contacts.is_empty()
+            && self.pair_contacts.is_empty()
     }
 
     /// Forgets every pair with `object` and its geoms' parameters (it is being removed).
@@ -43,6 +51,9 @@ impl PairSurfaces {
         self.excluded.retain(|(a, b)| *a != object && *b != object);
         let owner = &self.owner;
         self.geom_contacts.retain(|g, _| owner.get(g) != Some(&object));
+        let apart = |(a, b): &(GeomHandle, GeomHandle)| owner.get(a) != Some(&object) && owner.get(b) != Some(&object);
+        self.pair_contacts.retain(|pair, _| apart(pair));
+        self.pair_order.retain(apart);
         self.made.clear();
         self.owner.retain(|_, o| *o != object);
     }
@@ -51,7 +62,11 @@ impl PairSurfaces {
     /// geoms must be known).
     fn has(&self, object: ObjectId) -> bool {
         self.by_pair.keys().chain(&self.excluded).any(|(x, _)| *x == object)
-            || self.geom_contacts.keys().any(|g| self.owner.get(g) == Some(&object))
+            || self
+                .geom_contacts
+                .keys()
+                .chain(self.pair_contacts.keys().map(|(g, _)| g))
+                .any(|g| self.owner.get(g) == Some(&object))
     }
 
     /// Gives `geom` (of `object`, whose body weighs `mass`) parameters of its own.
@@ -59,6 +74,36 @@ impl PairSurfaces {
         self.owner.insert(geom, object);
         self.geom_contacts.insert(geom, (contact, mass));
         self.made.clear();
+    }
+
+    /// Gives the pair of geoms `a` and `b` (each with its object) parameters of their
+    /// own, at the pair's reduced `mass`.
+    pub(super) fn set_pair_contact(
+        &mut self,
+        (a, object_a): (GeomHandle, ObjectId),
+        (b, object_b): (GeomHandle, ObjectId),
+        contact: GeomContact,
+        mass: f64,
+    ) {
+        self.owner.insert(a, object_a);
+        self.owner.insert(b, object_b);
+        if !self.pair_contacts.contains_key(&(a, b)) {
+            self.pair_order.push((a, b));
+        }
+        self.pair_contacts.insert((a, b), (contact, mass));
+        self.pair_contacts.insert((b, a), (contact, mass));
+        self.made.clear();
+    }
+
+    /// Each pair of geoms with parameters of its own, once, in the order set.
+    pub(super) fn pair_contacts(&self) -> impl Iterator<Item = (GeomHandle, GeomHandle, GeomContact)> + '_ {
+        self.pair_order.iter().filter_map(|&(a, b)| self.pair_contacts.get(&(a, b)).map(|(c, _)| (a, b, *c)))
+    }
+
+    /// The object `geom` belongs to, if it has parameters of its own or is in a pair that
+    /// has.
+    pub(super) fn owner(&self, geom: GeomHandle) -> Option<ObjectId> {
+        self.owner.get(&geom).copied()
     }
 
     /// Sets the time step of the collision to come (the surfaces made are forgotten
@@ -78,14 +123,17 @@ impl PairSurfaces {
     /// Forgets every geom's own parameters (a snapshot restores them).
     pub(crate) fn clear_geom_contacts(&mut self) {
         self.geom_contacts.clear();
+        self.pair_contacts.clear();
+        self.pair_order.clear();
         self.made.clear();
     }
 
     /// The surface of two geoms of which one at least has parameters of its own: both
     /// combined (MuJoCo's defaults for one that has none), at their reduced mass.
     fn geom_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
+        let own = self.pair_contacts.get(&(pair.geom1, pair.geom2)).copied();
         let (first, second) = (self.geom_contacts.get(&pair.geom1), self.geom_contacts.get(&pair.geom2));
-        if first.is_none() && second.is_none() {
+        if first.is_none() && second.is_none() && own.is_none() {
             return None;
         }
         // At most MuJoCo's points per pair. (Made again when the world's default changed
@@ -96,9 +144,15 @@ impl PairSurfaces {
         {
             return Some(*surface);
         }
-        let unknown = (GeomContact::default(), f64::INFINITY);
-        let ((a, mass_a), (b, mass_b)) = (first.unwrap_or(&unknown), second.unwrap_or(&unknown));
-        let surface = a.combined(b).surface(self.time_step, reduced_mass(*mass_a, *mass_b), most);
+        let surface = match own {
+            // A pair's own parameters, as they are.
+            Some((contact, mass)) => contact.surface(self.time_step, mass, most),
+            None => {
+                let unknown = (GeomContact::default(), f64::INFINITY);
+                let ((a, mass_a), (b, mass_b)) = (first.unwrap_or(&unknown), second.unwrap_or(&unknown));
+                a.combined(b).surface(self.time_step, reduced_mass(*mass_a, *mass_b), most)
+            }
+        };
         self.made.insert((pair.geom1, pair.geom2), surface);
         Some(surface)
     }

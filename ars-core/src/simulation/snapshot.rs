@@ -211,6 +211,10 @@ impl Simulation {
             let object = self.scene.object(g.object.as_str())?.id();
             self.scene.set_geom_contact(object, g.geom, g.contact)?;
         }
+        for p in &scene.geom_pair_contacts {
+            let (a, b) = (self.scene.object(p.a.0.as_str())?.id(), self.scene.object(p.b.0.as_str())?.id());
+            self.scene.set_geom_pair_contact((a, p.a.1), (b, p.b.1), p.contact)?;
+        }
         for o in &scene.objects {
             let id = self.scene.object(o.name.as_str())?.id();
             if let Some(c) = o.color {

@@ -26,6 +26,59 @@ fn numbers<const N: usize>(py: Python<'_>, what: &str, values: Vec<f64>) -> PyRe
     values.try_into().map_err(|_| raise(py, "InputError", format!("{what} takes {N} numbers, got {n}")))
 }
 
+/// A pair of geoms with parameters of their own, as `geom_pair_contacts` lists it.
+type PairRow<'py> = (String, usize, String, usize, Bound<'py, PyDict>);
+
+/// The parameters a call gives, each checked; those not given are `None`.
+struct Given {
+    friction: Option<[f64; 3]>,
+    condim: Option<u8>,
+    solref: Option<[f64; 2]>,
+    solimp: Option<[f64; 5]>,
+    priority: Option<i32>,
+    solmix: Option<f64>,
+}
+
+impl Given {
+    fn read(
+        py: Python<'_>,
+        friction: Option<Vec<f64>>,
+        condim: Option<Int>,
+        solref: Option<Vec<f64>>,
+        solimp: Option<Vec<f64>>,
+        priority: Option<Int>,
+        solmix: Option<f64>,
+    ) -> PyResult<Given> {
+        Ok(Given {
+            friction: friction.map(|f| numbers::<3>(py, "friction", f)).transpose()?,
+            solref: solref.map(|r| numbers::<2>(py, "solref", r)).transpose()?,
+            solimp: solimp.map(|s| numbers::<5>(py, "solimp", s)).transpose()?,
+            condim: condim
+                .map(|Checked(c)| {
+                    u8::try_from(c).map_err(|_| raise(py, "InputError", format!("condim {c} must be 1, 3, 4 or 6")))
+                })
+                .transpose()?,
+            priority: priority
+                .map(|Checked(p)| {
+                    i32::try_from(p).map_err(|_| raise(py, "InputError", format!("priority {p} is beyond ±2³¹")))
+                })
+                .transpose()?,
+            solmix,
+        })
+    }
+
+    /// `c` with the parameters given in place of its own.
+    fn over(&self, mut c: GeomContact) -> GeomContact {
+        c.friction = self.friction.unwrap_or(c.friction);
+        c.condim = self.condim.unwrap_or(c.condim);
+        c.solref = self.solref.unwrap_or(c.solref);
+        c.solimp = self.solimp.unwrap_or(c.solimp);
+        c.priority = self.priority.unwrap_or(c.priority);
+        c.solmix = self.solmix.unwrap_or(c.solmix);
+        c
+    }
+}
+
 #[pymethods]
 impl PySimulation {
     /// Gives geom `geom` of object `name` (0: its first) contact parameters of its own,
@@ -50,30 +103,53 @@ impl PySimulation {
         solmix: Option<f64>,
     ) -> PyResult<()> {
         let geom: usize = count(py, "geom", geom)?;
-        let friction = friction.map(|f| numbers::<3>(py, "friction", f)).transpose()?;
-        let solref = solref.map(|r| numbers::<2>(py, "solref", r)).transpose()?;
-        let solimp = solimp.map(|s| numbers::<5>(py, "solimp", s)).transpose()?;
-        let condim = condim
-            .map(|Checked(c)| {
-                u8::try_from(c).map_err(|_| raise(py, "InputError", format!("condim {c} must be 1, 3, 4 or 6")))
-            })
-            .transpose()?;
-        let priority = priority
-            .map(|Checked(p)| {
-                i32::try_from(p).map_err(|_| raise(py, "InputError", format!("priority {p} is beyond ±2³¹")))
-            })
-            .transpose()?;
+        let given = Given::read(py, friction, condim, solref, solimp, priority, solmix)?;
         self.with(py, move |sim| {
             let object = Self::object_id(sim, name)?;
-            let mut c = sim.scene().geom_contact(object, geom)?.unwrap_or_default();
-            c.friction = friction.unwrap_or(c.friction);
-            c.condim = condim.unwrap_or(c.condim);
-            c.solref = solref.unwrap_or(c.solref);
-            c.solimp = solimp.unwrap_or(c.solimp);
-            c.priority = priority.unwrap_or(c.priority);
-            c.solmix = solmix.unwrap_or(c.solmix);
+            let c = given.over(sim.scene().geom_contact(object, geom)?.unwrap_or_default());
             sim.scene_mut().set_geom_contact(object, geom, c)
         })
+    }
+
+    /// Gives the pair of geoms `a_geom` of object `a` and `b_geom` of object `b` contact
+    /// parameters of their own, used in place of the two geoms' combined (an MJCF
+    /// `<contact><pair>`'s): `friction`, `condim`, `solref`, `solimp` as
+    /// `set_geom_contact` takes them, MuJoCo's defaults for those not given. Setting
+    /// it again replaces it.
+    #[pyo3(signature = (a, b, a_geom=Checked(0), b_geom=Checked(0), *, friction=None, condim=None, solref=None,
+                        solimp=None))]
+    fn set_geom_pair_contact(
+        &self,
+        py: Python<'_>,
+        a: &str,
+        b: &str,
+        a_geom: Int,
+        b_geom: Int,
+        friction: Option<Vec<f64>>,
+        condim: Option<Int>,
+        solref: Option<Vec<f64>>,
+        solimp: Option<Vec<f64>>,
+    ) -> PyResult<()> {
+        let (a_geom, b_geom): (usize, usize) = (count(py, "a_geom", a_geom)?, count(py, "b_geom", b_geom)?);
+        let c = Given::read(py, friction, condim, solref, solimp, None, None)?.over(GeomContact::default());
+        self.with(py, move |sim| {
+            let (a, b) = (Self::object_id(sim, a)?, Self::object_id(sim, b)?);
+            sim.scene_mut().set_geom_pair_contact((a, a_geom), (b, b_geom), c)
+        })
+    }
+
+    /// Every pair of geoms with contact parameters of its own: `(object, geom index,
+    /// object, geom index, parameters)`, in the order set.
+    fn geom_pair_contacts<'py>(&self, py: Python<'py>) -> PyResult<Vec<PairRow<'py>>> {
+        let all = self.with(py, |sim| {
+            let name = |id| -> ars_core::Result<String> { Ok(sim.scene().object(id)?.name().to_string()) };
+            sim.scene()
+                .geom_pair_contacts()
+                .into_iter()
+                .map(|((a, ka), (b, kb), c)| Ok((name(a)?, ka, name(b)?, kb, c)))
+                .collect::<ars_core::Result<Vec<_>>>()
+        })?;
+        all.into_iter().map(|(a, ka, b, kb, c)| Ok((a, ka, b, kb, as_dict(py, &c)?))).collect()
     }
 
     /// The contact parameters of geom `geom` of object `name` (0: its first), as a dict

@@ -7,7 +7,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, Unit, UnitQuaternion, Vector3};
 
 use super::damper::Resisting;
 use super::mass::{armature_inertia, at_least_ars_least_mass, find_body};
-use super::model::{Body, Geom, GeomKind, Joint, JointKind, Model};
+use super::model::{Body, Geom, GeomKind, Joint, JointKind, Model, Pair};
 use super::read::read;
 use super::{CHAIN_LINK_FRACTION, MjcfMocap, MjcfModel, MjcfOptions, MjcfWeld};
 use crate::body::{BodyBuilder, MassSpec};
@@ -126,23 +126,7 @@ impl Scene {
         }
         made.welded = welds(model, &world, made)?;
         self.add_mjcf_equalities(model, &world, made)?;
-        for (k, (a, b)) in model.pairs.iter().enumerate() {
-            let unknown = |name: &str| Error::Invalid {
-                what: "an MJCF contact pair",
-                problem: format!("names the geom {name:?}, which the model does not have"),
-            };
-            // A bit of its own in one's category and the other's collide bits: these
-            // two touch, and nothing else gains a contact.
-            let bit = 1u64 << (32 + k);
-            let (first, bits) = named.get_mut(a).ok_or_else(|| unknown(a))?;
-            bits.0 |= bit;
-            let (first, category) = (*first, bits.0);
-            let (second, bits) = named.get_mut(b).ok_or_else(|| unknown(b))?;
-            bits.1 |= bit;
-            let (second, collide) = (*second, bits.1);
-            self.world_mut().geom_mut(first)?.set_category_bits(category);
-            self.world_mut().geom_mut(second)?.set_collide_bits(collide);
-        }
+        self.add_mjcf_pairs(model, &mut named)?;
         self.place_mjcf_sensors(model, made)?;
         self.exclude_mjcf_contacts(model, made)?;
         self.exclude_welded_to_world(model, made)?;
@@ -162,6 +146,33 @@ impl Scene {
                 what: "an MJCF actuator",
                 problem: format!("{:?} on the joint {:?}: {e}", a.name, a.joint),
             })?;
+        }
+        Ok(())
+    }
+
+    /// `<contact><pair>`s: each pair of geoms touches whatever their bits say, with the
+    /// pair's own parameters.
+    fn add_mjcf_pairs(&mut self, model: &Model, named: &mut HashMap<String, (GeomHandle, (u64, u64))>) -> Result<()> {
+        for (k, Pair { geom1: a, geom2: b, contact }) in model.pairs.iter().enumerate() {
+            let unknown = |name: &str| Error::Invalid {
+                what: "an MJCF contact pair",
+                problem: format!("names the geom {name:?}, which the model does not have"),
+            };
+            // A bit of its own in one's category and the other's collide bits: these
+            // two touch, and nothing else gains a contact.
+            let bit = 1u64 << (32 + k);
+            let (first, bits) = named.get_mut(a).ok_or_else(|| unknown(a))?;
+            bits.0 |= bit;
+            let (first, category) = (*first, bits.0);
+            let (second, bits) = named.get_mut(b).ok_or_else(|| unknown(b))?;
+            bits.1 |= bit;
+            let (second, collide) = (*second, bits.1);
+            self.world_mut().geom_mut(first)?.set_category_bits(category);
+            self.world_mut().geom_mut(second)?.set_collide_bits(collide);
+            // Its own parameters (every MJCF geom has its own, so each has its place).
+            let place = |g| self.geom_place(g).ok_or_else(|| unknown(if g == first { a } else { b }));
+            let (first, second) = (place(first)?, place(second)?);
+            self.set_geom_pair_contact(first, second, *contact)?;
         }
         Ok(())
     }

@@ -156,8 +156,12 @@
 //!   ([`Scene::exclude_contacts`](crate::Scene::exclude_contacts)). `<pair geom1 geom2>`: the two named geoms touch
 //!   whatever their `contype` and `conaffinity` say (each pair takes a bit of its own
 //!   among ODE's upper 32 category and collide bits, so at most [`MAX_CONTACT_PAIRS`];
-//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its own contact
-//!   parameters are read and said unused (its geoms' own combine). Unlike MuJoCo's, a pair does not override
+//!   `contype` and `conaffinity` must fit in 32 bits, as MuJoCo's do); its own `friction`
+//!   (the first sliding, torsional and first rolling of its five), `condim`, `solref`
+//!   and `solimp` are its contacts', in place of its geoms' combined, MuJoCo's defaults
+//!   for those it does not give
+//!   ([`Scene::set_geom_pair_contact`](crate::Scene::set_geom_pair_contact)); its
+//!   `margin`, `gap`, `solreffriction` and an anisotropic friction are said unused. Unlike MuJoCo's, a pair does not override
 //!   an `<exclude>` or the rule that bodies one joint joins never touch; and a paired
 //!   geom also touches what was made outside the model (ARS's own shapes and floors,
 //!   URDF robots), whose collide bits take in ODE's upper 32.

@@ -167,6 +167,15 @@ pub(super) struct Welded {
     pub(super) principal: Option<UnitQuaternion<f64>>,
 }
 
+/// A `<contact><pair>`: two geoms by name, and the parameters their contacts take (its
+/// own, MuJoCo's defaults where it gives none: not the geoms').
+#[derive(Clone, Debug)]
+pub(super) struct Pair {
+    pub(super) geom1: String,
+    pub(super) geom2: String,
+    pub(super) contact: crate::scene::GeomContact,
+}
+
 /// Everything read from the file before anything is built.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Model {
@@ -180,8 +189,9 @@ pub(super) struct Model {
     pub(super) actuators: Vec<MjcfActuator>,
     /// `<contact><exclude>`: pairs of bodies, by name, that never touch.
     pub(super) excluded: Vec<(String, String)>,
-    /// `<contact><pair>`: pairs of geoms, by name, that touch whatever their bits say.
-    pub(super) pairs: Vec<(String, String)>,
+    /// `<contact><pair>`: pairs of geoms, by name, that touch whatever their bits say,
+    /// with their own contact parameters.
+    pub(super) pairs: Vec<Pair>,
     pub(super) sensors: Vec<MjcfSensor>,
     /// Where each sensor is in the file (for errors found once the whole file is read).
     pub(super) sensor_places: Vec<Problem>,

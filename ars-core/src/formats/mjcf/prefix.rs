@@ -24,7 +24,8 @@ pub(super) fn prefix_names(model: &mut Model, prefix: &str) {
         p(&mut a.joint);
         a.actuator.rename(a.name.clone());
     }
-    for (a, b) in model.excluded.iter_mut().chain(model.pairs.iter_mut()) {
+    let pairs = model.pairs.iter_mut().map(|q| (&mut q.geom1, &mut q.geom2));
+    for (a, b) in model.excluded.iter_mut().map(|(a, b)| (a, b)).chain(pairs) {
         p(a);
         p(b);
     }

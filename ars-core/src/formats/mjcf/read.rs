@@ -7,14 +7,14 @@ use std::path::Path;
 use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 
 use super::MAX_CONTACT_PAIRS;
-use super::contact::{collision_bits, contact_parameters_unused, geom_contact};
+use super::contact::{collision_bits, contact_parameters_unused, geom_contact, pair_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
 use super::frame::{Named, Placed, Replicas};
 use super::hfield::{Hfield, hfield_asset};
 use super::include::{Files, Includes, Tree, gather};
 use super::mass::{bounded, mass_of_geoms, scale_masses, total_mass};
 use super::meshes::{MeshAsset, load_mesh, mesh_assets};
-use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Site};
+use super::model::{Body, Geom, GeomKind, Joint, JointKind, MeshGeom, Model, Pair, Site};
 use super::problem::{Parsed, problem, skip_or_refuse};
 use super::{MjcfOptions, SITE_SIZE};
 use crate::sensors::TouchZone;
@@ -749,13 +749,10 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                         self.unsupported(&child, &format!("a contact pair beyond the first {MAX_CONTACT_PAIRS}"))?;
                         continue;
                     }
-                    model.pairs.push((needs("geom1")?, needs("geom2")?));
-                    let unused: Vec<&str> = child
-                        .attributes()
-                        .map(|a| a.name())
-                        .filter(|n| !["geom1", "geom2", "name", "class"].contains(n))
-                        .collect();
+                    let a = Attrs::new(child, self.defaults, child.attribute("class").unwrap_or("main"));
+                    let (contact, unused) = pair_contact(&a)?;
                     contact_parameters_unused(&child, &unused, &mut self.skipped);
+                    model.pairs.push(Pair { geom1: needs("geom1")?, geom2: needs("geom2")?, contact });
                 }
                 other => self.unsupported(&child, &format!("<{other}> in <contact>"))?,
             }

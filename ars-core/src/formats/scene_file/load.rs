@@ -88,6 +88,10 @@ impl Simulation {
             let object = sim.scene().object(g.object.as_str())?.id();
             sim.scene_mut().set_geom_contact(object, g.geom, g.contact)?;
         }
+        for p in &file.geom_pair_contacts {
+            let (a, b) = (sim.scene().object(p.a.0.as_str())?.id(), sim.scene().object(p.b.0.as_str())?.id());
+            sim.scene_mut().set_geom_pair_contact((a, p.a.1), (b, p.b.1), p.contact)?;
+        }
         for sensor in &file.sensors {
             sensor.add_to(&mut sim)?;
         }

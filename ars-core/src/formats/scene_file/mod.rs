@@ -69,6 +69,10 @@ pub struct SceneFile {
     /// index (see [`Scene::set_geom_contact`](crate::Scene::set_geom_contact)).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub geom_contacts: Vec<GeomContactFile>,
+    /// The pairs of geoms with contact parameters of their own (MJCF's `<pair>`s; see
+    /// [`Scene::set_geom_pair_contact`](crate::Scene::set_geom_pair_contact)).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub geom_pair_contacts: Vec<GeomPairContactFile>,
     /// The broad-phase space. A file that names none (written by hand, say) loads
     /// with [`SpaceKind::Simple`], the original's (and, before sweep and prune was the
     /// default, every simulation's).
@@ -200,6 +204,18 @@ pub struct GeomContactFile {
     /// Its index among the object's geoms (0: the first).
     pub geom: usize,
     /// Its parameters.
+    pub contact: GeomContact,
+}
+
+/// A pair of geoms' own contact parameters, each geom by its object's name and its
+/// index there.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GeomPairContactFile {
+    /// One geom: its object and index.
+    pub a: (String, usize),
+    /// The other.
+    pub b: (String, usize),
+    /// Their parameters.
     pub contact: GeomContact,
 }
 

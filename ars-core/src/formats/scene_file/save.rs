@@ -9,8 +9,8 @@ use crate::shape::Shape;
 use crate::simulation::Simulation;
 
 use super::{
-    BodyFile, FORMAT, GeomContactFile, JointFile, MimicFile, ObjectFile, PairSurfaceFile, SceneFile, SensorFile,
-    WorldJointFile, to_hex,
+    BodyFile, FORMAT, GeomContactFile, GeomPairContactFile, JointFile, MimicFile, ObjectFile, PairSurfaceFile,
+    SceneFile, SensorFile, WorldJointFile, to_hex,
 };
 
 impl Simulation {
@@ -79,6 +79,15 @@ impl Simulation {
                 .into_iter()
                 .map(|(object, geom, contact)| {
                     Ok(GeomContactFile { object: self.scene.object(object)?.name().to_string(), geom, contact })
+                })
+                .collect::<Result<_>>()?,
+            geom_pair_contacts: self
+                .scene()
+                .geom_pair_contacts()
+                .into_iter()
+                .map(|((a, ka), (b, kb), contact)| {
+                    let name = |id| -> Result<String> { Ok(self.scene.object(id)?.name().to_string()) };
+                    Ok(GeomPairContactFile { a: (name(a)?, ka), b: (name(b)?, kb), contact })
                 })
                 .collect::<Result<_>>()?,
             space: self.scene.space_kind(),
