@@ -589,12 +589,44 @@ fn read_settings<'a, 'input>(
 
 /// Reads an `<option><flag>`: `contact` and `gravity` disabled are followed, any other
 /// flag is said unused.
+/// MuJoCo 4.0's `<flag>`s that are on unless disabled (`mjtDisableBit`).
+const DISABLE_FLAGS: [&str; 20] = [
+    "actuation",
+    "autoreset",
+    "clampctrl",
+    "constraint",
+    "contact",
+    "damper",
+    "equality",
+    "eulerdamp",
+    "filterparent",
+    "frictionloss",
+    "gravity",
+    "island",
+    "limit",
+    "midphase",
+    "multiccd",
+    "nativeccd",
+    "refsafe",
+    "sensor",
+    "spring",
+    "warmstart",
+];
+
+/// MuJoCo 4.0's `<flag>`s that are off unless enabled (`mjtEnableBit`).
+const ENABLE_FLAGS: [&str; 8] =
+    ["diagexact", "energy", "fwdinv", "invdiscrete", "ipc", "override", "sleep", "speculative"];
+
+/// `<option><flag>`: contacts and gravity disabled as MuJoCo disables them; a flag at
+/// MuJoCo's default changes nothing; any other is said unused.
 fn read_flags(flag: roxmltree::Node<'_, '_>, settings: &mut Settings<'_, '_>) {
     for attribute in flag.attributes() {
         match (attribute.name(), attribute.value()) {
             ("contact", "disable") => settings.contacts_disabled = true,
             ("gravity", "disable") => settings.gravity_disabled = true,
-            ("contact" | "gravity", "enable") => {}
+            // MuJoCo's own default: nothing changes.
+            (name, "enable") if DISABLE_FLAGS.contains(&name) => {}
+            (name, "disable") if ENABLE_FLAGS.contains(&name) => {}
             (name, value) => settings
                 .flags_unused
                 .push(format!("<flag> at line {}: {name}=\"{value}\" is not used", problem(&flag, "").line)),
