@@ -924,7 +924,9 @@ fn mujocoinclude_roots_and_paths_relative_to_the_model_load_as_in_mujoco() {
 
 /// `<option><flag contact="disable">` turns every contact off, as in MuJoCo (dm-control's
 /// cartpole and reacher rely on it: their parts overlap); `gravity="disable"` gives the
-/// model no gravity; any other flag is read and said unused, not passed over in silence.
+/// model no gravity; `constraint` (contacts, limits, dry friction, equalities), `damper`
+/// and their kin turn those off; a flag at MuJoCo's default is silent; any other flag
+/// is read and said unused, not passed over in silence.
 #[test]
 fn option_flags_disable_contacts_and_gravity_and_others_are_said_unused() {
     let model = |flags: &str| {
@@ -955,6 +957,24 @@ fn option_flags_disable_contacts_and_gravity_and_others_are_said_unused() {
     let flags: Vec<&String> = weightless.skipped.iter().filter(|l| l.starts_with("<flag>")).collect();
     assert_eq!(flags.len(), 1, "{flags:?}");
     assert!(flags[0].contains(r#"energy="enable" is not used"#), "{flags:?}");
+    // `constraint` turns off contacts, limits, dry friction and equalities; `spring` and
+    // `damper` a joint's stiffness and damping. A limited, sprung, damped, rubbing hinge:
+    let hinge = r#"<mujoco><option><flag FLAGS/></option><worldbody>
+        <body name="arm" pos="0 0 1"><joint name="j" axis="0 1 0" range="-10 10" stiffness="5" damping="2" frictionloss="0.1"/>
+          <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.05"/></body></worldbody></mujoco>"#;
+    let hinge_after = |flags: &str| {
+        let mut sim = Simulation::new().unwrap();
+        sim.load_mjcf_text(&hinge.replace("FLAGS", flags), "hinge.xml", &MjcfOptions::new()).unwrap();
+        let ode = sim.scene().joint("j").unwrap().ode().unwrap();
+        // Dry friction is the hinge's own motor at speed 0 with that force limit.
+        let (lo, friction) =
+            (ode.param(ars::JointParam::LoStop, 0).unwrap(), ode.param(ars::JointParam::MaxForce, 0).unwrap());
+        (lo, sim.scene_mut().joint_mut("j").unwrap().damping(), friction)
+    };
+    let (lo, damping, friction) = hinge_after(r#"warmstart="enable""#);
+    assert!((lo + 10f64.to_radians()).abs() < 1e-12 && damping == 2.0 && friction == 0.1, "{lo} {damping} {friction}");
+    let (lo, damping, friction) = hinge_after(r#"constraint="disable" damper="disable""#);
+    assert!(lo == f64::NEG_INFINITY && damping == 0.0 && friction == 0.0, "{lo} {damping} {friction}");
 }
 
 /// MuJoCo's world (x, y, z) in the simulation's frame: (x, z, −y).

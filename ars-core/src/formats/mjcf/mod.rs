@@ -117,9 +117,10 @@
 //!   `settotalmass` (every body's mass and inertia scaled by one factor, as MuJoCo
 //!   does); `coordinate="global"` is refused.
 //! - **Options.** `<option timestep gravity>` are returned in [`MjcfModel`] (the
-//!   integrator is ODE's; the caller chooses to use them). `<flag contact="disable">`
-//!   and `gravity="disable"` apply; a flag at MuJoCo's default (`warmstart="enable"`)
-//!   changes nothing; any other flag is said unused.
+//!   integrator is ODE's; the caller chooses to use them). `<flag>`s that turn
+//!   off `contact`, `gravity`, `equality`, `limit`, `frictionloss` (all four with
+//!   `constraint`), `spring` or `damper` turn them off in the model; a flag at MuJoCo's
+//!   default (`warmstart="enable"`) changes nothing; any other is said unused.
 //! - **Includes.** `<include file>` anywhere (its path relative to the model's own
 //!   file, at any depth, as MuJoCo reads it; a cycle is refused): the included file's
 //!   top-level elements take its place whatever its root element is called
@@ -211,6 +212,7 @@ mod contact;
 mod damper;
 mod defaults;
 mod equality;
+mod flags;
 mod frame;
 mod hfield;
 mod include;

@@ -9,6 +9,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 use super::MAX_CONTACT_PAIRS;
 use super::contact::{collision_bits, contact_parameters_unused, geom_contact, pair_contact};
 use super::defaults::{Attrs, Compiler, Defaults, frame, orientation, read_defaults};
+use super::flags::Flags;
 use super::frame::{Named, Placed, Replicas};
 use super::hfield::{Hfield, hfield_asset};
 use super::include::{Files, Includes, Tree, gather};
@@ -452,8 +453,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     let mut schema_skips = Vec::new();
     super::schema::check_attributes(tree, root, options.skip_unsupported, &mut schema_skips)?;
     let mut settings = read_settings(tree, &nodes)?;
-    let flags_unused = std::mem::take(&mut settings.flags_unused);
-    let (contacts_disabled, gravity_disabled) = (settings.contacts_disabled, settings.gravity_disabled);
+    let flags = std::mem::take(&mut settings.flags);
     let materials = material_colors(&settings.material_nodes, &settings.defaults)?;
     let meshes = mesh_assets(&settings.mesh_nodes, &settings.defaults)?;
     let dir = Path::new(name).parent().map(Path::to_path_buf).unwrap_or_default();
@@ -500,17 +500,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     super::weld::weld_jointless(&mut model);
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
-    model.skipped.extend(flags_unused);
-    if contacts_disabled {
-        for geom in &mut model.world_geoms {
-            geom.bits = (0, 0);
-        }
-        disable_contacts(&mut model.bodies);
-        model.pairs.clear();
-    }
-    if gravity_disabled {
-        model.gravity = Some(Vector3::zeros());
-    }
+    flags.apply(&mut model);
     if let Some(total) = reader.compiler.total_mass {
         let now = total_mass(&model.bodies);
         if now > 0.0 {
@@ -528,12 +518,8 @@ struct Settings<'a, 'input> {
     gravity: Option<Vector3<f64>>,
     /// `<option magnetic>`, MuJoCo's `(0, −0.5, 0)` if not given.
     magnetic: Vector3<f64>,
-    /// `<option><flag contact="disable">`: no contact at all.
-    contacts_disabled: bool,
-    /// `<option><flag gravity="disable">`.
-    gravity_disabled: bool,
-    /// The `<flag>`s read and not used, one line each.
-    flags_unused: Vec<String>,
+    /// `<option><flag>`s.
+    flags: Flags,
     /// The `<asset><mesh>`es, read once every default class is known.
     mesh_nodes: Vec<roxmltree::Node<'a, 'input>>,
     /// The `<asset><material>`s, read once every default class is known.
@@ -554,9 +540,7 @@ fn read_settings<'a, 'input>(
         timestep: None,
         gravity: None,
         magnetic: Vector3::new(0.0, -0.5, 0.0),
-        contacts_disabled: false,
-        gravity_disabled: false,
-        flags_unused: Vec::new(),
+        flags: Flags::default(),
         mesh_nodes: Vec::new(),
         material_nodes: Vec::new(),
         hfield_nodes: Vec::new(),
@@ -578,71 +562,13 @@ fn read_settings<'a, 'input>(
                     settings.magnetic = Vector3::from(m);
                 }
                 for flag in tree.elements(node).into_iter().filter(|c| c.has_tag_name("flag")) {
-                    read_flags(flag, &mut settings);
+                    settings.flags.read(flag);
                 }
             }
             _ => {}
         }
     }
     Ok(settings)
-}
-
-/// Reads an `<option><flag>`: `contact` and `gravity` disabled are followed, any other
-/// flag is said unused.
-/// MuJoCo 4.0's `<flag>`s that are on unless disabled (`mjtDisableBit`).
-const DISABLE_FLAGS: [&str; 20] = [
-    "actuation",
-    "autoreset",
-    "clampctrl",
-    "constraint",
-    "contact",
-    "damper",
-    "equality",
-    "eulerdamp",
-    "filterparent",
-    "frictionloss",
-    "gravity",
-    "island",
-    "limit",
-    "midphase",
-    "multiccd",
-    "nativeccd",
-    "refsafe",
-    "sensor",
-    "spring",
-    "warmstart",
-];
-
-/// MuJoCo 4.0's `<flag>`s that are off unless enabled (`mjtEnableBit`).
-const ENABLE_FLAGS: [&str; 8] =
-    ["diagexact", "energy", "fwdinv", "invdiscrete", "ipc", "override", "sleep", "speculative"];
-
-/// `<option><flag>`: contacts and gravity disabled as MuJoCo disables them; a flag at
-/// MuJoCo's default changes nothing; any other is said unused.
-fn read_flags(flag: roxmltree::Node<'_, '_>, settings: &mut Settings<'_, '_>) {
-    for attribute in flag.attributes() {
-        match (attribute.name(), attribute.value()) {
-            ("contact", "disable") => settings.contacts_disabled = true,
-            ("gravity", "disable") => settings.gravity_disabled = true,
-            // MuJoCo's own default: nothing changes.
-            (name, "enable") if DISABLE_FLAGS.contains(&name) => {}
-            (name, "disable") if ENABLE_FLAGS.contains(&name) => {}
-            (name, value) => settings
-                .flags_unused
-                .push(format!("<flag> at line {}: {name}=\"{value}\" is not used", problem(&flag, "").line)),
-        }
-    }
-}
-
-/// No geom of `bodies` (and their children) collides with anything: `<flag
-/// contact="disable">`.
-fn disable_contacts(bodies: &mut [super::model::Body]) {
-    for body in bodies {
-        for geom in &mut body.geoms {
-            geom.bits = (0, 0);
-        }
-        disable_contacts(&mut body.children);
-    }
 }
 
 /// Reads a `<compiler>`'s settings into `compiler`.
