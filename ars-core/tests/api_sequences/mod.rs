@@ -575,7 +575,7 @@ impl Harness {
                 let Some(j) = joint else { return };
                 let leader = if s.joints.is_empty() { None } else { Some(s.joints[input.index(s.joints.len())]) };
                 let Ok(mut jm) = s.sim.scene_mut().joint_mut(j) else { return };
-                let _ = match input.byte() % 10 {
+                let _ = match input.byte() % 12 {
                     0 => jm.add_torque(input.real()),
                     1 => jm.add_force(input.real()),
                     2 => jm.set_speed(input.real(), input.real()),
@@ -588,6 +588,8 @@ impl Harness {
                         None => jm.clear_mimic(),
                     },
                     8 => jm.clear_mimic(),
+                    9 => jm.set_armature(input.real()),
+                    10 => jm.set_damping(input.real()),
                     _ => {
                         let (target, kp, kd) = (input.real(), input.real(), input.real());
                         Profile::new(vec![(0.0, target)]).and_then(|p| jm.set_controller(PositionServo::pd(p, kp, kd)))
@@ -656,13 +658,28 @@ impl Harness {
             }
             13 => {
                 let Some(o) = object else { return };
-                let _ = match input.byte() % 6 {
+                let _ = match input.byte() % 7 {
                     0 => s.sim.scene_mut().set_position(o, input.point()),
                     1 => s.sim.scene_mut().set_rotation(o, input.rotation()),
                     2 => s.sim.scene_mut().rotate(o, input.vector(), input.real()),
                     3 => s.sim.scene_mut().offset_by_position(o, input.vector()),
                     4 => s.sim.scene_mut().body_mut(o).and_then(|mut b| b.add_force(input.vector())),
-                    _ => s.sim.scene_mut().body_mut(o).and_then(|mut b| b.set_linear_velocity(input.vector())),
+                    5 => s.sim.scene_mut().body_mut(o).and_then(|mut b| b.set_linear_velocity(input.vector())),
+                    // A pair of geoms' own contact (possibly of another world, or the same
+                    // geom twice), with hostile parameters.
+                    _ => {
+                        let other = object2.unwrap_or(o);
+                        let contact = GeomContact {
+                            friction: [input.real(), input.real(), input.real()],
+                            condim: input.byte() % 8,
+                            solref: [input.real(), input.real()],
+                            solimp: [input.real(), input.real(), input.real(), input.real(), input.real()],
+                            priority: i32::from(input.byte()),
+                            solmix: input.real(),
+                        };
+                        let (k1, k2) = (usize::from(input.byte() % 3), usize::from(input.byte() % 3));
+                        s.sim.scene_mut().set_geom_pair_contact((o, k1), (other, k2), contact)
+                    }
                 };
             }
             14 => {
