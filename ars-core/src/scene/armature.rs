@@ -35,19 +35,25 @@ impl Scene {
     /// module docs.
     pub(super) fn set_joint_armature(&mut self, id: JointId, inertia: f64) -> Result<()> {
         let damping = self.joint_data(id)?.armature.map_or(0.0, |a| a.damping);
-        self.set_joint_resistance(id, "armature", inertia, damping)
+        self.set_joint_resistance(id, ("armature", "an armature"), inertia, damping)
     }
 
     /// Gives joint `id` an implicit damping of `damping` (0: none), its armature kept;
     /// see the module docs.
     pub(super) fn set_joint_damping(&mut self, id: JointId, damping: f64) -> Result<()> {
         let inertia = self.joint_data(id)?.armature.map_or(0.0, |a| a.inertia);
-        self.set_joint_resistance(id, "damping", inertia, damping)
+        self.set_joint_resistance(id, ("damping", "damping"), inertia, damping)
     }
 
-    /// Sets joint `id`'s armature and damping (`what` the one the caller sets), making
-    /// or removing the motor that holds them.
-    fn set_joint_resistance(&mut self, id: JointId, what: &'static str, inertia: f64, damping: f64) -> Result<()> {
+    /// Sets joint `id`'s armature and damping, making or removing the motor that holds
+    /// them; `(what, operation)` name the one the caller sets in errors.
+    fn set_joint_resistance(
+        &mut self,
+        id: JointId,
+        (what, operation): (&'static str, &'static str),
+        inertia: f64,
+        damping: f64,
+    ) -> Result<()> {
         for value in [inertia, damping] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(Error::OutOfRange { what, detail: format!("must be finite and ≥ 0, got {value}") });
@@ -56,7 +62,6 @@ impl Scene {
         let data = self.joint_data(id)?;
         let (kind, handle, existing) = (data.kind, data.handle, data.armature);
         if !matches!(kind, JointType::Hinge | JointType::Slider) {
-            let operation = if what == "armature" { "an armature" } else { "damping" };
             return Err(Error::WrongJointKind { operation, kind: kind.default_name() });
         }
         let motor = match (existing, inertia > 0.0 || damping > 0.0) {

@@ -131,18 +131,18 @@ impl PairSurfaces {
     /// The surface of two geoms of which one at least has parameters of its own: both
     /// combined (MuJoCo's defaults for one that has none), at their reduced mass.
     fn geom_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
-        let own = self.pair_contacts.get(&(pair.geom1, pair.geom2)).copied();
-        let (first, second) = (self.geom_contacts.get(&pair.geom1), self.geom_contacts.get(&pair.geom2));
-        if first.is_none() && second.is_none() && own.is_none() {
-            return None;
-        }
         // At most MuJoCo's points per pair. (Made again when the world's default changed
-        // its most contact points.)
+        // its most contact points.) A surface made before is the one lookup of a step.
         let most = default.max_contacts.min(MUJOCO_CONTACTS_PER_PAIR);
         if let Some(surface) = self.made.get(&(pair.geom1, pair.geom2))
             && surface.max_contacts == most
         {
             return Some(*surface);
+        }
+        let own = self.pair_contacts.get(&(pair.geom1, pair.geom2)).copied();
+        let (first, second) = (self.geom_contacts.get(&pair.geom1), self.geom_contacts.get(&pair.geom2));
+        if first.is_none() && second.is_none() && own.is_none() {
+            return None;
         }
         let surface = match own {
             // A pair's own parameters, as they are.
