@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import corpus_file
 
 import ars
 
@@ -217,3 +218,36 @@ def test_a_pair_s_own_friction_replaces_its_geoms_as_in_mujoco(tmp_path, geoms, 
     assert own["condim"] == 1 and own["friction"] == [0.3, 0.0, 0.0]
     with pytest.raises(ars.InputError):
         sim.set_geom_pair_contact("a", "a")
+
+
+@pytest.mark.parametrize(
+    "relative",
+    [
+        "gymnasium-robotics-1.4.2/gymnasium_robotics/envs/assets/adroit_hand/adroit_door.xml",
+        "gymnasium-robotics-1.4.2/gymnasium_robotics/envs/assets/hand/manipulate_block.xml",
+    ],
+)
+def test_published_hands_pairs_take_mujoco_s_parameters(relative):
+    """The Adroit and Shadow hands' `<pair>`s (19 each, condim 1 between fingers, from
+    an included file, with classes): each pair ARS makes has MuJoCo's compiled
+    `pair_friction` (first sliding and torsional), `pair_dim`, `pair_solref` and
+    `pair_solimp`, in MuJoCo's order. The files list one pair twice: MuJoCo keeps both
+    (their contacts twice), ARS one (the same parameters). Skipped where the corpus is
+    not fetched."""
+    path = corpus_file(relative)
+    if path is None:
+        pytest.skip("corpus not fetched")
+    m = mujoco.MjModel.from_xml_path(str(path))
+    sim = ars.Simulation()
+    sim.load_mjcf(path, skip_unsupported=True)
+    ours = sim.geom_pair_contacts()
+    first = {}
+    for i in range(m.npair):
+        first.setdefault(frozenset((m.pair_geom1[i], m.pair_geom2[i])), i)
+    theirs = sorted(first.values())
+    assert m.npair == 19 and len(ours) == len(theirs) == 18
+    for i, (_, _, _, _, own) in zip(theirs, ours, strict=True):
+        assert own["friction"][:2] == pytest.approx([m.pair_friction[i][0], m.pair_friction[i][2]])
+        assert own["condim"] == m.pair_dim[i] == 1
+        assert own["solref"] == pytest.approx(m.pair_solref[i])
+        assert own["solimp"] == pytest.approx(m.pair_solimp[i])
