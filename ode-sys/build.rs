@@ -20,6 +20,8 @@ fn main() {
     println!("cargo:rerun-if-changed=src/guard.h");
     println!("cargo:rerun-if-changed=src/hull.c");
     println!("cargo:rerun-if-changed=src/hull.h");
+    println!("cargo:rerun-if-changed=src/simple_space.c");
+    println!("cargo:rerun-if-changed=src/simple_space.h");
     println!("cargo:rerun-if-env-changed=PKG_CONFIG_PATH");
     println!("cargo:rerun-if-env-changed=LIBCLANG_PATH");
 
@@ -70,6 +72,7 @@ fn main() {
     cc::Build::new()
         .file("src/guard.c")
         .file("src/hull.c")
+        .file("src/simple_space.c")
         .includes(&ode.include_paths)
         .flag_if_supported("-std=c11")
         .warnings(true)

@@ -14,6 +14,9 @@
  *   unguarded failure aborts, as ODE itself would) and the callback's own dCollide
  *   arms a nested guard of its own;
  * - the jump targets are per thread (ODE's handlers are process-wide);
+ * - a simple space is collided by simple_space.c (ODE's own loop, in the same order,
+ *   without the pairs that cannot touch), any other by dSpaceCollide: "dSpaceCollide"
+ *   below means either;
  * - the plain collision (odesys_guarded_collide_plain) runs a near callback written
  *   here in C, so no Rust frame is ever between its guard and ODE: its dSpaceCollide
  *   and each of its dCollide calls have guards of their own, as on the Rust path;
@@ -32,6 +35,7 @@
 #include <string.h>
 
 #include "guard.h"
+#include "simple_space.h"
 
 /* GCC's and Clang's builtin setjmp saves only the frame and stack pointers and the
  * resume address (the compiler treats every register as clobbered at the receiver),
@@ -150,7 +154,7 @@ static void near_trampoline(void *data, dGeomID o1, dGeomID o2) {
 int odesys_guarded_space_collide(dSpaceID space, void *data, dNearCallback *callback,
                                  struct odesys_failure *failure) {
     struct near_trampoline t = {data, callback};
-    GUARDED(failure, return ODESYS_CAUGHT, dSpaceCollide(space, &t, near_trampoline));
+    GUARDED(failure, return ODESYS_CAUGHT, odesys_space_collide(space, &t, near_trampoline));
     return ODESYS_OK;
 }
 
@@ -245,7 +249,7 @@ int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *
                                  struct odesys_failure *failure) {
     plain->stopped = 0;
     plain->out.len = 0;
-    GUARDED(failure, return ODESYS_CAUGHT, dSpaceCollide(space, plain, plain_near));
+    GUARDED(failure, return ODESYS_CAUGHT, odesys_space_collide(space, plain, plain_near));
     return ODESYS_OK;
 }
 
@@ -255,7 +259,7 @@ int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *
  * ODESYS_OK or ODESYS_REFUSED (the step's result) or ODESYS_NOT_STEPPED. */
 static int collide_then_step(struct odesys_plain_collision *plain) {
     plain->phase = ODESYS_PHASE_COLLIDE;
-    dSpaceCollide(plain->space, plain, plain_near);
+    odesys_space_collide(plain->space, plain, plain_near);
     if (plain->stopped != 0 || plain->out.len > plain->contact_limit) {
         return ODESYS_NOT_STEPPED;
     }

@@ -1,0 +1,138 @@
+/* A simple space's collision, as ODE's own (dxSimpleSpace::collide in
+ * collision_space.cpp), without the pairs it tests for nothing.
+ *
+ * ODE's simple space tests every pair of enabled geoms in the order of its list
+ * (the geoms moved since the last collision first, then the others) and calls the
+ * near callback for each pair that is not on one body, whose category and collide
+ * bits match and whose bounding boxes overlap. This does the same, in the same
+ * order, so that the callback sees the same pairs one after the other and the
+ * contact joints (and every later bit) are the same, but:
+ * - it leaves out the pairs of two static geoms (no body) that are not rays: ARS's
+ *   near callbacks (plain_near in guard.c, `pair_may_touch` in ars-core) make
+ *   nothing of them, and a scene's static geoms (terrain, arenas, furniture, and the
+ *   many geoms of an imported model's world body) make most of the pairs;
+ * - it leaves out geoms whose category and collide bits are both 0 (MuJoCo's
+ *   visual-only geoms): no pair of theirs passes the bits test;
+ * - it tests the remaining pairs on a compact array rather than through ODE's
+ *   linked list and virtual calls. A geom class's AABBTest is not called: only
+ *   user classes can override it, and ARS's one (the convex hull in hull.c) does
+ *   not.
+ * A space that holds another space is collided by ODE itself. */
+
+#include <ode/ode.h>
+#include <stdlib.h>
+
+#include "simple_space.h"
+
+struct simple_entry {
+    dReal aabb[6];
+    dGeomID geom;
+    dBodyID body;
+    unsigned long category;
+    unsigned long collide;
+    /* Static and not a ray: pairs with another such geom are left out. */
+    int fixed;
+    /* The index of the first entry at or after this one that is not fixed. */
+    int next_moving;
+};
+
+/* The entries, kept per thread from one collision to the next (grown, never shrunk).
+ * A collision takes them and gives them back, so that a nested collision (none is
+ * made today) would make its own. */
+static _Thread_local struct simple_entry *kept = NULL;
+static _Thread_local int kept_capacity = 0;
+
+/* ODE's test, with its comparisons (a NaN bound overlaps everything there too). */
+static int boxes_disjoint(const dReal *b1, const dReal *b2) {
+    return b1[0] > b2[1] || b1[1] < b2[0] || b1[2] > b2[3] || b1[3] < b2[2] || b1[4] > b2[5] || b1[5] < b2[4];
+}
+
+static void test_pair(const struct simple_entry *e1, const struct simple_entry *e2, void *data,
+                      dNearCallback *callback) {
+    if (e1->body == e2->body && e1->body != NULL) {
+        return;
+    }
+    if (((e1->category & e2->collide) || (e2->category & e1->collide)) == 0) {
+        return;
+    }
+    if (boxes_disjoint(e1->aabb, e2->aabb)) {
+        return;
+    }
+    callback(data, e1->geom, e2->geom);
+}
+
+/* 0 when the space must be collided by ODE (not a simple space, a space inside it,
+ * or no memory). */
+static int collide_simple(dSpaceID space, void *data, dNearCallback *callback) {
+    if (dSpaceGetClass(space) != dSimpleSpaceClass) {
+        return 0;
+    }
+    /* As dxSimpleSpace::collide: the moved geoms' boxes brought up to date, their
+     * dirty marks cleared (which keeps the list's order as ODE's collision would). */
+    dSpaceClean(space);
+    int count = dSpaceGetNumGeoms(space);
+    struct simple_entry *entries = kept;
+    int capacity = kept_capacity;
+    kept = NULL;
+    kept_capacity = 0;
+    if (capacity < count) {
+        free(entries);
+        capacity = count < 64 ? 64 : count + count / 2;
+        entries = malloc((size_t)capacity * sizeof *entries);
+        if (entries == NULL) {
+            return 0;
+        }
+    }
+    int n = 0;
+    for (int i = 0; i < count; i++) {
+        /* In the list's order: dSpaceGetGeom walks it one step per call. */
+        dGeomID g = dSpaceGetGeom(space, i);
+        if (dGeomIsSpace(g)) {
+            kept = entries;
+            kept_capacity = capacity;
+            return 0;
+        }
+        if (!dGeomIsEnabled(g)) {
+            continue;
+        }
+        struct simple_entry *e = &entries[n];
+        e->category = dGeomGetCategoryBits(g);
+        e->collide = dGeomGetCollideBits(g);
+        if (e->category == 0 && e->collide == 0) {
+            continue;
+        }
+        dGeomGetAABB(g, e->aabb);
+        e->geom = g;
+        e->body = dGeomGetBody(g);
+        e->fixed = e->body == NULL && dGeomGetClass(g) != dRayClass;
+        n++;
+    }
+    int next = n;
+    for (int i = n - 1; i >= 0; i--) {
+        if (!entries[i].fixed) {
+            next = i;
+        }
+        entries[i].next_moving = next;
+    }
+    for (int i = 0; i < n; i++) {
+        const struct simple_entry *e1 = &entries[i];
+        if (e1->fixed) {
+            for (int j = i + 1 < n ? entries[i + 1].next_moving : n; j < n; j = j + 1 < n ? entries[j + 1].next_moving : n) {
+                test_pair(e1, &entries[j], data, callback);
+            }
+        } else {
+            for (int j = i + 1; j < n; j++) {
+                test_pair(e1, &entries[j], data, callback);
+            }
+        }
+    }
+    kept = entries;
+    kept_capacity = capacity;
+    return 1;
+}
+
+void odesys_space_collide(dSpaceID space, void *data, dNearCallback *callback) {
+    if (!collide_simple(space, data, callback)) {
+        dSpaceCollide(space, data, callback);
+    }
+}
