@@ -101,3 +101,40 @@ fn a_removed_object_takes_its_pair_surfaces_with_it() -> Result<()> {
     assert!(sim.scene().position(grippy)?.x < 0.01);
     Ok(())
 }
+
+#[test]
+fn a_surface_changed_between_steps_holds_from_the_next_step() -> Result<()> {
+    // The collision keeps what each pair of geoms touches with from one step to the
+    // next: every change of a pair's surface or exclusion must reach it.
+    let (mut sim, floor, slippery, grippy) = two_sliding_boxes()?;
+    let ice = ContactSurface { mu: 0.0, bounce: None, ..Default::default() };
+    // How far the slippery box goes in 0.1 s, pushed at 1 m/s.
+    let slide = |sim: &mut Simulation| -> Result<f64> {
+        sim.scene_mut().body_mut(slippery)?.set_linear_velocity(Vector3::x())?;
+        let start = sim.scene().position(slippery)?.x;
+        sim.run_for(0.1)?;
+        Ok(sim.scene().position(slippery)?.x - start)
+    };
+    sim.scene_mut().set_contact_surface(slippery, floor, ice)?;
+    let on_ice = slide(&mut sim)?;
+    assert!((on_ice - 0.1).abs() < 1e-3, "slides on ice: {on_ice}");
+    sim.scene_mut().set_contact_surface(slippery, floor, ContactSurface::default())?;
+    let held = slide(&mut sim)?;
+    assert!(held < 0.01, "the default surface holds it: {held}");
+    sim.scene_mut().set_contact_surface(slippery, floor, ice)?;
+    let again = slide(&mut sim)?;
+    assert!((again - 0.1).abs() < 1e-2, "on ice again: {again}");
+    sim.scene_mut().clear_contact_surface(floor, slippery)?;
+    let cleared = slide(&mut sim)?;
+    assert!(cleared < 0.01, "cleared: the default again: {cleared}");
+    sim.scene_mut().exclude_contacts(floor, grippy)?;
+    sim.run_for(0.5)?;
+    assert!(sim.scene().position(grippy)?.y < -0.5, "excluded: it falls through the floor");
+    let height = sim.scene().position(slippery)?.y;
+    assert!((height - 0.05).abs() < 1e-2, "the other box stays on the floor: {height}");
+    sim.scene_mut().include_contacts(floor, grippy)?;
+    sim.scene_mut().set_contact_surface(slippery, floor, ice)?;
+    let last = slide(&mut sim)?;
+    assert!((last - 0.1).abs() < 1e-2, "a surface set after an exclusion holds: {last}");
+    Ok(())
+}

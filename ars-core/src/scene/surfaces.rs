@@ -27,15 +27,35 @@ pub(crate) struct PairSurfaces {
     geom_contacts: HashMap<GeomHandle, (GeomContact, f64)>,
     /// The time step of the collision under way, s (the geoms' parameters depend on it).
     time_step: f64,
-    /// The surfaces made of geoms' parameters, by pair, at `time_step` (emptied when a
-    /// geom's parameters or the time step change).
-    made: HashMap<(GeomHandle, GeomHandle), ContactSurface>,
+    /// What each pair of geoms met touches with, as worked out the first time (emptied
+    /// when anything it depends on changes: a pair's surface or exclusion, a geom's
+    /// parameters, the time step; and when it grows past [`MAX_VERDICTS`]): the one
+    /// lookup of a step for a pair met before.
+    made: HashMap<(GeomHandle, GeomHandle), Verdict>,
     /// Pairs of geoms with parameters of their own, both orders, each with the pair's
     /// reduced mass when they were set.
     pair_contacts: HashMap<(GeomHandle, GeomHandle), (GeomContact, f64)>,
     /// Those pairs, once each, in the order they were first set.
     pair_order: Vec<(GeomHandle, GeomHandle)>,
 }
+
+/// What a pair of geoms touches with.
+#[derive(Clone, Copy, Debug)]
+enum Verdict {
+    /// Their objects never touch.
+    Apart,
+    /// The world's default surface (whatever it is at the time).
+    Default,
+    /// Their objects' own surface.
+    Objects(ContactSurface),
+    /// A surface made of the geoms' (or the pair's) parameters, with at most
+    /// `max_contacts` points: made again when the world's default changes that.
+    Geoms(ContactSurface),
+}
+
+/// The most pairs of geoms whose verdicts are kept (about 10 MB); beyond, they are
+/// worked out again.
+const MAX_VERDICTS: usize = 1 << 16;
 
 impl PairSurfaces {
     pub(crate) fn is_empty(&self) -> bool {
@@ -54,7 +74,7 @@ impl PairSurfaces {
         let apart = |(a, b): &(GeomHandle, GeomHandle)| owner.get(a) != Some(&object) && owner.get(b) != Some(&object);
         self.pair_contacts.retain(|pair, _| apart(pair));
         self.pair_order.retain(apart);
-        self.made.clear();
+        self.forget_verdicts();
         self.owner.retain(|_, o| *o != object);
     }
 
@@ -73,7 +93,7 @@ impl PairSurfaces {
     pub(super) fn set_geom_contact(&mut self, geom: GeomHandle, object: ObjectId, contact: GeomContact, mass: f64) {
         self.owner.insert(geom, object);
         self.geom_contacts.insert(geom, (contact, mass));
-        self.made.clear();
+        self.forget_verdicts();
     }
 
     /// Gives the pair of geoms `a` and `b` (each with its object) parameters of their
@@ -92,7 +112,7 @@ impl PairSurfaces {
         }
         self.pair_contacts.insert((a, b), (contact, mass));
         self.pair_contacts.insert((b, a), (contact, mass));
-        self.made.clear();
+        self.forget_verdicts();
     }
 
     /// Each pair of geoms with parameters of its own, once, in the order set.
@@ -111,7 +131,7 @@ impl PairSurfaces {
     pub(super) fn set_time_step(&mut self, dt: f64) {
         if dt != self.time_step {
             self.time_step = dt;
-            self.made.clear();
+            self.forget_verdicts();
         }
     }
 
@@ -125,20 +145,12 @@ impl PairSurfaces {
         self.geom_contacts.clear();
         self.pair_contacts.clear();
         self.pair_order.clear();
-        self.made.clear();
+        self.forget_verdicts();
     }
 
     /// The surface of two geoms of which one at least has parameters of its own: both
     /// combined (MuJoCo's defaults for one that has none), at their reduced mass.
-    fn geom_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
-        // At most MuJoCo's points per pair. (Made again when the world's default changed
-        // its most contact points.) A surface made before is the one lookup of a step.
-        let most = default.max_contacts.min(MUJOCO_CONTACTS_PER_PAIR);
-        if let Some(surface) = self.made.get(&(pair.geom1, pair.geom2))
-            && surface.max_contacts == most
-        {
-            return Some(*surface);
-        }
+    fn geom_surface(&self, pair: &GeomPair, most: usize) -> Option<ContactSurface> {
         let own = self.pair_contacts.get(&(pair.geom1, pair.geom2)).copied();
         let (first, second) = (self.geom_contacts.get(&pair.geom1), self.geom_contacts.get(&pair.geom2));
         if first.is_none() && second.is_none() && own.is_none() {
@@ -153,20 +165,52 @@ impl PairSurfaces {
                 a.combined(b).surface(self.time_step, reduced_mass(*mass_a, *mass_b), most)
             }
         };
-        self.made.insert((pair.geom1, pair.geom2), surface);
         Some(surface)
+    }
+
+    /// What `pair` touches with, worked out from the pairs, exclusions and parameters.
+    fn verdict(&self, pair: &GeomPair, most: usize) -> Verdict {
+        let owners = (self.owner.get(&pair.geom1), self.owner.get(&pair.geom2));
+        if let (Some(a), Some(b)) = owners {
+            if self.excluded.contains(&(*a, *b)) {
+                return Verdict::Apart;
+            }
+            if let Some(surface) = self.by_pair.get(&(*a, *b)) {
+                return Verdict::Objects(*surface);
+            }
+        }
+        self.geom_surface(pair, most).map_or(Verdict::Default, Verdict::Geoms)
+    }
+
+    /// Forgets every verdict (something they depend on changed).
+    fn forget_verdicts(&mut self) {
+        self.made.clear();
     }
 }
 
 impl CollisionHooks for PairSurfaces {
     fn contact_surface(&mut self, pair: &GeomPair, default: &ContactSurface) -> Option<ContactSurface> {
-        let owners = (self.owner.get(&pair.geom1), self.owner.get(&pair.geom2));
-        let surface = match owners {
-            (Some(a), Some(b)) if self.excluded.contains(&(*a, *b)) => return None,
-            (Some(a), Some(b)) => self.by_pair.get(&(*a, *b)).copied(),
-            _ => None,
+        // A surface of geoms' parameters has at most MuJoCo's points per pair.
+        let most = default.max_contacts.min(MUJOCO_CONTACTS_PER_PAIR);
+        let key = (pair.geom1, pair.geom2);
+        let verdict = match self.made.get(&key) {
+            Some(Verdict::Geoms(surface)) if surface.max_contacts != most => None,
+            Some(verdict) => Some(*verdict),
+            None => None,
         };
-        Some(surface.or_else(|| self.geom_surface(pair, default)).unwrap_or(*default))
+        let verdict = verdict.unwrap_or_else(|| {
+            let verdict = self.verdict(pair, most);
+            if self.made.len() >= MAX_VERDICTS {
+                self.forget_verdicts();
+            }
+            self.made.insert(key, verdict);
+            verdict
+        });
+        match verdict {
+            Verdict::Apart => None,
+            Verdict::Default => Some(*default),
+            Verdict::Objects(surface) | Verdict::Geoms(surface) => Some(surface),
+        }
     }
 }
 
@@ -193,6 +237,7 @@ impl Scene {
         self.own_geoms(a, b)?;
         self.pair_surfaces.by_pair.insert((a, b), surface);
         self.pair_surfaces.by_pair.insert((b, a), surface);
+        self.pair_surfaces.forget_verdicts();
         Ok(())
     }
 
@@ -210,6 +255,7 @@ impl Scene {
         self.object(b)?;
         self.pair_surfaces.by_pair.remove(&(a, b));
         self.pair_surfaces.by_pair.remove(&(b, a));
+        self.pair_surfaces.forget_verdicts();
         self.forget_unpaired(a, b);
         Ok(())
     }
@@ -239,6 +285,7 @@ impl Scene {
         self.own_geoms(a, b)?;
         self.pair_surfaces.excluded.insert((a, b));
         self.pair_surfaces.excluded.insert((b, a));
+        self.pair_surfaces.forget_verdicts();
         Ok(())
     }
 
@@ -248,6 +295,7 @@ impl Scene {
         self.object(b)?;
         self.pair_surfaces.excluded.remove(&(a, b));
         self.pair_surfaces.excluded.remove(&(b, a));
+        self.pair_surfaces.forget_verdicts();
         self.forget_unpaired(a, b);
         Ok(())
     }
