@@ -340,6 +340,30 @@ unsafe fn create_ode_geom(
     }
 }
 
+/// Keeps a geom that touches nothing (its category and collide bits both 0, as
+/// MuJoCo's visual geoms) out of its ODE space, and any other geom in it. No pair of
+/// such a geom passes ODE's bits test, so the others' pairs are the same, in the same
+/// order; but ODE brings every moved geom of a space up to date before it collides
+/// it, and a visual mesh's box costs a pass over its every vertex. ARS keeps the geom
+/// as its space's ([`GeomRef::space`]): ray casts, drawing and snapshots see it.
+///
+/// # Safety
+/// `raw` is a live geom made in `space`, which is live, and no collision of that space
+/// is under way.
+pub(super) unsafe fn keep_in_space(raw: ffi::dGeomID, space: ffi::dSpaceID) {
+    // SAFETY: the caller's contract; a geom is only ever in the space it was made
+    // in, or in none (checked before each call, as ODE asserts it).
+    unsafe {
+        let silent = ffi::dGeomGetCategoryBits(raw) == 0 && ffi::dGeomGetCollideBits(raw) == 0;
+        let current = ffi::dGeomGetSpace(raw);
+        if silent && current == space {
+            ffi::dSpaceRemove(space, raw);
+        } else if !silent && current.is_null() {
+            ffi::dSpaceAdd(space, raw);
+        }
+    }
+}
+
 impl World {
     /// Creates a geom in `space`.
     pub fn insert_geom(&mut self, space: SpaceHandle, builder: GeomBuilder) -> Result<GeomHandle> {
@@ -645,16 +669,26 @@ impl GeomMut<'_> {
         self.world.note_geom_reach((0..3).map(|i| corner(i).powi(2)).sum::<f64>().sqrt());
     }
 
-    /// Sets the category bits.
+    /// Sets the category bits. A geom whose category and collide bits are both 0
+    /// touches nothing, and ODE never brings its box up to date for a collision.
     pub fn set_category_bits(&mut self, bits: u64) {
         // SAFETY: the geom is live.
         unsafe { ffi::dGeomSetCategoryBits(self.raw, bits) };
+        self.keep_in_space();
     }
 
-    /// Sets the collide bits.
+    /// Sets the collide bits (see [`set_category_bits`](Self::set_category_bits)).
     pub fn set_collide_bits(&mut self, bits: u64) {
         // SAFETY: the geom is live.
         unsafe { ffi::dGeomSetCollideBits(self.raw, bits) };
+        self.keep_in_space();
+    }
+
+    fn keep_in_space(&mut self) {
+        let Ok(data) = self.world.geoms.get(self.handle.0, GeomHandle::KIND) else { return };
+        let Ok(space) = self.world.space_data(data.space) else { return };
+        // SAFETY: the geom and its space are live.
+        unsafe { keep_in_space(self.raw, space.raw) };
     }
 
     /// Enables or disables collision for this geom.

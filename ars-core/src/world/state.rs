@@ -465,13 +465,20 @@ impl World {
             // SAFETY: the bodies of this world, live.
             unsafe { restore_body(*raw, s) };
         }
-        let mut geoms: Vec<_> = self.geoms.values().map(|g| (g.serial, g.raw)).collect();
-        geoms.sort_unstable();
-        let geoms: Vec<ffi::dGeomID> = geoms.into_iter().map(|(_, raw)| raw).collect();
-        for (raw, s) in geoms.iter().zip(&state.geoms) {
-            // SAFETY: the geoms of this world, live, checked to fit their states above.
-            unsafe { restore_geom(*raw, s) };
+        let mut geoms: Vec<_> =
+            self.geoms.values().map(|g| (g.serial, g.raw, self.space_data(g.space).map(|s| s.raw))).collect::<Vec<_>>();
+        geoms.sort_unstable_by_key(|(serial, ..)| *serial);
+        for ((_, raw, space), s) in geoms.iter().zip(&state.geoms) {
+            // SAFETY: the geoms of this world, live, checked to fit their states above;
+            // their spaces live (a geom's space outlives it); no collision under way.
+            unsafe {
+                restore_geom(*raw, s);
+                if let Ok(space) = space {
+                    super::geom::keep_in_space(*raw, *space);
+                }
+            }
         }
+        let geoms: Vec<ffi::dGeomID> = geoms.into_iter().map(|(_, raw, _)| raw).collect();
         let spaces: Vec<ffi::dSpaceID> = self.spaces.values().map(|s| s.raw).collect();
         for (space, order) in spaces.iter().zip(&state.spaces) {
             // SAFETY: the spaces and geoms of this world, live.
