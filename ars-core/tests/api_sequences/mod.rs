@@ -426,7 +426,10 @@ impl Harness {
             18 => {
                 let Some(g) = geom else { return };
                 let Ok(mut gm) = w.world.geom_mut(g) else { return };
-                let _ = match input.byte() % 6 {
+                // Bits of 0 often: a geom with neither category nor collide bits
+                // leaves ODE's space, and comes back with bits again.
+                let bits = |input: &mut Bytes<'_>| if input.one_in(2) { 0 } else { u64::from(input.byte()) };
+                let _ = match input.byte() % 7 {
                     0 => gm.set_position(input.point()),
                     1 => gm.set_rotation(input.rotation()),
                     2 => gm.set_pose(input.isometry()),
@@ -435,8 +438,12 @@ impl Harness {
                         gm.set_enabled(input.one_in(2));
                         Ok(())
                     }
+                    5 => {
+                        gm.set_category_bits(bits(input));
+                        Ok(())
+                    }
                     _ => {
-                        gm.set_collide_bits(u64::from(input.byte()));
+                        gm.set_collide_bits(bits(input));
                         Ok(())
                     }
                 };
