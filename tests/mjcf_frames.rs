@@ -69,6 +69,12 @@ fn replicate_counts_past_the_limit_or_not_whole_are_refused_with_nothing_left() 
         (r#"<replicate count="9999999999"><replicate count="9999999999"/></replicate>"#, "more than"),
         (r#"<replicate count="two"><geom size=".1"/></replicate>"#, "not a whole number"),
         (r#"<frame pos="0 0 inf"><body><freejoint/><geom size=".1"/></body></frame>"#, "inf"),
+        // MuJoCo 4.0: "joint cannot be a direct child of replicate", in a frame of one too.
+        (r#"<body><geom size=".1"/><replicate count="2"><joint axis="0 0 1"/></replicate></body>"#, "direct child"),
+        (
+            r#"<body><geom size=".1"/><replicate count="2"><frame><freejoint/></frame></replicate></body>"#,
+            "direct child",
+        ),
     ] {
         let mut sim = Simulation::builder().build().unwrap();
         let file = format!(

@@ -38,16 +38,19 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
     ) -> Parsed<Vec<Placed<'a, 'input>>> {
         let mut out = Vec::new();
         let (suffix, copy) = (self.suffix.clone(), self.copy);
-        self.place_children(node, class, &Isometry3::identity(), (&suffix, copy), &mut out)?;
+        self.place_children(node, class, &Isometry3::identity(), (&suffix, copy), false, &mut out)?;
         Ok(out)
     }
 
+    /// `node`'s children placed at `at`; `replicated`: `node` is a `<replicate>` or in
+    /// one without a body between (a joint there is refused, as MuJoCo refuses it).
     fn place_children(
         &mut self,
         node: roxmltree::Node<'a, 'input>,
         class: &str,
         at: &Isometry3<f64>,
         (suffix, copy): (&str, usize),
+        replicated: bool,
         out: &mut Vec<Placed<'a, 'input>>,
     ) -> Parsed<()> {
         for child in self.tree.elements(node) {
@@ -55,9 +58,16 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
                 "frame" => {
                     let placed = at * frame(&Attrs::new(child, self.defaults, class), &self.compiler)?;
                     let class = child.attribute("childclass").unwrap_or(class);
-                    self.place_children(child, class, &placed, (suffix, copy), out)?;
+                    self.place_children(child, class, &placed, (suffix, copy), replicated, out)?;
                 }
                 "replicate" => self.replicate(child, class, at, suffix, out)?,
+                "joint" | "freejoint" if replicated => {
+                    return Err(problem(
+                        &child,
+                        "a joint cannot be a direct child of <replicate>, nor in a <frame> of one (MuJoCo refuses it \
+                         too): put it in a <body> in the replicate",
+                    ));
+                }
                 _ => {
                     if !suffix.is_empty() {
                         self.count_replicated(&child)?;
@@ -93,7 +103,7 @@ impl<'a, 'input> Reader<'_, 'a, 'input> {
         for i in 0..count.max(0) {
             self.count_replicated(&node)?;
             let suffix = format!("{sep}{i:0width$}{suffix}");
-            self.place_children(node, class, &copy, (&suffix, self.replicated), out)?;
+            self.place_children(node, class, &copy, (&suffix, self.replicated), true, out)?;
             copy *= step;
         }
         Ok(())
