@@ -88,3 +88,38 @@ fn replicate_counts_past_the_limit_or_not_whole_are_refused_with_nothing_left() 
     let (_, model) = load(r#"<mujoco><worldbody><replicate count="-1"><body><freejoint/><geom size=".1"/></body></replicate></worldbody></mujoco>"#).unwrap();
     assert!(model.bodies.is_empty());
 }
+
+#[test]
+fn exclusions_pairs_and_equalities_naming_a_replicated_element_repeat_per_copy() {
+    // MuJoCo 4.0 compiles this with two exclusions (base with leg0, leg1), two pairs
+    // (foot0, foot1 with the ground) and two equalities (knee0 follows hip0, knee1
+    // hip1): each is repeated for every copy of what it names.
+    let (mut sim, _) = load(
+        r#"<mujoco><worldbody><geom name="ground" type="plane" size="1 1 .1"/>
+        <body name="base" pos="0 0 1"><geom size=".1"/>
+          <replicate count="2" offset=".3 0 0">
+            <body name="leg" pos="0 0 -.3"><joint name="hip" axis="0 1 0"/><geom name="foot" pos=".1 0 0" size=".05"/>
+              <body name="shin" pos="0 0 -.2"><joint name="knee" axis="0 1 0"/><geom pos=".1 0 0" size=".05"/></body>
+            </body>
+          </replicate>
+        </body></worldbody>
+        <equality><joint joint1="knee" joint2="hip"/></equality>
+        <contact><exclude body1="base" body2="leg"/><pair geom1="foot" geom2="ground" friction=".5 .5 .005 .0001 .0001"/></contact>
+        </mujoco>"#,
+    )
+    .unwrap();
+    // Each knee follows its own copy's hip (MuJoCo: 0.89 rad for all four at 0.3 s).
+    sim.run_for(0.3).unwrap();
+    let angle = |name: &str| sim.scene().joint(name).unwrap().state().unwrap().position;
+    for (hip, knee) in [("hip0", "knee0"), ("hip1", "knee1")] {
+        assert!(angle(hip) > 0.3, "{hip} swings: {}", angle(hip));
+        assert!((angle(knee) - angle(hip)).abs() < 0.05, "{knee} follows {hip}: {} and {}", angle(knee), angle(hip));
+    }
+    let scene = sim.scene();
+    let name = |id| scene.object(id).map(|o| o.name().to_string()).unwrap();
+    let excluded: Vec<(String, String)> =
+        scene.excluded_contacts().into_iter().map(|(a, b)| (name(a), name(b))).collect();
+    assert!(excluded.contains(&("base".into(), "leg0".into())), "{excluded:?}");
+    assert!(excluded.contains(&("base".into(), "leg1".into())), "{excluded:?}");
+    assert_eq!(scene.geom_pair_contacts().len(), 2, "one pair per foot");
+}

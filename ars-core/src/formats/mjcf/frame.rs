@@ -9,7 +9,7 @@
 use nalgebra::{Isometry3, Translation3, Vector3};
 
 use super::defaults::{Attrs, euler_turn, frame};
-use super::model::Model;
+use super::model::{Equality, EqualityKind, Model, Pair, Place};
 use super::problem::{Parsed, problem};
 use super::read::Reader;
 
@@ -179,6 +179,86 @@ pub(super) fn replicate_references(model: &mut Model, replicas: &Replicas) {
         (copy, place.clone())
     });
     (model.sensors, model.sensor_places) = sensors.into_iter().unzip();
+    // Exclusions, pairs and equalities too, as MuJoCo repeats them: each name of a
+    // copy that the copy replicated takes its suffix.
+    let bodies = |(a, b): &(String, String)| vec![(Named::Body, a.clone()), (Named::Body, b.clone())];
+    model.excluded = repeated_with(std::mem::take(&mut model.excluded), replicas, bodies, |(a, b), rename| {
+        (rename(Named::Body, a), rename(Named::Body, b))
+    });
+    let geoms = |p: &Pair| vec![(Named::Geom, p.geom1.clone()), (Named::Geom, p.geom2.clone())];
+    model.pairs = repeated_with(std::mem::take(&mut model.pairs), replicas, geoms, |p, rename| Pair {
+        geom1: rename(Named::Geom, &p.geom1),
+        geom2: rename(Named::Geom, &p.geom2),
+        contact: p.contact,
+    });
+    model.equalities = repeated_with(std::mem::take(&mut model.equalities), replicas, equality_names, |e, rename| {
+        let place = |p: &Place| match p {
+            Place::Body(n) => Place::Body(rename(Named::Body, n)),
+            Place::Site(n) => Place::Site(rename(Named::Site, n)),
+        };
+        let kind = match &e.kind {
+            EqualityKind::Connect { first, second, anchor } => {
+                EqualityKind::Connect { first: place(first), second: second.as_ref().map(place), anchor: *anchor }
+            }
+            EqualityKind::Weld { first, second, relpose } => {
+                EqualityKind::Weld { first: place(first), second: second.as_ref().map(place), relpose: *relpose }
+            }
+            EqualityKind::Joint { follower, leader, polycoef } => EqualityKind::Joint {
+                follower: rename(Named::Joint, follower),
+                leader: leader.as_ref().map(|l| rename(Named::Joint, l)),
+                polycoef: *polycoef,
+            },
+        };
+        Equality { kind, ..e.clone() }
+    });
+}
+
+/// The names an equality refers to.
+fn equality_names(e: &Equality) -> Vec<(Named, String)> {
+    let place = |p: &Place| match p {
+        Place::Body(n) => (Named::Body, n.clone()),
+        Place::Site(n) => (Named::Site, n.clone()),
+    };
+    match &e.kind {
+        EqualityKind::Connect { first, second, .. } | EqualityKind::Weld { first, second, .. } => {
+            std::iter::once(first).chain(second.as_ref()).map(place).collect()
+        }
+        EqualityKind::Joint { follower, leader, .. } => {
+            std::iter::once(follower).chain(leader.as_ref()).map(|j| (Named::Joint, j.clone())).collect()
+        }
+    }
+}
+
+/// A renaming: a name of a kind as the copy under way calls it.
+type Rename<'r> = dyn Fn(Named, &str) -> String + 'r;
+
+/// `items`, each that names a replicated element (of the names `names` gives)
+/// repeated by `copy` once per copy of the first such name, where `rename` suffixes
+/// each name that copy replicated; in MuJoCo's order, as [`repeated`].
+fn repeated_with<T>(
+    items: Vec<T>,
+    replicas: &Replicas,
+    names: impl Fn(&T) -> Vec<(Named, String)>,
+    copy: impl Fn(&T, &Rename<'_>) -> T,
+) -> Vec<T> {
+    let mut kept = Vec::new();
+    let mut copies = Vec::new();
+    for item in items {
+        let Some(made) = names(&item).into_iter().find_map(|key| replicas.get(&key)) else {
+            kept.push(item);
+            continue;
+        };
+        for (n, suffix) in made {
+            let rename = |kind: Named, name: &str| match replicas.get(&(kind, name.to_string())) {
+                Some(copies) if copies.iter().any(|(_, s)| s == suffix) => format!("{name}{suffix}"),
+                _ => name.to_string(),
+            };
+            copies.push((*n, copy(&item, &rename)));
+        }
+    }
+    copies.sort_by_key(|(n, _)| *n);
+    kept.extend(copies.into_iter().map(|(_, item)| item));
+    kept
 }
 
 /// `items` (each with the name it refers to), those referring to a replicated name

@@ -14,9 +14,13 @@
 //!   more than the last, every name suffixed with `sep` and the copy's number
 //!   (zero-padded to the digits of `count`, as MuJoCo names them); the actuators and
 //!   sensors naming a replicated joint, body or site are repeated per copy, after the
-//!   others (MuJoCo's order). At most [`MAX_REPLICATED`] elements and copies in all;
-//!   an equality, tendon or contact exclusion naming a replicated element is not
-//!   repeated (its name is not found).
+//!   others (MuJoCo's order), and so are the equalities, contact exclusions and
+//!   `<pair>`s naming a replicated element: in each copy, every name that copy
+//!   replicated takes its suffix. (MuJoCo 4.0 refuses such an element when it also
+//!   names an element defined after the replicate, and drops an equality that also
+//!   names one outside it; ARS repeats both.) A joint directly in a replicate, or in
+//!   a frame of one, is refused, as MuJoCo refuses it. At most [`MAX_REPLICATED`]
+//!   elements and copies in all.
 //! - **Mass.** `<inertial>` (`mass`, `diaginertia` or `fullinertia`, its own frame), or,
 //!   without one (or with `<compiler inertiafromgeom="true">`), the mass and inertia of
 //!   the body's geoms as MuJoCo's compiler computes them: each geom's `mass`, or its
