@@ -69,6 +69,13 @@ fn replicate_counts_past_the_limit_or_not_whole_are_refused_with_nothing_left() 
         (r#"<replicate count="9999999999"><replicate count="9999999999"/></replicate>"#, "more than"),
         (r#"<replicate count="two"><geom size=".1"/></replicate>"#, "not a whole number"),
         (r#"<frame pos="0 0 inf"><body><freejoint/><geom size=".1"/></body></frame>"#, "inf"),
+        // A few lines naming a body replicated 40,000 times: 120,000 exclusions.
+        (
+            r#"<replicate count="40000"><body name="b"><geom size=".1"/></body></replicate></worldbody><contact>
+               <exclude body1="b" body2="kept"/><exclude body1="kept" body2="b"/><exclude body1="b" body2="kept"/>
+               </contact><worldbody>"#,
+            "more than 100000",
+        ),
         // MuJoCo 4.0: "joint cannot be a direct child of replicate", in a frame of one too.
         (r#"<body><geom size=".1"/><replicate count="2"><joint axis="0 0 1"/></replicate></body>"#, "direct child"),
         (

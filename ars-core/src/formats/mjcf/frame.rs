@@ -145,53 +145,54 @@ pub(super) enum Named {
 /// The copies of each replicated name (which copy, its suffix), in the order read.
 pub(super) type Replicas = std::collections::HashMap<(Named, String), Vec<(usize, String)>>;
 
-/// Repeats each actuator and sensor that names a replicated joint, body or site once
-/// per copy, named with the copy's suffix, in MuJoCo's order: those that name nothing
-/// replicated first, then copy by copy, in the file's order within each.
-pub(super) fn replicate_references(model: &mut Model, replicas: &Replicas) {
+/// Repeats each actuator, sensor, equality, contact exclusion and `<pair>` that names
+/// a replicated element once per copy of it, in MuJoCo's order: those that name
+/// nothing replicated first, then copy by copy, in the file's order within each. In a
+/// copy, every name the copy replicated takes its suffix, and so does the element's
+/// own name. Refused (the text) when the copies would pass [`MAX_REPLICATED`]: a few
+/// lines naming an element replicated many times must not make billions.
+pub(super) fn replicate_references(model: &mut Model, replicas: &Replicas) -> Result<(), String> {
     if replicas.is_empty() {
-        return;
+        return Ok(());
     }
-    let actuators = std::mem::take(&mut model.actuators).into_iter().map(|a| {
-        let key = (Named::Joint, a.joint.clone());
-        (key, a)
-    });
-    model.actuators = repeated(actuators, replicas, |a, s| {
+    let mut budget = MAX_REPLICATED;
+    let mut r = Repeater { replicas, budget: &mut budget };
+    let joint = |a: &super::MjcfActuator| vec![(Named::Joint, a.joint.clone())];
+    model.actuators = r.repeat(std::mem::take(&mut model.actuators), joint, |a, suffix, rename| {
         let mut copy = a.clone();
-        copy.name = format!("{}{s}", a.name);
-        copy.joint = format!("{}{s}", a.joint);
+        copy.name = format!("{}{suffix}", a.name);
+        copy.joint = rename(Named::Joint, &a.joint);
         copy
-    });
-    let sensors = std::mem::take(&mut model.sensors).into_iter().zip(std::mem::take(&mut model.sensor_places));
-    let sensors = sensors.map(|(sensor, place)| {
+    })?;
+    let sensors: Vec<_> =
+        std::mem::take(&mut model.sensors).into_iter().zip(std::mem::take(&mut model.sensor_places)).collect();
+    let target = |(sensor, _): &(super::MjcfSensor, _)| {
         let kind = match sensor.objtype.as_str() {
             "joint" => Named::Joint,
             "site" => Named::Site,
             "geom" => Named::Geom,
             _ => Named::Body,
         };
-        ((kind, sensor.target.clone()), (sensor, place))
-    });
-    let sensors = repeated(sensors, replicas, |(sensor, place), s| {
+        vec![(kind, sensor.target.clone())]
+    };
+    let sensors = r.repeat(sensors, target, |(sensor, place), suffix, _| {
         let mut copy = sensor.clone();
-        copy.name = format!("{}{s}", sensor.name);
-        copy.target = format!("{}{s}", sensor.target);
+        copy.name = format!("{}{suffix}", sensor.name);
+        copy.target = format!("{}{suffix}", sensor.target);
         (copy, place.clone())
-    });
+    })?;
     (model.sensors, model.sensor_places) = sensors.into_iter().unzip();
-    // Exclusions, pairs and equalities too, as MuJoCo repeats them: each name of a
-    // copy that the copy replicated takes its suffix.
     let bodies = |(a, b): &(String, String)| vec![(Named::Body, a.clone()), (Named::Body, b.clone())];
-    model.excluded = repeated_with(std::mem::take(&mut model.excluded), replicas, bodies, |(a, b), rename| {
+    model.excluded = r.repeat(std::mem::take(&mut model.excluded), bodies, |(a, b), _, rename| {
         (rename(Named::Body, a), rename(Named::Body, b))
-    });
+    })?;
     let geoms = |p: &Pair| vec![(Named::Geom, p.geom1.clone()), (Named::Geom, p.geom2.clone())];
-    model.pairs = repeated_with(std::mem::take(&mut model.pairs), replicas, geoms, |p, rename| Pair {
+    model.pairs = r.repeat(std::mem::take(&mut model.pairs), geoms, |p, _, rename| Pair {
         geom1: rename(Named::Geom, &p.geom1),
         geom2: rename(Named::Geom, &p.geom2),
         contact: p.contact,
-    });
-    model.equalities = repeated_with(std::mem::take(&mut model.equalities), replicas, equality_names, |e, rename| {
+    })?;
+    model.equalities = r.repeat(std::mem::take(&mut model.equalities), equality_names, |e, suffix, rename| {
         let place = |p: &Place| match p {
             Place::Body(n) => Place::Body(rename(Named::Body, n)),
             Place::Site(n) => Place::Site(rename(Named::Site, n)),
@@ -209,8 +210,9 @@ pub(super) fn replicate_references(model: &mut Model, replicas: &Replicas) {
                 polycoef: *polycoef,
             },
         };
-        Equality { kind, ..e.clone() }
-    });
+        Equality { name: e.name.as_ref().map(|n| format!("{n}{suffix}")), kind, ..e.clone() }
+    })?;
+    Ok(())
 }
 
 /// The names an equality refers to.
@@ -232,52 +234,47 @@ fn equality_names(e: &Equality) -> Vec<(Named, String)> {
 /// A renaming: a name of a kind as the copy under way calls it.
 type Rename<'r> = dyn Fn(Named, &str) -> String + 'r;
 
-/// `items`, each that names a replicated element (of the names `names` gives)
-/// repeated by `copy` once per copy of the first such name, where `rename` suffixes
-/// each name that copy replicated; in MuJoCo's order, as [`repeated`].
-fn repeated_with<T>(
-    items: Vec<T>,
-    replicas: &Replicas,
-    names: impl Fn(&T) -> Vec<(Named, String)>,
-    copy: impl Fn(&T, &Rename<'_>) -> T,
-) -> Vec<T> {
-    let mut kept = Vec::new();
-    let mut copies = Vec::new();
-    for item in items {
-        let Some(made) = names(&item).into_iter().find_map(|key| replicas.get(&key)) else {
-            kept.push(item);
-            continue;
-        };
-        for (n, suffix) in made {
-            let rename = |kind: Named, name: &str| match replicas.get(&(kind, name.to_string())) {
-                Some(copies) if copies.iter().any(|(_, s)| s == suffix) => format!("{name}{suffix}"),
-                _ => name.to_string(),
-            };
-            copies.push((*n, copy(&item, &rename)));
-        }
-    }
-    copies.sort_by_key(|(n, _)| *n);
-    kept.extend(copies.into_iter().map(|(_, item)| item));
-    kept
+/// Repeats the elements that name replicated ones, within a budget of copies.
+struct Repeater<'r> {
+    replicas: &'r Replicas,
+    budget: &'r mut usize,
 }
 
-/// `items` (each with the name it refers to), those referring to a replicated name
-/// repeated by `copy` once per copy of it, in MuJoCo's order.
-fn repeated<T>(
-    items: impl Iterator<Item = ((Named, String), T)>,
-    replicas: &Replicas,
-    copy: impl Fn(&T, &str) -> T,
-) -> Vec<T> {
-    let mut kept = Vec::new();
-    let mut copies = Vec::new();
-    for (key, item) in items {
-        match replicas.get(&key) {
-            Some(made) => copies.extend(made.iter().map(|(n, suffix)| (*n, copy(&item, suffix)))),
-            None => kept.push(item),
+impl Repeater<'_> {
+    /// `items`, each that names a replicated element (of the names `names` gives)
+    /// repeated by `copy` (given the copy's suffix and its renaming) once per copy of
+    /// the first such name.
+    fn repeat<T>(
+        &mut self,
+        items: Vec<T>,
+        names: impl Fn(&T) -> Vec<(Named, String)>,
+        copy: impl Fn(&T, &str, &Rename<'_>) -> T,
+    ) -> Result<Vec<T>, String> {
+        let replicas = self.replicas;
+        let mut kept = Vec::new();
+        let mut copies = Vec::new();
+        for item in items {
+            let Some(made) = names(&item).into_iter().find_map(|key| replicas.get(&key)) else {
+                kept.push(item);
+                continue;
+            };
+            *self.budget = self.budget.checked_sub(made.len()).ok_or_else(|| {
+                format!(
+                    "the model's <replicate>s repeat the actuators, sensors, equalities, exclusions and pairs that \
+                     name what they replicate into more than {MAX_REPLICATED} elements"
+                )
+            })?;
+            for (n, suffix) in made {
+                let rename = |kind: Named, name: &str| match replicas.get(&(kind, name.to_string())) {
+                    Some(copies) if copies.iter().any(|(_, s)| s == suffix) => format!("{name}{suffix}"),
+                    _ => name.to_string(),
+                };
+                copies.push((*n, copy(&item, suffix, &rename)));
+            }
         }
+        // Stable: within a copy, the file's order.
+        copies.sort_by_key(|(n, _)| *n);
+        kept.extend(copies.into_iter().map(|(_, item)| item));
+        Ok(kept)
     }
-    // Stable: within a copy, the file's order.
-    copies.sort_by_key(|(n, _)| *n);
-    kept.extend(copies.into_iter().map(|(_, item)| item));
-    kept
 }

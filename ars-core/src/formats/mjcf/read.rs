@@ -496,7 +496,7 @@ pub(super) fn read_nodes(name: &str, tree: &Tree<'_, '_>, options: &MjcfOptions)
     for &node in &nodes {
         reader.section(node, &mut model)?;
     }
-    super::frame::replicate_references(&mut model, &reader.replicas);
+    super::frame::replicate_references(&mut model, &reader.replicas).map_err(|text| problem(&root, text))?;
     super::weld::weld_jointless(&mut model);
     reader.check_sensors(&mut model)?;
     model.skipped = reader.skipped;
