@@ -28,3 +28,4 @@ mod sensor_on_removed_object;
 mod single_triangle_trimeshes;
 mod tiny_and_huge_masses;
 mod universal_axes_not_perpendicular;
+mod urdf_loop_apart_from_the_root;

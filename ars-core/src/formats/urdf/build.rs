@@ -635,6 +635,7 @@ pub(super) fn plan<'r>(
     }
     let (joint_names, parent_joint) = check_joints(robot, &link_index)?;
     let root = root_link(robot, &parent_joint)?;
+    check_hung_from_root(robot, &link_index, &parent_joint)?;
     for link in &robot.links {
         let element = format!("link {:?}", link.name);
         let m = link.inertial.mass.value;
@@ -714,6 +715,30 @@ fn check_joint_kind(robot: &model::Robot, joint: &model::Joint) -> std::result::
     let directed = axis.iter().all(|x| x.is_finite()) && axis.norm() > 1e-9;
     if !matches!(joint.joint_type, U::Fixed | U::Spherical) && !directed {
         return Err(format!("axis {:?} has no direction", joint.axis.xyz.0));
+    }
+    Ok(())
+}
+
+/// Every link hangs from the root: the walk up from it, joint by joint, ends (at the
+/// one root). A loop of links apart from the root passes the checks of one root and one
+/// parent a link: it never ends.
+fn check_hung_from_root(
+    robot: &model::Robot,
+    link_index: &HashMap<&str, usize>,
+    parent_joint: &[Option<usize>],
+) -> std::result::Result<(), (String, String)> {
+    for (start, link) in robot.links.iter().enumerate() {
+        let mut at = start;
+        for _ in 0..=robot.links.len() {
+            let Some(j) = parent_joint[at] else { break };
+            at = link_index[robot.joints[j].parent.link.as_str()];
+        }
+        if parent_joint[at].is_some() {
+            return Err((
+                format!("link {:?}", link.name),
+                "its joints form a loop that does not reach the root link: one tree is needed".into(),
+            ));
+        }
     }
     Ok(())
 }
