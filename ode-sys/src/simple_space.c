@@ -36,11 +36,10 @@ struct simple_entry {
     int next_moving;
 };
 
-/* The entries, kept per thread from one collision to the next (grown, never shrunk).
- * A collision takes them and gives them back, so that a nested collision (none is
- * made today) would make its own. */
-static _Thread_local struct simple_entry *kept = NULL;
-static _Thread_local int kept_capacity = 0;
+/* A space of up to this many geoms is collided with its entries on the stack (about
+ * 5 KB); a larger one allocates them for the collision and frees them after (nothing
+ * is kept from one collision to the next, nor per thread). */
+#define ON_STACK 64
 
 /* ODE's test, with its comparisons (a NaN bound overlaps everything there too). */
 static int boxes_disjoint(const dReal *b1, const dReal *b2) {
@@ -71,14 +70,10 @@ static int collide_simple(dSpaceID space, void *data, dNearCallback *callback) {
      * dirty marks cleared (which keeps the list's order as ODE's collision would). */
     dSpaceClean(space);
     int count = dSpaceGetNumGeoms(space);
-    struct simple_entry *entries = kept;
-    int capacity = kept_capacity;
-    kept = NULL;
-    kept_capacity = 0;
-    if (capacity < count) {
-        free(entries);
-        capacity = count < 64 ? 64 : count + count / 2;
-        entries = malloc((size_t)capacity * sizeof *entries);
+    struct simple_entry on_stack[ON_STACK];
+    struct simple_entry *entries = on_stack;
+    if (count > ON_STACK) {
+        entries = malloc((size_t)count * sizeof *entries);
         if (entries == NULL) {
             return 0;
         }
@@ -88,8 +83,9 @@ static int collide_simple(dSpaceID space, void *data, dNearCallback *callback) {
         /* In the list's order: dSpaceGetGeom walks it one step per call. */
         dGeomID g = dSpaceGetGeom(space, i);
         if (dGeomIsSpace(g)) {
-            kept = entries;
-            kept_capacity = capacity;
+            if (entries != on_stack) {
+                free(entries);
+            }
             return 0;
         }
         if (!dGeomIsEnabled(g)) {
@@ -126,8 +122,11 @@ static int collide_simple(dSpaceID space, void *data, dNearCallback *callback) {
             }
         }
     }
-    kept = entries;
-    kept_capacity = capacity;
+    /* An ODE failure in a callback that the outer guard catches jumps over this: the
+     * entries of a large space are then lost once (a failed collision, not a step). */
+    if (entries != on_stack) {
+        free(entries);
+    }
     return 1;
 }
 
