@@ -727,17 +727,29 @@ fn check_hung_from_root(
     link_index: &HashMap<&str, usize>,
     parent_joint: &[Option<usize>],
 ) -> std::result::Result<(), (String, String)> {
+    // Each link walked up once in all (linear in the links however deep the tree):
+    // `hung` marks the links known to reach the root, `walk` the walk under way.
+    let (mut hung, mut walk) = (vec![false; robot.links.len()], vec![usize::MAX; robot.links.len()]);
+    let mut path = Vec::new();
     for (start, link) in robot.links.iter().enumerate() {
+        path.clear();
         let mut at = start;
-        for _ in 0..=robot.links.len() {
-            let Some(j) = parent_joint[at] else { break };
-            at = link_index[robot.joints[j].parent.link.as_str()];
+        while !hung[at] {
+            if walk[at] == start {
+                return Err((
+                    format!("link {:?}", link.name),
+                    "its joints form a loop that does not reach the root link: one tree is needed".into(),
+                ));
+            }
+            walk[at] = start;
+            path.push(at);
+            match parent_joint[at] {
+                Some(j) => at = link_index[robot.joints[j].parent.link.as_str()],
+                None => break, // the root
+            }
         }
-        if parent_joint[at].is_some() {
-            return Err((
-                format!("link {:?}", link.name),
-                "its joints form a loop that does not reach the root link: one tree is needed".into(),
-            ));
+        for &l in &path {
+            hung[l] = true;
         }
     }
     Ok(())
