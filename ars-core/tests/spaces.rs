@@ -149,38 +149,41 @@ fn a_geom_without_collision_bits_touches_nothing_and_stays_its_space_s() -> Resu
     // ODE never brings such a geom's box up to date for a collision (it is kept out of
     // ODE's space): it must still be cast at, saved and restored, and touch again once
     // it has bits.
-    let mut sim = Simulation::builder().space(SpaceKind::Simple).floor_plane(Vector3::y(), 0.0).build()?;
-    let crate_ = sim.scene_mut().add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
-    let geom = sim.scene().object(crate_)?.geoms().next().expect("a box has a geom");
-    let set_bits = |sim: &mut Simulation, bits: u64| -> Result<()> {
-        let mut g = sim.scene_mut().world_mut().geom_mut(geom)?;
-        g.set_category_bits(bits);
-        g.set_collide_bits(bits);
-        Ok(())
-    };
-    set_bits(&mut sim, 0)?;
-    assert_eq!(sim.scene().world().geom(geom)?.space(), sim.scene().space(), "still its space's");
-    let silent = sim.snapshot()?;
-    let down = world::raycast::Ray { origin: Point3::new(0.0, 1.0, 0.0), direction: -Vector3::y() };
-    let hit = sim.scene().world().cast_ray(down, 2.0, None)?.expect("the ray meets the crate");
-    assert_eq!(hit.geom, geom, "a cast sees a geom without bits");
-    sim.run_for(0.5)?;
-    assert!(sim.scene().position(crate_)?.y < -0.5, "no bits: it falls through the floor");
+    // In every kind of space (the grid and ODE's).
+    for kind in all_kinds() {
+        let mut sim = Simulation::builder().space(kind).floor_plane(Vector3::y(), 0.0).build()?;
+        let crate_ = sim.scene_mut().add_box([0.2, 0.1, 0.2], [0.0, 0.05, 0.0], Mass::Total(1.0))?;
+        let geom = sim.scene().object(crate_)?.geoms().next().expect("a box has a geom");
+        let set_bits = |sim: &mut Simulation, bits: u64| -> Result<()> {
+            let mut g = sim.scene_mut().world_mut().geom_mut(geom)?;
+            g.set_category_bits(bits);
+            g.set_collide_bits(bits);
+            Ok(())
+        };
+        set_bits(&mut sim, 0)?;
+        assert_eq!(sim.scene().world().geom(geom)?.space(), sim.scene().space(), "still its space's");
+        let silent = sim.snapshot()?;
+        let down = world::raycast::Ray { origin: Point3::new(0.0, 1.0, 0.0), direction: -Vector3::y() };
+        let hit = sim.scene().world().cast_ray(down, 2.0, None)?.expect("the ray meets the crate");
+        assert_eq!(hit.geom, geom, "a cast sees a geom without bits");
+        sim.run_for(0.5)?;
+        assert!(sim.scene().position(crate_)?.y < -0.5, "{kind:?}: no bits: it falls through the floor");
 
-    sim.restore(&silent)?;
-    set_bits(&mut sim, u64::MAX)?;
-    let touching = sim.snapshot()?;
-    sim.run_for(0.5)?;
-    let resting = sim.scene().position(crate_)?.y;
-    assert!((resting - 0.05).abs() < 1e-3, "bits again: it rests on the floor, at {resting}");
+        sim.restore(&silent)?;
+        set_bits(&mut sim, u64::MAX)?;
+        let touching = sim.snapshot()?;
+        sim.run_for(0.5)?;
+        let resting = sim.scene().position(crate_)?.y;
+        assert!((resting - 0.05).abs() < 1e-3, "{kind:?}: bits again: it rests on the floor, at {resting}");
 
-    // A snapshot puts the bits back, and the geom in or out of the collision with them.
-    set_bits(&mut sim, 0)?;
-    sim.restore(&touching)?;
-    sim.run_for(0.5)?;
-    assert_eq!(sim.scene().position(crate_)?.y, resting, "restored with bits: the same run, to the bit");
-    sim.restore(&silent)?;
-    sim.run_for(0.5)?;
-    assert!(sim.scene().position(crate_)?.y < -0.5, "restored without bits: it falls through again");
+        // A snapshot puts the bits back, and the geom in or out of the collision with them.
+        set_bits(&mut sim, 0)?;
+        sim.restore(&touching)?;
+        sim.run_for(0.5)?;
+        assert_eq!(sim.scene().position(crate_)?.y, resting, "restored with bits: the same run, to the bit");
+        sim.restore(&silent)?;
+        sim.run_for(0.5)?;
+        assert!(sim.scene().position(crate_)?.y < -0.5, "{kind:?}: restored without bits: it falls through again");
+    }
     Ok(())
 }

@@ -11,13 +11,13 @@
  *   near callbacks (plain_near in guard.c, `pair_may_touch` in ars-core) make
  *   nothing of them, and a scene's static geoms (terrain, arenas, furniture, and the
  *   many geoms of an imported model's world body) make most of the pairs;
- * - it leaves out geoms whose category and collide bits are both 0 (MuJoCo's
- *   visual-only geoms): no pair of theirs passes the bits test;
  * - it tests the remaining pairs on a compact array rather than through ODE's
  *   linked list and virtual calls. A geom class's AABBTest is not called: only
  *   user classes can override it, and ARS's one (the convex hull in hull.c) does
  *   not.
- * A space that holds another space is collided by ODE itself. */
+ * (Geoms whose category and collide bits are both 0 are not in the space at all:
+ * ars-core keeps them out, `keep_in_space` in world/geom.rs.) A space that holds
+ * another space is collided by ODE itself. */
 
 #include <ode/ode.h>
 #include <stdlib.h>
@@ -94,9 +94,6 @@ static int collide_simple(dSpaceID space, void *data, dNearCallback *callback) {
         struct simple_entry *e = &entries[n];
         e->category = dGeomGetCategoryBits(g);
         e->collide = dGeomGetCollideBits(g);
-        if (e->category == 0 && e->collide == 0) {
-            continue;
-        }
         dGeomGetAABB(g, e->aabb);
         e->geom = g;
         e->body = dGeomGetBody(g);

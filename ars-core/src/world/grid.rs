@@ -116,18 +116,19 @@ impl Grid {
 fn gather_entries(entries: &mut Vec<Entry>, world: &World, space: SpaceHandle) {
     entries.clear();
     for (_, g) in world.geoms.iter().filter(|(_, g)| g.space == space) {
-        let mut aabb = [0.0; 6];
-        // SAFETY: the geom is live (owned by the world's arena); `aabb` holds 6
-        // reals. dGeomGetAABB brings a moved geom's box up to date.
-        let enabled = unsafe {
-            ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr());
-            ffi::dGeomIsEnabled(g.raw) != 0
+        // SAFETY: the geom is live (owned by the world's arena).
+        let (enabled, category, collide) = unsafe {
+            (ffi::dGeomIsEnabled(g.raw) != 0, ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw))
         };
-        if !enabled {
+        // A geom without bits touches nothing (`may_touch`): its box is not worth
+        // bringing up to date (a visual mesh's every vertex).
+        if !enabled || (category == 0 && collide == 0) {
             continue;
         }
-        // SAFETY: as above.
-        let (category, collide) = unsafe { (ffi::dGeomGetCategoryBits(g.raw), ffi::dGeomGetCollideBits(g.raw)) };
+        let mut aabb = [0.0; 6];
+        // SAFETY: as above; `aabb` holds 6 reals. dGeomGetAABB brings a moved geom's
+        // box up to date.
+        unsafe { ffi::dGeomGetAABB(g.raw, aabb.as_mut_ptr()) };
         entries.push(Entry { raw: g.raw, body: g.body_raw, category, collide, aabb });
     }
 }

@@ -54,8 +54,9 @@ pub const DEFAULT_CFM: f64 = 1e-10;
 pub enum SpaceKind {
     /// Tests every pair of geoms (O(n²)); what the original ARS used. ARS runs ODE's
     /// loop in ODE's order (so the contacts, and every bit after them, are ODE's) on a
-    /// compact copy of the geoms' boxes, leaving out the pairs of two static geoms and
-    /// the geoms whose category and collide bits are both 0, which never touch.
+    /// compact copy of the geoms' boxes, leaving out the pairs of two static geoms,
+    /// which never touch. (In every kind of space, a geom whose category and collide
+    /// bits are both 0 is left out of ODE's space: it touches nothing.)
     Simple,
     /// A multi-resolution hash table; the cell sizes are powers of two between
     /// `2^min_level` and `2^max_level` metres. Coordinates are limited to what its
