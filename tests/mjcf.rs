@@ -170,7 +170,7 @@ fn bad_files_are_refused_naming_element_and_line_and_leave_nothing() {
 }
 
 #[test]
-fn several_joints_in_one_body_are_chained_through_light_links() {
+fn several_joints_in_one_body_are_one_group_as_in_mujoco() {
     const PLANAR: &str = r#"<mujoco><worldbody><geom type="plane" size="5 5 .1"/>
         <body name="torso" pos="0 0 1" euler="0 30 0">
           <joint name="rootx" type="slide" axis="1 0 0"/>
@@ -181,16 +181,35 @@ fn several_joints_in_one_body_are_chained_through_light_links() {
     let mut sim = Simulation::builder().build().unwrap();
     let model = sim.load_mjcf_text(PLANAR, "planar.xml", &MjcfOptions::new()).unwrap();
     assert_eq!(model.joints.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), ["rootx", "rootz", "rooty"]);
-    assert_eq!(model.chain_links.len(), 2);
+    // One group: no light link, no body but the torso.
+    assert!(model.chain_links.is_empty());
+    assert_eq!(sim.scene().world().bodies().count(), 1);
     let torso = model.body("torso").unwrap();
-    let link = sim.scene().body(model.chain_links[0]).unwrap().mass();
-    assert!((link - sim.scene().body(torso).unwrap().mass() * ars::formats::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
     // The tilted capsule falls, lands and tips over in its plane: it moves along x and
     // turns about the hinge, and never leaves the plane z = 0.
     sim.run_for(1.5).unwrap();
     let p = sim.scene().body(torso).unwrap().position();
     assert!(p.z.abs() < 1e-6, "{p}");
-    assert!(sim.scene().joint("rooty").unwrap().state().unwrap().position.abs() > 0.3);
+    let rooty = sim.scene().joint("rooty").unwrap().state().unwrap().position;
+    assert!(rooty.abs() > 0.3, "{rooty}");
+}
+
+#[test]
+fn joints_a_group_cannot_take_are_chained_through_light_links() {
+    // Two hinges through different points: a chain, its light link a fraction of the
+    // body's mass.
+    const OFFSET: &str = r#"<mujoco><worldbody>
+        <body name="arm" pos="0 0 1">
+          <joint name="a" axis="1 0 0"/><joint name="b" pos="0 0 -0.1" axis="0 1 0"/>
+          <geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.05"/>
+        </body></worldbody></mujoco>"#;
+    let mut sim = Simulation::builder().build().unwrap();
+    let model = sim.load_mjcf_text(OFFSET, "offset.xml", &MjcfOptions::new()).unwrap();
+    assert_eq!(model.chain_links.len(), 1);
+    let arm = model.body("arm").unwrap();
+    let link = sim.scene().body(model.chain_links[0]).unwrap().mass();
+    assert!((link - sim.scene().body(arm).unwrap().mass() * ars::formats::mjcf::CHAIN_LINK_FRACTION).abs() < 1e-15);
+    sim.run_for(0.2).unwrap();
 }
 
 #[test]

@@ -126,8 +126,8 @@ pub use program::{
     Action, ActionMap, Key, KeyEvent, KeyScript, Program, ProgramRunner, RenderQuality, Repeat, WindowSettings,
 };
 pub use scene::{
-    ActuatorLimits, Color, GeomContact, GeomOf, Heightfield, JointEfforts, JointEnd, JointType, Mimic, Scene, SimJoint,
-    Visual, heightfield_triangles,
+    ActuatorLimits, Color, GeomContact, GeomOf, GroupJoint, GroupRest, Heightfield, JointEfforts, JointEnd, JointType,
+    Mimic, Scene, SimJoint, Visual, heightfield_triangles,
 };
 pub use sensors::{Probe, Record, Sample, SampleAt, Sensor, SensorId, SensorKind, SensorLog};
 pub use shape::{CONE_SEGMENTS, Shape};

@@ -218,6 +218,12 @@ SIM = [
     ),
     ("add_piston_joint", None, ("p", "box", None, (1.0, 0.5, 0.0), (1.0, 0.0, 0.0)), {}),
     ("add_fixed_joint", None, ("f", "box", None), {}),
+    (
+        "add_joint_group",
+        None,
+        ("box", None, [("gx", "hinge", (1.0, 0.5, 0.0), (1.0, 0.0, 0.0), 0.0), ("gy", "hinge", (1.0, 0.5, 0.0), (0.0, 1.0, 0.0), 0.0)]),
+        {},
+    ),
     ("remove_joint", None, ("hinge",), {}),
     ("joint", None, ("hinge",), {}),
     ("add_sensor", None, ("gps", "box"), {"every": 0.01}),

@@ -314,6 +314,7 @@ PYTHON_FOR_RUST = {
     "Scene.add_hinge_joint": "Simulation.add_rotary_joint",
     "Scene.add_slider_joint": "Simulation.add_slider_joint",
     "Scene.add_universal_joint": "Simulation.add_universal_joint",
+    "Scene.add_joint_group": "Simulation.add_joint_group",
     "Scene.add_ball_joint": "Simulation.add_ball_socket_joint",
     "Scene.add_piston_joint": "Simulation.add_piston_joint",
     "Scene.joints": "Simulation.joints",

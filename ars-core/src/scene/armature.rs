@@ -64,6 +64,9 @@ impl Scene {
         if !matches!(kind, JointType::Hinge | JointType::Slider) {
             return Err(Error::WrongJointKind { operation, kind: kind.default_name() });
         }
+        if inertia > 0.0 || damping > 0.0 {
+            self.check_member_motor(id, operation)?;
+        }
         let motor = match (existing, inertia > 0.0 || damping > 0.0) {
             (Some(a), true) => a.motor,
             (Some(a), false) => {
@@ -107,6 +110,13 @@ impl Scene {
     /// at `rate` now.
     #[inline]
     pub(super) fn hold_armature(&mut self, armature: Armature, rate: f64) -> Result<()> {
+        self.hold_scaled_armature(armature, rate, 1.0)
+    }
+
+    /// [`hold_armature`](Self::hold_armature) on a motor whose unit row is the joint's
+    /// rate divided by `scale` (a joint group's dual axis, its force the joint's times
+    /// `scale`): target divided by `scale`, CFM by `scale²`.
+    pub(super) fn hold_scaled_armature(&mut self, armature: Armature, rate: f64, scale: f64) -> Result<()> {
         let h = self.time_step.get();
         let rate = rate.clamp(-limits::MAX_SPEED, limits::MAX_SPEED);
         let Armature { inertia, damping, .. } = armature;
@@ -118,8 +128,9 @@ impl Scene {
             let k = inertia / h;
             (k * rate / (damping + k), 1.0 / (damping + k))
         };
+        let (target, cfm) = if scale == 1.0 { (target, cfm) } else { (target / scale, cfm / (scale * scale)) };
         let mut motor = self.world.joint_mut(armature.motor)?;
-        motor.set_param(JointParam::Velocity, 0, target)?;
+        motor.set_param(JointParam::Velocity, 0, target.clamp(-limits::MAX_SPEED, limits::MAX_SPEED))?;
         motor.set_param(JointParam::Cfm, 0, cfm.min(1e30))
     }
 }

@@ -185,6 +185,7 @@ impl Scene {
             mimic: None,
             spring: (0.0, 0.0),
             armature: None,
+            member: None,
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;

@@ -10,6 +10,7 @@ use crate::control::{Actuator, JointController, JointState};
 use crate::error::{Error, Result};
 use crate::handle::{JointHandle, JointId, ObjectId};
 use crate::joint::{JointBuilder, JointKind, JointRef};
+use crate::limits;
 
 /// The kinds of joint a simulation offers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -83,6 +84,9 @@ pub(crate) struct JointData {
     pub(crate) spring: (f64, f64),
     /// Its armature, if any (see [`armature`](super::armature)).
     pub(crate) armature: Option<Armature>,
+    /// Its place in a joint group, if it is one's (see
+    /// [`joint_group`](super::joint_group)).
+    pub(crate) member: Option<super::joint_group::GroupMember>,
 }
 
 /// A joint's armature and implicit damping, and the motor that holds them.
@@ -289,6 +293,14 @@ impl Scene {
         Ok(d.controller.as_deref().and_then(|c| (c as &dyn std::any::Any).downcast_ref::<C>()))
     }
 
+    /// The joints removing `id` removes: its group's, or itself.
+    pub(crate) fn joints_removed_with(&self, id: JointId) -> Result<Vec<JointId>> {
+        Ok(match self.joint_data(id)?.member {
+            Some(member) => self.group_members(member)?.to_vec(),
+            None => vec![id],
+        })
+    }
+
     pub(crate) fn joints_of_object(&self, object: ObjectId) -> Vec<JointId> {
         self.joints
             .iter()
@@ -300,6 +312,16 @@ impl Scene {
     /// Removes a joint (the sensors reading it are the simulation's business:
     /// [`Simulation::remove_joint`](crate::Simulation::remove_joint)).
     pub(crate) fn remove_joint(&mut self, id: JointId) -> Result<()> {
+        if let Some(member) = self.joint_data(id)?.member {
+            // A group goes as a whole: its constraint holds every joint of it.
+            let members = self.remove_group_of(member)?;
+            for m in &members {
+                self.joints.get_mut(m.0, JointId::KIND)?.member = None;
+            }
+            for m in members.into_iter().filter(|m| *m != id) {
+                self.remove_joint(m)?;
+            }
+        }
         let data = self.joints.remove(id.0, JointId::KIND)?;
         self.joint_names.remove(&data.name);
         self.driven_joints.retain(|j| *j != id);
@@ -324,7 +346,11 @@ impl Scene {
     /// step (one addition per driven joint, after the pre-step hooks).
     #[inline]
     pub(crate) fn apply_joint_drives(&mut self) -> Result<()> {
-        if self.driven_joints.is_empty() { Ok(()) } else { self.drive_joints() }
+        if !self.driven_joints.is_empty() {
+            self.drive_joints()?;
+        }
+        // After the drives: a group member's armature is held by its group, scaled.
+        if self.groups.is_empty() { Ok(()) } else { self.hold_groups() }
     }
 
     #[inline(never)]
@@ -366,7 +392,7 @@ impl Scene {
             if let Some(mimic) = mimic {
                 self.follow(id, handle, kind, state, mimic)?;
             }
-            if let Some(armature) = armature {
+            if let (Some(armature), None) = (armature, self.joint_data(id)?.member) {
                 self.hold_armature(armature, state.rate)?;
             }
         }
@@ -398,10 +424,24 @@ impl Scene {
             // gripper's finger of grams resting on its stop took 1e9 N·m and spun at
             // 1e9 rad/s). There the follower gets at most the push that brings its own
             // body to the wanted speed in one step.
-            let needed =
-                self.joint_inertia(data.object1, handle, kind)? * (speed - state.rate).abs() / self.time_step.get();
+            let inertia = match data.member {
+                Some(member) => self.member_inertia(member)?,
+                None => self.joint_inertia(data.object1, handle, kind)?,
+            };
+            let needed = inertia * (speed - state.rate).abs() / self.time_step.get();
             max_force = max_force.min(needed);
         }
+        self.set_joint_motor(id, speed, max_force)
+    }
+
+    /// Sets a joint's speed motor (ODE's, or a group member's, which its group scales
+    /// each step).
+    pub(crate) fn set_joint_motor(&mut self, id: JointId, speed: f64, max_force: f64) -> Result<()> {
+        let data = self.joint_data(id)?;
+        if data.member.is_some() {
+            return self.set_member_motor(id, speed, max_force);
+        }
+        let handle = data.handle;
         self.world.joint_mut(handle)?.set_motor(0, speed, max_force)
     }
 
@@ -433,14 +473,20 @@ impl Scene {
     ) -> Result<()> {
         // One look-up in each arena (the scene's joint, then the world's, which checks
         // that the world is usable and that the joint was not removed through it).
-        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND)?.efforts;
-        // The world's add_torque / add_force refuse NaN, infinities and values beyond
-        // the limits before anything is booked.
-        let mut j = self.world.joint_mut(handle)?;
-        match kind {
-            JointType::Hinge | JointType::Universal => j.add_torque(effort)?,
-            _ => j.add_force(effort)?,
+        let data = self.joints.get_mut(id.0, JointId::KIND)?;
+        if let Some(member) = data.member {
+            limits::in_range("joint effort", effort, -limits::MAX_FORCE, limits::MAX_FORCE)?;
+            self.put_member_effort(member, effort)?;
+        } else {
+            // The world's add_torque / add_force refuse NaN, infinities and values
+            // beyond the limits before anything is booked.
+            let mut j = self.world.joint_mut(handle)?;
+            match kind {
+                JointType::Hinge | JointType::Universal => j.add_torque(effort)?,
+                _ => j.add_force(effort)?,
+            }
         }
+        let efforts = &mut self.joints.get_mut(id.0, JointId::KIND)?.efforts;
         if driven {
             efforts.driven += effort;
         } else {
@@ -605,6 +651,9 @@ impl Scene {
     /// [`joint_state`](Self::joint_state), without computing the position (a hinge's
     /// angle costs an `atan2` and a quaternion product in ODE).
     pub fn joint_rate(&self, id: JointId) -> Result<f64> {
+        if let Some(member) = self.joint_data(id)?.member {
+            return Ok(self.member_state(member)?.rate);
+        }
         self.first_freedom(id, "reading a joint rate", |j| j.angle_rate(), |j| j.position_rate())
     }
 
@@ -612,12 +661,18 @@ impl Scene {
     /// freedom: the `position` of [`joint_state`](Self::joint_state), without computing
     /// the rate.
     pub fn joint_position(&self, id: JointId) -> Result<f64> {
+        if let Some(member) = self.joint_data(id)?.member {
+            return Ok(self.member_state(member)?.position);
+        }
         self.first_freedom(id, "reading a joint position", |j| j.angle(), |j| j.position())
     }
 
     /// Position (angle, rad, or slider position, m) and its rate of the joint's first
     /// degree of freedom.
     pub fn joint_state(&self, id: JointId) -> Result<JointState> {
+        if let Some(member) = self.joint_data(id)?.member {
+            return self.member_state(member);
+        }
         self.first_freedom(
             id,
             "reading a joint state",
@@ -666,6 +721,9 @@ pub(crate) struct JointDriveState {
     /// The spring's effort.
     #[serde(default)]
     spring_effort: f64,
+    /// A group member's speed motor as asked (its ODE motor's is scaled each step).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    member_motor: Option<(f64, f64)>,
 }
 
 impl Scene {
@@ -701,6 +759,7 @@ impl Scene {
                     efforts: (e.added, e.friction, e.controller, e.driven),
                     spring: d.spring,
                     spring_effort: e.spring,
+                    member_motor: d.member.map(|m| m.motor),
                 })
             })
             .collect()
@@ -744,6 +803,9 @@ impl Scene {
             d.spring = s.spring;
             let (added, friction, controller, driven) = s.efforts;
             d.efforts = JointEfforts { added, friction, spring: s.spring_effort, controller, driven };
+            if let (Some(member), Some(motor)) = (d.member.as_mut(), s.member_motor) {
+                member.motor = motor;
+            }
             self.update_driven(id);
         }
         Ok(())

@@ -12,6 +12,7 @@ pub mod colors;
 mod floor;
 mod geom_contact;
 mod insert;
+pub(crate) mod joint_group;
 pub(crate) mod joints;
 pub(crate) mod names;
 pub(crate) mod objects;
@@ -25,6 +26,7 @@ pub use floor::{Heightfield, MAX_GRID_VERTICES, heightfield_triangles};
 pub use geom_contact::{GeomContact, GeomOf};
 pub(crate) use geom_contact::{impedance_cfm, reduced_mass};
 pub(crate) use insert::{NewObject, ObjectName};
+pub use joint_group::{GroupJoint, GroupRest};
 pub use joints::{ActuatorLimits, JointEfforts, JointEnd, JointType, Mimic};
 pub use objects::{Color, Visual};
 pub use sim_joint::SimJoint;
@@ -49,6 +51,8 @@ pub struct Scene {
     object_names: Names<ObjectId>,
     joints: Arena<JointData>,
     joint_names: Names<JointId>,
+    /// Joint groups (see [`joint_group`]), each with its joints.
+    groups: Vec<joint_group::JointGroup>,
     /// Joints with viscous friction or a controller, in creation order.
     driven_joints: Vec<JointId>,
     /// Joints driven by an [`Actuator`](crate::Actuator), in the order their actuators
@@ -97,6 +101,7 @@ impl Scene {
             object_names: Names::new("object"),
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
+            groups: Vec::new(),
             driven_joints: Vec::new(),
             actuated_joints: Vec::new(),
             robots_loaded: 0,

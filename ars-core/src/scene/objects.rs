@@ -320,7 +320,10 @@ impl Scene {
     /// Removes an object and its joints (the sensors are the simulation's business).
     pub(crate) fn remove_object_with_joints(&mut self, id: ObjectId) -> Result<()> {
         for joint in self.joints_of_object(id) {
-            self.remove_joint(joint)?;
+            // A joint of a group went with an earlier one of its group.
+            if self.joint_data(joint).is_ok() {
+                self.remove_joint(joint)?;
+            }
         }
         self.remove_object(id)
     }

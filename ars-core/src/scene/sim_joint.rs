@@ -72,7 +72,6 @@ impl SimJoint<'_> {
     /// force did nothing: ODE's default limit is 0.) Both are held within the
     /// joint's [`ActuatorLimits`].
     pub fn set_speed(&mut self, speed: f64, max_force: f64) -> Result<()> {
-        let handle = self.handle;
         match self.kind {
             JointType::Hinge | JointType::Slider | JointType::Universal | JointType::Piston => {}
             _ => return Err(self.wrong("setting a speed")),
@@ -94,7 +93,10 @@ impl SimJoint<'_> {
         } else {
             (speed.clamp(-data.actuator.velocity, data.actuator.velocity), max_force.min(data.actuator.effort))
         };
-        self.sim.world.joint_mut(handle)?.set_motor(0, speed, max_force)
+        if max_force > 0.0 {
+            self.sim.check_member_motor(self.id, "a speed motor or dry friction")?;
+        }
+        self.sim.set_joint_motor(self.id, speed, max_force)
     }
 
     /// Dry (Coulomb) friction: the joint is held, against anything that would move it,

@@ -403,17 +403,22 @@ impl Simulation {
         self.scene.world().check_usable()?;
         self.scene.object(id)?;
         for joint in self.scene.joints_of_object(id) {
-            self.remove_joint(joint)?;
+            // A joint of a group went with an earlier one of its group.
+            if self.scene.joint(joint).is_ok() {
+                self.remove_joint(joint)?;
+            }
         }
         self.sensors.forget_object(id);
         self.scene.remove_object(id)
     }
 
-    /// Removes a joint; sensors reading it stop.
+    /// Removes a joint; sensors reading it stop. A joint of a group (see
+    /// [`Scene::add_joint_group`]) is removed with its whole group.
     pub fn remove_joint(&mut self, id: JointId) -> Result<()> {
         self.scene.world().check_usable()?;
-        self.scene.joint(id)?;
-        self.sensors.forget_joint(id);
+        for joint in self.scene.joints_removed_with(id)? {
+            self.sensors.forget_joint(joint);
+        }
         self.scene.remove_joint(id)
     }
 

@@ -559,6 +559,24 @@ impl Harness {
                     _ => JointEnd::World,
                 };
                 let name = if input.one_in(2) { "" } else { "j" };
+                if input.one_in(4) {
+                    // A joint group: mostly perpendicular axes (what it takes), sometimes any.
+                    let axes = [Vector3::x(), Vector3::y(), Vector3::z()];
+                    let (n, anchor, turn) = (2 + input.index(4), input.point(), input.index(3));
+                    let joints: Vec<GroupJoint> = (0..n)
+                        .map(|k| GroupJoint {
+                            name: if input.one_in(2) { String::new() } else { format!("g{k}") },
+                            kind: if input.one_in(2) { JointType::Slider } else { JointType::Hinge },
+                            anchor,
+                            axis: if input.one_in(5) { input.vector() } else { axes[(k + turn) % 3] },
+                            reference: if input.one_in(3) { input.real() } else { 0.0 },
+                        })
+                        .collect();
+                    if let Ok(ids) = s.sim.scene_mut().add_joint_group(o1, end, &joints) {
+                        s.joints.extend(ids);
+                    }
+                    return;
+                }
                 let r = match input.byte() % 6 {
                     0 => s.sim.scene_mut().add_fixed_joint(name, o1, end),
                     1 => s.sim.scene_mut().add_hinge_joint(name, o1, end, Some(input.point()), input.vector()),

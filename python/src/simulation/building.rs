@@ -2,12 +2,15 @@
 //! their removal, rays and contact surfaces.
 
 use crate::errors::count;
-use ars_core::Shape;
 use ars_core::nalgebra::{Point3, Vector3};
+use ars_core::{GroupJoint, JointType, Shape};
 use pyo3::prelude::*;
 
 use super::{Int, PySimulation, RayHit, Vec3, name_object};
 use crate::errors::Checked;
+
+/// A joint of a group from Python: name, kind, anchor, axis, reference.
+type GroupJointArgs = (String, String, [f64; 3], [f64; 3], f64);
 
 #[pymethods]
 impl PySimulation {
@@ -195,6 +198,44 @@ impl PySimulation {
                 Vector3::from(axis2),
             )?;
             Ok(sim.scene().joint(id)?.name().to_string())
+        })
+    }
+
+    /// Several joints between `obj1` and `obj2` (or the world) as one joint group, as
+    /// MuJoCo moves a body with several joints: `joints` lists `(name, kind, anchor,
+    /// axis, reference)`, `kind` `"hinge"` or `"slider"`, slides first (world frame,
+    /// where the objects are now, where each joint reads its `reference`). Hinges
+    /// through one point about perpendicular axes; slides along perpendicular axes, of
+    /// an object joined to the world, with at most one hinge about their plane's normal.
+    /// Returns the joints' names, in order.
+    fn add_joint_group(
+        &self,
+        py: Python<'_>,
+        obj1: &str,
+        obj2: Option<&str>,
+        joints: Checked<Vec<GroupJointArgs>>,
+    ) -> PyResult<Vec<String>> {
+        self.with(py, |sim| {
+            let (a, b) = (Self::object_id(sim, obj1)?, Self::end(sim, obj2)?);
+            let joints = joints
+                .0
+                .into_iter()
+                .map(|(name, kind, anchor, axis, reference)| {
+                    let kind = match kind.as_str() {
+                        "hinge" => JointType::Hinge,
+                        "slider" => JointType::Slider,
+                        other => {
+                            return Err(ars_core::Error::Invalid {
+                                what: "a joint group",
+                                problem: format!("holds \"hinge\" and \"slider\" joints, not {other:?}"),
+                            });
+                        }
+                    };
+                    Ok(GroupJoint { name, kind, anchor: Point3::from(anchor), axis: Vector3::from(axis), reference })
+                })
+                .collect::<ars_core::Result<Vec<_>>>()?;
+            let ids = sim.scene_mut().add_joint_group(a, b, &joints)?;
+            ids.into_iter().map(|id| Ok(sim.scene().joint(id)?.name().to_string())).collect()
         })
     }
 

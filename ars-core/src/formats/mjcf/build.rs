@@ -238,7 +238,9 @@ impl Scene {
                 body.name
             )));
         }
-        let masses = body_masses(body, made)?;
+        let grouped = super::group::group_of(body, &frame, parent.is_none());
+        let grouped_none = grouped.is_none();
+        let masses = body_masses(body, grouped_none, made)?;
         let (id, body_frame) = self.add_mjcf_object(body, &frame, &masses, made, named)?;
         let mut end = parent.map_or(JointEnd::World, JointEnd::Object);
         // MuJoCo ignores contacts between a body and its parent (filterparent). ODE
@@ -264,7 +266,15 @@ impl Scene {
                 });
             }
         }
-        for (k, j) in body.joints.iter().enumerate() {
+        if let Some(group) = grouped {
+            // Several joints as MuJoCo makes them: one constraint (see `group.rs`).
+            let ids = self.add_joint_group(id, end, &group)?;
+            for (j, joint) in body.joints.iter().zip(ids) {
+                self.set_mjcf_joint(j, joint)?;
+                made.joints.push((j.name.clone(), joint));
+            }
+        }
+        for (k, j) in body.joints.iter().enumerate().filter(|_| grouped_none) {
             if j.kind == JointKind::Free {
                 self.damp_mjcf_joint(j, Vector3::zeros(), id, JointEnd::World, made)?;
                 continue;
@@ -446,6 +456,13 @@ impl Scene {
             body.set_rotation(rotation)?;
         }
         let joint = joint?;
+        self.set_mjcf_joint(j, joint)?;
+        Ok(joint)
+    }
+
+    /// Gives an MJCF hinge or slide `joint` its range, spring, dry friction, armature
+    /// and damping.
+    pub(super) fn set_mjcf_joint(&mut self, j: &Joint, joint: JointId) -> Result<()> {
         if let Some((lo, hi)) = j.range {
             self.joint_mut(joint)?.set_limits(lo, hi)?;
             if let Some(erp) = j.stop_erp(self.time_step()) {
@@ -469,7 +486,7 @@ impl Scene {
                 self.joint_mut(joint)?.set_damping(j.damping)?;
             }
         }
-        Ok(joint)
+        Ok(())
     }
 }
 
@@ -512,7 +529,7 @@ struct BodyMasses {
 /// An MJCF body's masses and its links' (a fraction of its own), with their joints'
 /// armatures; what is raised to ARS's least mass or added by an armature is noted in
 /// `made`.
-fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
+fn body_masses(body: &Body, chained: bool, made: &mut MjcfModel) -> Result<BodyMasses> {
     // Jointless bodies without mass were merged into their parent (`weld`): a body
     // still without one moves, as one lighter than MuJoCo's least, which MuJoCo refuses.
     let (mass, com, inertia) = match body.mass {
@@ -533,7 +550,7 @@ fn body_masses(body: &Body, made: &mut MjcfModel) -> Result<BodyMasses> {
             inertia.trace()
         )));
     }
-    let (link_mass, link_inertia) = if body.joints.len() > 1 {
+    let (link_mass, link_inertia) = if chained && body.joints.len() > 1 {
         let what = format!("the light links chaining {:?}", body.name);
         at_least_ars_least_mass(&what, mass * CHAIN_LINK_FRACTION, inertia * CHAIN_LINK_FRACTION, &mut made.skipped)
     } else {

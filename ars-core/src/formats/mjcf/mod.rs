@@ -71,12 +71,22 @@
 //!   also holds its armature; a ball's (an angular motor about three axes) and a free
 //!   joint's (a linear and an angular one) are listed in [`MjcfModel::joint_motors`].
 //!   A joint's position is the child's relative to its parent, as in MuJoCo. Several
-//!   joints in one body (the planar roots of hopper, walker and half-cheetah: slide x,
-//!   slide z, hinge y) are chained through light links at the body's frame (each of
+//!   joints in one body are one joint group
+//!   ([`Scene::add_joint_group`](crate::Scene::add_joint_group)), as MuJoCo moves such a
+//!   body: hinges through one point about perpendicular axes (a humanoid's hip or
+//!   shoulder) are a ball with the rotations they do not allow held, and slides along
+//!   perpendicular axes with at most a hinge about their plane's normal (the planar
+//!   roots of hopper, walker and half-cheetah: slide x, slide z, hinge y; a point mass)
+//!   hold the body in its plane; each joint stays a joint of its own, read as the body's
+//!   relative pose gives it. Joints a group cannot take (hinges through different
+//!   points or about axes that are not perpendicular, a slide after a hinge, slides of a
+//!   body that is not the world's child, slides with a range, a planar body's slides
+//!   with an armature, damping or dry friction) are chained through light links at the
+//!   body's frame (each of
 //!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
 //!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
-//!   along each joint but the first (and a free joint cannot be chained). A chained
-//!   body and its parent never touch ([`Scene::exclude_contacts`](crate::Scene::exclude_contacts)), as MuJoCo ignores
+//!   along each joint but the first (and a free joint cannot be chained). A body with
+//!   several joints and its parent never touch ([`Scene::exclude_contacts`](crate::Scene::exclude_contacts)), as MuJoCo ignores
 //!   the contacts of a body with its parent and ODE those of two bodies one joint joins.
 //!   A hinge's or slide's `ref` is its position in the pose the file gives (MuJoCo's
 //!   `qpos0`): the joint is made with its child moved back by `ref`, so that ODE,
@@ -218,6 +228,7 @@ mod defaults;
 mod equality;
 mod flags;
 mod frame;
+mod group;
 mod hfield;
 mod include;
 mod keyframe;

@@ -63,7 +63,7 @@ impl Simulation {
             for w in file.world_joints.iter().filter(|w| w.after == i) {
                 w.add_to(&mut sim)?;
             }
-            j.add_to(&mut sim)?;
+            j.add_to(&mut sim, &file.joints)?;
         }
         for w in file.world_joints.iter().filter(|w| w.after >= file.joints.len()) {
             w.add_to(&mut sim)?;
@@ -182,19 +182,51 @@ impl JointFile {
     /// Makes the joint in `sim` (its objects looked up by name) with its stops,
     /// friction, actuator limits, spring and motor; not its mimic (its leader may be
     /// made later).
-    fn add_to(&self, sim: &mut Simulation) -> Result<()> {
+    fn add_to(&self, sim: &mut Simulation, all: &[JointFile]) -> Result<()> {
         let object1 = sim.scene().object(self.object1.as_str())?.id();
         let object2 = match &self.object2 {
             Some(name) => JointEnd::Object(sim.scene().object(name.as_str())?.id()),
             None => JointEnd::World,
         };
-        let id = sim.scene.insert_sim_joint(
-            &self.name,
-            self.joint_type,
-            object1,
-            object2,
-            JointBuilder::new(self.kind.clone()),
-        )?;
+        // A joint of a group after its first is made with the group.
+        let made_with_group = match sim.scene().joint(self.name.as_str()) {
+            Ok(j) => sim.scene.joint_data(j.id())?.member.is_some(),
+            Err(_) => false,
+        };
+        let id = if let Some(group) = &self.group {
+            // The whole group, its first joint's settings here, the others' with them.
+            let named = group
+                .joints
+                .iter()
+                .map(|name| {
+                    let j = all.iter().find(|j| &j.name == name).ok_or_else(|| Error::Invalid {
+                        what: "a scene file",
+                        problem: format!(
+                            "its joint group of {:?} names joint {name:?}, which it does not have",
+                            self.name
+                        ),
+                    })?;
+                    Ok((j.name.clone(), j.joint_type, j.kind.clone()))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            let ids = sim.scene.make_group(object1, object2, &named, group.rest.clone())?;
+            ids.into_iter().find(|id| sim.scene().joint(*id).is_ok_and(|j| j.name() == self.name)).ok_or_else(|| {
+                Error::Invalid {
+                    what: "a scene file",
+                    problem: format!("its joint group of {:?} does not name that joint", self.name),
+                }
+            })?
+        } else if made_with_group {
+            sim.scene().joint(self.name.as_str())?.id()
+        } else {
+            sim.scene.insert_sim_joint(
+                &self.name,
+                self.joint_type,
+                object1,
+                object2,
+                JointBuilder::new(self.kind.clone()),
+            )?
+        };
         if let Some((low, high)) = self.limits {
             sim.scene_mut().joint_mut(id)?.set_limits(low, high)?;
         }
@@ -225,8 +257,7 @@ impl JointFile {
         }
         if let Some((speed, max_force)) = self.motor {
             // As it was, whatever the limits (the speed was held to them when set).
-            let handle = sim.scene.joint_data(id)?.handle;
-            sim.scene.world_mut().joint_mut(handle)?.set_motor(0, speed, max_force)?;
+            sim.scene.set_joint_motor(id, speed, max_force)?;
         }
         Ok(())
     }

@@ -328,6 +328,20 @@ pub struct JointFile {
     /// [`SimJoint::set_damping`](crate::SimJoint::set_damping)).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub damping: f64,
+    /// On the first joint of a joint group (see
+    /// [`Scene::add_joint_group`](crate::Scene::add_joint_group)): the group (the
+    /// group's other joints are saved after it, each with its own settings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<GroupFile>,
+}
+
+/// A joint group as saved: its joints' names in order and its geometry.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GroupFile {
+    /// Its joints, in order (slides first).
+    pub joints: Vec<String>,
+    /// Where its joints read 0.
+    pub rest: crate::scene::GroupRest,
 }
 
 fn is_zero(value: &f64) -> bool {

@@ -9,8 +9,8 @@ use crate::shape::Shape;
 use crate::simulation::Simulation;
 
 use super::{
-    BodyFile, FORMAT, GeomContactFile, GeomPairContactFile, JointFile, MimicFile, ObjectFile, PairSurfaceFile,
-    SceneFile, SensorFile, WorldJointFile, to_hex,
+    BodyFile, FORMAT, GeomContactFile, GeomPairContactFile, GroupFile, JointFile, MimicFile, ObjectFile,
+    PairSurfaceFile, SceneFile, SensorFile, WorldJointFile, to_hex,
 };
 
 impl Simulation {
@@ -175,6 +175,7 @@ impl Simulation {
                 motor,
                 armature: data.armature.map_or(0.0, |a| a.inertia),
                 damping: data.armature.map_or(0.0, |a| a.damping),
+                group: self.saved_group(data)?,
             });
         }
         Ok(joints)
@@ -186,6 +187,14 @@ impl Simulation {
     fn saved_joint_kind(&self, data: &JointData, exact: bool) -> Result<JointKind> {
         if self.scene.step_count() == 0 || exact {
             return Ok(data.creation.clone());
+        }
+        if let Some(member) = data.member {
+            // Its group is saved with its geometry; here, where the joint is now.
+            let (anchor, axis) = self.scene.member_geometry(member)?;
+            return Ok(match data.kind {
+                JointType::Hinge => JointKind::Hinge { anchor, axis },
+                _ => JointKind::Slider { axis },
+            });
         }
         let ode = self.scene.world().joint(data.handle)?;
         Ok(match &data.creation {
@@ -207,9 +216,24 @@ impl Simulation {
         })
     }
 
+    /// The group a joint is the first of, if it is.
+    fn saved_group(&self, data: &JointData) -> Result<Option<GroupFile>> {
+        let Some(member) = data.member.filter(|m| m.index == 0) else { return Ok(None) };
+        let joints = self
+            .scene
+            .group_members(member)?
+            .iter()
+            .map(|id| Ok(self.scene.joint(*id)?.name().to_string()))
+            .collect::<Result<_>>()?;
+        Ok(Some(GroupFile { joints, rest: self.scene.group_rest(member)? }))
+    }
+
     /// A joint's speed motor, when on: its speed and largest force.
     fn saved_motor(&self, data: &JointData) -> Result<Option<(f64, f64)>> {
         let world = self.scene.world();
+        if let Some(member) = data.member {
+            return Ok((member.motor.1 > 0.0).then_some(member.motor));
+        }
         Ok(match data.kind {
             JointType::Fixed | JointType::Ball => None,
             _ => {
@@ -253,8 +277,10 @@ impl Simulation {
             scene_handles.iter().filter_map(|h| world.joints.get(h.0, "joint").ok().map(|j| j.serial)).collect();
         scene_serials.sort_unstable();
         // An armature's motor is its joint's, made again with it.
-        let owned: Vec<crate::JointHandle> =
+        let mut owned: Vec<crate::JointHandle> =
             self.scene.joints_in_creation_order().filter_map(|d| d.armature.map(|a| a.motor)).collect();
+        // A group's constraint is its joints', made again with them.
+        owned.extend(self.scene.group_joints());
         let mut others: Vec<_> = world
             .joints
             .iter()

@@ -134,7 +134,7 @@ macro_rules! joint_getters {
         }
 
         /// Current world direction of the (first) axis of a hinge, slider, universal,
-        /// hinge-2 or piston.
+        /// hinge-2, piston or motor.
         pub fn axis(&self) -> Result<Vector3<f64>> {
             let j = self.data.raw;
             let mut a = [0.0; 4];
@@ -146,6 +146,8 @@ macro_rules! joint_getters {
                     JointKind::Universal { .. } => ffi::dJointGetUniversalAxis1(j, a.as_mut_ptr()),
                     JointKind::Hinge2 { .. } => ffi::dJointGetHinge2Axis1(j, a.as_mut_ptr()),
                     JointKind::Piston { .. } => ffi::dJointGetPistonAxis(j, a.as_mut_ptr()),
+                    JointKind::AngularMotor { .. } => ffi::dJointGetAMotorAxis(j, 0, a.as_mut_ptr()),
+                    JointKind::LinearMotor { .. } => ffi::dJointGetLMotorAxis(j, 0, a.as_mut_ptr()),
                     _ => return Err(self.wrong("axis")),
                 }
             }
@@ -296,6 +298,52 @@ impl JointMut<'_> {
                 _ => return Err(self.wrong("adding a force")),
             }
         }
+        Ok(())
+    }
+
+    /// Turns axis `index` of an angular or linear motor to the world direction `axis`
+    /// (ODE keeps it as a unit vector, in the world's frame from now on), for the
+    /// motors whose rows follow a changing direction (a joint group's, each step).
+    pub fn set_motor_axis(&mut self, index: usize, axis: Vector3<f64>) -> Result<()> {
+        let count = match &self.data.kind {
+            JointKind::AngularMotor { axes } | JointKind::LinearMotor { axes } => axes.len(),
+            _ => return Err(self.wrong("turning a motor axis")),
+        };
+        if index >= count {
+            return Err(Error::OutOfRange { what: "motor axis", detail: format!("{index} of {count}") });
+        }
+        let length = axis.norm();
+        if !(length.is_finite() && length > 1e-12) {
+            return Err(Error::OutOfRange {
+                what: "motor axis",
+                detail: format!("must be finite and not zero, got {axis:?}"),
+            });
+        }
+        let (j, x) = (self.data.raw, axis / length);
+        // SAFETY: the joint is live and of the kind matched; the index is below its
+        // number of axes; the direction is a finite unit vector (rel 0: the world).
+        unsafe {
+            match self.data.kind {
+                JointKind::AngularMotor { .. } => ffi::dJointSetAMotorAxis(j, index as i32, 0, x.x, x.y, x.z),
+                _ => ffi::dJointSetLMotorAxis(j, index as i32, 0, x.x, x.y, x.z),
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets the angle ODE tests the stops of axis `index` of an angular motor against
+    /// (its user mode: ODE does not measure it).
+    pub fn set_motor_angle(&mut self, index: usize, angle: f64) -> Result<()> {
+        let JointKind::AngularMotor { axes } = &self.data.kind else {
+            return Err(self.wrong("setting a motor angle"));
+        };
+        if index >= axes.len() {
+            return Err(Error::OutOfRange { what: "motor axis", detail: format!("{index} of {}", axes.len()) });
+        }
+        limits::in_range("motor angle", angle, -limits::MAX_COORDINATE, limits::MAX_COORDINATE)?;
+        // SAFETY: the joint is a live angular motor; the index is below its number of
+        // axes and the angle finite.
+        unsafe { ffi::dJointSetAMotorAngle(self.data.raw, index as i32, angle) };
         Ok(())
     }
 
