@@ -247,3 +247,19 @@ fn a_group_steps_through_gimbal_lock() {
         assert!(p.is_finite() && r.is_finite(), "{name}: {p} {r}");
     }
 }
+
+#[test]
+fn a_child_turned_half_round_from_its_parent_makes_a_group() {
+    // Found on the fruit fly's legs: the child's rotation where the joints read 0 is
+    // 180° from the parent's (a rotation an iterative fit from the identity misses).
+    let mut sim = Simulation::builder().build().unwrap();
+    let arm = sim.scene_mut().add_box([1.0, 0.1, 0.2], [0.5, 2.0, 0.0], Mass::Total(2.0)).unwrap();
+    let half = Rotation3::from_axis_angle(&Vector3::y_axis(), std::f64::consts::PI);
+    sim.scene_mut().body_mut(arm).unwrap().set_rotation(half).unwrap();
+    let joints = [hinge("a", [0.0, 2.0, 0.0], [0.0, 1.0, 0.0]), hinge("b", [0.0, 2.0, 0.0], [0.0, 0.0, 1.0])];
+    sim.scene_mut().add_joint_group(arm, JointEnd::World, &joints).unwrap();
+    assert_eq!(state(&sim, "a").0, 0.0);
+    sim.step_n(100).unwrap();
+    let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
+    assert!((state(&sim, "b").0 - state(&copy, "b").0).abs() < 1e-12);
+}

@@ -67,6 +67,9 @@ pub(crate) struct GroupMember {
     /// Its speed motor as asked (speed and largest force, in the joint's units), which
     /// its ODE motor gets scaled each step.
     pub(crate) motor: (f64, f64),
+    /// The scale its ODE motor's stops and speed motor were last set with (NaN: to be
+    /// set).
+    pub(crate) scale: f64,
 }
 
 /// A group's geometry where every joint of it reads 0, in the parent's frame (the
@@ -115,7 +118,8 @@ pub(crate) struct JointGroup {
 /// The group's joints as they are: each one's position and rate, the direction its
 /// efforts act along (unit, world) and its dual axis' length; the locked rotations'
 /// and translations' directions, their dual length and their error.
-struct GroupKinematics {
+#[derive(Clone)]
+pub(crate) struct GroupKinematics {
     position: [f64; 6],
     rate: [f64; 6],
     direction: [Vector3<f64>; 6],
@@ -211,13 +215,15 @@ impl Scene {
         if named.len() != rest.axes.len() {
             return Err(bad_group(format!("has {} joints and {} axes", named.len(), rest.axes.len())));
         }
-        let rotation = Rotation3::from_matrix_eps(&rest.rest, 1e-9, 0, Rotation3::identity());
-        let square = (rotation.matrix() - rest.rest).norm() < 1e-6;
-        if !(square
-            && rest.rest.iter().chain(rest.anchor_child.iter()).chain(rest.anchor_parent.iter()).all(|v| v.is_finite()))
-        {
+        // A rotation (orthonormal, turning right-handed), kept as given: a group made
+        // again from a scene file reads to the bit as the one saved.
+        let m = rest.rest;
+        let orthonormal = (m.transpose() * m - Matrix3::identity()).norm() < 1e-9 && m.determinant() > 0.0;
+        let finite = m.iter().chain(rest.anchor_child.iter()).chain(rest.anchor_parent.iter()).all(|v| v.is_finite());
+        if !(orthonormal && finite) {
             return Err(bad_group("needs a rotation and finite anchors where its joints read 0".into()));
         }
+        let rotation = Rotation3::from_matrix_unchecked(m);
         // Its shape, checked in the parent's frame, where its geometry is.
         let joints: Vec<GroupJoint> = named
             .iter()
@@ -292,7 +298,7 @@ impl Scene {
                 mimic: None,
                 spring: (0.0, 0.0),
                 armature: None,
-                member: Some(GroupMember { group, index, motor: (0.0, 0.0) }),
+                member: Some(GroupMember { group, index, motor: (0.0, 0.0), scale: f64::NAN }),
             };
             let id = JointId(self.joints.insert(data));
             self.joint_names.insert(name, id)?;
@@ -396,22 +402,50 @@ impl Scene {
             k.rate[i] = axis.dot(&anchor_velocity);
             k.direction[i] = *axis;
         }
+        let axes = [w1, w2, w3];
         for (h, dual) in duals.iter().enumerate().take(g.hinges) {
             let sign = if h == 2 { g.third_sign } else { 1.0 };
             let i = slides + h;
             k.position[i] = sign * k.angles[h];
             k.rate[i] = sign * dual.dot(&relative);
-            k.direction[i] = sign * k.euler_direction[h];
-            k.scale[i] = k.euler_scale[h];
+            if g.hinges == 3 {
+                k.direction[i] = sign * k.euler_direction[h];
+                k.scale[i] = k.euler_scale[h];
+            } else {
+                // With a rotation locked, the turn is in the span of the hinges' axes,
+                // which are perpendicular: each axis is its own dual there (scale 1).
+                k.direction[i] = axes[h];
+            }
         }
         Ok(k)
     }
 
     /// A group member's position and rate now.
     pub(crate) fn member_state(&self, member: GroupMember) -> Result<JointState> {
-        let g = self.group(member.group)?;
-        let k = self.group_kinematics(g)?;
+        let k = self.kinematics_of(member.group)?;
         Ok(JointState { position: k.position[member.index], rate: k.rate[member.index] })
+    }
+
+    /// Group `group`'s kinematics: as worked out for the step about to be taken while
+    /// its drives are applied (nothing moves then), else now.
+    fn kinematics_of(&self, group: usize) -> Result<std::borrow::Cow<'_, GroupKinematics>> {
+        match self.group_kinematics_now.get(group) {
+            Some(k) => Ok(std::borrow::Cow::Borrowed(k)),
+            None => Ok(std::borrow::Cow::Owned(self.group_kinematics(self.group(group)?)?)),
+        }
+    }
+
+    /// Works out every group's kinematics for the drives of the step about to be taken
+    /// (`forget_group_kinematics` after them).
+    pub(crate) fn keep_group_kinematics(&mut self) -> Result<()> {
+        let kinematics = self.groups.iter().map(|g| self.group_kinematics(g)).collect::<Result<Vec<_>>>()?;
+        self.group_kinematics_now = kinematics;
+        Ok(())
+    }
+
+    /// The bodies may move again: group kinematics are worked out when asked.
+    pub(crate) fn forget_group_kinematics(&mut self) {
+        self.group_kinematics_now.clear();
     }
 
     fn group(&self, index: usize) -> Result<&JointGroup> {
@@ -422,8 +456,8 @@ impl Scene {
     /// dual axis (a force through the anchor along a slide's axis), opposite on the
     /// parent.
     pub(crate) fn put_member_effort(&mut self, member: GroupMember, effort: f64) -> Result<()> {
+        let k = self.kinematics_of(member.group)?.into_owned();
         let g = self.group(member.group)?;
-        let k = self.group_kinematics(g)?;
         let (child, parent, slide) = (g.child, g.parent, member.index < g.slides.len());
         let along = k.direction[member.index] * (effort * k.scale[member.index]);
         if slide {
@@ -469,8 +503,8 @@ impl Scene {
     fn hold_group(&mut self, group: usize) -> Result<()> {
         let (erp, h) = (self.world.erp(), self.time_step.get());
         let speed = |v: f64| v.clamp(-limits::MAX_SPEED, limits::MAX_SPEED);
+        let k = self.kinematics_of(group)?.into_owned();
         let g = self.group(group)?;
-        let k = self.group_kinematics(g)?;
         let (hinges, lock_turns, lock_slides) = (g.hinges, g.lock_turns, g.lock_slides);
         let corrections: Vec<f64> = g.normals.iter().map(|n| -erp * n.dot(&k.displacement) / h).collect();
         let members = g.members.clone();
@@ -494,18 +528,30 @@ impl Scene {
             let (i, handle, stops, armature, kind) = (member.index, d.handle, d.limits, d.armature, d.kind);
             let (direction, scale) = (k.direction[i], k.scale[i]);
             let mut motor = self.world.joint_mut(handle)?;
-            motor.set_motor_axis(0, direction)?;
             if kind == JointType::Hinge {
-                motor.set_motor_angle(0, k.position[i] / scale)?;
+                // A slide's direction is fixed (the world's, where it was made).
+                motor.set_motor_axis(0, direction)?;
+                if stops.is_some() {
+                    motor.set_motor_angle(0, k.position[i] / scale)?;
+                }
             }
-            if let Some((low, high)) = stops {
-                motor.set_limits(0, low / scale, high / scale)?;
+            // Its stops and speed motor, scaled to its dual axis when that changed
+            // (three hinges; NaN: set unscaled since).
+            if scale != member.scale {
+                if let Some((low, high)) = stops {
+                    motor.set_limits(0, low / scale, high / scale)?;
+                }
+                let (velocity, force) = member.motor;
+                let force = if force == f64::INFINITY { force } else { (force * scale).min(limits::MAX_FORCE) };
+                motor.set_motor(0, speed(velocity / scale), force)?;
+                if let Some(m) = self.joints.get_mut(id.0, JointId::KIND)?.member.as_mut() {
+                    m.scale = scale;
+                }
             }
-            let (velocity, force) = member.motor;
-            let force = if force == f64::INFINITY { force } else { (force * scale).min(limits::MAX_FORCE) };
-            motor.set_motor(0, speed(velocity / scale), force)?;
             if let Some(armature) = armature {
-                self.world.joint_mut(armature.motor)?.set_motor_axis(0, direction)?;
+                if kind == JointType::Hinge {
+                    self.world.joint_mut(armature.motor)?.set_motor_axis(0, direction)?;
+                }
                 self.hold_scaled_armature(armature, k.rate[i], scale)?;
             }
         }
@@ -517,6 +563,16 @@ impl Scene {
         let d = self.joints.get_mut(id.0, JointId::KIND)?;
         if let Some(m) = d.member.as_mut() {
             m.motor = (speed, max_force);
+            // Its ODE motor gets it, scaled, before the next step.
+            m.scale = f64::NAN;
+        }
+        Ok(())
+    }
+
+    /// A member's stops were set unscaled: scaled again before the next step.
+    pub(crate) fn rescale_member(&mut self, id: JointId) -> Result<()> {
+        if let Some(m) = self.joints.get_mut(id.0, JointId::KIND)?.member.as_mut() {
+            m.scale = f64::NAN;
         }
         Ok(())
     }

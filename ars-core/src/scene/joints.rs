@@ -346,11 +346,17 @@ impl Scene {
     /// step (one addition per driven joint, after the pre-step hooks).
     #[inline]
     pub(crate) fn apply_joint_drives(&mut self) -> Result<()> {
-        if !self.driven_joints.is_empty() {
-            self.drive_joints()?;
+        if self.groups.is_empty() {
+            return if self.driven_joints.is_empty() { Ok(()) } else { self.drive_joints() };
         }
-        // After the drives: a group member's armature is held by its group, scaled.
-        if self.groups.is_empty() { Ok(()) } else { self.hold_groups() }
+        // Nothing moves while the drives are applied: each group's kinematics are
+        // worked out once. After the drives, the groups' rows (and their members'
+        // armatures, scaled).
+        self.keep_group_kinematics()?;
+        let held =
+            if self.driven_joints.is_empty() { Ok(()) } else { self.drive_joints() }.and_then(|()| self.hold_groups());
+        self.forget_group_kinematics();
+        held
     }
 
     #[inline(never)]
@@ -803,8 +809,10 @@ impl Scene {
             d.spring = s.spring;
             let (added, friction, controller, driven) = s.efforts;
             d.efforts = JointEfforts { added, friction, spring: s.spring_effort, controller, driven };
-            if let (Some(member), Some(motor)) = (d.member.as_mut(), s.member_motor) {
-                member.motor = motor;
+            if let Some(member) = d.member.as_mut() {
+                member.motor = s.member_motor.unwrap_or_default();
+                // Its ODE motor set again, scaled, before the next step.
+                member.scale = f64::NAN;
             }
             self.update_driven(id);
         }

@@ -53,6 +53,8 @@ pub struct Scene {
     joint_names: Names<JointId>,
     /// Joint groups (see [`joint_group`]), each with its joints.
     groups: Vec<joint_group::JointGroup>,
+    /// Each group's kinematics while the drives of a step are applied (else empty).
+    group_kinematics_now: Vec<joint_group::GroupKinematics>,
     /// Joints with viscous friction or a controller, in creation order.
     driven_joints: Vec<JointId>,
     /// Joints driven by an [`Actuator`](crate::Actuator), in the order their actuators
@@ -102,6 +104,7 @@ impl Scene {
             joints: Arena::new(id),
             joint_names: Names::new("joint"),
             groups: Vec::new(),
+            group_kinematics_now: Vec::new(),
             driven_joints: Vec::new(),
             actuated_joints: Vec::new(),
             robots_loaded: 0,

@@ -208,7 +208,8 @@ impl SimJoint<'_> {
             _ => {
                 self.sim.world.joint_mut(handle)?.set_limits(0, low, high)?;
                 self.data_mut().limits = Some((low, high));
-                Ok(())
+                // A group's joint: its stops scaled to its dual axis before the next step.
+                self.sim.rescale_member(self.id)
             }
         }
     }
