@@ -263,3 +263,33 @@ fn a_child_turned_half_round_from_its_parent_makes_a_group() {
     let copy = Simulation::load_scene(&sim.save_scene().unwrap()).unwrap();
     assert!((state(&sim, "b").0 - state(&copy, "b").0).abs() < 1e-12);
 }
+
+#[test]
+fn a_slide_of_a_group_rests_on_its_stop_and_leaves_it_freely() {
+    // A point mass sliding in a vertical plane, its height held above -0.5 m.
+    let mut sim = Simulation::builder().build().unwrap();
+    let mass = sim.scene_mut().add_sphere(0.1, [0.0, 1.0, 0.0], Mass::Total(1.0)).unwrap();
+    let joints = [slide("x", [1.0, 0.0, 0.0]), slide("y", [0.0, 1.0, 0.0])];
+    sim.scene_mut().add_joint_group(mass, JointEnd::World, &joints).unwrap();
+    sim.scene_mut().joint_mut("y").unwrap().set_limits(-0.5, 0.5).unwrap();
+    sim.scene_mut().body_mut(mass).unwrap().set_linear_velocity(Vector3::new(0.3, 0.0, 0.0)).unwrap();
+    sim.step_n(2000).unwrap();
+    let (x, y) = (state(&sim, "x"), state(&sim, "y"));
+    assert!((y.0 + 0.5).abs() < 1e-3 && y.1.abs() < 1e-3, "rests on its stop: {y:?}");
+    // Sliding along x without friction from the stop.
+    assert!((x.1 - 0.3).abs() < 1e-9, "{x:?}");
+    // Thrown up, it leaves the stop: a stop pushes, never pulls.
+    sim.scene_mut().body_mut(mass).unwrap().set_linear_velocity(Vector3::new(0.0, 2.0, 0.0)).unwrap();
+    sim.step().unwrap();
+    assert!(state(&sim, "y").1 > 1.9, "{:?}", state(&sim, "y"));
+    // Up to the upper stop, which holds it below 0.5 m.
+    sim.scene_mut().body_mut(mass).unwrap().set_linear_velocity(Vector3::new(0.0, 20.0, 0.0)).unwrap();
+    sim.step_n(500).unwrap();
+    let highest = (0..500)
+        .map(|_| {
+            sim.step().unwrap();
+            state(&sim, "y").0
+        })
+        .fold(f64::MIN, f64::max);
+    assert!(highest < 0.52, "{highest}");
+}

@@ -202,6 +202,15 @@ static int reserve_record(struct odesys_contact_records *out) {
     return 1;
 }
 
+dBodyID odesys_contact_body(dBodyID body) {
+    if (body == NULL || !dBodyIsKinematic(body)) {
+        return body;
+    }
+    const dReal *v = dBodyGetLinearVel(body), *w = dBodyGetAngularVel(body);
+    int resting = v[0] == 0 && v[1] == 0 && v[2] == 0 && w[0] == 0 && w[1] == 0 && w[2] == 0;
+    return resting ? NULL : body;
+}
+
 static void plain_near(void *data, dGeomID o1, dGeomID o2) {
     struct odesys_plain_collision *p = data;
     if (p->stopped) {
@@ -236,8 +245,13 @@ static void plain_near(void *data, dGeomID o1, dGeomID o2) {
             return;
         }
         p->contact.geom = *c;
-        dJointID j = dJointCreateContact(p->world, p->group, &p->contact);
-        dJointAttach(j, b1, b2);
+        dBodyID a1 = odesys_contact_body(b1), a2 = odesys_contact_body(b2);
+        /* Between two bodies that cannot move (kinematic at rest, or one static) a
+         * contact joint would do nothing but join them in an island: recorded only. */
+        if (a1 != NULL || a2 != NULL) {
+            dJointID j = dJointCreateContact(p->world, p->group, &p->contact);
+            dJointAttach(j, a1, a2);
+        }
         struct odesys_contact_record *r = &p->out.items[p->out.len++];
         r->geom = *c;
         r->o1 = o1;

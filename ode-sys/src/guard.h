@@ -92,6 +92,11 @@ int odesys_guarded_collide_plain(dSpaceID space, struct odesys_plain_collision *
  * `plain->phase` says whether it was the collision or the step. */
 int odesys_guarded_collide_and_step(struct odesys_plain_collision *plain);
 void odesys_contact_records_free(struct odesys_contact_records *records);
+/* The body a contact joint is attached to for `body` (NULL: the world): the world for
+ * a kinematic body at rest (velocities exactly 0), which then behaves as the world in
+ * the contact's row to the bit, and does not join the islands of everything it
+ * touches; the body itself otherwise. */
+dBodyID odesys_contact_body(dBodyID body);
 int odesys_guarded_debug_report(int num, const char *message, struct odesys_failure *failure);
 
 #endif

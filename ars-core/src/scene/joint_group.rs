@@ -17,7 +17,10 @@
 //! act along its dual axis (the direction whose torque moves that joint alone). Its
 //! stops, speed motor, dry friction, armature and damping are the rows of a one-axis
 //! ODE motor of its own, turned to that direction before each step and scaled by the
-//! dual axis' length (so that their forces are the joint's). Without stops or a motor,
+//! dual axis' length (so that their forces are the joint's); a slide's stops, which
+//! ODE's linear motor does not have, are a one-sided row at the anchor while the
+//! slide is at one (an ODE contact with the world, without friction, at the stop's
+//! ERP and CFM). Without stops or a motor,
 //! that motor has no row. That motor is the joint's ODE joint
 //! ([`JointView::ode`](crate::JointView::ode)), and its
 //! [`reaction`](crate::JointView::reaction) is that motor's alone (stops, speed motor,
@@ -38,6 +41,7 @@ use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, JointHandle, JointId, ObjectId};
 use crate::joint::{AxisFrame, JointBuilder, JointKind, JointParam};
 use crate::limits;
+use crate::world::limit_rows::LimitRow;
 
 /// One joint of a group to make: a hinge through `anchor` about `axis`, or a slide along
 /// `axis` (world frame, where the objects are when the group is made, where the joint
@@ -321,7 +325,7 @@ impl Scene {
             lock_slides,
         });
         // Its rows right from the start (a step of the world alone takes them as they are).
-        self.hold_group(group)?;
+        self.hold_groups()?;
         Ok(members)
     }
 
@@ -494,18 +498,21 @@ impl Scene {
     /// Sets every group's rows for the coming step: the locked freedoms' directions and
     /// drift corrections, and each member's motor turned and scaled to its dual axis.
     pub(crate) fn hold_groups(&mut self) -> Result<()> {
+        let mut stops = Vec::new();
         for group in 0..self.groups.len() {
-            self.hold_group(group)?;
+            self.hold_group(group, &mut stops)?;
         }
-        Ok(())
+        self.world.set_limit_rows(&stops)
     }
 
-    fn hold_group(&mut self, group: usize) -> Result<()> {
+    /// Sets group `group`'s rows for the coming step; its slides at their stops add a
+    /// one-sided row to `stops`.
+    fn hold_group(&mut self, group: usize, stops: &mut Vec<LimitRow>) -> Result<()> {
         let (erp, h) = (self.world.erp(), self.time_step.get());
         let speed = |v: f64| v.clamp(-limits::MAX_SPEED, limits::MAX_SPEED);
         let k = self.kinematics_of(group)?.into_owned();
         let g = self.group(group)?;
-        let (hinges, lock_turns, lock_slides) = (g.hinges, g.lock_turns, g.lock_slides);
+        let (hinges, lock_turns, lock_slides, child) = (g.hinges, g.lock_turns, g.lock_slides, g.child);
         let corrections: Vec<f64> = g.normals.iter().map(|n| -erp * n.dot(&k.displacement) / h).collect();
         let members = g.members.clone();
         if let Some(lock) = lock_turns {
@@ -525,20 +532,36 @@ impl Scene {
         for id in members {
             let d = self.joint_data(id)?;
             let Some(member) = d.member else { continue };
-            let (i, handle, stops, armature, kind) = (member.index, d.handle, d.limits, d.armature, d.kind);
+            let (i, handle, stops_of_member, armature, kind) = (member.index, d.handle, d.limits, d.armature, d.kind);
             let (direction, scale) = (k.direction[i], k.scale[i]);
+            if let (JointType::Slider, Some((low, high))) = (kind, stops_of_member) {
+                // ODE's linear motor has no stops: a one-sided row at the anchor.
+                let position = k.position[i];
+                let (normal, depth) = if position <= low {
+                    (direction, low - position)
+                } else if position >= high {
+                    (-direction, position - high)
+                } else {
+                    (Vector3::zeros(), -1.0)
+                };
+                if depth >= 0.0 {
+                    let ode = self.world.joint(handle)?;
+                    let (erp, cfm) = (ode.param(JointParam::StopErp, 0)?, ode.param(JointParam::StopCfm, 0)?);
+                    stops.push(LimitRow { body: child, point: k.anchor, normal, depth, erp, cfm });
+                }
+            }
             let mut motor = self.world.joint_mut(handle)?;
             if kind == JointType::Hinge {
                 // A slide's direction is fixed (the world's, where it was made).
                 motor.set_motor_axis(0, direction)?;
-                if stops.is_some() {
+                if stops_of_member.is_some() {
                     motor.set_motor_angle(0, k.position[i] / scale)?;
                 }
             }
             // Its stops and speed motor, scaled to its dual axis when that changed
             // (three hinges; NaN: set unscaled since).
             if scale != member.scale {
-                if let Some((low, high)) = stops {
+                if let (JointType::Hinge, Some((low, high))) = (kind, stops_of_member) {
                     motor.set_limits(0, low / scale, high / scale)?;
                 }
                 let (velocity, force) = member.motor;
@@ -611,6 +634,8 @@ impl Scene {
         for handle in [g.ball, g.lock_turns, g.lock_slides].into_iter().flatten() {
             self.world.remove_joint(handle)?;
         }
+        // The stops' rows are made again by the next step's groups, if any are left.
+        self.world.set_limit_rows(&[])?;
         Ok(g.members)
     }
 

@@ -132,14 +132,22 @@ const FEEDBACK_BLOCK: usize = 256;
 pub(crate) struct ContactFeedback {
     pub(crate) on: bool,
     blocks: Vec<Box<[ffi::dJointFeedback; FEEDBACK_BLOCK]>>,
+    /// Whether contact `i`'s joint has its first geom's body as its first body (ODE
+    /// reports the force on the joint's first body).
+    first_attached: Vec<bool>,
 }
 
 impl ContactFeedback {
-    /// Buffer `i`, zeroed (its block made if needed).
-    fn slot(&mut self, i: usize) -> *mut ffi::dJointFeedback {
+    /// Buffer `i`, zeroed (its block made if needed), of a joint whose first body is
+    /// the first geom's when `first_attached`.
+    fn slot(&mut self, i: usize, first_attached: bool) -> *mut ffi::dJointFeedback {
         while self.blocks.len() * FEEDBACK_BLOCK <= i {
             self.blocks.push(Box::new([ffi::dJointFeedback::default(); FEEDBACK_BLOCK]));
         }
+        if self.first_attached.len() <= i {
+            self.first_attached.resize(i + 1, true);
+        }
+        self.first_attached[i] = first_attached;
         let slot = &mut self.blocks[i / FEEDBACK_BLOCK][i % FEEDBACK_BLOCK];
         *slot = ffi::dJointFeedback::default();
         slot
@@ -163,9 +171,11 @@ impl CollisionState {
         for (i, c) in points.iter_mut().enumerate() {
             let Some(block) = self.feedback.blocks.get(i / FEEDBACK_BLOCK) else { break };
             let f = convert::vector_from_ode(&block[i % FEEDBACK_BLOCK].f1);
-            // ODE attaches a joint whose first body is static to the second body
-            // alone, and reports the force on it.
-            c.force = if c.pair.body1.is_some() { f } else { -f };
+            // ODE attaches a joint whose first body is static (or a kinematic body at
+            // rest, attached as the world) to the second body alone, and reports the
+            // force on it.
+            let first = self.feedback.first_attached.get(i).copied().unwrap_or(c.pair.body1.is_some());
+            c.force = if first { f } else { -f };
         }
     }
 }
@@ -728,20 +738,34 @@ unsafe fn create_contacts(
     out: &mut Vec<ContactPoint>,
     mut feedback: Option<&mut ContactFeedback>,
 ) {
+    // A kinematic body at rest is attached as the world (`odesys_contact_body`), as the
+    // plain collision does.
+    // SAFETY: the bodies are live or null (the caller's contract).
+    let attached = unsafe { (ffi::odesys_contact_body(bodies.0), ffi::odesys_contact_body(bodies.1)) };
+    // Between two bodies that cannot move (kinematic at rest, or one static) a contact
+    // joint would do nothing but join them in an island: its points are recorded only.
+    let joined = !(attached.0.is_null() && attached.1.is_null());
     // Colliders given degenerate geometry (a deep overlap of tiny shapes) can return a
     // NaN normal, which would turn the whole step into NaN.
     for c in points.iter().filter(|c| contact_is_finite(c)) {
         // ODE copies the whole dContact into the joint it creates: only the geometry
         // changes from one point to the next.
         contact.geom = *c;
-        // SAFETY: the caller's contract; `contact` is fully initialised.
-        unsafe {
-            let j = ffi::dJointCreateContact(world, group, contact);
-            ffi::dJointAttach(j, bodies.0, bodies.1);
+        if !joined {
             if let Some(feedback) = feedback.as_deref_mut() {
-                // The buffer stays in place while the world lives (boxed block), and
-                // the joint is destroyed at the end of the step.
-                ffi::dJointSetFeedback(j, feedback.slot(out.len()));
+                // No joint: no force (its buffer zeroed).
+                feedback.slot(out.len(), true);
+            }
+        } else {
+            // SAFETY: the caller's contract; `contact` is fully initialised.
+            unsafe {
+                let j = ffi::dJointCreateContact(world, group, contact);
+                ffi::dJointAttach(j, attached.0, attached.1);
+                if let Some(feedback) = feedback.as_deref_mut() {
+                    // The buffer stays in place while the world lives (boxed block), and
+                    // the joint is destroyed at the end of the step.
+                    ffi::dJointSetFeedback(j, feedback.slot(out.len(), !attached.0.is_null()));
+                }
             }
         }
         out.push(ContactPoint {

@@ -11,6 +11,7 @@ pub mod contact;
 pub mod geom;
 mod grid;
 pub mod joint;
+pub(crate) mod limit_rows;
 pub(crate) mod mesh_tree;
 pub mod raycast;
 mod spread;
@@ -196,6 +197,9 @@ pub struct World {
     pub(crate) id: WorldId,
     pub(crate) raw: ffi::dWorldID,
     pub(crate) contact_group: ffi::dJointGroupID,
+    /// The one-sided rows of the next step (see `limit_rows`), and how many there are.
+    limit_group: ffi::dJointGroupID,
+    limit_rows: usize,
     threading: ffi::dThreadingImplementationID,
     pub(crate) bodies: Arena<BodyData>,
     pub(crate) geoms: Arena<GeomData>,
@@ -298,7 +302,7 @@ impl World {
         // SAFETY: ODE is initialised; the world, its threading implementation and the
         // joint group are freed in Drop. Each world gets its own self-threaded step job
         // queue: ODE's default queue is process-wide and not safe across threads.
-        let (raw, contact_group, threading) = unsafe {
+        let (raw, contact_group, limit_group, threading) = unsafe {
             let w = ffi::dWorldCreate();
             ffi::dWorldSetGravity(w, DEFAULT_GRAVITY.x, DEFAULT_GRAVITY.y, DEFAULT_GRAVITY.z);
             ffi::dWorldSetERP(w, DEFAULT_ERP);
@@ -310,7 +314,7 @@ impl World {
                 ffi::dThreadingImplementationGetFunctions(threading),
                 threading,
             );
-            (w, ffi::dJointGroupCreate(0), threading)
+            (w, ffi::dJointGroupCreate(0), ffi::dJointGroupCreate(0), threading)
         };
         let id = WorldId::next();
         let collision = CollisionState::new(raw, contact_group);
@@ -318,6 +322,8 @@ impl World {
             id,
             raw,
             contact_group,
+            limit_group,
+            limit_rows: 0,
             threading,
             bodies: Arena::new(id),
             geoms: Arena::new(id),
@@ -560,6 +566,8 @@ impl Drop for World {
         unsafe {
             ffi::dJointGroupEmpty(self.contact_group);
             ffi::dJointGroupDestroy(self.contact_group);
+            ffi::dJointGroupEmpty(self.limit_group);
+            ffi::dJointGroupDestroy(self.limit_group);
             for joint in self.joints.drain() {
                 ffi::dJointDestroy(joint.raw);
             }

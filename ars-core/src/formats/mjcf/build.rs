@@ -256,7 +256,14 @@ impl Scene {
             // feels, and adds no row to the step, where a fixed joint would add six.
             let handle =
                 self.object(id)?.body_handle().ok_or_else(|| body_error(format!("{:?}: no body", body.name)))?;
-            self.world_mut().body_mut(handle)?.set_kinematic(true);
+            let mut ode = self.world_mut().body_mut(handle)?;
+            ode.set_kinematic(true);
+            if !body.mocap {
+                // It never moves: ODE leaves it out of the step (its geoms are not
+                // moved, its contacts hold the bodies touching it as the world's
+                // would), unless a joint joins it to a body that moves.
+                ode.set_enabled(false);
+            }
             if body.mocap {
                 made.mocap.push(MjcfMocap {
                     body: body.name.clone(),

@@ -8,9 +8,8 @@
 //!
 //! A body's joints that a group cannot take stay a chain (`build.rs`): hinges through
 //! different points or about axes that are not perpendicular, a slide after a hinge,
-//! slides of a body that is not the world's child, slides with a range (ODE's linear
-//! motor has no stops), and a planar body's slides with an armature, damping or dry
-//! friction (ODE's linear motor would hold the body's centre, not the point the slide
+//! slides of a body that is not the world's child, and a planar body's slides with an
+//! armature, damping or dry friction (ODE's linear motor would hold the body's centre, not the point the slide
 //! moves).
 
 use nalgebra::{Isometry3, Point3};
@@ -33,7 +32,7 @@ pub(super) fn group_of(body: &Body, frame: &Isometry3<f64>, of_world: bool) -> O
     if slides > 0 {
         let planar = hinges > 0;
         let held = |j: &super::model::Joint| j.armature > 0.0 || j.damping > 0.0 || j.frictionloss > 0.0;
-        if !of_world || joints[..slides].iter().any(|j| j.range.is_some() || (planar && held(j))) {
+        if !of_world || joints[..slides].iter().any(|j| planar && held(j)) {
             return None;
         }
     }

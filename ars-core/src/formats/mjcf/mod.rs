@@ -80,8 +80,8 @@
 //!   hold the body in its plane; each joint stays a joint of its own, read as the body's
 //!   relative pose gives it. Joints a group cannot take (hinges through different
 //!   points or about axes that are not perpendicular, a slide after a hinge, slides of a
-//!   body that is not the world's child, slides with a range, a planar body's slides
-//!   with an armature, damping or dry friction) are chained through light links at the
+//!   body that is not the world's child, a planar body's slides with an armature,
+//!   damping or dry friction) are chained through light links at the
 //!   body's frame (each of
 //!   [`CHAIN_LINK_FRACTION`] of the body's mass and inertia, named `body/joint`, listed
 //!   in [`MjcfModel::chain_links`]): the body then moves with up to 0.1 % more inertia
