@@ -27,7 +27,11 @@ fn slide(name: &str, axis: [f64; 3]) -> GroupJoint {
 /// A box hanging from the world by three hinges at (0, 2, 0), its centre 0.5 m out
 /// along x, swinging under gravity.
 fn gimbal() -> (Simulation, ObjectId) {
-    let mut sim = Simulation::builder().build().unwrap();
+    gimbal_in(Simulation::builder().build().unwrap())
+}
+
+/// The box of [`gimbal`] in `sim`.
+fn gimbal_in(mut sim: Simulation) -> (Simulation, ObjectId) {
     let arm = sim.scene_mut().add_box([1.0, 0.1, 0.2], [0.5, 2.0, 0.0], Mass::Total(2.0)).unwrap();
     let joints = [
         hinge("a", [0.0, 2.0, 0.0], [0.0, 1.0, 0.0]),
@@ -65,14 +69,7 @@ fn three_hinges_at_a_point_read_the_euler_angles_of_the_relative_rotation() {
 fn each_hinge_s_rate_is_its_angle_s_derivative() {
     // Spinning free (no gravity), the middle angle off 0: a rate measured along the
     // hinges' axes instead of their dual axes would be off by about 0.05 rad/s.
-    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
-    let arm = sim.scene_mut().add_box([1.0, 0.1, 0.2], [0.5, 2.0, 0.0], Mass::Total(2.0)).unwrap();
-    let joints = [
-        hinge("a", [0.0, 2.0, 0.0], [0.0, 1.0, 0.0]),
-        hinge("b", [0.0, 2.0, 0.0], [0.0, 0.0, 1.0]),
-        hinge("c", [0.0, 2.0, 0.0], [1.0, 0.0, 0.0]),
-    ];
-    sim.scene_mut().add_joint_group(arm, JointEnd::World, &joints).unwrap();
+    let (mut sim, arm) = gimbal_in(Simulation::builder().gravity(Vector3::zeros()).build().unwrap());
     sim.scene_mut().body_mut(arm).unwrap().set_angular_velocity(Vector3::new(0.3, 0.2, -0.4)).unwrap();
     sim.step_n(300).unwrap();
     let h = sim.scene().time_step();

@@ -12,8 +12,8 @@ use super::joints::{ActuatorLimits, JointData, JointEfforts, JointEnd, JointType
 use super::objects::ObjectData;
 use crate::error::{Error, Result};
 use crate::geom::GeomBuilder;
-use crate::handle::{BodyHandle, GeomHandle, JointId, ObjectId};
-use crate::joint::JointBuilder;
+use crate::handle::{BodyHandle, GeomHandle, JointHandle, JointId, ObjectId};
+use crate::joint::{JointBuilder, JointKind};
 use crate::shape::Shape;
 
 /// How an inserted object is named.
@@ -168,6 +168,21 @@ impl Scene {
         };
         let creation = builder.kind().clone();
         let handle = self.world.insert_joint(builder.feedback())?;
+        self.name_joint(name, kind, handle, (object1, object2), creation, None)
+    }
+
+    /// Names a new joint `name` (empty: the kind's default name, made unique) and keeps
+    /// its data: ODE's `handle` joining `objects` (`None`: the world), made as
+    /// `creation`, in a group's place `member` if any.
+    pub(crate) fn name_joint(
+        &mut self,
+        name: &str,
+        kind: JointType,
+        handle: JointHandle,
+        (object1, object2): (ObjectId, Option<ObjectId>),
+        creation: JointKind,
+        member: Option<super::joint_group::GroupMember>,
+    ) -> Result<JointId> {
         let name = if name.is_empty() { self.joint_names.unique(kind.default_name()) } else { name.to_string() };
         let data = JointData {
             name: name.clone(),
@@ -185,7 +200,7 @@ impl Scene {
             mimic: None,
             spring: (0.0, 0.0),
             armature: None,
-            member: None,
+            member,
         };
         let id = JointId(self.joints.insert(data));
         self.joint_names.insert(name, id)?;

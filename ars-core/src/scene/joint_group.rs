@@ -35,7 +35,7 @@
 use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Unit, Vector3};
 
 use super::Scene;
-use super::joints::{ActuatorLimits, JointData, JointEfforts, JointEnd, JointType};
+use super::joints::{JointEnd, JointType};
 use crate::control::JointState;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, JointHandle, JointId, ObjectId};
@@ -282,30 +282,12 @@ impl Scene {
                 _ => JointKind::LinearMotor { axes: vec![(AxisFrame::World, axis)] },
             };
             let handle = self.world.insert_joint(joined(JointBuilder::new(motor)).feedback())?;
-            let name = if name.is_empty() { self.joint_names.unique(kind.default_name()) } else { name.clone() };
-            let data = JointData {
-                name: name.clone(),
-                kind: *kind,
-                handle,
-                object1,
-                object2: match object2 {
-                    JointEnd::Object(o) => Some(o),
-                    JointEnd::World => None,
-                },
-                friction: 0.0,
-                controller: None,
-                efforts: JointEfforts::default(),
-                creation: creation.clone(),
-                limits: None,
-                actuator: ActuatorLimits::default(),
-                dry_friction: 0.0,
-                mimic: None,
-                spring: (0.0, 0.0),
-                armature: None,
-                member: Some(GroupMember { group, index, motor: (0.0, 0.0), scale: f64::NAN }),
+            let other = match object2 {
+                JointEnd::Object(o) => Some(o),
+                JointEnd::World => None,
             };
-            let id = JointId(self.joints.insert(data));
-            self.joint_names.insert(name, id)?;
+            let member = GroupMember { group, index, motor: (0.0, 0.0), scale: f64::NAN };
+            let id = self.name_joint(name, *kind, handle, (object1, other), creation.clone(), Some(member))?;
             members.push(id);
         }
         self.groups.push(JointGroup {
