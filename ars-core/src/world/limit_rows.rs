@@ -28,6 +28,7 @@ pub(crate) struct LimitRow {
 impl World {
     /// Replaces the one-sided rows of the next step with `rows` (none: `&[]`).
     pub(crate) fn set_limit_rows(&mut self, rows: &[LimitRow]) -> Result<()> {
+        self.check_usable()?;
         let mut raw = Vec::with_capacity(rows.len());
         for r in rows {
             raw.push(self.body_raw(r.body)?);

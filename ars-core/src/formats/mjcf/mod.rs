@@ -54,7 +54,11 @@
 //!   weighs nothing is merged into the world (its geoms static); one with mass is an
 //!   object of its own, with its jointless descendants, whose ODE body is kinematic:
 //!   nothing moves it, and it adds no constraint row to the step (a fixed joint to the
-//!   world would add six to every step of what hangs from it). A moving
+//!   world would add six to every step of what hangs from it). It is also disabled, so
+//!   that ODE neither steps it nor moves its geoms each step, and what touches it is
+//!   held as the world holds it (a kinematic body at rest: its contacts are attached to
+//!   the world, the same rows, so that a table does not join everything on it into one
+//!   island); a joint that joins it to a body that moves enables it again. A moving
 //!   body that weighs nothing with its welded descendants (its mass is in bodies that
 //!   move on joints of their own) is refused, as MuJoCo refuses it ("mass and inertia
 //!   of moving bodies must be larger than mjMINVAL"). `range` (with `limited`, or
