@@ -22,8 +22,8 @@
 //! slide is at one (an ODE contact with the world, without friction, at the stop's
 //! ERP and CFM). Without stops or a motor,
 //! that motor has no row. That motor is the joint's ODE joint
-//! ([`JointView::ode`](crate::JointView::ode)), and its
-//! [`reaction`](crate::JointView::reaction) is that motor's alone (stops, speed motor,
+//! ([`JointView::ode`](crate::scene::JointView::ode)), and its
+//! [`reaction`](crate::scene::JointView::reaction) is that motor's alone (stops, speed motor,
 //! dry friction), not the group's constraint. Removing one joint of a group removes the
 //! group.
 //!
