@@ -72,7 +72,11 @@ def test_a_joint_group_holds_a_body_by_three_hinges_at_a_point():
     names = sim.add_joint_group(
         "arm",
         None,
-        [("a", "hinge", at, (0, 1, 0), 0.0), ("b", "hinge", at, (0, 0, 1), 0.0), ("c", "hinge", at, (1, 0, 0), 0.0)],
+        [
+            ("a", "hinge", at, (0, 1, 0), 0.0),
+            ("b", "hinge", at, (0, 0, 1), 0.0),
+            ("c", "hinge", at, (1, 0, 0), 0.0),
+        ],
     )
     assert names == ["a", "b", "c"]
     sim.run(0.3)
@@ -81,9 +85,13 @@ def test_a_joint_group_holds_a_body_by_three_hinges_at_a_point():
     assert abs(sim.joint("a").position) < 1e-9 and sim.joint("b").kind == "hinge"
     with pytest.raises(ars.InputError, match="perpendicular"):
         sim.add_box((0.1, 0.1, 0.1), (3.0, 1.0, 0.0), mass=1.0, name="other")
-        sim.add_joint_group("other", None, [("d", "hinge", at, (0, 1, 0), 0.0), ("e", "hinge", at, (0, 1, 1), 0.0)])
+        sim.add_joint_group(
+            "other", None, [("d", "hinge", at, (0, 1, 0), 0.0), ("e", "hinge", at, (0, 1, 1), 0.0)]
+        )
     with pytest.raises(ars.InputError, match="slider"):
-        sim.add_joint_group("other", None, [("d", "ball", at, (0, 1, 0), 0.0), ("e", "hinge", at, (1, 0, 0), 0.0)])
+        sim.add_joint_group(
+            "other", None, [("d", "ball", at, (0, 1, 0), 0.0), ("e", "hinge", at, (1, 0, 0), 0.0)]
+        )
 
 
 def test_bad_input_is_an_input_error_and_a_value_error():
