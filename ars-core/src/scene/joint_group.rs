@@ -424,12 +424,23 @@ impl Scene {
     /// Works out every group's kinematics for the drives of the step about to be taken
     /// (`forget_group_kinematics` after them).
     pub(crate) fn keep_group_kinematics(&mut self) -> Result<()> {
-        let kinematics = self.groups.iter().map(|g| self.group_kinematics(g)).collect::<Result<Vec<_>>>()?;
+        // Into the room of the last step's.
+        let mut kinematics = std::mem::take(&mut self.group_kinematics_now);
+        kinematics.clear();
+        let worked = self.groups.iter().try_for_each(|g| {
+            kinematics.push(self.group_kinematics(g)?);
+            Ok(())
+        });
+        if worked.is_err() {
+            // None kept: a group's would be read as another's.
+            kinematics.clear();
+        }
         self.group_kinematics_now = kinematics;
-        Ok(())
+        worked
     }
 
-    /// The bodies may move again: group kinematics are worked out when asked.
+    /// The bodies may move again: group kinematics are worked out when asked (the
+    /// list's room is kept for the next step).
     pub(crate) fn forget_group_kinematics(&mut self) {
         self.group_kinematics_now.clear();
     }
@@ -480,11 +491,13 @@ impl Scene {
     /// Sets every group's rows for the coming step: the locked freedoms' directions and
     /// drift corrections, and each member's motor turned and scaled to its dual axis.
     pub(crate) fn hold_groups(&mut self) -> Result<()> {
-        let mut stops = Vec::new();
-        for group in 0..self.groups.len() {
-            self.hold_group(group, &mut stops)?;
-        }
-        self.world.set_limit_rows(&stops)
+        // The stops' rows of the last step, emptied: its room is kept.
+        let mut stops = std::mem::take(&mut self.group_stops);
+        stops.clear();
+        let held = (0..self.groups.len()).try_for_each(|group| self.hold_group(group, &mut stops));
+        let set = held.and_then(|()| self.world.set_limit_rows(&stops));
+        self.group_stops = stops;
+        set
     }
 
     /// Sets group `group`'s rows for the coming step; its slides at their stops add a
@@ -495,8 +508,12 @@ impl Scene {
         let k = self.kinematics_of(group)?.into_owned();
         let g = self.group(group)?;
         let (hinges, lock_turns, lock_slides, child) = (g.hinges, g.lock_turns, g.lock_slides, g.child);
-        let corrections: Vec<f64> = g.normals.iter().map(|n| -erp * n.dot(&k.displacement) / h).collect();
-        let members = g.members.clone();
+        // At most two normals (one slide).
+        let mut corrections = [0.0; 2];
+        for (c, n) in corrections.iter_mut().zip(&g.normals) {
+            *c = -erp * n.dot(&k.displacement) / h;
+        }
+        let normals = g.normals.len();
         if let Some(lock) = lock_turns {
             let mut motor = self.world.joint_mut(lock)?;
             for (row, euler) in (hinges..3).enumerate() {
@@ -507,11 +524,12 @@ impl Scene {
         }
         if let Some(lock) = lock_slides {
             let mut motor = self.world.joint_mut(lock)?;
-            for (row, correction) in corrections.into_iter().enumerate() {
+            for (row, correction) in corrections.into_iter().take(normals).enumerate() {
                 motor.set_param(JointParam::Velocity, row, speed(correction))?;
             }
         }
-        for id in members {
+        for m in 0..self.group(group)?.members.len() {
+            let id = self.group(group)?.members[m];
             let d = self.joint_data(id)?;
             let Some(member) = d.member else { continue };
             let (i, handle, stops_of_member, armature, kind) = (member.index, d.handle, d.limits, d.armature, d.kind);

@@ -55,6 +55,9 @@ pub struct Scene {
     groups: Vec<joint_group::JointGroup>,
     /// Each group's kinematics while the drives of a step are applied (else empty).
     group_kinematics_now: Vec<joint_group::GroupKinematics>,
+    /// The one-sided rows of the groups' slides at their stops, made each step (its
+    /// room kept from one step to the next).
+    group_stops: Vec<crate::world::limit_rows::LimitRow>,
     /// Joints with viscous friction or a controller, in creation order.
     driven_joints: Vec<JointId>,
     /// Joints driven by an [`Actuator`](crate::Actuator), in the order their actuators
@@ -105,6 +108,7 @@ impl Scene {
             joint_names: Names::new("joint"),
             groups: Vec::new(),
             group_kinematics_now: Vec::new(),
+            group_stops: Vec::new(),
             driven_joints: Vec::new(),
             actuated_joints: Vec::new(),
             robots_loaded: 0,
