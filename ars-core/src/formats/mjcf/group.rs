@@ -9,8 +9,8 @@
 //! A body's joints that a group cannot take stay a chain (`build.rs`): hinges through
 //! different points or about axes that are not perpendicular, a slide after a hinge,
 //! slides of a body that is not the world's child, and a planar body's slides with an
-//! armature, damping or dry friction (ODE's linear motor would hold the body's centre, not the point the slide
-//! moves).
+//! armature, damping or dry friction (ODE's linear motor would hold the body's centre,
+//! not the point the slide moves).
 
 use nalgebra::{Isometry3, Point3};
 
@@ -24,17 +24,15 @@ pub(super) fn group_of(body: &Body, frame: &Isometry3<f64>, of_world: bool) -> O
     if joints.len() < 2 {
         return None;
     }
-    let slides = joints.iter().take_while(|j| j.kind == JointKind::Slide).count();
-    let hinges = joints.len() - slides;
-    if joints[slides..].iter().any(|j| j.kind != JointKind::Hinge) || slides > 3 || hinges > 3 {
+    if joints.iter().any(|j| !matches!(j.kind, JointKind::Hinge | JointKind::Slide)) {
         return None;
     }
-    if slides > 0 {
-        let planar = hinges > 0;
-        let held = |j: &super::model::Joint| j.armature > 0.0 || j.damping > 0.0 || j.frictionloss > 0.0;
-        if !of_world || joints[..slides].iter().any(|j| planar && held(j)) {
-            return None;
-        }
+    // A planar body's slides take no motor (`Scene::check_member_motor`): such slides
+    // stay a chain. What else a group takes, `fits` says.
+    let slides = joints.iter().take_while(|j| j.kind == JointKind::Slide).count();
+    let held = |j: &super::model::Joint| j.armature > 0.0 || j.damping > 0.0 || j.frictionloss > 0.0;
+    if slides < joints.len() && joints[..slides].iter().any(held) {
+        return None;
     }
     let group: Vec<GroupJoint> = joints
         .iter()
