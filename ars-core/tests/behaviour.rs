@@ -404,3 +404,71 @@ fn many_worlds_come_and_go() {
         assert_eq!(*first.get_or_insert(state), state);
     }
 }
+
+#[test]
+fn a_kinematic_body_at_rest_holds_what_touches_it_as_a_static_geom_does() {
+    // Boxes resting on a slab: the slab a static geom, or a kinematic body at rest,
+    // whose contacts are attached to the world so that it does not join what it
+    // touches into one island. Each box then moves as if alone on the slab (to the
+    // bit), as on a static slab (to 1e-12), and feels the same contact forces; the
+    // kinematic slab also touches a static plane, which makes no contact joint.
+    let rest = |kinematic: bool, second_box: bool| {
+        let mut world = World::new();
+        world.set_contact_feedback(true);
+        let space = world.create_space(SpaceKind::Simple).unwrap();
+        let slab = Vector3::new(4.0, 0.2, 2.0);
+        if kinematic {
+            let k = world.insert_body(BodyBuilder::kinematic().position(Point3::new(0.0, 0.1, 0.0))).unwrap();
+            world.insert_geom(space, GeomBuilder::box_edges(slab).attached_to(k)).unwrap();
+            world.insert_geom(space, GeomBuilder::plane(Vector3::y(), 0.05)).unwrap();
+        } else {
+            world.insert_geom(space, GeomBuilder::box_edges(slab).pose(Isometry3::translation(0.0, 0.1, 0.0))).unwrap();
+        }
+        let size = Vector3::repeat(0.5);
+        let mut add_box = |x: f64| {
+            let at = Point3::new(x, 0.5, 0.0);
+            let b = world.insert_body(BodyBuilder::new().position(at).mass(MassSpec::box_total(1.0, size))).unwrap();
+            world.insert_geom(space, GeomBuilder::box_edges(size).attached_to(b)).unwrap();
+            b
+        };
+        let b = add_box(-1.0);
+        if second_box {
+            add_box(1.0);
+        }
+        let mut forces = Vec::new();
+        for _ in 0..600 {
+            world.collide(space).unwrap();
+            world.step(DT).unwrap();
+            let on_b = |c: &&ContactPoint| c.pair.body1 == Some(b) || c.pair.body2 == Some(b);
+            forces = world
+                .contacts()
+                .iter()
+                .filter(on_b)
+                .map(|c| if c.pair.body1 == Some(b) { c.force } else { -c.force })
+                .collect();
+            let between_still: Vec<_> = world
+                .contacts()
+                .iter()
+                .filter(|c| c.pair.body1.is_none() || c.pair.body2.is_none())
+                .filter(|c| !on_b(c))
+                .collect();
+            assert_eq!(!between_still.is_empty(), kinematic, "the kinematic slab touches the plane");
+            assert!(between_still.iter().all(|c| c.force == Vector3::zeros()), "no joint between them");
+            world.clear_contacts();
+        }
+        (world.body(b).unwrap().position(), forces)
+    };
+    let (alone, forces_alone) = rest(true, false);
+    let (beside, forces_beside) = rest(true, true);
+    assert_eq!(alone, beside, "a box on a kinematic slab is an island of its own");
+    assert_eq!(forces_alone, forces_beside);
+    let (on_static, forces_static) = rest(false, false);
+    assert!((alone - on_static).norm() < 1e-12, "{alone} {on_static}");
+    // A resting box's four points share its weight in no one way (the LCP's choice):
+    // their sum is what must agree.
+    let total = |f: &[Vector3<f64>]| f.iter().sum::<Vector3<f64>>();
+    assert!((total(&forces_alone) - total(&forces_static)).norm() < 1e-9, "{forces_alone:?} {forces_static:?}");
+    // Resting: the slab pushes the box up with its weight.
+    let up: f64 = forces_alone.iter().map(|f| f.y).sum();
+    assert!((up - 9.81).abs() < 1e-3, "{up} {forces_alone:?}");
+}
