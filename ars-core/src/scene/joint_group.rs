@@ -113,6 +113,8 @@ pub(crate) struct JointGroup {
     anchor_parent: Vector3<f64>,
     /// The child's rotation relative to the parent where every joint reads 0.
     rest: Rotation3<f64>,
+    /// `restᵀ · frame`, which the hinges' angles are read with.
+    rest_frame: Matrix3<f64>,
     /// The ODE joints holding what no joint of the group allows.
     pub(crate) ball: Option<JointHandle>,
     pub(crate) lock_turns: Option<JointHandle>,
@@ -122,7 +124,7 @@ pub(crate) struct JointGroup {
 /// The group's joints as they are: each one's position and rate, the direction its
 /// efforts act along (unit, world) and its dual axis' length; the locked rotations'
 /// and translations' directions, their dual length and their error.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub(crate) struct GroupKinematics {
     position: [f64; 6],
     rate: [f64; 6],
@@ -302,6 +304,7 @@ impl Scene {
             anchor_child: rest.anchor_child,
             anchor_parent: rest.anchor_parent,
             rest: rotation,
+            rest_frame: rotation.matrix().transpose() * shape.frame,
             ball,
             lock_turns,
             lock_slides,
@@ -334,59 +337,62 @@ impl Scene {
 
     /// The group's kinematics now.
     fn group_kinematics(&self, g: &JointGroup) -> Result<GroupKinematics> {
+        let mut k = GroupKinematics::default();
+        self.fill_group_kinematics(g, &mut k)?;
+        Ok(k)
+    }
+
+    /// Writes the group's kinematics now into `k` (every field).
+    fn fill_group_kinematics(&self, g: &JointGroup, k: &mut GroupKinematics) -> Result<()> {
         let child = self.world.body(g.child)?;
         let (xc, rc, vc, wc) = (child.position(), child.rotation(), child.linear_velocity(), child.angular_velocity());
-        let (xp, rp, wp, vp_at) = match g.parent {
+        // The group's frame in the world: its hinges' axes where they are now.
+        let (xp, rp, world_frame, wp, vp_at) = match g.parent {
             Some(p) => {
                 let body = self.world.body(p)?;
+                let rp = body.rotation();
                 let anchor = child.point_to_world(Point3::from(g.anchor_child));
-                (body.position(), body.rotation(), body.angular_velocity(), body.point_velocity(anchor))
+                (body.position(), Some(rp), rp.matrix() * g.frame, body.angular_velocity(), body.point_velocity(anchor))
             }
-            None => (Point3::origin(), Rotation3::identity(), Vector3::zeros(), Vector3::zeros()),
+            None => (Point3::origin(), None, g.frame, Vector3::zeros(), Vector3::zeros()),
         };
-        // The child's rotation is parent · G · rest; G in the group's frame B is
-        // Rx(a)·Ry(b)·Rz(c), its first angles the hinges'.
-        let g_rel = rp.inverse() * rc * g.rest.inverse();
-        let m = g.frame.transpose() * g_rel.matrix() * g.frame;
+        // The child's rotation is parent · G · rest; G in the group's frame F is
+        // Rx(a)·Ry(b)·Rz(c), its first angles the hinges': Fᵀ·G·F = (parent·F)ᵀ·child·(restᵀ·F).
+        let m = world_frame.transpose() * (rc.matrix() * g.rest_frame);
         let a = (-m[(1, 2)]).atan2(m[(2, 2)]);
         let b = m[(0, 2)].atan2(m[(0, 0)].hypot(m[(0, 1)]));
         let c = (-m[(0, 1)]).atan2(m[(0, 0)]);
-        let world_frame = rp.matrix() * g.frame;
-        let rx = Rotation3::from_axis_angle(&Vector3::x_axis(), a);
-        let ry = Rotation3::from_axis_angle(&Vector3::y_axis(), b);
-        let w1 = world_frame * Vector3::x();
-        let w2 = world_frame * (rx * Vector3::y());
-        let w3 = world_frame * (rx * ry * Vector3::z());
+        let (sin_a, cos_a) = a.sin_cos();
+        let (sin_b, cos_b) = b.sin_cos();
+        // The Euler axes in the world: x, Rx(a)·y, Rx(a)·Ry(b)·z of the group's frame.
+        let w1 = world_frame.column(0).into_owned();
+        let w2 = world_frame * Vector3::new(0.0, cos_a, sin_a);
+        let w3 = world_frame * Vector3::new(sin_b, -sin_a * cos_b, cos_a * cos_b);
         let det = w1.dot(&w2.cross(&w3));
         let det = if det.abs() < 1.0 / MAX_DUAL { (1.0 / MAX_DUAL).copysign(det) } else { det };
         let duals = [w2.cross(&w3) / det, w3.cross(&w1) / det, w1.cross(&w2) / det];
         let relative = wc - wp;
-        let mut k = GroupKinematics {
-            position: [0.0; 6],
-            rate: [0.0; 6],
-            direction: [Vector3::zeros(); 6],
-            scale: [1.0; 6],
-            angles: [a, b, c],
-            euler_direction: [Vector3::zeros(); 3],
-            euler_scale: [1.0; 3],
-            displacement: Vector3::zeros(),
-            anchor: Point3::origin(),
-        };
+        k.angles = [a, b, c];
         for (i, (d, w)) in duals.iter().zip([w1, w2, w3]).enumerate() {
             let length = d.norm();
             // At gimbal lock the middle dual axis vanishes: its own axis stands in.
             (k.euler_direction[i], k.euler_scale[i]) =
                 if length > 1e-12 { (d / length, length.min(MAX_DUAL)) } else { (w, 1.0) };
         }
-        let anchor = xc + rc * g.anchor_child;
-        let anchor_velocity = vc + wc.cross(&(rc * g.anchor_child)) - vp_at;
+        let arm = rc * g.anchor_child;
+        let anchor = xc + arm;
+        let anchor_velocity = vc + wc.cross(&arm) - vp_at;
         k.anchor = anchor;
-        k.displacement = rp * ((rp.inverse() * (anchor - xp)) - g.anchor_parent);
+        k.displacement = match rp {
+            Some(rp) => rp * ((rp.inverse() * (anchor - xp)) - g.anchor_parent),
+            None => anchor.coords - g.anchor_parent,
+        };
         let slides = g.slides.len();
         for (i, axis) in g.slides.iter().enumerate() {
             k.position[i] = axis.dot(&k.displacement);
             k.rate[i] = axis.dot(&anchor_velocity);
             k.direction[i] = *axis;
+            k.scale[i] = 1.0;
         }
         let axes = [w1, w2, w3];
         for (h, dual) in duals.iter().enumerate().take(g.hinges) {
@@ -401,9 +407,10 @@ impl Scene {
                 // With a rotation locked, the turn is in the span of the hinges' axes,
                 // which are perpendicular: each axis is its own dual there (scale 1).
                 k.direction[i] = axes[h];
+                k.scale[i] = 1.0;
             }
         }
-        Ok(k)
+        Ok(())
     }
 
     /// A group member's position and rate now.
@@ -426,11 +433,9 @@ impl Scene {
     pub(crate) fn keep_group_kinematics(&mut self) -> Result<()> {
         // Into the room of the last step's.
         let mut kinematics = std::mem::take(&mut self.group_kinematics_now);
-        kinematics.clear();
-        let worked = self.groups.iter().try_for_each(|g| {
-            kinematics.push(self.group_kinematics(g)?);
-            Ok(())
-        });
+        kinematics.resize_with(self.groups.len(), GroupKinematics::default);
+        let worked =
+            self.groups.iter().zip(kinematics.iter_mut()).try_for_each(|(g, k)| self.fill_group_kinematics(g, k));
         if worked.is_err() {
             // None kept: a group's would be read as another's.
             kinematics.clear();
@@ -494,18 +499,26 @@ impl Scene {
         // The stops' rows of the last step, emptied: its room is kept.
         let mut stops = std::mem::take(&mut self.group_stops);
         stops.clear();
-        let held = (0..self.groups.len()).try_for_each(|group| self.hold_group(group, &mut stops));
+        // The kinematics kept for this step, read in place (worked out here without).
+        let kept = std::mem::take(&mut self.group_kinematics_now);
+        let held = (0..self.groups.len()).try_for_each(|group| match kept.get(group) {
+            Some(k) => self.hold_group(group, k, &mut stops),
+            None => {
+                let k = self.group_kinematics(self.group(group)?)?;
+                self.hold_group(group, &k, &mut stops)
+            }
+        });
+        self.group_kinematics_now = kept;
         let set = held.and_then(|()| self.world.set_limit_rows(&stops));
         self.group_stops = stops;
         set
     }
 
-    /// Sets group `group`'s rows for the coming step; its slides at their stops add a
-    /// one-sided row to `stops`.
-    fn hold_group(&mut self, group: usize, stops: &mut Vec<LimitRow>) -> Result<()> {
+    /// Sets group `group`'s rows for the coming step, its kinematics `k`; its slides at
+    /// their stops add a one-sided row to `stops`.
+    fn hold_group(&mut self, group: usize, k: &GroupKinematics, stops: &mut Vec<LimitRow>) -> Result<()> {
         let (erp, h) = (self.world.erp(), self.time_step.get());
         let speed = |v: f64| v.clamp(-limits::MAX_SPEED, limits::MAX_SPEED);
-        let k = self.kinematics_of(group)?.into_owned();
         let g = self.group(group)?;
         let (hinges, lock_turns, lock_slides, child) = (g.hinges, g.lock_turns, g.lock_slides, g.child);
         // At most two normals (one slide).
@@ -550,8 +563,11 @@ impl Scene {
                     stops.push(LimitRow { body: child, point: k.anchor, normal, depth, erp, cfm });
                 }
             }
+            // A hinge's motor has rows with stops, a speed motor or dry friction (a
+            // force limit): only then is it turned to the hinge's axis.
+            let rows = stops_of_member.is_some() || member.motor.1 > 0.0;
             let mut motor = self.world.joint_mut(handle)?;
-            if kind == JointType::Hinge {
+            if kind == JointType::Hinge && rows {
                 // A slide's direction is fixed (the world's, where it was made).
                 motor.set_motor_axis(0, direction)?;
                 if stops_of_member.is_some() {
@@ -575,7 +591,11 @@ impl Scene {
                 if kind == JointType::Hinge {
                     self.world.joint_mut(armature.motor)?.set_motor_axis(0, direction)?;
                 }
-                self.hold_scaled_armature(armature, k.rate[i], scale)?;
+                // Damping alone on a unit axis (a slide, or a hinge of fewer than three)
+                // keeps the target and CFM it was given.
+                if armature.inertia > 0.0 || scale != 1.0 || hinges == 3 && kind == JointType::Hinge {
+                    self.hold_scaled_armature(armature, k.rate[i], scale)?;
+                }
             }
         }
         Ok(())

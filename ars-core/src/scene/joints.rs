@@ -398,7 +398,10 @@ impl Scene {
             if let Some(mimic) = mimic {
                 self.follow(id, handle, kind, state, mimic)?;
             }
-            if let (Some(armature), None) = (armature, self.joint_data(id)?.member) {
+            // Damping alone keeps the target (0) and CFM it was given.
+            if let (Some(armature), None) = (armature, self.joint_data(id)?.member)
+                && armature.inertia > 0.0
+            {
                 self.hold_armature(armature, state.rate)?;
             }
         }
