@@ -11,6 +11,11 @@
  *   near callbacks (plain_near in guard.c, `pair_may_touch` in ars-core) make
  *   nothing of them, and a scene's static geoms (terrain, arenas, furniture, and the
  *   many geoms of an imported model's world body) make most of the pairs;
+ * - it leaves out a plane's pairs with a geom (not a ray) whose bounding box lies
+ *   wholly on the plane's open side, where no collider of ODE's finds a point (each
+ *   reports only depths >= 0): the same test as ars-core's `above_plane`, before the
+ *   near callback rather than in it (a floor's AABB is infinite: every geom's box
+ *   overlaps it);
  * - it tests the remaining pairs on a compact array rather than through ODE's
  *   linked list and virtual calls. A geom class's AABBTest is not called: only
  *   user classes can override it, and ARS's one (the convex hull in hull.c) does
@@ -32,6 +37,10 @@ struct simple_entry {
     unsigned long collide;
     /* Static and not a ray: pairs with another such geom are left out. */
     int fixed;
+    int ray;
+    /* A plane's parameters (a, b, c, d: a·x + b·y + c·z = d), when `plane`. */
+    int plane;
+    dReal plane_params[4];
     /* The index of the first entry at or after this one that is not fixed. */
     int next_moving;
 };
@@ -46,6 +55,16 @@ static int boxes_disjoint(const dReal *b1, const dReal *b2) {
     return b1[0] > b2[1] || b1[1] < b2[0] || b1[2] > b2[3] || b1[3] < b2[2] || b1[4] > b2[5] || b1[5] < b2[4];
 }
 
+/* Whether the box `aabb` lies wholly on the open side of plane `p`: its lowest
+ * corner's height over the plane (n·x less d) is above 0. */
+static int box_above_plane(const dReal *p, const dReal *aabb) {
+    dReal lowest = 0;
+    for (int i = 0; i < 3; i++) {
+        lowest += p[i] * (p[i] >= 0 ? aabb[2 * i] : aabb[2 * i + 1]);
+    }
+    return lowest - p[3] > 0;
+}
+
 static void test_pair(const struct simple_entry *e1, const struct simple_entry *e2, void *data,
                       dNearCallback *callback) {
     if (e1->body == e2->body && e1->body != NULL) {
@@ -55,6 +74,10 @@ static void test_pair(const struct simple_entry *e1, const struct simple_entry *
         return;
     }
     if (boxes_disjoint(e1->aabb, e2->aabb)) {
+        return;
+    }
+    if ((e1->plane && !e2->ray && box_above_plane(e1->plane_params, e2->aabb)) ||
+        (e2->plane && !e1->ray && box_above_plane(e2->plane_params, e1->aabb))) {
         return;
     }
     callback(data, e1->geom, e2->geom);
@@ -97,7 +120,13 @@ static int collide_simple(dSpaceID space, void *data, dNearCallback *callback) {
         dGeomGetAABB(g, e->aabb);
         e->geom = g;
         e->body = dGeomGetBody(g);
-        e->fixed = e->body == NULL && dGeomGetClass(g) != dRayClass;
+        int class = dGeomGetClass(g);
+        e->ray = class == dRayClass;
+        e->fixed = e->body == NULL && !e->ray;
+        e->plane = class == dPlaneClass;
+        if (e->plane) {
+            dGeomPlaneGetParams(g, e->plane_params);
+        }
         n++;
     }
     int next = n;

@@ -4,7 +4,8 @@
 //! bodies are joined by a (non-contact) joint, (2) records ray hits without creating
 //! contact joints, (3) asks [`CollisionHooks::contact_surface`] for the surface of the
 //! pair (the world's default surface unless the hooks say otherwise, or `None` to skip
-//! it) and (4) creates one contact joint per contact point in the world's contact
+//! it; a plane's pair with a geom whose bounding box lies wholly above it is skipped
+//! before, as it makes no contact) and (4) creates one contact joint per contact point in the world's contact
 //! group. [`World::clear_contacts`] empties the group; the original ARS did it after
 //! every step.
 //!
@@ -560,14 +561,14 @@ impl World {
         {
             return Err(PairFailure::Refused(g1, g2, ratio));
         }
-        let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
-        let Some(surface) = self.pair_surface(hooks, &pair, ray1 || ray2) else {
-            return Ok(());
-        };
         // SAFETY: both geoms are live.
         if !ray1 && !ray2 && unsafe { above_plane(o1, shape1, o2) || above_plane(o2, shape2, o1) } {
             return Ok(());
         }
+        let pair = GeomPair { geom1: g1, geom2: g2, body1: d1.body, body2: d2.body };
+        let Some(surface) = self.pair_surface(hooks, &pair, ray1 || ray2) else {
+            return Ok(());
+        };
         let (asked, max) = self.contact_counts(&surface);
         let scratch = &mut self.collision.scratch;
         // SAFETY: both geoms are live; `scratch` holds MAX_CONTACTS_LIMIT ≥ `asked`
