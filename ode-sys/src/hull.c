@@ -94,11 +94,90 @@ static void hull_rename(dContactGeom *contact, int skip, int count, dGeomID inne
     }
 }
 
+/* A hull geom's bounding box in its own frame, placed: its centre and axes (columns)
+ * in the world. */
+struct placed_box {
+    dReal centre[3];
+    dReal axis[3][3]; /* axis[j]: the box's j-th axis, world */
+    const dReal *half;
+};
+
+static void hull_placed_box(dGeomID g, struct placed_box *b) {
+    const struct hull_proxy *h = dGeomGetClassData(g);
+    const dReal *p = dGeomGetPosition(g);
+    const dReal *R = dGeomGetRotation(g); /* 3 rows of 4 */
+    for (int i = 0; i < 3; i++) {
+        const dReal *row = R + 4 * i;
+        b->centre[i] = p[i] + row[0] * h->centre[0] + row[1] * h->centre[1] + row[2] * h->centre[2];
+        for (int j = 0; j < 3; j++) {
+            b->axis[j][i] = row[j];
+        }
+    }
+    b->half = h->half;
+}
+
+static dReal dot3(const dReal *u, const dReal *v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
+
+/* Whether two hull geoms' boxes (each the hull's bounding box in its own frame) lie
+ * apart with room to spare, by the separating axis test over their 15 axes (their
+ * faces' normals and their edges' cross products). Each hull lies within its box, so
+ * apart boxes mean apart hulls, where ODE's convex collider finds no point: the pair
+ * is skipped before that collider's support-point searches over every vertex. The
+ * room (a ten-thousandth of the boxes' extents along the axis, and a micrometre) keeps
+ * pairs that nearly touch for the collider, whatever its tolerances. */
+static int hull_boxes_apart(dGeomID g1, dGeomID g2) {
+    struct placed_box A, B;
+    hull_placed_box(g1, &A);
+    hull_placed_box(g2, &B);
+    const dReal *a = A.half, *b = B.half;
+    dReal d[3] = {B.centre[0] - A.centre[0], B.centre[1] - A.centre[1], B.centre[2] - A.centre[2]};
+    dReal R[3][3], Q[3][3], t[3];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            R[i][j] = dot3(A.axis[i], B.axis[j]);
+            /* Parallel edges make a cross product of zero: a little more than |R|
+             * keeps those axes from separating anything by rounding. */
+            Q[i][j] = fabs(R[i][j]) + 1e-12;
+        }
+        t[i] = dot3(d, A.axis[i]);
+    }
+#define APART(distance, ra, rb) (fabs(distance) > (ra) + (rb) + 1e-4 * ((ra) + (rb)) + 1e-6)
+    for (int i = 0; i < 3; i++) {
+        if (APART(t[i], a[i], b[0] * Q[i][0] + b[1] * Q[i][1] + b[2] * Q[i][2])) {
+            return 1;
+        }
+    }
+    for (int j = 0; j < 3; j++) {
+        dReal distance = t[0] * R[0][j] + t[1] * R[1][j] + t[2] * R[2][j];
+        if (APART(distance, a[0] * Q[0][j] + a[1] * Q[1][j] + a[2] * Q[2][j], b[j])) {
+            return 1;
+        }
+    }
+    for (int i = 0; i < 3; i++) {
+        int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+        for (int j = 0; j < 3; j++) {
+            int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            /* The axis A_i × B_j. */
+            dReal distance = t[i2] * R[i1][j] - t[i1] * R[i2][j];
+            dReal ra = a[i1] * Q[i2][j] + a[i2] * Q[i1][j];
+            dReal rb = b[j1] * Q[i][j2] + b[j2] * Q[i][j1];
+            if (APART(distance, ra, rb)) {
+                return 1;
+            }
+        }
+    }
+#undef APART
+    return 0;
+}
+
 /* The collider of a hull geom `o1` with any geom `o2` (dCollide calls it with the hull
  * geom first, reversing the points itself when it was given the other way round). */
 static int hull_collide(dGeomID o1, dGeomID o2, int flags, dContactGeom *contact, int skip) {
-    dGeomID inner1 = hull_placed_inner(o1);
     int other = dGeomGetClass(o2);
+    if (other == hull_class && hull_boxes_apart(o1, o2)) {
+        return 0;
+    }
+    dGeomID inner1 = hull_placed_inner(o1);
     int count;
     if (other == hull_class) {
         /* dCollide(a, b) of two hull geoms comes here as hull_collide(b, a) (ODE
