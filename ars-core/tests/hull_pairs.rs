@@ -138,50 +138,61 @@ fn hull_pairs_find_the_points_of_odes_own_convexes_bit_for_bit_and_none_where_th
         }
     };
     let made: Vec<_> = shapes.iter().map(make).collect();
+    let twins: Vec<_> = shapes.iter().map(make).collect();
+    // SAFETY: plain ODE geoms of valid sizes, in no space (destroyed below).
+    let primitives = unsafe {
+        [
+            ffi::dCreateBox(std::ptr::null_mut(), 0.4, 0.2, 0.3),
+            ffi::dCreateSphere(std::ptr::null_mut(), 0.12),
+            ffi::dCreateCapsule(std::ptr::null_mut(), 0.05, 0.3),
+            ffi::dCreateCylinder(std::ptr::null_mut(), 0.1, 0.25),
+        ]
+    };
+    // The second of a pair: another hull (its own twin convex), or a primitive (the
+    // same geom on both sides).
+    let others: Vec<(ffi::dGeomID, ffi::dGeomID)> =
+        twins.iter().copied().chain(primitives.iter().map(|&g| (g, g))).collect();
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
-    let (mut touching, mut apart_in_overlapping_boxes) = (0, 0);
-    for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-        let ((hull_a, convex_a), (hull_b, convex_b)) = (made[i], made[j]);
-        // Two different geoms even when the shape is the same.
-        let (hull_b, convex_b) = if i == j { make(&shapes[j]) } else { (hull_b, convex_b) };
-        for _ in 0..3000 {
-            let (ra, rb) = (random.rotation(), random.rotation());
-            let pa = [random.next() * 0.1, random.next() * 0.1, random.next() * 0.1];
-            let pb = [random.next() * 0.7 - 0.35, random.next() * 0.7 - 0.35, random.next() * 0.7 - 0.35];
-            for (g, p, r) in [(hull_a, pa, &ra), (convex_a, pa, &ra), (hull_b, pb, &rb), (convex_b, pb, &rb)] {
-                place(g, p, r);
+    let bits = |c: &ffi::dContactGeom| {
+        (c.pos.map(f64::to_bits), c.normal.map(f64::to_bits), c.depth.to_bits(), c.side1, c.side2)
+    };
+    for (i, &(hull_a, convex_a)) in made.iter().enumerate() {
+        for (j, &(geom_b, twin_b)) in others.iter().enumerate() {
+            let (mut touching, mut apart_in_overlapping_boxes) = (0, 0);
+            for _ in 0..1500 {
+                let (ra, rb) = (random.rotation(), random.rotation());
+                let pa = [random.next() * 0.1, random.next() * 0.1, random.next() * 0.1];
+                let pb = [random.next() * 0.7 - 0.35, random.next() * 0.7 - 0.35, random.next() * 0.7 - 0.35];
+                for (g, p, r) in [(hull_a, pa, &ra), (convex_a, pa, &ra), (geom_b, pb, &rb), (twin_b, pb, &rb)] {
+                    place(g, p, r);
+                }
+                // Either way round, as a space may report the pair.
+                for (hulls, convexes) in
+                    [((hull_a, geom_b), (convex_a, twin_b)), ((geom_b, hull_a), (twin_b, convex_a))]
+                {
+                    let (by_hulls, by_convexes) = (collide(hulls.0, hulls.1), collide(convexes.0, convexes.1));
+                    assert_eq!(by_hulls.len(), by_convexes.len(), "pair {i}-{j} at {pa:?} {pb:?}");
+                    for (h, c) in by_hulls.iter().zip(&by_convexes) {
+                        assert_eq!(bits(h), bits(c), "pair {i}-{j} at {pa:?} {pb:?}");
+                        assert_eq!((h.g1, h.g2), hulls);
+                    }
+                    if by_hulls.is_empty() && boxes_overlap(hull_a, geom_b) {
+                        apart_in_overlapping_boxes += 1;
+                    } else if !by_hulls.is_empty() {
+                        touching += 1;
+                    }
+                }
             }
-            let (by_hulls, by_convexes) = (collide(hull_a, hull_b), collide(convex_a, convex_b));
-            assert_eq!(by_hulls.len(), by_convexes.len(), "pair {i}-{j} at {pa:?} {pb:?}");
-            for (h, c) in by_hulls.iter().zip(&by_convexes) {
-                let bits = |c: &ffi::dContactGeom| {
-                    (c.pos.map(f64::to_bits), c.normal.map(f64::to_bits), c.depth.to_bits(), c.side1, c.side2)
-                };
-                assert_eq!(bits(h), bits(c), "pair {i}-{j} at {pa:?} {pb:?}");
-                assert_eq!((h.g1, h.g2), (hull_a, hull_b));
-            }
-            if by_hulls.is_empty() && boxes_overlap(hull_a, hull_b) {
-                apart_in_overlapping_boxes += 1;
-            } else if !by_hulls.is_empty() {
-                touching += 1;
-            }
-        }
-        if i == j {
-            // SAFETY: the extra pair made above, in no space, used no more.
-            unsafe {
-                ffi::dGeomDestroy(hull_b);
-                ffi::dGeomDestroy(convex_b);
-            }
+            // Both kinds of pair were met many times.
+            assert!(touching > 300, "pair {i}-{j}: {touching} touching");
+            assert!(
+                apart_in_overlapping_boxes > 300,
+                "pair {i}-{j}: {apart_in_overlapping_boxes} apart with overlapping boxes"
+            );
         }
     }
-    // Both kinds of pair were met many times.
-    assert!(touching > 1000, "{touching} touching");
-    assert!(apart_in_overlapping_boxes > 1000, "{apart_in_overlapping_boxes} apart with overlapping boxes");
-    for (hull, convex) in made {
+    for g in made.into_iter().chain(twins).flat_map(|(h, c)| [h, c]).chain(primitives) {
         // SAFETY: geoms made above, in no space, used no more.
-        unsafe {
-            ffi::dGeomDestroy(hull);
-            ffi::dGeomDestroy(convex);
-        }
+        unsafe { ffi::dGeomDestroy(g) };
     }
 }

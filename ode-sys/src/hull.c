@@ -94,41 +94,75 @@ static void hull_rename(dContactGeom *contact, int skip, int count, dGeomID inne
     }
 }
 
-/* A hull geom's bounding box in its own frame, placed: its centre and axes (columns)
- * in the world. */
+/* A box holding a geom, in the geom's own frame, placed: its centre and axes
+ * (columns) in the world, its half-extents. */
 struct placed_box {
     dReal centre[3];
     dReal axis[3][3]; /* axis[j]: the box's j-th axis, world */
-    const dReal *half;
+    dReal half[3];
 };
 
-static void hull_placed_box(dGeomID g, struct placed_box *b) {
-    const struct hull_proxy *h = dGeomGetClassData(g);
+/* The box of a hull geom (its hull's bounding box) or of a box, sphere, capsule or
+ * cylinder (ODE's: a capsule's and a cylinder's axis is their frame's z), placed where
+ * the geom is; 0 for a geom of another class. */
+static int placed_box(dGeomID g, int class, struct placed_box *b) {
+    dReal offset[3] = {0, 0, 0};
+    if (class == hull_class) {
+        const struct hull_proxy *h = dGeomGetClassData(g);
+        for (int k = 0; k < 3; k++) {
+            offset[k] = h->centre[k];
+            b->half[k] = h->half[k];
+        }
+    } else if (class == dBoxClass) {
+        dVector3 sides;
+        dGeomBoxGetLengths(g, sides);
+        for (int k = 0; k < 3; k++) {
+            b->half[k] = 0.5 * sides[k];
+        }
+    } else if (class == dSphereClass) {
+        dReal r = dGeomSphereGetRadius(g);
+        b->half[0] = b->half[1] = b->half[2] = r;
+    } else if (class == dCapsuleClass || class == dCylinderClass) {
+        dReal r, length;
+        if (class == dCapsuleClass) {
+            dGeomCapsuleGetParams(g, &r, &length);
+        } else {
+            dGeomCylinderGetParams(g, &r, &length);
+        }
+        b->half[0] = b->half[1] = r;
+        b->half[2] = 0.5 * length + (class == dCapsuleClass ? r : 0);
+    } else {
+        return 0;
+    }
     const dReal *p = dGeomGetPosition(g);
     const dReal *R = dGeomGetRotation(g); /* 3 rows of 4 */
     for (int i = 0; i < 3; i++) {
         const dReal *row = R + 4 * i;
-        b->centre[i] = p[i] + row[0] * h->centre[0] + row[1] * h->centre[1] + row[2] * h->centre[2];
+        b->centre[i] = p[i] + row[0] * offset[0] + row[1] * offset[1] + row[2] * offset[2];
         for (int j = 0; j < 3; j++) {
             b->axis[j][i] = row[j];
         }
     }
-    b->half = h->half;
+    return 1;
 }
 
 static dReal dot3(const dReal *u, const dReal *v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 
-/* Whether two hull geoms' boxes (each the hull's bounding box in its own frame) lie
+/* Whether a hull geom's box (its hull's bounding box in its own frame) and the box of
+ * geom `g2` (another hull's, or a box, sphere, capsule or cylinder: `placed_box`) lie
  * apart with room to spare, by the separating axis test over their 15 axes (their
- * faces' normals and their edges' cross products). Each hull lies within its box, so
- * apart boxes mean apart hulls, where ODE's convex collider finds no point: the pair
- * is skipped before that collider's support-point searches over every vertex. The
- * room (a ten-thousandth of the boxes' extents along the axis, and a micrometre) keeps
- * pairs that nearly touch for the collider, whatever its tolerances. */
-static int hull_boxes_apart(dGeomID g1, dGeomID g2) {
+ * faces' normals and their edges' cross products). Each geom lies within its box, so
+ * apart boxes mean apart geoms, where ODE's collider finds no point: the pair is
+ * skipped before that collider's support-point searches over every vertex of the
+ * hull. The room (a ten-thousandth of the boxes' extents along the axis, and a
+ * micrometre) keeps pairs that nearly touch for the collider, whatever its
+ * tolerances. */
+static int hull_boxes_apart(dGeomID g1, dGeomID g2, int class2) {
     struct placed_box A, B;
-    hull_placed_box(g1, &A);
-    hull_placed_box(g2, &B);
+    if (!placed_box(g2, class2, &B)) {
+        return 0;
+    }
+    placed_box(g1, hull_class, &A);
     const dReal *a = A.half, *b = B.half;
     dReal d[3] = {B.centre[0] - A.centre[0], B.centre[1] - A.centre[1], B.centre[2] - A.centre[2]};
     dReal R[3][3], Q[3][3], t[3];
@@ -174,7 +208,7 @@ static int hull_boxes_apart(dGeomID g1, dGeomID g2) {
  * geom first, reversing the points itself when it was given the other way round). */
 static int hull_collide(dGeomID o1, dGeomID o2, int flags, dContactGeom *contact, int skip) {
     int other = dGeomGetClass(o2);
-    if (other == hull_class && hull_boxes_apart(o1, o2)) {
+    if (hull_boxes_apart(o1, o2, other)) {
         return 0;
     }
     dGeomID inner1 = hull_placed_inner(o1);
