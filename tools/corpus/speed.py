@@ -11,8 +11,11 @@ then ARS opens the file as `ars view` does (`Simulation.open`: the file's own ti
 gravity and floor) and runs it (`sim.run`, a native loop), once with ODE's exact
 `dWorldStep` (ARS's default) and once with `stepper="quick"` (`dWorldQuickStep`, 20
 iterations). Each engine runs the same simulated time from the file's initial state, with no
-control; loading is not timed. Each is run `--repeat` times (3) and the fastest run counts,
-which keeps a busy machine's noise out of the figures. A run that leaves finite numbers is timed; one that fails
+control; loading is not timed. Each is run `--repeat` times (3), and again until its
+timed runs add up to `--min-wall` seconds (0.05; at most 100 runs), and the fastest run
+counts, which keeps a busy machine's noise out of the figures: a small model's whole run
+takes a fraction of a millisecond, where three runs leave its ratio ±30 % from one bench
+to the next. A run that leaves finite numbers is timed; one that fails
 (ARS's divergence check) is reported as failed and left out of the medians.
 
 Prints one line per file and, at the end, the medians: each engine's milliseconds per
@@ -37,27 +40,43 @@ import fetch
 GYMNASIUM_ASSETS = "gymnasium/envs/mujoco/assets/"
 
 
-def time_mujoco(path: Path, seconds: float, repeat: int) -> dict:
+MAX_RUNS = 100
+
+
+def runs(repeat: int, min_wall: float, walls: list[float]):
+    """Yields while another timed run is due: fewer than `repeat` done, or (up to
+    MAX_RUNS) fewer than `min_wall` seconds timed in all."""
+    while len(walls) < repeat or (sum(walls) < min_wall and len(walls) < MAX_RUNS):
+        yield
+
+
+def time_mujoco(path: Path, seconds: float, repeat: int, min_wall: float) -> dict:
     import mujoco
 
     model = mujoco.MjModel.from_xml_path(str(path))
     data = mujoco.MjData(model)
     steps = max(1, round(seconds / model.opt.timestep))
-    walls = []
-    for _ in range(repeat):
+    walls: list[float] = []
+    for _ in runs(repeat, min_wall, walls):
         mujoco.mj_resetData(model, data)
         start = time.perf_counter()
         mujoco.mj_step(model, data, nstep=steps)
         walls.append(time.perf_counter() - start)
     finite = bool(all(math.isfinite(v) for v in data.qpos))
-    return {"dt": model.opt.timestep, "steps": steps, "wall": min(walls), "ok": finite}
+    return {
+        "dt": model.opt.timestep,
+        "steps": steps,
+        "wall": min(walls),
+        "runs": len(walls),
+        "ok": finite,
+    }
 
 
-def time_ars(path: Path, seconds: float, stepper: str, repeat: int) -> dict:
+def time_ars(path: Path, seconds: float, stepper: str, repeat: int, min_wall: float) -> dict:
     import ars
 
-    walls = []
-    for _ in range(repeat):
+    walls: list[float] = []
+    for _ in runs(repeat, min_wall, walls):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             sim = ars.Simulation.open(str(path))
@@ -70,7 +89,7 @@ def time_ars(path: Path, seconds: float, stepper: str, repeat: int) -> dict:
         except ars.ArsError as error:
             return {"dt": dt, "ok": False, "error": str(error).splitlines()[0][:200]}
         walls.append(time.perf_counter() - start)
-    return {"dt": dt, "steps": steps, "wall": min(walls), "ok": True}
+    return {"dt": dt, "steps": steps, "wall": min(walls), "runs": len(walls), "ok": True}
 
 
 def per_second(run: dict) -> float | None:
@@ -80,12 +99,12 @@ def per_second(run: dict) -> float | None:
     return run["wall"] / (run["steps"] * run["dt"]) * 1000.0
 
 
-def measure(path: Path, seconds: float, repeat: int) -> dict:
+def measure(path: Path, seconds: float, repeat: int, min_wall: float) -> dict:
     row: dict = {}
     for label, timer in (
-        ("mujoco", lambda: time_mujoco(path, seconds, repeat)),
-        ("exact", lambda: time_ars(path, seconds, "exact", repeat)),
-        ("quick", lambda: time_ars(path, seconds, "quick", repeat)),
+        ("mujoco", lambda: time_mujoco(path, seconds, repeat, min_wall)),
+        ("exact", lambda: time_ars(path, seconds, "exact", repeat, min_wall)),
+        ("quick", lambda: time_ars(path, seconds, "quick", repeat, min_wall)),
     ):
         try:
             row[label] = timer()
@@ -157,6 +176,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--limit", type=int, help="only the first N files (of each --match)")
     parser.add_argument("--seconds", type=float, default=2.0, help="simulated seconds per run")
     parser.add_argument("--repeat", type=int, default=3, help="runs per engine; the fastest counts")
+    parser.add_argument(
+        "--min-wall",
+        type=float,
+        default=0.05,
+        help=f"more runs until they add up to this many seconds (at most {MAX_RUNS} runs)",
+    )
     parser.add_argument("--json", help="write every measurement to this file")
     args = parser.parse_args(argv)
     files = select(args)
@@ -168,7 +193,7 @@ def main(argv: list[str] | None = None) -> int:
         f"{'MuJoCo':>9} {'exact':>9} {'quick':>9} {'ex/MJ':>6} {'qu/MJ':>6}  ms per simulated s; file"
     )
     for name, path in files:
-        row = measure(path, args.seconds, args.repeat)
+        row = measure(path, args.seconds, args.repeat, args.min_wall)
         rows[name] = row
         mj, ex, qu = (per_second(row[k]) for k in ("mujoco", "exact", "quick"))
         r_ex, r_qu = ratio(ex, mj), ratio(qu, mj)
