@@ -143,6 +143,39 @@ fn a_planar_body_slides_and_turns_in_its_plane_only() {
 }
 
 #[test]
+fn a_body_on_slides_alone_never_turns_and_slides_as_pushed() {
+    // Two slides (a point mass in a plane, as dm_control's): the rotation is held about
+    // fixed axes. A force off its centre and a torque would turn a free body.
+    let mut sim = Simulation::builder().gravity(Vector3::zeros()).build().unwrap();
+    let body = sim.scene_mut().add_box([0.4, 0.2, 0.2], [0.0, 1.0, 0.0], Mass::Total(2.0)).unwrap();
+    let joints = [slide("x", [1.0, 0.0, 0.0]), slide("z", [0.0, 0.0, 1.0])];
+    sim.scene_mut().add_joint_group(body, JointEnd::World, &joints).unwrap();
+    // Given a spin and a push out of the plane: both taken away at once.
+    {
+        let mut b = sim.scene_mut().body_mut(body).unwrap();
+        b.set_angular_velocity(Vector3::new(0.5, -1.0, 2.0)).unwrap();
+        b.set_linear_velocity(Vector3::new(0.0, 0.3, 0.0)).unwrap();
+    }
+    let steps = 2000;
+    for _ in 0..steps {
+        let mut b = sim.scene_mut().body_mut(body).unwrap();
+        b.add_force_at_point(Vector3::new(1.0, 0.0, 0.5), Point3::new(0.2, 1.1, 0.1)).unwrap();
+        b.add_torque(Vector3::new(0.3, -0.2, 0.4)).unwrap();
+        sim.step().unwrap();
+    }
+    let b = sim.scene().body(body).unwrap();
+    let turned = b.rotation().angle();
+    assert!(turned < 1e-4, "turned by {turned} rad");
+    assert!(b.angular_velocity().norm() < 1e-6, "{}", b.angular_velocity());
+    // The force moves it as it would move its mass: x = F t² / 2m along each slide.
+    let t = steps as f64 * sim.scene().time_step();
+    let (x, z) = (state(&sim, "x").0, state(&sim, "z").0);
+    assert!((x - 1.0 * t * t / 4.0).abs() < 1e-2 * x, "{x} against {}", t * t / 4.0);
+    assert!((z - 0.5 * t * t / 4.0).abs() < 1e-2 * z, "{z} against {}", 0.5 * t * t / 4.0);
+    assert!((b.position().y - 1.0).abs() < 1e-3, "{}", b.position());
+}
+
+#[test]
 fn a_scene_file_and_a_snapshot_make_the_group_again_to_the_bit() {
     let (mut sim, arm) = gimbal();
     sim.scene_mut().joint_mut("b").unwrap().set_limits(-0.3, 0.3).unwrap();

@@ -271,7 +271,10 @@ impl Scene {
             Ok(Some(self.world.insert_joint(joined(builder))?))
         };
         let turns = 3 - shape.hinges;
-        let lock_turns = lock(JointKind::AngularMotor { axes: vec![(AxisFrame::World, Vector3::x()); turns] }, turns)?;
+        // Without hinges the rotation is held about the frame's axes (the world's: a
+        // group that slides joins the world), which never turn.
+        let turn_axes = (shape.hinges..3).map(|i| (AxisFrame::World, shape.frame.column(i).into_owned())).collect();
+        let lock_turns = lock(JointKind::AngularMotor { axes: turn_axes }, turns)?;
         let normal_count = if shape.slides.is_empty() { 0 } else { 3 - shape.slides.len() };
         let normals = shape.normals.iter().map(|n| (AxisFrame::World, *n)).collect();
         let lock_slides = lock(JointKind::LinearMotor { axes: normals }, normal_count)?;
@@ -362,23 +365,7 @@ impl Scene {
         let a = (-m[(1, 2)]).atan2(m[(2, 2)]);
         let b = m[(0, 2)].atan2(m[(0, 0)].hypot(m[(0, 1)]));
         let c = (-m[(0, 1)]).atan2(m[(0, 0)]);
-        let (sin_a, cos_a) = a.sin_cos();
-        let (sin_b, cos_b) = b.sin_cos();
-        // The Euler axes in the world: x, Rx(a)·y, Rx(a)·Ry(b)·z of the group's frame.
-        let w1 = world_frame.column(0).into_owned();
-        let w2 = world_frame * Vector3::new(0.0, cos_a, sin_a);
-        let w3 = world_frame * Vector3::new(sin_b, -sin_a * cos_b, cos_a * cos_b);
-        let det = w1.dot(&w2.cross(&w3));
-        let det = if det.abs() < 1.0 / MAX_DUAL { (1.0 / MAX_DUAL).copysign(det) } else { det };
-        let duals = [w2.cross(&w3) / det, w3.cross(&w1) / det, w1.cross(&w2) / det];
-        let relative = wc - wp;
         k.angles = [a, b, c];
-        for (i, (d, w)) in duals.iter().zip([w1, w2, w3]).enumerate() {
-            let length = d.norm();
-            // At gimbal lock the middle dual axis vanishes: its own axis stands in.
-            (k.euler_direction[i], k.euler_scale[i]) =
-                if length > 1e-12 { (d / length, length.min(MAX_DUAL)) } else { (w, 1.0) };
-        }
         let arm = rc * g.anchor_child;
         let anchor = xc + arm;
         let anchor_velocity = vc + wc.cross(&arm) - vp_at;
@@ -393,6 +380,30 @@ impl Scene {
             k.rate[i] = axis.dot(&anchor_velocity);
             k.direction[i] = *axis;
             k.scale[i] = 1.0;
+        }
+        if g.hinges == 0 {
+            // No turn is free: the frame's own axes (the world's, fixed) hold the
+            // rotation, each correcting its angle.
+            for i in 0..3 {
+                (k.euler_direction[i], k.euler_scale[i]) = (world_frame.column(i).into_owned(), 1.0);
+            }
+            return Ok(());
+        }
+        let (sin_a, cos_a) = a.sin_cos();
+        let (sin_b, cos_b) = b.sin_cos();
+        // The Euler axes in the world: x, Rx(a)·y, Rx(a)·Ry(b)·z of the group's frame.
+        let w1 = world_frame.column(0).into_owned();
+        let w2 = world_frame * Vector3::new(0.0, cos_a, sin_a);
+        let w3 = world_frame * Vector3::new(sin_b, -sin_a * cos_b, cos_a * cos_b);
+        let det = w1.dot(&w2.cross(&w3));
+        let det = if det.abs() < 1.0 / MAX_DUAL { (1.0 / MAX_DUAL).copysign(det) } else { det };
+        let duals = [w2.cross(&w3) / det, w3.cross(&w1) / det, w1.cross(&w2) / det];
+        let relative = wc - wp;
+        for (i, (d, w)) in duals.iter().zip([w1, w2, w3]).enumerate() {
+            let length = d.norm();
+            // At gimbal lock the middle dual axis vanishes: its own axis stands in.
+            (k.euler_direction[i], k.euler_scale[i]) =
+                if length > 1e-12 { (d / length, length.min(MAX_DUAL)) } else { (w, 1.0) };
         }
         let axes = [w1, w2, w3];
         for (h, dual) in duals.iter().enumerate().take(g.hinges) {
@@ -415,17 +426,17 @@ impl Scene {
 
     /// A group member's position and rate now.
     pub(crate) fn member_state(&self, member: GroupMember) -> Result<JointState> {
-        let k = self.kinematics_of(member.group)?;
-        Ok(JointState { position: k.position[member.index], rate: k.rate[member.index] })
+        let state = |k: &GroupKinematics| JointState { position: k.position[member.index], rate: k.rate[member.index] };
+        match self.kept_kinematics(member.group) {
+            Some(k) => Ok(state(k)),
+            None => Ok(state(&self.group_kinematics(self.group(member.group)?)?)),
+        }
     }
 
-    /// Group `group`'s kinematics: as worked out for the step about to be taken while
-    /// its drives are applied (nothing moves then), else now.
-    fn kinematics_of(&self, group: usize) -> Result<std::borrow::Cow<'_, GroupKinematics>> {
-        match self.group_kinematics_now.get(group) {
-            Some(k) => Ok(std::borrow::Cow::Borrowed(k)),
-            None => Ok(std::borrow::Cow::Owned(self.group_kinematics(self.group(group)?)?)),
-        }
+    /// Group `group`'s kinematics as worked out for the step about to be taken, while
+    /// its drives are applied (nothing moves then).
+    fn kept_kinematics(&self, group: usize) -> Option<&GroupKinematics> {
+        if self.group_kinematics_kept { self.group_kinematics_now.get(group) } else { None }
     }
 
     /// Works out every group's kinematics for the drives of the step about to be taken
@@ -433,13 +444,13 @@ impl Scene {
     pub(crate) fn keep_group_kinematics(&mut self) -> Result<()> {
         // Into the room of the last step's.
         let mut kinematics = std::mem::take(&mut self.group_kinematics_now);
-        kinematics.resize_with(self.groups.len(), GroupKinematics::default);
+        if kinematics.len() != self.groups.len() {
+            kinematics.resize_with(self.groups.len(), GroupKinematics::default);
+        }
         let worked =
             self.groups.iter().zip(kinematics.iter_mut()).try_for_each(|(g, k)| self.fill_group_kinematics(g, k));
-        if worked.is_err() {
-            // None kept: a group's would be read as another's.
-            kinematics.clear();
-        }
+        // None kept after a failure: a group's would be read as another's.
+        self.group_kinematics_kept = worked.is_ok();
         self.group_kinematics_now = kinematics;
         worked
     }
@@ -447,7 +458,7 @@ impl Scene {
     /// The bodies may move again: group kinematics are worked out when asked (the
     /// list's room is kept for the next step).
     pub(crate) fn forget_group_kinematics(&mut self) {
-        self.group_kinematics_now.clear();
+        self.group_kinematics_kept = false;
     }
 
     fn group(&self, index: usize) -> Result<&JointGroup> {
@@ -458,15 +469,20 @@ impl Scene {
     /// dual axis (a force through the anchor along a slide's axis), opposite on the
     /// parent.
     pub(crate) fn put_member_effort(&mut self, member: GroupMember, effort: f64) -> Result<()> {
-        let k = self.kinematics_of(member.group)?.into_owned();
+        let i = member.index;
+        let read = |k: &GroupKinematics| (k.direction[i], k.scale[i], k.anchor);
+        let (direction, scale, anchor) = match self.kept_kinematics(member.group) {
+            Some(k) => read(k),
+            None => read(&self.group_kinematics(self.group(member.group)?)?),
+        };
         let g = self.group(member.group)?;
-        let (child, parent, slide) = (g.child, g.parent, member.index < g.slides.len());
-        let along = k.direction[member.index] * (effort * k.scale[member.index]);
+        let (child, parent, slide) = (g.child, g.parent, i < g.slides.len());
+        let along = direction * (effort * scale);
         if slide {
             limits::vector_within("joint force", &along, limits::MAX_FORCE, "N")?;
-            self.world.body_mut(child)?.add_force_at_point(along, k.anchor)?;
+            self.world.body_mut(child)?.add_force_at_point(along, anchor)?;
             if let Some(p) = parent {
-                self.world.body_mut(p)?.add_force_at_point(-along, k.anchor)?;
+                self.world.body_mut(p)?.add_force_at_point(-along, anchor)?;
             }
         } else {
             limits::vector_within("joint torque", &along, limits::MAX_TORQUE, "N·m")?;
@@ -500,8 +516,9 @@ impl Scene {
         let mut stops = std::mem::take(&mut self.group_stops);
         stops.clear();
         // The kinematics kept for this step, read in place (worked out here without).
+        let is_kept = self.group_kinematics_kept;
         let kept = std::mem::take(&mut self.group_kinematics_now);
-        let held = (0..self.groups.len()).try_for_each(|group| match kept.get(group) {
+        let held = (0..self.groups.len()).try_for_each(|group| match kept.get(group).filter(|_| is_kept) {
             Some(k) => self.hold_group(group, k, &mut stops),
             None => {
                 let k = self.group_kinematics(self.group(group)?)?;
@@ -530,7 +547,10 @@ impl Scene {
         if let Some(lock) = lock_turns {
             let mut motor = self.world.joint_mut(lock)?;
             for (row, euler) in (hinges..3).enumerate() {
-                motor.set_motor_axis(row, k.euler_direction[euler])?;
+                if hinges > 0 {
+                    // Without hinges the rows keep the frame's axes they were made with.
+                    motor.set_motor_axis(row, k.euler_direction[euler])?;
+                }
                 let correction = -erp * k.angles[euler] / (h * k.euler_scale[euler]);
                 motor.set_param(JointParam::Velocity, row, speed(correction))?;
             }
@@ -566,9 +586,9 @@ impl Scene {
             // A hinge's motor has rows with stops, a speed motor or dry friction (a
             // force limit): only then is it turned to the hinge's axis.
             let rows = stops_of_member.is_some() || member.motor.1 > 0.0;
-            let mut motor = self.world.joint_mut(handle)?;
             if kind == JointType::Hinge && rows {
                 // A slide's direction is fixed (the world's, where it was made).
+                let mut motor = self.world.joint_mut(handle)?;
                 motor.set_motor_axis(0, direction)?;
                 if stops_of_member.is_some() {
                     motor.set_motor_angle(0, k.position[i] / scale)?;
@@ -577,6 +597,7 @@ impl Scene {
             // Its stops and speed motor, scaled to its dual axis when that changed
             // (three hinges; NaN: set unscaled since).
             if scale != member.scale {
+                let mut motor = self.world.joint_mut(handle)?;
                 if let (JointType::Hinge, Some((low, high))) = (kind, stops_of_member) {
                     motor.set_limits(0, low / scale, high / scale)?;
                 }

@@ -53,8 +53,10 @@ pub struct Scene {
     joint_names: Names<JointId>,
     /// Joint groups (see [`joint_group`]), each with its joints.
     groups: Vec<joint_group::JointGroup>,
-    /// Each group's kinematics while the drives of a step are applied (else empty).
+    /// Each group's kinematics while the drives of a step are applied (`kept`; else
+    /// stale, the room kept for the next step).
     group_kinematics_now: Vec<joint_group::GroupKinematics>,
+    group_kinematics_kept: bool,
     /// The one-sided rows of the groups' slides at their stops, made each step (its
     /// room kept from one step to the next).
     group_stops: Vec<crate::world::limit_rows::LimitRow>,
@@ -108,6 +110,7 @@ impl Scene {
             joint_names: Names::new("joint"),
             groups: Vec::new(),
             group_kinematics_now: Vec::new(),
+            group_kinematics_kept: false,
             group_stops: Vec::new(),
             driven_joints: Vec::new(),
             actuated_joints: Vec::new(),
