@@ -7,7 +7,10 @@
 //! each freedom it locks: an ODE ball at the hinges' common point (three rows; none
 //! when the group slides), an angular motor holding the rotations no hinge allows and,
 //! for one or two slides, a linear motor holding the translations no slide allows.
-//! Those motors correct their drift as ODE's own joints do (the world's ERP).
+//! Those motors correct their drift as ODE's own joints do (the world's ERP). The
+//! angular motor's rows are the locked Euler angles' dual axes, turned each step; a
+//! group of slides alone, which turns no way, holds its rotation about its frame's
+//! fixed axes instead (the world's: slides join the world), set once.
 //!
 //! Each joint of the group stays a simulation joint of its own ([`JointType::Hinge`]
 //! or [`JointType::Slider`]), read and driven as any other: its position and rate are
