@@ -118,22 +118,9 @@ fn hull_pairs_find_the_points_of_odes_own_convexes_bit_for_bit_and_none_where_th
         // polygons, `points.len() / 3` points) and outlive the geoms (destroyed below).
         unsafe {
             let (planes, points) = ((s.planes.len() / 4) as u32, (s.points.len() / 3) as u32);
-            let hull = ffi::odesys_hull_create(
-                std::ptr::null_mut(),
-                s.planes.as_ptr(),
-                planes,
-                s.points.as_ptr(),
-                points,
-                s.polygons.as_ptr(),
-            );
-            let convex = ffi::dCreateConvex(
-                std::ptr::null_mut(),
-                s.planes.as_ptr(),
-                planes,
-                s.points.as_ptr(),
-                points,
-                s.polygons.as_ptr(),
-            );
+            let (none, arrays) = (std::ptr::null_mut(), (s.planes.as_ptr(), s.points.as_ptr(), s.polygons.as_ptr()));
+            let hull = ffi::odesys_hull_create(none, arrays.0, planes, arrays.1, points, arrays.2);
+            let convex = ffi::dCreateConvex(none, arrays.0, planes, arrays.1, points, arrays.2);
             (hull, convex)
         }
     };

@@ -7,6 +7,7 @@
 //! - joints: named joints with their efforts, friction and controllers;
 //! - floors: heightfield terrains.
 
+mod actuators;
 mod armature;
 pub mod colors;
 mod floor;

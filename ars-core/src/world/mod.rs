@@ -13,14 +13,16 @@ mod grid;
 pub mod joint;
 pub(crate) mod limit_rows;
 pub(crate) mod mesh_tree;
+mod pair_checks;
 pub mod raycast;
 mod spread;
 pub(crate) mod state;
 mod step;
 
 use body::BodyData;
-use collision::{CollisionState, ConvexSizes};
+use collision::CollisionState;
 use geom::GeomData;
+use pair_checks::ConvexSizes;
 
 use crate::convert;
 use crate::error::{Error, Result};

@@ -249,29 +249,7 @@ impl Scene {
             self.exclude_contacts(parent, id)?;
         }
         if body.joints.is_empty() {
-            // Welded to the world (a jointless body of the world that has mass, its
-            // jointless descendants merged into it: the `weld` module) or moved by the
-            // user only (a mocap body, `set_mocap_pose`): a kinematic ODE body, as
-            // MuJoCo's has no degree of freedom. It keeps its mass, which it never
-            // feels, and adds no row to the step, where a fixed joint would add six.
-            let handle =
-                self.object(id)?.body_handle().ok_or_else(|| body_error(format!("{:?}: no body", body.name)))?;
-            let mut ode = self.world_mut().body_mut(handle)?;
-            ode.set_kinematic(true);
-            if !body.mocap {
-                // It never moves: ODE leaves it out of the step (its geoms are not
-                // moved, its contacts hold the bodies touching it as the world's
-                // would), unless a joint joins it to a body that moves.
-                ode.set_enabled(false);
-            }
-            if body.mocap {
-                made.mocap.push(MjcfMocap {
-                    body: body.name.clone(),
-                    object: id,
-                    placement: *parent_frame,
-                    offset: Isometry3::translation(masses.com.x, masses.com.y, masses.com.z),
-                });
-            }
+            self.make_jointless_body(body, id, parent_frame, &masses, made)?;
         }
         if let Some(group) = grouped {
             // Several joints as MuJoCo makes them: one constraint (see `group.rs`).
@@ -304,6 +282,41 @@ impl Scene {
         }
         for child in &body.children {
             self.add_mjcf_body(child, &frame, Some(id), made, named)?;
+        }
+        Ok(())
+    }
+
+    /// Makes jointless MJCF `body` (object `id`) kinematic: welded to the world, or a
+    /// mocap body moved by the user (`made.mocap`).
+    fn make_jointless_body(
+        &mut self,
+        body: &Body,
+        id: ObjectId,
+        parent_frame: &Isometry3<f64>,
+        masses: &BodyMasses,
+        made: &mut MjcfModel,
+    ) -> Result<()> {
+        // Welded to the world (a jointless body of the world that has mass, its
+        // jointless descendants merged into it: the `weld` module) or moved by the
+        // user only (a mocap body, `set_mocap_pose`): a kinematic ODE body, as
+        // MuJoCo's has no degree of freedom. It keeps its mass, which it never
+        // feels, and adds no row to the step, where a fixed joint would add six.
+        let handle = self.object(id)?.body_handle().ok_or_else(|| body_error(format!("{:?}: no body", body.name)))?;
+        let mut ode = self.world_mut().body_mut(handle)?;
+        ode.set_kinematic(true);
+        if !body.mocap {
+            // It never moves: ODE leaves it out of the step (its geoms are not
+            // moved, its contacts hold the bodies touching it as the world's
+            // would), unless a joint joins it to a body that moves.
+            ode.set_enabled(false);
+        }
+        if body.mocap {
+            made.mocap.push(MjcfMocap {
+                body: body.name.clone(),
+                object: id,
+                placement: *parent_frame,
+                offset: Isometry3::translation(masses.com.x, masses.com.y, masses.com.z),
+            });
         }
         Ok(())
     }

@@ -39,12 +39,14 @@ use nalgebra::{Isometry3, Matrix3, Point3, Rotation3, Unit, Vector3};
 
 use super::Scene;
 use super::joints::{JointEnd, JointType};
-use crate::control::JointState;
 use crate::error::{Error, Result};
 use crate::handle::{BodyHandle, JointHandle, JointId, ObjectId};
 use crate::joint::{AxisFrame, JointBuilder, JointKind, JointParam};
 use crate::limits;
-use crate::world::limit_rows::LimitRow;
+
+mod motion;
+
+pub(crate) use motion::GroupKinematics;
 
 /// One joint of a group to make: a hinge through `anchor` about `axis`, or a slide along
 /// `axis` (world frame, where the objects are when the group is made, where the joint
@@ -123,29 +125,6 @@ pub(crate) struct JointGroup {
     pub(crate) lock_turns: Option<JointHandle>,
     pub(crate) lock_slides: Option<JointHandle>,
 }
-
-/// The group's joints as they are: each one's position and rate, the direction its
-/// efforts act along (unit, world) and its dual axis' length; the locked rotations'
-/// and translations' directions, their dual length and their error.
-#[derive(Clone, Default)]
-pub(crate) struct GroupKinematics {
-    position: [f64; 6],
-    rate: [f64; 6],
-    direction: [Vector3<f64>; 6],
-    scale: [f64; 6],
-    /// Euler angles of the relative rotation in the group's frame, their rates' dual
-    /// directions and lengths.
-    angles: [f64; 3],
-    euler_direction: [Vector3<f64>; 3],
-    euler_scale: [f64; 3],
-    /// The anchor's displacement (world) from where the joints read 0.
-    displacement: Vector3<f64>,
-    /// The anchor's world position.
-    anchor: Point3<f64>,
-}
-
-/// A group's dual axes are at most this long (the hinges near gimbal lock).
-const MAX_DUAL: f64 = 1e6;
 
 /// Orthonormal to within this.
 const SQUARE: f64 = 1e-9;
@@ -258,29 +237,7 @@ impl Scene {
             Some(p) => b.between(child, p),
             None => b.to_world(child),
         };
-        let ball = if shape.slides.is_empty() {
-            Some(self.world.insert_joint(joined(JointBuilder::ball(anchor)))?)
-        } else {
-            None
-        };
-        let mut lock = |kind: JointKind, n: usize| -> Result<Option<JointHandle>> {
-            if n == 0 {
-                return Ok(None);
-            }
-            let mut builder = JointBuilder::new(kind);
-            for axis in 0..n {
-                builder = builder.param(JointParam::MaxForce, axis, f64::INFINITY);
-            }
-            Ok(Some(self.world.insert_joint(joined(builder))?))
-        };
-        let turns = 3 - shape.hinges;
-        // Without hinges the rotation is held about the frame's axes (the world's: a
-        // group that slides joins the world), which never turn.
-        let turn_axes = (shape.hinges..3).map(|i| (AxisFrame::World, shape.frame.column(i).into_owned())).collect();
-        let lock_turns = lock(JointKind::AngularMotor { axes: turn_axes }, turns)?;
-        let normal_count = if shape.slides.is_empty() { 0 } else { 3 - shape.slides.len() };
-        let normals = shape.normals.iter().map(|n| (AxisFrame::World, *n)).collect();
-        let lock_slides = lock(JointKind::LinearMotor { axes: normals }, normal_count)?;
+        let (ball, lock_turns, lock_slides) = self.make_group_locks(&shape, anchor, joined)?;
         let group = self.groups.len();
         let mut members = Vec::new();
         for (index, ((name, kind, creation), axis)) in named.iter().zip(&rest.axes).enumerate() {
@@ -320,6 +277,41 @@ impl Scene {
         Ok(members)
     }
 
+    /// The ODE joints of a group of `shape` that hold what none of its joints allows:
+    /// a ball at `anchor` (hinges only), the angular and the linear locks; `joined`
+    /// attaches a joint to the group's two bodies.
+    fn make_group_locks(
+        &mut self,
+        shape: &GroupShape,
+        anchor: Point3<f64>,
+        joined: impl Fn(JointBuilder) -> JointBuilder,
+    ) -> Result<(Option<JointHandle>, Option<JointHandle>, Option<JointHandle>)> {
+        let ball = if shape.slides.is_empty() {
+            Some(self.world.insert_joint(joined(JointBuilder::ball(anchor)))?)
+        } else {
+            None
+        };
+        let mut lock = |kind: JointKind, n: usize| -> Result<Option<JointHandle>> {
+            if n == 0 {
+                return Ok(None);
+            }
+            let mut builder = JointBuilder::new(kind);
+            for axis in 0..n {
+                builder = builder.param(JointParam::MaxForce, axis, f64::INFINITY);
+            }
+            Ok(Some(self.world.insert_joint(joined(builder))?))
+        };
+        let turns = 3 - shape.hinges;
+        // Without hinges the rotation is held about the frame's axes (the world's: a
+        // group that slides joins the world), which never turn.
+        let turn_axes = (shape.hinges..3).map(|i| (AxisFrame::World, shape.frame.column(i).into_owned())).collect();
+        let lock_turns = lock(JointKind::AngularMotor { axes: turn_axes }, turns)?;
+        let normal_count = if shape.slides.is_empty() { 0 } else { 3 - shape.slides.len() };
+        let normals = shape.normals.iter().map(|n| (AxisFrame::World, *n)).collect();
+        let lock_slides = lock(JointKind::LinearMotor { axes: normals }, normal_count)?;
+        Ok((ball, lock_turns, lock_slides))
+    }
+
     /// The geometry of the group `member` is one of, as a scene file saves it.
     pub(crate) fn group_rest(&self, member: GroupMember) -> Result<GroupRest> {
         let g = self.group(member.group)?;
@@ -341,288 +333,8 @@ impl Scene {
         Ok((child, parent))
     }
 
-    /// The group's kinematics now.
-    fn group_kinematics(&self, g: &JointGroup) -> Result<GroupKinematics> {
-        let mut k = GroupKinematics::default();
-        self.fill_group_kinematics(g, &mut k)?;
-        Ok(k)
-    }
-
-    /// Writes the group's kinematics now into `k` (every field).
-    fn fill_group_kinematics(&self, g: &JointGroup, k: &mut GroupKinematics) -> Result<()> {
-        let child = self.world.body(g.child)?;
-        let (xc, rc, vc, wc) = (child.position(), child.rotation(), child.linear_velocity(), child.angular_velocity());
-        // The group's frame in the world: its hinges' axes where they are now.
-        let (xp, rp, world_frame, wp, vp_at) = match g.parent {
-            Some(p) => {
-                let body = self.world.body(p)?;
-                let rp = body.rotation();
-                let anchor = child.point_to_world(Point3::from(g.anchor_child));
-                (body.position(), Some(rp), rp.matrix() * g.frame, body.angular_velocity(), body.point_velocity(anchor))
-            }
-            None => (Point3::origin(), None, g.frame, Vector3::zeros(), Vector3::zeros()),
-        };
-        // The child's rotation is parent · G · rest; G in the group's frame F is
-        // Rx(a)·Ry(b)·Rz(c), its first angles the hinges': Fᵀ·G·F = (parent·F)ᵀ·child·(restᵀ·F).
-        let m = world_frame.transpose() * (rc.matrix() * g.rest_frame);
-        let a = (-m[(1, 2)]).atan2(m[(2, 2)]);
-        let b = m[(0, 2)].atan2(m[(0, 0)].hypot(m[(0, 1)]));
-        let c = (-m[(0, 1)]).atan2(m[(0, 0)]);
-        k.angles = [a, b, c];
-        let arm = rc * g.anchor_child;
-        let anchor = xc + arm;
-        let anchor_velocity = vc + wc.cross(&arm) - vp_at;
-        k.anchor = anchor;
-        k.displacement = match rp {
-            Some(rp) => rp * ((rp.inverse() * (anchor - xp)) - g.anchor_parent),
-            None => anchor.coords - g.anchor_parent,
-        };
-        let slides = g.slides.len();
-        for (i, axis) in g.slides.iter().enumerate() {
-            k.position[i] = axis.dot(&k.displacement);
-            k.rate[i] = axis.dot(&anchor_velocity);
-            k.direction[i] = *axis;
-            k.scale[i] = 1.0;
-        }
-        if g.hinges == 0 {
-            // No turn is free: the frame's own axes (the world's, fixed) hold the
-            // rotation, each correcting its angle.
-            for i in 0..3 {
-                (k.euler_direction[i], k.euler_scale[i]) = (world_frame.column(i).into_owned(), 1.0);
-            }
-            return Ok(());
-        }
-        let (sin_a, cos_a) = a.sin_cos();
-        let (sin_b, cos_b) = b.sin_cos();
-        // The Euler axes in the world: x, Rx(a)·y, Rx(a)·Ry(b)·z of the group's frame.
-        let w1 = world_frame.column(0).into_owned();
-        let w2 = world_frame * Vector3::new(0.0, cos_a, sin_a);
-        let w3 = world_frame * Vector3::new(sin_b, -sin_a * cos_b, cos_a * cos_b);
-        let det = w1.dot(&w2.cross(&w3));
-        let det = if det.abs() < 1.0 / MAX_DUAL { (1.0 / MAX_DUAL).copysign(det) } else { det };
-        let duals = [w2.cross(&w3) / det, w3.cross(&w1) / det, w1.cross(&w2) / det];
-        let relative = wc - wp;
-        for (i, (d, w)) in duals.iter().zip([w1, w2, w3]).enumerate() {
-            let length = d.norm();
-            // At gimbal lock the middle dual axis vanishes: its own axis stands in.
-            (k.euler_direction[i], k.euler_scale[i]) =
-                if length > 1e-12 { (d / length, length.min(MAX_DUAL)) } else { (w, 1.0) };
-        }
-        let axes = [w1, w2, w3];
-        for (h, dual) in duals.iter().enumerate().take(g.hinges) {
-            let sign = if h == 2 { g.third_sign } else { 1.0 };
-            let i = slides + h;
-            k.position[i] = sign * k.angles[h];
-            k.rate[i] = sign * dual.dot(&relative);
-            if g.hinges == 3 {
-                k.direction[i] = sign * k.euler_direction[h];
-                k.scale[i] = k.euler_scale[h];
-            } else {
-                // With a rotation locked, the turn is in the span of the hinges' axes,
-                // which are perpendicular: each axis is its own dual there (scale 1).
-                k.direction[i] = axes[h];
-                k.scale[i] = 1.0;
-            }
-        }
-        Ok(())
-    }
-
-    /// A group member's position and rate now.
-    pub(crate) fn member_state(&self, member: GroupMember) -> Result<JointState> {
-        let state = |k: &GroupKinematics| JointState { position: k.position[member.index], rate: k.rate[member.index] };
-        match self.kept_kinematics(member.group) {
-            Some(k) => Ok(state(k)),
-            None => Ok(state(&self.group_kinematics(self.group(member.group)?)?)),
-        }
-    }
-
-    /// Group `group`'s kinematics as worked out for the step about to be taken, while
-    /// its drives are applied (nothing moves then).
-    fn kept_kinematics(&self, group: usize) -> Option<&GroupKinematics> {
-        if self.group_kinematics_kept { self.group_kinematics_now.get(group) } else { None }
-    }
-
-    /// Works out every group's kinematics for the drives of the step about to be taken
-    /// (`forget_group_kinematics` after them).
-    pub(crate) fn keep_group_kinematics(&mut self) -> Result<()> {
-        // Into the room of the last step's.
-        let mut kinematics = std::mem::take(&mut self.group_kinematics_now);
-        if kinematics.len() != self.groups.len() {
-            kinematics.resize_with(self.groups.len(), GroupKinematics::default);
-        }
-        let worked =
-            self.groups.iter().zip(kinematics.iter_mut()).try_for_each(|(g, k)| self.fill_group_kinematics(g, k));
-        // None kept after a failure: a group's would be read as another's.
-        self.group_kinematics_kept = worked.is_ok();
-        self.group_kinematics_now = kinematics;
-        worked
-    }
-
-    /// The bodies may move again: group kinematics are worked out when asked (the
-    /// list's room is kept for the next step).
-    pub(crate) fn forget_group_kinematics(&mut self) {
-        self.group_kinematics_kept = false;
-    }
-
     fn group(&self, index: usize) -> Result<&JointGroup> {
         self.groups.get(index).ok_or_else(|| bad_group(format!("group {index} is gone")))
-    }
-
-    /// Puts `effort` (N·m or N) on a group member for the next step: a torque along its
-    /// dual axis (a force through the anchor along a slide's axis), opposite on the
-    /// parent.
-    pub(crate) fn put_member_effort(&mut self, member: GroupMember, effort: f64) -> Result<()> {
-        let i = member.index;
-        let read = |k: &GroupKinematics| (k.direction[i], k.scale[i], k.anchor);
-        let (direction, scale, anchor) = match self.kept_kinematics(member.group) {
-            Some(k) => read(k),
-            None => read(&self.group_kinematics(self.group(member.group)?)?),
-        };
-        let g = self.group(member.group)?;
-        let (child, parent, slide) = (g.child, g.parent, i < g.slides.len());
-        let along = direction * (effort * scale);
-        if slide {
-            limits::vector_within("joint force", &along, limits::MAX_FORCE, "N")?;
-            self.world.body_mut(child)?.add_force_at_point(along, anchor)?;
-            if let Some(p) = parent {
-                self.world.body_mut(p)?.add_force_at_point(-along, anchor)?;
-            }
-        } else {
-            limits::vector_within("joint torque", &along, limits::MAX_TORQUE, "N·m")?;
-            self.world.body_mut(child)?.add_torque(along)?;
-            if let Some(p) = parent {
-                self.world.body_mut(p)?.add_torque(-along)?;
-            }
-        }
-        Ok(())
-    }
-
-    /// The inertia (mass) a group member's motion moves at least: the child's about its
-    /// dual axis through the anchor (its mass along a slide).
-    pub(crate) fn member_inertia(&self, member: GroupMember) -> Result<f64> {
-        let g = self.group(member.group)?;
-        let body = self.world.body(g.child)?;
-        if member.index < g.slides.len() {
-            return Ok(body.mass());
-        }
-        let k = self.group_kinematics(g)?;
-        let axis = k.direction[member.index];
-        let arm = body.position() - k.anchor;
-        let across = arm - axis * arm.dot(&axis);
-        Ok(axis.dot(&(body.inertia_world() * axis)) + body.mass() * across.norm_squared())
-    }
-
-    /// Sets every group's rows for the coming step: the locked freedoms' directions and
-    /// drift corrections, and each member's motor turned and scaled to its dual axis.
-    pub(crate) fn hold_groups(&mut self) -> Result<()> {
-        // The stops' rows of the last step, emptied: its room is kept.
-        let mut stops = std::mem::take(&mut self.group_stops);
-        stops.clear();
-        // The kinematics kept for this step, read in place (worked out here without).
-        let is_kept = self.group_kinematics_kept;
-        let kept = std::mem::take(&mut self.group_kinematics_now);
-        let held = (0..self.groups.len()).try_for_each(|group| match kept.get(group).filter(|_| is_kept) {
-            Some(k) => self.hold_group(group, k, &mut stops),
-            None => {
-                let k = self.group_kinematics(self.group(group)?)?;
-                self.hold_group(group, &k, &mut stops)
-            }
-        });
-        self.group_kinematics_now = kept;
-        let set = held.and_then(|()| self.world.set_limit_rows(&stops));
-        self.group_stops = stops;
-        set
-    }
-
-    /// Sets group `group`'s rows for the coming step, its kinematics `k`; its slides at
-    /// their stops add a one-sided row to `stops`.
-    fn hold_group(&mut self, group: usize, k: &GroupKinematics, stops: &mut Vec<LimitRow>) -> Result<()> {
-        let (erp, h) = (self.world.erp(), self.time_step.get());
-        let speed = |v: f64| v.clamp(-limits::MAX_SPEED, limits::MAX_SPEED);
-        let g = self.group(group)?;
-        let (hinges, lock_turns, lock_slides, child) = (g.hinges, g.lock_turns, g.lock_slides, g.child);
-        // At most two normals (one slide).
-        let mut corrections = [0.0; 2];
-        for (c, n) in corrections.iter_mut().zip(&g.normals) {
-            *c = -erp * n.dot(&k.displacement) / h;
-        }
-        let normals = g.normals.len();
-        if let Some(lock) = lock_turns {
-            let mut motor = self.world.joint_mut(lock)?;
-            for (row, euler) in (hinges..3).enumerate() {
-                if hinges > 0 {
-                    // Without hinges the rows keep the frame's axes they were made with.
-                    motor.set_motor_axis(row, k.euler_direction[euler])?;
-                }
-                let correction = -erp * k.angles[euler] / (h * k.euler_scale[euler]);
-                motor.set_param(JointParam::Velocity, row, speed(correction))?;
-            }
-        }
-        if let Some(lock) = lock_slides {
-            let mut motor = self.world.joint_mut(lock)?;
-            for (row, correction) in corrections.into_iter().take(normals).enumerate() {
-                motor.set_param(JointParam::Velocity, row, speed(correction))?;
-            }
-        }
-        for m in 0..self.group(group)?.members.len() {
-            let id = self.group(group)?.members[m];
-            let d = self.joint_data(id)?;
-            let Some(member) = d.member else { continue };
-            let (i, handle, stops_of_member, armature, kind) = (member.index, d.handle, d.limits, d.armature, d.kind);
-            let (direction, scale) = (k.direction[i], k.scale[i]);
-            if let (JointType::Slider, Some((low, high))) = (kind, stops_of_member) {
-                // ODE's linear motor has no stops: a one-sided row at the anchor.
-                let position = k.position[i];
-                let (normal, depth) = if position <= low {
-                    (direction, low - position)
-                } else if position >= high {
-                    (-direction, position - high)
-                } else {
-                    (Vector3::zeros(), -1.0)
-                };
-                if depth >= 0.0 {
-                    let ode = self.world.joint(handle)?;
-                    let (erp, cfm) = (ode.param(JointParam::StopErp, 0)?, ode.param(JointParam::StopCfm, 0)?);
-                    stops.push(LimitRow { body: child, point: k.anchor, normal, depth, erp, cfm });
-                }
-            }
-            // A hinge's motor has rows with stops, a speed motor or dry friction (a
-            // force limit): only then is it turned to the hinge's axis.
-            let rows = stops_of_member.is_some() || member.motor.1 > 0.0;
-            if kind == JointType::Hinge && rows {
-                // A slide's direction is fixed (the world's, where it was made).
-                let mut motor = self.world.joint_mut(handle)?;
-                motor.set_motor_axis(0, direction)?;
-                if stops_of_member.is_some() {
-                    motor.set_motor_angle(0, k.position[i] / scale)?;
-                }
-            }
-            // Its stops and speed motor, scaled to its dual axis when that changed
-            // (three hinges; NaN: set unscaled since).
-            if scale != member.scale {
-                let mut motor = self.world.joint_mut(handle)?;
-                if let (JointType::Hinge, Some((low, high))) = (kind, stops_of_member) {
-                    motor.set_limits(0, low / scale, high / scale)?;
-                }
-                let (velocity, force) = member.motor;
-                let force = if force == f64::INFINITY { force } else { (force * scale).min(limits::MAX_FORCE) };
-                motor.set_motor(0, speed(velocity / scale), force)?;
-                if let Some(m) = self.joints.get_mut(id.0, JointId::KIND)?.member.as_mut() {
-                    m.scale = scale;
-                }
-            }
-            if let Some(armature) = armature {
-                if kind == JointType::Hinge {
-                    self.world.joint_mut(armature.motor)?.set_motor_axis(0, direction)?;
-                }
-                // Damping alone on a unit axis (a slide, or a hinge of fewer than three)
-                // keeps the target and CFM it was given.
-                if armature.inertia > 0.0 || scale != 1.0 || hinges == 3 && kind == JointType::Hinge {
-                    self.hold_scaled_armature(armature, k.rate[i], scale)?;
-                }
-            }
-        }
-        Ok(())
     }
 
     /// Sets a member's speed motor: `speed` and `max_force` in the joint's units.
@@ -686,26 +398,6 @@ impl Scene {
     /// The ODE joints of every group besides its members' motors (saved with them).
     pub(crate) fn group_joints(&self) -> Vec<JointHandle> {
         self.groups.iter().flat_map(|g| [g.ball, g.lock_turns, g.lock_slides]).flatten().collect()
-    }
-
-    /// A member's current anchor and axis (world), as a scene file saves a joint.
-    pub(crate) fn member_geometry(&self, member: GroupMember) -> Result<(Point3<f64>, Vector3<f64>)> {
-        let g = self.group(member.group)?;
-        let k = self.group_kinematics(g)?;
-        let i = member.index;
-        let axis = if i < g.slides.len() {
-            g.slides[i]
-        } else {
-            // The hinge's own axis: the first fixed in the parent, the last in the child.
-            let (rp, _) = self.group_poses(g.child, g.parent).map(|(c, p)| (p.rotation, c))?;
-            let h = i - g.slides.len();
-            let rx = Rotation3::from_axis_angle(&Vector3::x_axis(), k.angles[0]);
-            let ry = Rotation3::from_axis_angle(&Vector3::y_axis(), k.angles[1]);
-            let local = [Vector3::x(), rx * Vector3::y(), rx * ry * Vector3::z()][h];
-            let sign = if h == 2 { g.third_sign } else { 1.0 };
-            rp.to_rotation_matrix() * (g.frame * local) * sign
-        };
-        Ok((k.anchor, axis))
     }
 
     /// The members of the group `member` belongs to, in order.
