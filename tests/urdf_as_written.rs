@@ -221,10 +221,12 @@ fn mesh_link(name: &str, filename: &str) -> String {
 fn a_collision_mesh_that_is_not_there_is_skipped_keeping_the_link_and_its_mass() {
     // pybullet_data/kuka_iiwa/model_for_sdf.urdf names meshes/coarse/*.stl, absent.
     let text = format!(r#"<robot name="r">{}</robot>"#, mesh_link("a", "meshes/coarse/none.stl"));
-    let (sim, robot) = load_in(&text, &scratch("missing").join("r.urdf").display().to_string());
+    let dir = scratch("missing");
+    let (sim, robot) = load_in(&text, &dir.join("r.urdf").display().to_string());
     assert_eq!(sim.scene().object("a").unwrap().geoms().count(), 0);
     assert_eq!(total_mass(&sim), 2.0);
     assert!(noted(&robot, &["link \"a\"", "<collision> is skipped", "none.stl\" not found"]), "{:?}", robot.adjusted);
+    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
@@ -241,6 +243,7 @@ fn a_package_mesh_is_found_in_a_folder_above_the_urdf() {
         let (sim, robot) = load_in(&format!(r#"<robot name="r">{}</robot>"#, mesh_link("a", filename)), &file);
         assert_eq!(sim.scene().object("a").unwrap().geoms().count(), 1, "{filename}: {:?}", robot.adjusted);
     }
+    let _ = std::fs::remove_dir_all(root);
 }
 
 #[test]

@@ -111,6 +111,7 @@ impl Simulation {
     /// let opened = Simulation::open(dir.join("ball.json"))?;
     /// assert_eq!(opened.simulation.scene().objects().count(), 1);
     /// assert!(Simulation::open(dir.join("ball.txt")).is_err());
+    /// # std::fs::remove_dir_all(&dir).unwrap();
     /// # Ok::<(), ars_core::Error>(())
     /// ```
     pub fn open(path: impl AsRef<Path>) -> Result<OpenedFile> {
