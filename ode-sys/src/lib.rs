@@ -9,8 +9,10 @@
 //! only; and the plain collision, ARS's near callback in C for the common case
 //! (`odesys_guarded_collide_plain`, `odesys_guarded_collide_and_step`); and the hull
 //! geom of `src/hull.c` (`odesys_hull_register`, `odesys_hull_create`), a convex that
-//! collides as ODE's `dConvex` but whose bounding box costs O(1) per step. There is no
-//! safe API here: that lives in `ars-core`.
+//! collides as ODE's `dConvex` but whose bounding box costs O(1) per step; and the
+//! simple space's collision of `src/simple_space.c` (`odesys_space_collide`, called
+//! from the guarded calls; its plane test `odesys_box_above_plane`, which `ars-core`'s
+//! near callback shares). There is no safe API here: that lives in `ars-core`.
 #![allow(non_upper_case_globals, non_camel_case_types, non_snake_case, missing_docs)]
 #![allow(clippy::all, clippy::undocumented_unsafe_blocks)]
 

@@ -13,8 +13,8 @@
  *   many geoms of an imported model's world body) make most of the pairs;
  * - it leaves out a plane's pairs with a geom (not a ray) whose bounding box lies
  *   wholly on the plane's open side, where no collider of ODE's finds a point (each
- *   reports only depths >= 0): the same test as ars-core's `above_plane`, before the
- *   near callback rather than in it (a floor's AABB is infinite: every geom's box
+ *   reports only depths >= 0; `odesys_box_above_plane`, which ars-core's near callback
+ *   uses in the other spaces), before the near callback rather than in it (a floor's AABB is infinite: every geom's box
  *   overlaps it);
  * - it tests the remaining pairs on a compact array rather than through ODE's
  *   linked list and virtual calls. A geom class's AABBTest is not called: only
@@ -55,9 +55,8 @@ static int boxes_disjoint(const dReal *b1, const dReal *b2) {
     return b1[0] > b2[1] || b1[1] < b2[0] || b1[2] > b2[3] || b1[3] < b2[2] || b1[4] > b2[5] || b1[5] < b2[4];
 }
 
-/* Whether the box `aabb` lies wholly on the open side of plane `p`: its lowest
- * corner's height over the plane (n·x less d) is above 0. */
-static int box_above_plane(const dReal *p, const dReal *aabb) {
+/* Its lowest corner's height over the plane (n·x less d) is above 0. */
+int odesys_box_above_plane(const dReal *p, const dReal *aabb) {
     dReal lowest = 0;
     for (int i = 0; i < 3; i++) {
         lowest += p[i] * (p[i] >= 0 ? aabb[2 * i] : aabb[2 * i + 1]);
@@ -76,8 +75,8 @@ static void test_pair(const struct simple_entry *e1, const struct simple_entry *
     if (boxes_disjoint(e1->aabb, e2->aabb)) {
         return;
     }
-    if ((e1->plane && !e2->ray && box_above_plane(e1->plane_params, e2->aabb)) ||
-        (e2->plane && !e1->ray && box_above_plane(e2->plane_params, e1->aabb))) {
+    if ((e1->plane && !e2->ray && odesys_box_above_plane(e1->plane_params, e2->aabb)) ||
+        (e2->plane && !e1->ray && odesys_box_above_plane(e2->plane_params, e1->aabb))) {
         return;
     }
     callback(data, e1->geom, e2->geom);

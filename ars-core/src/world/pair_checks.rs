@@ -102,12 +102,11 @@ pub(super) unsafe fn above_plane(plane: ffi::dGeomID, shape: &crate::shape::Shap
     }
     let (mut p, mut b) = ([0.0; 4], [0.0; 6]);
     // SAFETY: `plane` is a live plane geom and `other` a live geom (the caller's
-    // contract); both buffers are as long as ODE writes.
+    // contract); both buffers are as long as ODE writes, and as the test reads (the
+    // simple space's own, one definition for both).
     unsafe {
         ffi::dGeomPlaneGetParams(plane, p.as_mut_ptr());
         ffi::dGeomGetAABB(other, b.as_mut_ptr());
+        ffi::odesys_box_above_plane(p.as_ptr(), b.as_ptr()) != 0
     }
-    // The box's least height over the plane (n·x at its lowest corner, less d).
-    let lowest: f64 = (0..3).map(|i| p[i] * if p[i] >= 0.0 { b[2 * i] } else { b[2 * i + 1] }).sum();
-    lowest - p[3] > 0.0
 }

@@ -326,7 +326,7 @@ impl Scene {
             }
             // Damping alone on a unit axis (a slide, or a hinge of fewer than three)
             // keeps the target and CFM it was given.
-            if armature.inertia > 0.0 || scale != 1.0 || hinges == 3 && kind == JointType::Hinge {
+            if armature.inertia > 0.0 || hinges == 3 && kind == JointType::Hinge {
                 self.hold_scaled_armature(armature, k.rate[i], scale)?;
             }
         }
